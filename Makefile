@@ -1,0 +1,96 @@
+# gomboc — thin top-level Makefile. Flags live in one place (below); `pkg-config` finds the
+# libraries. The public targets first install missing Debian packages (scripts/install-deps.sh),
+# then re-enter make so that pkg-config runs only once the packages are there.
+
+PYTHON    := /usr/bin/python3
+BUILD     := build
+OUT       := reports/out
+PKGS      := gsl cunit inih libcjson
+CC        ?= cc
+CFLAGS    ?= -O2 -g
+WARN      := -std=c11 -D_GNU_SOURCE -Wall -Wextra -Werror
+ALL_CFLAGS = $(WARN) $(CFLAGS) $(shell pkg-config --cflags $(PKGS)) -Isrc
+CORE_LIBS  = $(shell pkg-config --libs gsl libcjson inih) -lqhull_r -lm
+TEST_LIBS  = $(shell pkg-config --libs cunit)
+
+CORE_SRC  := $(sort $(wildcard src/gb_*.c))
+CORE_OBJ  := $(CORE_SRC:src/%.c=$(BUILD)/obj/%.o)
+LIB       := $(BUILD)/libgomboc.a
+BIN       := $(BUILD)/gomboc
+VERIFY_SRC := $(sort $(wildcard verify/*.c))
+VERIFY_OBJ := $(VERIFY_SRC:verify/%.c=$(BUILD)/obj/verify_%.o)
+VERIFY_BIN := $(BUILD)/verify-gomboc
+
+.PHONY: all deps run verify verify-full bench references report install clean \
+        build run-only verify-only references-only
+
+all: deps
+	@$(MAKE) --no-print-directory build
+
+deps:
+	@sh scripts/install-deps.sh
+
+build: $(BIN) $(VERIFY_BIN)
+
+# --- the main job on its default scene: the shape study of both Table 1 bodies (β = 0.12)
+run: deps
+	@$(MAKE) --no-print-directory run-only
+
+run-only: $(BIN)
+	@mkdir -p $(OUT)
+	$(BIN) shape --morphology I --beta 0.12 --json --radial-map $(OUT)/radial-map-I.csv > $(OUT)/shape-I.json.tmp && mv $(OUT)/shape-I.json.tmp $(OUT)/shape-I.json
+	$(BIN) shape --morphology II --beta 0.12 --json --radial-map $(OUT)/radial-map-II.csv > $(OUT)/shape-II.json.tmp && mv $(OUT)/shape-II.json.tmp $(OUT)/shape-II.json
+	$(PYTHON) reports/shape_report.py $(OUT)
+	@echo "run: report written to $(OUT)/shape.md"
+
+# --- every check, then the reproducibility report
+verify: deps
+	@$(MAKE) --no-print-directory verify-only
+
+verify-only: $(BIN) $(VERIFY_BIN)
+	@$(MAKE) --no-print-directory run-only
+	@mkdir -p $(OUT)
+	@sh scripts/environment.sh "$(CC)" "$(WARN) $(CFLAGS)" > $(OUT)/environment.json
+	GOMBOC_BIN=$(BIN) $(VERIFY_BIN) --results $(OUT)/checks.json --data $(OUT); \
+	status=$$?; \
+	$(PYTHON) reports/make_report.py $(OUT) || status=1; \
+	echo "verify: report written to $(OUT)/verification.md"; \
+	exit $$status
+
+verify-full: verify
+
+references: deps
+	@$(MAKE) --no-print-directory references-only
+
+references-only:
+	$(PYTHON) references/massprops.py > references/massprops.json.tmp && mv references/massprops.json.tmp references/massprops.json
+
+install: deps
+	@$(MAKE) --no-print-directory build
+	install -d $(DESTDIR)/usr/local/bin
+	install -m 755 $(BIN) $(DESTDIR)/usr/local/bin/gomboc
+
+clean:
+	rm -rf $(BUILD) $(OUT)
+
+# --- compilation
+$(BUILD)/obj/%.o: src/%.c $(wildcard src/*.h) | $(BUILD)/obj
+	$(CC) $(ALL_CFLAGS) -c $< -o $@
+
+$(BUILD)/obj/verify_%.o: verify/%.c $(wildcard src/*.h verify/*.h) | $(BUILD)/obj
+	$(CC) $(ALL_CFLAGS) -Iverify -c $< -o $@
+
+$(LIB): $(CORE_OBJ)
+	ar rcs $@ $^
+
+$(BIN): $(BUILD)/obj/gomboc.o $(LIB)
+	$(CC) $(ALL_CFLAGS) -o $@ $^ $(CORE_LIBS)
+
+$(BUILD)/obj/gomboc.o: src/gomboc.c $(wildcard src/*.h) | $(BUILD)/obj
+	$(CC) $(ALL_CFLAGS) -c $< -o $@
+
+$(VERIFY_BIN): $(VERIFY_OBJ) $(LIB)
+	$(CC) $(ALL_CFLAGS) -o $@ $^ $(TEST_LIBS) $(CORE_LIBS)
+
+$(BUILD)/obj:
+	mkdir -p $@

@@ -1,0 +1,23 @@
+#!/bin/sh
+# Install the Debian packages gomboc needs, only those missing. Needs root (or sudo) when
+# anything is missing; does nothing, and needs no privileges, when everything is present.
+set -eu
+packages="build-essential pkg-config libgsl-dev libcunit1-dev libinih-dev libcjson-dev libqhull-dev
+python3 python3-numpy python3-scipy python3-matplotlib"
+missing=""
+for p in $packages; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"
+done
+[ -z "$missing" ] && exit 0
+echo "install-deps: installing missing Debian packages:$missing" >&2
+if [ "$(id -u)" -ne 0 ]; then
+    if command -v sudo >/dev/null 2>&1; then SUDO=sudo; else
+        echo "install-deps: these packages are missing and this is not root:$missing" >&2
+        echo "install-deps: run 'make deps' as root, or install them with apt-get" >&2
+        exit 1
+    fi
+else SUDO=""; fi
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+# shellcheck disable=SC2086
+$SUDO apt-get install -y -qq --no-install-recommends $missing >/dev/null

@@ -1,0 +1,33 @@
+/* gb_error — the library's single error path.
+ *
+ * Every fallible function returns an int status: GB_OK (0) on success, one of the codes below
+ * otherwise, and leaves a message saying what went wrong, where, and the allowed range. The library
+ * never exits and never prints; the caller decides what to do with the message. */
+#ifndef GB_ERROR_H
+#define GB_ERROR_H
+
+enum gb_status {
+    GB_OK = 0,
+    GB_EDOM = 1,     /* a value outside its allowed range */
+    GB_EINVAL = 2,   /* malformed or unknown input */
+    GB_ENOMEM = 3,   /* allocation failed */
+    GB_ENOCONV = 4,  /* an iteration or quadrature did not converge */
+    GB_EIO = 5,      /* a file could not be read or written */
+    GB_ENUMERIC = 6  /* a GSL or Qhull routine reported failure */
+};
+
+/* Record a message (printf format) for status `code` and return `code`, so a failing function can
+ * end with `return gb_error_set(GB_EDOM, "...")`. */
+int gb_error_set(int code, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+
+/* The message of the most recent failure in this thread ("" if none). */
+const char *gb_error_message(void);
+
+/* Forget the last message. */
+void gb_error_clear(void);
+
+/* Install a GSL error handler that does not abort: GSL failures come back as status codes, and the
+ * callers turn them into gb_ messages. Call once before using GSL-backed modules. */
+void gb_error_init_gsl(void);
+
+#endif

@@ -1,0 +1,74 @@
+/* gb_surface — the two analytical Gömböcs of paper §2 and their differential geometry.
+ *
+ * A body is r(φ,θ) = S(φ,θ)^(1/4) with the kernel S = 1 + 4β sinφ cos χ(φ,θ) (eqs 7, 11, 12); the
+ * morphologies differ only in the phase function χ (eqs 8, 9), so each is one row of a table that
+ * holds χ and its derivatives up to second order (eqs 18, 19). Adding a morphology means adding a row.
+ *
+ * Angles: φ ∈ (0, π) is colatitude and θ ∈ [0, 2π) longitude (eq 1). The parametrisation is singular
+ * at the poles (sin φ = 0): the tangent ∂θx vanishes there and the normal of eq 16 is the zero vector. */
+#ifndef GB_SURFACE_H
+#define GB_SURFACE_H
+
+#include <stddef.h>
+
+/* χ and its derivatives at one (φ, θ). */
+typedef struct gb_phase_value {
+    double chi, chi_phi, chi_theta, chi_phiphi, chi_phitheta, chi_thetatheta;
+} gb_phase_value;
+
+typedef struct gb_morphology {
+    const char *name;        /* "I", "II": the value a scene or the command names */
+    const char *chi_formula; /* the paper's χ, for reports */
+    const char *equations;   /* where the paper defines it */
+    void (*phase)(double phi, double theta, gb_phase_value *out);
+    /* A unit vector on the body's two-fold rotation axis through the minimum of r (see
+     * gb_shape): the rotation by π about it maps the surface onto itself. */
+    double symmetry_axis[3];
+} gb_morphology;
+
+size_t gb_surface_morphology_count(void);
+const gb_morphology *gb_surface_morphology_at(size_t index);
+/* The morphology called `name`, or NULL. */
+const gb_morphology *gb_surface_morphology_find(const char *name);
+
+/* β must satisfy 0 ≤ β < 1/4: S ≥ 1 − 4β on the sphere, with equality reached, so r is real and
+ * positive everywhere exactly when β < 1/4. */
+#define GB_SURFACE_BETA_MAX 0.25
+
+typedef struct gb_surface {
+    const gb_morphology *morphology;
+    double beta;
+} gb_surface;
+
+/* Fill `surface`; GB_EINVAL for an unknown morphology, GB_EDOM for β outside [0, 1/4). */
+int gb_surface_init(gb_surface *surface, const char *morphology, double beta);
+
+/* Everything §2 defines at one parameter point. Derivatives of the kernel and radius are eq 13/14
+ * and their second-order extensions; tangents eq 15; n = ∂φx × ∂θx (eq 16), outward; n̂ eq 17. */
+typedef struct gb_surface_point {
+    double phi, theta;
+    gb_phase_value phase;
+    double S, S_phi, S_theta, S_phiphi, S_phitheta, S_thetatheta;
+    double r, r_phi, r_theta, r_phiphi, r_phitheta, r_thetatheta;
+    double u[3], u_phi[3], u_theta[3], u_phiphi[3], u_phitheta[3], u_thetatheta[3];
+    double x[3], x_phi[3], x_theta[3], x_phiphi[3], x_phitheta[3], x_thetatheta[3];
+    double n[3], n_hat[3];
+} gb_surface_point;
+
+void gb_surface_eval(const gb_surface *surface, double phi, double theta, gb_surface_point *point);
+
+/* Cheap paths for hot loops: the kernel S (eq 11), r (eq 12) and x (eq 2) only. */
+double gb_surface_kernel(const gb_surface *surface, double phi, double theta);
+double gb_surface_radius(const gb_surface *surface, double phi, double theta);
+void gb_surface_position(const gb_surface *surface, double phi, double theta, double x[3]);
+
+/* β-sensitivity at fixed (φ, θ): ∂r/∂β (eq 66), ∂x/∂β (eq 67), ∂h/∂β = z_bᵀ ∂x/∂β (eq 68). */
+double gb_surface_radius_dbeta(const gb_surface *surface, double phi, double theta);
+void gb_surface_position_dbeta(const gb_surface *surface, double phi, double theta, double dx[3]);
+double gb_surface_height_dbeta(const gb_surface *surface, double phi, double theta,
+                               const double zb[3]);
+
+/* The unit direction u(φ, θ) of eq 1. */
+void gb_surface_direction(double phi, double theta, double u[3]);
+
+#endif
