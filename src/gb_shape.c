@@ -345,12 +345,6 @@ typedef struct hull_facet {
     double interiority;       /* smallest barycentric coordinate of the foot */
 } hull_facet;
 
-static size_t find_root(size_t *parent, size_t i)
-{
-    while (parent[i] != i) i = parent[i] = parent[parent[i]];
-    return i;
-}
-
 /* Fill `facets` (triangles of the Qt-triangulated hull) and mark hull vertices. */
 static int hull_triangles(const coordT *points, size_t npoints, hull_facet **facets_out,
                           size_t *nfacets_out, char *is_vertex)
@@ -436,7 +430,7 @@ int gb_shape_hull_equilibria(const gb_surface *surface, const gb_shape_def *def,
     coordT *points = malloc(3 * npoints * sizeof *points);
     char *is_vertex = calloc(npoints, 1), *dominated = calloc(npoints, 1);
     double *radius = malloc(npoints * sizeof *radius);
-    size_t *parent = NULL, nfacets = 0;
+    size_t *lowest = NULL, nfacets = 0;
     hull_facet *facets = NULL;
     int status = GB_OK;
     *out = (gb_hull_equilibria){0};
@@ -454,59 +448,36 @@ int gb_shape_hull_equilibria(const gb_surface *surface, const gb_shape_def *def,
 
     if ((status = hull_triangles(points, npoints, &facets, &nfacets, is_vertex))) goto done;
     out->facets = nfacets;
-    parent = malloc((nfacets ? nfacets : 1) * sizeof *parent);
-    if (!parent) {
-        status = gb_error_set(GB_ENOMEM, "hull: out of memory for %zu facets", nfacets);
+    /* Raw stable equilibria: resting triangles that are the lowest (by height, then index) of all
+     * triangles at each of their three vertices — discrete local minima of the support function. */
+    lowest = malloc(npoints * sizeof *lowest);
+    if (!lowest) {
+        status = gb_error_set(GB_ENOMEM, "hull: out of memory for %zu points", npoints);
         goto done;
     }
+    for (size_t i = 0; i < npoints; i++) lowest[i] = SIZE_MAX;
     for (size_t a = 0; a < nfacets; a++) {
         mark_resting(points, &facets[a]);
-        parent[a] = a;
-        for (int i = 0; i < 3; i++)
+        for (int i = 0; i < 3; i++) {
+            const size_t v = facets[a].ids[i];
+            if (lowest[v] == SIZE_MAX || facets[a].height < facets[lowest[v]].height) lowest[v] = a;
             for (int j = 0; j < 3; j++)
-                if (i != j && radius[facets[a].ids[j]] >= radius[facets[a].ids[i]])
-                    dominated[facets[a].ids[i]] = 1;
-    }
-    /* Raw resting faces: resting triangles sharing a vertex merged (union–find). Vertices are
-     * shared only by triangles near one another, so a vertex → last-resting-triangle map does it. */
-    {
-        size_t *last = malloc(npoints * sizeof *last);
-        if (!last) { status = gb_error_set(GB_ENOMEM, "hull: out of memory"); goto done; }
-        for (size_t i = 0; i < npoints; i++) last[i] = SIZE_MAX;
-        for (size_t a = 0; a < nfacets; a++) {
-            if (!facets[a].resting) continue;
-            for (int k = 0; k < 3; k++) {
-                const size_t v = facets[a].ids[k];
-                if (last[v] != SIZE_MAX) parent[find_root(parent, a)] = find_root(parent, last[v]);
-                last[v] = a;
-            }
+                if (i != j && radius[facets[a].ids[j]] >= radius[v]) dominated[v] = 1;
         }
-        free(last);
     }
     const double cos_radius = cos(def->hull_neighbourhood);
     for (size_t a = 0; a < nfacets && status == GB_OK; a++) {
-        if (!facets[a].resting || find_root(parent, a) != a) continue;
+        const hull_facet *f = &facets[a];
+        if (!f->resting || lowest[f->ids[0]] != a || lowest[f->ids[1]] != a || lowest[f->ids[2]] != a)
+            continue;
         out->raw_stable++;
-        /* the representative of the group: its most interior triangle; the group's height is
-         * that of its lowest triangle */
-        size_t best = a, members = 0;
-        double group_height = INFINITY;
-        for (size_t b = 0; b < nfacets; b++)
-            if (facets[b].resting && find_root(parent, b) == a) {
-                members++;
-                group_height = fmin(group_height, facets[b].height);
-                if (facets[b].interiority > facets[best].interiority) best = b;
-            }
-        /* robust: no facet outside the group with a normal within the neighbourhood is lower
-         * (equal within round-off counts against the later group, so a tie is one equilibrium) */
+        /* robust: the lowest of all facets whose normals lie within the neighbourhood (equal
+         * heights within round-off go to the lower index, so a tie is one equilibrium) */
         int robust = 1;
-        const double tie = 1e-12 * group_height;
+        const double tie = 1e-12 * f->height;
         for (size_t b = 0; b < nfacets && robust; b++) {
-            if (find_root(parent, b) == a || dot3(facets[b].normal, facets[best].normal) <= cos_radius)
-                continue;
-            if (facets[b].height < group_height - tie ||
-                (facets[b].height <= group_height + tie && b < a))
-                robust = 0;
+            if (b == a || dot3(facets[b].normal, f->normal) <= cos_radius) continue;
+            if (facets[b].height < f->height - tie || (facets[b].height <= f->height + tie && b < a)) robust = 0;
         }
         if (!robust) continue;
         if (out->stable == GB_SHAPE_MAX_EQUILIBRIA) {
@@ -514,9 +485,8 @@ int gb_shape_hull_equilibria(const gb_surface *surface, const gb_shape_def *def,
             break;
         }
         gb_hull_rest *rest = &out->rests[out->stable++];
-        for (int k = 0; k < 3; k++) rest->normal[k] = facets[best].normal[k];
-        rest->height = facets[best].height;
-        rest->facets = members;
+        for (int k = 0; k < 3; k++) rest->normal[k] = f->normal[k];
+        rest->height = f->height;
     }
     for (size_t i = 0; i < npoints && status == GB_OK; i++) {
         if (!is_vertex[i]) continue;
@@ -540,6 +510,6 @@ int gb_shape_hull_equilibria(const gb_surface *surface, const gb_shape_def *def,
     }
     out->sampled_fraction_on_hull = (double)out->vertices / npoints;
 done:
-    free(points), free(is_vertex), free(dominated), free(radius), free(parent), free(facets);
+    free(points), free(is_vertex), free(dominated), free(radius), free(lowest), free(facets);
     return status;
 }

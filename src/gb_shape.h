@@ -79,12 +79,11 @@ int gb_shape_equilibria(const gb_surface *surface, const gb_shape_def *def, gb_e
 typedef struct gb_hull_rest {
     double normal[3]; /* outward normal of the resting face: the body's "down" direction */
     double height;    /* distance from the centroid to the face plane */
-    size_t facets;    /* triangles of the sampled hull merged into this resting face */
 } gb_hull_rest;
 
 /* Equilibria of the convex hull of a surface sample. As a polyhedron the sampled hull has "raw"
- * equilibria: resting triangles (the centroid projects inside; triangles sharing a vertex merged)
- * and vertices farther from the centroid than every neighbour. Where the true hull is nearly flat
+ * equilibria: resting triangles (the centroid projects inside) lower than every triangle sharing a
+ * vertex with them, and vertices farther from the centroid than every neighbour. Where the true hull is nearly flat
  * or ruled (it bridges concave regions) sampling creates spurious raw equilibria at the scale of
  * the sample spacing. A raw equilibrium is robust when it is also extreme within the angular
  * neighbourhood def->hull_neighbourhood: a resting face whose support distance is the smallest of

@@ -1,0 +1,139 @@
+#!/usr/bin/python3
+"""The reproducibility report written by `make verify`: environment, the paper's claims against what
+we measured, every check with its oracle, error, tolerance and origin, and error against run time.
+Reads only what the C code wrote into OUT (checks.json, shape-*.json); recomputes no physics.
+
+usage: make_report.py OUT CC CFLAGS
+"""
+import datetime
+import os
+import platform
+import subprocess
+import sys
+
+import matplotlib
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy  # noqa: E402
+import scipy  # noqa: E402
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from common import load_json, save_figure, shape_summary_lines, write_atomically  # noqa: E402
+
+SECTION_FILES = {
+    "Section 2: surface geometry (eqs 1-19, 66-68)": "verify/s2_surface.c",
+    "Section 2: mass properties (nested GSL quadrature)": "verify/s2_massprops.c",
+    "Section 2: the paper's claims about the bodies": "verify/s2_shape.c",
+    "The gomboc command": "verify/command.c",
+}
+
+
+def command_output(args):
+    try:
+        return subprocess.run(args, capture_output=True, text=True, check=False).stdout.strip()
+    except OSError:
+        return "unavailable"
+
+
+def environment(cc, cflags):
+    def pkg(name):
+        return command_output(["pkg-config", "--modversion", name]) or "unknown"
+    qhull = command_output(["dpkg-query", "-W", "-f=${Version}", "libqhull-dev"]) or "unknown"
+    return [
+        ("date (UTC)", datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M")),
+        ("git commit", command_output(["git", "rev-parse", "HEAD"]) or "not a git checkout"),
+        ("working tree", "clean" if not command_output(["git", "status", "--porcelain"]) else "modified"),
+        ("machine", f"{platform.machine()}, {os.cpu_count()} cores, {platform.platform()}"),
+        ("compiler", command_output([cc, "--version"]).splitlines()[0] if command_output([cc, "--version"]) else cc),
+        ("flags", cflags),
+        ("GSL", pkg("gsl")), ("CUnit", pkg("cunit")), ("inih", pkg("inih")), ("cJSON", pkg("libcjson")),
+        ("Qhull (Debian)", qhull),
+        ("Python / numpy / scipy / matplotlib",
+         f"{platform.python_version()} / {numpy.__version__} / {scipy.__version__} / {matplotlib.__version__}"),
+    ]
+
+
+def fmt(value):
+    if isinstance(value, str):
+        return value
+    return f"{value:.3g}"
+
+
+def error_vs_time(out, rows):
+    compare = [r for r in rows if r["kind"] == "compare" and isinstance(r.get("relative_error"), float)]
+    fig, ax = plt.subplots(figsize=(8, 5))
+    groups = {}
+    for r in compare:
+        groups.setdefault(r["test"], []).append(r)
+    for test, members in sorted(groups.items()):
+        seconds = [max(m["seconds"], 1e-7) for m in members]
+        errors = [max(m["relative_error"], 1e-18) for m in members]
+        ax.scatter(seconds, errors, s=10, label=test[:60])
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("run time of the check [s]")
+    ax.set_ylabel("relative error against the oracle (floored at 1e-18)")
+    ax.set_title("Every numeric check: error against run time")
+    ax.legend(fontsize=6, loc="upper left", bbox_to_anchor=(1.01, 1.0))
+    save_figure(fig, os.path.join(out, "error-vs-time.png"))
+    plt.close(fig)
+
+
+def main():
+    out, cc, cflags = sys.argv[1], sys.argv[2], sys.argv[3]
+    rows = load_json(os.path.join(out, "checks.json"))
+    shapes = [(n, load_json(os.path.join(out, f"shape-{n}.json"))) for n in ("I", "II")]
+    failed = [r for r in rows if not r["passed"]]
+    findings = [r for r in rows if r["kind"] == "finding"]
+    error_vs_time(out, rows)
+
+    lines = ["# gomboc — verification report", "",
+             f"{len(rows)} checks recorded, **{len(rows) - len(failed)} passed, {len(failed)} failed**; "
+             f"{len(findings)} findings about the paper (a finding passes when its evidence is conclusive).", "",
+             "## Environment", "", "| item | value |", "|---|---|"]
+    lines += [f"| {k} | {v} |" for k, v in environment(cc, cflags)]
+    lines += ["", "## What the paper claims and what we measured", "",
+              "| section | paper claims | we measured | claim holds |", "|---|---|---|---|"]
+    for r in findings:
+        lines.append(f"| §{r['section']} | {r['claim']} | {r['detail']} | {'yes' if r['paper_holds'] else '**no**'} |")
+    lines += ["", "Also established every run (see the table below): the centroid of both bodies is at the origin",
+              "to quadrature accuracy (the paper measures r from the centre of mass: this holds); the radial",
+              "function r has exactly one minimum and one maximum for every 0 < β < 1/4 (Poincaré–Hopf",
+              "S − H + U = 2); volume, L and the trace of the inertia tensor agree with closed forms that hold",
+              "for every β, and the full tensor with an independent scipy computation.", "",
+              "## Section 2: the two Table 1 bodies", "",
+              "The paper never gives the inertia tensor; we take a homogeneous body of mass m = 1 (Table 1).", ""]
+    for name, shape in shapes:
+        lines += [f"### Gömböc {name} (β = {shape['beta']:g})", ""] + shape_summary_lines(shape) + [""]
+    lines += ["![Figure 1](fig1-morphologies.png)", "",
+              "## Error against run time", "",
+              "Each numeric check's relative error against its oracle, against the wall time since the",
+              "previous check in the same test (the time of computing that row).", "",
+              "![error against run time](error-vs-time.png)", "",
+              "## Every check", "",
+              "Columns: the paper's section and equation, the quantity, the oracle, measured value, error, tolerance",
+              "and where the tolerance comes from, run time, result. Reproduce any row with `make verify`; the",
+              "test named in its group is in the file listed with the group.", ""]
+    current = None
+    for r in rows:
+        if r["test"] != current:
+            current = r["test"]
+            lines += ["", f"#### {current}", "",
+                      "| § | eq | quantity | oracle | measured | error | tolerance | tolerance origin | s | result |",
+                      "|---|---|---|---|---|---|---|---|---|---|"]
+        if r["kind"] == "compare":
+            measured, error, tol = fmt(r["measured"]), fmt(r["error"]), fmt(r["tolerance"])
+        else:
+            measured, error, tol = r.get("detail", "")[:160].replace("|", "/"), "—", "—"
+        result = "pass" if r["passed"] else "**FAIL**"
+        if r["kind"] == "finding":
+            result = ("conclusive" if r["passed"] else "**inconclusive**") + \
+                     (", paper holds" if r["paper_holds"] else ", paper refuted")
+        lines.append(f"| {r['section']} | {r['equation']} | {r['quantity']} | {r['oracle']} | {measured} | {error} | "
+                     f"{tol} | {r['origin']} | {r['seconds']:.2g} | {result} |")
+    lines += ["", "## Where the checks live", ""] + [f"- {k}: `{v}`" for k, v in SECTION_FILES.items()] + [""]
+    write_atomically(os.path.join(out, "verification.md"), "\n".join(lines))
+
+
+if __name__ == "__main__":
+    main()

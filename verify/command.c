@@ -1,0 +1,115 @@
+/* The `gomboc` command: bad input is refused with a message naming the option and its allowed range
+ * and exit status 2; good input gives the JSON keys the issue names; output is byte-identical
+ * between runs; a failed write leaves no file behind. The binary comes from $GOMBOC_BIN. */
+#include "gb_check.h"
+#include "verify_sections.h"
+
+#include <cjson/cJSON.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+static const char *binary(void) { return getenv("GOMBOC_BIN") ? getenv("GOMBOC_BIN") : "build/gomboc"; }
+
+/* Run `gomboc ARGS`, capturing stdout and stderr (stderr appended after a marker). */
+static int run(const char *args, char *out, size_t cap)
+{
+    char command[1024];
+    snprintf(command, sizeof command, "%s %s 2>&1; echo \"@@exit=$?\"", binary(), args);
+    FILE *p = popen(command, "r");
+    size_t used = 0;
+    if (!p) return -1;
+    while (used + 1 < cap && fgets(out + used, (int)(cap - used), p)) used += strlen(out + used);
+    pclose(p);
+    const char *mark = strstr(out, "@@exit=");
+    return mark ? atoi(mark + 7) : -1;
+}
+
+static void test_bad_input(void)
+{
+    static const struct { const char *args, *must_name; } cases[] = {
+        {"shape --morphology I --beta 0.25", "0 <= beta < 0.25"},
+        {"shape --morphology II --beta 0.3", "--beta 0.3 is out of range"},
+        {"shape --morphology I --beta -0.01", "--beta -0.01 is out of range"},
+        {"shape --morphology I --beta abc", "--beta 'abc' is not a number"},
+        {"shape --morphology I --beta 0.1x", "--beta '0.1x' is not a number"},
+        {"shape --morphology I --beta nan", "is not a number"},
+        {"shape --morphology III --beta 0.1", "allowed: I, II"},
+        {"shape --morphology I --beta 0.1 --colour red", "unknown option '--colour'"},
+        {"shape --morphology I --beta", "'--beta' needs a value"},
+        {"shape --morphology I", "missing --beta"},
+        {"shape --beta 0.1", "missing --morphology"},
+        {"shape --morphology I --beta 0.1 --mass 0", "--mass 0 is out of range (allowed: mass > 0)"},
+        {"frobnicate", "unknown command 'frobnicate'"},
+        {"", "usage: gomboc"},
+    };
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+        char out[8192] = "";
+        const int code = run(cases[k].args, out, sizeof out);
+        char q[160];
+        snprintf(q, sizeof q, "gomboc %s", cases[k].args);
+        gb_check c = {"2", "-", q, "exit status 2 and a message naming the option and allowed range", "exact"};
+        gb_check_true(&c, code == 2 && strstr(out, cases[k].must_name) != NULL, "exit %d, output: %.300s", code, out);
+    }
+}
+
+static void test_json_keys_and_determinism(void)
+{
+    static char first[1 << 16], second[1 << 16];
+    const int code = run("shape --morphology II --beta 0.02 --json", first, sizeof first);
+    run("shape --morphology II --beta 0.02 --json", second, sizeof second);
+    char *mark = strstr(first, "@@exit=");
+    if (mark) *mark = '\0';
+    cJSON *root = cJSON_Parse(first);
+    static const char *keys[] = {"volume", "centroid", "inertia", "L", "curvature_min", "curvature_min_at",
+                                 "negative_curvature_fraction", "convexity_beta_limit", "convex", "equilibria",
+                                 "hull_equilibria", "mono_monostatic"};
+    for (size_t k = 0; k < sizeof keys / sizeof keys[0]; k++) {
+        gb_check c = {"2", "-", "gomboc shape --json has the key", keys[k], "exact"};
+        gb_check_true(&c, code == 0 && cJSON_GetObjectItem(root, keys[k]) != NULL, "exit %d, key %s", code, keys[k]);
+    }
+    gb_check cm = {"2", "3-6", "a convex body at beta 0.02 is reported convex and mono-monostatic", "critical points of r", "exact"};
+    gb_check_true(&cm, cJSON_IsTrue(cJSON_GetObjectItem(root, "convex")) && cJSON_IsTrue(cJSON_GetObjectItem(root, "mono_monostatic")),
+                  "convex %d, mono_monostatic %d", cJSON_IsTrue(cJSON_GetObjectItem(root, "convex")),
+                  cJSON_IsTrue(cJSON_GetObjectItem(root, "mono_monostatic")));
+    if (mark) *mark = '@';
+    gb_check cd = {"2", "-", "same command, same binary: identical output bytes", "determinism", "exact"};
+    gb_check_true(&cd, strcmp(first, second) == 0, "%zu and %zu bytes", strlen(first), strlen(second));
+    cJSON_Delete(root);
+}
+
+static void test_failed_write_leaves_nothing(void)
+{
+    char dir[] = "/tmp/gomboc-verify-XXXXXX";
+    if (!mkdtemp(dir)) return;
+    char path[256], args[512], out[8192] = "";
+    snprintf(path, sizeof path, "%s/missing-folder/map.csv", dir);
+    snprintf(args, sizeof args, "shape --morphology I --beta 0.02 --radial-map %s", path);
+    const int code = run(args, out, sizeof out);
+    gb_check c = {"2", "-", "an unwritable --radial-map fails and leaves no file", "exit status and file system", "exact"};
+    gb_check_true(&c, code != 0 && access(path, F_OK) != 0 && strstr(out, "cannot write"), "exit %d, output: %.200s", code, out);
+    snprintf(path, sizeof path, "%s/map.csv", dir);
+    snprintf(args, sizeof args, "shape --morphology I --beta 0.02 --radial-map %s", path);
+    const int good = run(args, out, sizeof out);
+    FILE *f = fopen(path, "r");
+    size_t lines = 0;
+    for (int ch; f && (ch = fgetc(f)) != EOF;) lines += ch == '\n';
+    if (f) fclose(f);
+    gb_check c2 = {"2", "-", "--radial-map writes the header, column line and 90 x 180 rows", "line count", "exact"};
+    gb_check_true(&c2, good == 0 && lines == 2 + 90 * 180, "exit %d, %zu lines", good, lines);
+    remove(path);
+    rmdir(dir);
+}
+
+int verify_register_command(void)
+{
+    static const verify_test tests[] = {
+        {"command: bad input refused with a clear message and exit 2", test_bad_input},
+        {"command: JSON keys, verdicts and determinism", test_json_keys_and_determinism},
+        {"command: atomic output", test_failed_write_leaves_nothing},
+        {NULL, NULL},
+    };
+    return verify_register_suite("The gomboc command", tests);
+}

@@ -1,0 +1,145 @@
+#include "gb_check.h"
+
+#include <CUnit/CUnit.h>
+#include <cjson/cJSON.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+const char *gb_check_data_dir = ".";
+static cJSON *rows;
+static double last_time;
+
+static double now(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+void gb_check_test_start(void) { last_time = now(); }
+
+static double lap(void)
+{
+    const double t = now(), dt = t - last_time;
+    last_time = t;
+    return dt;
+}
+
+static cJSON *new_row(const gb_check *c, const char *kind, int passed, double seconds)
+{
+    if (!rows) rows = cJSON_CreateArray();
+    cJSON *row = cJSON_CreateObject();
+    cJSON_AddStringToObject(row, "kind", kind);
+    cJSON_AddStringToObject(row, "section", c->section);
+    cJSON_AddStringToObject(row, "equation", c->equation);
+    cJSON_AddStringToObject(row, "quantity", c->quantity);
+    cJSON_AddStringToObject(row, "oracle", c->oracle);
+    cJSON_AddStringToObject(row, "origin", c->origin ? c->origin : "");
+    cJSON_AddStringToObject(row, "test", CU_get_current_test() ? CU_get_current_test()->pName : "");
+    cJSON_AddNumberToObject(row, "seconds", seconds);
+    cJSON_AddBoolToObject(row, "passed", passed);
+    cJSON_AddItemToArray(rows, row);
+    return row;
+}
+
+/* JSON has no NaN or infinity: those go as strings. */
+static void add_number(cJSON *row, const char *key, double value)
+{
+    if (isfinite(value)) cJSON_AddNumberToObject(row, key, value);
+    else cJSON_AddStringToObject(row, key, isnan(value) ? "nan" : value > 0 ? "inf" : "-inf");
+}
+
+int gb_check_close_at(const gb_check *c, double measured, double expected, double rel_tol,
+                      double abs_tol, const char *file, int line)
+{
+    const double seconds = lap();
+    double error, tolerance = abs_tol + rel_tol * fabs(expected);
+    int passed;
+    if (isnan(expected) || isnan(measured)) {
+        passed = isnan(expected) && isnan(measured);
+        error = passed ? 0.0 : NAN;
+    } else if (isinf(expected) || isinf(measured)) {
+        passed = measured == expected;
+        error = passed ? 0.0 : INFINITY;
+    } else {
+        error = fabs(measured - expected);
+        passed = error <= tolerance;
+    }
+    char message[1024];
+    snprintf(message, sizeof message,
+             "[eq %s] %s vs %s: measured %.17g expected %.17g error %.3g tolerance %.3g (%s)",
+             c->equation, c->quantity, c->oracle, measured, expected, error, tolerance,
+             c->origin ? c->origin : "");
+    if (!passed) fprintf(stdout, "\nFAILED %s:%d %s\n", file, line, message);
+    CU_assertImplementation(passed ? CU_TRUE : CU_FALSE, (unsigned)line, message, file, "", CU_FALSE);
+    cJSON *row = new_row(c, "compare", passed, seconds);
+    add_number(row, "measured", measured);
+    add_number(row, "expected", expected);
+    add_number(row, "error", error);
+    add_number(row, "relative_error", expected != 0.0 ? error / fabs(expected) : error);
+    add_number(row, "tolerance", tolerance);
+    add_number(row, "rel_tol", rel_tol);
+    add_number(row, "abs_tol", abs_tol);
+    return passed;
+}
+
+int gb_check_true_at(const gb_check *c, int condition, const char *file, int line,
+                     const char *detail, ...)
+{
+    const double seconds = lap();
+    char text[1024], message[1400];
+    va_list args;
+    va_start(args, detail);
+    vsnprintf(text, sizeof text, detail, args);
+    va_end(args);
+    snprintf(message, sizeof message, "[eq %s] %s (%s): %s", c->equation, c->quantity, c->oracle, text);
+    if (!condition) fprintf(stdout, "\nFAILED %s:%d %s\n", file, line, message);
+    CU_assertImplementation(condition ? CU_TRUE : CU_FALSE, (unsigned)line, message, file, "", CU_FALSE);
+    cJSON *row = new_row(c, "condition", condition, seconds);
+    cJSON_AddStringToObject(row, "detail", text);
+    return condition;
+}
+
+int gb_check_finding_at(const gb_check *c, const char *claim, int paper_holds, int conclusive,
+                        const char *file, int line, const char *measured, ...)
+{
+    const double seconds = lap();
+    char text[2048], message[2600];
+    va_list args;
+    va_start(args, measured);
+    vsnprintf(text, sizeof text, measured, args);
+    va_end(args);
+    snprintf(message, sizeof message, "[finding, eq %s] paper: %s | measured: %s", c->equation, claim, text);
+    if (!conclusive) fprintf(stdout, "\nINCONCLUSIVE %s:%d %s\n", file, line, message);
+    CU_assertImplementation(conclusive ? CU_TRUE : CU_FALSE, (unsigned)line, message, file, "", CU_FALSE);
+    cJSON *row = new_row(c, "finding", conclusive, seconds);
+    cJSON_AddStringToObject(row, "claim", claim);
+    cJSON_AddStringToObject(row, "detail", text);
+    cJSON_AddBoolToObject(row, "paper_holds", paper_holds);
+    return conclusive;
+}
+
+double gb_check_observed_order(double e1, double e2, double h1, double h2)
+{
+    return log(e1 / e2) / log(h1 / h2);
+}
+
+int gb_check_write(const char *path)
+{
+    char tmp[4096];
+    snprintf(tmp, sizeof tmp, "%s.tmp%ld", path, (long)getpid());
+    char *text = cJSON_Print(rows ? rows : cJSON_CreateArray());
+    FILE *f = fopen(tmp, "w");
+    int ok = f && text && fputs(text, f) >= 0;
+    if (f && fclose(f) != 0) ok = 0;
+    free(text);
+    if (ok && rename(tmp, path) == 0) return 0;
+    remove(tmp);
+    fprintf(stderr, "verify: cannot write results to '%s'\n", path);
+    return 1;
+}

@@ -1,0 +1,54 @@
+/* gb_check — the one comparison helper every check uses.
+ *
+ * A check names what the paper says (section, equation), what is measured (quantity), against what
+ * (oracle), and why the tolerance is what it is (origin). gb_check_close compares with a combined
+ * relative/absolute tolerance, treats NaN and infinities explicitly, prints %.17g on failure, asserts
+ * through CUnit, and records a row {section, equation, quantity, oracle, measured, expected, error,
+ * tolerance, origin, seconds, passed} that gb_check_write saves as JSON for the report. The time of a
+ * row is the wall time since the previous row of the same test (or the test's start). */
+#ifndef GB_CHECK_H
+#define GB_CHECK_H
+
+typedef struct gb_check {
+    const char *section;  /* paper section, e.g. "2" */
+    const char *equation; /* equation number(s), e.g. "13" */
+    const char *quantity;
+    const char *oracle;
+    const char *origin;   /* where the tolerance comes from */
+} gb_check;
+
+/* Pass when |measured − expected| ≤ abs_tol + rel_tol·|expected|; NaN never passes unless both are
+ * NaN; equal infinities pass. Returns 1 on pass. */
+int gb_check_close_at(const gb_check *check, double measured, double expected, double rel_tol,
+                      double abs_tol, const char *file, int line);
+#define gb_check_close(check, measured, expected, rel_tol, abs_tol) \
+    gb_check_close_at(check, measured, expected, rel_tol, abs_tol, __FILE__, __LINE__)
+
+/* A check with no numeric error (a count, a verdict, an error path); `detail` is printf-formatted. */
+int gb_check_true_at(const gb_check *check, int condition, const char *file, int line,
+                     const char *detail, ...) __attribute__((format(printf, 5, 6)));
+#define gb_check_true(check, condition, ...) \
+    gb_check_true_at(check, condition, __FILE__, __LINE__, __VA_ARGS__)
+
+/* A documented finding: the paper claims `claim`; we measured `measured` (printf-formatted). The
+ * CUnit assertion is that the evidence is conclusive (`conclusive`), so the finding is recomputed
+ * and re-judged on every run; `paper_holds` says whether the claim survived. */
+int gb_check_finding_at(const gb_check *check, const char *claim, int paper_holds, int conclusive,
+                        const char *file, int line, const char *measured, ...)
+    __attribute__((format(printf, 7, 8)));
+#define gb_check_finding(check, claim, paper_holds, conclusive, ...) \
+    gb_check_finding_at(check, claim, paper_holds, conclusive, __FILE__, __LINE__, __VA_ARGS__)
+
+/* Observed order of convergence p = log(e1/e2) / log(h1/h2). */
+double gb_check_observed_order(double e1, double e2, double h1, double h2);
+
+/* Per-test timer reset (a CUnit test setup function). */
+void gb_check_test_start(void);
+
+/* Write every recorded row to `path` (atomically). Returns 0 on success. */
+int gb_check_write(const char *path);
+
+/* Where data files for the report go (set by main from --data). */
+extern const char *gb_check_data_dir;
+
+#endif

@@ -1,0 +1,37 @@
+/* The verification harness: every check of every section runs; the process exits non-zero when any
+ * failed. CUnit's run summary goes to standard output; the rows go to --results for the report. */
+#include "gb_check.h"
+#include "gb_error.h"
+#include "verify_sections.h"
+
+#include <CUnit/Basic.h>
+#include <stdio.h>
+#include <string.h>
+
+int main(int argc, char **argv)
+{
+    const char *results = "checks.json";
+    for (int i = 1; i < argc; i++) {
+        if (!strcmp(argv[i], "--results") && i + 1 < argc) results = argv[++i];
+        else if (!strcmp(argv[i], "--data") && i + 1 < argc) gb_check_data_dir = argv[++i];
+        else {
+            fprintf(stderr, "usage: %s [--results FILE] [--data DIR]\n", argv[0]);
+            return 2;
+        }
+    }
+    gb_error_init_gsl();
+    if (CU_initialize_registry() != CUE_SUCCESS) return 1;
+    if (verify_register_s2_surface() || verify_register_s2_massprops() ||
+        verify_register_s2_shape() || verify_register_command()) {
+        fprintf(stderr, "verify: cannot register suites: %s\n", CU_get_error_msg());
+        CU_cleanup_registry();
+        return 1;
+    }
+    CU_basic_set_mode(CU_BRM_VERBOSE);
+    CU_basic_run_tests();
+    const unsigned failures = CU_get_number_of_failures() + CU_get_number_of_tests_failed();
+    const int write_failed = gb_check_write(results);
+    CU_cleanup_registry();
+    printf("\n");
+    return failures || write_failed ? 1 : 0;
+}

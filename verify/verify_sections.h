@@ -1,0 +1,19 @@
+/* One registration function per section file of the harness. */
+#ifndef VERIFY_SECTIONS_H
+#define VERIFY_SECTIONS_H
+
+#include <CUnit/CUnit.h>
+
+int verify_register_s2_surface(void);
+int verify_register_s2_massprops(void);
+int verify_register_s2_shape(void);
+int verify_register_command(void);
+
+/* Register `tests` (NULL-terminated) as one suite whose every test starts the row timer. */
+typedef struct verify_test {
+    const char *name;
+    CU_TestFunc function;
+} verify_test;
+int verify_register_suite(const char *name, const verify_test *tests);
+
+#endif

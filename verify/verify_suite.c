@@ -1,0 +1,14 @@
+#include "gb_check.h"
+#include "verify_sections.h"
+
+static void test_setup(void) { gb_check_test_start(); }
+static void test_teardown(void) {}
+
+int verify_register_suite(const char *name, const verify_test *tests)
+{
+    CU_pSuite suite = CU_add_suite_with_setup_and_teardown(name, NULL, NULL, test_setup, test_teardown);
+    if (!suite) return 1;
+    for (const verify_test *t = tests; t->name; t++)
+        if (!CU_add_test(suite, t->name, t->function)) return 1;
+    return 0;
+}
