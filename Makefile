@@ -5,12 +5,12 @@
 PYTHON    := /usr/bin/python3
 BUILD     := build
 OUT       := reports/out
-PKGS      := gsl cunit inih libcjson
+PKGS      := gsl cunit inih libcjson qhull_r
 CC        ?= cc
 CFLAGS    ?= -O2 -g
 WARN      := -std=c11 -D_GNU_SOURCE -Wall -Wextra -Werror
 ALL_CFLAGS = $(WARN) $(CFLAGS) $(shell pkg-config --cflags $(PKGS)) -Isrc
-CORE_LIBS  = $(shell pkg-config --libs gsl libcjson inih) -lqhull_r -lm
+CORE_LIBS  = $(shell pkg-config --libs gsl libcjson inih qhull_r) -lm
 TEST_LIBS  = $(shell pkg-config --libs cunit)
 
 CORE_SRC  := $(sort $(wildcard src/gb_*.c))

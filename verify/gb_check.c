@@ -47,6 +47,15 @@ static cJSON *new_row(const gb_check *c, const char *kind, int passed, double se
     return row;
 }
 
+/* The common tail of every check: print a failure, assert through CUnit, record the row. */
+static cJSON *assert_and_record(const gb_check *c, const char *kind, int passed, double seconds,
+                                const char *file, int line, const char *label, const char *message)
+{
+    if (!passed) fprintf(stdout, "\n%s %s:%d %s\n", label, file, line, message);
+    CU_assertImplementation(passed ? CU_TRUE : CU_FALSE, (unsigned)line, message, file, "", CU_FALSE);
+    return new_row(c, kind, passed, seconds);
+}
+
 /* JSON has no NaN or infinity: those go as strings. */
 static void add_number(cJSON *row, const char *key, double value)
 {
@@ -75,9 +84,7 @@ int gb_check_close_at(const gb_check *c, double measured, double expected, doubl
              "[eq %s] %s vs %s: measured %.17g expected %.17g error %.3g tolerance %.3g (%s)",
              c->equation, c->quantity, c->oracle, measured, expected, error, tolerance,
              c->origin ? c->origin : "");
-    if (!passed) fprintf(stdout, "\nFAILED %s:%d %s\n", file, line, message);
-    CU_assertImplementation(passed ? CU_TRUE : CU_FALSE, (unsigned)line, message, file, "", CU_FALSE);
-    cJSON *row = new_row(c, "compare", passed, seconds);
+    cJSON *row = assert_and_record(c, "compare", passed, seconds, file, line, "FAILED", message);
     add_number(row, "measured", measured);
     add_number(row, "expected", expected);
     add_number(row, "error", error);
@@ -98,9 +105,7 @@ int gb_check_true_at(const gb_check *c, int condition, const char *file, int lin
     vsnprintf(text, sizeof text, detail, args);
     va_end(args);
     snprintf(message, sizeof message, "[eq %s] %s (%s): %s", c->equation, c->quantity, c->oracle, text);
-    if (!condition) fprintf(stdout, "\nFAILED %s:%d %s\n", file, line, message);
-    CU_assertImplementation(condition ? CU_TRUE : CU_FALSE, (unsigned)line, message, file, "", CU_FALSE);
-    cJSON *row = new_row(c, "condition", condition, seconds);
+    cJSON *row = assert_and_record(c, "condition", condition, seconds, file, line, "FAILED", message);
     cJSON_AddStringToObject(row, "detail", text);
     return condition;
 }
@@ -115,9 +120,7 @@ int gb_check_finding_at(const gb_check *c, const char *claim, int paper_holds, i
     vsnprintf(text, sizeof text, measured, args);
     va_end(args);
     snprintf(message, sizeof message, "[finding, eq %s] paper: %s | measured: %s", c->equation, claim, text);
-    if (!conclusive) fprintf(stdout, "\nINCONCLUSIVE %s:%d %s\n", file, line, message);
-    CU_assertImplementation(conclusive ? CU_TRUE : CU_FALSE, (unsigned)line, message, file, "", CU_FALSE);
-    cJSON *row = new_row(c, "finding", conclusive, seconds);
+    cJSON *row = assert_and_record(c, "finding", conclusive, seconds, file, line, "INCONCLUSIVE", message);
     cJSON_AddStringToObject(row, "claim", claim);
     cJSON_AddStringToObject(row, "detail", text);
     cJSON_AddBoolToObject(row, "paper_holds", paper_holds);
