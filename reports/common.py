@@ -41,7 +41,10 @@ def shape_summary_lines(shape):
     return [
         f"- volume {shape['volume']:.13f} (± {shape['volume_error']:.1e}); L (eq 53) {shape['L']:.13f}",
         f"- centroid ({shape['centroid'][0]:.1e}, {shape['centroid'][1]:.1e}, {shape['centroid'][2]:.1e})"
-        f" (± {shape['centroid_error'][0]:.1e}): at the origin to quadrature accuracy",
+        f" (± {max(shape['centroid_error']):.1e}): " + (
+            "at the origin to quadrature accuracy" if all(
+                abs(c) <= e for c, e in zip(shape["centroid"], shape["centroid_error"]))
+            else "**off the origin by more than the quadrature error**"),
         "- inertia about the centroid, m = {:g}: ".format(shape["mass"]) + "; ".join(
             "[" + ", ".join(f"{v:.10f}" for v in row) + "]" for row in shape["inertia"]),
         f"- minimum Gaussian curvature {shape['curvature_min']:.6f} at (φ, θ) = "

@@ -95,34 +95,42 @@ int gb_check_close_at(const gb_check *c, double measured, double expected, doubl
     return passed;
 }
 
+/* Format `fmt` into the row's detail, prefix it with `head` for the message, assert and record. */
+static cJSON *record_formatted(const gb_check *c, const char *kind, int passed, const char *file,
+                               int line, const char *label, const char *head, const char *fmt,
+                               va_list args)
+{
+    const double seconds = lap();
+    char text[2048], message[3072];
+    vsnprintf(text, sizeof text, fmt, args);
+    snprintf(message, sizeof message, "%s%s", head, text);
+    cJSON *row = assert_and_record(c, kind, passed, seconds, file, line, label, message);
+    cJSON_AddStringToObject(row, "detail", text);
+    return row;
+}
+
 int gb_check_true_at(const gb_check *c, int condition, const char *file, int line,
                      const char *detail, ...)
 {
-    const double seconds = lap();
-    char text[1024], message[1400];
+    char head[512];
+    snprintf(head, sizeof head, "[eq %s] %s (%s): ", c->equation, c->quantity, c->oracle);
     va_list args;
     va_start(args, detail);
-    vsnprintf(text, sizeof text, detail, args);
+    record_formatted(c, "condition", condition, file, line, "FAILED", head, detail, args);
     va_end(args);
-    snprintf(message, sizeof message, "[eq %s] %s (%s): %s", c->equation, c->quantity, c->oracle, text);
-    cJSON *row = assert_and_record(c, "condition", condition, seconds, file, line, "FAILED", message);
-    cJSON_AddStringToObject(row, "detail", text);
     return condition;
 }
 
 int gb_check_finding_at(const gb_check *c, const char *claim, int paper_holds, int conclusive,
                         const char *file, int line, const char *measured, ...)
 {
-    const double seconds = lap();
-    char text[2048], message[2600];
+    char head[1024];
+    snprintf(head, sizeof head, "[finding, eq %s] paper: %s | measured: ", c->equation, claim);
     va_list args;
     va_start(args, measured);
-    vsnprintf(text, sizeof text, measured, args);
+    cJSON *row = record_formatted(c, "finding", conclusive, file, line, "INCONCLUSIVE", head, measured, args);
     va_end(args);
-    snprintf(message, sizeof message, "[finding, eq %s] paper: %s | measured: %s", c->equation, claim, text);
-    cJSON *row = assert_and_record(c, "finding", conclusive, seconds, file, line, "INCONCLUSIVE", message);
     cJSON_AddStringToObject(row, "claim", claim);
-    cJSON_AddStringToObject(row, "detail", text);
     cJSON_AddBoolToObject(row, "paper_holds", paper_holds);
     return conclusive;
 }
