@@ -8,7 +8,7 @@ OUT       := reports/out
 PKGS      := gsl cunit inih libcjson qhull_r
 CC        ?= cc
 CFLAGS    ?= -O2 -g
-WARN      := -std=c11 -D_GNU_SOURCE -Wall -Wextra -Werror
+WARN      := -std=c11 -D_GNU_SOURCE -ffp-contract=off -Wall -Wextra -Werror
 ALL_CFLAGS = $(WARN) $(CFLAGS) $(shell pkg-config --cflags $(PKGS)) -Isrc
 CORE_LIBS  = $(shell pkg-config --libs gsl libcjson inih qhull_r) -lm
 TEST_LIBS  = $(shell pkg-config --libs cunit)
@@ -64,6 +64,7 @@ references: deps
 
 references-only:
 	$(PYTHON) references/massprops.py > references/massprops.json.tmp && mv references/massprops.json.tmp references/massprops.json
+	$(PYTHON) references/contact.py > references/contact.json.tmp && mv references/contact.json.tmp references/contact.json
 
 install: deps
 	@$(MAKE) --no-print-directory build

@@ -1,6 +1,7 @@
 #include "gb_shape.h"
 
 #include "gb_error.h"
+#include "gb_vec.h"
 
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_multimin.h>
@@ -10,18 +11,6 @@
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
-
-static double dot3(const double a[3], const double b[3])
-{
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
-static void cross3(const double a[3], const double b[3], double out[3])
-{
-    out[0] = a[1] * b[2] - a[2] * b[1];
-    out[1] = a[2] * b[0] - a[0] * b[2];
-    out[2] = a[0] * b[1] - a[1] * b[0];
-}
 
 gb_shape_def gb_shape_default_def(void)
 {
@@ -48,17 +37,17 @@ void gb_shape_curvature(const gb_surface *surface, double phi, double theta, gb_
     gb_surface_point p;
     gb_surface_eval(surface, phi, theta, &p);
     const double inward[3] = {-p.n_hat[0], -p.n_hat[1], -p.n_hat[2]};
-    const double E = dot3(p.x_phi, p.x_phi), F = dot3(p.x_phi, p.x_theta),
-                 G = dot3(p.x_theta, p.x_theta);
-    const double L = dot3(p.x_phiphi, inward), M = dot3(p.x_phitheta, inward),
-                 N = dot3(p.x_thetatheta, inward);
+    const double E = gb_vec_dot(p.x_phi, p.x_phi), F = gb_vec_dot(p.x_phi, p.x_theta),
+                 G = gb_vec_dot(p.x_theta, p.x_theta);
+    const double L = gb_vec_dot(p.x_phiphi, inward), M = gb_vec_dot(p.x_phitheta, inward),
+                 N = gb_vec_dot(p.x_thetatheta, inward);
     const double det = E * G - F * F;
     out->K = (L * N - M * M) / det;
     out->H = (E * N - 2.0 * F * M + G * L) / (2.0 * det);
     const double disc = sqrt(fmax(out->H * out->H - out->K, 0.0));
     out->kappa_min = out->H - disc;
     out->kappa_max = out->H + disc;
-    out->area_element = sqrt(dot3(p.n, p.n));
+    out->area_element = sqrt(gb_vec_dot(p.n, p.n));
 }
 
 /* ---- local refinement of a curvature minimum ------------------------------------------------ */
@@ -308,7 +297,7 @@ int gb_shape_equilibria(const gb_surface *surface, const gb_shape_def *def, gb_e
         for (size_t e = 0; e < out->count && !duplicate; e++) {
             double ue[3];
             gb_surface_direction(out->points[e].phi, out->points[e].theta, ue);
-            duplicate = dot3(ue, p.u) > cos(1e-7);
+            duplicate = gb_vec_dot(ue, p.u) > cos(1e-7);
         }
         if (duplicate) continue;
         if (out->count == GB_SHAPE_MAX_EQUILIBRIA) {
@@ -403,8 +392,8 @@ static void mark_resting(const coordT *points, hull_facet *f)
         e1[k] = v[1][k] - v[0][k];
         e2[k] = v[2][k] - v[0][k];
     }
-    cross3(e1, e2, twice_area);
-    const double total = dot3(twice_area, f->normal);
+    gb_vec_cross(e1, e2, twice_area);
+    const double total = gb_vec_dot(twice_area, f->normal);
     f->interiority = INFINITY;
     for (int a = 0; a < 3; a++) {
         double pa[3], pb[3], c[3];
@@ -412,8 +401,8 @@ static void mark_resting(const coordT *points, hull_facet *f)
             pa[k] = v[(a + 1) % 3][k] - foot[k];
             pb[k] = v[(a + 2) % 3][k] - foot[k];
         }
-        cross3(pa, pb, c);
-        f->interiority = fmin(f->interiority, dot3(c, f->normal) / total);
+        gb_vec_cross(pa, pb, c);
+        f->interiority = fmin(f->interiority, gb_vec_dot(c, f->normal) / total);
     }
     f->resting = f->interiority >= -1e-12; /* on an edge counts: merging removes the double */
 }
@@ -444,7 +433,7 @@ int gb_shape_hull_equilibria(const gb_surface *surface, const gb_shape_def *def,
                                 &points[3 * (i * ntheta + j)]);
     gb_surface_position(surface, 0.0, 0.0, &points[3 * (npoints - 2)]);
     gb_surface_position(surface, M_PI, 0.0, &points[3 * (npoints - 1)]);
-    for (size_t i = 0; i < npoints; i++) radius[i] = sqrt(dot3(&points[3 * i], &points[3 * i]));
+    for (size_t i = 0; i < npoints; i++) radius[i] = sqrt(gb_vec_dot(&points[3 * i], &points[3 * i]));
 
     if ((status = hull_triangles(points, npoints, &facets, &nfacets, is_vertex))) goto done;
     out->facets = nfacets;
@@ -476,7 +465,7 @@ int gb_shape_hull_equilibria(const gb_surface *surface, const gb_shape_def *def,
         int robust = 1;
         const double tie = 1e-12 * f->height;
         for (size_t b = 0; b < nfacets && robust; b++) {
-            if (b == a || dot3(facets[b].normal, f->normal) <= cos_radius) continue;
+            if (b == a || gb_vec_dot(facets[b].normal, f->normal) <= cos_radius) continue;
             if (facets[b].height < f->height - tie || (facets[b].height <= f->height + tie && b < a)) robust = 0;
         }
         if (!robust) continue;
@@ -497,7 +486,7 @@ int gb_shape_hull_equilibria(const gb_surface *surface, const gb_shape_def *def,
         const double tie = 1e-12 * radius[i];
         for (size_t j = 0; j < npoints && robust; j++) {
             if (!is_vertex[j] || j == i ||
-                dot3(&points[3 * i], &points[3 * j]) <= cos_radius * radius[i] * radius[j])
+                gb_vec_dot(&points[3 * i], &points[3 * j]) <= cos_radius * radius[i] * radius[j])
                 continue;
             if (radius[j] > radius[i] + tie || (radius[j] >= radius[i] - tie && j < i)) robust = 0;
         }

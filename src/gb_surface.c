@@ -1,6 +1,7 @@
 #include "gb_surface.h"
 
 #include "gb_error.h"
+#include "gb_vec.h"
 
 #include <math.h>
 #include <string.h>
@@ -73,13 +74,6 @@ void gb_surface_direction(double phi, double theta, double u[3])
     u[2] = cos(phi);
 }
 
-static void cross(const double a[3], const double b[3], double out[3])
-{
-    out[0] = a[1] * b[2] - a[2] * b[1];
-    out[1] = a[2] * b[0] - a[0] * b[2];
-    out[2] = a[0] * b[1] - a[1] * b[0];
-}
-
 void gb_surface_eval(const gb_surface *surface, double phi, double theta, gb_surface_point *p)
 {
     const double beta4 = 4.0 * surface->beta;
@@ -134,7 +128,7 @@ void gb_surface_eval(const gb_surface *surface, double phi, double theta, gb_sur
             p->r_thetatheta * u[i] + 2.0 * p->r_theta * u_theta[i] + p->r * u_thetatheta[i];
     }
     /* Normal (eqs 16, 17). */
-    cross(p->x_phi, p->x_theta, p->n);
+    gb_vec_cross(p->x_phi, p->x_theta, p->n);
     const double norm = sqrt(p->n[0] * p->n[0] + p->n[1] * p->n[1] + p->n[2] * p->n[2]);
     for (int i = 0; i < 3; i++) p->n_hat[i] = norm > 0.0 ? p->n[i] / norm : 0.0;
 }

@@ -140,17 +140,53 @@ double gb_check_observed_order(double e1, double e2, double h1, double h2)
     return log(e1 / e2) / log(h1 / h2);
 }
 
-int gb_check_write(const char *path)
+/* Write `text` to `path` through a temporary file and a rename. */
+static int write_text_atomically(const char *path, const char *text)
 {
     char tmp[4096];
     snprintf(tmp, sizeof tmp, "%s.tmp%ld", path, (long)getpid());
-    char *text = cJSON_Print(rows ? rows : cJSON_CreateArray());
     FILE *f = fopen(tmp, "w");
     int ok = f && text && fputs(text, f) >= 0;
     if (f && fclose(f) != 0) ok = 0;
-    free(text);
     if (ok && rename(tmp, path) == 0) return 0;
     remove(tmp);
-    fprintf(stderr, "verify: cannot write results to '%s'\n", path);
     return 1;
+}
+
+int gb_check_write(const char *path)
+{
+    char *text = cJSON_Print(rows ? rows : cJSON_CreateArray());
+    const int failed = write_text_atomically(path, text);
+    free(text);
+    if (failed) fprintf(stderr, "verify: cannot write results to '%s'\n", path);
+    return failed;
+}
+
+int gb_check_write_data(const char *name, const cJSON *document)
+{
+    char path[4096];
+    snprintf(path, sizeof path, "%s/%s", gb_check_data_dir, name);
+    char *text = cJSON_Print(document);
+    const int failed = write_text_atomically(path, text);
+    free(text);
+    if (failed) fprintf(stderr, "verify: cannot write data to '%s'\n", path);
+    return failed;
+}
+
+cJSON *gb_check_load_reference(const char *name, char *path, size_t path_size)
+{
+    const char *dir = getenv("GOMBOC_REFERENCE_DIR") ? getenv("GOMBOC_REFERENCE_DIR") : "references";
+    snprintf(path, path_size, "%s/%s", dir, name);
+    FILE *f = fopen(path, "r");
+    if (!f) return NULL;
+    char *text = NULL;
+    long len = -1;
+    if (fseek(f, 0, SEEK_END) == 0) len = ftell(f);
+    if (len >= 0 && fseek(f, 0, SEEK_SET) == 0 && (text = calloc((size_t)len + 1, 1)) &&
+        fread(text, 1, (size_t)len, f) != (size_t)len)
+        text[0] = '\0';
+    fclose(f);
+    cJSON *root = text ? cJSON_Parse(text) : NULL;
+    free(text);
+    return root;
 }

@@ -9,6 +9,8 @@
 #ifndef GB_CHECK_H
 #define GB_CHECK_H
 
+#include <stddef.h>
+
 typedef struct gb_check {
     const char *section;  /* paper section, e.g. "2" */
     const char *equation; /* equation number(s), e.g. "13" */
@@ -50,5 +52,13 @@ int gb_check_write(const char *path);
 
 /* Where data files for the report go (set by main from --data). */
 extern const char *gb_check_data_dir;
+
+/* Save `document` as gb_check_data_dir/name (atomically) for the report. Returns 0 on success. */
+struct cJSON;
+int gb_check_write_data(const char *name, const struct cJSON *document);
+
+/* Parse references/<name> (or $GOMBOC_REFERENCE_DIR/<name>); NULL when missing or malformed. The
+ * path tried is written to `path`. */
+struct cJSON *gb_check_load_reference(const char *name, char *path, size_t path_size);
 
 #endif

@@ -133,19 +133,8 @@ static void test_convergence_with_tolerance(void)
 
 static void test_scipy_reference(void)
 {
-    const char *path = getenv("GOMBOC_REFERENCES") ? getenv("GOMBOC_REFERENCES") : "references/massprops.json";
-    FILE *f = fopen(path, "r");
-    char *text = NULL;
-    size_t len = 0;
-    if (f) {
-        fseek(f, 0, SEEK_END);
-        len = (size_t)ftell(f);
-        rewind(f);
-        text = calloc(len + 1, 1);
-        if (text && fread(text, 1, len, f) != len) text[0] = '\0';
-        fclose(f);
-    }
-    cJSON *root = text ? cJSON_Parse(text) : NULL;
+    char path[1024];
+    cJSON *root = gb_check_load_reference("massprops.json", path, sizeof path);
     cJSON *cases = cJSON_GetObjectItem(root, "cases");
     gb_check cr = {"2", "53", "scipy reference file readable", path, "exact"};
     gb_check_true(&cr, cJSON_GetArraySize(cases) > 0, "%d cases in %s", cJSON_GetArraySize(cases), path);
@@ -175,7 +164,6 @@ static void test_scipy_reference(void)
             }
     }
     cJSON_Delete(root);
-    free(text);
 }
 
 static void test_massprops_error_paths(void)
