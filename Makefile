@@ -15,14 +15,17 @@ TEST_LIBS  = $(shell pkg-config --libs cunit)
 
 CORE_SRC  := $(sort $(wildcard src/gb_*.c))
 CORE_OBJ  := $(CORE_SRC:src/%.c=$(BUILD)/obj/%.o)
+CLI_SRC   := $(sort $(wildcard src/gomboc*.c))
+CLI_OBJ   := $(CLI_SRC:src/%.c=$(BUILD)/obj/%.o)
 LIB       := $(BUILD)/libgomboc.a
 BIN       := $(BUILD)/gomboc
 VERIFY_SRC := $(sort $(wildcard verify/*.c))
 VERIFY_OBJ := $(VERIFY_SRC:verify/%.c=$(BUILD)/obj/verify_%.o)
 VERIFY_BIN := $(BUILD)/verify-gomboc
+BENCH_BIN  := $(BUILD)/bench-gomboc
 
 .PHONY: all deps run verify verify-full bench references report install clean \
-        build run-only verify-only references-only
+        build run-only verify-only references-only bench-only
 
 all: deps
 	@$(MAKE) --no-print-directory build
@@ -47,14 +50,34 @@ run-only: $(BIN)
 verify: deps
 	@$(MAKE) --no-print-directory verify-only
 
+# Figure 2 of the paper: the height landscape for one documented vertical (see reports/contact_section.py).
+FIG2_ZB := 0.6,0.6,-0.5
+FIG2     = $(BIN) contact --beta 0.12 --zb $(FIG2_ZB) --json
+
 verify-only: $(BIN) $(VERIFY_BIN)
 	@$(MAKE) --no-print-directory run-only
 	@mkdir -p $(OUT)
+	for m in I II; do \
+	  $(FIG2) --morphology $$m --method continuous --grid 180x360 --landscape $(OUT)/fig2-landscape-$$m.csv \
+	    --zoom $(OUT)/fig2-zoom-$$m.csv --zoom-halfwidth 0.4 > $(OUT)/fig2-contact-$$m.json.tmp && \
+	  mv $(OUT)/fig2-contact-$$m.json.tmp $(OUT)/fig2-contact-$$m.json && \
+	  $(FIG2) --morphology $$m --method continuous --zoom $(OUT)/fig2-zoom-fine-$$m.csv --zoom-halfwidth 0.08 \
+	    > /dev/null && \
+	  $(FIG2) --morphology $$m --method grid > $(OUT)/fig2-grid-$$m.json.tmp && \
+	  mv $(OUT)/fig2-grid-$$m.json.tmp $(OUT)/fig2-grid-$$m.json || exit 1; \
+	done
 	GOMBOC_BIN=$(BIN) $(VERIFY_BIN) --results $(OUT)/checks.json --data $(OUT); \
 	status=$$?; \
 	$(PYTHON) reports/make_report.py $(OUT) "$(CC)" "$(WARN) $(CFLAGS)" || status=1; \
 	echo "verify: report written to $(OUT)/verification.md"; \
 	exit $$status
+
+# --- speed, printed as ratios measured in one run (never asserted in tests)
+bench: deps
+	@$(MAKE) --no-print-directory bench-only
+
+bench-only: $(BENCH_BIN)
+	$(BENCH_BIN)
 
 # No study is longer than `make verify` yet: the dynamics (issue 4) will add them here.
 verify-full: verify
@@ -84,14 +107,14 @@ $(BUILD)/obj/verify_%.o: verify/%.c $(wildcard src/*.h verify/*.h) | $(BUILD)/ob
 $(LIB): $(CORE_OBJ)
 	ar rcs $@ $^
 
-$(BIN): $(BUILD)/obj/gomboc.o $(LIB)
+$(BIN): $(CLI_OBJ) $(LIB)
 	$(CC) $(ALL_CFLAGS) -o $@ $^ $(CORE_LIBS)
-
-$(BUILD)/obj/gomboc.o: src/gomboc.c $(wildcard src/*.h) | $(BUILD)/obj
-	$(CC) $(ALL_CFLAGS) -c $< -o $@
 
 $(VERIFY_BIN): $(VERIFY_OBJ) $(LIB)
 	$(CC) $(ALL_CFLAGS) -o $@ $^ $(TEST_LIBS) $(CORE_LIBS)
+
+$(BENCH_BIN): verify/bench/bench.c $(LIB) $(wildcard src/*.h) | $(BUILD)/obj
+	$(CC) $(ALL_CFLAGS) -o $@ $< $(LIB) $(CORE_LIBS)
 
 $(BUILD)/obj:
 	mkdir -p $@

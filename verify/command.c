@@ -5,6 +5,7 @@
 #include "verify_sections.h"
 
 #include <cjson/cJSON.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -42,6 +43,18 @@ static void test_bad_input(void)
         {"shape --morphology I", "missing --beta"},
         {"shape --beta 0.1", "missing --morphology"},
         {"shape --morphology I --beta 0.1 --mass 0", "--mass 0 is out of range (allowed: mass > 0)"},
+        {"contact --morphology I --beta 0.12 --zb 0,0,0 --method grid", "--zb '0,0,0' is the zero vector"},
+        {"contact --morphology I --beta 0.12 --zb 0,0 --method grid", "--zb '0,0' is not three numbers"},
+        {"contact --morphology I --beta 0.12 --zb 1,2,nan --method grid", "is not three numbers"},
+        {"contact --morphology I --beta 0.25 --zb 0,0,1 --method grid", "0 <= beta < 0.25"},
+        {"contact --morphology I --beta 0.12 --zb 0,0,1 --method simplex", "allowed: grid, fast-grid, continuous"},
+        {"contact --morphology I --beta 0.12 --zb 0,0,1 --method grid --grid 1x180", "--grid '1x180' is out of range"},
+        {"contact --morphology I --beta 0.12 --zb 0,0,1 --method grid --grid 90by180", "NPxNT with NP >= 2"},
+        {"contact --morphology I --beta 0.12 --zb 0,0,1 --method grid --nodes gauss", "allowed: centred, linspace"},
+        {"contact --morphology I --beta 0.12 --zb 0,0,1 --method grid --zoom-halfwidth 2", "0 < W <= 1"},
+        {"contact --morphology I --beta 0.12 --zb 0,0,1", "missing --method"},
+        {"contact --morphology I --beta 0.12 --method grid", "missing --zb"},
+        {"contact --morphology I --beta 0.12 --zb 0,0,1 --method grid --speed 3", "unknown option '--speed'"},
         {"frobnicate", "unknown command 'frobnicate'"},
         {"", "usage: gomboc"},
     };
@@ -103,12 +116,69 @@ static void test_failed_write_leaves_nothing(void)
     rmdir(dir);
 }
 
+/* Run a contact query and parse its JSON (NULL on failure). */
+static cJSON *contact_json(const char *method_and_options, int *code)
+{
+    static char out[1 << 17];
+    char args[512];
+    snprintf(args, sizeof args, "contact --morphology II --beta 0.12 --zb 0.2385,-0.731,0.4417 --json %s", method_and_options);
+    *code = run(args, out, sizeof out);
+    char *mark = strstr(out, "@@exit=");
+    if (mark) *mark = '\0';
+    return cJSON_Parse(out);
+}
+
+static double number(const cJSON *root, const char *key) { return cJSON_GetNumberValue(cJSON_GetObjectItem(root, key)); }
+
+static void test_contact_command(void)
+{
+    int code_grid, code_fast, code_cont;
+    cJSON *grid = contact_json("--method grid", &code_grid);
+    cJSON *fast = contact_json("--method fast-grid", &code_fast);
+    cJSON *cont = contact_json("--method continuous", &code_cont);
+    static const char *keys[] = {"phi", "theta", "height", "rc", "index", "branches"};
+    for (size_t k = 0; k < sizeof keys / sizeof keys[0]; k++) {
+        gb_check c = {"4", "29-30", "gomboc contact --json has the key (grid, fast-grid, continuous)", keys[k], "exact"};
+        gb_check_true(&c, code_grid == 0 && code_fast == 0 && code_cont == 0 && cJSON_GetObjectItem(grid, keys[k]) &&
+                      cJSON_GetObjectItem(fast, keys[k]) && cJSON_GetObjectItem(cont, keys[k]),
+                      "exits %d %d %d, key %s", code_grid, code_fast, code_cont, keys[k]);
+    }
+    gb_check ci = {"8", "29", "gomboc contact: grid and fast-grid return the same node", "brute force", "exact"};
+    gb_check_true(&ci, number(grid, "index") == number(fast, "index") && number(grid, "height") == number(fast, "height"),
+                  "index %.0f vs %.0f", number(grid, "index"), number(fast, "index"));
+    gb_check cn = {"4", "29", "gomboc contact: the continuous index is null (no grid node)", "JSON null", "exact"};
+    gb_check_true(&cn, cJSON_IsNull(cJSON_GetObjectItem(cont, "index")), "index item type %d",
+                  cJSON_GetObjectItem(cont, "index") ? cJSON_GetObjectItem(cont, "index")->type : -1);
+    gb_check cb = {"4", "29, 36", "gomboc contact: continuous h* <= the grid node's height", "every node is a surface point",
+                   "8 eps"};
+    gb_check_true(&cb, number(cont, "height") <= number(grid, "height") + 8 * 2.2e-16, "h* %.17g, grid %.17g",
+                  number(cont, "height"), number(grid, "height"));
+    const cJSON *first = cJSON_GetArrayItem(cJSON_GetObjectItem(cont, "branches"), 0);
+    gb_check cf = {"4", "29", "gomboc contact: the contact is the lowest listed branch", "branches[0]", "exact"};
+    gb_check_true(&cf, first && number(first, "height") == number(cont, "height"), "branch %.17g, contact %.17g",
+                  first ? number(first, "height") : NAN, number(cont, "height"));
+    int code_scaled;
+    static char a[1 << 17], b[1 << 17];
+    run("contact --morphology II --beta 0.12 --zb 0.2385,-0.731,0.4417 --method fast-grid --json", a, sizeof a);
+    code_scaled = run("contact --morphology II --beta 0.12 --zb 2.385,-7.31,4.417 --method fast-grid --json", b, sizeof b);
+    cJSON *ja = cJSON_Parse(a), *jb = cJSON_Parse(b);
+    gb_check cs = {"4", "28", "gomboc contact: z_b need not be normalised", "same node for z_b and 10 z_b", "exact"};
+    gb_check_true(&cs, code_scaled == 0 && number(ja, "index") == number(jb, "index"), "index %.0f vs %.0f",
+                  number(ja, "index"), number(jb, "index"));
+    cJSON_Delete(ja);
+    cJSON_Delete(jb);
+    cJSON_Delete(grid);
+    cJSON_Delete(fast);
+    cJSON_Delete(cont);
+}
+
 int verify_register_command(void)
 {
     static const verify_test tests[] = {
         {"command: bad input refused with a clear message and exit 2", test_bad_input},
         {"command: JSON keys, verdicts and determinism", test_json_keys_and_determinism},
         {"command: atomic output", test_failed_write_leaves_nothing},
+        {"command: gomboc contact, its methods and keys", test_contact_command},
         {NULL, NULL},
     };
     return verify_register_suite("The gomboc command", tests);

@@ -1,0 +1,282 @@
+/* gomboc contact — the contact point of one body for one body-frame vertical z_b (paper §4). */
+#include "gomboc_cli.h"
+
+#include "gb_contact.h"
+#include "gb_error.h"
+#include "gb_surface.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const char *usage_contact =
+    "usage: gomboc contact --morphology I|II --beta B --zb X,Y,Z --method grid|fast-grid|continuous\n"
+    "                      [--grid NPxNT] [--nodes centred|linspace] [--json]\n"
+    "                      [--landscape FILE] [--zoom FILE] [--zoom-halfwidth W]\n"
+    "\n"
+    "  --morphology I|II  phase function chi (eqs 8, 9)\n"
+    "  --beta B           shape parameter, 0 <= B < 0.25\n"
+    "  --zb X,Y,Z         the upward vertical in the body frame, z_b = R^T e_z (eq 28); any non-zero\n"
+    "                     length (it is normalised; heights are along the unit vertical)\n"
+    "  --method M         grid: the lowest node of the N_phi x N_theta grid by brute force, as the\n"
+    "                     paper (section 8); fast-grid: the same node by branch and bound;\n"
+    "                     continuous: every local minimum polished by Newton (eqs 31-35)\n"
+    "  --grid NPxNT       grid size, 2 <= NP, NT and NP*NT <= 67108864 (default 90x180 as Table 1\n"
+    "                     for the grid methods; for continuous the seed grid, default 180x360)\n"
+    "  --nodes P          node placement: centred (phi_i = (i+1/2) pi/NP, theta_j = 2 pi j/NT; the\n"
+    "                     default) or linspace (phi_i = i pi/(NP-1), theta_j = 2 pi j/(NT-1))\n"
+    "  --json             print one JSON object: phi, theta, height, rc, index, branches, gap, ...\n"
+    "  --landscape FILE   write h(phi, theta) at every node of the grid as CSV (Figure 2)\n"
+    "  --zoom FILE        write h on a 201 x 201 window around the contact as CSV\n"
+    "  --zoom-halfwidth W half-width of that window in phi and theta [rad], 0 < W <= 1 (default 0.25)\n"
+    "\n"
+    "Prints the contact (phi*, theta*, h*, r_c; the grid index for the grid methods) and every local\n"
+    "minimum of h with its height (branches, from continuous minimisation seeded on the 180x360 grid\n"
+    "or, for --method continuous, on --grid), and the gap between the two lowest (eqs 38-39).\n";
+
+enum contact_method { METHOD_GRID, METHOD_FAST_GRID, METHOD_CONTINUOUS };
+static const char *const method_names[] = {"grid", "fast-grid", "continuous"};
+
+static int parse_zb(const char *text, double zb[3])
+{
+    char *end;
+    const char *p = text;
+    for (int k = 0; k < 3; k++) {
+        errno = 0;
+        zb[k] = strtod(p, &end);
+        if (end == p || errno || !isfinite(zb[k])) return 0;
+        if (k < 2 && *end != ',') return 0;
+        p = end + (k < 2);
+    }
+    return *end == '\0';
+}
+
+static int parse_grid(const char *text, size_t *n_phi, size_t *n_theta)
+{
+    char *end;
+    errno = 0;
+    const unsigned long a = strtoul(text, &end, 10);
+    if (end == text || errno || (*end != 'x' && *end != 'X') || text[0] == '-') return 0;
+    const char *second = end + 1;
+    const unsigned long b = strtoul(second, &end, 10);
+    if (end == second || errno || *end != '\0' || second[0] == '-') return 0;
+    *n_phi = a;
+    *n_theta = b;
+    return 1;
+}
+
+/* h at every node of `grid` as CSV. */
+static int write_landscape(const gb_contact_grid *grid, const double zb[3], const char *path)
+{
+    const gb_contact_grid_def *def = gb_contact_grid_get_def(grid);
+    const gb_surface *surface = gb_contact_grid_surface(grid);
+    const size_t size = gb_contact_grid_size(grid);
+    size_t cap = 512 + size * 64, used = 0;
+    char *text = malloc(cap);
+    if (!text) return gb_error_set(GB_ENOMEM, "out of memory for the landscape");
+    used += (size_t)snprintf(text, cap,
+                             "# gomboc height landscape: morphology %s, beta %.17g, z_b %.17g %.17g %.17g, grid "
+                             "%zux%zu %s\nphi,theta,height\n",
+                             surface->morphology->name, surface->beta, zb[0], zb[1], zb[2], def->n_phi,
+                             def->n_theta, gb_contact_nodes_name(def->nodes));
+    for (size_t k = 0; k < size; k++) {
+        double phi, theta, x[3];
+        gb_contact_grid_node(grid, k, &phi, &theta, x);
+        used += (size_t)snprintf(text + used, cap - used, "%.9g,%.9g,%.12g\n", phi, theta,
+                                 zb[0] * x[0] + zb[1] * x[1] + zb[2] * x[2]);
+    }
+    const int status = cli_write_atomically(path, text);
+    free(text);
+    return status;
+}
+
+/* h on a 201 × 201 window of half-width w around (φ*, θ*), as CSV. */
+static int write_zoom(const gb_surface *surface, const double zb[3], double phi0, double theta0, double w,
+                      const char *path)
+{
+    enum { N = 201 };
+    size_t cap = 512 + (size_t)N * N * 64, used = 0;
+    char *text = malloc(cap);
+    if (!text) return gb_error_set(GB_ENOMEM, "out of memory for the zoom window");
+    used += (size_t)snprintf(text, cap,
+                             "# gomboc height zoom: morphology %s, beta %.17g, z_b %.17g %.17g %.17g, centre "
+                             "%.17g %.17g, half-width %.17g\nphi,theta,height\n",
+                             surface->morphology->name, surface->beta, zb[0], zb[1], zb[2], phi0, theta0, w);
+    for (int i = 0; i < N; i++)
+        for (int j = 0; j < N; j++) {
+            const double phi = phi0 + w * (2.0 * i / (N - 1) - 1.0), theta = theta0 + w * (2.0 * j / (N - 1) - 1.0);
+            double x[3];
+            gb_surface_position(surface, phi, theta, x);
+            used += (size_t)snprintf(text + used, cap - used, "%.12g,%.12g,%.12g\n", phi, theta,
+                                     zb[0] * x[0] + zb[1] * x[1] + zb[2] * x[2]);
+        }
+    const int status = cli_write_atomically(path, text);
+    free(text);
+    return status;
+}
+
+static cJSON *point_json(const gb_contact_point *p)
+{
+    cJSON *o = cJSON_CreateObject();
+    cJSON_AddNumberToObject(o, "phi", p->phi);
+    cJSON_AddNumberToObject(o, "theta", p->theta);
+    cJSON_AddNumberToObject(o, "height", p->height);
+    cJSON_AddItemToObject(o, "rc", cli_json_vector(p->rc, 3));
+    cJSON_AddItemToObject(o, "hessian", cli_json_vector(p->hessian, 3));
+    cJSON_AddNumberToObject(o, "residual", p->residual);
+    return o;
+}
+
+int command_contact(int argc, char **argv)
+{
+    const char *landscape = NULL, *zoom = NULL;
+    double zb[3] = {0, 0, 0}, zoom_halfwidth = 0.25;
+    int json = 0, have_zb = 0, have_grid = 0, method = -1;
+    cli_body body = {NULL, NAN, 0};
+    gb_contact_grid_def grid_def = gb_contact_grid_default_def();
+    static const char *const valued[] = {"--morphology", "--beta", "--zb", "--method", "--grid", "--nodes",
+                                         "--landscape", "--zoom", "--zoom-halfwidth", NULL};
+    for (int i = 0; i < argc; i++) {
+        const char *opt = argv[i], *value = NULL;
+        const int kind = cli_next_option("contact", argc, argv, &i, usage_contact, valued,
+                                         " (allowed: --morphology, --beta, --zb, --method, --grid, --nodes, --json, "
+                                         "--landscape, --zoom, --zoom-halfwidth, --help)", &body, &json, &value);
+        if (kind != CLI_VALUE) {
+            if (kind == CLI_NEXT) continue;
+            return kind == CLI_HELP ? 0 : kind;
+        }
+        if (!strcmp(opt, "--zb")) {
+            if (!parse_zb(value, zb))
+                return cli_input_error("contact", "--zb '%s' is not three numbers%s", value,
+                                       " (allowed: X,Y,Z, finite, not all zero)");
+            if (zb[0] == 0.0 && zb[1] == 0.0 && zb[2] == 0.0)
+                return cli_input_error("contact", "--zb '%s' is the zero vector%s", value,
+                                       " (allowed: any non-zero X,Y,Z; it is the body-frame vertical)");
+            have_zb = 1;
+        } else if (!strcmp(opt, "--method")) {
+            for (int k = 0; k < 3; k++)
+                if (!strcmp(value, method_names[k])) method = k;
+            if (method < 0)
+                return cli_input_error("contact", "--method '%s' is unknown%s", value,
+                                       " (allowed: grid, fast-grid, continuous)");
+        } else if (!strcmp(opt, "--grid")) {
+            if (!parse_grid(value, &grid_def.n_phi, &grid_def.n_theta) || grid_def.n_phi < 2 ||
+                grid_def.n_theta < 3 || grid_def.n_phi > GB_CONTACT_GRID_MAX_NODES / grid_def.n_theta)
+                return cli_input_error("contact", "--grid '%s' is out of range%s", value,
+                                       " (allowed: NPxNT with NP >= 2, NT >= 3, NP*NT <= 67108864)");
+            have_grid = 1;
+        } else if (!strcmp(opt, "--nodes")) {
+            if (gb_contact_nodes_parse(value, &grid_def.nodes))
+                return cli_input_error("contact", "--nodes '%s' is unknown%s", value, " (allowed: centred, linspace)");
+        } else if (!strcmp(opt, "--landscape")) {
+            landscape = value;
+        } else if (!strcmp(opt, "--zoom")) {
+            zoom = value;
+        } else {
+            if (!cli_parse_double(value, &zoom_halfwidth) || !(zoom_halfwidth > 0.0 && zoom_halfwidth <= 1.0))
+                return cli_input_error("contact", "--zoom-halfwidth '%s' is out of range%s", value,
+                                       " (allowed: 0 < W <= 1 rad)");
+        }
+    }
+    if (cli_body_required("contact", &body)) return EXIT_INPUT;
+    const char *morphology = body.morphology;
+    const double beta = body.beta;
+    if (!have_zb) return cli_input_error("contact", "missing %s%s", "--zb", " (allowed: X,Y,Z, not all zero)");
+    if (method < 0)
+        return cli_input_error("contact", "missing %s%s", "--method", " (allowed: grid, fast-grid, continuous)");
+
+    gb_surface surface;
+    int status = gb_surface_init(&surface, morphology, beta);
+    if (status) return cli_failure("contact", status);
+    /* The seed grid of the branch search; for --method continuous, --grid replaces it. */
+    gb_contact_grid_def seed_def = gb_contact_default_branch_grid();
+    if (method == METHOD_CONTINUOUS) {
+        if (have_grid) seed_def.n_phi = grid_def.n_phi, seed_def.n_theta = grid_def.n_theta;
+        seed_def.nodes = grid_def.nodes;
+    }
+    gb_contact_grid *grid = NULL, *seeds = NULL;
+    gb_contact_node node;
+    gb_contact_branches branches;
+    gb_contact_refine_def refine = gb_contact_refine_default_def();
+    status = gb_contact_grid_create(&surface, &seed_def, &seeds);
+    if (!status && method != METHOD_CONTINUOUS) status = gb_contact_grid_create(&surface, &grid_def, &grid);
+    if (!status && method == METHOD_GRID) status = gb_contact_grid_brute(grid, zb, &node);
+    if (!status && method == METHOD_FAST_GRID) status = gb_contact_grid_fast(grid, zb, &node);
+    if (!status) status = gb_contact_branches_find(seeds, zb, &refine, &branches);
+    double unit[3];
+    if (!status) status = gb_contact_unit_vertical(zb, unit);
+    const gb_contact_point *contact = &branches.branch[0];
+    double phi = NAN, theta = NAN;
+    if (!status) {
+        phi = method == METHOD_CONTINUOUS ? contact->phi : node.phi;
+        theta = method == METHOD_CONTINUOUS ? contact->theta : node.theta;
+    }
+    if (!status && landscape) status = write_landscape(grid ? grid : seeds, unit, landscape);
+    if (!status && zoom) status = write_zoom(&surface, unit, phi, theta, zoom_halfwidth, zoom);
+    if (status) {
+        gb_contact_grid_free(grid);
+        gb_contact_grid_free(seeds);
+        return cli_failure("contact", status);
+    }
+
+    cJSON *root = cJSON_CreateObject();
+    cJSON_AddStringToObject(root, "morphology", surface.morphology->name);
+    cJSON_AddNumberToObject(root, "beta", beta);
+    cJSON_AddItemToObject(root, "zb", cli_json_vector(unit, 3));
+    cJSON_AddStringToObject(root, "method", method_names[method]);
+    if (method != METHOD_CONTINUOUS) {
+        cJSON_AddItemToObject(root, "grid", cli_json_vector((double[]){(double)grid_def.n_phi, (double)grid_def.n_theta}, 2));
+        cJSON_AddStringToObject(root, "nodes", gb_contact_nodes_name(grid_def.nodes));
+        cJSON_AddNumberToObject(root, "phi", node.phi);
+        cJSON_AddNumberToObject(root, "theta", node.theta);
+        cJSON_AddNumberToObject(root, "height", node.height);
+        cJSON_AddItemToObject(root, "rc", cli_json_vector(node.x, 3));
+        cJSON_AddNumberToObject(root, "index", (double)node.index);
+        cJSON_AddNumberToObject(root, "nodes_visited", (double)node.visited);
+    } else {
+        cJSON_AddItemToObject(root, "grid", cli_json_vector((double[]){(double)seed_def.n_phi, (double)seed_def.n_theta}, 2));
+        cJSON_AddStringToObject(root, "nodes", gb_contact_nodes_name(seed_def.nodes));
+        cJSON_AddNumberToObject(root, "phi", contact->phi);
+        cJSON_AddNumberToObject(root, "theta", contact->theta);
+        cJSON_AddNumberToObject(root, "height", contact->height);
+        cJSON_AddItemToObject(root, "rc", cli_json_vector(contact->rc, 3));
+        cJSON_AddNullToObject(root, "index");
+        cJSON_AddNumberToObject(root, "residual", contact->residual);
+    }
+    cJSON *list = cJSON_AddArrayToObject(root, "branches");
+    for (size_t k = 0; k < branches.count; k++) cJSON_AddItemToArray(list, point_json(&branches.branch[k]));
+    if (isfinite(branches.gap)) cJSON_AddNumberToObject(root, "gap", branches.gap);
+    else cJSON_AddNullToObject(root, "gap");
+    cJSON_AddItemToObject(root, "branch_seed_grid", cli_json_vector((double[]){(double)seed_def.n_phi, (double)seed_def.n_theta}, 2));
+
+    if (json) {
+        cli_print_json(root);
+    } else {
+        printf("body          morphology %s (chi = %s), beta = %.17g\n", surface.morphology->name,
+               surface.morphology->chi_formula, beta);
+        printf("z_b (unit)    %.12f %.12f %.12f\n", unit[0], unit[1], unit[2]);
+        if (method != METHOD_CONTINUOUS)
+            printf("method        %s on a %zux%zu %s grid: node %zu (%zu of %zu nodes visited)\n", method_names[method],
+                   grid_def.n_phi, grid_def.n_theta, gb_contact_nodes_name(grid_def.nodes), node.index, node.visited,
+                   gb_contact_grid_size(grid));
+        else
+            printf("method        continuous (Newton, eqs 31-35) seeded on a %zux%zu grid; |z_b x n| = %.2e\n",
+                   seed_def.n_phi, seed_def.n_theta, contact->residual);
+        const double *rc = method == METHOD_CONTINUOUS ? contact->rc : node.x;
+        printf("contact       phi* = %.12f  theta* = %.12f  h* = %.15f\n", phi, theta,
+               method == METHOD_CONTINUOUS ? contact->height : node.height);
+        printf("r_c           %.12f %.12f %.12f\n", rc[0], rc[1], rc[2]);
+        printf("local minima  %zu (seeded on %zux%zu)", branches.count, seed_def.n_phi, seed_def.n_theta);
+        if (isfinite(branches.gap)) printf(", gap h2 - h1 = %.6e", branches.gap);
+        printf("\n");
+        for (size_t k = 0; k < branches.count; k++)
+            printf("  %zu  phi = %.12f  theta = %.12f  h = %.15f\n", k + 1, branches.branch[k].phi,
+                   branches.branch[k].theta, branches.branch[k].height);
+    }
+    cJSON_Delete(root);
+    gb_contact_grid_free(grid);
+    gb_contact_grid_free(seeds);
+    return 0;
+}

@@ -1,0 +1,186 @@
+/* gomboc shape — the body-level facts of paper §2 for one morphology and β. */
+#include "gomboc_cli.h"
+
+#include "gb_error.h"
+#include "gb_massprops.h"
+#include "gb_shape.h"
+#include "gb_surface.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const char *usage_shape =
+    "usage: gomboc shape --morphology I|II --beta B [--mass M] [--json] [--radial-map FILE]\n"
+    "\n"
+    "  --morphology I|II  phase function chi: I is theta - 5 phi (eq 8), II is\n"
+    "                     theta - (3 pi/2)(cos phi - cos^3 phi/3) (eq 9)\n"
+    "  --beta B           shape parameter, 0 <= B < 0.25 (r^4 = 1 + 4 B sin phi cos chi > 0)\n"
+    "  --mass M           mass of the homogeneous body, M > 0 (default 1, as Table 1)\n"
+    "  --json             print one JSON object instead of text\n"
+    "  --radial-map FILE  also write r(phi, theta) and x on a 90 x 180 midpoint grid as CSV\n"
+    "                     (columns phi, theta, r, x, y, z), for Figure 1\n"
+    "\n"
+    "Prints: volume, centroid, inertia about the centroid (3x3), L (eq 53), the minimum Gaussian\n"
+    "curvature and where, the area fraction of negative curvature, the largest beta at which the\n"
+    "morphology is strictly convex, the critical points of r (type, phi, theta, r), the static\n"
+    "equilibria of the convex hull, and the verdicts convex and mono_monostatic.\n";
+
+static int write_radial_map(const gb_surface *surface, const char *path)
+{
+    const size_t nphi = 90, ntheta = 180;
+    size_t cap = 64 + nphi * ntheta * 120, used = 0;
+    char *text = malloc(cap);
+    if (!text) return gb_error_set(GB_ENOMEM, "out of memory for the radial map");
+    used += (size_t)snprintf(text, cap, "# gomboc radial map: morphology %s, beta %.17g\nphi,theta,r,x,y,z\n",
+                             surface->morphology->name, surface->beta);
+    for (size_t i = 0; i < nphi; i++)
+        for (size_t j = 0; j < ntheta; j++) {
+            const double phi = (i + 0.5) * M_PI / nphi, theta = (j + 0.5) * 2.0 * M_PI / ntheta;
+            double x[3];
+            gb_surface_position(surface, phi, theta, x);
+            used += (size_t)snprintf(text + used, cap - used, "%.9g,%.9g,%.12g,%.12g,%.12g,%.12g\n",
+                                     phi, theta, gb_surface_radius(surface, phi, theta), x[0], x[1], x[2]);
+        }
+    int status = cli_write_atomically(path, text);
+    free(text);
+    return status;
+}
+
+int command_shape(int argc, char **argv)
+{
+    const char *radial_map = NULL;
+    double mass = 1.0;
+    int json = 0;
+    cli_body body = {NULL, NAN, 0};
+    static const char *const valued[] = {"--morphology", "--beta", "--mass", "--radial-map", NULL};
+    for (int i = 0; i < argc; i++) {
+        const char *opt = argv[i], *value = NULL;
+        const int kind = cli_next_option("shape", argc, argv, &i, usage_shape, valued,
+                                         " (allowed: --morphology, --beta, --mass, --json, --radial-map, --help)", &body, &json, &value);
+        if (kind != CLI_VALUE) {
+            if (kind == CLI_NEXT) continue;
+            return kind == CLI_HELP ? 0 : kind;
+        }
+        if (!strcmp(opt, "--mass")) {
+            if (!cli_parse_double(value, &mass))
+                return cli_input_error("shape", "--mass '%s' is not a number%s", value, " (allowed: mass > 0)");
+            if (!(mass > 0.0))
+                return cli_input_error("shape", "--mass %s is out of range%s", value, " (allowed: mass > 0)");
+        } else {
+            radial_map = value;
+        }
+    }
+    if (cli_body_required("shape", &body)) return EXIT_INPUT;
+    const char *morphology = body.morphology;
+    const double beta = body.beta;
+
+    gb_surface surface;
+    gb_massprops props;
+    gb_massprops_def mdef = gb_massprops_default_def();
+    gb_shape_def sdef = gb_shape_default_def();
+    gb_curvature_survey survey;
+    gb_equilibria equilibria;
+    gb_hull_equilibria hull;
+    double beta_limit, limit_phi, limit_theta;
+    mdef.mass = mass;
+    int status = gb_surface_init(&surface, morphology, beta);
+    if (!status) status = gb_massprops_compute(&surface, &mdef, &props);
+    if (!status) status = gb_shape_curvature_survey(&surface, &sdef, &survey);
+    if (!status) status = gb_shape_convexity_limit(surface.morphology, &sdef, &beta_limit, &limit_phi, &limit_theta);
+    if (!status) status = gb_shape_equilibria(&surface, &sdef, &equilibria);
+    if (!status) status = gb_shape_hull_equilibria(&surface, &sdef, &hull);
+    if (!status && radial_map) status = write_radial_map(&surface, radial_map);
+    if (status) return cli_failure("shape", status);
+    const int convex = survey.kappa_min > 0.0;
+    const int mono = convex ? equilibria.stable == 1 && equilibria.unstable == 1
+                            : hull.stable == 1 && hull.unstable == 1;
+
+    cJSON *root = cJSON_CreateObject();
+    cJSON_AddStringToObject(root, "morphology", surface.morphology->name);
+    cJSON_AddNumberToObject(root, "beta", beta);
+    cJSON_AddNumberToObject(root, "mass", mass);
+    cJSON_AddNumberToObject(root, "volume", props.volume);
+    cJSON_AddNumberToObject(root, "volume_error", props.volume_err);
+    cJSON_AddItemToObject(root, "centroid", cli_json_vector(props.centroid, 3));
+    cJSON_AddItemToObject(root, "centroid_error", cli_json_vector(props.centroid_err, 3));
+    cJSON *inertia = cJSON_AddArrayToObject(root, "inertia");
+    for (int i = 0; i < 3; i++) cJSON_AddItemToArray(inertia, cli_json_vector(props.inertia[i], 3));
+    cJSON_AddNumberToObject(root, "L", props.L);
+    cJSON_AddNumberToObject(root, "L_error", props.L_err);
+    cJSON_AddNumberToObject(root, "curvature_min", survey.K_min);
+    cJSON_AddItemToObject(root, "curvature_min_at", cli_json_vector((double[]){survey.K_min_phi, survey.K_min_theta}, 2));
+    cJSON_AddNumberToObject(root, "principal_curvature_min", survey.kappa_min);
+    cJSON_AddItemToObject(root, "principal_curvature_min_at",
+                          cli_json_vector((double[]){survey.kappa_min_phi, survey.kappa_min_theta}, 2));
+    cJSON_AddNumberToObject(root, "negative_curvature_fraction", survey.negative_fraction);
+    cJSON_AddNumberToObject(root, "convexity_beta_limit", beta_limit);
+    cJSON_AddItemToObject(root, "convexity_lost_at", cli_json_vector((double[]){limit_phi, limit_theta}, 2));
+    cJSON_AddBoolToObject(root, "convex", convex);
+    cJSON *eqs = cJSON_AddArrayToObject(root, "equilibria");
+    for (size_t k = 0; k < equilibria.count; k++) {
+        cJSON *e = cJSON_CreateObject();
+        cJSON_AddStringToObject(e, "type", gb_shape_equilibrium_name(equilibria.points[k].type));
+        cJSON_AddNumberToObject(e, "phi", equilibria.points[k].phi);
+        cJSON_AddNumberToObject(e, "theta", equilibria.points[k].theta);
+        cJSON_AddNumberToObject(e, "r", equilibria.points[k].r);
+        cJSON_AddItemToArray(eqs, e);
+    }
+    cJSON_AddNumberToObject(root, "polar_cap_gradient_min", equilibria.polar_gradient_min);
+    cJSON *h = cJSON_AddObjectToObject(root, "hull_equilibria");
+    cJSON_AddItemToObject(h, "sample", cli_json_vector((double[]){(double)sdef.hull_phi, (double)sdef.hull_theta}, 2));
+    cJSON_AddNumberToObject(h, "neighbourhood_rad", sdef.hull_neighbourhood);
+    cJSON_AddNumberToObject(h, "vertices", (double)hull.vertices);
+    cJSON_AddNumberToObject(h, "sampled_fraction_on_hull", hull.sampled_fraction_on_hull);
+    cJSON_AddNumberToObject(h, "raw_stable", (double)hull.raw_stable);
+    cJSON_AddNumberToObject(h, "raw_unstable", (double)hull.raw_unstable);
+    cJSON_AddNumberToObject(h, "stable", (double)hull.stable);
+    cJSON_AddNumberToObject(h, "unstable", (double)hull.unstable);
+    cJSON *rests = cJSON_AddArrayToObject(h, "rests");
+    for (size_t k = 0; k < hull.stable; k++) {
+        cJSON *r = cJSON_CreateObject();
+        cJSON_AddItemToObject(r, "normal", cli_json_vector(hull.rests[k].normal, 3));
+        cJSON_AddNumberToObject(r, "height", hull.rests[k].height);
+        cJSON_AddItemToArray(rests, r);
+    }
+    cJSON *tops = cJSON_AddArrayToObject(h, "unstable_points");
+    for (size_t k = 0; k < hull.unstable; k++) cJSON_AddItemToArray(tops, cli_json_vector(hull.unstable_points[k], 3));
+    cJSON_AddBoolToObject(root, "mono_monostatic", mono);
+
+    if (json) {
+        cli_print_json(root);
+    } else {
+        printf("body             morphology %s (chi = %s), beta = %.17g, mass = %g\n",
+               surface.morphology->name, surface.morphology->chi_formula, beta, mass);
+        printf("volume           %.15g  (+- %.1e)\n", props.volume, props.volume_err);
+        printf("centroid         %.3e %.3e %.3e  (+- %.1e)\n", props.centroid[0], props.centroid[1],
+               props.centroid[2], props.centroid_err[0]);
+        for (int i = 0; i < 3; i++)
+            printf("%s %15.12f %15.12f %15.12f\n", i ? "                " : "inertia (I_C)   ",
+                   props.inertia[i][0], props.inertia[i][1], props.inertia[i][2]);
+        printf("L (eq 53)        %.15g  (+- %.1e)\n", props.L, props.L_err);
+        printf("curvature min    K = %.10g at (phi, theta) = (%.8f, %.8f)\n", survey.K_min, survey.K_min_phi, survey.K_min_theta);
+        printf("                 kappa_1 = %.10g at (%.8f, %.8f)\n", survey.kappa_min, survey.kappa_min_phi, survey.kappa_min_theta);
+        printf("negative K       %.6f of the area\n", survey.negative_fraction);
+        printf("convex up to     beta = %.12g (lost at phi = %.8f, theta = %.8f)\n", beta_limit, limit_phi, limit_theta);
+        printf("convex           %s\n", convex ? "yes" : "no");
+        printf("critical points of r: %d stable, %d saddle, %d unstable (min |grad r| in polar caps %.3g)\n",
+               equilibria.stable, equilibria.saddle, equilibria.unstable, equilibria.polar_gradient_min);
+        for (size_t k = 0; k < equilibria.count; k++)
+            printf("  %-8s phi = %.10f theta = %.10f r = %.12f\n", gb_shape_equilibrium_name(equilibria.points[k].type),
+                   equilibria.points[k].phi, equilibria.points[k].theta, equilibria.points[k].r);
+        printf("convex hull      %zux%zu sample, %zu vertices (%.4f of the sample)\n", sdef.hull_phi, sdef.hull_theta,
+               hull.vertices, hull.sampled_fraction_on_hull);
+        printf("  raw polyhedral equilibria: %zu resting faces, %zu unstable vertices\n", hull.raw_stable, hull.raw_unstable);
+        printf("  robust within %.2f rad:    %zu resting faces, %zu unstable vertices\n", sdef.hull_neighbourhood,
+               hull.stable, hull.unstable);
+        for (size_t k = 0; k < hull.stable; k++)
+            printf("    rest on normal (%.5f, %.5f, %.5f), centroid height %.8f\n", hull.rests[k].normal[0],
+                   hull.rests[k].normal[1], hull.rests[k].normal[2], hull.rests[k].height);
+        printf("mono-monostatic  %s\n", mono ? "yes" : "no");
+    }
+    cJSON_Delete(root);
+    return 0;
+}
+

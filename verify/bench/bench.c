@@ -1,0 +1,121 @@
+/* make bench: speed, measured in one run and printed as ratios (never asserted in `make verify`).
+ *
+ * Contact selection (paper §4, §8): the exact fast grid search against the paper's brute-force scan
+ * on the same nodes and the same seeded verticals, for grids from Table 1's 90 × 180 to 720 × 1440;
+ * and the continuous minimiser, both as a full branch search and as a Newton polish from the fast
+ * grid's node (the way a time-stepper would use it). Each timing is the best of REPEATS passes over
+ * the verticals, which removes most scheduling noise; the nodes are checked equal as a sanity test. */
+#include "gb_contact.h"
+#include "gb_error.h"
+
+#include <gsl/gsl_randist.h>
+#include <gsl/gsl_rng.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <time.h>
+
+enum { VERTICALS = 2000, REPEATS = 3 };
+
+static double now(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+typedef int (*grid_search)(const gb_contact_grid *, const double[3], gb_contact_node *);
+
+/* Best-of-REPEATS seconds per query; the found indices go to `index`. */
+static double time_search(const gb_contact_grid *g, double (*zb)[3], grid_search search, size_t *index)
+{
+    double best = 1e300;
+    for (int r = 0; r < REPEATS; r++) {
+        const double start = now();
+        for (int k = 0; k < VERTICALS; k++) {
+            gb_contact_node n;
+            search(g, zb[k], &n);
+            index[k] = n.index;
+        }
+        const double t = (now() - start) / VERTICALS;
+        if (t < best) best = t;
+    }
+    return best;
+}
+
+int main(void)
+{
+    gb_error_init_gsl();
+    static double zb[VERTICALS][3];
+    static size_t brute_index[VERTICALS], fast_index[VERTICALS];
+    gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
+    gsl_rng_set(rng, 20261122UL);
+    for (int k = 0; k < VERTICALS; k++) gsl_ran_dir_3d(rng, &zb[k][0], &zb[k][1], &zb[k][2]);
+    gsl_rng_free(rng);
+    static const size_t sizes[] = {90, 180, 360, 720};
+    int mismatches = 0;
+    printf("bench: contact selection, %d seeded verticals, best of %d passes, beta = 0.12\n\n", VERTICALS, REPEATS);
+    printf("%-4s %-10s %14s %14s %10s %16s\n", "body", "grid", "brute [us]", "fast [us]", "speed-up", "nodes visited");
+    for (int m = 0; m < 2; m++) {
+        gb_surface s;
+        gb_surface_init(&s, m ? "II" : "I", 0.12);
+        for (size_t q = 0; q < sizeof sizes / sizeof sizes[0]; q++) {
+            gb_contact_grid_def def = gb_contact_grid_default_def();
+            def.n_phi = sizes[q];
+            def.n_theta = 2 * sizes[q];
+            gb_contact_grid *g;
+            if (gb_contact_grid_create(&s, &def, &g)) {
+                fprintf(stderr, "bench: %s\n", gb_error_message());
+                return 1;
+            }
+            const double brute = time_search(g, zb, gb_contact_grid_brute, brute_index);
+            const double fast = time_search(g, zb, gb_contact_grid_fast, fast_index);
+            double visited = 0;
+            for (int k = 0; k < VERTICALS; k++) {
+                gb_contact_node n;
+                gb_contact_grid_fast(g, zb[k], &n);
+                visited += (double)n.visited / VERTICALS;
+                mismatches += brute_index[k] != fast_index[k];
+            }
+            printf("%-4s %4zux%-5zu %14.2f %14.2f %9.1fx %9.0f (%.2f %%)\n", m ? "II" : "I", def.n_phi, def.n_theta,
+                   brute * 1e6, fast * 1e6, brute / fast, visited, 100.0 * visited / (double)gb_contact_grid_size(g));
+            gb_contact_grid_free(g);
+        }
+    }
+    printf("\n%-4s %28s %30s\n", "body", "all branches (180x360) [us]", "Newton from 90x180 fast node [us]");
+    for (int m = 0; m < 2; m++) {
+        gb_surface s;
+        gb_surface_init(&s, m ? "II" : "I", 0.12);
+        gb_contact_grid_def seed_def = gb_contact_default_branch_grid(), table1 = gb_contact_grid_default_def();
+        gb_contact_grid *seeds, *grid;
+        gb_contact_grid_create(&s, &seed_def, &seeds);
+        gb_contact_grid_create(&s, &table1, &grid);
+        gb_contact_refine_def refine = gb_contact_refine_default_def();
+        double all = 1e300, polish = 1e300;
+        for (int r = 0; r < REPEATS; r++) {
+            double start = now();
+            for (int k = 0; k < VERTICALS; k++) {
+                gb_contact_branches b;
+                gb_contact_branches_find(seeds, zb[k], &refine, &b);
+            }
+            const double t_all = (now() - start) / VERTICALS;
+            start = now();
+            for (int k = 0; k < VERTICALS; k++) {
+                gb_contact_node n;
+                gb_contact_point p;
+                gb_contact_grid_fast(grid, zb[k], &n);
+                gb_contact_refine(&s, zb[k], n.phi, n.theta, &refine, &p);
+            }
+            const double t_polish = (now() - start) / VERTICALS;
+            if (t_all < all) all = t_all;
+            if (t_polish < polish) polish = t_polish;
+        }
+        printf("%-4s %28.2f %30.2f\n", m ? "II" : "I", all * 1e6, polish * 1e6);
+        gb_contact_grid_free(seeds);
+        gb_contact_grid_free(grid);
+    }
+    if (mismatches) {
+        fprintf(stderr, "bench: %d fast-grid nodes differ from brute force\n", mismatches);
+        return 1;
+    }
+    return 0;
+}
