@@ -43,13 +43,10 @@ const char *gb_contact_nodes_name(gb_contact_nodes nodes)
 
 int gb_contact_nodes_parse(const char *name, gb_contact_nodes *nodes)
 {
-    for (unsigned k = 0; name && k < 2; k++)
-        if (strcmp(name, node_names[k]) == 0) {
-            *nodes = (gb_contact_nodes)k;
-            return GB_OK;
-        }
-    return gb_error_set(GB_EINVAL, "grid node placement '%s' is unknown (allowed: centred, linspace)",
-                        name ? name : "(null)");
+    int k = 0;
+    const int status = gb_error_parse_name(name, node_names, 2, "grid node placement", &k);
+    if (!status) *nodes = (gb_contact_nodes)k;
+    return status;
 }
 
 gb_contact_grid_def gb_contact_grid_default_def(void)
@@ -277,7 +274,9 @@ int gb_contact_grid_brute(const gb_contact_grid *grid, const double zb[3], gb_co
     return GB_OK;
 }
 
-int gb_contact_grid_fast(const gb_contact_grid *grid, const double zb[3], gb_contact_node *out)
+/* Branch and bound; `hint` (a node index, or SIZE_MAX) seeds the best height with a real node, so
+ * a good guess prunes most of the tree at once without changing the answer. */
+static int grid_search(const gb_contact_grid *grid, const double zb[3], size_t hint, gb_contact_node *out)
 {
     double d[3];
     int status = gb_contact_unit_vertical(zb, d);
@@ -290,6 +289,11 @@ int gb_contact_grid_fast(const gb_contact_grid *grid, const double zb[3], gb_con
     top = 1;
     double best = INFINITY;
     size_t best_index = SIZE_MAX, visited = 0;
+    if (hint < grid->size) {
+        best = node_height(d, grid->x + 3 * hint);
+        best_index = hint;
+        visited = 1;
+    }
     const size_t nt = grid->def.n_theta;
     while (top > 0) {
         top--;
@@ -321,6 +325,17 @@ int gb_contact_grid_fast(const gb_contact_grid *grid, const double zb[3], gb_con
     }
     fill_node(grid, best_index, best, visited, out);
     return GB_OK;
+}
+
+int gb_contact_grid_fast(const gb_contact_grid *grid, const double zb[3], gb_contact_node *out)
+{
+    return grid_search(grid, zb, SIZE_MAX, out);
+}
+
+int gb_contact_grid_fast_from(const gb_contact_grid *grid, const double zb[3], size_t hint,
+                              gb_contact_node *out)
+{
+    return grid_search(grid, zb, hint, out);
 }
 
 /* ---------------------------------------------------------------- the continuous minimiser */

@@ -72,6 +72,10 @@ typedef struct gb_contact_node {
 int gb_contact_grid_brute(const gb_contact_grid *grid, const double zb[3], gb_contact_node *out);
 /* The same node, by branch and bound over the patch tree (see gb_contact.c for the bound). */
 int gb_contact_grid_fast(const gb_contact_grid *grid, const double zb[3], gb_contact_node *out);
+/* The same again, warm-started from node `hint` (e.g. the previous step's node): the answer does
+ * not depend on the hint, only the work does. */
+int gb_contact_grid_fast_from(const gb_contact_grid *grid, const double zb[3], size_t hint,
+                              gb_contact_node *out);
 
 /* A stationary point of h polished by the continuous minimiser. */
 typedef struct gb_contact_point {

@@ -3,6 +3,7 @@
 #include <gsl/gsl_errno.h>
 #include <stdarg.h>
 #include <stdio.h>
+#include <string.h>
 
 static _Thread_local char error_message[1024];
 
@@ -20,3 +21,18 @@ const char *gb_error_message(void) { return error_message; }
 void gb_error_clear(void) { error_message[0] = '\0'; }
 
 void gb_error_init_gsl(void) { gsl_set_error_handler_off(); }
+
+int gb_error_parse_name(const char *name, const char *const *names, int count, const char *what, int *index)
+{
+    char allowed[256] = "";
+    size_t used = 0;
+    for (int k = 0; k < count; k++) {
+        if (name && strcmp(name, names[k]) == 0) {
+            *index = k;
+            return GB_OK;
+        }
+        used += (size_t)snprintf(allowed + used, sizeof allowed - used, "%s%s", k ? ", " : "", names[k]);
+        if (used >= sizeof allowed) used = sizeof allowed - 1;
+    }
+    return gb_error_set(GB_EINVAL, "%s '%s' is unknown (allowed: %s)", what, name ? name : "(null)", allowed);
+}

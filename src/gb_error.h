@@ -26,6 +26,10 @@ const char *gb_error_message(void);
 /* Forget the last message. */
 void gb_error_clear(void);
 
+/* Look `name` up in `names` (count entries); on success store its position in *index. Otherwise
+ * GB_EINVAL with the message "<what> '<name>' is unknown (allowed: a, b, c)". */
+int gb_error_parse_name(const char *name, const char *const *names, int count, const char *what, int *index);
+
 /* Install a GSL error handler that does not abort: GSL failures come back as status codes, and the
  * callers turn them into gb_ messages. Call once before using GSL-backed modules. */
 void gb_error_init_gsl(void);

@@ -1,0 +1,398 @@
+#include "gb_dynamics.h"
+
+#include "gb_error.h"
+#include "gb_massprops.h"
+#include "gb_vec.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const char *const variant_names[] = {"paper", "rolling"};
+static const char *const contact_names[] = {"grid", "fast-grid", "continuous"};
+
+const char *gb_dynamics_variant_name(gb_dynamics_variant v) { return (unsigned)v < 2 ? variant_names[v] : NULL; }
+const char *gb_dynamics_contact_name(gb_contact_model m) { return (unsigned)m < 3 ? contact_names[m] : NULL; }
+
+int gb_dynamics_variant_parse(const char *name, gb_dynamics_variant *variant)
+{
+    int k = 0;
+    const int status = gb_error_parse_name(name, variant_names, 2, "equation variant", &k);
+    if (!status) *variant = (gb_dynamics_variant)k;
+    return status;
+}
+
+int gb_dynamics_contact_parse(const char *name, gb_contact_model *model)
+{
+    int k = 0;
+    const int status = gb_error_parse_name(name, contact_names, 3, "contact model", &k);
+    if (!status) *model = (gb_contact_model)k;
+    return status;
+}
+
+gb_dynamics_def gb_dynamics_default_def(void)
+{
+    return (gb_dynamics_def){
+        .variant = GB_VARIANT_PAPER,
+        .contact = GB_CONTACT_MODEL_GRID,
+        .mass = 1.0,
+        .length = 1.0,
+        .damping = 0.02,
+        .forcing = {.g = 9.81, .a1 = 2.0, .a2 = 1.0, .omega = 18.0, .psi = M_PI / 3.0},
+        .grid = gb_contact_grid_default_def(),
+        .seed_grid = gb_contact_default_branch_grid(),
+    };
+}
+
+struct gb_dynamics {
+    gb_surface surface;
+    gb_dynamics_def def;
+    double inertia[3][3]; /* I_C [kg m²] */
+    double mean_radius;   /* L [m] (eq 53) */
+    gb_contact_grid *grid;
+    gb_contact_refine_def refine;
+    /* The contact at the last accepted state. */
+    size_t index;
+    gb_contact_point contact;
+    double energy0, t0;
+    size_t grid_switches, branch_switches;
+};
+
+const gb_dynamics_def *gb_dynamics_get_def(const gb_dynamics *d) { return &d->def; }
+void gb_dynamics_inertia(const gb_dynamics *d, double inertia[3][3]) { memcpy(inertia, d->inertia, sizeof d->inertia); }
+double gb_dynamics_mean_radius(const gb_dynamics *d) { return d->mean_radius; }
+size_t gb_dynamics_grid_size(const gb_dynamics *d) { return d->grid ? gb_contact_grid_size(d->grid) : 0; }
+
+int gb_dynamics_create(const gb_surface *surface, const gb_dynamics_def *def, gb_dynamics **out)
+{
+    *out = NULL;
+    if (!gb_dynamics_variant_name(def->variant) || !gb_dynamics_contact_name(def->contact))
+        return gb_error_set(GB_EINVAL, "unknown equation variant %d or contact model %d", (int)def->variant,
+                            (int)def->contact);
+    if (!(isfinite(def->mass) && def->mass > 0.0))
+        return gb_error_set(GB_EDOM, "mass = %g is out of range (allowed: finite, > 0)", def->mass);
+    if (!(isfinite(def->length) && def->length > 0.0))
+        return gb_error_set(GB_EDOM, "length = %g is out of range (allowed: finite, > 0)", def->length);
+    if (!(isfinite(def->damping) && def->damping >= 0.0))
+        return gb_error_set(GB_EDOM, "damping c = %g is out of range (allowed: finite, >= 0)", def->damping);
+    int status = gb_forcing_validate(&def->forcing);
+    if (status) return status;
+    gb_dynamics *d = calloc(1, sizeof *d);
+    if (!d) return gb_error_set(GB_ENOMEM, "out of memory for the dynamics");
+    d->surface = *surface;
+    d->def = *def;
+    d->refine = gb_contact_refine_default_def();
+    gb_massprops_def mdef = gb_massprops_default_def();
+    mdef.mass = def->mass;
+    gb_massprops props;
+    status = gb_massprops_compute(surface, &mdef, &props);
+    if (!status) {
+        const double l2 = def->length * def->length;
+        for (int i = 0; i < 3; i++)
+            for (int j = 0; j < 3; j++) d->inertia[i][j] = props.inertia[i][j] * l2;
+        d->mean_radius = props.L * def->length;
+        /* Only the grid the contact model needs. */
+        const gb_contact_grid_def *grid_def =
+            def->contact == GB_CONTACT_MODEL_CONTINUOUS ? &def->seed_grid : &def->grid;
+        status = gb_contact_grid_create(surface, grid_def, &d->grid);
+    }
+    if (status) {
+        gb_dynamics_free(d);
+        return status;
+    }
+    *out = d;
+    return GB_OK;
+}
+
+void gb_dynamics_free(gb_dynamics *d)
+{
+    if (!d) return;
+    gb_contact_grid_free(d->grid);
+    free(d);
+}
+
+/* ---------------------------------------------------------------- attitude */
+
+void gb_dynamics_rotation(const double q[4], double R[9])
+{
+    const double n = sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+    const double w = q[0] / n, x = q[1] / n, y = q[2] / n, z = q[3] / n;
+    R[0] = 1 - 2 * (y * y + z * z), R[1] = 2 * (x * y - w * z), R[2] = 2 * (x * z + w * y);
+    R[3] = 2 * (x * y + w * z), R[4] = 1 - 2 * (x * x + z * z), R[5] = 2 * (y * z - w * x);
+    R[6] = 2 * (x * z - w * y), R[7] = 2 * (y * z + w * x), R[8] = 1 - 2 * (x * x + y * y);
+}
+
+void gb_dynamics_quaternion(const double R[9], double q[4])
+{
+    /* Shepperd's method: divide by the largest of the four candidate components. */
+    const double tr = R[0] + R[4] + R[8];
+    if (tr >= R[0] && tr >= R[4] && tr >= R[8]) {
+        const double s = 2 * sqrt(1 + tr);
+        q[0] = s / 4, q[1] = (R[7] - R[5]) / s, q[2] = (R[2] - R[6]) / s, q[3] = (R[3] - R[1]) / s;
+    } else if (R[0] >= R[4] && R[0] >= R[8]) {
+        const double s = 2 * sqrt(1 + R[0] - R[4] - R[8]);
+        q[0] = (R[7] - R[5]) / s, q[1] = s / 4, q[2] = (R[1] + R[3]) / s, q[3] = (R[2] + R[6]) / s;
+    } else if (R[4] >= R[8]) {
+        const double s = 2 * sqrt(1 + R[4] - R[0] - R[8]);
+        q[0] = (R[2] - R[6]) / s, q[1] = (R[1] + R[3]) / s, q[2] = s / 4, q[3] = (R[5] + R[7]) / s;
+    } else {
+        const double s = 2 * sqrt(1 + R[8] - R[0] - R[4]);
+        q[0] = (R[3] - R[1]) / s, q[1] = (R[2] + R[6]) / s, q[2] = (R[5] + R[7]) / s, q[3] = s / 4;
+    }
+}
+
+/* ---------------------------------------------------------------- contact at a state */
+
+typedef struct contact_eval {
+    double rc[3], rc_dot[3];
+    size_t index;
+    gb_contact_point point; /* continuous model */
+} contact_eval;
+
+/* The contact for vertical zb (unit) and angular velocity ω, warm-started from the accepted one. */
+static int contact_at(gb_dynamics *d, const double zb[3], const double omega[3], contact_eval *c)
+{
+    const double l = d->def.length;
+    memset(c->rc_dot, 0, sizeof c->rc_dot);
+    if (d->def.contact != GB_CONTACT_MODEL_CONTINUOUS) {
+        gb_contact_node node;
+        const int status = d->def.contact == GB_CONTACT_MODEL_GRID ? gb_contact_grid_brute(d->grid, zb, &node)
+                                                                   : gb_contact_grid_fast_from(d->grid, zb, d->index, &node);
+        if (status) return status;
+        for (int k = 0; k < 3; k++) c->rc[k] = l * node.x[k];
+        c->index = node.index;
+        return GB_OK; /* ṙ_c = 0 between grid switches */
+    }
+    int status = gb_contact_refine(&d->surface, zb, d->contact.phi, d->contact.theta, &d->refine, &c->point);
+    if (!status && !c->point.is_minimum)
+        status = gb_error_set(GB_ENOCONV, "continuous contact lost: Newton from the previous contact ended on a "
+                              "point that is not a minimum (eq 35) at z_b = (%g, %g, %g)", zb[0], zb[1], zb[2]);
+    if (!status) status = gb_contact_rate(&d->surface, zb, &c->point, omega, c->rc_dot, NULL);
+    if (status) return status;
+    for (int k = 0; k < 3; k++) c->rc[k] = l * c->point.rc[k], c->rc_dot[k] *= l;
+    c->index = 0;
+    return GB_OK;
+}
+
+/* The global contact at zb from scratch (initial state). */
+static int contact_global(gb_dynamics *d, const double zb[3])
+{
+    if (d->def.contact != GB_CONTACT_MODEL_CONTINUOUS) {
+        gb_contact_node node;
+        const int status = gb_contact_grid_brute(d->grid, zb, &node);
+        if (!status) d->index = node.index;
+        return status;
+    }
+    gb_contact_branches branches;
+    const int status = gb_contact_branches_find(d->grid, zb, &d->refine, &branches);
+    if (!status) d->contact = branches.branch[0];
+    return status;
+}
+
+/* ---------------------------------------------------------------- equations of motion */
+
+static void zb_of(const double R[9], double zb[3])
+{
+    zb[0] = R[6], zb[1] = R[7], zb[2] = R[8]; /* z_b = Rᵀ e_z: the third row of R (eq 21) */
+}
+
+/* I_P = I_C − m [r_c]×[r_c]× = I_C + m (|r_c|² I − r_c r_cᵀ) (eq 40). */
+static void inertia_about_contact(const gb_dynamics *d, const double rc[3], double IP[3][3])
+{
+    const double m = d->def.mass, r2 = gb_vec_dot(rc, rc);
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) IP[i][j] = d->inertia[i][j] + m * ((i == j) * r2 - rc[i] * rc[j]);
+}
+
+static void mat_vec(double A[3][3], const double v[3], double out[3])
+{
+    for (int i = 0; i < 3; i++) out[i] = A[i][0] * v[0] + A[i][1] * v[1] + A[i][2] * v[2];
+}
+
+/* Solve A x = b for a symmetric positive-definite 3 × 3 A by cofactors. */
+static int solve3(double A[3][3], const double b[3], double x[3])
+{
+    const double c00 = A[1][1] * A[2][2] - A[1][2] * A[2][1], c01 = A[1][2] * A[2][0] - A[1][0] * A[2][2],
+                 c02 = A[1][0] * A[2][1] - A[1][1] * A[2][0];
+    const double det = A[0][0] * c00 + A[0][1] * c01 + A[0][2] * c02;
+    if (!(det > 0.0) || !isfinite(det)) return gb_error_set(GB_ENUMERIC, "inertia about the contact is singular (det %g)", det);
+    const double inv[3][3] = {
+        {c00, A[0][2] * A[2][1] - A[0][1] * A[2][2], A[0][1] * A[1][2] - A[0][2] * A[1][1]},
+        {c01, A[0][0] * A[2][2] - A[0][2] * A[2][0], A[0][2] * A[1][0] - A[0][0] * A[1][2]},
+        {c02, A[0][1] * A[2][0] - A[0][0] * A[2][1], A[0][0] * A[1][1] - A[0][1] * A[1][0]}};
+    for (int i = 0; i < 3; i++) x[i] = (inv[i][0] * b[0] + inv[i][1] * b[1] + inv[i][2] * b[2]) / det;
+    return GB_OK;
+}
+
+/* ω̇ from eq 44 (paper) or the rolling equation, for the contact c at time t. */
+static int angular_acceleration(const gb_dynamics *d, double t, const double zb[3], const double omega[3],
+                                const contact_eval *c, double omega_dot[3])
+{
+    const double m = d->def.mass, geff = gb_forcing_geff(&d->def.forcing, t);
+    double IP[3][3], IPw[3], gyro[3], tau[3], rhs[3], tmp[3], tmp2[3];
+    inertia_about_contact(d, c->rc, IP);
+    mat_vec(IP, omega, IPw);
+    gb_vec_cross(omega, IPw, gyro);
+    gb_vec_cross(c->rc, zb, tau); /* τ_g = m g_eff r_c × z_b (eq 41) */
+    for (int k = 0; k < 3; k++) tau[k] = m * geff * tau[k] - d->def.damping * omega[k]; /* eqs 42–43 */
+    for (int k = 0; k < 3; k++) rhs[k] = tau[k] - gyro[k];
+    /* m r_c × (ṙ_c × ω), present in both variants' algebra */
+    gb_vec_cross(c->rc_dot, omega, tmp);
+    gb_vec_cross(c->rc, tmp, tmp2);
+    if (d->def.variant == GB_VARIANT_ROLLING) {
+        for (int k = 0; k < 3; k++) rhs[k] += m * tmp2[k];
+    } else {
+        /* İ_P ω = −m (ṙ_c × (r_c × ω) + r_c × (ṙ_c × ω)) (eq 45), moved to the right-hand side */
+        double a[3], b[3];
+        gb_vec_cross(c->rc, omega, a);
+        gb_vec_cross(c->rc_dot, a, b);
+        for (int k = 0; k < 3; k++) rhs[k] += m * (b[k] + tmp2[k]);
+    }
+    return solve3(IP, rhs, omega_dot);
+}
+
+int gb_dynamics_rhs(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], double dydt[GB_STATE_SIZE])
+{
+    double R[9], zb[3];
+    const double *q = y + GB_STATE_Q, *omega = y + GB_STATE_OMEGA;
+    gb_dynamics_rotation(q, R);
+    zb_of(R, zb);
+    contact_eval c;
+    int status = contact_at(d, zb, omega, &c);
+    if (!status) status = angular_acceleration(d, t, zb, omega, &c, dydt + GB_STATE_OMEGA);
+    if (status) return status;
+    /* q̇ = ½ q ⊗ (0, ω) (eq 23) */
+    dydt[0] = -0.5 * (q[1] * omega[0] + q[2] * omega[1] + q[3] * omega[2]);
+    dydt[1] = 0.5 * (q[0] * omega[0] + q[2] * omega[2] - q[3] * omega[1]);
+    dydt[2] = 0.5 * (q[0] * omega[1] + q[3] * omega[0] - q[1] * omega[2]);
+    dydt[3] = 0.5 * (q[0] * omega[2] + q[1] * omega[1] - q[2] * omega[0]);
+    /* Ẇ = P_d + m ġ_eff ζ with ζ = −z_b·r_c (eqs 37, 50) */
+    const double zeta = -gb_vec_dot(zb, c.rc);
+    dydt[GB_STATE_WORK] = -d->def.damping * gb_vec_dot(omega, omega) +
+                          d->def.mass * gb_forcing_geff_rate(&d->def.forcing, t) * zeta;
+    return GB_OK;
+}
+
+int gb_dynamics_accept(gb_dynamics *d, double t, double y[GB_STATE_SIZE], double *norm_drift)
+{
+    (void)t;
+    double *q = y + GB_STATE_Q;
+    const double n = sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+    if (norm_drift) *norm_drift = n - 1.0;
+    for (int k = 0; k < 4; k++) q[k] /= n;
+    double R[9], zb[3];
+    gb_dynamics_rotation(q, R);
+    zb_of(R, zb);
+    contact_eval c;
+    int status = contact_at(d, zb, y + GB_STATE_OMEGA, &c);
+    if (status) return status;
+    if (d->def.contact != GB_CONTACT_MODEL_CONTINUOUS) {
+        d->grid_switches += c.index != d->index;
+        d->index = c.index;
+        return GB_OK;
+    }
+    /* Continuous: is the continued branch still the global minimum? */
+    gb_contact_node node;
+    status = gb_contact_grid_fast_from(d->grid, zb, d->index, &node);
+    if (status) return status;
+    d->index = node.index;
+    d->contact = c.point;
+    const gb_contact_grid_def *g = gb_contact_grid_get_def(d->grid);
+    const double cell = hypot(M_PI / g->n_phi, 2.0 * M_PI / g->n_theta);
+    const double dx[3] = {node.x[0] - c.point.rc[0], node.x[1] - c.point.rc[1], node.x[2] - c.point.rc[2]};
+    if (gb_vec_norm(dx) <= 2.0 * cell) return GB_OK; /* the lowest node is beside the branch's minimum */
+    gb_contact_point other;
+    status = gb_contact_refine(&d->surface, zb, node.phi, node.theta, &d->refine, &other);
+    if (status) return status;
+    if (other.is_minimum && other.height < c.point.height) {
+        d->contact = other;
+        d->branch_switches++;
+    }
+    return GB_OK;
+}
+
+int gb_dynamics_init_state(gb_dynamics *d, double t0, const double R0[9], const double omega0[3],
+                           double y[GB_STATE_SIZE])
+{
+    double worst = 0.0;
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) {
+            const double dot = R0[3 * 0 + i] * R0[3 * 0 + j] + R0[3 * 1 + i] * R0[3 * 1 + j] + R0[3 * 2 + i] * R0[3 * 2 + j];
+            worst = fmax(worst, fabs(dot - (i == j)));
+        }
+    if (!(worst < 1e-12))
+        return gb_error_set(GB_EDOM, "initial attitude is not a rotation: max |R^T R - I| = %.3g (allowed: < 1e-12)", worst);
+    if (!(isfinite(omega0[0]) && isfinite(omega0[1]) && isfinite(omega0[2])))
+        return gb_error_set(GB_EDOM, "initial angular velocity must be finite");
+    gb_dynamics_quaternion(R0, y + GB_STATE_Q);
+    memcpy(y + GB_STATE_OMEGA, omega0, 3 * sizeof *omega0);
+    y[GB_STATE_WORK] = 0.0;
+    double R[9], zb[3];
+    gb_dynamics_rotation(y + GB_STATE_Q, R);
+    zb_of(R, zb);
+    int status = contact_global(d, zb);
+    if (status) return status;
+    d->grid_switches = d->branch_switches = 0;
+    d->t0 = t0;
+    d->energy0 = 0.0;
+    gb_dynamics_observables o;
+    status = gb_dynamics_observe(d, t0, y, &o);
+    if (!status) d->energy0 = o.energy;
+    return status;
+}
+
+int gb_dynamics_observe(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], gb_dynamics_observables *o)
+{
+    memset(o, 0, sizeof *o);
+    o->t = t;
+    gb_dynamics_rotation(y + GB_STATE_Q, o->R);
+    zb_of(o->R, o->zb);
+    memcpy(o->omega, y + GB_STATE_OMEGA, sizeof o->omega);
+    contact_eval c;
+    int status = contact_at(d, o->zb, o->omega, &c);
+    if (!status) status = angular_acceleration(d, t, o->zb, o->omega, &c, o->omega_dot);
+    if (status) return status;
+    const double m = d->def.mass;
+    memcpy(o->rc, c.rc, sizeof o->rc);
+    memcpy(o->rc_dot, c.rc_dot, sizeof o->rc_dot);
+    o->index = c.index;
+    o->height = gb_vec_dot(o->zb, c.rc);
+    o->zeta = -o->height;
+    o->geff = gb_forcing_geff(&d->def.forcing, t);
+    o->geff_rate = gb_forcing_geff_rate(&d->def.forcing, t);
+    double IP[3][3], IPw[3], tau_g[3];
+    inertia_about_contact(d, c.rc, IP);
+    mat_vec(IP, o->omega, IPw);
+    o->kinetic = 0.5 * gb_vec_dot(o->omega, IPw);
+    o->potential = m * o->geff * o->zeta;
+    o->energy = o->kinetic + o->potential;
+    gb_vec_cross(c.rc, o->zb, tau_g);
+    o->power_gravity = m * o->geff * gb_vec_dot(o->omega, tau_g);
+    o->power_damping = -d->def.damping * gb_vec_dot(o->omega, o->omega);
+    o->work = y[GB_STATE_WORK];
+    o->residual = o->energy - d->energy0 - o->work;
+    /* Centroid acceleration relative to the support under rolling kinematics (body frame):
+     * a_G = ω × (r_c × ω) + ṙ_c × ω + r_c × ω̇; N = m (g_eff + z_b·a_G). */
+    double a[3], b[3], e[3], f[3];
+    gb_vec_cross(c.rc, o->omega, a);
+    gb_vec_cross(o->omega, a, b);
+    gb_vec_cross(c.rc_dot, o->omega, e);
+    gb_vec_cross(c.rc, o->omega_dot, f);
+    double acc[3];
+    for (int k = 0; k < 3; k++) acc[k] = b[k] + e[k] + f[k];
+    const double vertical = gb_vec_dot(acc, o->zb);
+    o->normal_force = m * (o->geff + vertical);
+    double horizontal[3];
+    for (int k = 0; k < 3; k++) horizontal[k] = acc[k] - vertical * o->zb[k];
+    o->friction_needed = o->normal_force > 0.0 ? m * gb_vec_norm(horizontal) / o->normal_force : INFINITY;
+    double worst = 0.0;
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) {
+            const double dot = o->R[i] * o->R[j] + o->R[3 + i] * o->R[3 + j] + o->R[6 + i] * o->R[6 + j];
+            worst = fmax(worst, fabs(dot - (i == j)));
+        }
+    o->orthonormality = worst;
+    o->grid_switches = d->grid_switches;
+    o->branch_switches = d->branch_switches;
+    return GB_OK;
+}

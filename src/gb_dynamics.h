@@ -1,0 +1,113 @@
+/* gb_dynamics — the rocking body on the vertically excited plane (paper §3 and §5, eqs 20–52).
+ *
+ * State y (GB_STATE_SIZE doubles): the attitude as a quaternion q = (w, x, y, z) taking body to
+ * inertial axes (R = R(q/|q|), so RᵀR = I to round-off whatever |q| drifts to; q̇ = ½ q ⊗ (0, ω) is eq 23
+ * in quaternion form), the body-frame angular velocity ω (eq 44), and the work W = ∫(P_d + m ġ_eff ζ) dt
+ * that the energy balance needs, integrated along the run as an extra state.
+ *
+ * Two equations of motion, each a named variant (see docs/rolling.md for the derivation):
+ *  GB_VARIANT_PAPER    eq 44 as written: I_P ω̇ + İ_P ω + ω × I_P ω = τ, İ_P from eq 45;
+ *  GB_VARIANT_ROLLING  rolling without slip from Newton–Euler about the centroid:
+ *                      I_P ω̇ + ω × I_P ω − m r_c × (ṙ_c × ω) = τ.
+ * They differ by the term −m ṙ_c × (r_c × ω), whose power is not zero: which one satisfies the
+ * energy balance (eqs 46–51) is for the checks to show. For a grid contact ṙ_c = 0 between switches,
+ * as the paper's scheme implies, and the variants coincide.
+ *
+ * Three contact models (gb_contact): the paper's grid by brute force, the same node by the exact fast
+ * search (warm-started from the previous node), and continuous contact (Newton from the previous
+ * contact at every evaluation; at every accepted step the global minimum is re-established, see
+ * gb_dynamics_accept). */
+#ifndef GB_DYNAMICS_H
+#define GB_DYNAMICS_H
+
+#include "gb_contact.h"
+#include "gb_forcing.h"
+#include "gb_surface.h"
+
+#include <stddef.h>
+
+enum { GB_STATE_Q = 0, GB_STATE_OMEGA = 4, GB_STATE_WORK = 7, GB_STATE_SIZE = 8 };
+
+typedef enum gb_dynamics_variant { GB_VARIANT_PAPER = 0, GB_VARIANT_ROLLING = 1 } gb_dynamics_variant;
+typedef enum gb_contact_model {
+    GB_CONTACT_MODEL_GRID = 0,
+    GB_CONTACT_MODEL_FAST_GRID = 1,
+    GB_CONTACT_MODEL_CONTINUOUS = 2
+} gb_contact_model;
+
+const char *gb_dynamics_variant_name(gb_dynamics_variant variant);
+int gb_dynamics_variant_parse(const char *name, gb_dynamics_variant *variant);
+const char *gb_dynamics_contact_name(gb_contact_model model);
+int gb_dynamics_contact_parse(const char *name, gb_contact_model *model);
+
+typedef struct gb_dynamics_def {
+    gb_dynamics_variant variant;
+    gb_contact_model contact;
+    double mass;                   /* m [kg] (Table 1: 1) */
+    double length;                 /* size: body points are length · x(φ, θ) [m] (1: x in metres) */
+    double damping;                /* c in τ_d = −c ω [N m s] (eq 42; Table 1: 0.02) */
+    gb_forcing forcing;            /* eq 25 */
+    gb_contact_grid_def grid;      /* the grid of the grid models (Table 1: 90 × 180) */
+    gb_contact_grid_def seed_grid; /* continuous contact: the grid of the global check */
+} gb_dynamics_def;
+
+/* Table 1 with the paper's model: variant paper, grid contact 90 × 180, m = 1, c = 0.02, g = 9.81,
+ * ω = 18, ψ = π/3, and a₁ = 2, a₂ = 1 m/s² (the m/s² reading of Table 1; see gb_case). */
+gb_dynamics_def gb_dynamics_default_def(void);
+
+typedef struct gb_dynamics gb_dynamics;
+
+/* Build the body (mass properties by gb_massprops, scaled by mass and length) and only the grid its
+ * contact model needs. */
+int gb_dynamics_create(const gb_surface *surface, const gb_dynamics_def *def, gb_dynamics **out);
+void gb_dynamics_free(gb_dynamics *dynamics);
+
+const gb_dynamics_def *gb_dynamics_get_def(const gb_dynamics *dynamics);
+/* I_C about the centroid [kg m²] and L of eq 53 [m], for this mass and length. */
+void gb_dynamics_inertia(const gb_dynamics *dynamics, double inertia[3][3]);
+double gb_dynamics_mean_radius(const gb_dynamics *dynamics);
+/* Was a contact grid built (and how many nodes)? 0 for continuous contact without a seed grid. */
+size_t gb_dynamics_grid_size(const gb_dynamics *dynamics);
+
+/* The initial state: attitude R0 (row-major 3 × 3, orthonormal), ω0; W = 0. Establishes the
+ * initial contact (the global minimum) and E(0). */
+int gb_dynamics_init_state(gb_dynamics *dynamics, double t0, const double R0[9], const double omega0[3],
+                           double y[GB_STATE_SIZE]);
+
+/* dy/dt (eqs 23, 44 or rolling, and Ẇ). GB_ENOCONV when the contact cannot be found. */
+int gb_dynamics_rhs(gb_dynamics *dynamics, double t, const double y[GB_STATE_SIZE], double dydt[GB_STATE_SIZE]);
+
+/* After an accepted step to (t, y): renormalise q (returns the |q| − 1 it removed), update the
+ * contact and count switches. Continuous contact: the branch is continued by Newton, then the
+ * exact fast grid search on the seed grid finds the lowest node; if that node is outside the
+ * branch's neighbourhood, Newton from it finds its local minimum, and a lower one becomes the
+ * contact (a branch switch). */
+int gb_dynamics_accept(gb_dynamics *dynamics, double t, double y[GB_STATE_SIZE], double *norm_drift);
+
+typedef struct gb_dynamics_observables {
+    double t;
+    double R[9], zb[3], omega[3], omega_dot[3];
+    double rc[3], rc_dot[3];
+    double height;           /* h* = z_b·r_c (eq 36), < 0 */
+    double zeta;             /* −h*, the centroid height (eq 37) */
+    double geff, geff_rate;  /* eqs 25–26 */
+    double kinetic, potential, energy; /* eqs 46–48 */
+    double power_damping, power_gravity; /* eqs 50–51 */
+    double work;             /* W(t) = ∫(P_d + m ġ_eff ζ) dt */
+    double residual;         /* E(t) − E(0) − W(t) */
+    double normal_force;     /* N = m (g_eff + ζ̈), rolling kinematics */
+    double friction_needed;  /* |horizontal contact force| / N */
+    double orthonormality;   /* max |RᵀR − I| */
+    size_t index;            /* grid node of the contact (grid models), else 0 */
+    size_t grid_switches, branch_switches;
+} gb_dynamics_observables;
+
+int gb_dynamics_observe(gb_dynamics *dynamics, double t, const double y[GB_STATE_SIZE],
+                        gb_dynamics_observables *out);
+
+/* R(q/|q|), row-major. */
+void gb_dynamics_rotation(const double q[4], double R[9]);
+/* The unit quaternion of an orthonormal R. */
+void gb_dynamics_quaternion(const double R[9], double q[4]);
+
+#endif

@@ -1,0 +1,164 @@
+#include "gb_integrate.h"
+
+#include "gb_error.h"
+
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_odeiv2.h>
+#include <math.h>
+#include <string.h>
+
+static const char *const names[] = {"rk4", "rk8pd", "rkf45", "rk4imp"};
+
+const char *gb_integrate_name(gb_integrator m) { return (unsigned)m < 4 ? names[m] : NULL; }
+
+int gb_integrate_parse(const char *name, gb_integrator *method)
+{
+    int k = 0;
+    const int status = gb_error_parse_name(name, names, 4, "integrator", &k);
+    if (!status) *method = (gb_integrator)k;
+    return status;
+}
+
+gb_integrate_def gb_integrate_default_def(void)
+{
+    return (gb_integrate_def){.method = GB_INTEGRATOR_RK4, .steps_per_period = 160, .periods = 300.0,
+                              .rtol = 1e-10, .atol = 1e-12, .sample_every = 1};
+}
+
+static int validate(const gb_integrate_def *def)
+{
+    if (!gb_integrate_name(def->method)) return gb_error_set(GB_EINVAL, "integrator %d is unknown", (int)def->method);
+    if (def->steps_per_period < 1 || def->steps_per_period > 100000000)
+        return gb_error_set(GB_EDOM, "steps_per_period = %zu is out of range (allowed: 1 to 1e8)", def->steps_per_period);
+    if (!(isfinite(def->periods) && def->periods > 0.0))
+        return gb_error_set(GB_EDOM, "periods = %g is out of range (allowed: finite, > 0)", def->periods);
+    if (!(def->rtol > 0.0 && def->rtol < 1.0 && def->atol > 0.0 && def->atol < 1.0))
+        return gb_error_set(GB_EDOM, "tolerances rtol = %g, atol = %g are out of range (allowed: 0 < tol < 1)",
+                            def->rtol, def->atol);
+    if (def->sample_every < 1) return gb_error_set(GB_EDOM, "sample_every must be >= 1");
+    return GB_OK;
+}
+
+static void note_drift(gb_integrate_stats *stats, double drift)
+{
+    if (fabs(drift) > stats->max_norm_drift) stats->max_norm_drift = fabs(drift);
+}
+
+static int run_rk4(gb_dynamics *d, const gb_integrate_def *def, double t0, double h, size_t steps, double y[],
+                   gb_integrate_sample sample, void *context, gb_integrate_stats *stats)
+{
+    double k1[GB_STATE_SIZE], k2[GB_STATE_SIZE], k3[GB_STATE_SIZE], k4[GB_STATE_SIZE], tmp[GB_STATE_SIZE];
+    for (size_t n = 0; n < steps; n++) {
+        const double t = t0 + (double)n * h;
+        int status = gb_dynamics_rhs(d, t, y, k1);
+        for (int i = 0; !status && i < GB_STATE_SIZE; i++) tmp[i] = y[i] + 0.5 * h * k1[i];
+        if (!status) status = gb_dynamics_rhs(d, t + 0.5 * h, tmp, k2);
+        for (int i = 0; !status && i < GB_STATE_SIZE; i++) tmp[i] = y[i] + 0.5 * h * k2[i];
+        if (!status) status = gb_dynamics_rhs(d, t + 0.5 * h, tmp, k3);
+        for (int i = 0; !status && i < GB_STATE_SIZE; i++) tmp[i] = y[i] + h * k3[i];
+        if (!status) status = gb_dynamics_rhs(d, t + h, tmp, k4);
+        if (status) return status;
+        for (int i = 0; i < GB_STATE_SIZE; i++) y[i] += h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
+        stats->rhs_evaluations += 4;
+        stats->steps++;
+        double drift;
+        status = gb_dynamics_accept(d, t0 + (double)(n + 1) * h, y, &drift);
+        if (status) return status;
+        note_drift(stats, drift);
+        if ((n + 1) % def->sample_every == 0 && sample && sample(context, t0 + (double)(n + 1) * h, y)) break;
+    }
+    return GB_OK;
+}
+
+typedef struct gsl_context {
+    gb_dynamics *dynamics;
+    gb_integrate_stats *stats;
+    int status; /* the first gb_ status a right-hand side returned */
+} gsl_context;
+
+static int gsl_rhs(double t, const double y[], double dydt[], void *params)
+{
+    gsl_context *c = params;
+    c->stats->rhs_evaluations++;
+    const int status = gb_dynamics_rhs(c->dynamics, t, y, dydt);
+    if (status && !c->status) c->status = status;
+    return status ? GSL_EBADFUNC : GSL_SUCCESS;
+}
+
+/* Central-difference Jacobian for the implicit stepper; ∂f/∂t likewise. */
+static int gsl_jacobian(double t, const double y[], double *dfdy, double dfdt[], void *params)
+{
+    double yp[GB_STATE_SIZE], fp[GB_STATE_SIZE], fm[GB_STATE_SIZE];
+    memcpy(yp, y, sizeof yp);
+    for (int j = 0; j < GB_STATE_SIZE; j++) {
+        const double h = 1e-7 * fmax(1.0, fabs(y[j]));
+        yp[j] = y[j] + h;
+        if (gsl_rhs(t, yp, fp, params)) return GSL_EBADFUNC;
+        yp[j] = y[j] - h;
+        if (gsl_rhs(t, yp, fm, params)) return GSL_EBADFUNC;
+        yp[j] = y[j];
+        for (int i = 0; i < GB_STATE_SIZE; i++) dfdy[i * GB_STATE_SIZE + j] = (fp[i] - fm[i]) / (2.0 * h);
+    }
+    const double ht = 1e-7 * fmax(1.0, fabs(t));
+    if (gsl_rhs(t + ht, y, fp, params) || gsl_rhs(t - ht, y, fm, params)) return GSL_EBADFUNC;
+    for (int i = 0; i < GB_STATE_SIZE; i++) dfdt[i] = (fp[i] - fm[i]) / (2.0 * ht);
+    return GSL_SUCCESS;
+}
+
+static int run_adaptive(gb_dynamics *d, const gb_integrate_def *def, double t0, double h, size_t steps, double y[],
+                        gb_integrate_sample sample, void *context, gb_integrate_stats *stats)
+{
+    const gsl_odeiv2_step_type *types[] = {NULL, gsl_odeiv2_step_rk8pd, gsl_odeiv2_step_rkf45, gsl_odeiv2_step_rk4imp};
+    gsl_context c = {d, stats, GB_OK};
+    gsl_odeiv2_system system = {gsl_rhs, gsl_jacobian, GB_STATE_SIZE, &c};
+    gsl_odeiv2_step *step = gsl_odeiv2_step_alloc(types[def->method], GB_STATE_SIZE);
+    gsl_odeiv2_control *control = gsl_odeiv2_control_y_new(def->atol, def->rtol);
+    gsl_odeiv2_evolve *evolve = gsl_odeiv2_evolve_alloc(GB_STATE_SIZE);
+    int status = step && control && evolve ? GB_OK : gb_error_set(GB_ENOMEM, "out of memory for the GSL stepper");
+    double t = t0, dt = h;
+    for (size_t n = 0; !status && n < steps; n++) {
+        const double target = t0 + (double)(n + 1) * h;
+        while (!status && t < target) {
+            const double before = t;
+            const int gsl_status = gsl_odeiv2_evolve_apply(evolve, control, step, &system, &t, target, &dt, y);
+            if (gsl_status != GSL_SUCCESS) {
+                status = c.status ? c.status
+                                  : gb_error_set(GB_ENUMERIC, "GSL odeiv2 (%s) failed at t = %.17g: %s (step %.3g)",
+                                                 def->method < 4 ? names[def->method] : "?", t, gsl_strerror(gsl_status), dt);
+                break;
+            }
+            if (t == before) {
+                status = gb_error_set(GB_ENUMERIC, "GSL odeiv2 (%s) made no progress at t = %.17g (step %.3g)",
+                                      names[def->method], t, dt);
+                break;
+            }
+            stats->steps++;
+            double drift;
+            status = gb_dynamics_accept(d, t, y, &drift);
+            note_drift(stats, drift);
+            /* y was renormalised and the contact may have changed: the stepper must not reuse derivatives. */
+            gsl_odeiv2_evolve_reset(evolve);
+            gsl_odeiv2_step_reset(step);
+        }
+        if (!status && (n + 1) % def->sample_every == 0 && sample && sample(context, t, y)) break;
+    }
+    if (evolve) stats->failed_steps = evolve->failed_steps;
+    gsl_odeiv2_evolve_free(evolve);
+    gsl_odeiv2_control_free(control);
+    gsl_odeiv2_step_free(step);
+    return status;
+}
+
+int gb_integrate_run(gb_dynamics *d, const gb_integrate_def *def, double t0, double y[GB_STATE_SIZE],
+                     gb_integrate_sample sample, void *context, gb_integrate_stats *stats)
+{
+    memset(stats, 0, sizeof *stats);
+    int status = validate(def);
+    if (status) return status;
+    const double period = gb_forcing_period(&gb_dynamics_get_def(d)->forcing);
+    const double h = period / (double)def->steps_per_period;
+    const size_t steps = (size_t)llround(def->periods * (double)def->steps_per_period);
+    if (sample && sample(context, t0, y)) return GB_OK;
+    if (def->method == GB_INTEGRATOR_RK4) return run_rk4(d, def, t0, h, steps, y, sample, context, stats);
+    return run_adaptive(d, def, t0, h, steps, y, sample, context, stats);
+}
