@@ -111,10 +111,12 @@ static int run_adaptive(gb_dynamics *d, const gb_integrate_def *def, double t0, 
     const gsl_odeiv2_step_type *types[] = {NULL, gsl_odeiv2_step_rk8pd, gsl_odeiv2_step_rkf45, gsl_odeiv2_step_rk4imp};
     gsl_context c = {d, stats, GB_OK};
     gsl_odeiv2_system system = {gsl_rhs, gsl_jacobian, GB_STATE_SIZE, &c};
-    gsl_odeiv2_step *step = gsl_odeiv2_step_alloc(types[def->method], GB_STATE_SIZE);
-    gsl_odeiv2_control *control = gsl_odeiv2_control_y_new(def->atol, def->rtol);
-    gsl_odeiv2_evolve *evolve = gsl_odeiv2_evolve_alloc(GB_STATE_SIZE);
-    int status = step && control && evolve ? GB_OK : gb_error_set(GB_ENOMEM, "out of memory for the GSL stepper");
+    /* A driver owns the stepper, control and evolve; implicit steppers need it to be attached. */
+    gsl_odeiv2_driver *driver = gsl_odeiv2_driver_alloc_y_new(&system, types[def->method], h, def->atol, def->rtol);
+    gsl_odeiv2_step *step = driver ? driver->s : NULL;
+    gsl_odeiv2_control *control = driver ? driver->c : NULL;
+    gsl_odeiv2_evolve *evolve = driver ? driver->e : NULL;
+    int status = driver ? GB_OK : gb_error_set(GB_ENOMEM, "out of memory for the GSL stepper");
     double t = t0, dt = h;
     for (size_t n = 0; !status && n < steps; n++) {
         const double target = t0 + (double)(n + 1) * h;
@@ -143,9 +145,7 @@ static int run_adaptive(gb_dynamics *d, const gb_integrate_def *def, double t0, 
         if (!status && (n + 1) % def->sample_every == 0 && sample && sample(context, t, y)) break;
     }
     if (evolve) stats->failed_steps = evolve->failed_steps;
-    gsl_odeiv2_evolve_free(evolve);
-    gsl_odeiv2_control_free(control);
-    gsl_odeiv2_step_free(step);
+    if (driver) gsl_odeiv2_driver_free(driver);
     return status;
 }
 

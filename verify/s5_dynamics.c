@@ -1,0 +1,301 @@
+/* Paper §3 and §5: forcing (eqs 25–26), kinematics (23–24), the equations of motion (44 and the
+ * rolling equation, see docs/rolling.md), energy and powers (46–51), and the integrators of §8.
+ *
+ * Oracles: closed forms and central differences for the forcing; a bisection-free dense sampling for
+ * the fraction of time with g_eff ≤ 0; the energy balance E(t) − E(0) = ∫(P_d + m ġ_eff ζ) dt, which
+ * any correct equation of motion of this system must satisfy (docs/rolling.md derives it), with its
+ * convergence order in the step; RK4's own order on the trajectory against a 16× finer run; and the
+ * adaptive GSL steppers against that reference. Body: Table 1 (β = 0.12, m = 1), initial attitude
+ * R0 = I (the attitude the paper leaves open; not an equilibrium, so the body moves), ω0 = 0. */
+#include "gb_check.h"
+#include "gb_dynamics.h"
+#include "gb_error.h"
+#include "gb_integrate.h"
+#include "verify_sections.h"
+
+#include <float.h>
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+static const double IDENTITY[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+
+/* ------------------------------------------------------------ forcing */
+
+static void test_forcing(void)
+{
+    const gb_forcing f = {.g = 9.81, .a1 = 2.385, .a2 = 1.17, .omega = 18.0, .psi = M_PI / 3};
+    double worst = 0.0, worst_rate = 0.0;
+    for (int k = 0; k < 200; k++) {
+        const double t = 0.0137 * k;
+        const double exact = 9.81 + 2.385 * cos(18 * t) + 1.17 * cos(36 * t + M_PI / 3);
+        worst = fmax(worst, fabs(gb_forcing_geff(&f, t) - exact));
+        const double h = 1e-5;
+        const double fd = (gb_forcing_geff(&f, t + h) - gb_forcing_geff(&f, t - h)) / (2 * h);
+        worst_rate = fmax(worst_rate, fabs(gb_forcing_geff_rate(&f, t) - fd));
+    }
+    gb_check c = {"3", "25", "g_eff at 200 times", "g + a1 cos wt + a2 cos(2wt + psi) written out", "4 eps x 14 (largest term)"};
+    gb_check_close(&c, worst, 0.0, 0.0, 4 * DBL_EPSILON * 14);
+    gb_check cr = {"3", "26", "g_eff rate at 200 times", "central difference, step 1e-5 s",
+                   "truncation h^2/6 |g'''| = 1e-10/6 x 2 a2 (2w)^3 ~ 2e-6, rounding 1e-15/1e-5"};
+    gb_check_close(&cr, worst_rate, 0.0, 0.0, 3e-6);
+    /* The two readings of Table 1: A1 = 2, A2 = 1 in m/s² or in units of g (eq 61). */
+    const gb_forcing readings[2] = {{9.81, 2.0, 1.0, 18.0, M_PI / 3}, {9.81, 2.0 * 9.81, 1.0 * 9.81, 18.0, M_PI / 3}};
+    for (int r = 0; r < 2; r++) {
+        double fraction, minimum;
+        gb_forcing_nonpositive_fraction(&readings[r], &fraction, &minimum);
+        /* Oracle: the fraction of 10^6 equally spaced samples with g_eff ≤ 0 (error ≤ 2 sign changes / 1e6). */
+        const int samples = 1000000;
+        int count = 0;
+        for (int k = 0; k < samples; k++) count += gb_forcing_geff(&readings[r], (k + 0.5) / samples * 2 * M_PI / 18.0) <= 0.0;
+        char q[160];
+        snprintf(q, sizeof q, "fraction of each period with g_eff <= 0, Table 1 read in %s", r ? "units of g" : "m/s^2");
+        gb_check cf = {"3", "25, 61", q, "10^6 equally spaced samples", "4e-6: each of at most 4 sign changes misplaced by one sample"};
+        gb_check_close(&cf, fraction, (double)count / samples, 0.0, 4e-6);
+    }
+    gb_forcing bad = readings[0];
+    bad.omega = 0.0;
+    const int status = gb_forcing_validate(&bad);
+    gb_check cb = {"3", "25", "omega = 0 is refused", "GB_EDOM naming the range", "exact"};
+    gb_check_true(&cb, status == GB_EDOM && strstr(gb_error_message(), "> 0"), "status %d '%s'", status, gb_error_message());
+}
+
+/* ------------------------------------------------------------ runs */
+
+typedef struct run_result {
+    int status;
+    double y[GB_STATE_SIZE];
+    double max_residual, max_orthonormality, final_residual;
+    size_t grid_switches, branch_switches;
+    double max_norm_drift;
+    double jump_sum, jump_max; /* energy jumps at grid switches (unforced, undamped runs) */
+} run_result;
+
+typedef struct run_monitor {
+    gb_dynamics *dynamics;
+    run_result *result;
+    double last_energy;
+    size_t last_switches;
+} run_monitor;
+
+static int monitor(void *context, double t, const double y[GB_STATE_SIZE])
+{
+    run_monitor *m = context;
+    gb_dynamics_observables o;
+    if (gb_dynamics_observe(m->dynamics, t, y, &o)) return 1;
+    m->result->max_residual = fmax(m->result->max_residual, fabs(o.residual));
+    m->result->max_orthonormality = fmax(m->result->max_orthonormality, o.orthonormality);
+    m->result->final_residual = o.residual;
+    return 0;
+}
+
+typedef struct scene {
+    const char *morphology;
+    gb_dynamics_variant variant;
+    gb_contact_model contact;
+    int forced, damped;
+    int spun; /* start with ω0 = (1.3, −0.7, 0.4) rad/s instead of at rest */
+} scene;
+
+static const double SPIN[3] = {1.3, -0.7, 0.4};
+
+static run_result run_scene(const scene *s, gb_integrator method, size_t steps_per_period, double periods)
+{
+    run_result r;
+    memset(&r, 0, sizeof r);
+    gb_surface surface;
+    gb_surface_init(&surface, s->morphology, 0.12);
+    gb_dynamics_def def = gb_dynamics_default_def();
+    def.variant = s->variant;
+    def.contact = s->contact;
+    if (!s->forced) def.forcing.a1 = def.forcing.a2 = 0.0;
+    if (!s->damped) def.damping = 0.0;
+    gb_dynamics *d = NULL;
+    const double rest[3] = {0, 0, 0};
+    const double *omega0 = s->spun ? SPIN : rest;
+    r.status = gb_dynamics_create(&surface, &def, &d);
+    if (!r.status) r.status = gb_dynamics_init_state(d, 0.0, IDENTITY, omega0, r.y);
+    if (!r.status) {
+        gb_integrate_def idef = gb_integrate_default_def();
+        idef.method = method;
+        idef.steps_per_period = steps_per_period;
+        idef.periods = periods;
+        run_monitor m = {d, &r, 0, 0};
+        gb_integrate_stats stats;
+        r.status = gb_integrate_run(d, &idef, 0.0, r.y, monitor, &m, &stats);
+        r.max_norm_drift = stats.max_norm_drift;
+        gb_dynamics_observables o;
+        if (!r.status && !gb_dynamics_observe(d, periods * gb_forcing_period(&def.forcing), r.y, &o)) {
+            r.grid_switches = o.grid_switches;
+            r.branch_switches = o.branch_switches;
+        }
+    }
+    if (r.status) fprintf(stdout, "\nrun failed: %s\n", gb_error_message());
+    gb_dynamics_free(d);
+    return r;
+}
+
+static const char *scene_label(const scene *s, char *out, size_t size)
+{
+    snprintf(out, size, "Gomboc %s, %s equation, %s contact, %s, %s%s", s->morphology, gb_dynamics_variant_name(s->variant),
+             gb_dynamics_contact_name(s->contact), s->forced ? "forced" : "unforced", s->damped ? "damped" : "undamped",
+             s->spun ? ", omega0 = (1.3, -0.7, 0.4)" : "");
+    return out;
+}
+
+/* Energy with no forcing and no damping, per variant. Half a period from R0 = I spun with
+ * ω0 = (1.3, −0.7, 0.4) rad/s (so the error is far above rounding; no branch switch happens in that
+ * half period: a run with a switch would record NaN), RK4 at 40, 80, 160, 320 steps per period. */
+static void test_energy_conservation(void)
+{
+    static const size_t steps[] = {40, 80, 160, 320};
+    for (int m = 0; m < 2; m++) {
+        const char *body = m ? "II" : "I";
+        double rolling_error[4], paper_error[4];
+        for (int variant = 0; variant < 2; variant++) {
+            const scene s = {body, (gb_dynamics_variant)variant, GB_CONTACT_MODEL_CONTINUOUS, 0, 0, 1};
+            for (int k = 0; k < 4; k++) {
+                run_result r = run_scene(&s, GB_INTEGRATOR_RK4, steps[k], 0.5);
+                (variant ? rolling_error : paper_error)[k] = r.status || r.branch_switches ? NAN : r.max_residual;
+            }
+        }
+        char label[200], q[300];
+        const scene rolling = {body, GB_VARIANT_ROLLING, GB_CONTACT_MODEL_CONTINUOUS, 0, 0, 1};
+        scene_label(&rolling, label, sizeof label);
+        const double order = gb_check_observed_order(rolling_error[2], rolling_error[3], 2.0, 1.0);
+        snprintf(q, sizeof q, "observed order of the energy error with the step, %s, 160 -> 320 steps/period", label);
+        gb_check co = {"5", "46-48", q, "RK4: expected 4",
+                       "0.3: the error is a smooth function of the step; higher terms and rounding (1e-14) perturb it"};
+        gb_check_close(&co, order, 4.0, 0.0, 0.3);
+        snprintf(q, sizeof q, "max |E(t) - E(0)| over half a period, %s, 320 steps/period", label);
+        gb_check ce = {"5", "46-48", q, "energy conservation (docs/rolling.md)",
+                       "1e-9: ten digits of E (~10 J) at twice the paper's 160 steps per period"};
+        gb_check_close(&ce, rolling_error[3], 0.0, 0.0, 1e-9);
+        /* The paper's eq 44: the error does not shrink with the step. */
+        const int stalls = paper_error[3] > 0.5 * paper_error[0] && paper_error[3] > 1e3 * rolling_error[3];
+        const scene paper = {body, GB_VARIANT_PAPER, GB_CONTACT_MODEL_CONTINUOUS, 0, 0, 1};
+        scene_label(&paper, label, sizeof label);
+        snprintf(q, sizeof q, "energy of eq 44 as written (continuous contact), Gomboc %s", body);
+        gb_check cf = {"5", "44-48", q, "the energy balance, RK4 at 40 to 320 steps per period",
+                       "conclusive when the error stays within a factor 2 while the step shrinks 8x, and is 1000x the rolling error"};
+        gb_check_finding(&cf, "eq 44 (with I_P dot of eq 45) is the equation of motion about the contact point", !stalls,
+                         stalls || paper_error[3] < 10 * rolling_error[3],
+                         "unforced and undamped, max |E - E0| over half a period is %.3g, %.3g, %.3g, %.3g at 40, 80, 160, 320 "
+                         "steps/period (rolling equation: %.2g, %.2g, %.2g, %.2g): eq 44 does not conserve energy; its extra "
+                         "term -m r_c_dot x (r_c x omega) does work",
+                         paper_error[0], paper_error[1], paper_error[2], paper_error[3], rolling_error[0], rolling_error[1],
+                         rolling_error[2], rolling_error[3]);
+    }
+}
+
+/* With the grid contact the contact point jumps from node to node: between jumps the body pivots
+ * about a fixed body point and energy is conserved; at each jump I_P changes while ω does not, so T
+ * jumps. The total error over 10 periods is the sum of those jumps and does not converge. */
+static void test_grid_energy_jumps(void)
+{
+    for (int m = 0; m < 2; m++) {
+        const scene s = {m ? "II" : "I", GB_VARIANT_PAPER, GB_CONTACT_MODEL_GRID, 0, 0, 0};
+        run_result coarse = run_scene(&s, GB_INTEGRATOR_RK4, 160, 10.0);
+        run_result fine = run_scene(&s, GB_INTEGRATOR_RK4, 640, 10.0);
+        char label[200], q[300];
+        scene_label(&s, label, sizeof label);
+        snprintf(q, sizeof q, "energy of the paper's grid model, %s, 10 periods", label);
+        const double per_switch = coarse.grid_switches ? coarse.max_residual / coarse.grid_switches : NAN;
+        const int conclusive = !coarse.status && !fine.status && coarse.grid_switches > 0;
+        gb_check cf = {"8", "44-48", q, "energy balance at 160 and 640 RK4 steps per period",
+                       "conclusive when both runs finish with grid switches"};
+        gb_check_finding(&cf, "the grid contact model conserves energy when unforced and undamped (section 5 energy relations)",
+                         fine.max_residual < 1e-6, conclusive,
+                         "max |E - E0| = %.3g (160 steps/period, %zu grid switches, %.2g per switch) and %.3g (640 steps/period, "
+                         "%zu switches): every change of the minimising node changes I_P at fixed omega, so T jumps",
+                         coarse.max_residual, coarse.grid_switches, per_switch, fine.max_residual, fine.grid_switches);
+    }
+}
+
+/* The balance with damping, and with damping and forcing: E(t) − E(0) − ∫(P_d + m ġ ζ) dt → 0. */
+static void test_energy_balance(void)
+{
+    for (int forced = 0; forced < 2; forced++) {
+        const scene s = {"II", GB_VARIANT_ROLLING, GB_CONTACT_MODEL_CONTINUOUS, forced, 1, 1};
+        run_result a = run_scene(&s, GB_INTEGRATOR_RK4, 160, 1.0);
+        run_result b = run_scene(&s, GB_INTEGRATOR_RK4, 320, 1.0);
+        char label[200], q[300];
+        scene_label(&s, label, sizeof label);
+        snprintf(q, sizeof q, "energy-balance residual E - E0 - W over one period, %s, 320 steps/period", label);
+        gb_check c = {"5", "46-51", q, "work of damping and of the moving support, integrated as a state",
+                      "2e-8: 1e-9 of the energy exchanged over one period (E ~ 10 J plus |W| up to ~10 J)"};
+        gb_check_close(&c, b.status ? NAN : b.max_residual, 0.0, 0.0, 2e-8);
+        snprintf(q, sizeof q, "observed order of the balance residual, %s", label);
+        gb_check co = {"5", "46-51", q, "RK4: expected 4", "0.5: one halving of the step"};
+        gb_check_close(&co, gb_check_observed_order(a.max_residual, b.max_residual, 2.0, 1.0), 4.0, 0.0, 0.5);
+    }
+}
+
+/* RK4's order on the trajectory (final ω after one period) against a 16× finer run, per contact
+ * model; and RᵀR − I. */
+static void test_trajectory_order(void)
+{
+    for (int contact = 0; contact < 3; contact += 2) {
+        const scene s = {"I", GB_VARIANT_ROLLING, (gb_contact_model)contact, 1, 1, 0};
+        run_result reference = run_scene(&s, GB_INTEGRATOR_RK4, 2560, 1.0);
+        double errors[3];
+        static const size_t steps[] = {40, 80, 160};
+        for (int k = 0; k < 3; k++) {
+            run_result r = run_scene(&s, GB_INTEGRATOR_RK4, steps[k], 1.0);
+            double e = 0.0;
+            for (int i = 0; i < GB_STATE_SIZE - 1; i++) e = fmax(e, fabs(r.y[i] - reference.y[i]));
+            errors[k] = r.status ? NAN : e;
+        }
+        char label[200], q[300];
+        scene_label(&s, label, sizeof label);
+        const double order = gb_check_observed_order(errors[1], errors[2], 2.0, 1.0);
+        snprintf(q, sizeof q, "observed order of the state after one period, %s, 80 -> 160 steps/period", label);
+        if (contact == GB_CONTACT_MODEL_CONTINUOUS) {
+            gb_check c = {"8", "23, 44", q, "RK4 at 2560 steps/period; expected 4", "0.3: one halving of the step"};
+            gb_check_close(&c, order, 4.0, 0.0, 0.3);
+        } else {
+            gb_check c = {"8", "23, 44", q, "RK4 at 2560 steps/period; a right-hand side with jumps",
+                          "recorded: the grid's node hops make the vector field discontinuous, so RK4 cannot reach order 4"};
+            gb_check_finding(&c, "the fixed-step RK4 of section 8 gives fourth-order phase accuracy (\"to ensure consistent phase accuracy\")",
+                             order > 3.5, isfinite(order),
+                             "state errors %.3g, %.3g, %.3g at 40, 80, 160 steps/period: observed order %.2f with the grid contact",
+                             errors[0], errors[1], errors[2], order);
+        }
+        snprintf(q, sizeof q, "max |R^T R - I| along the run, %s, 2560 steps", label);
+        gb_check cr = {"3", "23", q, "orthonormality (quaternion state, renormalised each step)", "16 eps"};
+        gb_check_close(&cr, reference.max_orthonormality, 0.0, 0.0, 16 * DBL_EPSILON);
+    }
+}
+
+/* The adaptive GSL steppers against the fine RK4 reference, continuous rolling model, one period. */
+static void test_adaptive_steppers(void)
+{
+    const scene s = {"I", GB_VARIANT_ROLLING, GB_CONTACT_MODEL_CONTINUOUS, 1, 1, 0};
+    run_result reference = run_scene(&s, GB_INTEGRATOR_RK4, 2560, 1.0);
+    static const gb_integrator methods[] = {GB_INTEGRATOR_RK8PD, GB_INTEGRATOR_RKF45, GB_INTEGRATOR_RK4IMP};
+    for (int k = 0; k < 3; k++) {
+        run_result r = run_scene(&s, methods[k], 160, 1.0);
+        double e = 0.0;
+        for (int i = 0; i < GB_STATE_SIZE - 1; i++) e = fmax(e, fabs(r.y[i] - reference.y[i]));
+        char q[200];
+        snprintf(q, sizeof q, "state after one period, %s (rtol 1e-10, atol 1e-12) vs RK4 at 2560 steps/period",
+                 gb_integrate_name(methods[k]));
+        gb_check c = {"8", "23, 44", q, "fine fixed-step RK4 (energy error 1e-15)",
+                      "1e-7: tolerance 1e-10 per step, error growth over ~1e2 steps and a period, with margin"};
+        gb_check_close(&c, r.status ? NAN : e, 0.0, 0.0, 1e-7);
+    }
+}
+
+int verify_register_s5_dynamics(void)
+{
+    static const verify_test tests[] = {
+        {"eq 25-26, 61: effective gravity, its rate, and the two readings of Table 1", test_forcing},
+        {"eq 44-48: energy conservation per equation variant (continuous contact)", test_energy_conservation},
+        {"eq 44-48: energy jumps of the paper's grid model", test_grid_energy_jumps},
+        {"eq 46-51: energy balance with damping and forcing", test_energy_balance},
+        {"eq 23, 44: RK4 order on the trajectory, per contact model; R^T R", test_trajectory_order},
+        {"eq 23, 44: GSL adaptive steppers against the reference", test_adaptive_steppers},
+        {NULL, NULL},
+    };
+    return verify_register_suite("Sections 3, 5: dynamics and energy", tests);
+}
