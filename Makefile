@@ -39,12 +39,19 @@ build: $(BIN) $(VERIFY_BIN)
 run: deps
 	@$(MAKE) --no-print-directory run-only
 
+# The Table 1 scenes `make run` integrates, and the ones `make verify` adds (both readings of A1, A2,
+# and the harmonic benchmark, eq 94).
+RUN_SCENES    := table1-gomboc-I table1-gomboc-II
+VERIFY_SCENES := $(RUN_SCENES) table1-gomboc-I-g-units table1-gomboc-II-g-units harmonic-gomboc-I harmonic-gomboc-II
+
 run-only: $(BIN)
 	@mkdir -p $(OUT)
 	$(BIN) shape --morphology I --beta 0.12 --json --radial-map $(OUT)/radial-map-I.csv > $(OUT)/shape-I.json.tmp && mv $(OUT)/shape-I.json.tmp $(OUT)/shape-I.json
 	$(BIN) shape --morphology II --beta 0.12 --json --radial-map $(OUT)/radial-map-II.csv > $(OUT)/shape-II.json.tmp && mv $(OUT)/shape-II.json.tmp $(OUT)/shape-II.json
 	$(PYTHON) reports/shape_report.py $(OUT)
-	@echo "run: report written to $(OUT)/shape.md"
+	for s in $(RUN_SCENES); do $(BIN) run cases/$$s.ini --out $(OUT) || exit 1; done
+	$(PYTHON) reports/run_report.py $(OUT) $(RUN_SCENES)
+	@echo "run: reports written to $(OUT)/shape.md and $(OUT)/runs.md"
 
 # --- every check, then the reproducibility report
 verify: deps
@@ -57,6 +64,8 @@ FIG2     = $(BIN) contact --beta 0.12 --zb $(FIG2_ZB) --json
 verify-only: $(BIN) $(VERIFY_BIN)
 	@$(MAKE) --no-print-directory run-only
 	@mkdir -p $(OUT)
+	for s in $(filter-out $(RUN_SCENES),$(VERIFY_SCENES)); do $(BIN) run cases/$$s.ini --out $(OUT) || exit 1; done
+	$(PYTHON) reports/run_report.py $(OUT) $(VERIFY_SCENES)
 	for m in I II; do \
 	  $(FIG2) --morphology $$m --method continuous --grid 180x360 --landscape $(OUT)/fig2-landscape-$$m.csv \
 	    --zoom $(OUT)/fig2-zoom-$$m.csv --zoom-halfwidth 0.4 > $(OUT)/fig2-contact-$$m.json.tmp && \

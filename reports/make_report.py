@@ -21,12 +21,14 @@ import scipy  # noqa: E402
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from common import load_json, save_figure, shape_summary_lines, write_atomically  # noqa: E402
 from contact_section import contact_section  # noqa: E402
+from dynamics_section import dynamics_section  # noqa: E402
 
 SECTION_FILES = {
     "Section 2: surface geometry (eqs 1-19, 66-68)": "verify/s2_surface.c",
     "Section 2: mass properties (nested GSL quadrature)": "verify/s2_massprops.c",
     "Section 2: the paper's claims about the bodies": "verify/s2_shape.c",
     "Section 4: contact selection": "verify/s4_contact.c",
+    "Sections 3, 5: dynamics and energy": "verify/s5_dynamics.c",
     "The gomboc command": "verify/command.c",
 }
 
@@ -137,6 +139,7 @@ def main():
         lines += [f"### Gömböc {name} (β = {shape['beta']:g})", ""] + shape_summary_lines(shape) + [""]
     lines += ["![Figure 1](fig1-morphologies.png)", ""]
     lines += contact_section(out, rows)
+    lines += dynamics_section(out, rows)
     lines += ["## Error against run time", "",
               "Each numeric check's relative error against its oracle, against the wall time since the",
               "previous check in the same test (the time of computing that row).", "",

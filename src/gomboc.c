@@ -16,13 +16,15 @@ static const char *usage_main =
     "            of one body (paper section 2)\n"
     "  contact   the contact point for one body-frame vertical z_b: the paper's grid, the exact\n"
     "            fast grid search or continuous minimisation, and every local minimum (section 4)\n"
+    "  run       integrate one scene (a case file) and write its time histories and summary\n"
+    "            (sections 3, 5, 8)\n"
     "\n"
     "'gomboc <command> --help' describes each command's options.\n";
 
 static const struct {
     const char *name;
     int (*run)(int argc, char **argv);
-} commands[] = {{"shape", command_shape}, {"contact", command_contact}};
+} commands[] = {{"shape", command_shape}, {"contact", command_contact}, {"run", command_run}};
 
 int main(int argc, char **argv)
 {
@@ -37,6 +39,6 @@ int main(int argc, char **argv)
     }
     for (size_t k = 0; k < sizeof commands / sizeof commands[0]; k++)
         if (!strcmp(argv[1], commands[k].name)) return commands[k].run(argc - 2, argv + 2);
-    fprintf(stderr, "gomboc: unknown command '%s' (allowed: shape, contact)\n\n%s", argv[1], usage_main);
+    fprintf(stderr, "gomboc: unknown command '%s' (allowed: shape, contact, run)\n\n%s", argv[1], usage_main);
     return EXIT_INPUT;
 }

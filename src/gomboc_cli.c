@@ -67,7 +67,7 @@ int cli_next_option(const char *command, int argc, char **argv, int *i, const ch
         *json = 1;
         return CLI_NEXT;
     }
-    const int is_body = !strcmp(opt, "--morphology") || !strcmp(opt, "--beta");
+    const int is_body = body && (!strcmp(opt, "--morphology") || !strcmp(opt, "--beta"));
     if (!is_body && !listed(opt, valued)) return cli_input_error(command, "unknown option '%s'%s", opt, allowed);
     if (*i + 1 >= argc) return cli_input_error(command, "option '%s' needs a value%s", opt, "");
     *value = argv[++*i];

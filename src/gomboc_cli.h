@@ -22,7 +22,8 @@ typedef struct cli_body {
 } cli_body;
 
 /* Read the option argv[*i]. Returns CLI_HELP after printing `usage` for --help/-h; CLI_NEXT after
- * consuming --json (sets *json) or a body option (--morphology, --beta, into *body); CLI_VALUE for
+ * consuming --json (sets *json) or a body option (--morphology, --beta, into *body; refused when
+ * body is NULL); CLI_VALUE for
  * an option listed in `valued` (NULL-terminated), with its value in *value and *i advanced past it;
  * otherwise EXIT_INPUT after printing an error that lists `allowed`. */
 enum { CLI_HELP = 10, CLI_NEXT = 11, CLI_VALUE = 12 };
@@ -46,5 +47,6 @@ void cli_print_json(const cJSON *root);
 
 int command_shape(int argc, char **argv);
 int command_contact(int argc, char **argv);
+int command_run(int argc, char **argv);
 
 #endif

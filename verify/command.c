@@ -172,6 +172,83 @@ static void test_contact_command(void)
     cJSON_Delete(cont);
 }
 
+/* Write `text` as a case file in `dir`; returns its path in `path`. */
+static void write_case(const char *dir, const char *name, const char *text, char *path, size_t size)
+{
+    snprintf(path, size, "%s/%s.ini", dir, name);
+    FILE *f = fopen(path, "w");
+    if (f) {
+        fputs(text, f);
+        fclose(f);
+    }
+}
+
+static const char *SHORT_SCENE =
+    "[body]\nmorphology = II\nbeta = 0.12\n[integrator]\nsteps_per_period = 40\nperiods = 2\n"
+    "[model]\ncontact = fast-grid\n";
+
+static void test_run_command(void)
+{
+    char dir[] = "/tmp/gomboc-run-XXXXXX";
+    if (!mkdtemp(dir)) return;
+    static const struct { const char *name, *text, *must_name; } bad[] = {
+        {"unknown-key", "[body]\nmorphology = I\ncolour = red\n", "unknown-key.ini:3: [body] colour = red: unknown key"},
+        {"beta-range", "[body]\n\nbeta = 0.25\n", "beta-range.ini:3: [body] beta = 0.25: out of range (allowed: 0 <= beta < 0.25"},
+        {"bad-contact", "[model]\ncontact = magnetic\n", "bad-contact.ini:2: [model] contact = magnetic: unknown (allowed: grid, fast-grid, continuous)"},
+        {"bad-units", "[forcing]\namplitude_units = furlongs\n", "bad-units.ini:2: [forcing] amplitude_units = furlongs: unknown unit (allowed: m/s2, g)"},
+        {"malformed", "[body]\nmorphology I\n", "malformed.ini:2: malformed line"},
+        {"bad-steps", "[integrator]\nsteps_per_period = -3\n", "bad-steps.ini:2: [integrator] steps_per_period = -3: out of range"},
+        {"bad-attitude", "[initial]\nattitude = axis-angle 0,0,0,1\n", "bad-attitude.ini:2: [initial] attitude = axis-angle 0,0,0,1: not an attitude"},
+    };
+    for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
+        char path[256], args[600], out[4096] = "", history[300];
+        write_case(dir, bad[k].name, bad[k].text, path, sizeof path);
+        snprintf(args, sizeof args, "run %s --out %s", path, dir);
+        const int code = run(args, out, sizeof out);
+        snprintf(history, sizeof history, "%s/%s-history.csv", dir, bad[k].name);
+        char q[200];
+        snprintf(q, sizeof q, "gomboc run with a bad case file (%s)", bad[k].name);
+        gb_check c = {"-", "-", q, "exit 2, message naming file, line, key and allowed values, no output file", "exact"};
+        gb_check_true(&c, code == 2 && strstr(out, bad[k].must_name) && access(history, F_OK) != 0, "exit %d, output: %.300s", code, out);
+        remove(path);
+    }
+    /* A good short scene, twice: identical bytes; history = no writes no history. */
+    char path[256], args[600], out[1 << 14] = "", first[1 << 14], second[1 << 14];
+    write_case(dir, "short", SHORT_SCENE, path, sizeof path);
+    snprintf(args, sizeof args, "run %s --out %s --json", path, dir);
+    const int code = run(args, first, sizeof first);
+    run(args, second, sizeof second);
+    /* The CPU-time line on stderr differs between runs: cut it out of both. */
+    for (char *text = first; text; text = text == first ? second : NULL) {
+        char *line = strstr(text, "gomboc run:"), *end = line ? strchr(line, '\n') : NULL;
+        if (line && end) memmove(line, end + 1, strlen(end + 1) + 1);
+    }
+    gb_check cd = {"8", "-", "gomboc run: same scene, same binary, identical summary bytes", "determinism", "exact"};
+    gb_check_true(&cd, code == 0 && strcmp(first, second) == 0 && strstr(first, "grid_switches"), "exit %d, %zu and %zu bytes",
+                  code, strlen(first), strlen(second));
+    char history[300];
+    snprintf(history, sizeof history, "%s/short-history.csv", dir);
+    gb_check ch = {"8", "-", "gomboc run writes the history the scene asked for", "file exists", "exact"};
+    gb_check_true(&ch, access(history, F_OK) == 0, "%s", history);
+    remove(history);
+    char text[1024];
+    snprintf(text, sizeof text, "%s[output]\nhistory = no\nsummary = no\n", SHORT_SCENE);
+    write_case(dir, "quiet", text, path, sizeof path);
+    snprintf(args, sizeof args, "run %s --out %s", path, dir);
+    const int quiet = run(args, out, sizeof out);
+    char summary[300];
+    snprintf(history, sizeof history, "%s/quiet-history.csv", dir);
+    snprintf(summary, sizeof summary, "%s/quiet-summary.json", dir);
+    gb_check cq = {"8", "-", "a scene with history = no and summary = no writes no file", "file system", "exact"};
+    gb_check_true(&cq, quiet == 0 && access(history, F_OK) != 0 && access(summary, F_OK) != 0, "exit %d", quiet);
+    remove(path);
+    snprintf(path, sizeof path, "%s/short.ini", dir);
+    remove(path);
+    snprintf(summary, sizeof summary, "%s/short-summary.json", dir);
+    remove(summary);
+    rmdir(dir);
+}
+
 int verify_register_command(void)
 {
     static const verify_test tests[] = {
@@ -179,6 +256,7 @@ int verify_register_command(void)
         {"command: JSON keys, verdicts and determinism", test_json_keys_and_determinism},
         {"command: atomic output", test_failed_write_leaves_nothing},
         {"command: gomboc contact, its methods and keys", test_contact_command},
+        {"command: gomboc run, case files and outputs", test_run_command},
         {NULL, NULL},
     };
     return verify_register_suite("The gomboc command", tests);
