@@ -338,6 +338,104 @@ int gb_contact_grid_fast_from(const gb_contact_grid *grid, const double zb[3], s
     return grid_search(grid, zb, hint, out);
 }
 
+/* ---------------------------------------------------------------- trajectory tracking */
+
+struct gb_contact_tracker {
+    const gb_contact_grid *grid;
+    double delta_max, r_max;
+    int have_reference;
+    double reference[3];
+    int32_t *leaves;
+    size_t leaf_count, leaf_capacity, searches;
+};
+
+int gb_contact_tracker_create(const gb_contact_grid *grid, double delta_max, gb_contact_tracker **out)
+{
+    *out = NULL;
+    if (!(delta_max > 0.0 && delta_max <= 0.5))
+        return gb_error_set(GB_EDOM, "tracker radius %g is out of range (allowed: 0 < delta_max <= 0.5)", delta_max);
+    gb_contact_tracker *t = calloc(1, sizeof *t);
+    if (!t) return gb_error_set(GB_ENOMEM, "out of memory for the contact tracker");
+    t->grid = grid;
+    t->delta_max = delta_max;
+    t->r_max = grid->patches[0].r_hi;
+    t->leaf_capacity = grid->patch_count;
+    t->leaves = malloc(t->leaf_capacity * sizeof *t->leaves);
+    if (!t->leaves) {
+        free(t);
+        return gb_error_set(GB_ENOMEM, "out of memory for the contact tracker");
+    }
+    *out = t;
+    return GB_OK;
+}
+
+void gb_contact_tracker_free(gb_contact_tracker *t)
+{
+    if (!t) return;
+    free(t->leaves);
+    free(t);
+}
+
+size_t gb_contact_tracker_searches(const gb_contact_tracker *t) { return t->searches; }
+
+/* New reference d: the exact lowest node, then every leaf whose bound is within the threshold. */
+static int tracker_reference(gb_contact_tracker *t, const double d[3])
+{
+    gb_contact_node node;
+    int status = grid_search(t->grid, d, SIZE_MAX, &node);
+    if (status) return status;
+    const double threshold = node.height + 2.0 * t->delta_max * t->r_max + BOUND_MARGIN;
+    int32_t stack[PATCH_STACK];
+    int top = 0;
+    stack[top++] = 0;
+    t->leaf_count = 0;
+    while (top > 0) {
+        const patch *p = &t->grid->patches[stack[--top]];
+        if (patch_bound(p, d) > threshold) continue;
+        if (p->child[0] < 0) {
+            t->leaves[t->leaf_count++] = (int32_t)(p - t->grid->patches);
+            continue;
+        }
+        if (top + 2 > PATCH_STACK) return gb_error_set(GB_ENUMERIC, "patch tree deeper than %d levels", PATCH_STACK / 2);
+        stack[top++] = p->child[0];
+        stack[top++] = p->child[1];
+    }
+    memcpy(t->reference, d, sizeof t->reference);
+    t->have_reference = 1;
+    t->searches++;
+    return GB_OK;
+}
+
+int gb_contact_tracker_find(gb_contact_tracker *t, const double zb[3], gb_contact_node *out)
+{
+    double d[3];
+    int status = gb_contact_unit_vertical(zb, d);
+    if (status) return status;
+    const double chord[3] = {d[0] - t->reference[0], d[1] - t->reference[1], d[2] - t->reference[2]};
+    if (!t->have_reference || gb_vec_norm(chord) > t->delta_max) {
+        status = tracker_reference(t, d);
+        if (status) return status;
+    }
+    const size_t nt = t->grid->def.n_theta;
+    double best = INFINITY;
+    size_t best_index = SIZE_MAX, visited = 0;
+    for (size_t l = 0; l < t->leaf_count; l++) {
+        const patch *p = &t->grid->patches[t->leaves[l]];
+        for (uint32_t i = p->i0; i < p->i1; i++)
+            for (uint32_t j = p->j0; j < p->j1; j++) {
+                const size_t k = i * nt + j;
+                const double h = node_height(d, t->grid->x + 3 * k);
+                if (h < best || (h == best && k < best_index)) {
+                    best = h;
+                    best_index = k;
+                }
+            }
+        visited += (size_t)(p->i1 - p->i0) * (p->j1 - p->j0);
+    }
+    fill_node(t->grid, best_index, best, visited, out);
+    return GB_OK;
+}
+
 /* ---------------------------------------------------------------- the continuous minimiser */
 
 gb_contact_refine_def gb_contact_refine_default_def(void)

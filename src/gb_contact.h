@@ -77,6 +77,21 @@ int gb_contact_grid_fast(const gb_contact_grid *grid, const double zb[3], gb_con
 int gb_contact_grid_fast_from(const gb_contact_grid *grid, const double zb[3], size_t hint,
                               gb_contact_node *out);
 
+/* Exact grid search along a trajectory. Around a reference vertical d₀ the tracker keeps the leaf
+ * patches whose lower bound at d₀ is within 2·δ_max·r_max of the lowest node height h₀. For a unit
+ * vertical d with |d − d₀| ≤ δ_max, every node's height moves by at most |d − d₀|·|x| (Cauchy–
+ * Schwarz), so every leaf left out holds only nodes strictly higher than the lowest candidate node:
+ * scanning the candidates returns the very node brute force returns, ties included. Farther away the
+ * tracker re-searches the whole tree and takes d as its new reference. */
+typedef struct gb_contact_tracker gb_contact_tracker;
+
+/* delta_max: the reference radius (chord length of unit verticals), 0 < delta_max <= 0.5. */
+int gb_contact_tracker_create(const gb_contact_grid *grid, double delta_max, gb_contact_tracker **out);
+void gb_contact_tracker_free(gb_contact_tracker *tracker);
+int gb_contact_tracker_find(gb_contact_tracker *tracker, const double zb[3], gb_contact_node *out);
+/* How many full searches (new references) the tracker has made. */
+size_t gb_contact_tracker_searches(const gb_contact_tracker *tracker);
+
 /* A stationary point of h polished by the continuous minimiser. */
 typedef struct gb_contact_point {
     double phi, theta;

@@ -13,8 +13,8 @@
  * energy balance (eqs 46–51) is for the checks to show. For a grid contact ṙ_c = 0 between switches,
  * as the paper's scheme implies, and the variants coincide.
  *
- * Three contact models (gb_contact): the paper's grid by brute force, the same node by the exact fast
- * search (warm-started from the previous node), and continuous contact (Newton from the previous
+ * Three contact models (gb_contact): the paper's grid by brute force, the same node by the exact
+ * trajectory tracker (gb_contact_tracker), and continuous contact (Newton from the previous
  * contact at every evaluation; at every accepted step the global minimum is re-established, see
  * gb_dynamics_accept). */
 #ifndef GB_DYNAMICS_H
@@ -49,6 +49,7 @@ typedef struct gb_dynamics_def {
     gb_forcing forcing;            /* eq 25 */
     gb_contact_grid_def grid;      /* the grid of the grid models (Table 1: 90 × 180) */
     gb_contact_grid_def seed_grid; /* continuous contact: the grid of the global check */
+    double tracker_radius;         /* gb_contact_tracker's reference radius (fast-grid, continuous) */
 } gb_dynamics_def;
 
 /* Table 1 with the paper's model: variant paper, grid contact 90 × 180, m = 1, c = 0.02, g = 9.81,
