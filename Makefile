@@ -97,6 +97,7 @@ references: deps
 references-only:
 	$(PYTHON) references/massprops.py > references/massprops.json.tmp && mv references/massprops.json.tmp references/massprops.json
 	$(PYTHON) references/contact.py > references/contact.json.tmp && mv references/contact.json.tmp references/contact.json
+	$(PYTHON) references/dynamics.py > references/dynamics.json.tmp && mv references/dynamics.json.tmp references/dynamics.json
 
 install: deps
 	@$(MAKE) --no-print-directory build
