@@ -135,6 +135,12 @@ static int run_adaptive(gb_dynamics *d, const gb_integrate_def *def, double t0, 
                 break;
             }
             stats->steps++;
+            if (def->max_steps && stats->steps >= def->max_steps) {
+                status = gb_error_set(GB_ENOCONV, "%s took %zu steps by t = %.9g of %.9g (the step limit): the step size "
+                                      "collapsed, as it does at the jumps of a grid contact",
+                                      names[def->method], stats->steps, t, t0 + (double)steps * h);
+                break;
+            }
             double drift;
             status = gb_dynamics_accept(d, t, y, &drift);
             note_drift(stats, drift);

@@ -29,6 +29,7 @@ typedef struct gb_integrate_def {
     double periods;          /* run length in forcing periods (Table 1: 300) */
     double rtol, atol;       /* adaptive steppers (default 1e-10, 1e-12) */
     size_t sample_every;     /* deliver every n-th nominal step (default 1) */
+    size_t max_steps;        /* adaptive steppers: give up (GB_ENOCONV) after this many steps; 0: no limit */
 } gb_integrate_def;
 
 gb_integrate_def gb_integrate_default_def(void);
