@@ -93,6 +93,17 @@ def dynamics_section(out, rows):
                 verdict = ("paper holds" if r["paper_holds"] else "**paper refuted**") + ("" if r["passed"] else ", inconclusive")
             lines.append(f"| {r['quantity']} | {str(measured).replace('|', '/')} | {verdict} |")
     lines += [""] + work_precision(out)
+    extreme = os.path.join(out, "extreme-scenes.json")
+    if os.path.exists(extreme):
+        lines += ["### Stiff and extreme scenes", "",
+                  "Each `cases/extreme-*.ini` (continuous contact, rolling equation, two periods) with every integrator. The "
+                  "balance residual is E − E(0) − ∫(P_d + m ġ ζ) dt; a branch switch makes it jump (I_P changes at fixed ω).",
+                  "", "| scene | integrator | finished | steps | right-hand sides | seconds | branch switches | max residual [J] |",
+                  "|---|---|---|---|---|---|---|---|"]
+        for r in load_json(extreme):
+            lines.append(f"| {r['description']} | {r['integrator']} | {'yes' if r['finished'] else '**no**'} | {r['steps']:.0f} | "
+                         f"{r['rhs_evaluations']:.0f} | {r['seconds']:.3f} | {r['branch_switches']:.0f} | {r['residual_max']:.3g} |")
+        lines.append("")
     lines += ["", "Figures 3–6 of the paper for each scene (ω, h*, E with contact-switch markers, switching rate; contact "
               "index and r_c):", ""]
     for n in names:
