@@ -152,16 +152,10 @@ int command_run(int argc, char **argv)
     int status = gb_case_load(case_path, &scene);
     if (status) return cli_failure("run", status);
 
-    gb_surface surface;
     gb_dynamics *dynamics = NULL;
     double y[GB_STATE_SIZE];
-    status = gb_surface_init(&surface, scene.morphology, scene.beta);
-    if (!status) status = gb_dynamics_create(&surface, &scene.dynamics, &dynamics);
-    if (!status) status = gb_dynamics_init_state(dynamics, 0.0, scene.attitude, scene.omega0, y);
-    if (status) {
-        gb_dynamics_free(dynamics);
-        return cli_failure("run", status);
-    }
+    status = gb_dynamics_start(scene.morphology, scene.beta, &scene.dynamics, scene.attitude, scene.omega0, &dynamics, y);
+    if (status) return cli_failure("run", status);
     char history_path[1200], history_tmp[1300], summary_path[1200];
     output_path(dir, case_path, "history.csv", history_path, sizeof history_path);
     output_path(dir, case_path, "summary.json", summary_path, sizeof summary_path);

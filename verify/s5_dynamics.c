@@ -106,18 +106,13 @@ static const double SPIN[3] = {1.3, -0.7, 0.4};
 /* Create the dynamics of scene s and its initial state (R0 = I; ω0 = 0 or SPIN). */
 static int start_scene(const scene *s, gb_dynamics **d, double y[GB_STATE_SIZE])
 {
-    gb_surface surface;
-    gb_surface_init(&surface, s->morphology, 0.12);
     gb_dynamics_def def = gb_dynamics_default_def();
     def.variant = s->variant;
     def.contact = s->contact;
     if (!s->forced) def.forcing.a1 = def.forcing.a2 = 0.0;
     if (!s->damped) def.damping = 0.0;
     const double rest[3] = {0, 0, 0};
-    *d = NULL;
-    int status = gb_dynamics_create(&surface, &def, d);
-    if (!status) status = gb_dynamics_init_state(*d, 0.0, IDENTITY, s->spun ? SPIN : rest, y);
-    return status;
+    return gb_dynamics_start(s->morphology, 0.12, &def, IDENTITY, s->spun ? SPIN : rest, d, y);
 }
 
 static run_result run_scene(const scene *s, gb_integrator method, size_t steps_per_period, double periods)
@@ -504,12 +499,9 @@ static void test_extreme_scenes(void)
         gb_check cl = {"8", "-", path, "the scene file loads", "exact"};
         if (!gb_check_true(&cl, status == GB_OK, "%s", status ? gb_error_message() : scene.description)) continue;
         for (int m = 0; m < 4; m++) {
-            gb_surface surface;
             gb_dynamics *d = NULL;
             double y[GB_STATE_SIZE];
-            status = gb_surface_init(&surface, scene.morphology, scene.beta);
-            if (!status) status = gb_dynamics_create(&surface, &scene.dynamics, &d);
-            if (!status) status = gb_dynamics_init_state(d, 0.0, scene.attitude, scene.omega0, y);
+            status = gb_dynamics_start(scene.morphology, scene.beta, &scene.dynamics, scene.attitude, scene.omega0, &d, y);
             gb_integrate_def idef = scene.integrate;
             idef.method = methods[m];
             idef.max_steps = 200000;
