@@ -282,6 +282,43 @@ int gb_dynamics_rhs(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], dou
     return GB_OK;
 }
 
+/* The vertical of state y (q need not be normalised). */
+static void vertical_of(const double y[GB_STATE_SIZE], double zb[3])
+{
+    double R[9];
+    gb_dynamics_rotation(y + GB_STATE_Q, R);
+    zb_of(R, zb);
+}
+
+/* Continuous contact at state y: the continued branch (*continued) and, when another local minimum is
+ * lower, that minimum (*other, *found = 1). The exact grid tracker on the seed grid finds the lowest
+ * node; if it lies beside the continued minimum (within two cells) no other branch can be lower
+ * (up to basins narrower than the grid error, see gb_contact_branches_find); otherwise Newton from
+ * that node finds its local minimum. */
+static int competitor(gb_dynamics *d, const double y[GB_STATE_SIZE], gb_contact_point *continued,
+                      gb_contact_point *other, int *found)
+{
+    double zb[3];
+    vertical_of(y, zb);
+    contact_eval c;
+    int status = contact_at(d, zb, y + GB_STATE_OMEGA, &c);
+    if (status) return status;
+    *continued = c.point;
+    *found = 0;
+    gb_contact_node node;
+    status = gb_contact_tracker_find(d->tracker, zb, &node);
+    if (status) return status;
+    d->index = node.index;
+    const gb_contact_grid_def *g = gb_contact_grid_get_def(d->grid);
+    const double cell = hypot(M_PI / g->n_phi, 2.0 * M_PI / g->n_theta);
+    const double dx[3] = {node.x[0] - c.point.rc[0], node.x[1] - c.point.rc[1], node.x[2] - c.point.rc[2]};
+    if (gb_vec_norm(dx) <= 2.0 * cell) return GB_OK; /* the lowest node is beside the branch's minimum */
+    status = gb_contact_refine(&d->surface, zb, node.phi, node.theta, &d->refine, other);
+    if (status) return status;
+    *found = other->is_minimum && other->height < c.point.height;
+    return GB_OK;
+}
+
 int gb_dynamics_accept(gb_dynamics *d, double t, double y[GB_STATE_SIZE], double *norm_drift)
 {
     (void)t;
@@ -289,35 +326,50 @@ int gb_dynamics_accept(gb_dynamics *d, double t, double y[GB_STATE_SIZE], double
     const double n = sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
     if (norm_drift) *norm_drift = n - 1.0;
     for (int k = 0; k < 4; k++) q[k] /= n;
-    double R[9], zb[3];
-    gb_dynamics_rotation(q, R);
-    zb_of(R, zb);
-    contact_eval c;
-    int status = contact_at(d, zb, y + GB_STATE_OMEGA, &c);
-    if (status) return status;
     if (d->def.contact != GB_CONTACT_MODEL_CONTINUOUS) {
+        double zb[3];
+        vertical_of(y, zb);
+        contact_eval c;
+        const int status = contact_at(d, zb, y + GB_STATE_OMEGA, &c);
+        if (status) return status;
         d->grid_switches += c.index != d->index;
         d->index = c.index;
         return GB_OK;
     }
-    /* Continuous: is the continued branch still the global minimum? */
-    gb_contact_node node;
-    status = gb_contact_tracker_find(d->tracker, zb, &node);
+    gb_contact_point continued, other;
+    int found;
+    const int status = competitor(d, y, &continued, &other, &found);
     if (status) return status;
-    d->index = node.index;
-    d->contact = c.point;
-    const gb_contact_grid_def *g = gb_contact_grid_get_def(d->grid);
-    const double cell = hypot(M_PI / g->n_phi, 2.0 * M_PI / g->n_theta);
-    const double dx[3] = {node.x[0] - c.point.rc[0], node.x[1] - c.point.rc[1], node.x[2] - c.point.rc[2]};
-    if (gb_vec_norm(dx) <= 2.0 * cell) return GB_OK; /* the lowest node is beside the branch's minimum */
-    gb_contact_point other;
-    status = gb_contact_refine(&d->surface, zb, node.phi, node.theta, &d->refine, &other);
-    if (status) return status;
-    if (other.is_minimum && other.height < c.point.height) {
-        d->contact = other;
-        d->branch_switches++;
-    }
+    d->contact = found ? other : continued;
+    d->branch_switches += found;
     return GB_OK;
+}
+
+int gb_dynamics_switch_pending(gb_dynamics *d, const double y[GB_STATE_SIZE], gb_contact_point *other, int *found)
+{
+    *found = 0;
+    if (d->def.contact != GB_CONTACT_MODEL_CONTINUOUS) return GB_OK;
+    gb_contact_point continued;
+    return competitor(d, y, &continued, other, found);
+}
+
+int gb_dynamics_branch_gap(gb_dynamics *d, const double y[GB_STATE_SIZE], const gb_contact_point *other, double *gap,
+                           gb_contact_point *other_here)
+{
+    double zb[3];
+    vertical_of(y, zb);
+    gb_contact_point here;
+    int status = gb_contact_refine(&d->surface, zb, d->contact.phi, d->contact.theta, &d->refine, &here);
+    if (!status) status = gb_contact_refine(&d->surface, zb, other->phi, other->theta, &d->refine, other_here);
+    if (status) return status;
+    *gap = here.height - other_here->height; /* > 0: the other branch is lower (eq 39) */
+    return GB_OK;
+}
+
+void gb_dynamics_switch_to(gb_dynamics *d, const gb_contact_point *branch)
+{
+    d->contact = *branch;
+    d->branch_switches++;
 }
 
 int gb_dynamics_init_state(gb_dynamics *d, double t0, const double R0[9], const double omega0[3],

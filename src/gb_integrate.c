@@ -44,22 +44,90 @@ static void note_drift(gb_integrate_stats *stats, double drift)
     if (fabs(drift) > stats->max_norm_drift) stats->max_norm_drift = fabs(drift);
 }
 
+/* One classical RK4 step of size h from (t, y) into out. */
+static int rk4_step(gb_dynamics *d, double t, double h, const double y[], double out[], gb_integrate_stats *stats)
+{
+    double k1[GB_STATE_SIZE], k2[GB_STATE_SIZE], k3[GB_STATE_SIZE], k4[GB_STATE_SIZE], tmp[GB_STATE_SIZE];
+    int status = gb_dynamics_rhs(d, t, y, k1);
+    for (int i = 0; !status && i < GB_STATE_SIZE; i++) tmp[i] = y[i] + 0.5 * h * k1[i];
+    if (!status) status = gb_dynamics_rhs(d, t + 0.5 * h, tmp, k2);
+    for (int i = 0; !status && i < GB_STATE_SIZE; i++) tmp[i] = y[i] + 0.5 * h * k2[i];
+    if (!status) status = gb_dynamics_rhs(d, t + 0.5 * h, tmp, k3);
+    for (int i = 0; !status && i < GB_STATE_SIZE; i++) tmp[i] = y[i] + h * k3[i];
+    if (!status) status = gb_dynamics_rhs(d, t + h, tmp, k4);
+    if (status) return status;
+    for (int i = 0; i < GB_STATE_SIZE; i++) out[i] = y[i] + h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
+    stats->rhs_evaluations += 4;
+    return GB_OK;
+}
+
+/* A switch was found at the end of the step (t, y) → t + h: locate the fraction θ where Δh = 0 by the
+ * Illinois method on gap(θ) = Δh at the RK4 step of size θh (on the old branch), switch there, and
+ * finish the step on the new branch into out. */
+static int located_step(gb_dynamics *d, double t, double h, const double y[], const gb_contact_point *other,
+                        double out[], gb_integrate_stats *stats)
+{
+    double a = 0.0, b = 1.0, ga, gb, ya[GB_STATE_SIZE], yb[GB_STATE_SIZE], ymid[GB_STATE_SIZE];
+    gb_contact_point other_a, other_b, other_mid;
+    int status = gb_dynamics_branch_gap(d, y, other, &ga, &other_a);
+    if (!status) status = rk4_step(d, t, h, y, yb, stats);
+    if (!status) status = gb_dynamics_branch_gap(d, yb, other, &gb, &other_b);
+    if (status) return status;
+    memcpy(ya, y, sizeof ya);
+    if (!(ga < 0.0 && gb > 0.0)) {
+        /* Already lower at the start (or no sign change): switch at the start of the step. */
+        gb_dynamics_switch_to(d, ga >= 0.0 ? &other_a : &other_b);
+        return ga >= 0.0 ? rk4_step(d, t, h, y, out, stats) : (memcpy(out, yb, sizeof yb), GB_OK);
+    }
+    int side = 0;
+    for (int it = 0; it < 60 && b - a > 1e-13; it++) {
+        const double m = (a * gb - b * ga) / (gb - ga); /* regula falsi, Illinois-modified */
+        double gm;
+        status = rk4_step(d, t, m * h, y, ymid, stats);
+        if (!status) status = gb_dynamics_branch_gap(d, ymid, other, &gm, &other_mid);
+        if (status) return status;
+        if (gm == 0.0) {
+            a = b = m;
+            memcpy(ya, ymid, sizeof ya);
+            other_a = other_mid;
+            break;
+        }
+        if (gm < 0.0) {
+            a = m, ga = gm;
+            memcpy(ya, ymid, sizeof ya);
+            if (side == -1) gb *= 0.5;
+            side = -1;
+        } else {
+            b = m, gb = gm;
+            other_b = other_mid;
+            if (side == 1) ga *= 0.5;
+            side = 1;
+        }
+    }
+    /* Switch at θ = a (the old branch still lowest there), to the other branch continued to ya. */
+    double gap;
+    status = gb_dynamics_branch_gap(d, ya, other, &gap, &other_a);
+    if (status) return status;
+    gb_dynamics_switch_to(d, &other_a);
+    return rk4_step(d, t + a * h, (1.0 - a) * h, ya, out, stats);
+}
+
 static int run_rk4(gb_dynamics *d, const gb_integrate_def *def, double t0, double h, size_t steps, double y[],
                    gb_integrate_sample sample, void *context, gb_integrate_stats *stats)
 {
-    double k1[GB_STATE_SIZE], k2[GB_STATE_SIZE], k3[GB_STATE_SIZE], k4[GB_STATE_SIZE], tmp[GB_STATE_SIZE];
+    double next[GB_STATE_SIZE];
     for (size_t n = 0; n < steps; n++) {
         const double t = t0 + (double)n * h;
-        int status = gb_dynamics_rhs(d, t, y, k1);
-        for (int i = 0; !status && i < GB_STATE_SIZE; i++) tmp[i] = y[i] + 0.5 * h * k1[i];
-        if (!status) status = gb_dynamics_rhs(d, t + 0.5 * h, tmp, k2);
-        for (int i = 0; !status && i < GB_STATE_SIZE; i++) tmp[i] = y[i] + 0.5 * h * k2[i];
-        if (!status) status = gb_dynamics_rhs(d, t + 0.5 * h, tmp, k3);
-        for (int i = 0; !status && i < GB_STATE_SIZE; i++) tmp[i] = y[i] + h * k3[i];
-        if (!status) status = gb_dynamics_rhs(d, t + h, tmp, k4);
+        int status = rk4_step(d, t, h, y, next, stats);
         if (status) return status;
-        for (int i = 0; i < GB_STATE_SIZE; i++) y[i] += h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
-        stats->rhs_evaluations += 4;
+        if (def->locate_switches) {
+            gb_contact_point other;
+            int found = 0;
+            status = gb_dynamics_switch_pending(d, next, &other, &found);
+            if (!status && found) status = located_step(d, t, h, y, &other, next, stats);
+            if (status) return status;
+        }
+        memcpy(y, next, sizeof next);
         stats->steps++;
         double drift;
         status = gb_dynamics_accept(d, t0 + (double)(n + 1) * h, y, &drift);
