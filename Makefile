@@ -42,7 +42,8 @@ run: deps
 # The Table 1 scenes `make run` integrates, and the ones `make verify` adds (both readings of A1, A2,
 # and the harmonic benchmark, eq 94).
 RUN_SCENES    := table1-gomboc-I table1-gomboc-II
-VERIFY_SCENES := $(RUN_SCENES) table1-gomboc-I-g-units table1-gomboc-II-g-units harmonic-gomboc-I harmonic-gomboc-II
+VERIFY_SCENES := $(RUN_SCENES) table1-gomboc-I-g-units table1-gomboc-II-g-units harmonic-gomboc-I harmonic-gomboc-II \
+                 table1-gomboc-I-rolling table1-gomboc-II-rolling
 
 run-only: $(BIN)
 	@mkdir -p $(OUT)

@@ -12,7 +12,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 from common import load_json, save_figure  # noqa: E402
 
 SCENE_ORDER = ["table1-gomboc-I", "table1-gomboc-II", "table1-gomboc-I-g-units", "table1-gomboc-II-g-units",
-               "harmonic-gomboc-I", "harmonic-gomboc-II"]
+               "harmonic-gomboc-I", "harmonic-gomboc-II", "table1-gomboc-I-rolling", "table1-gomboc-II-rolling"]
 
 
 def work_precision(out):

@@ -173,6 +173,8 @@ static int handler(void *user, const char *section, const char *name, const char
         if (!parse_number(value, &x) || !(x > 0.0 && x <= 1e7))
             return fail(r, section, name, value, "out of range (allowed: 0 < periods <= 1e7)");
         c->integrate.periods = x;
+    } else if (KEY("integrator", "locate_switches")) {
+        if (!parse_flag(value, &c->integrate.locate_switches)) return fail(r, section, name, value, "not a flag (allowed: yes, no)");
     } else if (KEY("integrator", "rtol") || KEY("integrator", "atol")) {
         if (!parse_number(value, &x) || !(x > 0.0 && x < 1.0)) return fail(r, section, name, value, "out of range (allowed: 0 < tol < 1)");
         *(name[0] == 'r' ? &c->integrate.rtol : &c->integrate.atol) = x;

@@ -11,7 +11,7 @@
  *   [model]       equation = paper | rolling; contact = grid | fast-grid | continuous;
  *                 grid = NPxNT; nodes = centred | linspace; damping = c >= 0 [N m s]
  *   [integrator]  method = rk4 | rk8pd | rkf45 | rk4imp; steps_per_period >= 1; periods > 0;
- *                 rtol, atol in (0, 1)
+ *                 rtol, atol in (0, 1); locate_switches = yes | no (RK4, continuous contact)
  *   [initial]     attitude = identity | axis-angle AX,AY,AZ,ANGLE (rotation body → inertial, radians);
  *                 omega = WX,WY,WZ [rad/s]
  *   [output]      history = yes | no (time histories CSV); summary = yes | no (JSON);

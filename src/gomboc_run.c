@@ -105,6 +105,7 @@ static cJSON *scene_json(const gb_case *c)
     cJSON_AddStringToObject(o, "integrator", gb_integrate_name(c->integrate.method));
     cJSON_AddNumberToObject(o, "steps_per_period", (double)c->integrate.steps_per_period);
     cJSON_AddNumberToObject(o, "periods", c->integrate.periods);
+    if (c->dynamics.contact == GB_CONTACT_MODEL_CONTINUOUS) cJSON_AddBoolToObject(o, "locate_switches", c->integrate.locate_switches);
     if (c->integrate.method != GB_INTEGRATOR_RK4) {
         cJSON_AddNumberToObject(o, "rtol", c->integrate.rtol);
         cJSON_AddNumberToObject(o, "atol", c->integrate.atol);
