@@ -345,8 +345,10 @@ struct gb_contact_tracker {
     double delta_max, r_max;
     int have_reference;
     double reference[3];
-    int32_t *leaves;
+    int32_t *leaves;      /* candidate leaves, lowest bound at the reference first */
+    double *leaf_bound;   /* scratch for sorting */
     size_t leaf_count, leaf_capacity, searches;
+    size_t last_index;    /* the previous answer: a warm start for the next full search */
 };
 
 int gb_contact_tracker_create(const gb_contact_grid *grid, double delta_max, gb_contact_tracker **out)
@@ -357,11 +359,15 @@ int gb_contact_tracker_create(const gb_contact_grid *grid, double delta_max, gb_
     gb_contact_tracker *t = calloc(1, sizeof *t);
     if (!t) return gb_error_set(GB_ENOMEM, "out of memory for the contact tracker");
     t->grid = grid;
+    t->last_index = SIZE_MAX;
     t->delta_max = delta_max;
     t->r_max = grid->patches[0].r_hi;
     t->leaf_capacity = grid->patch_count;
     t->leaves = malloc(t->leaf_capacity * sizeof *t->leaves);
-    if (!t->leaves) {
+    t->leaf_bound = malloc(t->leaf_capacity * sizeof *t->leaf_bound);
+    if (!t->leaves || !t->leaf_bound) {
+        free(t->leaves);
+        free(t->leaf_bound);
         free(t);
         return gb_error_set(GB_ENOMEM, "out of memory for the contact tracker");
     }
@@ -373,6 +379,7 @@ void gb_contact_tracker_free(gb_contact_tracker *t)
 {
     if (!t) return;
     free(t->leaves);
+    free(t->leaf_bound);
     free(t);
 }
 
@@ -382,7 +389,7 @@ size_t gb_contact_tracker_searches(const gb_contact_tracker *t) { return t->sear
 static int tracker_reference(gb_contact_tracker *t, const double d[3])
 {
     gb_contact_node node;
-    int status = grid_search(t->grid, d, SIZE_MAX, &node);
+    int status = grid_search(t->grid, d, t->last_index, &node);
     if (status) return status;
     const double threshold = node.height + 2.0 * t->delta_max * t->r_max + BOUND_MARGIN;
     int32_t stack[PATCH_STACK];
@@ -391,9 +398,19 @@ static int tracker_reference(gb_contact_tracker *t, const double d[3])
     t->leaf_count = 0;
     while (top > 0) {
         const patch *p = &t->grid->patches[stack[--top]];
-        if (patch_bound(p, d) > threshold) continue;
+        const double bound = patch_bound(p, d);
+        if (bound > threshold) continue;
         if (p->child[0] < 0) {
-            t->leaves[t->leaf_count++] = (int32_t)(p - t->grid->patches);
+            /* insertion by bound: the lowest first, so the scan finds a low node early and the
+             * per-leaf bound test below skips most of the rest */
+            size_t k = t->leaf_count++;
+            while (k > 0 && t->leaf_bound[k - 1] > bound) {
+                t->leaves[k] = t->leaves[k - 1];
+                t->leaf_bound[k] = t->leaf_bound[k - 1];
+                k--;
+            }
+            t->leaves[k] = (int32_t)(p - t->grid->patches);
+            t->leaf_bound[k] = bound;
             continue;
         }
         if (top + 2 > PATCH_STACK) return gb_error_set(GB_ENUMERIC, "patch tree deeper than %d levels", PATCH_STACK / 2);
@@ -421,6 +438,7 @@ int gb_contact_tracker_find(gb_contact_tracker *t, const double zb[3], gb_contac
     size_t best_index = SIZE_MAX, visited = 0;
     for (size_t l = 0; l < t->leaf_count; l++) {
         const patch *p = &t->grid->patches[t->leaves[l]];
+        if (l > 0 && patch_bound(p, d) > best) continue; /* every node of it is strictly higher */
         for (uint32_t i = p->i0; i < p->i1; i++)
             for (uint32_t j = p->j0; j < p->j1; j++) {
                 const size_t k = i * nt + j;
@@ -432,6 +450,7 @@ int gb_contact_tracker_find(gb_contact_tracker *t, const double zb[3], gb_contac
             }
         visited += (size_t)(p->i1 - p->i0) * (p->j1 - p->j0);
     }
+    t->last_index = best_index;
     fill_node(t->grid, best_index, best, visited, out);
     return GB_OK;
 }
@@ -481,6 +500,8 @@ static void fill_point(const gb_surface *surface, const double d[3], double phi,
     out->theta = theta;
     memcpy(out->rc, p.x, sizeof out->rc);
     memcpy(out->n_hat, p.n_hat, sizeof out->n_hat);
+    memcpy(out->x_phi, p.x_phi, sizeof out->x_phi);
+    memcpy(out->x_theta, p.x_theta, sizeof out->x_theta);
     double c[3];
     gb_vec_cross(d, p.n_hat, c);
     out->residual = gb_vec_norm(c);
@@ -824,12 +845,11 @@ int gb_contact_switch_detect(const gb_contact_grid *grid, const double zb_from[3
 int gb_contact_sensitivity(const gb_surface *surface, const double zb[3],
                            const gb_contact_point *contact, double dq_dzb[2][3])
 {
+    (void)surface;
     double d[3];
     int status = gb_contact_unit_vertical(zb, d);
     if (status) return status;
-    gb_surface_point p;
-    double h, g[2], H[3];
-    height_derivatives(surface, d, contact->phi, contact->theta, &p, &h, g, H);
+    const double *H = contact->hessian;
     const double det = H[0] * H[2] - H[1] * H[1];
     const double size = fmax(fabs(H[0]), fmax(fabs(H[1]), fabs(H[2])));
     if (!(fabs(det) > 1e-12 * size * size))
@@ -839,8 +859,8 @@ int gb_contact_sensitivity(const gb_surface *surface, const double zb[3],
                             contact->phi, contact->theta, det);
     /* −H⁻¹ = −(1/det) [[H_θθ, −H_φθ], [−H_φθ, H_φφ]] applied to [∂φxᵀ; ∂θxᵀ] (eq 72). */
     for (int k = 0; k < 3; k++) {
-        dq_dzb[0][k] = -(H[2] * p.x_phi[k] - H[1] * p.x_theta[k]) / det;
-        dq_dzb[1][k] = -(-H[1] * p.x_phi[k] + H[0] * p.x_theta[k]) / det;
+        dq_dzb[0][k] = -(H[2] * contact->x_phi[k] - H[1] * contact->x_theta[k]) / det;
+        dq_dzb[1][k] = -(-H[1] * contact->x_phi[k] + H[0] * contact->x_theta[k]) / det;
     }
     return GB_OK;
 }
@@ -854,9 +874,7 @@ int gb_contact_rate(const gb_surface *surface, const double zb[3], const gb_cont
     if (status) return status;
     gb_vec_cross(d, omega, zb_dot); /* ż_b = −ω × z_b = z_b × ω (eq 24) */
     const double rates[2] = {gb_vec_dot(dq[0], zb_dot), gb_vec_dot(dq[1], zb_dot)};
-    gb_surface_point p;
-    gb_surface_eval(surface, contact->phi, contact->theta, &p);
-    for (int k = 0; k < 3; k++) rc_dot[k] = p.x_phi[k] * rates[0] + p.x_theta[k] * rates[1];
+    for (int k = 0; k < 3; k++) rc_dot[k] = contact->x_phi[k] * rates[0] + contact->x_theta[k] * rates[1];
     if (q_dot) q_dot[0] = rates[0], q_dot[1] = rates[1];
     return GB_OK;
 }

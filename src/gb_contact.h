@@ -100,6 +100,7 @@ typedef struct gb_contact_point {
     double n_hat[3];        /* unit outward normal (eq 17) */
     double gradient[2];     /* ∂φh, ∂θh (eqs 31–32) */
     double hessian[3];      /* H_φφ, H_φθ, H_θθ (eq 34) */
+    double x_phi[3], x_theta[3]; /* the tangents ∂φx, ∂θx (eq 15) at the point */
     double residual;        /* |ẑ_b × n̂| (eq 33) */
     int is_minimum;         /* eq 35: H_φφ > 0 and H_φφ H_θθ − H_φθ² > 0 */
     int iterations;         /* Newton iterations */
@@ -164,8 +165,9 @@ int gb_contact_switch_detect(const gb_contact_grid *grid, const double zb_from[3
                              gb_contact_switch *out);
 
 /* Contact sensitivity (eq 72): with F = (∂φh, ∂θh) and J = ∂F/∂(φ, θ) = H (eq 34),
- * d(φ*, θ*)/dz_b = −H⁻¹ [∂φxᵀ; ∂θxᵀ], a 2 × 3 matrix, for the unit vertical. GB_ENUMERIC when H is
- * singular (the minimiser is not locally well defined). */
+ * d(φ*, θ*)/dz_b = −H⁻¹ [∂φxᵀ; ∂θxᵀ], a 2 × 3 matrix, for the unit vertical. Uses the Hessian and
+ * tangents stored in `contact`, which must be the point gb_contact_refine returned for this z_b.
+ * GB_ENUMERIC when H is singular (the minimiser is not locally well defined). */
 int gb_contact_sensitivity(const gb_surface *surface, const double zb[3],
                            const gb_contact_point *contact, double dq_dzb[2][3]);
 

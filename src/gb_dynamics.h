@@ -91,7 +91,8 @@ int gb_dynamics_accept(gb_dynamics *dynamics, double t, double y[GB_STATE_SIZE],
 
 /* Switch-event location (continuous contact; gb_integrate uses these). At state y, is another branch
  * lower than the continued one? Then *found = 1 and *other is that minimum. */
-int gb_dynamics_switch_pending(gb_dynamics *dynamics, const double y[GB_STATE_SIZE], gb_contact_point *other, int *found);
+int gb_dynamics_switch_pending(gb_dynamics *dynamics, double t, const double y[GB_STATE_SIZE], gb_contact_point *other,
+                               int *found);
 /* Δh = h(current branch) − h(the branch of `other`) at state y, both continued by Newton (eq 39);
  * *other_here is the other branch at y. */
 int gb_dynamics_branch_gap(gb_dynamics *dynamics, const double y[GB_STATE_SIZE], const gb_contact_point *other,

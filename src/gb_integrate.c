@@ -123,7 +123,7 @@ static int run_rk4(gb_dynamics *d, const gb_integrate_def *def, double t0, doubl
         if (def->locate_switches) {
             gb_contact_point other;
             int found = 0;
-            status = gb_dynamics_switch_pending(d, next, &other, &found);
+            status = gb_dynamics_switch_pending(d, t + h, next, &other, &found);
             if (!status && found) status = located_step(d, t, h, y, &other, next, stats);
             if (status) return status;
         }
