@@ -87,7 +87,8 @@ bench: deps
 	@$(MAKE) --no-print-directory bench-only
 
 bench-only: $(BENCH_BIN)
-	$(BENCH_BIN)
+	@mkdir -p $(OUT)
+	$(BENCH_BIN) $(OUT)/bench.json
 
 # No study is longer than `make verify` yet: the dynamics (issue 4) will add them here.
 verify-full: verify

@@ -92,6 +92,20 @@ def dynamics_section(out, rows):
             if r["kind"] == "finding":
                 verdict = ("paper holds" if r["paper_holds"] else "**paper refuted**") + ("" if r["passed"] else ", inconclusive")
             lines.append(f"| {r['quantity']} | {str(measured).replace('|', '/')} | {verdict} |")
+    bench = os.path.join(out, "bench.json")
+    lines += ["### Speed (from the last `make bench` on this machine)", ""]
+    if os.path.exists(bench):
+        lines += ["Whole Table 1 runs (300 periods, RK4, 160 steps per period), measured side by side in one `make bench` run "
+                  "(best of 2); targets: fast grid ≥ 20×, continuous ≥ 50× the paper's plain loop over every node.", "",
+                  "| body | plain loop [s] | fast grid [s] | speed-up | fast run identical | continuous rolling [s] | speed-up |",
+                  "|---|---|---|---|---|---|---|"]
+        for r in load_json(bench):
+            lines.append(f"| {r['body']} | {r['plain_seconds']:.3f} | {r['fast_seconds']:.3f} | "
+                         f"{r['plain_seconds'] / r['fast_seconds']:.1f}× | {'yes' if r['fast_identical'] else '**no**'} | "
+                         f"{r['continuous_seconds']:.3f} | {r['plain_seconds'] / r['continuous_seconds']:.1f}× |")
+        lines.append("")
+    else:
+        lines += ["`make bench` has not been run in this output folder; run it to see the ratios here.", ""]
     lines += [""] + work_precision(out)
     extreme = os.path.join(out, "extreme-scenes.json")
     if os.path.exists(extreme):

@@ -81,6 +81,8 @@ static double time_run(const char *m, gb_contact_model contact, gb_dynamics_vari
     return best;
 }
 
+static FILE *record; /* bench.json for the report, when a path was given */
+
 static int bench_dynamics(void)
 {
     int failures = 0;
@@ -97,13 +99,23 @@ static int bench_dynamics(void)
         failures += !same;
         printf("%-4s %16.3f %16.3f %9.1fx %22.3f %9.1fx   %s\n", name, plain, fast, plain / fast, cont, plain / cont,
                same ? "fast run identical to the plain loop (state bits, index changes)" : "FAST RUN DIFFERS");
+        if (record)
+            fprintf(record, "%s{\"body\": \"%s\", \"plain_seconds\": %.6f, \"fast_seconds\": %.6f, \"continuous_seconds\": %.6f, "
+                            "\"fast_identical\": %s}", m ? ",\n  " : "  ", name, plain, fast, cont, same ? "true" : "false");
     }
     printf("\ntargets (issue 4): fast grid >= 20x, continuous >= 50x the plain loop\n");
     return failures;
 }
 
-int main(void)
+int main(int argc, char **argv)
 {
+    /* bench-gomboc [FILE]: also write the whole-run ratios as JSON to FILE (via FILE.tmp). */
+    char tmp[1024] = "";
+    if (argc > 1) {
+        snprintf(tmp, sizeof tmp, "%s.tmp", argv[1]);
+        record = fopen(tmp, "w");
+        if (record) fputs("[\n", record);
+    }
     gb_error_init_gsl();
     static double zb[VERTICALS][3];
     static size_t brute_index[VERTICALS], fast_index[VERTICALS];
@@ -177,5 +189,11 @@ int main(void)
         fprintf(stderr, "bench: %d fast-grid nodes differ from brute force\n", mismatches);
         return 1;
     }
-    return bench_dynamics() ? 1 : 0;
+    const int failures = bench_dynamics();
+    if (record) {
+        fputs("\n]\n", record);
+        if (fclose(record) == 0 && !failures) rename(tmp, argv[1]);
+        else remove(tmp);
+    }
+    return failures ? 1 : 0;
 }
