@@ -100,7 +100,8 @@ def main():
     lines += ["", "## What the paper claims and what we measured", "",
               "| section | paper claims | we measured | claim holds |", "|---|---|---|---|"]
     for r in findings:
-        lines.append(f"| §{r['section']} | {r['claim']} | {r['detail']} | {'yes' if r['paper_holds'] else '**no**'} |")
+        claim, detail = (text.replace("|", "\\|") for text in (r["claim"], r["detail"]))
+        lines.append(f"| §{r['section']} | {claim} | {detail} | {'yes' if r['paper_holds'] else '**no**'} |")
     # Results that are not findings, stated only as far as their checks passed in this run.
     established = [
         ("eq 2, 40, 53: closed forms for every beta; centroid at the origin",
