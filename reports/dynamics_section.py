@@ -91,7 +91,8 @@ def dynamics_section(out, rows):
             verdict = "pass" if r["passed"] else "**FAIL**"
             if r["kind"] == "finding":
                 verdict = ("paper holds" if r["paper_holds"] else "**paper refuted**") + ("" if r["passed"] else ", inconclusive")
-            lines.append(f"| {r['quantity']} | {str(measured).replace('|', '/')} | {verdict} |")
+            quantity = r["quantity"].replace("|", "\\|")
+            lines.append(f"| {quantity} | {str(measured).replace('|', '/')} | {verdict} |")
     bench = os.path.join(out, "bench.json")
     lines += ["### Speed (from the last `make bench` on this machine)", ""]
     if os.path.exists(bench):

@@ -172,8 +172,9 @@ def main():
         if r["kind"] == "finding":
             result = ("conclusive" if r["passed"] else "**inconclusive**") + \
                      (", paper holds" if r["paper_holds"] else ", paper refuted")
-        lines.append(f"| {r['section']} | {r['equation']} | {r['quantity']} | {r['oracle']} | {measured} | {error} | "
-                     f"{tol} | {r['origin']} | {r['seconds']:.2g} | {result} |")
+        quantity, oracle, origin = (text.replace("|", "\\|") for text in (r["quantity"], r["oracle"], r["origin"]))
+        lines.append(f"| {r['section']} | {r['equation']} | {quantity} | {oracle} | {measured} | {error} | "
+                     f"{tol} | {origin} | {r['seconds']:.2g} | {result} |")
     lines += ["", "## Where the checks live", ""] + [f"- {k}: `{v}`" for k, v in SECTION_FILES.items()] + [""]
     write_atomically(os.path.join(out, "verification.md"), "\n".join(lines))
 
