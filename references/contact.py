@@ -15,15 +15,16 @@ The verticals are seeded: numpy.random.default_rng(SEED), normal triples, normal
 sphere, which is the distribution of z_b = Rᵀe_z for a uniformly random attitude R).
 Run by `make references`; the output (JSON, on stdout) is committed as references/contact.json.
 """
-import json
 import math
-import platform
+import os
 import sys
 
 import numpy
-import scipy
 import sympy
 from scipy import optimize
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from provenance import emit, versions  # noqa: E402
 
 SEED = 20261122
 ATTITUDES = 200
@@ -130,15 +131,11 @@ def main():
                       "trust-exact, gtol 1e-13, polished by optimize.root hybr, from every discrete local minimum of a 200 x 400 grid",
             "seed": SEED,
             "attitudes": ATTITUDES,
-            "python": platform.python_version(),
-            "numpy": numpy.__version__,
-            "scipy": scipy.__version__,
-            "sympy": sympy.__version__,
+            **versions(sympy=sympy),
         },
         "cases": cases,
     }
-    json.dump(document, sys.stdout, indent=1)
-    sys.stdout.write("\n")
+    emit(document)
 
 
 if __name__ == "__main__":

@@ -18,16 +18,15 @@ Run by `make references`; the output (JSON, on stdout) is committed as reference
 import json
 import math
 import os
-import platform
 import sys
 
 import numpy
-import scipy
 import sympy
 from scipy.integrate import solve_ivp
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from contact import height_functions  # noqa: E402
+from provenance import emit, versions  # noqa: E402
 
 G, A1, A2, OMEGA, PSI, DAMPING, MASS, BETA = 9.81, 2.0, 1.0, 18.0, math.pi / 3, 0.02, 1.0, 0.12
 OMEGA0 = (0.0, 0.0, 0.0)
@@ -130,13 +129,11 @@ def main():
             "scene": {"g": G, "a1": A1, "a2": A2, "omega": OMEGA, "psi": PSI, "damping": DAMPING, "mass": MASS,
                       "beta": BETA, "R0": "identity", "omega0": OMEGA0, "periods": PERIODS},
             "state": "quaternion (w, x, y, z) body to inertial, then body angular velocity",
-            "python": platform.python_version(), "numpy": numpy.__version__, "scipy": scipy.__version__,
-            "sympy": sympy.__version__,
+            **versions(sympy=sympy),
         },
         "cases": cases,
     }
-    json.dump(document, sys.stdout, indent=1)
-    sys.stdout.write("\n")
+    emit(document)
 
 
 if __name__ == "__main__":

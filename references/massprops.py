@@ -7,14 +7,14 @@ integral is a nested scipy.integrate.quad (QUADPACK QAGS) over phi inside theta:
 with dΩ = sin φ dφ dθ, a homogeneous body of mass 1, inertia about the centroid.
 Run by `make references`; the output (JSON, on stdout) is committed as references/massprops.json.
 """
-import json
 import math
-import platform
+import os
 import sys
 
-import numpy
-import scipy
 from scipy import integrate
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from provenance import emit, versions  # noqa: E402
 
 EPSABS = 1e-13
 EPSREL = 1e-12
@@ -71,13 +71,11 @@ def main():
             "script": "references/massprops.py",
             "method": "nested scipy.integrate.quad (QUADPACK QAGS), phi inner, theta outer",
             "epsabs": EPSABS, "epsrel": EPSREL, "limit": LIMIT,
-            "python": platform.python_version(), "numpy": numpy.__version__,
-            "scipy": scipy.__version__,
+            **versions(),
         },
         "cases": [mass_properties(m, b) for m, b in CASES],
     }
-    json.dump(out, sys.stdout, indent=2)
-    sys.stdout.write("\n")
+    emit(out, indent=2)
 
 
 if __name__ == "__main__":

@@ -15,7 +15,12 @@ import numpy  # noqa: E402
 
 from common import load_json, save_figure  # noqa: E402
 
-FIG2_ZB = "0.6,0.6,-0.5"
+
+
+def fig2_vertical(out):
+    """The unit z_b of Figure 2, as `gomboc contact` reported it (the Makefile chooses it)."""
+    zb = load_json(os.path.join(out, "fig2-contact-I.json"))["zb"]
+    return "(" + ", ".join(f"{v:.6f}" for v in zb) + ")"
 
 
 def load_grid_csv(path):
@@ -52,7 +57,7 @@ def figure2(out):
             ax.set_title(f"Gömböc {name}: {label}", fontsize=9)
             if col == 0:
                 ax.legend(fontsize=7, loc="lower left")
-    fig.suptitle(f"Figure 2 (reproduced): height landscape for z_b ∝ ({FIG2_ZB}), β = 0.12", fontsize=11)
+    fig.suptitle(f"Figure 2 (reproduced): height landscape for z_b = {fig2_vertical(out)}, β = 0.12", fontsize=11)
     fig.tight_layout()
     save_figure(fig, os.path.join(out, "fig2-height-landscape.png"))
     plt.close(fig)
@@ -134,7 +139,8 @@ def contact_section(out, rows):
               "switches (eqs 38–39); the dynamics issue measures both.", ""]
     lines += ["![error against run time per contact query](contact-error-vs-time.png)", "",
               "### Figure 2: the height landscape", "",
-              f"Attitude (the paper's is an unspecified instant of its baseline run): z_b ∝ ({FIG2_ZB}), chosen because",
+              f"Attitude (the paper's is an unspecified instant of its baseline run): z_b = {fig2_vertical(out)} (the",
+              "Makefile's FIG2_ZB, normalised), chosen because",
               "both bodies have two local minima there. Left: h over a 180 × 360 grid; middle and right: 201 × 201",
               "windows of half-width 0.4 and 0.08 rad around the global minimum. White disc: the continuous global",
               "minimum; white ring: the other local minimum; red cross: the Table 1 grid's node.", ""]

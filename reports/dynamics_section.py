@@ -75,10 +75,13 @@ def dynamics_section(out, rows):
                      f"{branches} | {s['energy_residual_max']:.3g} | "
                      f"{100 * m.get('geff_nonpositive_fraction', float('nan')):.1f} % | "
                      f"{100 * m.get('lift_off_fraction', float('nan')):.1f} % | {m.get('friction_needed_max', float('nan')):.3f} |")
+    for r in fractions:
+        if r["measured"] > 0:
+            reading = r["quantity"].split("read in ")[-1]
+            lines += ["", f"Read in {reading}, g_eff ≤ 0 for {100 * r['measured']:.1f} % of every period: the support then "
+                      "accelerates downward faster than gravity, the body must leave the plane, and the paper's "
+                      "single-contact model has no meaning there. The runs still integrate it, and the monitors say so."]
     lines += ["",
-              "With amplitudes in units of g, g_eff is negative for over a quarter of every period: the support then",
-              "accelerates downward faster than gravity, the body must leave the plane, and the paper's single-contact",
-              "model has no meaning there. The runs still integrate it, and the monitors say so.", "",
               "### Energy balance per equation variant and contact model", "",
               "The balance E(t) − E(0) = ∫(P_d + m ġ_eff ζ) dt (eqs 46–51) is derived in `docs/rolling.md` for a body",
               "rolling without slip. The checks (numbers from this run):", ""]

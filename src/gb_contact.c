@@ -274,6 +274,23 @@ int gb_contact_grid_brute(const gb_contact_grid *grid, const double zb[3], gb_co
     return GB_OK;
 }
 
+/* Scan every node of leaf p, keeping the lowest (ties to the lower index) in *best, *best_index;
+ * returns the number of nodes scanned. Brute force, the search and the tracker share node_height. */
+static size_t scan_leaf(const gb_contact_grid *grid, const patch *p, const double d[3], double *best, size_t *best_index)
+{
+    const size_t nt = grid->def.n_theta;
+    for (uint32_t i = p->i0; i < p->i1; i++)
+        for (uint32_t j = p->j0; j < p->j1; j++) {
+            const size_t k = i * nt + j;
+            const double h = node_height(d, grid->x + 3 * k);
+            if (h < *best || (h == *best && k < *best_index)) {
+                *best = h;
+                *best_index = k;
+            }
+        }
+    return (size_t)(p->i1 - p->i0) * (p->j1 - p->j0);
+}
+
 /* Branch and bound; `hint` (a node index, or SIZE_MAX) seeds the best height with a real node, so
  * a good guess prunes most of the tree at once without changing the answer. */
 static int grid_search(const gb_contact_grid *grid, const double zb[3], size_t hint, gb_contact_node *out)
@@ -294,22 +311,12 @@ static int grid_search(const gb_contact_grid *grid, const double zb[3], size_t h
         best_index = hint;
         visited = 1;
     }
-    const size_t nt = grid->def.n_theta;
     while (top > 0) {
         top--;
         if (stack_bound[top] > best) continue;
         const patch *p = &grid->patches[stack[top]];
         if (p->child[0] < 0) {
-            for (uint32_t i = p->i0; i < p->i1; i++)
-                for (uint32_t j = p->j0; j < p->j1; j++) {
-                    const size_t k = i * nt + j;
-                    const double h = node_height(d, grid->x + 3 * k);
-                    if (h < best || (h == best && k < best_index)) {
-                        best = h;
-                        best_index = k;
-                    }
-                }
-            visited += (size_t)(p->i1 - p->i0) * (p->j1 - p->j0);
+            visited += scan_leaf(grid, p, d, &best, &best_index);
             continue;
         }
         const double b0 = patch_bound(&grid->patches[p->child[0]], d);
@@ -332,12 +339,6 @@ int gb_contact_grid_fast(const gb_contact_grid *grid, const double zb[3], gb_con
     return grid_search(grid, zb, SIZE_MAX, out);
 }
 
-int gb_contact_grid_fast_from(const gb_contact_grid *grid, const double zb[3], size_t hint,
-                              gb_contact_node *out)
-{
-    return grid_search(grid, zb, hint, out);
-}
-
 /* ---------------------------------------------------------------- trajectory tracking */
 
 struct gb_contact_tracker {
@@ -347,7 +348,7 @@ struct gb_contact_tracker {
     double reference[3];
     int32_t *leaves;      /* candidate leaves, lowest bound at the reference first */
     double *leaf_bound;   /* scratch for sorting */
-    size_t leaf_count, leaf_capacity, searches;
+    size_t leaf_count, leaf_capacity;
     size_t last_index;    /* the previous answer: a warm start for the next full search */
 };
 
@@ -383,8 +384,6 @@ void gb_contact_tracker_free(gb_contact_tracker *t)
     free(t);
 }
 
-size_t gb_contact_tracker_searches(const gb_contact_tracker *t) { return t->searches; }
-
 /* New reference d: the exact lowest node, then every leaf whose bound is within the threshold. */
 static int tracker_reference(gb_contact_tracker *t, const double d[3])
 {
@@ -419,7 +418,6 @@ static int tracker_reference(gb_contact_tracker *t, const double d[3])
     }
     memcpy(t->reference, d, sizeof t->reference);
     t->have_reference = 1;
-    t->searches++;
     return GB_OK;
 }
 
@@ -433,22 +431,12 @@ int gb_contact_tracker_find(gb_contact_tracker *t, const double zb[3], gb_contac
         status = tracker_reference(t, d);
         if (status) return status;
     }
-    const size_t nt = t->grid->def.n_theta;
     double best = INFINITY;
     size_t best_index = SIZE_MAX, visited = 0;
     for (size_t l = 0; l < t->leaf_count; l++) {
         const patch *p = &t->grid->patches[t->leaves[l]];
         if (l > 0 && patch_bound(p, d) > best) continue; /* every node of it is strictly higher */
-        for (uint32_t i = p->i0; i < p->i1; i++)
-            for (uint32_t j = p->j0; j < p->j1; j++) {
-                const size_t k = i * nt + j;
-                const double h = node_height(d, t->grid->x + 3 * k);
-                if (h < best || (h == best && k < best_index)) {
-                    best = h;
-                    best_index = k;
-                }
-            }
-        visited += (size_t)(p->i1 - p->i0) * (p->j1 - p->j0);
+        visited += scan_leaf(t->grid, p, d, &best, &best_index);
     }
     t->last_index = best_index;
     fill_node(t->grid, best_index, best, visited, out);

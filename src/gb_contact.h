@@ -72,10 +72,6 @@ typedef struct gb_contact_node {
 int gb_contact_grid_brute(const gb_contact_grid *grid, const double zb[3], gb_contact_node *out);
 /* The same node, by branch and bound over the patch tree (see gb_contact.c for the bound). */
 int gb_contact_grid_fast(const gb_contact_grid *grid, const double zb[3], gb_contact_node *out);
-/* The same again, warm-started from node `hint` (e.g. the previous step's node): the answer does
- * not depend on the hint, only the work does. */
-int gb_contact_grid_fast_from(const gb_contact_grid *grid, const double zb[3], size_t hint,
-                              gb_contact_node *out);
 
 /* Exact grid search along a trajectory. Around a reference vertical d₀ the tracker keeps the leaf
  * patches whose lower bound at d₀ is within 2·δ_max·r_max of the lowest node height h₀. For a unit
@@ -89,8 +85,6 @@ typedef struct gb_contact_tracker gb_contact_tracker;
 int gb_contact_tracker_create(const gb_contact_grid *grid, double delta_max, gb_contact_tracker **out);
 void gb_contact_tracker_free(gb_contact_tracker *tracker);
 int gb_contact_tracker_find(gb_contact_tracker *tracker, const double zb[3], gb_contact_node *out);
-/* How many full searches (new references) the tracker has made. */
-size_t gb_contact_tracker_searches(const gb_contact_tracker *tracker);
 
 /* A stationary point of h polished by the continuous minimiser. */
 typedef struct gb_contact_point {

@@ -68,7 +68,6 @@ struct gb_dynamics {
 };
 
 const gb_dynamics_def *gb_dynamics_get_def(const gb_dynamics *d) { return &d->def; }
-void gb_dynamics_inertia(const gb_dynamics *d, double inertia[3][3]) { memcpy(inertia, d->inertia, sizeof d->inertia); }
 double gb_dynamics_mean_radius(const gb_dynamics *d) { return d->mean_radius; }
 size_t gb_dynamics_grid_size(const gb_dynamics *d) { return d->grid ? gb_contact_grid_size(d->grid) : 0; }
 

@@ -64,10 +64,10 @@ int gb_dynamics_create(const gb_surface *surface, const gb_dynamics_def *def, gb
 void gb_dynamics_free(gb_dynamics *dynamics);
 
 const gb_dynamics_def *gb_dynamics_get_def(const gb_dynamics *dynamics);
-/* I_C about the centroid [kg m²] and L of eq 53 [m], for this mass and length. */
-void gb_dynamics_inertia(const gb_dynamics *dynamics, double inertia[3][3]);
+/* L of eq 53 [m], for this length. */
 double gb_dynamics_mean_radius(const gb_dynamics *dynamics);
-/* Was a contact grid built (and how many nodes)? 0 for continuous contact without a seed grid. */
+/* The nodes of the one grid built: the contact grid for grid models, the seed grid of the global
+ * check for continuous contact (never both). */
 size_t gb_dynamics_grid_size(const gb_dynamics *dynamics);
 
 /* The initial state: attitude R0 (row-major 3 × 3, orthonormal), ω0; W = 0. Establishes the

@@ -53,8 +53,7 @@ int gb_forcing_nonpositive_fraction(const gb_forcing *f, double *fraction, doubl
     enum { SAMPLES = 4096 };
     const double T = gb_forcing_period(f), dt = T / SAMPLES, tol = 1e-14 * T;
     double measure = 0.0, minimum = INFINITY, start = 0.0;
-    double previous = gb_forcing_geff(f, 0.0);
-    int inside = previous <= 0.0;
+    int inside = gb_forcing_geff(f, 0.0) <= 0.0;
     for (int k = 1; k <= SAMPLES; k++) {
         const double t = k * dt, value = gb_forcing_geff(f, t);
         minimum = fmin(minimum, value);
@@ -64,9 +63,7 @@ int gb_forcing_nonpositive_fraction(const gb_forcing *f, double *fraction, doubl
             else start = root;
             inside = !inside;
         }
-        previous = value;
     }
-    (void)previous;
     if (inside) measure += T - start;
     *fraction = measure / T;
     *geff_min = minimum;

@@ -25,7 +25,7 @@ double gb_forcing_geff_rate(const gb_forcing *forcing, double t);
 double gb_forcing_period(const gb_forcing *forcing);
 
 /* The fraction of one period in which g_eff ≤ 0 (the support pulls the body down faster than it can
- * follow: a single-contact model is then invalid), and the minimum of g_eff over the period. Sign
+ * follow: a single-contact model is then invalid), and the smallest g_eff on the samples. Sign
  * changes are bracketed on 4096 samples and refined by bisection to 1e-14 of the period. */
 int gb_forcing_nonpositive_fraction(const gb_forcing *forcing, double *fraction, double *geff_min);
 

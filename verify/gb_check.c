@@ -173,20 +173,22 @@ int gb_check_write_data(const char *name, const cJSON *document)
     return failed;
 }
 
-cJSON *gb_check_load_reference(const char *name, char *path, size_t path_size)
+const cJSON *gb_check_reference_cases(const char *name, const char *section, cJSON **root)
 {
     const char *dir = getenv("GOMBOC_REFERENCE_DIR") ? getenv("GOMBOC_REFERENCE_DIR") : "references";
-    snprintf(path, path_size, "%s/%s", dir, name);
+    char path[1024];
+    snprintf(path, sizeof path, "%s/%s", dir, name);
     FILE *f = fopen(path, "r");
-    if (!f) return NULL;
     char *text = NULL;
     long len = -1;
-    if (fseek(f, 0, SEEK_END) == 0) len = ftell(f);
-    if (len >= 0 && fseek(f, 0, SEEK_SET) == 0 && (text = calloc((size_t)len + 1, 1)) &&
+    if (f && fseek(f, 0, SEEK_END) == 0) len = ftell(f);
+    if (f && len >= 0 && fseek(f, 0, SEEK_SET) == 0 && (text = calloc((size_t)len + 1, 1)) &&
         fread(text, 1, (size_t)len, f) != (size_t)len)
         text[0] = '\0';
-    fclose(f);
-    cJSON *root = text ? cJSON_Parse(text) : NULL;
+    if (f) fclose(f);
+    *root = text ? cJSON_Parse(text) : NULL;
     free(text);
-    return root;
+    const cJSON *cases = cJSON_GetObjectItem(*root, "cases");
+    gb_check c = {section, "-", "reference file readable, with cases", path, "exact"};
+    return gb_check_true(&c, cJSON_GetArraySize(cases) > 0, "%d cases in %s", cJSON_GetArraySize(cases), path) ? cases : NULL;
 }

@@ -57,8 +57,9 @@ extern const char *gb_check_data_dir;
 struct cJSON;
 int gb_check_write_data(const char *name, const struct cJSON *document);
 
-/* Parse references/<name> (or $GOMBOC_REFERENCE_DIR/<name>); NULL when missing or malformed. The
- * path tried is written to `path`. */
-struct cJSON *gb_check_load_reference(const char *name, char *path, size_t path_size);
+/* Parse references/<name> (or $GOMBOC_REFERENCE_DIR/<name>) and record the check that it is readable
+ * and holds a non-empty "cases" array (paper section `section`). Returns that array, or NULL; *root
+ * gets the document to free with cJSON_Delete (NULL when unreadable). */
+const struct cJSON *gb_check_reference_cases(const char *name, const char *section, struct cJSON **root);
 
 #endif
