@@ -479,22 +479,34 @@ static void height_derivatives(const gb_surface *surface, const double d[3], dou
     H[2] = gb_vec_dot(d, p->x_thetatheta);
 }
 
+/* A stationary-point record from the surface evaluated at it (no new evaluation). */
+static void fill_point_from(const gb_surface_point *p, const double d[3], gb_contact_point *out)
+{
+    out->height = gb_vec_dot(d, p->x);
+    out->gradient[0] = gb_vec_dot(d, p->x_phi);
+    out->gradient[1] = gb_vec_dot(d, p->x_theta);
+    out->hessian[0] = gb_vec_dot(d, p->x_phiphi);
+    out->hessian[1] = gb_vec_dot(d, p->x_phitheta);
+    out->hessian[2] = gb_vec_dot(d, p->x_thetatheta);
+    out->phi = p->phi;
+    out->theta = p->theta;
+    memcpy(out->rc, p->x, sizeof out->rc);
+    memcpy(out->n_hat, p->n_hat, sizeof out->n_hat);
+    memcpy(out->x_phi, p->x_phi, sizeof out->x_phi);
+    memcpy(out->x_theta, p->x_theta, sizeof out->x_theta);
+    double c[3];
+    gb_vec_cross(d, p->n_hat, c);
+    out->residual = gb_vec_norm(c);
+    const double *H = out->hessian;
+    out->is_minimum = H[0] > 0.0 && H[0] * H[2] - H[1] * H[1] > 0.0;
+}
+
 static void fill_point(const gb_surface *surface, const double d[3], double phi, double theta,
                        gb_contact_point *out)
 {
     gb_surface_point p;
-    height_derivatives(surface, d, phi, theta, &p, &out->height, out->gradient, out->hessian);
-    out->phi = phi;
-    out->theta = theta;
-    memcpy(out->rc, p.x, sizeof out->rc);
-    memcpy(out->n_hat, p.n_hat, sizeof out->n_hat);
-    memcpy(out->x_phi, p.x_phi, sizeof out->x_phi);
-    memcpy(out->x_theta, p.x_theta, sizeof out->x_theta);
-    double c[3];
-    gb_vec_cross(d, p.n_hat, c);
-    out->residual = gb_vec_norm(c);
-    const double *H = out->hessian;
-    out->is_minimum = H[0] > 0.0 && H[0] * H[2] - H[1] * H[1] > 0.0;
+    gb_surface_eval(surface, phi, theta, &p);
+    fill_point_from(&p, d, out);
 }
 
 /* Safeguarded Newton. Step: −H⁻¹g when H is positive definite, else the "saddle-free" step that
@@ -503,11 +515,10 @@ static void fill_point(const gb_surface *surface, const double d[3], double phi,
  * shrinking below 1e-8 rad (the rounding floor of the gradient). Returns 0 when converged to a
  * point with positive-definite Hessian, 1 otherwise (including nearing a pole). */
 static int newton(const gb_surface *surface, const double d[3], double *phi, double *theta,
-                  const gb_contact_refine_def *def, int *iterations)
+                  const gb_contact_refine_def *def, int *iterations, gb_surface_point *p)
 {
-    gb_surface_point p;
     double h, g[2], H[3], previous_step = INFINITY;
-    height_derivatives(surface, d, *phi, *theta, &p, &h, g, H);
+    height_derivatives(surface, d, *phi, *theta, p, &h, g, H);
     for (int it = 0; it < def->max_iterations; it++) {
         *iterations = it + 1;
         if (sin(*phi) < def->pole_guard) return 1;
@@ -540,7 +551,10 @@ static int newton(const gb_surface *surface, const double d[3], double *phi, dou
         previous_step = step;
         const double slope = g[0] * s[0] + g[1] * s[1];
         double t = 1.0, new_phi = *phi, new_theta = *theta, new_h = h;
-        int accepted = 0;
+        /* A definite step below 1e-6 rad is taken whole (the test below would accept it without
+         * comparing heights), so its height is not computed. */
+        int accepted = definite && step < 1e-6;
+        if (accepted) new_phi += s[0], new_theta += s[1], wrap_angles(&new_phi, &new_theta);
         for (int k = 0; k < 50 && !accepted; k++, t *= 0.5) {
             new_phi = *phi + t * s[0];
             new_theta = *theta + t * s[1];
@@ -553,7 +567,7 @@ static int newton(const gb_surface *surface, const double d[3], double *phi, dou
         if (!accepted) return 1;
         *phi = new_phi;
         *theta = new_theta;
-        height_derivatives(surface, d, *phi, *theta, &p, &h, g, H);
+        height_derivatives(surface, d, *phi, *theta, p, &h, g, H);
     }
     return 1;
 }
@@ -649,10 +663,13 @@ int gb_contact_refine(const gb_surface *surface, const double zb[3], double phi0
     double phi = phi0, theta = theta0;
     wrap_angles(&phi, &theta);
     int iterations = 0, fallback = def->force_fallback;
+    gb_surface_point at; /* the surface at the returned point, when Newton evaluated it last */
+    int have_point = 0;
     if (!fallback) {
         double try_phi = phi, try_theta = theta;
-        if (newton(surface, d, &try_phi, &try_theta, def, &iterations) == 0) {
+        if (newton(surface, d, &try_phi, &try_theta, def, &iterations, &at) == 0) {
             phi = try_phi, theta = try_theta;
+            have_point = 1;
         } else {
             fallback = 1;
         }
@@ -665,13 +682,17 @@ int gb_contact_refine(const gb_surface *surface, const double zb[3], double phi0
         int polish_iterations = 0;
         gb_contact_refine_def polish = *def;
         if (sin(phi) >= def->pole_guard &&
-            newton(surface, d, &polish_phi, &polish_theta, &polish, &polish_iterations) == 0 &&
+            newton(surface, d, &polish_phi, &polish_theta, &polish, &polish_iterations, &at) == 0 &&
             hypot(sin(phi) * (polish_theta - theta), polish_phi - phi) < 1e-4) {
             phi = polish_phi, theta = polish_theta;
+            have_point = 1;
         }
         iterations += polish_iterations;
     }
-    fill_point(surface, d, phi, theta, out);
+    if (have_point)
+        fill_point_from(&at, d, out);
+    else
+        fill_point(surface, d, phi, theta, out);
     out->iterations = iterations;
     out->used_fallback = fallback;
     return GB_OK;
