@@ -22,6 +22,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from common import load_json, save_figure, shape_summary_lines, write_atomically  # noqa: E402
 from contact_section import contact_section  # noqa: E402
 from dynamics_section import dynamics_section  # noqa: E402
+from chaos_section import chaos_section  # noqa: E402
 
 SECTION_FILES = {
     "Section 2: surface geometry (eqs 1-19, 66-68)": "verify/s2_surface.c",
@@ -29,6 +30,7 @@ SECTION_FILES = {
     "Section 2: the paper's claims about the bodies": "verify/s2_shape.c",
     "Section 4: contact selection": "verify/s4_contact.c",
     "Sections 3, 5: dynamics and energy": "verify/s5_dynamics.c",
+    "Sections 6, 8.2: Lyapunov exponents and chaos": "verify/s6_chaos.c",
     "The gomboc command": "verify/command.c",
 }
 
@@ -149,6 +151,7 @@ def main():
     lines += ["![Figure 1](fig1-morphologies.png)", ""]
     lines += contact_section(out, rows)
     lines += dynamics_section(out, rows)
+    lines += chaos_section(out, rows)
     lines += ["## Error against run time", "",
               "Each numeric check's relative error against its oracle, against the wall time since the",
               "previous check in the same test (the time of computing that row).", "",

@@ -391,6 +391,14 @@ void gb_dynamics_switch_to(gb_dynamics *d, const gb_contact_point *branch)
     d->branch_switches++;
 }
 
+void gb_dynamics_adopt_contact(gb_dynamics *to, const gb_dynamics *from)
+{
+    to->index = from->index;
+    to->contact = from->contact;
+    to->contact_time = from->contact_time;
+    memcpy(to->contact_rate, from->contact_rate, sizeof to->contact_rate);
+}
+
 int gb_dynamics_init_state(gb_dynamics *d, double t0, const double R0[9], const double omega0[3],
                            double y[GB_STATE_SIZE])
 {

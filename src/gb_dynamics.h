@@ -100,6 +100,11 @@ int gb_dynamics_branch_gap(gb_dynamics *dynamics, const double y[GB_STATE_SIZE],
 /* Make `branch` the contact from now on (a located switch). */
 void gb_dynamics_switch_to(gb_dynamics *dynamics, const gb_contact_point *branch);
 
+/* Take over the accepted contact of `from` (same body and model): for a trajectory placed next to
+ * another one (a Lyapunov perturbation), whose contact is then continued from there. The next accepted
+ * step re-checks it as every step does. Switch counters are left alone. */
+void gb_dynamics_adopt_contact(gb_dynamics *to, const gb_dynamics *from);
+
 typedef struct gb_dynamics_observables {
     double t;
     double R[9], zb[3], omega[3], omega_dot[3];

@@ -1,0 +1,423 @@
+/* Paper §6 and §8.2: the maximal Lyapunov exponent (eqs 75–77), and whether the paper's chaos is real.
+ *
+ * First the estimators are checked on systems whose exponents are known: the logistic map at r = 4
+ * (ln 2 exactly), Hénon's map (λ₁ from the literature; λ₁ + λ₂ = ln b exactly, since det J = −b),
+ * Lorenz's flow (λ₁ from the literature; λ₁ + λ₂ + λ₃ = −(σ + 1 + β) exactly; at ρ = 20 the
+ * attractor is a fixed point and λ_max is the real part of its leading eigenvalue, a closed form),
+ * and Ueda's forced oscillator through its stroboscopic map (λ₁ from the literature; λ₁ + λ₂ = −k
+ * exactly). Then the pair estimator of eq 77 is run on both bodies under Table 1 and under the
+ * variations that decide whether the exponent belongs to the physics or to the numerics. */
+#include "gb_check.h"
+#include "gb_error.h"
+#include "gb_lyapunov.h"
+#include "known_systems.h"
+#include "verify_sections.h"
+
+#include <cjson/cJSON.h>
+#include <float.h>
+#include <gsl/gsl_poly.h>
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+/* Literature values (J. C. Sprott, Chaos and Time-Series Analysis, Oxford 2003, Appendix A: the
+ * table of common chaotic systems, exponents to 4–5 digits). */
+static const double HENON_LAMBDA1 = 0.41922;
+static const double LORENZ_LAMBDA1 = 0.9056;
+static const double UEDA_LAMBDA1 = 0.1034;
+
+/* A statistical tolerance: 4 batch-means standard errors (4σ: a false alarm once in ~16000 runs of
+ * a fixed seed — and the runs here are deterministic) plus the reference's last printed digit. */
+static double stat_tol(double error_bar, double digit) { return 4.0 * error_bar + digit; }
+
+static void test_maps(void)
+{
+    gb_lyapunov_def def = gb_lyapunov_default_def();
+    def.intervals = 100000, def.transient = 100, def.delta0 = 1e-9;
+    gb_lyapunov_result pair, tangent;
+    known_map m = known_logistic(4.0, 0.1234567);
+    gb_lyapunov_pair_system ps = known_map_pair(&m);
+    int status = gb_lyapunov_pair(&ps, &m, &def, 0.0, NULL, &pair);
+    m = known_logistic(4.0, 0.1234567);
+    gb_lyapunov_tangent_system ts = known_map_tangent(&m);
+    status = status ? status : gb_lyapunov_tangent(&ts, &m, &def, 0.0, 1, &tangent);
+    gb_check c1 = {"6", "77", "logistic map r = 4: lambda, pair estimator (1e5 iterations, delta0 1e-9)", "ln 2 (conjugacy to the doubling map)",
+                   "4 batch-means errors"};
+    gb_check c2 = {"6", "75", "logistic map r = 4: lambda, tangent estimator (1e5 iterations)", "ln 2", "4 batch-means errors"};
+    if (status) {
+        gb_check_true(&c1, 0, "%s", gb_error_message());
+        return;
+    }
+    gb_check_close(&c1, pair.lambda_max, log(2.0), 0.0, stat_tol(pair.error_bar, 0.0));
+    gb_check_close(&c2, tangent.lambda_max, log(2.0), 0.0, stat_tol(tangent.error_bar, 0.0));
+    gb_lyapunov_result_free(&pair);
+    gb_lyapunov_result_free(&tangent);
+
+    m = known_henon(1.4, 0.3, 0.1, 0.1);
+    ps = known_map_pair(&m);
+    status = gb_lyapunov_pair(&ps, &m, &def, 0.0, NULL, &pair);
+    m = known_henon(1.4, 0.3, 0.1, 0.1);
+    ts = known_map_tangent(&m);
+    status = status ? status : gb_lyapunov_tangent(&ts, &m, &def, 0.0, 2, &tangent);
+    if (status) {
+        gb_check_true(&c1, 0, "%s", gb_error_message());
+        return;
+    }
+    gb_check ch1 = {"6", "77", "Henon (1.4, 0.3): lambda_1, pair estimator", "0.41922 (Sprott 2003)", "4 batch-means errors + 1e-5"};
+    gb_check_close(&ch1, pair.lambda_max, HENON_LAMBDA1, 0.0, stat_tol(pair.error_bar, 1e-5));
+    gb_check ch2 = {"6", "75", "Henon (1.4, 0.3): lambda_1, tangent estimator (QR)", "0.41922 (Sprott 2003)", "4 batch-means errors + 1e-5"};
+    gb_check_close(&ch2, tangent.exponent[0], HENON_LAMBDA1, 0.0, stat_tol(tangent.error_bar, 1e-5));
+    gb_check ch3 = {"6", "75", "Henon: lambda_1 + lambda_2", "ln 0.3 exactly (|det J| = b at every point)",
+                    "rounding: 1e5 Gram-Schmidt steps x 1e-16 relative, per iteration"};
+    gb_check_close(&ch3, tangent.exponent[0] + tangent.exponent[1], log(0.3), 0.0, 1e-11);
+    gb_lyapunov_result_free(&pair);
+    gb_lyapunov_result_free(&tangent);
+}
+
+/* λ_max of Lorenz at a stable fixed point C± (ρ < ρ_H): the largest real part of the roots of
+ * λ³ + (σ + β + 1)λ² + β(σ + ρ)λ + 2σβ(ρ − 1) = 0, the characteristic polynomial of J(C±). */
+static double lorenz_fixed_point_exponent(double sigma, double rho, double beta)
+{
+    const double a[4] = {2 * sigma * beta * (rho - 1), beta * (sigma + rho), sigma + beta + 1, 1};
+    double z[6];
+    gsl_poly_complex_workspace *w = gsl_poly_complex_workspace_alloc(4);
+    gsl_poly_complex_solve(a, 4, w, z);
+    gsl_poly_complex_workspace_free(w);
+    return fmax(z[0], fmax(z[2], z[4]));
+}
+
+static void test_flows(void)
+{
+    const double x0[3] = {1, 1, 1};
+    gb_lyapunov_def def = gb_lyapunov_default_def();
+    def.intervals = 2000, def.interval = 1.0, def.transient = 10, def.delta0 = 1e-8;
+    gb_lyapunov_result pair, tangent;
+    known_flow f = known_lorenz(10, 28, 8.0 / 3, x0);
+    gb_lyapunov_pair_system ps = known_flow_pair(&f);
+    int status = gb_lyapunov_pair(&ps, &f, &def, 0.0, NULL, &pair);
+    f = known_lorenz(10, 28, 8.0 / 3, x0);
+    gb_lyapunov_tangent_system ts = known_flow_tangent(&f);
+    status = status ? status : gb_lyapunov_tangent(&ts, &f, &def, 0.0, 3, &tangent);
+    gb_check cl = {"6", "77", "Lorenz (10, 28, 8/3): lambda_1, pair estimator (t = 2000, renormalised every 1)",
+                   "0.9056 (Sprott 2003)", "4 batch-means errors + 1e-4"};
+    if (status) {
+        gb_check_true(&cl, 0, "%s", gb_error_message());
+        return;
+    }
+    gb_check_close(&cl, pair.lambda_max, LORENZ_LAMBDA1, 0.0, stat_tol(pair.error_bar, 1e-4));
+    gb_check ct = {"6", "75", "Lorenz (10, 28, 8/3): lambda_1, tangent estimator (3 vectors)", "0.9056 (Sprott 2003)",
+                   "4 batch-means errors + 1e-4"};
+    gb_check_close(&ct, tangent.exponent[0], LORENZ_LAMBDA1, 0.0, stat_tol(tangent.error_bar, 1e-4));
+    /* The sum is the log-volume growth; its error is rounding in the most contracted direction, which
+     * is recovered from vectors e^{(λ1 − λ3)τ} times longer: per interval at most (steps per
+     * interval) × ε × e^{(λ1 − λ3)τ} (rk8pd's truncation error, O(h^8), is far below: halving the step
+     * does not reduce the measured error). */
+    const double trace = -(10 + 1 + 8.0 / 3), sum = tangent.exponent[0] + tangent.exponent[1] + tangent.exponent[2];
+    const double rounding = (def.interval / f.step) * DBL_EPSILON * exp((tangent.exponent[0] - tangent.exponent[2]) * def.interval);
+    gb_check cs = {"6", "75", "Lorenz: lambda_1 + lambda_2 + lambda_3", "-(sigma + 1 + beta) = -13.667 exactly (trace of J)",
+                   "rounding budget: steps per interval x eps x exp((lambda_1 - lambda_3) tau)"};
+    gb_check_close(&cs, sum, trace, 0.0, rounding / def.interval);
+    gb_check ca = {"6", "75, 77", "Lorenz: the two estimators agree", "each other", "4 x the combined batch-means error"};
+    gb_check_close(&ca, pair.lambda_max, tangent.exponent[0], 0.0, 4.0 * hypot(pair.error_bar, tangent.error_bar));
+    gb_lyapunov_result_free(&pair);
+    gb_lyapunov_result_free(&tangent);
+
+    /* ρ = 20: a stable fixed point; a negative exponent, known in closed form. */
+    def.intervals = 500;
+    const double exact = lorenz_fixed_point_exponent(10, 20, 8.0 / 3);
+    f = known_lorenz(10, 20, 8.0 / 3, x0);
+    ps = known_flow_pair(&f);
+    status = gb_lyapunov_pair(&ps, &f, &def, 0.0, NULL, &pair);
+    f = known_lorenz(10, 20, 8.0 / 3, x0);
+    ts = known_flow_tangent(&f);
+    status = status ? status : gb_lyapunov_tangent(&ts, &f, &def, 0.0, 1, &tangent);
+    if (status) {
+        gb_check_true(&cl, 0, "%s", gb_error_message());
+        return;
+    }
+    gb_check c20 = {"6", "77", "Lorenz rho = 20 (stable fixed point): lambda_max, pair estimator",
+                    "largest real part of the eigenvalues of J at C+- (cubic solved by GSL)", "4 batch-means errors"};
+    gb_check_close(&c20, pair.lambda_max, exact, 0.0, stat_tol(pair.error_bar, 0.0));
+    gb_check c20t = {"6", "75", "Lorenz rho = 20: lambda_max, tangent estimator", "the same closed form", "4 batch-means errors"};
+    gb_check_close(&c20t, tangent.lambda_max, exact, 0.0, stat_tol(tangent.error_bar, 0.0));
+    gb_lyapunov_result_free(&pair);
+    gb_lyapunov_result_free(&tangent);
+
+    /* Ueda: renormalised once per forcing period 2π, i.e. through the stroboscopic map. */
+    def.intervals = 2000, def.interval = 2 * M_PI, def.transient = 20;
+    f = known_ueda(0.05, 7.5, 2.5, 0.0);
+    ps = known_flow_pair(&f);
+    status = gb_lyapunov_pair(&ps, &f, &def, 0.0, NULL, &pair);
+    f = known_ueda(0.05, 7.5, 2.5, 0.0);
+    ts = known_flow_tangent(&f);
+    status = status ? status : gb_lyapunov_tangent(&ts, &f, &def, 0.0, 2, &tangent);
+    if (status) {
+        gb_check_true(&cl, 0, "%s", gb_error_message());
+        return;
+    }
+    gb_check cu = {"6", "74, 77", "Ueda x'' + 0.05 x' + x^3 = 7.5 cos t: lambda_1 through the stroboscopic map, pair estimator",
+                   "0.1034 (Sprott 2003)", "4 batch-means errors + 1e-4"};
+    gb_check_close(&cu, pair.lambda_max, UEDA_LAMBDA1, 0.0, stat_tol(pair.error_bar, 1e-4));
+    gb_check cut = {"6", "75", "Ueda: lambda_1, tangent estimator", "0.1034 (Sprott 2003)", "4 batch-means errors + 1e-4"};
+    gb_check_close(&cut, tangent.exponent[0], UEDA_LAMBDA1, 0.0, stat_tol(tangent.error_bar, 1e-4));
+    gb_check cus = {"6", "75", "Ueda: lambda_1 + lambda_2", "-k = -0.05 exactly (trace of J)", "rk8pd, 400 fixed steps per period: trace to 1e-8"};
+    gb_check_close(&cus, tangent.exponent[0] + tangent.exponent[1], -0.05, 0.0, 1e-8);
+    gb_lyapunov_result_free(&pair);
+    gb_lyapunov_result_free(&tangent);
+}
+
+/* One Lorenz (10, 28, 8/3) pair estimate over `total` time units; appended to `array` as {key: value,
+ * lambda, error_bar}; the spread of the family is tracked in lo/hi/worst. */
+typedef struct family {
+    double lo, hi, worst;
+} family;
+
+static int lorenz_row(double delta0, double interval, double total, cJSON *array, const char *key, double value,
+                      family *spread, gb_lyapunov_result *out)
+{
+    const double x0[3] = {1, 1, 1};
+    gb_lyapunov_def def = gb_lyapunov_default_def();
+    def.interval = interval, def.intervals = (size_t)lround(total / interval), def.transient = (size_t)lround(10 / interval);
+    def.delta0 = delta0;
+    known_flow f = known_lorenz(10, 28, 8.0 / 3, x0);
+    gb_lyapunov_pair_system ps = known_flow_pair(&f);
+    const int status = gb_lyapunov_pair(&ps, &f, &def, 0.0, NULL, out);
+    if (status) return status;
+    spread->lo = fmin(spread->lo, out->lambda_max), spread->hi = fmax(spread->hi, out->lambda_max);
+    spread->worst = fmax(spread->worst, out->error_bar);
+    cJSON *row = cJSON_CreateObject();
+    cJSON_AddNumberToObject(row, key, value);
+    cJSON_AddNumberToObject(row, "lambda", out->lambda_max);
+    cJSON_AddNumberToObject(row, "error_bar", out->error_bar);
+    cJSON_AddItemToArray(array, row);
+    return GB_OK;
+}
+
+/* The estimator's own parameters on Lorenz: observation time, δ₀ and the renormalisation interval. The
+ * flow is integrated in the same fixed steps for both trajectories; with adaptive steps, the two step
+ * sequences differ by O(rtol), which swamps a δ₀ below rtol·|x| (we saw λ = 1.47 at δ₀ = 1e-11, rtol 1e-10). */
+static void test_estimator_parameters(void)
+{
+    cJSON *doc = cJSON_CreateObject(), *length = cJSON_AddArrayToObject(doc, "observation_time"),
+          *deltas = cJSON_AddArrayToObject(doc, "delta0"), *intervals = cJSON_AddArrayToObject(doc, "interval");
+    int failures = 0;
+    gb_lyapunov_result r;
+    /* Observation time: the batch-means error must shrink as 1/√N (ratio 2 per factor 4 in N). */
+    double errors[3] = {NAN, NAN, NAN};
+    const double lengths[3] = {250, 1000, 4000};
+    for (int k = 0; k < 3; k++) {
+        family unused = {INFINITY, -INFINITY, 0.0};
+        if (lorenz_row(1e-8, 1.0, lengths[k], length, "t", lengths[k], &unused, &r)) {
+            failures++;
+            continue;
+        }
+        errors[k] = r.error_bar;
+        char q[120];
+        snprintf(q, sizeof q, "Lorenz lambda_1 after t = %g", lengths[k]);
+        gb_check c = {"6", "77", q, "0.9056 (Sprott 2003)", "4 batch-means errors + 1e-4"};
+        gb_check_close(&c, r.lambda_max, LORENZ_LAMBDA1, 0.0, stat_tol(r.error_bar, 1e-4));
+        gb_lyapunov_result_free(&r);
+    }
+    const double order = log(errors[0] / errors[2]) / log(lengths[2] / lengths[0]);
+    gb_check co = {"6", "77", "decay of the batch-means error with observation time (exponent)", "1/2 (central limit)",
+                   "0.25: batch-means errors from 10 batches scatter by ~1/sqrt(2 x 9) = 24% each"};
+    gb_check_close(&co, order, 0.5, 0.0, 0.25);
+    /* δ₀ from 1e-5 to 1e-11, then the renormalisation interval 0.5, 1, 2: one exponent within the errors. */
+    const double d0s[4] = {1e-5, 1e-7, 1e-9, 1e-11}, taus[3] = {0.5, 1.0, 2.0};
+    family by_delta = {INFINITY, -INFINITY, 0.0}, by_interval = {INFINITY, -INFINITY, 0.0};
+    for (int k = 0; k < 4; k++)
+        if (lorenz_row(d0s[k], 1.0, 2000, deltas, "delta0", d0s[k], &by_delta, &r)) failures++;
+        else gb_lyapunov_result_free(&r);
+    for (int k = 0; k < 3; k++)
+        if (lorenz_row(1e-8, taus[k], 2000, intervals, "interval", taus[k], &by_interval, &r)) failures++;
+        else gb_lyapunov_result_free(&r);
+    gb_check cd = {"6", "77", "Lorenz: spread of lambda_1 over delta0 = 1e-5 ... 1e-11", "no dependence on delta0 (linear regime)",
+                   "4 x sqrt(2) x the largest batch-means error"};
+    gb_check_close(&cd, by_delta.hi - by_delta.lo, 0.0, 0.0, 4.0 * M_SQRT2 * by_delta.worst);
+    gb_check ci = {"6", "77", "Lorenz: spread of lambda_1 over renormalisation intervals 0.5, 1, 2", "no dependence on the interval",
+                   "4 x sqrt(2) x the largest batch-means error"};
+    gb_check_close(&ci, by_interval.hi - by_interval.lo, 0.0, 0.0, 4.0 * M_SQRT2 * by_interval.worst);
+    gb_check cw = {"6", "77", "estimator study runs and is saved", "-", "exact"};
+    gb_check_true(&cw, failures == 0 && gb_check_write_data("lyapunov-estimator.json", doc) == 0, "%d runs failed: %s", failures,
+                  gb_error_message());
+    cJSON_Delete(doc);
+}
+
+/* ------------------------------------------------------------ is the chaos real? */
+
+typedef struct variation {
+    const char *name;       /* what changes against the baseline */
+    gb_contact_model contact;
+    gb_dynamics_variant variant;
+    size_t n_phi, n_theta;  /* grid (grid models) */
+    double amplitude_scale; /* A1, A2 multiplied by this (0: unforced) */
+    double units_g;         /* 1: A in m/s²; 9.81: A in units of g */
+    double beta;
+    size_t steps_per_period;
+    double delta0;
+} variation;
+
+static int lyapunov_of(const char *morphology, const variation *v, gb_lyapunov_result *r)
+{
+    gb_dynamics_def def = gb_dynamics_default_def();
+    def.contact = v->contact, def.variant = v->variant;
+    def.grid.n_phi = v->n_phi, def.grid.n_theta = v->n_theta;
+    def.forcing.a1 *= v->amplitude_scale * v->units_g, def.forcing.a2 *= v->amplitude_scale * v->units_g;
+    gb_integrate_def idef = gb_integrate_default_def();
+    idef.steps_per_period = v->steps_per_period;
+    const double R0[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1}, w0[3] = {0, 0, 0};
+    gb_lyapunov_body *body;
+    int status = gb_lyapunov_body_create(morphology, v->beta, &def, &idef, R0, w0, def.forcing.omega, &body);
+    if (status) return status;
+    gb_lyapunov_def ldef = gb_lyapunov_default_def();
+    ldef.delta0 = v->delta0, ldef.interval = 2 * M_PI / def.forcing.omega, ldef.intervals = 300;
+    gb_lyapunov_pair_system ps = gb_lyapunov_body_pair();
+    status = gb_lyapunov_pair(&ps, body, &ldef, 0.0, NULL, r);
+    gb_lyapunov_body_free(body);
+    return status;
+}
+
+/* The baseline is Table 1 with the paper's model (eq 44, the 90 × 180 grid; the exact fast search gives
+ * the plain loop's trajectory bit for bit), A1, A2 in m/s², δ₀ = 1e-7, 300 periods, R0 = I, ω0 = 0. */
+#define BASE GB_CONTACT_MODEL_FAST_GRID, GB_VARIANT_PAPER
+static const variation VARIATIONS[] = {
+    {"baseline (paper model, grid 90x180, A in m/s^2)", BASE, 90, 180, 1.0, 1.0, 0.12, 160, 1e-7},
+    {"A1, A2 in units of g", BASE, 90, 180, 1.0, 9.81, 0.12, 160, 1e-7},
+    {"delta0 = 1e-5", BASE, 90, 180, 1.0, 1.0, 0.12, 160, 1e-5},
+    {"delta0 = 1e-9", BASE, 90, 180, 1.0, 1.0, 0.12, 160, 1e-9},
+    {"delta0 = 1e-11", BASE, 90, 180, 1.0, 1.0, 0.12, 160, 1e-11},
+    {"grid 180x360", BASE, 180, 360, 1.0, 1.0, 0.12, 160, 1e-7},
+    {"grid 360x720", BASE, 360, 720, 1.0, 1.0, 0.12, 160, 1e-7},
+    {"grid 720x1440", BASE, 720, 1440, 1.0, 1.0, 0.12, 160, 1e-7},
+    {"80 steps per period", BASE, 90, 180, 1.0, 1.0, 0.12, 80, 1e-7},
+    {"320 steps per period", BASE, 90, 180, 1.0, 1.0, 0.12, 320, 1e-7},
+    {"continuous contact, eq 44 as written", GB_CONTACT_MODEL_CONTINUOUS, GB_VARIANT_PAPER, 90, 180, 1.0, 1.0, 0.12, 160, 1e-7},
+    {"continuous contact, rolling equation", GB_CONTACT_MODEL_CONTINUOUS, GB_VARIANT_ROLLING, 90, 180, 1.0, 1.0, 0.12, 160, 1e-7},
+    {"continuous rolling, delta0 = 1e-11", GB_CONTACT_MODEL_CONTINUOUS, GB_VARIANT_ROLLING, 90, 180, 1.0, 1.0, 0.12, 160, 1e-11},
+    {"continuous rolling, A in units of g", GB_CONTACT_MODEL_CONTINUOUS, GB_VARIANT_ROLLING, 90, 180, 1.0, 9.81, 0.12, 160, 1e-7},
+    {"unforced (A1 = A2 = 0)", BASE, 90, 180, 0.0, 1.0, 0.12, 160, 1e-7},
+    {"continuous rolling, unforced", GB_CONTACT_MODEL_CONTINUOUS, GB_VARIANT_ROLLING, 90, 180, 0.0, 1.0, 0.12, 160, 1e-7},
+    {"beta = 0.02 (strictly convex)", BASE, 90, 180, 1.0, 1.0, 0.02, 160, 1e-7},
+    {"continuous rolling, beta = 0.02", GB_CONTACT_MODEL_CONTINUOUS, GB_VARIANT_ROLLING, 90, 180, 1.0, 1.0, 0.02, 160, 1e-7},
+};
+enum { VARIATION_COUNT = sizeof VARIATIONS / sizeof VARIATIONS[0] };
+
+typedef struct estimate {
+    double lambda, error;
+    int ok;
+} estimate;
+
+static estimate find(const estimate table[][VARIATION_COUNT], int body, const char *name)
+{
+    for (int k = 0; k < VARIATION_COUNT; k++)
+        if (!strcmp(VARIATIONS[k].name, name)) return table[body][k];
+    return (estimate){NAN, NAN, 0};
+}
+
+/* Is λ clearly positive (> 4σ), clearly not (< 4σ above zero... i.e. λ + 4σ < 0 or |λ| < 4σ)? */
+static int positive(estimate e) { return e.ok && e.lambda - 4.0 * e.error > 0.0; }
+
+static void test_chaos_real(void)
+{
+    static const char *const bodies[2] = {"I", "II"};
+    estimate table[2][VARIATION_COUNT];
+    cJSON *doc = cJSON_CreateObject(), *rows = cJSON_AddArrayToObject(doc, "variations"),
+          *records = cJSON_AddArrayToObject(doc, "baseline_records");
+    int failures = 0;
+    for (int b = 0; b < 2; b++)
+        for (int k = 0; k < VARIATION_COUNT; k++) {
+            gb_lyapunov_result r;
+            const int status = lyapunov_of(bodies[b], &VARIATIONS[k], &r);
+            table[b][k] = (estimate){status ? NAN : r.lambda_max, status ? NAN : r.error_bar, !status};
+            cJSON *row = cJSON_CreateObject();
+            cJSON_AddStringToObject(row, "body", bodies[b]);
+            cJSON_AddStringToObject(row, "variation", VARIATIONS[k].name);
+            if (status) {
+                failures++;
+                cJSON_AddStringToObject(row, "error", gb_error_message());
+                cJSON_AddItemToArray(rows, row);
+                continue;
+            }
+            cJSON_AddNumberToObject(row, "lambda_max", r.lambda_max);
+            cJSON_AddNumberToObject(row, "error_bar", r.error_bar);
+            cJSON_AddNumberToObject(row, "late_drift", r.late_drift);
+            cJSON_AddBoolToObject(row, "converged", r.converged);
+            cJSON_AddItemToArray(rows, row);
+            if (k == 0 || !strcmp(VARIATIONS[k].name, "continuous contact, rolling equation")) {
+                cJSON *rec = cJSON_CreateObject();
+                cJSON_AddStringToObject(rec, "body", bodies[b]);
+                cJSON_AddStringToObject(rec, "variation", VARIATIONS[k].name);
+                cJSON_AddNumberToObject(rec, "interval", r.interval);
+                cJSON_AddItemToObject(rec, "instantaneous", cJSON_CreateDoubleArray(r.instantaneous, (int)r.intervals));
+                cJSON_AddItemToObject(rec, "running", cJSON_CreateDoubleArray(r.running, (int)r.intervals));
+                cJSON_AddItemToArray(records, rec);
+            }
+            gb_lyapunov_result_free(&r);
+        }
+    gb_check cr = {"8.2", "77", "every variation of both bodies runs (36 pair runs of 300 periods)", "-", "exact"};
+    gb_check_true(&cr, failures == 0 && gb_check_write_data("chaos.json", doc) == 0, "%d failed: %s", failures, gb_error_message());
+    cJSON_Delete(doc);
+    if (failures) return;
+
+    const char *claim_positive = "lambda_max > 0 after convergence at baseline, for both bodies (section 8.2, Fig 9)";
+    for (int b = 0; b < 2; b++) {
+        static const char *const readings[][2] = {{"baseline (paper model, grid 90x180, A in m/s^2)", "paper model, A in m/s^2"},
+                                                  {"A1, A2 in units of g", "paper model, A in units of g"},
+                                                  {"continuous contact, rolling equation", "continuous contact, rolling equation"}};
+        for (int k = 0; k < 3; k++) {
+            const estimate e = find(table, b, readings[k][0]);
+            char q[160];
+            snprintf(q, sizeof q, "Gomboc %s, %s: lambda_max - 4 sigma", bodies[b], readings[k][1]);
+            gb_check c = {"8.2", "77", q, "zero", "4 batch-means errors (10 batches of 30 periods)"};
+            gb_check_finding(&c, claim_positive, positive(e), e.ok && fabs(e.lambda) > 4.0 * e.error,
+                             "lambda_max = %.3f +- %.3f 1/s", e.lambda, e.error);
+        }
+    }
+    /* Similar long-time rates for the two shapes. */
+    static const char *const compared[2] = {"baseline (paper model, grid 90x180, A in m/s^2)", "continuous contact, rolling equation"};
+    for (int k = 0; k < 2; k++) {
+        const estimate a = find(table, 0, compared[k]), b = find(table, 1, compared[k]);
+        const double combined = hypot(a.error, b.error);
+        char q[160];
+        snprintf(q, sizeof q, "lambda_max(I) - lambda_max(II), %s", compared[k]);
+        gb_check c = {"8.2", "77", q, "zero", "4 x the combined batch-means error"};
+        const int similar = fabs(a.lambda - b.lambda) <= 4.0 * combined;
+        gb_check_finding(&c, "the two shapes have similar long-time average divergence rates (section 8.2)", similar, 1,
+                         "I %.3f +- %.3f, II %.3f +- %.3f 1/s: difference %.1f combined errors", a.lambda, a.error, b.lambda,
+                         b.error, fabs(a.lambda - b.lambda) / combined);
+    }
+    /* The exponent of the paper's model against its own numerical parameters. */
+    static const char *const families[][5] = {
+        {"grid resolution", "baseline (paper model, grid 90x180, A in m/s^2)", "grid 180x360", "grid 360x720", "grid 720x1440"},
+        {"delta0", "baseline (paper model, grid 90x180, A in m/s^2)", "delta0 = 1e-5", "delta0 = 1e-9", "delta0 = 1e-11"},
+        {"RK4 step", "80 steps per period", "baseline (paper model, grid 90x180, A in m/s^2)", "320 steps per period", NULL},
+        {"delta0, continuous rolling", "continuous contact, rolling equation", "continuous rolling, delta0 = 1e-11", NULL, NULL},
+    };
+    for (int f = 0; f < 4; f++)
+        for (int b = 0; b < 2; b++) {
+            double lo = INFINITY, hi = -INFINITY, worst = 0.0;
+            char values[200] = "";
+            for (int k = 1; k < 5 && families[f][k]; k++) {
+                const estimate e = find(table, b, families[f][k]);
+                lo = fmin(lo, e.lambda), hi = fmax(hi, e.lambda), worst = fmax(worst, e.error);
+                snprintf(values + strlen(values), sizeof values - strlen(values), "%s%.3f", k > 1 ? ", " : "", e.lambda);
+            }
+            char q[160], claim[200];
+            snprintf(q, sizeof q, "Gomboc %s: spread of lambda_max over the %s", bodies[b], families[f][0]);
+            snprintf(claim, sizeof claim, "lambda_max is a property of the model, not of its %s", families[f][0]);
+            gb_check c = {"8.2", "77", q, "zero", "4 x sqrt(2) x the largest batch-means error"};
+            gb_check_finding(&c, claim, hi - lo <= 4.0 * M_SQRT2 * worst, 1, "lambda_max = %s 1/s (largest error %.3f)", values, worst);
+        }
+}
+
+int verify_register_s6_chaos(void)
+{
+    static const verify_test tests[] = {
+        {"eq 75, 77: both estimators on the logistic and Henon maps", test_maps},
+        {"eq 74, 75, 77: both estimators on the Lorenz and Ueda flows", test_flows},
+        {"eq 77: observation time, delta0 and renormalisation interval", test_estimator_parameters},
+        {"section 8.2: is the chaos real? lambda_max under every variation", test_chaos_real},
+        {NULL, NULL},
+    };
+    return verify_register_suite("Sections 6, 8.2: Lyapunov exponents and chaos", tests);
+}
