@@ -33,9 +33,10 @@ def chaos_section(out, rows):
     if not os.path.exists(path):
         return lines + ["(chaos data missing: the test did not write it)", ""]
     data = load_json(path)
+    periods, batches = data["periods"], data["batches"]
     lines += ["The maximal Lyapunov exponent by the pair estimator of eq 77: two trajectories, the second put back at",
-              "delta0 along the current separation once per forcing period; 300 periods from R0 = I, omega0 = 0; error bar =",
-              "batch-means standard error (10 batches of 30 periods). The separation is a 6-vector: the body-frame rotation",
+              f"delta0 along the current separation once per forcing period; {periods:g} periods from R0 = I, omega0 = 0;",
+              f"error bar = batch-means standard error ({batches:g} batches). The separation is a 6-vector: the body-frame rotation",
               "vector between the two attitudes [rad] and the angular-velocity difference divided by the forcing frequency.",
               "The estimator itself is checked first on the logistic, Hénon, Lorenz and Ueda systems (the checks of",
               "`verify/s6_chaos.c` in the table of every check).", "",

@@ -70,9 +70,10 @@ typedef struct gb_lyapunov_result {
 
 void gb_lyapunov_result_free(gb_lyapunov_result *result);
 
-/* The pair estimator (eq 77), starting from trajectory 1 already placed by the caller or not: the
- * first placement is δ₀·u along `direction` (a vector of `dimension`, normalised here; NULL for
- * (1, 1, …, 1)). GB_ENUMERIC when the separation becomes zero or non-finite. */
+/* The pair estimator (eq 77). After `transient` intervals of the reference alone, trajectory 1 is
+ * placed at δ₀ along `direction` (a vector of `dimension`, normalised here; NULL for (1, 1, …, 1)) and
+ * put back at δ₀ along the separation after every interval. GB_ENUMERIC when the separation becomes
+ * zero or non-finite. */
 int gb_lyapunov_pair(const gb_lyapunov_pair_system *system, void *context, const gb_lyapunov_def *def,
                      double t0, const double *direction, gb_lyapunov_result *out);
 
