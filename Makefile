@@ -76,7 +76,7 @@ verify-only: $(BIN) $(VERIFY_BIN)
 	  $(FIG2) --morphology $$m --method grid > $(OUT)/fig2-grid-$$m.json.tmp && \
 	  mv $(OUT)/fig2-grid-$$m.json.tmp $(OUT)/fig2-grid-$$m.json || exit 1; \
 	done
-	GOMBOC_BIN=$(BIN) $(VERIFY_BIN) --results $(OUT)/checks.json --data $(OUT); \
+	GOMBOC_BIN=$(BIN) $(VERIFY_BIN) --results $(OUT)/checks.json --data $(OUT) $(VERIFY_FLAGS); \
 	status=$$?; \
 	$(PYTHON) reports/make_report.py $(OUT) "$(CC)" "$(WARN) $(CFLAGS)" || status=1; \
 	echo "verify: report written to $(OUT)/verification.md"; \
@@ -90,8 +90,10 @@ bench-only: $(BENCH_BIN)
 	@mkdir -p $(OUT)
 	$(BENCH_BIN) $(OUT)/bench.json
 
-# No study is longer than `make verify` yet: the dynamics (issue 4) will add them here.
-verify-full: verify
+# Everything `make verify` does, plus the long studies (harness --full): continuous rolling over 3000
+# periods, post-transient exponents of the unforced bodies. About 10 minutes more.
+verify-full: deps
+	@$(MAKE) --no-print-directory verify-only VERIFY_FLAGS=--full
 
 references: deps
 	@$(MAKE) --no-print-directory references-only
@@ -100,6 +102,7 @@ references-only:
 	$(PYTHON) references/massprops.py > references/massprops.json.tmp && mv references/massprops.json.tmp references/massprops.json
 	$(PYTHON) references/contact.py > references/contact.json.tmp && mv references/contact.json.tmp references/contact.json
 	$(PYTHON) references/dynamics.py > references/dynamics.json.tmp && mv references/dynamics.json.tmp references/dynamics.json
+	$(PYTHON) references/spectrum.py > references/spectrum.json.tmp && mv references/spectrum.json.tmp references/spectrum.json
 
 install: deps
 	@$(MAKE) --no-print-directory build

@@ -31,6 +31,7 @@ SECTION_FILES = {
     "Section 4: contact selection": "verify/s4_contact.c",
     "Sections 3, 5: dynamics and energy": "verify/s5_dynamics.c",
     "Sections 6, 8.2: Lyapunov exponents and chaos": "verify/s6_chaos.c",
+    "Sections 6, 8.2: stroboscopic maps and spectra": "verify/s6_diagnostics.c",
     "The gomboc command": "verify/command.c",
 }
 

@@ -1,10 +1,14 @@
 #!/usr/bin/python3
-"""Figures 3–6 of the paper from the time histories `gomboc run` wrote, and a summary page.
+"""Figures 3–9 of the paper from what `gomboc run` wrote, and a summary page.
 
 usage: run_report.py OUT NAME [NAME ...]
-Reads OUT/NAME-history.csv and OUT/NAME-summary.json for every scene NAME; writes
-OUT/fig-timeseries-NAME.png (ω, h*, E with switch markers, switching rate: Figs 3 and 5),
-OUT/fig-contact-NAME.png (contact index and r_c: Figs 4 and 6) and OUT/runs.md. Recomputes no physics.
+Reads OUT/NAME-summary.json for every scene NAME, and the outputs the scene asked for; writes
+OUT/fig-timeseries-NAME.png (ω, h*, E with switch markers, switching rate: Figs 3 and 5) and
+OUT/fig-contact-NAME.png (contact index and r_c: Figs 4 and 6) from NAME-history.csv;
+OUT/fig7-strobe-NAME.png (Poincaré cloud of ω and the return map of ω_x) from NAME-strobe.csv;
+OUT/fig8-spectrum-NAME.png (power spectrum of ω_x in Hz, and the (ω_x, ω_z) phase portrait when the
+history is there) from NAME-spectrum.csv; OUT/fig9-lyapunov-NAME.png (λ_inst and the running λ_max)
+from NAME-lyapunov.csv; and OUT/runs.md. Recomputes no physics.
 """
 import os
 import sys
@@ -62,6 +66,71 @@ def contact_figure(out, name, h, summary):
     plt.close(fig)
 
 
+def strobe_figure(out, name, summary):
+    data = numpy.genfromtxt(os.path.join(out, f"{name}-strobe.csv"), delimiter=",", names=True)
+    fig = plt.figure(figsize=(11, 4.8))
+    ax = fig.add_subplot(1, 2, 1, projection="3d")
+    ax.scatter(data["omega_x"], data["omega_y"], data["omega_z"], s=4, c=data["n"], cmap="viridis")
+    ax.set_xlabel("ω_x")
+    ax.set_ylabel("ω_y")
+    ax.set_zlabel("ω_z")
+    ax.set_title("Poincaré cloud of ω at t = t0 + (n + phase) T")
+    ax2 = fig.add_subplot(1, 2, 2)
+    ax2.plot(data["omega_x"][:-1], data["omega_x"][1:], ".", ms=3)
+    ax2.set_xlabel("ω_x(n) [rad/s]")
+    ax2.set_ylabel("ω_x(n+1) [rad/s]")
+    ax2.set_title("one-step return map")
+    fig.suptitle(f"Fig 7: {summary['scene']['description']} ({len(data)} samples after "
+                 f"{summary['scene']['strobe_transient_periods']:.0f} periods)", fontsize=10)
+    fig.tight_layout()
+    save_figure(fig, os.path.join(out, f"fig7-strobe-{name}.png"))
+    plt.close(fig)
+
+
+def spectrum_figure(out, name, summary, history):
+    data = numpy.genfromtxt(os.path.join(out, f"{name}-spectrum.csv"), delimiter=",", names=True)
+    panels = 2 if history is not None else 1
+    fig, axes = plt.subplots(1, panels, figsize=(5.5 * panels, 4.5), squeeze=False)
+    ax = axes[0][0]
+    ax.semilogy(data["frequency_hz"][1:], data["power"][1:], lw=0.6)
+    forcing = summary["spectrum"]["forcing_hz"]
+    for k in (1, 2):
+        ax.axvline(k * forcing, color="tab:red", lw=0.5, ls="--")
+    ax.set_xlim(0, 4 * forcing)
+    ax.set_xlabel("frequency [Hz] (dashed: ω/2π and 2ω/2π)")
+    ax.set_ylabel("PSD of ω_x [(rad/s)²/Hz]")
+    ax.set_title(f"power spectrum ({summary['spectrum']['window']} window)")
+    if history is not None:
+        start = summary["scene"]["spectrum_transient_periods"] * 2 * numpy.pi / summary["scene"]["omega"]
+        keep = history["t"] >= start
+        axes[0][1].plot(history["omega_x"][keep], history["omega_z"][keep], lw=0.3)
+        axes[0][1].set_xlabel("ω_x [rad/s]")
+        axes[0][1].set_ylabel("ω_z [rad/s]")
+        axes[0][1].set_title("phase portrait after the transient")
+    fig.suptitle(f"Fig 8: {summary['scene']['description']}", fontsize=10)
+    fig.tight_layout()
+    save_figure(fig, os.path.join(out, f"fig8-spectrum-{name}.png"))
+    plt.close(fig)
+
+
+def lyapunov_figure(out, name, summary):
+    data = numpy.genfromtxt(os.path.join(out, f"{name}-lyapunov.csv"), delimiter=",", names=True)
+    lyap = summary["lyapunov"]
+    fig, ax = plt.subplots(figsize=(9, 4.2))
+    ax.plot(data["period_end"], data["lambda_inst"], lw=0.5, color="0.6", label="λ_inst (per interval)")
+    ax.plot(data["period_end"], data["lambda_running"], lw=1.4, color="tab:blue", label="running λ_max")
+    ax.axhline(0.0, color="black", lw=0.5)
+    ax.set_xlabel("forcing period")
+    ax.set_ylabel("λ [1/s]")
+    ax.set_ylim(min(-0.5, numpy.percentile(data["lambda_inst"], 1)), max(1.0, numpy.percentile(data["lambda_inst"], 99)) * 1.2)
+    ax.legend(fontsize=8)
+    ax.set_title(f"Fig 9: {summary['scene']['description']}: λ_max = {lyap['lambda_max']:.3f} ± {lyap['error_bar']:.3f} 1/s",
+                 fontsize=10)
+    fig.tight_layout()
+    save_figure(fig, os.path.join(out, f"fig9-lyapunov-{name}.png"))
+    plt.close(fig)
+
+
 def summary_lines(name, summary):
     scene, lines = summary["scene"], []
     lines.append(f"### {scene['description']} (`cases/{name}.ini`)")
@@ -82,24 +151,53 @@ def summary_lines(name, summary):
                      f"(min {monitors['geff_min']:.3f} m/s²); normal force ≤ 0 (lift-off) in "
                      f"{100 * monitors['lift_off_fraction']:.2f} % (min {monitors['normal_force_min']:.3f} N); "
                      f"friction needed up to μ = {monitors['friction_needed_max']:.3f}")
+    strobe, spectrum, lyap = summary.get("strobe"), summary.get("spectrum"), summary.get("lyapunov")
+    if strobe:
+        period = (f"period {strobe['period_detected']:.0f}" if strobe["period_detected"]
+                  else "no period up to 16 (tolerance 1e-6 rad/s over the last 64 samples)")
+        lines.append(f"- strobe (Fig 7): {strobe['samples']:.0f} samples; sd of ω = ({strobe['sd'][0]:.4f}, "
+                     f"{strobe['sd'][1]:.4f}, {strobe['sd'][2]:.4f}) rad/s; {period}")
+    if spectrum:
+        lines.append(f"- spectrum of ω_x (Fig 8): {spectrum['samples']:.0f} samples, {spectrum['window']} window, "
+                     f"Δf = {spectrum['df_hz']:.4f} Hz; highest peak at {spectrum['peak_hz']:.4f} Hz "
+                     f"(forcing {spectrum['forcing_hz']:.4f} Hz)")
+    if lyap:
+        lines.append(f"- λ_max (Fig 9) = {lyap['lambda_max']:.4f} ± {lyap['error_bar']:.4f} 1/s over "
+                     f"{lyap['periods']:.0f} periods (δ0 = {lyap['delta0']:g}, {lyap['batches']:.0f} batches); running "
+                     f"value moved {lyap['late_drift']:.3g} over the last quarter: "
+                     f"{'converged' if lyap['converged'] else 'not converged'}")
     lines.append("")
-    lines.append(f"![time histories](fig-timeseries-{name}.png)")
-    lines.append("")
-    lines.append(f"![contact](fig-contact-{name}.png)")
-    lines.append("")
+    for figure, label in ((f"fig-timeseries-{name}.png", "time histories"), (f"fig-contact-{name}.png", "contact"),
+                          (f"fig7-strobe-{name}.png", "Fig 7"), (f"fig8-spectrum-{name}.png", "Fig 8"),
+                          (f"fig9-lyapunov-{name}.png", "Fig 9")):
+        if os.path.exists(os.path.join(OUT_DIR[0], figure)):
+            lines.append(f"![{label}]({figure})")
+            lines.append("")
     return lines
+
+
+OUT_DIR = ["."]
 
 
 def main():
     out, names = sys.argv[1], sys.argv[2:]
     lines = ["# gomboc — scene runs", ""]
+    OUT_DIR[0] = out
     for name in names:
         summary = load_json(os.path.join(out, f"{name}-summary.json"))
         history_path = os.path.join(out, f"{name}-history.csv")
+        h = None
         if os.path.exists(history_path):
             h = load_history(history_path)
             time_series_figure(out, name, h, summary)
             contact_figure(out, name, h, summary)
+        scene = summary["scene"]
+        if scene.get("strobe"):
+            strobe_figure(out, name, summary)
+        if scene.get("spectrum"):
+            spectrum_figure(out, name, summary, h)
+        if scene.get("lyapunov"):
+            lyapunov_figure(out, name, summary)
         lines += summary_lines(name, summary)
     write_atomically(os.path.join(out, "runs.md"), "\n".join(lines))
 

@@ -5,6 +5,7 @@
 #include <errno.h>
 #include <ini.h>
 #include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -25,6 +26,14 @@ gb_case gb_case_default(void)
     snprintf(c.attitude_text, sizeof c.attitude_text, "identity");
     c.write_history = c.write_summary = 1;
     c.monitors = 1;
+    /* The paper samples "after transients" without saying how long: we discard the first 50 of the 300
+     * periods for the strobe and the spectrum, and none for λ (Fig 9 starts at period 0). */
+    c.strobe_def = (gb_strobe_def){.transient = 50, .phase = 0.0};
+    c.spectrum_transient = 50;
+    c.spectrum_window = GB_WINDOW_HANN;
+    c.lyapunov_def = gb_lyapunov_default_def();
+    c.lyapunov_interval_periods = 1;
+    c.omega_scale = 0.0; /* the forcing omega */
     return c;
 }
 
@@ -199,13 +208,125 @@ static int handler(void *user, const char *section, const char *name, const char
     } else if (KEY("output", "sample_every")) {
         if (!parse_count(value, &c->integrate.sample_every, 1, 100000000))
             return fail(r, section, name, value, "out of range (allowed: integer >= 1)");
-    } else if (KEY("diagnostics", "monitors")) {
-        if (!parse_flag(value, &c->monitors)) return fail(r, section, name, value, "not a flag (allowed: yes, no)");
+    } else if (KEY("diagnostics", "monitors") || KEY("diagnostics", "strobe") || KEY("diagnostics", "spectrum") ||
+               KEY("diagnostics", "lyapunov")) {
+        int *flag = name[0] == 'm' ? &c->monitors : name[0] == 'l' ? &c->lyapunov : name[1] == 't' ? &c->strobe : &c->spectrum;
+        if (!parse_flag(value, flag)) return fail(r, section, name, value, "not a flag (allowed: yes, no)");
+    } else if (KEY("strobe", "transient_periods") || KEY("spectrum", "transient_periods") ||
+               KEY("lyapunov", "transient_periods")) {
+        size_t *n = section[1] == 't' ? &c->strobe_def.transient : section[1] == 'p' ? &c->spectrum_transient
+                                                                                     : &c->lyapunov_def.transient;
+        if (!parse_count(value, n, 0, 10000000)) return fail(r, section, name, value, "out of range (allowed: integer >= 0)");
+    } else if (KEY("strobe", "phase")) {
+        if (!parse_number(value, &x) || !(x >= 0.0 && x < 1.0))
+            return fail(r, section, name, value, "out of range (allowed: 0 <= phase < 1, in forcing periods)");
+        c->strobe_def.phase = x;
+    } else if (KEY("spectrum", "window")) {
+        if (gb_window_parse(value, &c->spectrum_window)) return fail(r, section, name, value, "unknown (allowed: hann, rectangular)");
+    } else if (KEY("lyapunov", "delta0")) {
+        if (!parse_number(value, &x) || !(x > 0.0 && x < 1.0)) return fail(r, section, name, value, "out of range (allowed: 0 < delta0 < 1)");
+        c->lyapunov_def.delta0 = x;
+    } else if (KEY("lyapunov", "interval_periods")) {
+        if (!parse_count(value, &c->lyapunov_interval_periods, 1, 10000000))
+            return fail(r, section, name, value, "out of range (allowed: integer >= 1)");
+    } else if (KEY("lyapunov", "batches")) {
+        if (!parse_count(value, &c->lyapunov_def.batches, 2, 1000000))
+            return fail(r, section, name, value, "out of range (allowed: integer >= 2)");
+    } else if (KEY("lyapunov", "omega_scale")) {
+        if (!parse_number(value, &x) || !(x > 0.0)) return fail(r, section, name, value, "out of range (allowed: omega_scale > 0 [rad/s])");
+        c->omega_scale = x;
     } else {
         return fail(r, section, name, value,
                     "unknown key (allowed sections and keys: see cases/README.md; e.g. [body] morphology, beta, mass)");
     }
     return 1;
+}
+
+/* The line of `key` in [section] of the file, for errors found after reading (0 when not written). */
+static int key_line(const char *path, const char *section, const char *key)
+{
+    FILE *f = fopen(path, "r");
+    if (!f) return 0;
+    char text[1024], current[128] = "";
+    int line = 0, found = 0;
+    while (!found && fgets(text, sizeof text, f)) {
+        line++;
+        char *p = text;
+        while (*p == ' ' || *p == '\t') p++;
+        if (*p == '[') {
+            char *end = strchr(p, ']');
+            if (end) snprintf(current, sizeof current, "%.*s", (int)(end - p - 1), p + 1);
+        } else if (!strcmp(current, section) && !strncmp(p, key, strlen(key))) {
+            const char *q = p + strlen(key);
+            while (*q == ' ' || *q == '\t') q++;
+            found = *q == '=' || *q == ':';
+        }
+    }
+    fclose(f);
+    return found ? line : 0;
+}
+
+static int cross_fail(const char *path, const char *section, const char *key, const char *fmt, ...)
+    __attribute__((format(printf, 4, 5)));
+
+static int cross_fail(const char *path, const char *section, const char *key, const char *fmt, ...)
+{
+    char reason[512];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(reason, sizeof reason, fmt, ap);
+    va_end(ap);
+    const int line = key_line(path, section, key);
+    if (line) return gb_error_set(GB_EDOM, "%s:%d: [%s] %s: %s", path, line, section, key, reason);
+    return gb_error_set(GB_EDOM, "%s: [%s] %s (default): %s", path, section, key, reason);
+}
+
+/* What no single key can say: the diagnostics against the run's length and grid. */
+static int cross_check(const char *path, gb_case *c)
+{
+    const double periods = c->integrate.periods;
+    const size_t spp = c->integrate.steps_per_period;
+    if (c->strobe || c->spectrum || c->lyapunov) {
+        if (spp % c->integrate.sample_every)
+            return cross_fail(path, "output", "sample_every",
+                              "%zu does not divide [integrator] steps_per_period = %zu (allowed: a divisor, so that "
+                              "every strobe instant and the spectrum's samples fall on a sample)",
+                              c->integrate.sample_every, spp);
+    }
+    if (c->strobe) {
+        if (!((double)c->strobe_def.transient < periods))
+            return cross_fail(path, "strobe", "transient_periods", "= %zu leaves no strobe samples (allowed: < [integrator] periods = %g)",
+                              c->strobe_def.transient, periods);
+        const double on_grid = c->strobe_def.phase * (double)(spp / c->integrate.sample_every);
+        if (fabs(on_grid - nearbyint(on_grid)) > 1e-9)
+            return cross_fail(path, "strobe", "phase", "= %g is not on the sample grid (allowed: a multiple of %zu/%zu)",
+                              c->strobe_def.phase, c->integrate.sample_every, spp);
+    }
+    if (c->spectrum && !((double)c->spectrum_transient + 1.0 <= periods))
+        return cross_fail(path, "spectrum", "transient_periods", "= %zu leaves less than one period (allowed: <= [integrator] periods - 1 = %g)",
+                          c->spectrum_transient, periods - 1.0);
+    if (c->lyapunov) return gb_case_lyapunov_check(path, c);
+    return GB_OK;
+}
+
+int gb_case_lyapunov_check(const char *path, gb_case *c)
+{
+    gb_lyapunov_def *l = &c->lyapunov_def;
+    const double periods = c->integrate.periods, k = (double)c->lyapunov_interval_periods;
+    const double record = periods - (double)l->transient, intervals = record / k;
+    if (!(record >= 2.0 * k) || fabs(intervals - nearbyint(intervals)) > 1e-9)
+        return cross_fail(path, "lyapunov", "interval_periods",
+                          "= %zu with transient_periods = %zu does not divide the %g periods of the run into whole "
+                          "intervals (allowed: periods - transient_periods = a multiple of interval_periods, at least 2 "
+                          "intervals)",
+                          c->lyapunov_interval_periods, l->transient, periods);
+    if ((double)l->batches > nearbyint(intervals))
+        return cross_fail(path, "lyapunov", "batches", "= %zu exceeds the %g intervals of the record (allowed: 2 <= batches <= intervals)",
+                          l->batches, nearbyint(intervals));
+    l->interval = k * 2.0 * M_PI / c->dynamics.forcing.omega;
+    l->intervals = (size_t)nearbyint(intervals);
+    if (c->omega_scale == 0.0) c->omega_scale = c->dynamics.forcing.omega;
+    return GB_OK;
 }
 
 int gb_case_load(const char *path, gb_case *out)
@@ -215,11 +336,14 @@ int gb_case_load(const char *path, gb_case *out)
     gb_case scene = gb_case_default();
     reader r = {&scene, ""};
     const int line = ini_parse_file(f, handler, &r);
+    int status = GB_OK;
     fclose(f);
     if (line < 0) return gb_error_set(GB_EIO, "%s: cannot read the case file", path);
     if (line > 0)
         return gb_error_set(r.message[0] ? GB_EDOM : GB_EINVAL, "%s:%d: %s", path, line,
                             r.message[0] ? r.message : "malformed line (allowed: [section], key = value, ; comment)");
+    status = cross_check(path, &scene);
+    if (status) return status;
     /* Amplitudes in m/s² for the dynamics. */
     const double unit = scene.amplitudes_in_g ? scene.dynamics.forcing.g : 1.0;
     scene.dynamics.forcing.a1 = scene.A1 * unit;

@@ -16,7 +16,14 @@
  *                 omega = WX,WY,WZ [rad/s]
  *   [output]      history = yes | no (time histories CSV); summary = yes | no (JSON);
  *                 sample_every = n >= 1 (nominal steps between history rows)
- *   [diagnostics] monitors = yes | no (validity monitors: g_eff, normal force, friction)
+ *   [diagnostics] monitors = yes | no (validity monitors: g_eff, normal force, friction);
+ *                 strobe, spectrum, lyapunov = yes | no (Figs 7, 8, 9: what `gomboc run` computes and writes)
+ *   [strobe]      transient_periods = n >= 0 (< periods); phase = p in [0, 1), on the step grid
+ *   [spectrum]    transient_periods = n >= 0 (< periods); window = hann | rectangular
+ *   [lyapunov]    delta0 in (0, 1); transient_periods = n >= 0; interval_periods = k >= 1 (the record,
+ *                 periods − transient, must be a whole number of intervals, at least 2 and at least
+ *                 `batches`); batches = b >= 2; omega_scale = Ω > 0 [rad/s] (the separation's
+ *                 ω-part is Δω/Ω; default: the forcing omega)
  *
  * Errors name the file, the line, the key and the allowed values; nothing is returned half-filled. */
 #ifndef GB_CASE_H
@@ -24,6 +31,9 @@
 
 #include "gb_dynamics.h"
 #include "gb_integrate.h"
+#include "gb_lyapunov.h"
+#include "gb_spectrum.h"
+#include "gb_strobe.h"
 
 typedef struct gb_case {
     char description[256];
@@ -38,6 +48,13 @@ typedef struct gb_case {
     double omega0[3];
     int write_history, write_summary;
     int monitors;
+    int strobe, spectrum, lyapunov;  /* [diagnostics] */
+    gb_strobe_def strobe_def;
+    size_t spectrum_transient;
+    gb_window spectrum_window;
+    gb_lyapunov_def lyapunov_def;     /* interval in seconds and intervals set from the scene's periods */
+    size_t lyapunov_interval_periods;
+    double omega_scale;               /* [rad/s]; the forcing omega unless given */
 } gb_case;
 
 /* The defaults: Table 1 with the paper's model (m/s² reading of A1, A2; R0 = I; ω0 = 0). */
@@ -46,5 +63,10 @@ gb_case gb_case_default(void);
 /* Read `path` over the defaults. GB_EIO when the file cannot be read; GB_EINVAL / GB_EDOM with
  * "FILE:LINE: [section] key = value: reason (allowed: ...)". */
 int gb_case_load(const char *path, gb_case *out);
+
+/* The [lyapunov] section against the run (gb_case_load does this when [diagnostics] lyapunov = yes;
+ * `gomboc lyapunov` asks for it whatever the flag): sets lyapunov_def.interval [s] and .intervals and
+ * omega_scale. GB_EDOM with "FILE:LINE: [lyapunov] key: reason (allowed: ...)". */
+int gb_case_lyapunov_check(const char *path, gb_case *c);
 
 #endif

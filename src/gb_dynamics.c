@@ -391,6 +391,8 @@ void gb_dynamics_switch_to(gb_dynamics *d, const gb_contact_point *branch)
     d->branch_switches++;
 }
 
+size_t gb_dynamics_switch_count(const gb_dynamics *d) { return d->grid_switches + d->branch_switches; }
+
 void gb_dynamics_adopt_contact(gb_dynamics *to, const gb_dynamics *from)
 {
     to->index = from->index;

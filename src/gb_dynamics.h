@@ -105,6 +105,9 @@ void gb_dynamics_switch_to(gb_dynamics *dynamics, const gb_contact_point *branch
  * step re-checks it as every step does. Switch counters are left alone. */
 void gb_dynamics_adopt_contact(gb_dynamics *to, const gb_dynamics *from);
 
+/* Grid-index changes plus branch switches so far. */
+size_t gb_dynamics_switch_count(const gb_dynamics *dynamics);
+
 typedef struct gb_dynamics_observables {
     double t;
     double R[9], zb[3], omega[3], omega_dot[3];

@@ -5,6 +5,7 @@
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_odeiv2.h>
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 static const char *const names[] = {"rk4", "rk8pd", "rkf45", "rk4imp"};
@@ -112,37 +113,61 @@ static int located_step(gb_dynamics *d, double t, double h, const double y[], co
     return rk4_step(d, t + a * h, (1.0 - a) * h, ya, out, stats);
 }
 
-static int run_rk4(gb_dynamics *d, const gb_integrate_def *def, double t0, double h, size_t steps, double y[],
-                   gb_integrate_sample sample, void *context, gb_integrate_stats *stats)
+/* A run that can be continued: the nominal time grid t_n = t0 + n·h is global (n counts steps from
+ * t0), so a run advanced in pieces visits exactly the times, and takes exactly the steps, of one
+ * uninterrupted run; an adaptive run keeps its GSL state (step size included) between pieces. */
+struct gb_integrate_session {
+    gb_dynamics *dynamics;
+    gb_integrate_def def;
+    double t0, h, t;         /* t: the current time (the adaptive stepper's own, else t0 + n·h) */
+    size_t n;                /* nominal steps done */
+    gb_integrate_stats stats;
+    int stopped;             /* a sample callback asked to stop */
+    /* adaptive steppers */
+    struct gsl_context *gsl;
+    gsl_odeiv2_system system;
+    gsl_odeiv2_driver *driver;
+    double dt;
+};
+
+static int advance_rk4(gb_integrate_session *s, size_t steps, double y[], gb_integrate_sample sample, void *context)
 {
+    gb_dynamics *d = s->dynamics;
+    const double h = s->h;
     double next[GB_STATE_SIZE];
-    for (size_t n = 0; n < steps; n++) {
-        const double t = t0 + (double)n * h;
-        int status = rk4_step(d, t, h, y, next, stats);
+    for (size_t end = s->n + steps; s->n < end; s->n++) {
+        const double t = s->t0 + (double)s->n * h, t_next = s->t0 + (double)(s->n + 1) * h;
+        int status = rk4_step(d, t, h, y, next, &s->stats);
         if (status) return status;
-        if (def->locate_switches) {
+        if (s->def.locate_switches) {
             gb_contact_point other;
             int found = 0;
             status = gb_dynamics_switch_pending(d, t + h, next, &other, &found);
-            if (!status && found) status = located_step(d, t, h, y, &other, next, stats);
+            if (!status && found) status = located_step(d, t, h, y, &other, next, &s->stats);
             if (status) return status;
         }
         memcpy(y, next, sizeof next);
-        stats->steps++;
+        s->stats.steps++;
+        s->t = t_next;
         double drift;
-        status = gb_dynamics_accept(d, t0 + (double)(n + 1) * h, y, &drift);
+        status = gb_dynamics_accept(d, t_next, y, &drift);
         if (status) return status;
-        note_drift(stats, drift);
-        if ((n + 1) % def->sample_every == 0 && sample && sample(context, t0 + (double)(n + 1) * h, y)) break;
+        note_drift(&s->stats, drift);
+        if ((s->n + 1) % s->def.sample_every == 0 && sample && sample(context, t_next, y)) {
+            s->n++;
+            s->stopped = 1;
+            break;
+        }
     }
     return GB_OK;
 }
 
-typedef struct gsl_context {
+struct gsl_context {
     gb_dynamics *dynamics;
     gb_integrate_stats *stats;
     int status; /* the first gb_ status a right-hand side returned */
-} gsl_context;
+};
+typedef struct gsl_context gsl_context;
 
 static int gsl_rhs(double t, const double y[], double dydt[], void *params)
 {
@@ -173,66 +198,142 @@ static int gsl_jacobian(double t, const double y[], double *dfdy, double dfdt[],
     return GSL_SUCCESS;
 }
 
-static int run_adaptive(gb_dynamics *d, const gb_integrate_def *def, double t0, double h, size_t steps, double y[],
-                        gb_integrate_sample sample, void *context, gb_integrate_stats *stats)
+static const gsl_odeiv2_step_type *stepper_type(gb_integrator method)
 {
-    const gsl_odeiv2_step_type *types[] = {NULL, gsl_odeiv2_step_rk8pd, gsl_odeiv2_step_rkf45, gsl_odeiv2_step_rk4imp};
-    gsl_context c = {d, stats, GB_OK};
-    gsl_odeiv2_system system = {gsl_rhs, gsl_jacobian, GB_STATE_SIZE, &c};
-    /* A driver owns the stepper, control and evolve; implicit steppers need it to be attached. */
-    gsl_odeiv2_driver *driver = gsl_odeiv2_driver_alloc_y_new(&system, types[def->method], h, def->atol, def->rtol);
-    gsl_odeiv2_step *step = driver ? driver->s : NULL;
-    gsl_odeiv2_control *control = driver ? driver->c : NULL;
-    gsl_odeiv2_evolve *evolve = driver ? driver->e : NULL;
-    int status = driver ? GB_OK : gb_error_set(GB_ENOMEM, "out of memory for the GSL stepper");
-    double t = t0, dt = h;
-    for (size_t n = 0; !status && n < steps; n++) {
-        const double target = t0 + (double)(n + 1) * h;
-        while (!status && t < target) {
-            const double before = t;
-            const int gsl_status = gsl_odeiv2_evolve_apply(evolve, control, step, &system, &t, target, &dt, y);
+    switch (method) {
+    case GB_INTEGRATOR_RK8PD: return gsl_odeiv2_step_rk8pd;
+    case GB_INTEGRATOR_RKF45: return gsl_odeiv2_step_rkf45;
+    case GB_INTEGRATOR_RK4IMP: return gsl_odeiv2_step_rk4imp;
+    default: return NULL;
+    }
+}
+
+static int advance_adaptive(gb_integrate_session *s, size_t steps, double y[], gb_integrate_sample sample, void *context)
+{
+    gb_dynamics *d = s->dynamics;
+    gsl_odeiv2_driver *driver = s->driver;
+    gsl_odeiv2_step *step = driver->s;
+    gsl_odeiv2_control *control = driver->c;
+    gsl_odeiv2_evolve *evolve = driver->e;
+    const char *name = names[s->def.method];
+    int status = GB_OK;
+    for (size_t end = s->n + steps; !status && s->n < end; s->n++) {
+        const double target = s->t0 + (double)(s->n + 1) * s->h;
+        while (!status && s->t < target) {
+            const double before = s->t;
+            const int gsl_status = gsl_odeiv2_evolve_apply(evolve, control, step, &s->system, &s->t, target, &s->dt, y);
             if (gsl_status != GSL_SUCCESS) {
-                status = c.status ? c.status
-                                  : gb_error_set(GB_ENUMERIC, "GSL odeiv2 (%s) failed at t = %.17g: %s (step %.3g)",
-                                                 def->method < 4 ? names[def->method] : "?", t, gsl_strerror(gsl_status), dt);
+                status = s->gsl->status ? s->gsl->status
+                                        : gb_error_set(GB_ENUMERIC, "GSL odeiv2 (%s) failed at t = %.17g: %s (step %.3g)",
+                                                       name, s->t, gsl_strerror(gsl_status), s->dt);
                 break;
             }
-            if (t == before) {
-                status = gb_error_set(GB_ENUMERIC, "GSL odeiv2 (%s) made no progress at t = %.17g (step %.3g)",
-                                      names[def->method], t, dt);
+            if (s->t == before) {
+                status = gb_error_set(GB_ENUMERIC, "GSL odeiv2 (%s) made no progress at t = %.17g (step %.3g)", name,
+                                      s->t, s->dt);
                 break;
             }
-            stats->steps++;
-            if (def->max_steps && stats->steps >= def->max_steps) {
-                status = gb_error_set(GB_ENOCONV, "%s took %zu steps by t = %.9g of %.9g (the step limit): the step size "
+            s->stats.steps++;
+            if (s->def.max_steps && s->stats.steps >= s->def.max_steps) {
+                status = gb_error_set(GB_ENOCONV, "%s took %zu steps by t = %.9g (the step limit): the step size "
                                       "collapsed, as it does at the jumps of a grid contact",
-                                      names[def->method], stats->steps, t, t0 + (double)steps * h);
+                                      name, s->stats.steps, s->t);
                 break;
             }
             double drift;
-            status = gb_dynamics_accept(d, t, y, &drift);
-            note_drift(stats, drift);
+            status = gb_dynamics_accept(d, s->t, y, &drift);
+            note_drift(&s->stats, drift);
             /* y was renormalised and the contact may have changed: the stepper must not reuse derivatives. */
             gsl_odeiv2_evolve_reset(evolve);
             gsl_odeiv2_step_reset(step);
         }
-        if (!status && (n + 1) % def->sample_every == 0 && sample && sample(context, t, y)) break;
+        s->stats.failed_steps = evolve->failed_steps;
+        if (!status && (s->n + 1) % s->def.sample_every == 0 && sample && sample(context, s->t, y)) {
+            s->n++;
+            s->stopped = 1;
+            break;
+        }
     }
-    if (evolve) stats->failed_steps = evolve->failed_steps;
-    if (driver) gsl_odeiv2_driver_free(driver);
     return status;
+}
+
+int gb_integrate_begin(gb_dynamics *d, const gb_integrate_def *def, double t0, gb_integrate_session **out)
+{
+    *out = NULL;
+    int status = validate(def);
+    if (status) return status;
+    if (!isfinite(t0)) return gb_error_set(GB_EDOM, "t0 = %g is out of range (allowed: finite)", t0);
+    gb_integrate_session *s = calloc(1, sizeof *s);
+    if (!s) return gb_error_set(GB_ENOMEM, "out of memory for an integration");
+    s->dynamics = d;
+    s->def = *def;
+    s->t0 = s->t = t0;
+    s->h = gb_forcing_period(&gb_dynamics_get_def(d)->forcing) / (double)def->steps_per_period;
+    s->dt = s->h;
+    if (def->method != GB_INTEGRATOR_RK4) {
+        s->gsl = malloc(sizeof *s->gsl);
+        if (s->gsl) {
+            *s->gsl = (struct gsl_context){d, &s->stats, GB_OK};
+            s->system = (gsl_odeiv2_system){gsl_rhs, gsl_jacobian, GB_STATE_SIZE, s->gsl};
+            /* A driver owns the stepper, control and evolve; implicit steppers need it to be attached. */
+            s->driver = gsl_odeiv2_driver_alloc_y_new(&s->system, stepper_type(def->method), s->h, def->atol, def->rtol);
+        }
+        if (!s->driver) {
+            gb_integrate_end(s);
+            return gb_error_set(GB_ENOMEM, "out of memory for the GSL stepper");
+        }
+    }
+    *out = s;
+    return GB_OK;
+}
+
+int gb_integrate_advance(gb_integrate_session *s, size_t steps, double y[GB_STATE_SIZE], gb_integrate_sample sample,
+                         void *context)
+{
+    if (s->stopped) return GB_OK;
+    return s->def.method == GB_INTEGRATOR_RK4 ? advance_rk4(s, steps, y, sample, context)
+                                              : advance_adaptive(s, steps, y, sample, context);
+}
+
+size_t gb_integrate_steps_for(const gb_integrate_session *s, double periods)
+{
+    return (size_t)llround(periods * (double)s->def.steps_per_period);
+}
+
+double gb_integrate_time(const gb_integrate_session *s) { return s->t; }
+int gb_integrate_stopped(const gb_integrate_session *s) { return s->stopped; }
+const gb_integrate_stats *gb_integrate_session_stats(const gb_integrate_session *s) { return &s->stats; }
+
+void gb_integrate_follow(gb_integrate_session *to, const gb_integrate_session *from)
+{
+    to->n = from->n;
+    to->t = from->t;
+    to->dt = from->dt;
+    to->stopped = from->stopped;
+    if (to->driver) {
+        gsl_odeiv2_evolve_reset(to->driver->e);
+        gsl_odeiv2_step_reset(to->driver->s);
+    }
+}
+
+void gb_integrate_end(gb_integrate_session *s)
+{
+    if (!s) return;
+    if (s->driver) gsl_odeiv2_driver_free(s->driver);
+    free(s->gsl);
+    free(s);
 }
 
 int gb_integrate_run(gb_dynamics *d, const gb_integrate_def *def, double t0, double y[GB_STATE_SIZE],
                      gb_integrate_sample sample, void *context, gb_integrate_stats *stats)
 {
     memset(stats, 0, sizeof *stats);
-    int status = validate(def);
+    gb_integrate_session *s = NULL;
+    int status = gb_integrate_begin(d, def, t0, &s);
     if (status) return status;
-    const double period = gb_forcing_period(&gb_dynamics_get_def(d)->forcing);
-    const double h = period / (double)def->steps_per_period;
-    const size_t steps = (size_t)llround(def->periods * (double)def->steps_per_period);
-    if (sample && sample(context, t0, y)) return GB_OK;
-    if (def->method == GB_INTEGRATOR_RK4) return run_rk4(d, def, t0, h, steps, y, sample, context, stats);
-    return run_adaptive(d, def, t0, h, steps, y, sample, context, stats);
+    if (!(sample && sample(context, t0, y)))
+        status = gb_integrate_advance(s, gb_integrate_steps_for(s, def->periods), y, sample, context);
+    *stats = s->stats;
+    gb_integrate_end(s);
+    return status;
 }

@@ -18,13 +18,15 @@ static const char *usage_main =
     "            fast grid search or continuous minimisation, and every local minimum (section 4)\n"
     "  run       integrate one scene (a case file) and write its time histories and summary\n"
     "            (sections 3, 5, 8)\n"
+    "  lyapunov  the maximal Lyapunov exponent of one scene, with its error bar and convergence\n"
+    "            record (section 6, eq 77)\n"
     "\n"
     "'gomboc <command> --help' describes each command's options.\n";
 
 static const struct {
     const char *name;
     int (*run)(int argc, char **argv);
-} commands[] = {{"shape", command_shape}, {"contact", command_contact}, {"run", command_run}};
+} commands[] = {{"shape", command_shape}, {"contact", command_contact}, {"run", command_run}, {"lyapunov", command_lyapunov}};
 
 int main(int argc, char **argv)
 {
@@ -39,6 +41,6 @@ int main(int argc, char **argv)
     }
     for (size_t k = 0; k < sizeof commands / sizeof commands[0]; k++)
         if (!strcmp(argv[1], commands[k].name)) return commands[k].run(argc - 2, argv + 2);
-    fprintf(stderr, "gomboc: unknown command '%s' (allowed: shape, contact, run)\n\n%s", argv[1], usage_main);
+    fprintf(stderr, "gomboc: unknown command '%s' (allowed: shape, contact, run, lyapunov)\n\n%s", argv[1], usage_main);
     return EXIT_INPUT;
 }

@@ -3,6 +3,9 @@
 #ifndef GOMBOC_CLI_H
 #define GOMBOC_CLI_H
 
+#include "gb_case.h"
+#include "gb_lyapunov.h"
+
 #include <cjson/cJSON.h>
 
 enum { EXIT_INPUT = 2, EXIT_COMPUTE = 1 };
@@ -45,7 +48,17 @@ cJSON *cli_json_vector(const double *v, int n);
 /* Print `root` as JSON on stdout. */
 void cli_print_json(const cJSON *root);
 
+/* The scene's λ_max by the pair estimator (eq 77) with its [lyapunov] definition; the reference is the
+ * scene's run, whose samples (t = 0 included) go to `sample`, observed through *observer (may be NULL).
+ * On success *body holds the final states (free it with gb_lyapunov_body_free); *result is filled. */
+int cli_scene_lyapunov(const gb_case *scene, gb_integrate_sample sample, void *context, gb_dynamics **observer,
+                       gb_lyapunov_body **body, gb_lyapunov_result *result);
+/* The JSON of a scene's λ: lambda_max, error_bar, periods, delta0, …; with `with_record`, running and
+ * instantaneous. */
+cJSON *cli_lyapunov_json(const gb_case *scene, const gb_lyapunov_result *result, int with_record);
+
 int command_shape(int argc, char **argv);
+int command_lyapunov(int argc, char **argv);
 int command_contact(int argc, char **argv);
 int command_run(int argc, char **argv);
 

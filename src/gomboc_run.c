@@ -4,6 +4,8 @@
 #include "gb_case.h"
 #include "gb_error.h"
 #include "gb_integrate.h"
+#include "gb_spectrum.h"
+#include "gb_strobe.h"
 
 #include <errno.h>
 #include <libgen.h>
@@ -37,8 +39,27 @@ typedef struct run_state {
     /* monitors */
     size_t samples, geff_nonpositive, lift_off, friction_over_half;
     double geff_min, normal_min, friction_max, residual_max, orthonormality_max;
+    /* diagnostics the scene asked for */
+    gb_strobe strobe;
+    double *spectrum_x, step;
+    size_t spectrum_count, spectrum_capacity, spectrum_first_step;
     int status;
 } run_state;
+
+/* ω_x for the spectrum, from the first sample after its transient on. */
+static int collect_spectrum(run_state *s, double t, double omega_x)
+{
+    if (llround(t / s->step) < (long long)s->spectrum_first_step) return GB_OK;
+    if (s->spectrum_count == s->spectrum_capacity) {
+        const size_t capacity = s->spectrum_capacity ? 2 * s->spectrum_capacity : 4096;
+        double *grown = realloc(s->spectrum_x, capacity * sizeof *grown);
+        if (!grown) return gb_error_set(GB_ENOMEM, "out of memory for %zu spectrum samples", capacity);
+        s->spectrum_x = grown;
+        s->spectrum_capacity = capacity;
+    }
+    s->spectrum_x[s->spectrum_count++] = omega_x;
+    return GB_OK;
+}
 
 static int sample(void *context, double t, const double y[GB_STATE_SIZE])
 {
@@ -59,6 +80,8 @@ static int sample(void *context, double t, const double y[GB_STATE_SIZE])
     s->window_next = (s->window_next + 1) % s->window_size;
     if (s->window_fill < s->window_size) s->window_fill++;
     s->samples++;
+    if (s->scene->strobe && (s->status = gb_strobe_offer(&s->strobe, t, o.omega, NULL))) return 1;
+    if (s->scene->spectrum && (s->status = collect_spectrum(s, t, o.omega[0]))) return 1;
     s->residual_max = fmax(s->residual_max, fabs(o.residual));
     s->orthonormality_max = fmax(s->orthonormality_max, o.orthonormality);
     if (s->scene->monitors) {
@@ -115,6 +138,17 @@ static cJSON *scene_json(const gb_case *c)
     cJSON_AddBoolToObject(o, "history", c->write_history);
     cJSON_AddBoolToObject(o, "monitors", c->monitors);
     cJSON_AddNumberToObject(o, "sample_every", (double)c->integrate.sample_every);
+    cJSON_AddBoolToObject(o, "strobe", c->strobe);
+    if (c->strobe) {
+        cJSON_AddNumberToObject(o, "strobe_transient_periods", (double)c->strobe_def.transient);
+        cJSON_AddNumberToObject(o, "strobe_phase", c->strobe_def.phase);
+    }
+    cJSON_AddBoolToObject(o, "spectrum", c->spectrum);
+    if (c->spectrum) {
+        cJSON_AddNumberToObject(o, "spectrum_transient_periods", (double)c->spectrum_transient);
+        cJSON_AddStringToObject(o, "spectrum_window", gb_window_name(c->spectrum_window));
+    }
+    cJSON_AddBoolToObject(o, "lyapunov", c->lyapunov);
     return o;
 }
 
@@ -126,6 +160,122 @@ static void output_path(const char *dir, const char *case_path, const char *suff
     char *name = basename(copy), *dot = strrchr(name, '.');
     if (dot && !strcmp(dot, ".ini")) *dot = '\0';
     snprintf(out, size, "%s/%s-%s", dir, name, suffix);
+}
+
+/* Output files are written beside their final names and renamed only when the whole run succeeded:
+ * nothing half-written is left that looks complete. */
+typedef struct staged {
+    char path[1200], tmp[1300];
+    int used;
+} staged;
+
+enum { OUT_HISTORY, OUT_STROBE, OUT_SPECTRUM, OUT_LYAPUNOV, OUT_SUMMARY, OUT_COUNT };
+static const char *const out_suffix[OUT_COUNT] = {"history.csv", "strobe.csv", "spectrum.csv", "lyapunov.csv",
+                                                  "summary.json"};
+
+static FILE *stage_open(staged *f, const char *dir, const char *case_path, int which, int *status)
+{
+    output_path(dir, case_path, out_suffix[which], f->path, sizeof f->path);
+    snprintf(f->tmp, sizeof f->tmp, "%s.tmp%ld", f->path, (long)getpid());
+    FILE *file = fopen(f->tmp, "w");
+    if (!file) *status = gb_error_set(GB_EIO, "cannot write '%s': %s", f->path, strerror(errno));
+    else f->used = 1;
+    return file;
+}
+
+static int stage_close(staged *f, FILE *file, int status)
+{
+    if (file && fclose(file) != 0 && !status) status = gb_error_set(GB_EIO, "cannot write '%s': %s", f->path, strerror(errno));
+    return status;
+}
+
+/* Rename every staged file into place (status OK), or remove the temporaries, and any file this
+ * commit already renamed when a later rename fails (the set would be mixed). */
+static int stage_commit(staged *files, int status)
+{
+    int renamed = 0; /* files[0 .. renamed) are in place */
+    for (; renamed < OUT_COUNT && !status; renamed++)
+        if (files[renamed].used && rename(files[renamed].tmp, files[renamed].path) != 0) {
+            status = gb_error_set(GB_EIO, "cannot write '%s': %s", files[renamed].path, strerror(errno));
+            break;
+        }
+    if (status)
+        for (int k = 0; k < OUT_COUNT; k++)
+            if (files[k].used) {
+                remove(files[k].tmp);
+                if (k < renamed) remove(files[k].path);
+            }
+    return status;
+}
+
+static int write_strobe(staged *f, const char *dir, const char *case_path, const gb_strobe *strobe, double period)
+{
+    int status = GB_OK;
+    FILE *file = stage_open(f, dir, case_path, OUT_STROBE, &status);
+    if (!file) return status;
+    if (fputs("n,t,omega_x,omega_y,omega_z\n", file) < 0) status = GB_EIO;
+    for (size_t n = 0; !status && n < strobe->count; n++) {
+        const double *w = strobe->x + 3 * n;
+        if (fprintf(file, "%.0f,%.10g,%.12g,%.12g,%.12g\n", nearbyint(strobe->t[n] / period), strobe->t[n], w[0], w[1],
+                    w[2]) < 0)
+            status = GB_EIO;
+    }
+    if (status == GB_EIO) status = gb_error_set(GB_EIO, "cannot write '%s': %s", f->path, strerror(errno));
+    return stage_close(f, file, status);
+}
+
+static int write_spectrum(staged *f, const char *dir, const char *case_path, const gb_spectrum *spectrum)
+{
+    int status = GB_OK;
+    FILE *file = stage_open(f, dir, case_path, OUT_SPECTRUM, &status);
+    if (!file) return status;
+    if (fputs("frequency_hz,power\n", file) < 0) status = GB_EIO;
+    for (size_t k = 0; !status && k < spectrum->count; k++)
+        if (fprintf(file, "%.10g,%.10e\n", spectrum->frequency[k], spectrum->power[k]) < 0) status = GB_EIO;
+    if (status == GB_EIO) status = gb_error_set(GB_EIO, "cannot write '%s': %s", f->path, strerror(errno));
+    return stage_close(f, file, status);
+}
+
+static int write_lyapunov(staged *f, const char *dir, const char *case_path, const gb_case *scene,
+                          const gb_lyapunov_result *r)
+{
+    int status = GB_OK;
+    FILE *file = stage_open(f, dir, case_path, OUT_LYAPUNOV, &status);
+    if (!file) return status;
+    if (fputs("interval,period_end,lambda_inst,lambda_running\n", file) < 0) status = GB_EIO;
+    for (size_t n = 0; !status && n < r->intervals; n++)
+        if (fprintf(file, "%zu,%zu,%.12g,%.12g\n", n + 1,
+                    scene->lyapunov_def.transient + (n + 1) * scene->lyapunov_interval_periods, r->instantaneous[n],
+                    r->running[n]) < 0)
+            status = GB_EIO;
+    if (status == GB_EIO) status = gb_error_set(GB_EIO, "cannot write '%s': %s", f->path, strerror(errno));
+    return stage_close(f, file, status);
+}
+
+static cJSON *strobe_json(const gb_strobe *strobe)
+{
+    cJSON *o = cJSON_CreateObject();
+    double mean[3] = {NAN, NAN, NAN}, sd[3] = {NAN, NAN, NAN};
+    if (strobe->count) gb_strobe_spread(strobe->x, strobe->count, 3, mean, sd);
+    cJSON_AddNumberToObject(o, "samples", (double)strobe->count);
+    cJSON_AddItemToObject(o, "mean", cli_json_vector(mean, 3));
+    cJSON_AddItemToObject(o, "sd", cli_json_vector(sd, 3));
+    /* Is the stroboscopic sequence periodic? The least p ≤ 16 with |ω_{n+p} − ω_n| ≤ 1e-6 rad/s over
+     * the last 64 samples, or 0. */
+    cJSON_AddNumberToObject(o, "period_detected", (double)gb_strobe_period(strobe->x, strobe->count, 3, 64, 16, 1e-6));
+    return o;
+}
+
+static cJSON *spectrum_json(const gb_case *scene, const gb_spectrum *spectrum, size_t samples)
+{
+    cJSON *o = cJSON_CreateObject();
+    cJSON_AddNumberToObject(o, "samples", (double)samples);
+    cJSON_AddStringToObject(o, "window", gb_window_name(scene->spectrum_window));
+    cJSON_AddNumberToObject(o, "df_hz", spectrum->df);
+    const size_t peak = gb_spectrum_peak(spectrum);
+    cJSON_AddNumberToObject(o, "peak_hz", spectrum->frequency[peak]);
+    cJSON_AddNumberToObject(o, "forcing_hz", scene->dynamics.forcing.omega / (2.0 * M_PI));
+    return o;
 }
 
 int command_run(int argc, char **argv)
@@ -153,73 +303,104 @@ int command_run(int argc, char **argv)
     int status = gb_case_load(case_path, &scene);
     if (status) return cli_failure("run", status);
 
-    gb_dynamics *dynamics = NULL;
-    double y[GB_STATE_SIZE];
-    status = gb_dynamics_start(scene.morphology, scene.beta, &scene.dynamics, scene.attitude, scene.omega0, &dynamics, y);
-    if (status) return cli_failure("run", status);
-    char history_path[1200], history_tmp[1300], summary_path[1200];
-    output_path(dir, case_path, "history.csv", history_path, sizeof history_path);
-    output_path(dir, case_path, "summary.json", summary_path, sizeof summary_path);
-    snprintf(history_tmp, sizeof history_tmp, "%s.tmp%ld", history_path, (long)getpid());
-    run_state s = {.dynamics = dynamics, .scene = &scene, .geff_min = INFINITY, .normal_min = INFINITY};
+    staged files[OUT_COUNT] = {0};
+    run_state s = {.scene = &scene, .geff_min = INFINITY, .normal_min = INFINITY};
     s.period = gb_forcing_period(&scene.dynamics.forcing);
+    s.step = s.period / (double)scene.integrate.steps_per_period;
+    s.spectrum_first_step = scene.spectrum_transient * scene.integrate.steps_per_period;
     s.window_size = scene.integrate.steps_per_period / scene.integrate.sample_every;
     if (s.window_size < 1) s.window_size = 1;
     s.window = calloc(s.window_size, sizeof *s.window);
     if (!s.window) status = gb_error_set(GB_ENOMEM, "out of memory for the switching-rate window");
+    if (!status && scene.strobe)
+        status = gb_strobe_init(&s.strobe, 3, 0.0, s.period, scene.integrate.steps_per_period, &scene.strobe_def);
     if (!status && scene.write_history) {
-        s.history = fopen(history_tmp, "w");
-        if (!s.history) status = gb_error_set(GB_EIO, "cannot write '%s': %s", history_path, strerror(errno));
-        else fputs("t,omega_x,omega_y,omega_z,h,E,residual,geff,index,grid_switch,branch_switch,switch_rate,"
-                   "rc_x,rc_y,rc_z,normal_force,friction_needed\n", s.history);
+        s.history = stage_open(&files[OUT_HISTORY], dir, case_path, OUT_HISTORY, &status);
+        if (s.history)
+            fputs("t,omega_x,omega_y,omega_z,h,E,residual,geff,index,grid_switch,branch_switch,switch_rate,"
+                  "rc_x,rc_y,rc_z,normal_force,friction_needed\n", s.history);
     }
+
+    /* The run: plain, or as the reference of the Lyapunov pair when the scene asks for λ. */
+    gb_dynamics *dynamics = NULL;
+    gb_lyapunov_body *body = NULL;
+    gb_lyapunov_result lyapunov = {0};
+    double y[GB_STATE_SIZE];
     gb_integrate_stats stats = {0};
     const clock_t start = clock();
-    if (!status) status = gb_integrate_run(dynamics, &scene.integrate, 0.0, y, sample, &s, &stats);
+    if (!status && scene.lyapunov) {
+        status = cli_scene_lyapunov(&scene, sample, &s, &s.dynamics, &body, &lyapunov);
+        if (!status) {
+            dynamics = gb_lyapunov_body_dynamics(body);
+            memcpy(y, gb_lyapunov_body_state(body), sizeof y);
+            stats = *gb_lyapunov_body_stats(body, 0);
+        }
+    } else if (!status) {
+        status = gb_dynamics_start(scene.morphology, scene.beta, &scene.dynamics, scene.attitude, scene.omega0, &dynamics, y);
+        s.dynamics = dynamics;
+        if (!status) status = gb_integrate_run(dynamics, &scene.integrate, 0.0, y, sample, &s, &stats);
+    }
     if (!status) status = s.status;
     const double seconds = (double)(clock() - start) / CLOCKS_PER_SEC;
-    if (s.history && fclose(s.history) != 0 && !status)
-        status = gb_error_set(GB_EIO, "cannot write '%s': %s", history_path, strerror(errno));
-    if (!status && scene.write_history && rename(history_tmp, history_path) != 0)
-        status = gb_error_set(GB_EIO, "cannot write '%s': %s", history_path, strerror(errno));
-    if (status) remove(history_tmp); /* nothing half-written that looks complete */
+    status = stage_close(&files[OUT_HISTORY], s.history, status);
     free(s.window);
-    if (status) {
-        gb_dynamics_free(dynamics);
-        return cli_failure("run", status);
+
+    gb_spectrum spectrum = {0};
+    if (!status && scene.spectrum)
+        status = gb_spectrum_compute(s.spectrum_x, s.spectrum_count, s.step * (double)scene.integrate.sample_every,
+                                     scene.spectrum_window, &spectrum);
+    if (!status && scene.strobe) status = write_strobe(&files[OUT_STROBE], dir, case_path, &s.strobe, s.period);
+    if (!status && scene.spectrum) status = write_spectrum(&files[OUT_SPECTRUM], dir, case_path, &spectrum);
+    if (!status && scene.lyapunov) status = write_lyapunov(&files[OUT_LYAPUNOV], dir, case_path, &scene, &lyapunov);
+
+    cJSON *root = NULL;
+    if (!status) {
+        gb_dynamics_observables o;
+        const double t_end = scene.integrate.periods * s.period;
+        gb_dynamics_observe(dynamics, t_end, y, &o);
+        root = cJSON_CreateObject();
+        cJSON_AddItemToObject(root, "scene", scene_json(&scene));
+        cJSON_AddNumberToObject(root, "t_end", t_end);
+        cJSON_AddItemToObject(root, "quaternion", cli_json_vector(y + GB_STATE_Q, 4));
+        cJSON_AddItemToObject(root, "omega", cli_json_vector(y + GB_STATE_OMEGA, 3));
+        cJSON_AddNumberToObject(root, "grid_switches", (double)o.grid_switches);
+        cJSON_AddNumberToObject(root, "branch_switches", (double)o.branch_switches);
+        cJSON_AddNumberToObject(root, "energy_residual_final", o.residual);
+        cJSON_AddNumberToObject(root, "energy_residual_max", s.residual_max);
+        cJSON_AddNumberToObject(root, "orthonormality_max", s.orthonormality_max);
+        cJSON_AddNumberToObject(root, "quaternion_drift_max", stats.max_norm_drift);
+        cJSON_AddNumberToObject(root, "steps", (double)stats.steps);
+        cJSON_AddNumberToObject(root, "rhs_evaluations", (double)stats.rhs_evaluations);
+        cJSON_AddNumberToObject(root, "samples", (double)s.samples);
+        if (scene.monitors) {
+            cJSON *m = cJSON_AddObjectToObject(root, "monitors");
+            cJSON_AddNumberToObject(m, "geff_nonpositive_fraction", (double)s.geff_nonpositive / (double)s.samples);
+            cJSON_AddNumberToObject(m, "geff_min", s.geff_min);
+            cJSON_AddNumberToObject(m, "lift_off_fraction", (double)s.lift_off / (double)s.samples);
+            cJSON_AddNumberToObject(m, "normal_force_min", s.normal_min);
+            cJSON_AddNumberToObject(m, "friction_needed_max", s.friction_max);
+            cJSON_AddNumberToObject(m, "friction_over_half_fraction", (double)s.friction_over_half / (double)s.samples);
+        }
+        if (scene.strobe) cJSON_AddItemToObject(root, "strobe", strobe_json(&s.strobe));
+        if (scene.spectrum) cJSON_AddItemToObject(root, "spectrum", spectrum_json(&scene, &spectrum, s.spectrum_count));
+        if (scene.lyapunov) cJSON_AddItemToObject(root, "lyapunov", cli_lyapunov_json(&scene, &lyapunov, 0));
     }
-    gb_dynamics_observables o;
-    const double t_end = scene.integrate.periods * s.period;
-    gb_dynamics_observe(dynamics, t_end, y, &o);
-    cJSON *root = cJSON_CreateObject();
-    cJSON_AddItemToObject(root, "scene", scene_json(&scene));
-    cJSON_AddNumberToObject(root, "t_end", t_end);
-    cJSON_AddItemToObject(root, "quaternion", cli_json_vector(y + GB_STATE_Q, 4));
-    cJSON_AddItemToObject(root, "omega", cli_json_vector(y + GB_STATE_OMEGA, 3));
-    cJSON_AddNumberToObject(root, "grid_switches", (double)o.grid_switches);
-    cJSON_AddNumberToObject(root, "branch_switches", (double)o.branch_switches);
-    cJSON_AddNumberToObject(root, "energy_residual_final", o.residual);
-    cJSON_AddNumberToObject(root, "energy_residual_max", s.residual_max);
-    cJSON_AddNumberToObject(root, "orthonormality_max", s.orthonormality_max);
-    cJSON_AddNumberToObject(root, "quaternion_drift_max", stats.max_norm_drift);
-    cJSON_AddNumberToObject(root, "steps", (double)stats.steps);
-    cJSON_AddNumberToObject(root, "rhs_evaluations", (double)stats.rhs_evaluations);
-    cJSON_AddNumberToObject(root, "samples", (double)s.samples);
-    if (scene.monitors) {
-        cJSON *m = cJSON_AddObjectToObject(root, "monitors");
-        cJSON_AddNumberToObject(m, "geff_nonpositive_fraction", (double)s.geff_nonpositive / (double)s.samples);
-        cJSON_AddNumberToObject(m, "geff_min", s.geff_min);
-        cJSON_AddNumberToObject(m, "lift_off_fraction", (double)s.lift_off / (double)s.samples);
-        cJSON_AddNumberToObject(m, "normal_force_min", s.normal_min);
-        cJSON_AddNumberToObject(m, "friction_needed_max", s.friction_max);
-        cJSON_AddNumberToObject(m, "friction_over_half_fraction", (double)s.friction_over_half / (double)s.samples);
+    char *text = root ? cJSON_Print(root) : NULL;
+    if (!status && scene.write_summary) {
+        FILE *file = stage_open(&files[OUT_SUMMARY], dir, case_path, OUT_SUMMARY, &status);
+        if (file && fputs(text, file) < 0) status = gb_error_set(GB_EIO, "cannot write '%s': %s", files[OUT_SUMMARY].path, strerror(errno));
+        status = stage_close(&files[OUT_SUMMARY], file, status);
     }
-    char *text = cJSON_Print(root);
-    if (scene.write_summary) status = cli_write_atomically(summary_path, text);
+    status = stage_commit(files, status);
     if (!status && json) puts(text);
     free(text);
     cJSON_Delete(root);
-    gb_dynamics_free(dynamics);
+    gb_spectrum_free(&spectrum);
+    gb_strobe_free(&s.strobe);
+    free(s.spectrum_x);
+    gb_lyapunov_result_free(&lyapunov);
+    if (body) gb_lyapunov_body_free(body);
+    else gb_dynamics_free(dynamics);
     if (status) return cli_failure("run", status);
     fprintf(stderr, "gomboc run: %s: %zu steps in %.2f s CPU\n", case_path, stats.steps, seconds);
     return 0;

@@ -199,6 +199,17 @@ static void test_run_command(void)
         {"malformed", "[body]\nmorphology I\n", "malformed.ini:2: malformed line"},
         {"bad-steps", "[integrator]\nsteps_per_period = -3\n", "bad-steps.ini:2: [integrator] steps_per_period = -3: out of range"},
         {"bad-attitude", "[initial]\nattitude = axis-angle 0,0,0,1\n", "bad-attitude.ini:2: [initial] attitude = axis-angle 0,0,0,1: not an attitude"},
+        {"bad-window", "[diagnostics]\nspectrum = yes\n[spectrum]\nwindow = blackman\n",
+         "bad-window.ini:4: [spectrum] window = blackman: unknown (allowed: hann, rectangular)"},
+        {"bad-phase", "[integrator]\nsteps_per_period = 4\n[diagnostics]\nstrobe = yes\n[strobe]\nphase = 0.3\n",
+         "bad-phase.ini:6: [strobe] phase: = 0.3 is not on the sample grid"},
+        {"bad-interval", "[integrator]\nperiods = 10\n[diagnostics]\nlyapunov = yes\n[lyapunov]\ninterval_periods = 3\n",
+         "bad-interval.ini:6: [lyapunov] interval_periods: = 3 with transient_periods = 0 does not divide"},
+        {"bad-batches", "[integrator]\nperiods = 10\n[diagnostics]\nlyapunov = yes\n[lyapunov]\nbatches = 20\n",
+         "bad-batches.ini:6: [lyapunov] batches: = 20 exceeds the 10 intervals"},
+        {"bad-delta0", "[lyapunov]\ndelta0 = 2\n", "bad-delta0.ini:2: [lyapunov] delta0 = 2: out of range (allowed: 0 < delta0 < 1)"},
+        {"strobe-late", "[integrator]\nperiods = 5\n[diagnostics]\nstrobe = yes\n[strobe]\ntransient_periods = 5\n",
+         "strobe-late.ini:6: [strobe] transient_periods: = 5 leaves no strobe samples"},
     };
     for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
         char path[256], args[600], out[4096] = "", history[300];
@@ -246,6 +257,40 @@ static void test_run_command(void)
     remove(path);
     snprintf(summary, sizeof summary, "%s/short-summary.json", dir);
     remove(summary);
+
+    /* The diagnostics: only what the scene asks for is written; gomboc lyapunov's keys. */
+    snprintf(text, sizeof text, "%s[output]\nhistory = no\nsummary = no\n[diagnostics]\nstrobe = yes\n"
+                                "[strobe]\ntransient_periods = 0\n", SHORT_SCENE);
+    write_case(dir, "strobe-only", text, path, sizeof path);
+    snprintf(args, sizeof args, "run %s --out %s", path, dir);
+    const int strobe_code = run(args, out, sizeof out);
+    char strobe[300], spectrum[300], lyapunov[300];
+    snprintf(strobe, sizeof strobe, "%s/strobe-only-strobe.csv", dir);
+    snprintf(spectrum, sizeof spectrum, "%s/strobe-only-spectrum.csv", dir);
+    snprintf(lyapunov, sizeof lyapunov, "%s/strobe-only-lyapunov.csv", dir);
+    gb_check cs = {"6", "73-74", "a scene asking only for the strobe writes only NAME-strobe.csv", "file system", "exact"};
+    gb_check_true(&cs, strobe_code == 0 && access(strobe, F_OK) == 0 && access(spectrum, F_OK) != 0 && access(lyapunov, F_OK) != 0,
+                  "exit %d: %.300s", strobe_code, out);
+    remove(strobe);
+    remove(path);
+    snprintf(text, sizeof text, "%s[integrator]\nperiods = 4\n[lyapunov]\nbatches = 2\n", SHORT_SCENE);
+    write_case(dir, "lyap", text, path, sizeof path);
+    snprintf(args, sizeof args, "lyapunov %s --json", path);
+    static char json[1 << 16];
+    const int lcode = run(args, json, sizeof json);
+    cJSON *root = cJSON_Parse(strchr(json, '{') ? strchr(json, '{') : json);
+    static const char *keys[] = {"lambda_max", "error_bar", "periods", "delta0", "running"};
+    for (size_t k = 0; k < sizeof keys / sizeof keys[0]; k++) {
+        gb_check ck = {"6", "77", "gomboc lyapunov --json has the key", keys[k], "exact"};
+        gb_check_true(&ck, lcode == 0 && root && cJSON_GetObjectItem(root, keys[k]), "exit %d: %.200s", lcode, json);
+    }
+    gb_check cr = {"6", "77", "gomboc lyapunov: running has one value per period, and ends at lambda_max", "its definition", "exact"};
+    const cJSON *running = root ? cJSON_GetObjectItem(root, "running") : NULL;
+    gb_check_true(&cr, running && cJSON_GetArraySize(running) == 4 &&
+                       cJSON_GetNumberValue(cJSON_GetArrayItem(running, 3)) == number(root, "lambda_max"),
+                  "%d values", running ? cJSON_GetArraySize(running) : -1);
+    cJSON_Delete(root);
+    remove(path);
     rmdir(dir);
 }
 

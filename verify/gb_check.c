@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 const char *gb_check_data_dir = ".";
+int gb_check_full = 0;
 static cJSON *rows;
 static double last_time;
 

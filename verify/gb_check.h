@@ -50,6 +50,9 @@ void gb_check_test_start(void);
 /* Write every recorded row to `path` (atomically). Returns 0 on success. */
 int gb_check_write(const char *path);
 
+/* 1 under `make verify-full` (main's --full): the long studies run too. */
+extern int gb_check_full;
+
 /* Where data files for the report go (set by main from --data). */
 extern const char *gb_check_data_dir;
 

@@ -14,8 +14,9 @@ int main(int argc, char **argv)
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--results") && i + 1 < argc) results = argv[++i];
         else if (!strcmp(argv[i], "--data") && i + 1 < argc) gb_check_data_dir = argv[++i];
+        else if (!strcmp(argv[i], "--full")) gb_check_full = 1;
         else {
-            fprintf(stderr, "usage: %s [--results FILE] [--data DIR]\n", argv[0]);
+            fprintf(stderr, "usage: %s [--results FILE] [--data DIR] [--full]\n", argv[0]);
             return 2;
         }
     }
@@ -23,7 +24,7 @@ int main(int argc, char **argv)
     if (CU_initialize_registry() != CUE_SUCCESS) return 1;
     if (verify_register_s2_surface() || verify_register_s2_massprops() ||
         verify_register_s2_shape() || verify_register_s4_contact() ||
-        verify_register_s5_dynamics() || verify_register_s6_chaos() ||
+        verify_register_s5_dynamics() || verify_register_s6_chaos() || verify_register_s6_diagnostics() ||
         verify_register_command()) {
         fprintf(stderr, "verify: cannot register suites: %s\n", CU_get_error_msg());
         CU_cleanup_registry();

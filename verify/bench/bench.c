@@ -8,6 +8,7 @@
 #include "gb_contact.h"
 #include "gb_error.h"
 #include "gb_integrate.h"
+#include "gb_lyapunov.h"
 
 #include <gsl/gsl_randist.h>
 #include <gsl/gsl_rng.h>
@@ -81,6 +82,40 @@ static double time_run(const char *m, gb_contact_model contact, gb_dynamics_vari
     return best;
 }
 
+/* λ_max over the same 300 periods (the pair of eq 77, renormalised every period): CPU seconds, best of
+ * `repeats`, and the reference's final state in y (which must be the plain run's). */
+static double time_lyapunov(const char *m, gb_contact_model contact, gb_dynamics_variant variant, int repeats,
+                            double y[GB_STATE_SIZE], double *lambda)
+{
+    double best = 1e300;
+    for (int r = 0; r < repeats; r++) {
+        gb_dynamics_def def = gb_dynamics_default_def();
+        def.contact = contact;
+        def.variant = variant;
+        const gb_integrate_def idef = gb_integrate_default_def();
+        const double R0[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1}, w0[3] = {0, 0, 0};
+        gb_lyapunov_def ldef = gb_lyapunov_default_def();
+        ldef.interval = 2.0 * M_PI / def.forcing.omega;
+        ldef.intervals = 300;
+        const double start = now();
+        gb_lyapunov_body *body;
+        gb_lyapunov_result res;
+        const gb_lyapunov_pair_system ps = gb_lyapunov_body_pair();
+        if (gb_lyapunov_body_create(m, 0.12, &def, &idef, R0, w0, def.forcing.omega, &body) ||
+            gb_lyapunov_pair(&ps, body, &ldef, 0.0, NULL, &res)) {
+            fprintf(stderr, "bench: %s\n", gb_error_message());
+            exit(1);
+        }
+        const double t = now() - start;
+        if (t < best) best = t;
+        memcpy(y, gb_lyapunov_body_state(body), GB_STATE_SIZE * sizeof *y);
+        *lambda = res.lambda_max;
+        gb_lyapunov_result_free(&res);
+        gb_lyapunov_body_free(body);
+    }
+    return best;
+}
+
 static FILE *record; /* bench.json for the report, when a path was given */
 
 static int bench_dynamics(void)
@@ -104,6 +139,30 @@ static int bench_dynamics(void)
                             "\"fast_identical\": %s}", m ? ",\n  " : "  ", name, plain, fast, cont, same ? "true" : "false");
     }
     printf("\ntargets (issue 4): fast grid >= 20x, continuous >= 50x the plain loop\n");
+
+    printf("\nbench: lambda_max over the same 300 periods (pair estimator, eq 77) against one run, best of 2\n"
+           "(one run timed again here, beside the lambda run, in the same binary)\n\n");
+    printf("%-4s %-22s %12s %14s %8s %10s\n", "body", "model", "one run [s]", "lambda run [s]", "ratio", "lambda");
+    for (int m = 0; m < 2; m++) {
+        const char *name = m ? "II" : "I";
+        static const gb_contact_model contacts[2] = {GB_CONTACT_MODEL_FAST_GRID, GB_CONTACT_MODEL_CONTINUOUS};
+        static const gb_dynamics_variant variants[2] = {GB_VARIANT_PAPER, GB_VARIANT_ROLLING};
+        for (int k = 0; k < 2; k++) {
+            double y_run[GB_STATE_SIZE], y_pair[GB_STATE_SIZE], lambda;
+            size_t switches;
+            const double one = time_run(name, contacts[k], variants[k], 2, y_run, &switches);
+            const double pair = time_lyapunov(name, contacts[k], variants[k], 2, y_pair, &lambda);
+            const int same = memcmp(y_run, y_pair, sizeof y_run) == 0;
+            failures += !same;
+            printf("%-4s %-22s %12.3f %14.3f %7.2fx %10.4f   %s\n", name, k ? "continuous rolling" : "fast grid (paper)", one,
+                   pair, pair / one, lambda, same ? "reference = the run (state bits)" : "REFERENCE DIFFERS FROM THE RUN");
+            if (record)
+                fprintf(record, ",\n  {\"body\": \"%s\", \"lambda_model\": \"%s\", \"run_seconds\": %.6f, "
+                                "\"lambda_seconds\": %.6f, \"reference_identical\": %s}",
+                        name, k ? "continuous" : "fast-grid", one, pair, same ? "true" : "false");
+        }
+    }
+    printf("\ntarget (issue 5): lambda over 300 periods <= 2.2x one run of the same scene\n");
     return failures;
 }
 

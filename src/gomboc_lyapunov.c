@@ -1,0 +1,82 @@
+/* gomboc lyapunov — the maximal Lyapunov exponent of one scene (paper eq 77, Fig 9). */
+#include "gomboc_cli.h"
+
+#include "gb_error.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <time.h>
+
+static const char *usage_lyapunov =
+    "usage: gomboc lyapunov CASE [--json]\n"
+    "\n"
+    "  CASE    a scene file (INI; cases/README.md); its [lyapunov] section sets delta0,\n"
+    "          transient_periods, interval_periods, batches and omega_scale, and the run's\n"
+    "          [integrator] periods set the record: (periods - transient) / interval_periods intervals\n"
+    "  --json  print one JSON object: lambda_max [1/s], error_bar (batch-means standard error),\n"
+    "          periods, delta0, running (the running lambda_max after each interval),\n"
+    "          instantaneous (lambda_inst per interval), converged, late_drift, ...\n"
+    "\n"
+    "Two trajectories of the scene, the second put back at distance delta0 along their separation\n"
+    "after every interval (eq 77). Nothing is written to files.\n";
+
+int command_lyapunov(int argc, char **argv)
+{
+    const char *case_path = NULL;
+    int json = 0;
+    static const char *const valued[] = {NULL};
+    for (int i = 0; i < argc; i++) {
+        const char *opt = argv[i];
+        if (opt[0] != '-' || opt[1] == '\0') {
+            if (case_path) return cli_input_error("lyapunov", "a second case file '%s'%s", opt, " (allowed: one CASE)");
+            case_path = opt;
+            continue;
+        }
+        const int kind = cli_next_option("lyapunov", argc, argv, &i, usage_lyapunov, valued, " (allowed: --json, --help)",
+                                         NULL, &json, NULL);
+        if (kind == CLI_NEXT) continue;
+        return kind == CLI_HELP ? 0 : kind;
+    }
+    if (!case_path)
+        return cli_input_error("lyapunov", "missing %s%s", "CASE", " (allowed: a scene file, e.g. cases/table1-gomboc-I.ini)");
+    gb_case scene;
+    int status = gb_case_load(case_path, &scene);
+    if (!status) status = gb_case_lyapunov_check(case_path, &scene);
+    if (status) return cli_failure("lyapunov", status);
+    gb_lyapunov_body *body = NULL;
+    gb_lyapunov_result r;
+    const clock_t start = clock();
+    status = cli_scene_lyapunov(&scene, NULL, NULL, NULL, &body, &r);
+    const double seconds = (double)(clock() - start) / CLOCKS_PER_SEC;
+    if (status) return cli_failure("lyapunov", status);
+    if (json) {
+        cJSON *root = cli_lyapunov_json(&scene, &r, 1);
+        cJSON_AddStringToObject(root, "case", case_path);
+        cJSON_AddStringToObject(root, "morphology", scene.morphology);
+        cJSON_AddNumberToObject(root, "beta", scene.beta);
+        cJSON_AddStringToObject(root, "equation", gb_dynamics_variant_name(scene.dynamics.variant));
+        cJSON_AddStringToObject(root, "contact", gb_dynamics_contact_name(scene.dynamics.contact));
+        cli_print_json(root);
+        cJSON_Delete(root);
+    } else {
+        const double T = 2.0 * M_PI / scene.dynamics.forcing.omega;
+        printf("%s: lambda_max = %.6g +- %.2g 1/s (%.6g +- %.2g per forcing period)\n", case_path, r.lambda_max,
+               r.error_bar, r.lambda_max * T, r.error_bar * T);
+        printf("  %zu intervals of %zu period(s) after %zu transient period(s); delta0 = %g; omega_scale = %g rad/s; "
+               "%zu batches\n",
+               r.intervals, scene.lyapunov_interval_periods, scene.lyapunov_def.transient, r.delta0, scene.omega_scale,
+               scene.lyapunov_def.batches);
+        printf("  convergence: the running value moved by %.3g over the last quarter (%s: limit 2 x error bar = %.3g)\n",
+               r.late_drift, r.converged ? "converged" : "NOT converged", 2.0 * r.error_bar);
+        printf("  %10s %14s %14s\n", "interval", "lambda_inst", "running");
+        const size_t every = r.intervals > 20 ? r.intervals / 20 : 1;
+        for (size_t n = 0; n < r.intervals; n++)
+            if ((n + 1) % every == 0 || n + 1 == r.intervals)
+                printf("  %10zu %14.6g %14.6g\n", n + 1, r.instantaneous[n], r.running[n]);
+    }
+    fprintf(stderr, "gomboc lyapunov: %s: %.2f s CPU\n", case_path, seconds);
+    gb_lyapunov_result_free(&r);
+    gb_lyapunov_body_free(body);
+    return 0;
+}
