@@ -90,8 +90,8 @@ bench-only: $(BENCH_BIN)
 	@mkdir -p $(OUT)
 	$(BENCH_BIN) $(OUT)/bench.json
 
-# Everything `make verify` does, plus the long studies (harness --full): continuous rolling over 3000
-# periods, post-transient exponents of the unforced bodies. About 10 minutes more.
+# Everything `make verify` does, plus the long studies (harness --full): continuous rolling over 10000
+# periods, post-transient exponents of the unforced bodies. A few minutes more.
 verify-full: deps
 	@$(MAKE) --no-print-directory verify-only VERIFY_FLAGS=--full
 

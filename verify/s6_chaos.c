@@ -446,8 +446,8 @@ static void pivot_finding(const estimate table[][VARIATION_COUNT])
     cJSON_Delete(doc);
 }
 
-static void judge_need(const char *body, const char *model, const char *variation, const char *claim, estimate e,
-                       estimate base, size_t periods)
+static void judge_need_at(const char *body, const char *model, const char *variation, const char *claim, estimate e,
+                          estimate base, size_t periods, int longest)
 {
     char q[200];
     snprintf(q, sizeof q, "Gomboc %s, %s, %s: lambda_max - 4 sigma (%zu periods)", body, model, variation, periods);
@@ -455,9 +455,25 @@ static void judge_need(const char *body, const char *model, const char *variatio
     /* The claim holds when the variation removes the positive exponent; the evidence is conclusive when λ
      * is clearly positive, or clearly below a quarter of the same model's baseline λ. */
     const int removed = e.ok && e.lambda + 4.0 * e.error < 0.25 * base.lambda;
+    if (longest && e.ok && !positive(e) && !removed) {
+        /* The longest record we run (make verify-full) and still neither: say so, with the numbers, instead
+         * of a verdict. The check is that the run completed with a finite estimate. */
+        snprintf(q, sizeof q, "UNDECIDED at the longest record: Gomboc %s, %s, %s (%zu periods)", body, model, variation, periods);
+        gb_check u = {"8.2", "77", q, "a finite estimate; no verdict at 4 sigma", "-"};
+        gb_check_true(&u, isfinite(e.lambda) && isfinite(e.error),
+                      "lambda_max = %.3f +- %.3f 1/s: not clearly positive, not clearly below a quarter of the baseline %.3f",
+                      e.lambda, e.error, base.lambda);
+        return;
+    }
     gb_check_finding(&c, claim, !positive(e), positive(e) || removed,
                      "lambda_max = %.3f +- %.3f 1/s over %zu periods from R0 = I (baseline of this model %.3f +- %.3f)",
                      e.lambda, e.error, periods, base.lambda, base.error);
+}
+
+static void judge_need(const char *body, const char *model, const char *variation, const char *claim, estimate e,
+                       estimate base, size_t periods)
+{
+    judge_need_at(body, model, variation, claim, e, base, periods, 0);
 }
 
 static void test_chaos_real(void)
@@ -542,7 +558,7 @@ static void test_chaos_real(void)
         {"continuous rolling, beta = 0.02", "continuous rolling", "chaos comes from contact-branch competition (absent for a strictly convex body)"},
     };
     /* Continuous rolling (n odd): 300 periods do not decide; its rows are judged by `make verify-full` on
-     * 3000 periods (test_chaos_real_long). */
+     * 10000 periods (test_chaos_real_long). */
     for (int n = 0; n < 4; n += 2)
         for (int b = 0; b < 2; b++) {
             const estimate e = find(table, b, needs[n][0]);
@@ -578,9 +594,9 @@ static void test_chaos_real(void)
     pivot_finding(table);
 }
 
-/* `make verify-full`: what 300 periods cannot decide. Continuous rolling over 3000 periods (baseline,
- * unforced, strictly convex), and the unforced exponent after a 2000-period transient (is λ > 0 only the
- * body's decay from R0 = I?). */
+/* `make verify-full`: what 300 periods cannot decide. Continuous rolling over 10000 periods (baseline,
+ * unforced, strictly convex), and the unforced exponent over 5000 periods after a 2000-period transient
+ * (is λ > 0 only the body's decay from R0 = I?). 3000 and 1000 periods left II's unforced rows undecided. */
 static void test_chaos_real_long(void)
 {
     if (!gb_check_full) return;
@@ -595,7 +611,7 @@ static void test_chaos_real_long(void)
     cJSON *doc = cJSON_CreateArray();
     for (int b = 0; b < 2; b++) {
         const variation *runs[5] = {rolling, unforced, convex, paper_unforced, unforced};
-        static const size_t periods[5] = {3000, 3000, 3000, 1000, 1000}, transient[5] = {0, 0, 0, 2000, 2000};
+        static const size_t periods[5] = {10000, 10000, 10000, 5000, 5000}, transient[5] = {0, 0, 0, 2000, 2000};
         estimate e[5];
         for (int k = 0; k < 5; k++) {
             gb_lyapunov_result r;
@@ -611,14 +627,14 @@ static void test_chaos_real_long(void)
             cJSON_AddItemToArray(doc, row);
             if (!status) gb_lyapunov_result_free(&r);
         }
-        judge_need(bodies[b], "continuous rolling", "unforced (A1 = A2 = 0)",
-                   "positive lambda_max needs the biharmonic forcing (sections 1, 7, 8.2)", e[1], e[0], 3000);
-        judge_need(bodies[b], "continuous rolling", "beta = 0.02 (strictly convex)",
-                   "chaos comes from contact-branch competition (absent for a strictly convex body)", e[2], e[0], 3000);
-        judge_need(bodies[b], "paper model", "unforced, after a 2000-period transient",
-                   "positive lambda_max needs the biharmonic forcing (sections 1, 7, 8.2)", e[3], e[3], 1000);
-        judge_need(bodies[b], "continuous rolling", "unforced, after a 2000-period transient",
-                   "positive lambda_max needs the biharmonic forcing (sections 1, 7, 8.2)", e[4], e[0], 1000);
+        judge_need_at(bodies[b], "continuous rolling", "unforced (A1 = A2 = 0)",
+                   "positive lambda_max needs the biharmonic forcing (sections 1, 7, 8.2)", e[1], e[0], periods[1], 1);
+        judge_need_at(bodies[b], "continuous rolling", "beta = 0.02 (strictly convex)",
+                   "chaos comes from contact-branch competition (absent for a strictly convex body)", e[2], e[0], periods[2], 1);
+        judge_need_at(bodies[b], "paper model", "unforced, after a 2000-period transient",
+                   "positive lambda_max needs the biharmonic forcing (sections 1, 7, 8.2)", e[3], e[3], periods[3], 1);
+        judge_need_at(bodies[b], "continuous rolling", "unforced, after a 2000-period transient",
+                   "positive lambda_max needs the biharmonic forcing (sections 1, 7, 8.2)", e[4], e[0], periods[4], 1);
     }
     gb_check cw = {"8.2", "77", "long chaos study written for the report", "-", "exact"};
     gb_check_true(&cw, gb_check_write_data("chaos-long.json", doc) == 0, "cannot write");
@@ -689,7 +705,7 @@ int verify_register_s6_chaos(void)
         {"eq 77: observation time, delta0 and renormalisation interval", test_estimator_parameters},
         {"section 8.2: is the chaos real? lambda_max under every variation", test_chaos_real},
         {"eq 75 against eq 77 on the Gomboc (saltation at located switches)", test_gomboc_estimators},
-        {"section 8.2 (make verify-full): 3000-period rolling runs and post-transient exponents", test_chaos_real_long},
+        {"section 8.2 (make verify-full): 10000-period rolling runs and post-transient exponents", test_chaos_real_long},
         {NULL, NULL},
     };
     return verify_register_suite("Sections 6, 8.2: Lyapunov exponents and chaos", tests);
