@@ -40,12 +40,12 @@ gb_dynamics_def gb_dynamics_default_def(void)
         .damping = 0.02,
         .forcing = {.g = 9.81, .a1 = 2.0, .a2 = 1.0, .omega = 18.0, .psi = M_PI / 3.0},
         .grid = gb_contact_grid_default_def(),
-        .seed_grid = gb_contact_default_branch_grid(),
+        .certify = gb_certify_default_def(),
         .tracker_radius = 0.006,
     };
     /* Leaves of 16 nodes and a tracker radius of 0.006 were the fastest of 8–32 and 0.001–0.03 on the
      * Table 1 run (make bench); neither changes a result, only the work. */
-    def.grid.leaf_size = def.seed_grid.leaf_size = 16;
+    def.grid.leaf_size = 16;
     return def;
 }
 
@@ -55,7 +55,8 @@ struct gb_dynamics {
     double inertia[3][3]; /* I_C [kg m²] */
     double mean_radius;   /* L [m] (eq 53) */
     gb_contact_grid *grid;
-    gb_contact_tracker *tracker; /* exact grid search along the trajectory (fast-grid, continuous) */
+    gb_contact_tracker *tracker; /* exact grid search along the trajectory (fast-grid) */
+    gb_certify *certify;         /* the global-minimum certificate (continuous) */
     gb_contact_refine_def refine;
     /* The contact at the last accepted state. */
     size_t index;
@@ -65,6 +66,7 @@ struct gb_dynamics {
     double contact_time, contact_rate[2];
     double energy0, t0;
     size_t grid_switches, branch_switches;
+    size_t branches_lost; /* continuous: evaluations where the continued branch had no minimum */
 };
 
 const gb_dynamics_def *gb_dynamics_get_def(const gb_dynamics *d) { return &d->def; }
@@ -99,12 +101,13 @@ int gb_dynamics_create(const gb_surface *surface, const gb_dynamics_def *def, gb
         for (int i = 0; i < 3; i++)
             for (int j = 0; j < 3; j++) d->inertia[i][j] = props.inertia[i][j] * l2;
         d->mean_radius = props.L * def->length;
-        /* Only the grid the contact model needs. */
-        const gb_contact_grid_def *grid_def =
-            def->contact == GB_CONTACT_MODEL_CONTINUOUS ? &def->seed_grid : &def->grid;
-        status = gb_contact_grid_create(surface, grid_def, &d->grid);
+        /* Only what the contact model needs: a grid (and its tracker) or the certificate. */
+        if (def->contact == GB_CONTACT_MODEL_CONTINUOUS)
+            status = gb_certify_create(surface, &def->certify, &d->certify);
+        else
+            status = gb_contact_grid_create(surface, &def->grid, &d->grid);
     }
-    if (!status && def->contact != GB_CONTACT_MODEL_GRID)
+    if (!status && def->contact == GB_CONTACT_MODEL_FAST_GRID)
         status = gb_contact_tracker_create(d->grid, def->tracker_radius, &d->tracker);
     if (status) {
         gb_dynamics_free(d);
@@ -119,6 +122,7 @@ void gb_dynamics_free(gb_dynamics *d)
     if (!d) return;
     gb_contact_tracker_free(d->tracker);
     gb_contact_grid_free(d->grid);
+    gb_certify_free(d->certify);
     free(d);
 }
 
@@ -177,6 +181,12 @@ static int contact_at(gb_dynamics *d, double t, const double zb[3], const double
     const double dt = t - d->contact_time;
     int status = gb_contact_refine(&d->surface, zb, d->contact.phi + d->contact_rate[0] * dt,
                                    d->contact.theta + d->contact_rate[1] * dt, &d->refine, &c->point);
+    if ((status == GB_ENOCONV || (!status && !c->point.is_minimum)) && d->certify) {
+        /* The continued branch has no minimum here (a fold of h inside the step): the contact is the
+         * global minimum at this state, found and certified from scratch. */
+        d->branches_lost++;
+        status = gb_certify_global_minimum(d->certify, zb, &d->refine, &c->point);
+    }
     if (!status && !c->point.is_minimum)
         status = gb_error_set(GB_ENOCONV, "continuous contact lost: Newton from the previous contact ended on a "
                               "point that is not a minimum (eq 35) at z_b = (%g, %g, %g)", zb[0], zb[1], zb[2]);
@@ -196,10 +206,8 @@ static int contact_global(gb_dynamics *d, const double zb[3])
         if (!status) d->index = node.index;
         return status;
     }
-    gb_contact_branches branches;
-    const int status = gb_contact_branches_find(d->grid, zb, &d->refine, &branches);
-    if (!status) d->contact = branches.branch[0];
-    return status;
+    gb_certify_forget(d->certify);
+    return gb_certify_global_minimum(d->certify, zb, &d->refine, &d->contact);
 }
 
 /* ---------------------------------------------------------------- equations of motion */
@@ -307,11 +315,8 @@ static void vertical_of(const double y[GB_STATE_SIZE], double zb[3])
     zb_of(R, zb);
 }
 
-/* Continuous contact at state y: the continued branch (*continued) and, when another local minimum is
- * lower, that minimum (*other, *found = 1). The exact grid tracker on the seed grid finds the lowest
- * node; if it lies beside the continued minimum (within two cells) no other branch can be lower
- * (up to basins narrower than the grid error, see gb_contact_branches_find); otherwise Newton from
- * that node finds its local minimum. */
+/* Continuous contact at state y: the continued branch (*continued) and, when the certificate finds a
+ * lower local minimum, that minimum (*other, *found = 1). */
 static int competitor(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], gb_contact_point *continued,
                       gb_contact_point *other, int *found)
 {
@@ -322,17 +327,25 @@ static int competitor(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], g
     if (status) return status;
     *continued = c.point;
     *found = 0;
-    gb_contact_node node;
-    status = gb_contact_tracker_find(d->tracker, zb, &node);
-    if (status) return status;
-    d->index = node.index;
-    const gb_contact_grid_def *g = gb_contact_grid_get_def(d->grid);
-    const double cell = hypot(M_PI / g->n_phi, 2.0 * M_PI / g->n_theta);
-    const double dx[3] = {node.x[0] - c.point.rc[0], node.x[1] - c.point.rc[1], node.x[2] - c.point.rc[2]};
-    if (gb_vec_norm(dx) <= 2.0 * cell) return GB_OK; /* the lowest node is beside the branch's minimum */
-    status = gb_contact_refine(&d->surface, zb, node.phi, node.theta, &d->refine, other);
-    if (status) return status;
-    *found = other->is_minimum && other->height < c.point.height;
+    /* A lower minimum found is checked in turn, until the lowest is proved global: with several
+     * lower minima the switch goes to the global one, whichever the search met first. */
+    gb_contact_point candidate = c.point;
+    for (int round = 0; round < 16; round++) {
+        gb_certify_result r;
+        status = gb_certify_check(d->certify, zb, &candidate, &d->refine, &r);
+        if (status) return status;
+        if (r.verdict != GB_CERTIFY_LOWER_FOUND) break;
+        candidate = r.lower;
+        *other = r.lower;
+        *found = 1;
+    }
+    return GB_OK;
+}
+
+int gb_dynamics_certify_stats(const gb_dynamics *d, gb_certify_stats *out)
+{
+    if (!d->certify) return gb_error_set(GB_EINVAL, "the certificate belongs to continuous contact only");
+    gb_certify_get_stats(d->certify, out);
     return GB_OK;
 }
 

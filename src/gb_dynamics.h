@@ -15,11 +15,12 @@
  *
  * Three contact models (gb_contact): the paper's grid by brute force, the same node by the exact
  * trajectory tracker (gb_contact_tracker), and continuous contact (Newton from the previous
- * contact at every evaluation; at every accepted step the global minimum is re-established, see
- * gb_dynamics_accept). */
+ * contact at every evaluation; at every accepted step gb_certify proves it the global minimum or finds
+ * the lower one, see gb_dynamics_accept). */
 #ifndef GB_DYNAMICS_H
 #define GB_DYNAMICS_H
 
+#include "gb_certify.h"
 #include "gb_contact.h"
 #include "gb_forcing.h"
 #include "gb_surface.h"
@@ -48,7 +49,7 @@ typedef struct gb_dynamics_def {
     double damping;                /* c in τ_d = −c ω [N m s] (eq 42; Table 1: 0.02) */
     gb_forcing forcing;            /* eq 25 */
     gb_contact_grid_def grid;      /* the grid of the grid models (Table 1: 90 × 180) */
-    gb_contact_grid_def seed_grid; /* continuous contact: the grid of the global check */
+    gb_certify_def certify;        /* continuous contact: the certificate of the global minimum */
     double tracker_radius;         /* gb_contact_tracker's reference radius (fast-grid, continuous) */
 } gb_dynamics_def;
 
@@ -66,9 +67,13 @@ void gb_dynamics_free(gb_dynamics *dynamics);
 const gb_dynamics_def *gb_dynamics_get_def(const gb_dynamics *dynamics);
 /* L of eq 53 [m], for this length. */
 double gb_dynamics_mean_radius(const gb_dynamics *dynamics);
-/* The nodes of the one grid built: the contact grid for grid models, the seed grid of the global
- * check for continuous contact (never both). */
+/* The nodes of the grid built: the contact grid for grid models; 0 for continuous contact, which
+ * builds none. */
 size_t gb_dynamics_grid_size(const gb_dynamics *dynamics);
+
+/* Continuous contact: the certificate's counters (checks, and how many ended global, lower-found or
+ * undecided); GB_EINVAL for a grid model. */
+int gb_dynamics_certify_stats(const gb_dynamics *dynamics, gb_certify_stats *out);
 
 /* The initial state: attitude R0 (row-major 3 × 3, orthonormal), ω0; W = 0. Establishes the
  * initial contact (the global minimum) and E(0). */
@@ -83,10 +88,9 @@ int gb_dynamics_start(const char *morphology, double beta, const gb_dynamics_def
 int gb_dynamics_rhs(gb_dynamics *dynamics, double t, const double y[GB_STATE_SIZE], double dydt[GB_STATE_SIZE]);
 
 /* After an accepted step to (t, y): renormalise q (returns the |q| − 1 it removed), update the
- * contact and count switches. Continuous contact: the branch is continued by Newton, then the
- * exact fast grid search on the seed grid finds the lowest node; if that node is outside the
- * branch's neighbourhood, Newton from it finds its local minimum, and a lower one becomes the
- * contact (a branch switch). */
+ * contact and count switches. Continuous contact: the branch is continued by Newton, then gb_certify
+ * proves it the global minimum or returns a lower minimum, which becomes the contact (a branch
+ * switch). A check left undecided keeps the continued branch and is counted. */
 int gb_dynamics_accept(gb_dynamics *dynamics, double t, double y[GB_STATE_SIZE], double *norm_drift);
 
 /* Switch-event location (continuous contact; gb_integrate uses these). At state y, is another branch

@@ -27,13 +27,37 @@ static void phase_two(double phi, double theta, gb_phase_value *v)
     v->chi_phitheta = v->chi_thetatheta = 0.0;
 }
 
+/* The kernel's angular part sinφ cos χ written through the unit direction s = (s_x, s_y, s_z), for the
+ * interval enclosures of gb_surface_enclose (which also work in a chart without the (φ, θ) poles).
+ * Both phases are χ = θ − f(φ), so sinφ cos χ = s_x cos f + s_y sin f (sinφ cosθ = s_x, sinφ sinθ = s_y).
+ * I: f = 5φ, cos 5φ = T₅(s_z) and sin 5φ = sinφ U₄(s_z) (Chebyshev), sinφ = √(s_x² + s_y²); the term
+ * s_y √(s_x² + s_y²) makes the body C¹,¹ but not C² at the poles s = ±e_z (its Hessian is bounded and
+ * jumps there). Returns 1 when the jet is of a C² function over the box, 0 when its second
+ * derivatives only enclose the Hessian where one exists. */
+static int kernel_jet_one(const gb_jet s[3], gb_jet *k)
+{
+    static const double T5[] = {0.0, 5.0, 0.0, -20.0, 0.0, 16.0}, U4[] = {1.0, 0.0, -12.0, 0.0, 16.0};
+    *k = gb_jet_add(gb_jet_mul(s[0], gb_jet_poly(s[2], T5, 5)),
+                    gb_jet_mul(gb_jet_y_hypot(s[0], s[1]), gb_jet_poly(s[2], U4, 4)));
+    return gb_interval_add(gb_interval_sqr(s[0].v), gb_interval_sqr(s[1].v)).lo > 0.0;
+}
+
+/* II: f = (3π/2)(s_z − s_z³/3), a polynomial in s_z: smooth everywhere. */
+static int kernel_jet_two(const gb_jet s[3], gb_jet *k)
+{
+    static const double F[] = {0.0, 1.5 * M_PI, 0.0, -0.5 * M_PI};
+    const gb_jet f = gb_jet_poly(s[2], F, 3);
+    *k = gb_jet_add(gb_jet_mul(s[0], gb_jet_cos(f)), gb_jet_mul(s[1], gb_jet_sin(f)));
+    return 1;
+}
+
 /* The symmetry axes: for I the map (φ,θ) → (π−φ, 3π−θ) keeps χ₁ mod 2π and sends u to the rotation
  * of u by π about e_y; for II, (φ,θ) → (π−φ, −θ) keeps χ₂ (its φ-part is odd in cos φ) and rotates
  * u by π about e_x. Both axes pass through the minimum of sinφ cosχ (φ = π/2, χ = π). */
 static const gb_morphology morphologies[] = {
-    {"I", "theta - 5 phi", "3, 4, 8, 18", phase_one, {0.0, -1.0, 0.0}},
+    {"I", "theta - 5 phi", "3, 4, 8, 18", phase_one, kernel_jet_one, {0.0, -1.0, 0.0}},
     {"II", "theta - (3 pi / 2)(cos phi - cos^3 phi / 3)", "5, 6, 9, 19", phase_two,
-     {-1.0, 0.0, 0.0}},
+     kernel_jet_two, {-1.0, 0.0, 0.0}},
 };
 
 size_t gb_surface_morphology_count(void) { return sizeof morphologies / sizeof morphologies[0]; }
@@ -173,4 +197,101 @@ double gb_surface_height_dbeta(const gb_surface *surface, double phi, double the
     double dx[3];
     gb_surface_position_dbeta(surface, phi, theta, dx);
     return zb[0] * dx[0] + zb[1] * dx[1] + zb[2] * dx[2]; /* eq 68 */
+}
+
+/* ---------------------------------------------------------------- enclosures over chart boxes */
+
+const char *gb_surface_chart_name(gb_surface_chart chart)
+{
+    switch (chart) {
+    case GB_SURFACE_CHART_POLAR_Z: return "polar-z (phi, theta)";
+    case GB_SURFACE_CHART_POLAR_X: return "polar-x (alpha, gamma)";
+    }
+    return NULL;
+}
+
+void gb_surface_chart_direction(gb_surface_chart chart, double a, double b, double u[3])
+{
+    const double sa = sin(a), ca = cos(a), sb = sin(b), cb = cos(b);
+    if (chart == GB_SURFACE_CHART_POLAR_Z)
+        u[0] = sa * cb, u[1] = sa * sb, u[2] = ca;
+    else
+        u[0] = ca, u[1] = sa * cb, u[2] = sa * sb;
+}
+
+void gb_surface_chart_coordinates(gb_surface_chart chart, double phi, double theta, double *a, double *b)
+{
+    if (chart == GB_SURFACE_CHART_POLAR_Z) {
+        *a = phi, *b = theta;
+        return;
+    }
+    double u[3];
+    gb_surface_direction(phi, theta, u);
+    *a = acos(fmax(-1.0, fmin(1.0, u[0])));
+    *b = atan2(u[2], u[1]);
+    if (*b < 0.0) *b += 2.0 * M_PI;
+}
+
+void gb_surface_chart_angles(gb_surface_chart chart, double a, double b, double *phi, double *theta)
+{
+    if (chart == GB_SURFACE_CHART_POLAR_Z) {
+        *phi = a, *theta = b;
+    } else {
+        double u[3];
+        gb_surface_chart_direction(chart, a, b, u);
+        *phi = acos(fmax(-1.0, fmin(1.0, u[2])));
+        *theta = atan2(u[1], u[0]);
+    }
+    *theta = fmod(*theta, 2.0 * M_PI);
+    if (*theta < 0.0) *theta += 2.0 * M_PI;
+}
+
+/* x = r(s)·s over the box as jets: s from the chart, S = 1 + 4β sinφ cos χ (eq 11), r = S^(1/4) (eq 12). */
+static int position_jets(const gb_surface *surface, gb_surface_chart chart, gb_jet a, gb_jet b, gb_jet x[3])
+{
+    const gb_jet sa = gb_jet_sin(a), ca = gb_jet_cos(a), sb = gb_jet_sin(b), cb = gb_jet_cos(b);
+    gb_jet s[3];
+    if (chart == GB_SURFACE_CHART_POLAR_Z)
+        s[0] = gb_jet_mul(sa, cb), s[1] = gb_jet_mul(sa, sb), s[2] = ca;
+    else
+        s[0] = ca, s[1] = gb_jet_mul(sa, cb), s[2] = gb_jet_mul(sa, sb);
+    gb_jet k;
+    const int smooth = surface->morphology->kernel_jet(s, &k);
+    const gb_jet r = gb_jet_root4(gb_jet_add_const(1.0, gb_jet_scale(4.0 * surface->beta, k)));
+    for (int i = 0; i < 3; i++) x[i] = gb_jet_mul(r, s[i]);
+    return smooth;
+}
+
+/* Offsets of the box from its centre, as intervals. */
+static gb_interval offset(double lo, double hi, double centre)
+{
+    return gb_interval_make(lo - centre, hi - centre);
+}
+
+void gb_surface_enclose(const gb_surface *surface, gb_surface_chart chart, double a_lo, double a_hi, double b_lo,
+                        double b_hi, gb_surface_enclosure *out)
+{
+    gb_jet box[3], mid[3];
+    out->smooth = position_jets(surface, chart, gb_jet_param_a(a_lo, a_hi), gb_jet_param_b(b_lo, b_hi), box);
+    const double ac = 0.5 * (a_lo + a_hi), bc = 0.5 * (b_lo + b_hi);
+    position_jets(surface, chart, gb_jet_param_a(ac, ac), gb_jet_param_b(bc, bc), mid);
+    const gb_interval da = offset(a_lo, a_hi, ac), db = offset(b_lo, b_hi, bc);
+    const gb_interval da2 = gb_interval_sqr(da), db2 = gb_interval_sqr(db), dadb = gb_interval_mul(da, db);
+    for (int i = 0; i < 3; i++) {
+        /* Second-order Taylor form with the box Hessian as Lagrange remainder, met with the direct
+         * enclosure; first-order form for the tangents. */
+        gb_interval taylor = gb_interval_add(mid[i].v, gb_interval_add(gb_interval_mul(mid[i].a, da), gb_interval_mul(mid[i].b, db)));
+        const gb_interval second =
+            gb_interval_add(gb_interval_add(gb_interval_mul(box[i].aa, da2), gb_interval_mul(box[i].bb, db2)),
+                            gb_interval_scale(2.0, gb_interval_mul(box[i].ab, dadb)));
+        taylor = gb_interval_add(taylor, gb_interval_scale(0.5, second));
+        out->x[i] = gb_interval_meet(box[i].v, taylor);
+        out->x_a[i] = gb_interval_meet(
+            box[i].a, gb_interval_add(mid[i].a, gb_interval_add(gb_interval_mul(box[i].aa, da), gb_interval_mul(box[i].ab, db))));
+        out->x_b[i] = gb_interval_meet(
+            box[i].b, gb_interval_add(mid[i].b, gb_interval_add(gb_interval_mul(box[i].ab, da), gb_interval_mul(box[i].bb, db))));
+        out->x_aa[i] = box[i].aa;
+        out->x_ab[i] = box[i].ab;
+        out->x_bb[i] = box[i].bb;
+    }
 }

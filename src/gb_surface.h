@@ -9,6 +9,8 @@
 #ifndef GB_SURFACE_H
 #define GB_SURFACE_H
 
+#include "gb_interval.h"
+
 #include <stddef.h>
 
 /* χ and its derivatives at one (φ, θ). */
@@ -21,6 +23,9 @@ typedef struct gb_morphology {
     const char *chi_formula; /* the paper's χ, for reports */
     const char *equations;   /* where the paper defines it */
     void (*phase)(double phi, double theta, gb_phase_value *out);
+    /* sinφ cos χ as an interval jet of the unit direction s (for gb_surface_enclose); returns 1 when
+     * it is C² over the jet's box, 0 when its second derivatives hold the Hessian only where it exists. */
+    int (*kernel_jet)(const gb_jet s[3], gb_jet *out);
     /* A unit vector on the body's two-fold rotation axis through the minimum of r (see
      * gb_shape): the rotation by π about it maps the surface onto itself. */
     double symmetry_axis[3];
@@ -70,5 +75,32 @@ double gb_surface_height_dbeta(const gb_surface *surface, double phi, double the
 
 /* The unit direction u(φ, θ) of eq 1. */
 void gb_surface_direction(double phi, double theta, double u[3]);
+
+/* Enclosures over parameter boxes (the certified contact search, gb_certify, uses them).
+ *
+ * Two charts of the sphere of directions, both regular away from their own poles:
+ *  GB_SURFACE_CHART_POLAR_Z  (a, b) = (φ, θ): u = (sin a cos b, sin a sin b, cos a), eq 1;
+ *  GB_SURFACE_CHART_POLAR_X  (a, b) = (α, γ): u = (cos a, sin a cos b, sin a sin b), whose poles are ±e_x,
+ *                            so it covers the (φ, θ) poles ±e_z regularly. */
+typedef enum gb_surface_chart { GB_SURFACE_CHART_POLAR_Z = 0, GB_SURFACE_CHART_POLAR_X = 1 } gb_surface_chart;
+
+const char *gb_surface_chart_name(gb_surface_chart chart);
+void gb_surface_chart_direction(gb_surface_chart chart, double a, double b, double u[3]);
+/* Chart coordinates of the direction (φ, θ) (b in [0, 2π) for POLAR_X), and back (θ in [0, 2π)). */
+void gb_surface_chart_coordinates(gb_surface_chart chart, double phi, double theta, double *a, double *b);
+void gb_surface_chart_angles(gb_surface_chart chart, double a, double b, double *phi, double *theta);
+
+/* Intervals that hold x and its first and second chart derivatives at every point of the box
+ * [a_lo, a_hi] × [b_lo, b_hi] (interval arithmetic with outward widening, see gb_interval.h; value and
+ * tangents also by Taylor forms about the centre, met with the direct enclosure). `smooth` is 0 when the
+ * box may hold a point where the surface is not C² (morphology I at ±e_z); the second-derivative
+ * intervals then hold the Hessian wherever it exists (the surface is C¹,¹ there). */
+typedef struct gb_surface_enclosure {
+    gb_interval x[3], x_a[3], x_b[3], x_aa[3], x_ab[3], x_bb[3];
+    int smooth;
+} gb_surface_enclosure;
+
+void gb_surface_enclose(const gb_surface *surface, gb_surface_chart chart, double a_lo, double a_hi, double b_lo,
+                        double b_hi, gb_surface_enclosure *out);
 
 #endif

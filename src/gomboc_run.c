@@ -120,10 +120,13 @@ static cJSON *scene_json(const gb_case *c)
     cJSON_AddNumberToObject(o, "psi", d->forcing.psi);
     cJSON_AddStringToObject(o, "equation", gb_dynamics_variant_name(d->variant));
     cJSON_AddStringToObject(o, "contact", gb_dynamics_contact_name(d->contact));
-    const gb_contact_grid_def *g = d->contact == GB_CONTACT_MODEL_CONTINUOUS ? &d->seed_grid : &d->grid;
-    cJSON_AddItemToObject(o, d->contact == GB_CONTACT_MODEL_CONTINUOUS ? "seed_grid" : "grid",
-                          cli_json_vector((double[]){(double)g->n_phi, (double)g->n_theta}, 2));
-    cJSON_AddStringToObject(o, "nodes", gb_contact_nodes_name(g->nodes));
+    if (d->contact == GB_CONTACT_MODEL_CONTINUOUS) {
+        cJSON_AddNumberToObject(o, "certificate_height_tol", d->certify.height_tol);
+        cJSON_AddNumberToObject(o, "certificate_max_depth", d->certify.max_depth);
+    } else {
+        cJSON_AddItemToObject(o, "grid", cli_json_vector((double[]){(double)d->grid.n_phi, (double)d->grid.n_theta}, 2));
+        cJSON_AddStringToObject(o, "nodes", gb_contact_nodes_name(d->grid.nodes));
+    }
     cJSON_AddNumberToObject(o, "damping", d->damping);
     cJSON_AddStringToObject(o, "integrator", gb_integrate_name(c->integrate.method));
     cJSON_AddNumberToObject(o, "steps_per_period", (double)c->integrate.steps_per_period);
@@ -380,6 +383,19 @@ int command_run(int argc, char **argv)
             cJSON_AddNumberToObject(m, "normal_force_min", s.normal_min);
             cJSON_AddNumberToObject(m, "friction_needed_max", s.friction_max);
             cJSON_AddNumberToObject(m, "friction_over_half_fraction", (double)s.friction_over_half / (double)s.samples);
+        }
+        gb_certify_stats cs;
+        if (gb_dynamics_certify_stats(dynamics, &cs) == GB_OK) {
+            cJSON *m = cJSON_AddObjectToObject(root, "certificate");
+            cJSON_AddNumberToObject(m, "checks", (double)cs.checks);
+            cJSON_AddNumberToObject(m, "global", (double)cs.global);
+            cJSON_AddNumberToObject(m, "lower_found", (double)cs.lower_found);
+            cJSON_AddNumberToObject(m, "undecided", (double)cs.undecided);
+            cJSON_AddNumberToObject(m, "boxes_tested", (double)cs.boxes_tested);
+            cJSON_AddNumberToObject(m, "newton_runs", (double)cs.newton_runs);
+            cJSON_AddNumberToObject(m, "basins_built", (double)cs.basins_built);
+            cJSON_AddNumberToObject(m, "boxes_kept", (double)cs.boxes_kept);
+            cJSON_AddNumberToObject(m, "deepest_split", cs.deepest);
         }
         if (scene.strobe) cJSON_AddItemToObject(root, "strobe", strobe_json(&s.strobe));
         if (scene.spectrum) cJSON_AddItemToObject(root, "spectrum", spectrum_json(&scene, &spectrum, s.spectrum_count));

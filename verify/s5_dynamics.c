@@ -579,7 +579,7 @@ static void test_switch_location(void)
 }
 
 /* A scene builds only the grid its contact model needs: the 90 × 180 contact grid for the grid
- * models, the 180 × 360 seed grid (and no Table 1 grid) for continuous contact. */
+ * models and no grid at all for continuous contact, whose global check is the certificate. */
 static void test_scene_builds_what_it_needs(void)
 {
     static const gb_contact_model models[] = {GB_CONTACT_MODEL_GRID, GB_CONTACT_MODEL_FAST_GRID, GB_CONTACT_MODEL_CONTINUOUS};
@@ -590,13 +590,19 @@ static void test_scene_builds_what_it_needs(void)
         def.contact = models[k];
         gb_dynamics *d = NULL;
         const int status = gb_dynamics_create(&surface, &def, &d);
-        const gb_contact_grid_def *g = models[k] == GB_CONTACT_MODEL_CONTINUOUS ? &def.seed_grid : &def.grid;
-        const size_t expected = g->n_phi * g->n_theta, built = status ? 0 : gb_dynamics_grid_size(d);
+        const int continuous = models[k] == GB_CONTACT_MODEL_CONTINUOUS;
+        const size_t expected = continuous ? 0 : def.grid.n_phi * def.grid.n_theta, built = status ? 0 : gb_dynamics_grid_size(d);
+        gb_certify_stats cs;
+        const int has_certificate = d && gb_dynamics_certify_stats(d, &cs) == GB_OK;
         char q[160];
-        snprintf(q, sizeof q, "%s contact builds exactly one grid, of %zu x %zu nodes", gb_dynamics_contact_name(models[k]),
-                 g->n_phi, g->n_theta);
-        gb_check c = {"8", "-", q, "node count of the grid the dynamics built", "exact"};
-        gb_check_true(&c, built == expected, "%zu nodes built, %zu expected", built, expected);
+        if (continuous)
+            snprintf(q, sizeof q, "continuous contact builds no grid, only the certificate of the global minimum");
+        else
+            snprintf(q, sizeof q, "%s contact builds exactly one grid, of %zu x %zu nodes, and no certificate",
+                     gb_dynamics_contact_name(models[k]), def.grid.n_phi, def.grid.n_theta);
+        gb_check c = {"8", "-", q, "node count of the grid the dynamics built; certificate present", "exact"};
+        gb_check_true(&c, !status && built == expected && has_certificate == continuous,
+                      "%zu nodes built, %zu expected; certificate %s", built, expected, has_certificate ? "built" : "not built");
         gb_dynamics_free(d);
     }
 }

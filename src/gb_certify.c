@@ -1,0 +1,615 @@
+#include "gb_certify.h"
+
+#include "gb_error.h"
+#include "gb_vec.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Rounding allowances of the per-check tests, which use plain double sums of a few products of
+ * O(1) numbers (error ~1e-16): a margin must exceed these before a verdict is given. */
+#define SLACK_ROUNDING 1e-13
+#define HESSIAN_ROUNDING 1e-12
+/* A point counts as inside a box only this far from its edges [rad]; Newton's points are within
+ * ~1e-14 of the exact critical points, so the exact point is then inside too. */
+#define INSIDE_MARGIN 1e-9
+#define BASIN_SLOTS 8
+#define BASIN_MAX_HALF_WIDTH 0.25
+#define BASIN_MIN_HALF_WIDTH 1e-3
+/* Basins are built where the minimum lies within this distance of a chart's root boxes [rad]. */
+#define BASIN_REACH 0.35
+/* FAR verdicts are re-anchored when the minimum moves this far from the anchor [body length]. */
+#define ANCHOR_REACH 0.05
+
+enum { REGION_EQUATOR = 0, REGION_NORTH = 1, REGION_SOUTH = 2, REGIONS = 3 };
+enum { ROOTS_A_EQ = 4, ROOTS_B_EQ = 16, ROOTS_CAP = 4 };
+#define ROOT_COUNT (ROOTS_A_EQ * ROOTS_B_EQ + 2 * ROOTS_CAP * ROOTS_CAP)
+
+/* Root-box ranges of the three regions (see gb_certify.h for why they cover the sphere). */
+static const double region_range[REGIONS][4] = {
+    {0.8, M_PI - 0.8, 0.0, 2.0 * M_PI},
+    {0.75, M_PI - 0.75, 0.75, M_PI - 0.75},
+    {0.75, M_PI - 0.75, M_PI + 0.75, 2.0 * M_PI - 0.75},
+};
+
+static gb_surface_chart region_chart(int region) { return region == REGION_EQUATOR ? GB_SURFACE_CHART_POLAR_Z : GB_SURFACE_CHART_POLAR_X; }
+
+typedef enum reason { R_NONE = 0, R_FAR, R_SLOPE, R_NOMIN, R_BASIN, R_SPLIT } reason;
+
+typedef struct node {
+    double a_lo, a_hi, b_lo, b_hi;
+    gb_surface_enclosure e;
+    double xmax, xa_mag, xb_mag, xaa_mag, xbb_mag; /* Lipschitz constants in the vertical */
+    struct node *child;                            /* four, or NULL */
+    unsigned long epoch;                           /* the epoch of the kept verdict */
+    double due;                                    /* SLOPE, NO-MIN: path length up to which it holds */
+    double far_s, far_d;                           /* FAR: holds while far_s − path·far_d ≥ e_A − η (below) */
+    unsigned long basin_serial;
+    double hint_phi, hint_theta;                   /* last critical point found inside */
+    unsigned char region, depth, verdict, has_hint;
+} node;
+
+typedef enum owner { OWNER_FREE = 0, OWNER_MINIMUM, OWNER_OTHER } owner;
+
+typedef struct basin {
+    owner owner;
+    gb_surface_chart chart;
+    double a_lo, a_hi, b_lo, b_hi;
+    gb_interval x_aa[3], x_ab[3], x_bb[3];
+    unsigned long serial;
+    int valid, used;
+    gb_contact_point point; /* its minimum at the current vertical */
+} basin;
+
+struct gb_certify {
+    gb_surface surface;
+    gb_certify_def def;
+    double r_max;
+    node roots[ROOT_COUNT];
+    size_t nodes;
+    unsigned long epoch, next_serial;
+    basin basins[BASIN_SLOTS];
+    double last_half_width;
+    /* the trajectory of checked verticals */
+    int has_previous;
+    double previous[3], path;
+    double anchor[3];    /* x_A: the minimum where this epoch's FAR verdicts are anchored */
+    double excess;       /* e_A = H − d·x_A at the current check */
+    gb_certify_stats stats;
+};
+
+typedef struct pass {
+    double d[3];
+    double H, eta;
+    double ab[2][2];       /* the minimum's coordinates in chart POLAR_Z, POLAR_X */
+    const gb_contact_refine_def *refine;
+    gb_certify_result *out;
+} pass;
+
+gb_certify_def gb_certify_default_def(void)
+{
+    return (gb_certify_def){.height_tol = 1e-12, .max_depth = 14, .max_nodes = (size_t)1 << 18};
+}
+
+const char *gb_certify_verdict_name(gb_certify_verdict v)
+{
+    switch (v) {
+    case GB_CERTIFY_GLOBAL: return "global";
+    case GB_CERTIFY_LOWER_FOUND: return "lower-found";
+    case GB_CERTIFY_UNDECIDED: return "undecided";
+    }
+    return NULL;
+}
+
+/* ---------------------------------------------------------------- boxes */
+
+static double norm_of_mags(const gb_interval v[3])
+{
+    const double a = gb_interval_mag(v[0]), b = gb_interval_mag(v[1]), c = gb_interval_mag(v[2]);
+    return sqrt(a * a + b * b + c * c) * (1.0 + 1e-12);
+}
+
+static void node_fill(const gb_certify *c, node *n, int region, int depth, double a_lo, double a_hi, double b_lo,
+                      double b_hi)
+{
+    memset(n, 0, sizeof *n);
+    n->a_lo = a_lo, n->a_hi = a_hi, n->b_lo = b_lo, n->b_hi = b_hi;
+    n->region = (unsigned char)region;
+    n->depth = (unsigned char)depth;
+    gb_surface_enclose(&c->surface, region_chart(region), a_lo, a_hi, b_lo, b_hi, &n->e);
+    n->xmax = norm_of_mags(n->e.x);
+    n->xa_mag = norm_of_mags(n->e.x_a);
+    n->xb_mag = norm_of_mags(n->e.x_b);
+    n->xaa_mag = norm_of_mags(n->e.x_aa);
+    n->xbb_mag = norm_of_mags(n->e.x_bb);
+}
+
+static void node_free_children(node *n)
+{
+    if (!n->child) return;
+    for (int k = 0; k < 4; k++) node_free_children(&n->child[k]);
+    free(n->child);
+    n->child = NULL;
+}
+
+static int node_split(gb_certify *c, node *n)
+{
+    if (n->child) return GB_OK;
+    node *ch = malloc(4 * sizeof *ch);
+    if (!ch) return gb_error_set(GB_ENOMEM, "out of memory for the contact certificate's boxes");
+    const double am = 0.5 * (n->a_lo + n->a_hi), bm = 0.5 * (n->b_lo + n->b_hi);
+    node_fill(c, &ch[0], n->region, n->depth + 1, n->a_lo, am, n->b_lo, bm);
+    node_fill(c, &ch[1], n->region, n->depth + 1, am, n->a_hi, n->b_lo, bm);
+    node_fill(c, &ch[2], n->region, n->depth + 1, n->a_lo, am, bm, n->b_hi);
+    node_fill(c, &ch[3], n->region, n->depth + 1, am, n->a_hi, bm, n->b_hi);
+    n->child = ch;
+    c->nodes += 4;
+    if (n->depth + 1 > c->stats.deepest) c->stats.deepest = n->depth + 1;
+    return GB_OK;
+}
+
+/* Σ d_k v_k over intervals v_k, in plain double arithmetic (see SLACK_ROUNDING). */
+static gb_interval dot_interval(const double d[3], const gb_interval v[3])
+{
+    gb_interval s = {0.0, 0.0};
+    for (int k = 0; k < 3; k++) {
+        const double p = d[k] * v[k].lo, q = d[k] * v[k].hi;
+        s.lo += fmin(p, q);
+        s.hi += fmax(p, q);
+    }
+    return s;
+}
+
+/* Is the interval Hessian d·x'' positive definite over the whole box? */
+static int hessian_definite(const double d[3], const gb_interval aa[3], const gb_interval ab[3], const gb_interval bb[3])
+{
+    const gb_interval Haa = dot_interval(d, aa), Hab = dot_interval(d, ab), Hbb = dot_interval(d, bb);
+    if (!(Haa.lo > HESSIAN_ROUNDING && Hbb.lo > HESSIAN_ROUNDING)) return 0;
+    const double m = fmax(fabs(Hab.lo), fabs(Hab.hi));
+    return Haa.lo * Hbb.lo - m * m > HESSIAN_ROUNDING;
+}
+
+/* Is b in [lo, hi] modulo 2π, at least `margin` inside? */
+static int inside_periodic(double b, double lo, double hi, double margin)
+{
+    for (int k = -1; k <= 1; k++) {
+        const double t = b + 2.0 * M_PI * k;
+        if (t >= lo + margin && t <= hi - margin) return 1;
+    }
+    return 0;
+}
+
+static int range_inside_periodic(double lo, double hi, double outer_lo, double outer_hi)
+{
+    for (int k = -1; k <= 1; k++)
+        if (lo + 2.0 * M_PI * k >= outer_lo && hi + 2.0 * M_PI * k <= outer_hi) return 1;
+    return 0;
+}
+
+static int point_in_node(const node *n, const double ab[2])
+{
+    return ab[0] >= n->a_lo + INSIDE_MARGIN && ab[0] <= n->a_hi - INSIDE_MARGIN &&
+           inside_periodic(ab[1], n->b_lo, n->b_hi, INSIDE_MARGIN);
+}
+
+/* ---------------------------------------------------------------- basins */
+
+static void basin_coordinates(const basin *b, const gb_contact_point *p, double ab[2])
+{
+    gb_surface_chart_coordinates(b->chart, p->phi, p->theta, &ab[0], &ab[1]);
+}
+
+static int basin_holds(const basin *b, const double ab[2])
+{
+    return ab[0] >= b->a_lo + INSIDE_MARGIN && ab[0] <= b->a_hi - INSIDE_MARGIN &&
+           inside_periodic(ab[1], b->b_lo, b->b_hi, INSIDE_MARGIN);
+}
+
+/* Is the point in the middle half of the basin (so a new one need not be built yet)? */
+static int basin_holds_well(const basin *b, const double ab[2])
+{
+    const double qa = 0.25 * (b->a_hi - b->a_lo), qb = 0.25 * (b->b_hi - b->b_lo);
+    return ab[0] >= b->a_lo + qa && ab[0] <= b->a_hi - qa && inside_periodic(ab[1], b->b_lo, b->b_hi, qb);
+}
+
+/* Build a basin of `point` in `chart`: the widest centred box (halving from the last width that
+ * worked, doubled) on which d·x'' is positive definite. 0 when none down to BASIN_MIN_HALF_WIDTH. */
+static int basin_build(gb_certify *c, basin *b, gb_surface_chart chart, const double ab[2], const double d[3],
+                       const gb_contact_point *point, owner who)
+{
+    double w = fmin(BASIN_MAX_HALF_WIDTH, 2.0 * c->last_half_width);
+    for (; w >= BASIN_MIN_HALF_WIDTH; w *= 0.5) {
+        /* stay clear of the chart's own poles (a = 0, π) */
+        const double a_lo = fmax(ab[0] - w, 0.05), a_hi = fmin(ab[0] + w, M_PI - 0.05);
+        if (!(ab[0] > a_lo + INSIDE_MARGIN && ab[0] < a_hi - INSIDE_MARGIN)) continue;
+        gb_surface_enclosure e;
+        gb_surface_enclose(&c->surface, chart, a_lo, a_hi, ab[1] - w, ab[1] + w, &e);
+        if (!hessian_definite(d, e.x_aa, e.x_ab, e.x_bb)) continue;
+        b->owner = who;
+        b->chart = chart;
+        b->a_lo = a_lo, b->a_hi = a_hi, b->b_lo = ab[1] - w, b->b_hi = ab[1] + w;
+        memcpy(b->x_aa, e.x_aa, sizeof b->x_aa);
+        memcpy(b->x_ab, e.x_ab, sizeof b->x_ab);
+        memcpy(b->x_bb, e.x_bb, sizeof b->x_bb);
+        b->serial = ++c->next_serial;
+        b->valid = 1;
+        b->used = 1;
+        b->point = *point;
+        c->last_half_width = w;
+        c->stats.basins_built++;
+
+        return 1;
+    }
+    return 0;
+}
+
+static basin *basin_slot(gb_certify *c)
+{
+    for (int k = 0; k < BASIN_SLOTS; k++)
+        if (c->basins[k].owner == OWNER_FREE) return &c->basins[k];
+    /* all taken: reuse the first one that is not valid now, else the oldest */
+    basin *oldest = &c->basins[0];
+    for (int k = 0; k < BASIN_SLOTS; k++) {
+        if (!c->basins[k].valid) return &c->basins[k];
+        if (c->basins[k].serial < oldest->serial) oldest = &c->basins[k];
+    }
+    return oldest;
+}
+
+/* Is the minimum near enough to a region of `chart` that boxes there may need its basin? */
+static int chart_needs_basin(gb_surface_chart chart, const double ab[2])
+{
+    for (int r = 0; r < REGIONS; r++) {
+        if (region_chart(r) != chart) continue;
+        const double *g = region_range[r];
+        if (ab[0] >= g[0] - BASIN_REACH && ab[0] <= g[1] + BASIN_REACH &&
+            (r == REGION_EQUATOR || inside_periodic(ab[1], g[2] - BASIN_REACH, g[3] + BASIN_REACH, 0.0)))
+            return 1;
+    }
+    return 0;
+}
+
+/* Bring the basins to the vertical d: drop those no longer definite or without their minimum, move the
+ * other minima's basins along by Newton, and make sure the checked minimum has a basin in every chart
+ * near it. */
+static int basins_update(gb_certify *c, pass *p, const gb_contact_point *minimum)
+{
+    for (int k = 0; k < BASIN_SLOTS; k++) {
+        basin *b = &c->basins[k];
+        if (b->owner == OWNER_FREE) continue;
+        b->valid = 0;
+        if (b->owner == OWNER_OTHER) {
+            if (!b->used) {
+                b->owner = OWNER_FREE;
+                continue;
+            }
+            gb_contact_point q;
+            if (gb_contact_refine(&c->surface, p->d, b->point.phi, b->point.theta, p->refine, &q) || !q.is_minimum) {
+                b->owner = OWNER_FREE;
+                continue;
+            }
+            p->out->newton_runs++;
+            b->point = q;
+        } else {
+            b->point = *minimum;
+        }
+        double ab[2];
+        basin_coordinates(b, &b->point, ab);
+        b->valid = basin_holds(b, ab) && hessian_definite(p->d, b->x_aa, b->x_ab, b->x_bb);
+        if (!b->valid && b->owner == OWNER_OTHER) b->owner = OWNER_FREE;
+        b->used = 0;
+    }
+    for (int chart = 0; chart < 2; chart++) {
+        const double *ab = p->ab[chart];
+        if (!chart_needs_basin((gb_surface_chart)chart, ab)) continue;
+        int have = 0;
+        for (int k = 0; k < BASIN_SLOTS && !have; k++) {
+            const basin *b = &c->basins[k];
+            have = b->valid && b->owner == OWNER_MINIMUM && b->chart == (gb_surface_chart)chart && basin_holds_well(b, ab);
+        }
+        if (!have) basin_build(c, basin_slot(c), (gb_surface_chart)chart, ab, p->d, minimum, OWNER_MINIMUM);
+    }
+    return GB_OK;
+}
+
+/* ---------------------------------------------------------------- the pass */
+
+enum { SETTLED = 0, FOUND = 1, UNDECIDED = 2 };
+
+static int lower_found(pass *p, const gb_contact_point *q)
+{
+    p->out->lower = *q;
+    return FOUND;
+}
+
+static int visit(gb_certify *c, node *n, pass *p, int *status);
+
+/* A split box keeps the weakest of its children's kept verdicts: the earliest due of the SLOPE and
+ * NO-MIN ones, and the smallest far_s with the largest far_d of the FAR ones. While both hold, the whole
+ * subtree holds without being walked. A child settled by a basin, or not settled at all, leaves the box
+ * to be walked at every check. */
+static int visit_children(gb_certify *c, node *n, pass *p, int *status)
+{
+    int undecided = 0;
+    double due = INFINITY, far_s = INFINITY, far_d = 0.0;
+    for (int k = 0; k < 4; k++) {
+        const node *child = &n->child[k];
+        const int r = visit(c, &n->child[k], p, status);
+        if (*status || r == FOUND) {
+            n->due = -INFINITY;
+            return r;
+        }
+        undecided |= r == UNDECIDED;
+        const reason v = child->epoch == c->epoch && r == SETTLED ? (reason)child->verdict : R_NONE;
+        if (v == R_SLOPE || v == R_NOMIN || v == R_SPLIT) due = fmin(due, child->due);
+        if (v == R_FAR || v == R_SPLIT) {
+            far_s = fmin(far_s, child->far_s);
+            far_d = fmax(far_d, child->far_d);
+        }
+        if (v == R_NONE || v == R_BASIN) due = -INFINITY;
+    }
+    n->due = due, n->far_s = far_s, n->far_d = far_d;
+    return undecided ? UNDECIDED : SETTLED;
+}
+
+/* A basin holding the whole box, whose minimum then bounds the box from below. */
+static const basin *basin_around(const gb_certify *c, const node *n)
+{
+    const gb_surface_chart chart = region_chart(n->region);
+    for (int k = 0; k < BASIN_SLOTS; k++) {
+        const basin *b = &c->basins[k];
+        if (b->valid && b->chart == chart && n->a_lo >= b->a_lo && n->a_hi <= b->a_hi &&
+            range_inside_periodic(n->b_lo, n->b_hi, b->b_lo, b->b_hi))
+            return b;
+    }
+    return NULL;
+}
+
+static int visit(gb_certify *c, node *n, pass *p, int *status)
+{
+    if (n->epoch == c->epoch) {
+        switch ((reason)n->verdict) {
+        case R_FAR:
+            if (n->far_s - c->path * n->far_d >= c->excess - p->eta + SLACK_ROUNDING) return SETTLED;
+            break;
+        case R_SLOPE:
+        case R_NOMIN:
+            if (c->path <= n->due) return SETTLED;
+            break;
+        case R_BASIN:
+            for (int k = 0; k < BASIN_SLOTS; k++) {
+                basin *b = &c->basins[k];
+                if (b->serial != n->basin_serial || !b->valid) continue;
+                b->used = 1;
+                return b->point.height >= p->H - p->eta ? SETTLED : lower_found(p, &b->point);
+            }
+            break;
+        case R_SPLIT:
+            if (c->path <= n->due && n->far_s - c->path * n->far_d >= c->excess - p->eta + SLACK_ROUNDING)
+                return SETTLED;
+            return visit_children(c, n, p, status);
+        case R_NONE:
+            break;
+        }
+    }
+    p->out->boxes_tested++;
+    n->epoch = c->epoch;
+    n->verdict = R_NONE;
+    const double *d = p->d;
+    /* FAR: nothing in the box lower than H − η. */
+    const gb_interval h = dot_interval(d, n->e.x);
+    const double slack = h.lo - (p->H - p->eta) - SLACK_ROUNDING;
+    if (slack > 0.0) {
+        /* For q in the box and a later vertical d': d'·x(q) − d'·x_A ≥ (lb − d·x_A) − |d' − d|·max|x(q) − x_A|. */
+        gb_interval rel[3];
+        for (int k = 0; k < 3; k++) rel[k] = (gb_interval){n->e.x[k].lo - c->anchor[k], n->e.x[k].hi - c->anchor[k]};
+        n->verdict = R_FAR;
+        n->far_d = norm_of_mags(rel);
+        n->far_s = (h.lo - gb_vec_dot(d, c->anchor)) + c->path * n->far_d;
+        n->due = INFINITY;
+        return SETTLED;
+    }
+    /* BASIN */
+    basin *b = (basin *)basin_around(c, n);
+    if (b) {
+        b->used = 1;
+        n->verdict = R_BASIN;
+        n->basin_serial = b->serial;
+        return b->point.height >= p->H - p->eta ? SETTLED : lower_found(p, &b->point);
+    }
+    /* SLOPE: no critical point. */
+    const gb_interval ga = dot_interval(d, n->e.x_a), gb = dot_interval(d, n->e.x_b);
+    const double ma = fmax(ga.lo, -ga.hi) - SLACK_ROUNDING, mb = fmax(gb.lo, -gb.hi) - SLACK_ROUNDING;
+    if (ma > 0.0 || mb > 0.0) {
+        n->verdict = R_SLOPE;
+        n->due = c->path + fmax(ma > 0.0 ? ma / n->xa_mag : 0.0, mb > 0.0 ? mb / n->xb_mag : 0.0);
+        return SETTLED;
+    }
+    /* NO-MIN: where C², a minimum needs ∂_aa h ≥ 0, ∂_bb h ≥ 0 and det ≥ 0. */
+    const gb_interval Haa = dot_interval(d, n->e.x_aa), Hab = dot_interval(d, n->e.x_ab), Hbb = dot_interval(d, n->e.x_bb);
+    const double hab_max = fmax(fabs(Hab.lo), fabs(Hab.hi));
+    const double hab_min = Hab.lo * Hab.hi > 0.0 ? fmin(fabs(Hab.lo), fabs(Hab.hi)) : 0.0;
+    const double prod_max = fmax(fmax(Haa.lo * Hbb.lo, Haa.lo * Hbb.hi), fmax(Haa.hi * Hbb.lo, Haa.hi * Hbb.hi));
+    if (n->e.smooth) {
+        const double na = -Haa.hi - HESSIAN_ROUNDING, nb = -Hbb.hi - HESSIAN_ROUNDING;
+        if (na > 0.0 || nb > 0.0) {
+            n->verdict = R_NOMIN;
+            n->far_s = INFINITY, n->far_d = 0.0;
+            n->due = c->path + fmax(na > 0.0 ? na / n->xaa_mag : 0.0, nb > 0.0 ? nb / n->xbb_mag : 0.0);
+            return SETTLED;
+        }
+        if (prod_max + HESSIAN_ROUNDING < hab_min * hab_min) return SETTLED; /* det < 0: saddles only */
+    }
+    /* A positive-definite interval Hessian: at most one critical point in the box (the gradient map
+     * is injective on it, by the mean-value theorem), and h is strictly convex there. */
+    const int definite = Haa.lo > HESSIAN_ROUNDING && Hbb.lo > HESSIAN_ROUNDING &&
+                         Haa.lo * Hbb.lo - hab_max * hab_max > HESSIAN_ROUNDING;
+    if (definite) {
+        const gb_surface_chart chart = region_chart(n->region);
+        if (point_in_node(n, p->ab[chart])) return SETTLED; /* its one critical point is the minimum */
+        if (n->depth >= 1) {
+            double phi, theta;
+            if (n->has_hint) {
+                phi = n->hint_phi, theta = n->hint_theta;
+            } else {
+                gb_surface_chart_angles(chart, 0.5 * (n->a_lo + n->a_hi), 0.5 * (n->b_lo + n->b_hi), &phi, &theta);
+            }
+            gb_contact_point q;
+            p->out->newton_runs++;
+            if (gb_contact_refine(&c->surface, d, phi, theta, p->refine, &q) == GB_OK && q.is_minimum) {
+                double qab[2];
+                gb_surface_chart_coordinates(chart, q.phi, q.theta, &qab[0], &qab[1]);
+                if (point_in_node(n, qab)) {
+                    n->has_hint = 1;
+                    n->hint_phi = q.phi, n->hint_theta = q.theta;
+                    if (q.height < p->H - p->eta) return lower_found(p, &q);
+                    /* keep a basin for it, so the next checks settle the box without Newton */
+                    basin_build(c, basin_slot(c), chart, qab, d, &q, OWNER_OTHER);
+                    return SETTLED;
+                }
+            }
+        }
+    }
+    if (n->depth >= c->def.max_depth) return UNDECIDED;
+    *status = node_split(c, n);
+    if (*status) return UNDECIDED;
+    n->verdict = R_SPLIT;
+    return visit_children(c, n, p, status);
+}
+
+/* ---------------------------------------------------------------- public */
+
+static void restart_cache(gb_certify *c)
+{
+    for (int k = 0; k < ROOT_COUNT; k++) node_free_children(&c->roots[k]);
+    c->nodes = ROOT_COUNT;
+    c->epoch++;
+    c->stats.cache_restarts++;
+}
+
+int gb_certify_create(const gb_surface *surface, const gb_certify_def *def, gb_certify **out)
+{
+    *out = NULL;
+    if (!(def->height_tol >= 0.0 && def->height_tol <= 1e-3))
+        return gb_error_set(GB_EDOM, "certificate height tolerance %g is out of range (allowed: [0, 1e-3])", def->height_tol);
+    if (def->max_depth < 0 || def->max_depth > 40)
+        return gb_error_set(GB_EDOM, "certificate max_depth %d is out of range (allowed: 0..40)", def->max_depth);
+    if (def->max_nodes < 4 * (size_t)ROOT_COUNT)
+        return gb_error_set(GB_EDOM, "certificate max_nodes %zu is out of range (allowed: >= %d)", def->max_nodes,
+                            4 * ROOT_COUNT);
+    gb_certify *c = calloc(1, sizeof *c);
+    if (!c) return gb_error_set(GB_ENOMEM, "out of memory for the contact certificate");
+    c->surface = *surface;
+    c->def = *def;
+    c->r_max = pow(1.0 + 4.0 * surface->beta, 0.25) * (1.0 + 1e-12); /* r ≤ (1 + 4β)^(1/4), eq 12 */
+    c->epoch = 1;
+    c->last_half_width = BASIN_MAX_HALF_WIDTH;
+    int k = 0;
+    for (int r = 0; r < REGIONS; r++) {
+        const double *g = region_range[r];
+        const int na = r == REGION_EQUATOR ? ROOTS_A_EQ : ROOTS_CAP, nb = r == REGION_EQUATOR ? ROOTS_B_EQ : ROOTS_CAP;
+        for (int i = 0; i < na; i++)
+            for (int j = 0; j < nb; j++) {
+                const double a_lo = g[0] + (g[1] - g[0]) * i / na, a_hi = i + 1 == na ? g[1] : g[0] + (g[1] - g[0]) * (i + 1) / na;
+                const double b_lo = g[2] + (g[3] - g[2]) * j / nb, b_hi = j + 1 == nb ? g[3] : g[2] + (g[3] - g[2]) * (j + 1) / nb;
+                node_fill(c, &c->roots[k++], r, 0, a_lo, a_hi, b_lo, b_hi);
+            }
+    }
+    c->nodes = ROOT_COUNT;
+    *out = c;
+    return GB_OK;
+}
+
+void gb_certify_free(gb_certify *c)
+{
+    if (!c) return;
+    for (int k = 0; k < ROOT_COUNT; k++) node_free_children(&c->roots[k]);
+    free(c);
+}
+
+void gb_certify_forget(gb_certify *c)
+{
+    c->epoch++;
+    c->has_previous = 0;
+}
+
+int gb_certify_check(gb_certify *c, const double zb[3], const gb_contact_point *minimum,
+                     const gb_contact_refine_def *refine, gb_certify_result *out)
+{
+    memset(out, 0, sizeof *out);
+    pass p = {.eta = c->def.height_tol, .refine = refine, .out = out};
+    int status = gb_contact_unit_vertical(zb, p.d);
+    if (status) return status;
+    if (c->nodes > c->def.max_nodes) restart_cache(c);
+    if (c->has_previous) {
+        const double step[3] = {p.d[0] - c->previous[0], p.d[1] - c->previous[1], p.d[2] - c->previous[2]};
+        c->path += gb_vec_norm(step) * (1.0 + 1e-12);
+    }
+    p.H = gb_vec_dot(p.d, minimum->rc);
+    /* FAR verdicts are anchored at x_A, the minimum when the epoch began: H = d·x_A + e_A. A new
+     * anchor (a new epoch) is taken when the minimum has moved ANCHOR_REACH away from it. */
+    const double moved[3] = {minimum->rc[0] - c->anchor[0], minimum->rc[1] - c->anchor[1], minimum->rc[2] - c->anchor[2]};
+    if (!c->has_previous || gb_vec_norm(moved) > ANCHOR_REACH) {
+        c->epoch++;
+        memcpy(c->anchor, minimum->rc, sizeof c->anchor);
+    }
+    c->excess = p.H - gb_vec_dot(p.d, c->anchor);
+    memcpy(c->previous, p.d, sizeof c->previous);
+    c->has_previous = 1;
+    for (int chart = 0; chart < 2; chart++)
+        gb_surface_chart_coordinates((gb_surface_chart)chart, minimum->phi, minimum->theta, &p.ab[chart][0], &p.ab[chart][1]);
+    status = basins_update(c, &p, minimum);
+    if (status) return status;
+    int verdict = SETTLED;
+    for (int k = 0; k < ROOT_COUNT && verdict != FOUND && !status; k++) {
+        const int r = visit(c, &c->roots[k], &p, &status);
+        if (r != SETTLED) verdict = r;
+    }
+    if (status) return status;
+    out->verdict = verdict == FOUND ? GB_CERTIFY_LOWER_FOUND : verdict == UNDECIDED ? GB_CERTIFY_UNDECIDED : GB_CERTIFY_GLOBAL;
+    c->stats.checks++;
+    c->stats.global += out->verdict == GB_CERTIFY_GLOBAL;
+    c->stats.lower_found += out->verdict == GB_CERTIFY_LOWER_FOUND;
+    c->stats.undecided += out->verdict == GB_CERTIFY_UNDECIDED;
+    c->stats.boxes_tested += out->boxes_tested;
+    c->stats.newton_runs += out->newton_runs;
+    return GB_OK;
+}
+
+int gb_certify_global_minimum(gb_certify *c, const double zb[3], const gb_contact_refine_def *refine,
+                              gb_contact_point *out)
+{
+    double d[3];
+    int status = gb_contact_unit_vertical(zb, d);
+    if (status) return status;
+    /* start: the lowest root-box centre */
+    double best = INFINITY, phi0 = 0.0, theta0 = 0.0;
+    for (int k = 0; k < ROOT_COUNT; k++) {
+        const node *n = &c->roots[k];
+        double phi, theta, x[3];
+        gb_surface_chart_angles(region_chart(n->region), 0.5 * (n->a_lo + n->a_hi), 0.5 * (n->b_lo + n->b_hi), &phi, &theta);
+        gb_surface_position(&c->surface, phi, theta, x);
+        const double h = gb_vec_dot(d, x);
+        if (h < best) best = h, phi0 = phi, theta0 = theta;
+    }
+    status = gb_contact_refine(&c->surface, d, phi0, theta0, refine, out);
+    for (int round = 0; !status && round < 64; round++) {
+        gb_certify_result r;
+        status = gb_certify_check(c, d, out, refine, &r);
+        if (status) return status;
+        if (r.verdict == GB_CERTIFY_GLOBAL) return GB_OK;
+        if (r.verdict == GB_CERTIFY_UNDECIDED)
+            return gb_error_set(GB_ENOCONV, "the global contact for z_b = (%g, %g, %g) could not be certified: a box "
+                                "at the deepest split level (%d) stayed undecided", d[0], d[1], d[2], c->def.max_depth);
+        *out = r.lower;
+    }
+    if (!status) status = gb_error_set(GB_ENOCONV, "the global contact search did not settle in 64 rounds");
+    return status;
+}
+
+void gb_certify_get_stats(const gb_certify *c, gb_certify_stats *out)
+{
+    *out = c->stats;
+    out->boxes_kept = c->nodes;
+}

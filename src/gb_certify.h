@@ -1,0 +1,86 @@
+/* gb_certify — proof, at one vertical, that a local minimum of h is the global one (paper §4, eq 29).
+ *
+ * The contact is the global minimiser of h = ẑ_b·x over the surface. A Newton-continued minimum is only
+ * a local one; the grid-based searches can miss a basin narrower than their spacing. This module
+ * proves, with interval enclosures of x and its chart derivatives over parameter boxes
+ * (gb_surface_enclose), that no surface point is lower than a given minimum p by more than η, or finds
+ * a lower minimum, or says it could not decide.
+ *
+ * The sphere of directions is covered by three charts of boxes: (φ, θ) for 0.8 ≤ φ ≤ π − 0.8, and two
+ * polar-x caps (α, γ) ∈ [0.75, π − 0.75]² and [0.75, π − 0.75] × [π + 0.75, 2π − 0.75], which overlap
+ * it. The global minimiser is a critical point in every regular chart, and (where the surface is C²) has a
+ * positive-semidefinite chart Hessian. A box is settled, for the unit vertical d, when
+ *   - FAR:    its lower bound of d·x is at least H − η (H = h(p)); or
+ *   - SLOPE:  an interval of ∂_a h or ∂_b h excludes 0 (no critical point); or
+ *   - NO-MIN: (C² boxes) an interval of ∂_aa h or ∂_bb h lies below 0 (no local minimum); or
+ *   - BASIN:  it lies inside a basin of p: a box around p on which the interval Hessian of h is positive
+ *             definite (h strictly convex there, so p is its minimum; C¹,¹ suffices).
+ * Otherwise it is split in four, down to max_depth. A box with a regular interval Hessian that holds
+ * a critical point other than p is resolved by Newton from inside it: the point found there is its only
+ * critical point; lower than H − η makes it a lower minimum.
+ *
+ * Along a trajectory the verdicts are kept: a FAR, SLOPE or NO-MIN verdict at vertical d₀ holds at d
+ * while its margin exceeds its Lipschitz bound times |d − d₀| (for FAR: (max|x| over the box + r_max),
+ * since H moves by at most r_max|d − d₀|, the envelope theorem); |d − d₀| is bounded by the path length
+ * of the verticals checked since. A BASIN verdict holds while that basin is positive definite at d and
+ * still holds the current minimum. A check therefore re-tests only the boxes whose margin ran out. */
+#ifndef GB_CERTIFY_H
+#define GB_CERTIFY_H
+
+#include "gb_contact.h"
+#include "gb_surface.h"
+
+#include <stddef.h>
+
+typedef struct gb_certify_def {
+    double height_tol;  /* η: allowed depth of a lower point [body length units] (default 1e-12) */
+    int max_depth;      /* splits of a root box (default 14: boxes down to ~2.5e-5 rad) */
+    size_t max_nodes;   /* boxes kept with their enclosures; beyond it the cache restarts (default 2^18) */
+} gb_certify_def;
+
+gb_certify_def gb_certify_default_def(void);
+
+typedef enum gb_certify_verdict {
+    GB_CERTIFY_GLOBAL = 0,       /* no point is lower than the minimum by more than η */
+    GB_CERTIFY_LOWER_FOUND = 1,  /* another local minimum is lower by more than η: see `lower` */
+    GB_CERTIFY_UNDECIDED = 2     /* some box could be neither settled nor split further */
+} gb_certify_verdict;
+
+const char *gb_certify_verdict_name(gb_certify_verdict verdict);
+
+typedef struct gb_certify_result {
+    gb_certify_verdict verdict;
+    gb_contact_point lower;  /* LOWER_FOUND: the lower minimum (polished by gb_contact_refine) */
+    size_t boxes_tested;     /* boxes whose tests ran in this call (kept verdicts not counted) */
+    size_t newton_runs;      /* Newton solves inside boxes in this call */
+} gb_certify_result;
+
+typedef struct gb_certify_stats {
+    size_t checks, global, lower_found, undecided;
+    size_t boxes_tested, newton_runs, basins_built, cache_restarts;
+    size_t boxes_kept;       /* boxes with enclosures now held */
+    int deepest;             /* deepest split level reached */
+} gb_certify_stats;
+
+typedef struct gb_certify gb_certify;
+
+int gb_certify_create(const gb_surface *surface, const gb_certify_def *def, gb_certify **out);
+void gb_certify_free(gb_certify *certify);
+
+/* Check that `minimum` (a minimum of h for vertical zb, as gb_contact_refine returns it for this zb) is
+ * the global one. Consecutive calls along a trajectory reuse verdicts (see above); any vertical may be
+ * passed in any order. GB_EDOM for a bad vertical, GB_ENOMEM. */
+int gb_certify_check(gb_certify *certify, const double zb[3], const gb_contact_point *minimum,
+                     const gb_contact_refine_def *refine, gb_certify_result *out);
+
+/* Forget every kept verdict (not the enclosures): the next check tests from the root boxes. */
+void gb_certify_forget(gb_certify *certify);
+
+/* The global minimum of h for vertical zb from scratch: Newton from the lowest root-box centre, then
+ * check; a lower minimum found replaces it until the check says GLOBAL. GB_ENOCONV when undecided. */
+int gb_certify_global_minimum(gb_certify *certify, const double zb[3], const gb_contact_refine_def *refine,
+                              gb_contact_point *out);
+
+void gb_certify_get_stats(const gb_certify *certify, gb_certify_stats *out);
+
+#endif

@@ -1,0 +1,278 @@
+/* Section 4, eq 29: the certificate that the contact is the global minimum (gb_certify).
+ *
+ * The certificate rests on two things, each checked against an independent oracle here:
+ *  1. the interval enclosures of x and its chart derivatives over boxes (gb_surface_enclose) hold
+ *     every sampled value: analytic derivatives (gb_surface_eval) in the (φ, θ) chart, central
+ *     differences of the position in the polar-x chart, including boxes on the poles of morphology I
+ *     where the surface is only C¹,¹;
+ *  2. its verdicts agree with an exhaustive search: Newton from every discrete local minimum of a fine
+ *     grid (gb_contact_branches_find) at random verticals, and at every step of continuous runs. The
+ *     certificate must refuse every non-global minimum (a check that fails if it certifies a wrong one). */
+#include "gb_certify.h"
+#include "gb_check.h"
+#include "gb_dynamics.h"
+#include "gb_error.h"
+#include "gb_integrate.h"
+#include "gb_vec.h"
+#include "verify_sections.h"
+
+#include <gsl/gsl_randist.h>
+#include <gsl/gsl_rng.h>
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+static int inside(gb_interval v, double x) { return x >= v.lo && x <= v.hi; }
+
+/* Central differences of x in chart `chart` with step e: x, ∂a, ∂b, ∂aa, ∂ab, ∂bb. */
+static void differences(const gb_surface *s, gb_surface_chart chart, double a, double b, double e, double v[6][3])
+{
+    double x[3][3][3]; /* x at (a + i e, b + j e), i, j ∈ {−1, 0, 1} */
+    for (int i = -1; i <= 1; i++)
+        for (int j = -1; j <= 1; j++) {
+            double phi, theta;
+            gb_surface_chart_angles(chart, a + i * e, b + j * e, &phi, &theta);
+            gb_surface_position(s, phi, theta, x[i + 1][j + 1]);
+        }
+    for (int k = 0; k < 3; k++) {
+        v[0][k] = x[1][1][k];
+        v[1][k] = (x[2][1][k] - x[0][1][k]) / (2 * e);
+        v[2][k] = (x[1][2][k] - x[1][0][k]) / (2 * e);
+        v[3][k] = (x[2][1][k] - 2 * x[1][1][k] + x[0][1][k]) / (e * e);
+        v[4][k] = (x[2][2][k] - x[2][0][k] - x[0][2][k] + x[0][0][k]) / (4 * e * e);
+        v[5][k] = (x[1][2][k] - 2 * x[1][1][k] + x[1][0][k]) / (e * e);
+    }
+}
+
+/* x and its chart derivatives at (a, b): analytic in POLAR_Z; in POLAR_X, central differences with
+ * steps 2e-3 and 1e-3, Richardson-extrapolated (error O(h⁴) ≈ 1e-9). Near ±e_z the position, evaluated
+ * through (φ, θ), carries ~1e-13 of rounding, which the second differences magnify to ≤ 5e-7. */
+#define DIFFERENCE_BUDGET 2e-6
+
+static void chart_values(const gb_surface *s, gb_surface_chart chart, double a, double b, double v[6][3])
+{
+    if (chart == GB_SURFACE_CHART_POLAR_Z) {
+        gb_surface_point p;
+        gb_surface_eval(s, a, b, &p);
+        for (int k = 0; k < 3; k++)
+            v[0][k] = p.x[k], v[1][k] = p.x_phi[k], v[2][k] = p.x_theta[k], v[3][k] = p.x_phiphi[k],
+            v[4][k] = p.x_phitheta[k], v[5][k] = p.x_thetatheta[k];
+        return;
+    }
+    double coarse[6][3], fine[6][3];
+    differences(s, chart, a, b, 2e-3, coarse);
+    differences(s, chart, a, b, 1e-3, fine);
+    for (int q = 0; q < 6; q++)
+        for (int k = 0; k < 3; k++) v[q][k] = q == 0 ? fine[0][k] : (4.0 * fine[q][k] - coarse[q][k]) / 3.0;
+}
+
+/* Random boxes (half-widths 1e-3 to 0.2) in both charts, 64 points in each; the pole boxes of chart
+ * POLAR_X (centred on ±e_z, where I is C¹,¹) are included. A sampled value must lie in its enclosure;
+ * for difference quotients the enclosure is widened by their error budget. */
+static void test_enclosures(void)
+{
+    for (int m = 0; m < 2; m++) {
+        gb_surface s;
+        gb_surface_init(&s, m ? "II" : "I", 0.12);
+        gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
+        gsl_rng_set(rng, 20261122UL);
+        size_t samples = 0, outside[2] = {0, 0};
+        double worst_excess = 0.0, widest = 0.0;
+        for (int box = 0; box < 400; box++) {
+            const gb_surface_chart chart = box % 2 ? GB_SURFACE_CHART_POLAR_X : GB_SURFACE_CHART_POLAR_Z;
+            const double w = pow(10.0, -3.0 + 2.3 * gsl_rng_uniform(rng));
+            double ac = 0.3 + (M_PI - 0.6) * gsl_rng_uniform(rng), bc = 2.0 * M_PI * gsl_rng_uniform(rng);
+            if (chart == GB_SURFACE_CHART_POLAR_X && box % 8 == 1) ac = 0.5 * M_PI, bc = box % 16 == 1 ? 0.5 * M_PI : 1.5 * M_PI;
+            gb_surface_enclosure e;
+            gb_surface_enclose(&s, chart, ac - w, ac + w, bc - w, bc + w, &e);
+            const gb_interval *enc[6] = {e.x, e.x_a, e.x_b, e.x_aa, e.x_ab, e.x_bb};
+            widest = fmax(widest, e.x_aa[0].hi - e.x_aa[0].lo);
+            for (int k = 0; k < 64; k++) {
+                const double a = ac - w + 2 * w * gsl_rng_uniform(rng), b = bc - w + 2 * w * gsl_rng_uniform(rng);
+                double v[6][3];
+                chart_values(&s, chart, a, b, v);
+                const double fd = chart == GB_SURFACE_CHART_POLAR_X ? DIFFERENCE_BUDGET : 0.0;
+                for (int q = 0; q < 6; q++)
+                    for (int i = 0; i < 3; i++) {
+                        const double allow = q == 0 ? 0.0 : fd;
+                        const gb_interval widened = {enc[q][i].lo - allow, enc[q][i].hi + allow};
+                        if (!e.smooth && q >= 3) continue; /* the Hessian does not exist on the pole itself */
+                        if (!inside(widened, v[q][i])) {
+                            outside[chart]++;
+                            worst_excess = fmax(worst_excess, fmax(enc[q][i].lo - v[q][i], v[q][i] - enc[q][i].hi));
+                        }
+                    }
+                samples++;
+            }
+        }
+        gsl_rng_free(rng);
+        char q[200];
+        snprintf(q, sizeof q, "Gomboc %s: x, its tangents and second derivatives over 400 chart boxes lie in their interval "
+                 "enclosures", m ? "II" : "I");
+        gb_check c = {"4", "29", q, "gb_surface_eval (phi, theta chart); Richardson-extrapolated central differences, steps 2e-3 "
+                      "and 1e-3 (polar-x chart)", "exact containment; difference quotients widened by their budget 2e-6"};
+        gb_check_true(&c, outside[0] == 0 && outside[1] == 0,
+                      "%zu points x 18 values: %zu outside in (phi, theta), %zu in polar-x (worst excess %.3g); widest x_aa "
+                      "interval %.3g", samples, outside[0], outside[1], worst_excess, widest);
+    }
+}
+
+/* At 200 random verticals per body: the global minimum of an exhaustive search (Newton from every
+ * discrete local minimum of a 360 × 720 grid) is certified GLOBAL; every other minimum it finds is
+ * refused (LOWER_FOUND); the certificate's own search from scratch returns the same minimum. */
+static void test_verdicts_at_random_verticals(void)
+{
+    enum { VERTICALS = 200 };
+    for (int m = 0; m < 2; m++) {
+        gb_surface s;
+        gb_surface_init(&s, m ? "II" : "I", 0.12);
+        gb_contact_grid_def gd = gb_contact_default_branch_grid();
+        gd.n_phi = 360, gd.n_theta = 720;
+        gb_contact_grid *grid = NULL;
+        gb_certify *cert = NULL;
+        const gb_certify_def cd = gb_certify_default_def();
+        const gb_contact_refine_def rd = gb_contact_refine_default_def();
+        int status = gb_contact_grid_create(&s, &gd, &grid);
+        if (!status) status = gb_certify_create(&s, &cd, &cert);
+        gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
+        gsl_rng_set(rng, 20261122UL);
+        size_t certified = 0, refused = 0, others = 0, same = 0, undecided = 0;
+        double worst = 0.0;
+        for (int k = 0; !status && k < VERTICALS; k++) {
+            double zb[3];
+            gsl_ran_dir_3d(rng, &zb[0], &zb[1], &zb[2]);
+            gb_contact_branches br;
+            status = gb_contact_branches_find(grid, zb, &rd, &br);
+            gb_certify_result r;
+            gb_certify_forget(cert);
+            if (!status) status = gb_certify_check(cert, zb, &br.branch[0], &rd, &r);
+            if (status) break;
+            certified += r.verdict == GB_CERTIFY_GLOBAL;
+            undecided += r.verdict == GB_CERTIFY_UNDECIDED;
+            for (size_t j = 1; j < br.count && !status; j++) {
+                if (br.branch[j].height - br.branch[0].height <= cd.height_tol) continue; /* a tie */
+                others++;
+                gb_certify_forget(cert);
+                status = gb_certify_check(cert, zb, &br.branch[j], &rd, &r);
+                refused += !status && r.verdict == GB_CERTIFY_LOWER_FOUND && r.lower.height < br.branch[j].height;
+            }
+            gb_contact_point g;
+            gb_certify_forget(cert);
+            if (!status) status = gb_certify_global_minimum(cert, zb, &rd, &g);
+            if (!status) {
+                const double diff = fabs(g.height - br.branch[0].height);
+                worst = fmax(worst, diff);
+                same += diff <= 1e-12;
+            }
+        }
+        gsl_rng_free(rng);
+        gb_certify_free(cert);
+        gb_contact_grid_free(grid);
+        char q[200];
+        snprintf(q, sizeof q, "Gomboc %s: the certificate at %d random verticals: global minimum certified, every other "
+                 "minimum refused", m ? "II" : "I", VERTICALS);
+        gb_check c = {"4", "29", q, "exhaustive search: Newton from every discrete local minimum of a 360 x 720 grid",
+                      "exact verdicts; heights of the two searches equal to 1e-12 (eta)"};
+        gb_check_true(&c, !status && certified == VERTICALS && refused == others && same == VERTICALS,
+                      "%s; %zu of %d certified global (%zu undecided), %zu of %zu other minima refused, from-scratch search "
+                      "equal in %zu of %d (worst height difference %.3g)",
+                      status ? gb_error_message() : "ran", certified, VERTICALS, undecided, refused, others, same, VERTICALS,
+                      worst);
+    }
+}
+
+/* At every accepted step of a continuous run, the certified contact is no higher than the lowest
+ * minimum of an independent seeded search (180 × 360 grid); steps where the certificate found a lower
+ * minimum that the seeded search missed, and undecided checks, are counted and recorded. */
+typedef struct step_audit {
+    gb_dynamics *dynamics;
+    gb_contact_grid *grid;
+    gb_contact_refine_def refine;
+    size_t steps, lower_than_certified, seeded_missed;
+    double worst;
+    int status;
+} step_audit;
+
+static int audit_step(void *context, double t, const double y[GB_STATE_SIZE])
+{
+    step_audit *a = context;
+    gb_dynamics_observables o;
+    a->status = a->status ? a->status : gb_dynamics_observe(a->dynamics, t, y, &o);
+    if (a->status) return a->status;
+    gb_contact_branches br;
+    a->status = gb_contact_branches_find(a->grid, o.zb, &a->refine, &br);
+    if (a->status) return a->status;
+    const double length = gb_dynamics_get_def(a->dynamics)->length;
+    const double diff = o.height / length - br.branch[0].height; /* > 0: the seeded search found lower */
+    a->steps++;
+    a->worst = fmax(a->worst, diff);
+    a->lower_than_certified += diff > 1e-12;
+    a->seeded_missed += diff < -1e-12;
+    return GB_OK;
+}
+
+static void test_trajectory_audit(void)
+{
+    for (int m = 0; m < 2; m++) {
+        gb_surface s;
+        gb_surface_init(&s, m ? "II" : "I", 0.12);
+        gb_dynamics_def def = gb_dynamics_default_def();
+        def.contact = GB_CONTACT_MODEL_CONTINUOUS;
+        def.variant = GB_VARIANT_ROLLING;
+        step_audit a = {.refine = gb_contact_refine_default_def()};
+        gb_contact_grid_def gd = gb_contact_default_branch_grid();
+        double y[GB_STATE_SIZE];
+        const double R0[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1}, w0[3] = {0, 0, 0};
+        int status = gb_contact_grid_create(&s, &gd, &a.grid);
+        if (!status) status = gb_dynamics_create(&s, &def, &a.dynamics);
+        if (!status) status = gb_dynamics_init_state(a.dynamics, 0.0, R0, w0, y);
+        gb_integrate_def idef = gb_integrate_default_def();
+        idef.periods = 20;
+        idef.locate_switches = 1;
+        idef.sample_every = 1;
+        gb_integrate_stats stats;
+        if (!status) status = gb_integrate_run(a.dynamics, &idef, 0.0, y, audit_step, &a, &stats);
+        if (!status) status = a.status;
+        gb_certify_stats cs = {0};
+        if (!status) gb_dynamics_certify_stats(a.dynamics, &cs);
+        char q[200];
+        snprintf(q, sizeof q, "Gomboc %s, Table 1, continuous rolling, located switches, 20 periods: every accepted contact "
+                 "is the global minimum", m ? "II" : "I");
+        gb_check c = {"4, 8", "29", q, "seeded search at every step: Newton from every discrete local minimum of 180 x 360",
+                      "exact: no seeded minimum lower by more than eta = 1e-12"};
+        gb_check_true(&c, !status && a.lower_than_certified == 0 && a.steps > 0,
+                      "%s; %zu steps audited, %zu with a lower seeded minimum (worst %.3g); the seeded search missed the "
+                      "certified minimum at %zu; certificate: %zu checks, %zu global, %zu lower found, %zu undecided, "
+                      "%zu boxes tested, %zu Newton solves, %zu basins",
+                      status ? gb_error_message() : "ran", a.steps, a.lower_than_certified, a.worst, a.seeded_missed, cs.checks,
+                      cs.global, cs.lower_found, cs.undecided, cs.boxes_tested, cs.newton_runs, cs.basins_built);
+        gb_dynamics_free(a.dynamics);
+        gb_contact_grid_free(a.grid);
+    }
+}
+
+/* A bad certificate definition is refused with its allowed range. */
+static void test_bad_definition(void)
+{
+    gb_surface s;
+    gb_surface_init(&s, "I", 0.12);
+    gb_certify_def def = gb_certify_default_def();
+    def.height_tol = -1.0;
+    gb_certify *c = NULL;
+    const int status = gb_certify_create(&s, &def, &c);
+    gb_check k = {"4", "29", "a negative certificate tolerance is refused, naming the allowed range", "error path", "exact"};
+    gb_check_true(&k, status == GB_EDOM && c == NULL && strstr(gb_error_message(), "allowed") != NULL, "%s",
+                  gb_error_message());
+}
+
+int verify_register_s4_certify(void)
+{
+    static const verify_test tests[] = {
+        {"eq 29: interval enclosures of the surface over chart boxes", test_enclosures},
+        {"eq 29: certificate verdicts against an exhaustive search", test_verdicts_at_random_verticals},
+        {"eq 29: every accepted contact of continuous runs is the global minimum", test_trajectory_audit},
+        {"eq 29: certificate definition out of range", test_bad_definition},
+        {NULL, NULL},
+    };
+    return verify_register_suite("Section 4: the certificate of the global minimum", tests);
+}
