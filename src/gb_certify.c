@@ -89,7 +89,7 @@ typedef struct pass {
 
 gb_certify_def gb_certify_default_def(void)
 {
-    return (gb_certify_def){.height_tol = 1e-12, .max_depth = 14, .max_nodes = (size_t)1 << 18};
+    return (gb_certify_def){.height_tol = 1e-12, .max_depth = 24, .max_nodes = (size_t)1 << 18};
 }
 
 const char *gb_certify_verdict_name(gb_certify_verdict v)

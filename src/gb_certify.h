@@ -34,7 +34,7 @@
 
 typedef struct gb_certify_def {
     double height_tol;  /* η: allowed depth of a lower point [body length units] (default 1e-12) */
-    int max_depth;      /* splits of a root box (default 14: boxes down to ~2.5e-5 rad) */
+    int max_depth;      /* splits of a root box (default 24: boxes down to ~2.3e-8 rad) */
     size_t max_nodes;   /* boxes kept with their enclosures; beyond it the cache restarts (default 2^18) */
 } gb_certify_def;
 
