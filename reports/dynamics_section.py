@@ -64,15 +64,19 @@ def dynamics_section(out, rows):
         reading = r["quantity"].split("read in ")[-1]
         lines.append(f"- Table 1 read in {reading}: g_eff ≤ 0 for {100 * r['measured']:.2f} % of every period "
                      f"(checked against 10⁶ samples: {'pass' if r['passed'] else '**FAIL**'}).")
-    lines += ["", "| scene | equation | contact | grid-index changes | branch switches | energy residual (max) [J] | "
-              "g_eff ≤ 0 | lift-off (N ≤ 0) | max friction needed |", "|---|---|---|---|---|---|---|---|---|"]
+    lines += ["", "| scene | equation | contact | grid-index changes | branch switches | certified global (checks, undecided) | "
+              "energy residual (max) [J] | g_eff ≤ 0 | lift-off (N ≤ 0) | max friction needed |",
+              "|---|---|---|---|---|---|---|---|---|---|"]
     for n in names:
         s = load_json(os.path.join(out, f"{n}-summary.json"))
         m = s.get("monitors", {})
         continuous = s["scene"]["contact"] == "continuous"
         branches = f"{s['branch_switches']:.0f}" if continuous else "not tracked (grid)"
+        cert = s.get("certificate")
+        certified = (f"{cert['global']:.0f} of {cert['checks']:.0f} ({cert['undecided']:.0f} undecided)" if cert
+                     else "— (grid)")
         lines.append(f"| `{n}` | {s['scene']['equation']} | {s['scene']['contact']} | {s['grid_switches']:.0f} | "
-                     f"{branches} | {s['energy_residual_max']:.3g} | "
+                     f"{branches} | {certified} | {s['energy_residual_max']:.3g} | "
                      f"{100 * m.get('geff_nonpositive_fraction', float('nan')):.1f} % | "
                      f"{100 * m.get('lift_off_fraction', float('nan')):.1f} % | {m.get('friction_needed_max', float('nan')):.3f} |")
     for r in fractions:

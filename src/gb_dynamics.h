@@ -50,7 +50,7 @@ typedef struct gb_dynamics_def {
     gb_forcing forcing;            /* eq 25 */
     gb_contact_grid_def grid;      /* the grid of the grid models (Table 1: 90 × 180) */
     gb_certify_def certify;        /* continuous contact: the certificate of the global minimum */
-    double tracker_radius;         /* gb_contact_tracker's reference radius (fast-grid, continuous) */
+    double tracker_radius;         /* gb_contact_tracker's reference radius (fast-grid) */
 } gb_dynamics_def;
 
 /* Table 1 with the paper's model: variant paper, grid contact 90 × 180, m = 1, c = 0.02, g = 9.81,
