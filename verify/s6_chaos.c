@@ -265,14 +265,44 @@ typedef struct variation {
     int locate;             /* continuous contact: locate each branch switch inside its step */
 } variation;
 
-static int lyapunov_run(const char *morphology, const variation *v, size_t periods, size_t transient, gb_lyapunov_result *r);
+/* Branch switches of the reference trajectory per period, over the first and the last tenth of a
+ * record (transient included): a rate that grows while the body slows down is chattering. */
+typedef struct switch_rates {
+    double early, late;
+} switch_rates;
+
+static int lyapunov_run_counted(const char *morphology, const variation *v, size_t periods, size_t transient,
+                                gb_lyapunov_result *r, switch_rates *rates);
+static int lyapunov_run(const char *morphology, const variation *v, size_t periods, size_t transient, gb_lyapunov_result *r)
+{
+    return lyapunov_run_counted(morphology, v, periods, transient, r, NULL);
+}
 
 static int lyapunov_of(const char *morphology, const variation *v, gb_lyapunov_result *r)
 {
     return lyapunov_run(morphology, v, 300, 0, r);
 }
 
-static int lyapunov_run(const char *morphology, const variation *v, size_t periods, size_t transient, gb_lyapunov_result *r)
+/* The body's pair system, wrapped to read the reference's switch count after each of its intervals. */
+typedef struct counted_body {
+    gb_lyapunov_body *body;
+    gb_lyapunov_pair_system inner;
+    size_t *counts, capacity, n;
+} counted_body;
+
+static int counted_advance(void *context, int which, double t, double interval)
+{
+    counted_body *c = context;
+    const int status = c->inner.advance(c->body, which, t, interval);
+    if (!status && which == 0 && c->n < c->capacity)
+        c->counts[c->n++] = gb_dynamics_switch_count(gb_lyapunov_body_dynamics(c->body));
+    return status;
+}
+static int counted_separation(void *context, double *e) { return ((counted_body *)context)->inner.separation(((counted_body *)context)->body, e); }
+static int counted_place(void *context, const double *e) { return ((counted_body *)context)->inner.place(((counted_body *)context)->body, e); }
+
+static int lyapunov_run_counted(const char *morphology, const variation *v, size_t periods, size_t transient,
+                                gb_lyapunov_result *r, switch_rates *rates)
 {
     gb_dynamics_def def = gb_dynamics_default_def();
     def.contact = v->contact, def.variant = v->variant;
@@ -289,8 +319,25 @@ static int lyapunov_run(const char *morphology, const variation *v, size_t perio
     gb_lyapunov_def ldef = gb_lyapunov_default_def();
     ldef.delta0 = v->delta0, ldef.interval = 2 * M_PI / def.forcing.omega, ldef.intervals = periods;
     ldef.transient = transient;
-    gb_lyapunov_pair_system ps = gb_lyapunov_body_pair();
-    status = gb_lyapunov_pair(&ps, body, &ldef, 0.0, NULL, r);
+    counted_body counted = {.body = body, .inner = gb_lyapunov_body_pair(), .capacity = periods + transient};
+    gb_lyapunov_pair_system ps = counted.inner;
+    void *context = body;
+    if (rates) {
+        counted.counts = calloc(counted.capacity, sizeof *counted.counts);
+        if (!counted.counts) status = gb_error_set(GB_ENOMEM, "out of memory for switch counts");
+        ps.advance = counted_advance, ps.separation = counted_separation, ps.place = counted_place;
+        context = &counted;
+    }
+    if (!status) status = gb_lyapunov_pair(&ps, context, &ldef, 0.0, NULL, r);
+    if (rates) {
+        const size_t n = counted.n, tenth = n / 10;
+        rates->early = rates->late = NAN;
+        if (!status && tenth > 0) {
+            rates->early = (double)counted.counts[tenth - 1] / (double)tenth;
+            rates->late = (double)(counted.counts[n - 1] - counted.counts[n - 1 - tenth]) / (double)tenth;
+        }
+        free(counted.counts);
+    }
     gb_lyapunov_body_free(body);
     return status;
 }
@@ -615,8 +662,17 @@ static void test_chaos_real_long(void)
         estimate e[5];
         for (int k = 0; k < 5; k++) {
             gb_lyapunov_result r;
-            const int status = lyapunov_run(bodies[b], runs[k], periods[k], transient[k], &r);
+            switch_rates rates;
+            const int status = lyapunov_run_counted(bodies[b], runs[k], periods[k], transient[k], &r, &rates);
             e[k] = (estimate){status ? NAN : r.lambda_max, status ? NAN : r.error_bar, !status};
+            /* recorded beside the exponent: switches per period early and late in the record */
+            char q[200];
+            snprintf(q, sizeof q, "Gomboc %s, %s: branch or grid switches per period, first and last tenth of %zu periods",
+                     bodies[b], runs[k]->name, periods[k] + transient[k]);
+            gb_check cs = {"8.2", "38-39", q, "switch counter of the reference trajectory", "recorded: finite rates"};
+            gb_check_true(&cs, isfinite(rates.early) && isfinite(rates.late),
+                          "%.2f per period in the first tenth, %.2f in the last (%.1fx); lambda_max = %.3f +- %.3f",
+                          rates.early, rates.late, rates.late / fmax(rates.early, 1e-300), e[k].lambda, e[k].error);
             cJSON *row = cJSON_CreateObject();
             cJSON_AddStringToObject(row, "body", bodies[b]);
             cJSON_AddStringToObject(row, "variation", runs[k]->name);
@@ -624,6 +680,8 @@ static void test_chaos_real_long(void)
             cJSON_AddNumberToObject(row, "transient_periods", (double)transient[k]);
             cJSON_AddNumberToObject(row, "lambda_max", e[k].lambda);
             cJSON_AddNumberToObject(row, "error_bar", e[k].error);
+            cJSON_AddNumberToObject(row, "switches_per_period_first_tenth", rates.early);
+            cJSON_AddNumberToObject(row, "switches_per_period_last_tenth", rates.late);
             cJSON_AddItemToArray(doc, row);
             if (!status) gb_lyapunov_result_free(&r);
         }
