@@ -91,6 +91,8 @@ def chaos_section(out, rows):
                   "|---|---|---|---|---|---|---|---|---|"]
         for r in load_json(long_path):
             clear = "yes" if r["lambda_max"] - 4 * r["error_bar"] > 0 else "no"
+            if r.get("chattering"):
+                clear += " (chattering: not judged)"
             early, late = r.get("switches_per_period_first_tenth"), r.get("switches_per_period_last_tenth")
             rates = f"{early:.2f} | {late:.2f}" if early is not None and late is not None else "— | —"
             lines.append(f"| {r['body']} | {r['variation']} | {r['periods']:.0f} | {r['transient_periods']:.0f} | "
