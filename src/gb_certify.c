@@ -92,16 +92,6 @@ gb_certify_def gb_certify_default_def(void)
     return (gb_certify_def){.height_tol = 1e-12, .max_depth = 24, .max_nodes = (size_t)1 << 18};
 }
 
-const char *gb_certify_verdict_name(gb_certify_verdict v)
-{
-    switch (v) {
-    case GB_CERTIFY_GLOBAL: return "global";
-    case GB_CERTIFY_LOWER_FOUND: return "lower-found";
-    case GB_CERTIFY_UNDECIDED: return "undecided";
-    }
-    return NULL;
-}
-
 /* ---------------------------------------------------------------- boxes */
 
 static double norm_of_mags(const gb_interval v[3])

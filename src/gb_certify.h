@@ -46,8 +46,6 @@ typedef enum gb_certify_verdict {
     GB_CERTIFY_UNDECIDED = 2     /* some box could be neither settled nor split further */
 } gb_certify_verdict;
 
-const char *gb_certify_verdict_name(gb_certify_verdict verdict);
-
 typedef struct gb_certify_result {
     gb_certify_verdict verdict;
     gb_contact_point lower;  /* LOWER_FOUND: the lower minimum (polished by gb_contact_refine) */

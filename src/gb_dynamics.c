@@ -67,6 +67,11 @@ struct gb_dynamics {
     double energy0, t0;
     size_t grid_switches, branch_switches;
     size_t branches_lost; /* continuous: evaluations where the continued branch had no minimum */
+    /* The last competitor() answer and the state it was for: with switch location, the step's end is
+     * checked by gb_dynamics_switch_pending and then again by gb_dynamics_accept at the same state. */
+    int memo_valid, memo_found;
+    double memo_key[8];
+    gb_contact_point memo_continued, memo_other;
 };
 
 const gb_dynamics_def *gb_dynamics_get_def(const gb_dynamics *d) { return &d->def; }
@@ -322,6 +327,15 @@ static int competitor(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], g
 {
     double zb[3];
     vertical_of(y, zb);
+    /* The answer depends only on z_b, t (Newton's predictor) and ω (eq 72's rate), and on the accepted
+     * contact, which changes only in gb_dynamics_accept and gb_dynamics_switch_to (they clear the memo). */
+    const double key[8] = {zb[0], zb[1], zb[2], t, y[GB_STATE_OMEGA], y[GB_STATE_OMEGA + 1], y[GB_STATE_OMEGA + 2], 0.0};
+    if (d->memo_valid && memcmp(key, d->memo_key, sizeof key) == 0) {
+        *continued = d->memo_continued;
+        *found = d->memo_found;
+        if (*found) *other = d->memo_other;
+        return GB_OK;
+    }
     contact_eval c;
     int status = contact_at(d, t, zb, y + GB_STATE_OMEGA, &c);
     if (status) return status;
@@ -339,6 +353,11 @@ static int competitor(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], g
         *other = r.lower;
         *found = 1;
     }
+    memcpy(d->memo_key, key, sizeof key);
+    d->memo_continued = *continued;
+    d->memo_found = *found;
+    if (*found) d->memo_other = *other;
+    d->memo_valid = 1;
     return GB_OK;
 }
 
@@ -371,6 +390,7 @@ int gb_dynamics_accept(gb_dynamics *d, double t, double y[GB_STATE_SIZE], double
     int status = competitor(d, t, y, &continued, &other, &found);
     if (status) return status;
     d->contact = found ? other : continued;
+    d->memo_valid = 0; /* the accepted contact changed */
     d->branch_switches += found;
     return remember_rate(d, t, y);
 }
@@ -399,6 +419,7 @@ int gb_dynamics_branch_gap(gb_dynamics *d, const double y[GB_STATE_SIZE], const 
 
 void gb_dynamics_switch_to(gb_dynamics *d, const gb_contact_point *branch)
 {
+    d->memo_valid = 0;
     d->contact = *branch;
     d->contact_rate[0] = d->contact_rate[1] = 0.0; /* no predictor until the next accepted step */
     d->branch_switches++;
@@ -408,6 +429,7 @@ size_t gb_dynamics_switch_count(const gb_dynamics *d) { return d->grid_switches 
 
 void gb_dynamics_adopt_contact(gb_dynamics *to, const gb_dynamics *from)
 {
+    to->memo_valid = 0;
     to->index = from->index;
     to->contact = from->contact;
     to->contact_time = from->contact_time;
@@ -436,7 +458,8 @@ int gb_dynamics_init_state(gb_dynamics *d, double t0, const double R0[9], const 
     int status = contact_global(d, zb);
     if (status) return status;
     if (d->def.contact == GB_CONTACT_MODEL_CONTINUOUS) remember_rate(d, t0, y);
-    d->grid_switches = d->branch_switches = 0;
+    d->grid_switches = d->branch_switches = d->branches_lost = 0;
+    d->memo_valid = 0;
     d->t0 = t0;
     d->energy0 = 0.0;
     gb_dynamics_observables o;
@@ -498,6 +521,7 @@ int gb_dynamics_observe(gb_dynamics *d, double t, const double y[GB_STATE_SIZE],
     o->orthonormality = worst;
     o->grid_switches = d->grid_switches;
     o->branch_switches = d->branch_switches;
+    o->branches_lost = d->branches_lost;
     return GB_OK;
 }
 

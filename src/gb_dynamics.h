@@ -128,6 +128,8 @@ typedef struct gb_dynamics_observables {
     double orthonormality;   /* max |RᵀR − I| */
     size_t index;            /* grid node of the contact (grid models), else 0 */
     size_t grid_switches, branch_switches;
+    size_t branches_lost;    /* continuous: evaluations where the continued branch had no minimum left
+                              * (a fold inside a step) and the certified global minimum was taken */
 } gb_dynamics_observables;
 
 int gb_dynamics_observe(gb_dynamics *dynamics, double t, const double y[GB_STATE_SIZE],

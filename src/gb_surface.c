@@ -201,15 +201,6 @@ double gb_surface_height_dbeta(const gb_surface *surface, double phi, double the
 
 /* ---------------------------------------------------------------- enclosures over chart boxes */
 
-const char *gb_surface_chart_name(gb_surface_chart chart)
-{
-    switch (chart) {
-    case GB_SURFACE_CHART_POLAR_Z: return "polar-z (phi, theta)";
-    case GB_SURFACE_CHART_POLAR_X: return "polar-x (alpha, gamma)";
-    }
-    return NULL;
-}
-
 void gb_surface_chart_direction(gb_surface_chart chart, double a, double b, double u[3])
 {
     const double sa = sin(a), ca = cos(a), sb = sin(b), cb = cos(b);

@@ -396,6 +396,7 @@ int command_run(int argc, char **argv)
             cJSON_AddNumberToObject(m, "basins_built", (double)cs.basins_built);
             cJSON_AddNumberToObject(m, "boxes_kept", (double)cs.boxes_kept);
             cJSON_AddNumberToObject(m, "deepest_split", cs.deepest);
+            cJSON_AddNumberToObject(m, "branches_lost", (double)o.branches_lost);
         }
         if (scene.strobe) cJSON_AddItemToObject(root, "strobe", strobe_json(&s.strobe));
         if (scene.spectrum) cJSON_AddItemToObject(root, "spectrum", spectrum_json(&scene, &spectrum, s.spectrum_count));

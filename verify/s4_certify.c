@@ -66,6 +66,13 @@ static void chart_values(const gb_surface *s, gb_surface_chart chart, double a, 
         for (int k = 0; k < 3; k++) v[q][k] = q == 0 ? fine[0][k] : (4.0 * fine[q][k] - coarse[q][k]) / 3.0;
 }
 
+/* Is chart POLAR_X's point (a, b) within 5e-3 (max norm) of ±e_z, i.e. of (π/2, π/2) or (π/2, 3π/2)? */
+static int near_pole(double a, double b)
+{
+    const double da = fabs(a - 0.5 * M_PI), b1 = fabs(b - 0.5 * M_PI), b2 = fabs(b - 1.5 * M_PI);
+    return da < 5e-3 && (b1 < 5e-3 || b2 < 5e-3);
+}
+
 /* Random boxes (half-widths 1e-3 to 0.2) in both charts, 64 points in each; the pole boxes of chart
  * POLAR_X (centred on ±e_z, where I is C¹,¹) are included. A sampled value must lie in its enclosure;
  * for difference quotients the enclosure is widened by their error budget. */
@@ -76,7 +83,7 @@ static void test_enclosures(void)
         gb_surface_init(&s, m ? "II" : "I", 0.12);
         gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
         gsl_rng_set(rng, 20261122UL);
-        size_t samples = 0, outside[2] = {0, 0};
+        size_t samples = 0, outside[2] = {0, 0}, pole_skipped = 0;
         double worst_excess = 0.0, widest = 0.0;
         for (int box = 0; box < 400; box++) {
             const gb_surface_chart chart = box % 2 ? GB_SURFACE_CHART_POLAR_X : GB_SURFACE_CHART_POLAR_Z;
@@ -96,13 +103,17 @@ static void test_enclosures(void)
                     for (int i = 0; i < 3; i++) {
                         const double allow = q == 0 ? 0.0 : fd;
                         const gb_interval widened = {enc[q][i].lo - allow, enc[q][i].hi + allow};
-                        if (!e.smooth && q >= 3) continue; /* the Hessian does not exist on the pole itself */
+                        /* On ±e_z itself morphology I has no Hessian, and a difference stencil that
+                         * straddles it measures the jump: second derivatives are compared only where
+                         * the stencil (±2e-3) stays 5e-3 clear of the pole. */
+                        if (!e.smooth && q >= 3 && near_pole(a, b)) continue;
                         if (!inside(widened, v[q][i])) {
                             outside[chart]++;
                             worst_excess = fmax(worst_excess, fmax(enc[q][i].lo - v[q][i], v[q][i] - enc[q][i].hi));
                         }
                     }
                 samples++;
+                pole_skipped += !e.smooth && near_pole(a, b);
             }
         }
         gsl_rng_free(rng);
@@ -113,7 +124,8 @@ static void test_enclosures(void)
                       "and 1e-3 (polar-x chart)", "exact containment; difference quotients widened by their budget 2e-6"};
         gb_check_true(&c, outside[0] == 0 && outside[1] == 0,
                       "%zu points x 18 values: %zu outside in (phi, theta), %zu in polar-x (worst excess %.3g); widest x_aa "
-                      "interval %.3g", samples, outside[0], outside[1], worst_excess, widest);
+                      "interval %.3g; second derivatives not compared at %zu points within 5e-3 of a C1,1 pole",
+                      samples, outside[0], outside[1], worst_excess, widest, pole_skipped);
     }
 }
 
