@@ -37,9 +37,11 @@ static gb_surface_chart region_chart(int region) { return region == REGION_EQUAT
 
 typedef enum reason { R_NONE = 0, R_FAR, R_SLOPE, R_NOMIN, R_BASIN, R_SPLIT } reason;
 
+/* A box. Its enclosure lives apart (see quad), so the fields a check reads on its way down the tree
+ * stay small and close together. */
 typedef struct node {
     double a_lo, a_hi, b_lo, b_hi;
-    gb_surface_enclosure e;
+    gb_surface_enclosure *e;
     double xmax, xa_mag, xb_mag, xaa_mag, xbb_mag; /* Lipschitz constants in the vertical */
     struct node *child;                            /* four, or NULL */
     unsigned long epoch;                           /* the epoch of the kept verdict */
@@ -49,6 +51,12 @@ typedef struct node {
     double hint_phi, hint_theta;                   /* last critical point found inside */
     unsigned char region, depth, verdict, has_hint;
 } node;
+
+/* Four children and their enclosures, allocated together; n comes first, so freeing n frees all. */
+typedef struct quad {
+    struct node n[4];
+    gb_surface_enclosure e[4];
+} quad;
 
 typedef enum owner { OWNER_FREE = 0, OWNER_MINIMUM, OWNER_OTHER } owner;
 
@@ -67,6 +75,7 @@ struct gb_certify {
     gb_certify_def def;
     double r_max;
     node roots[ROOT_COUNT];
+    gb_surface_enclosure root_enclosures[ROOT_COUNT];
     size_t nodes;
     unsigned long epoch, next_serial;
     basin basins[BASIN_SLOTS];
@@ -100,19 +109,20 @@ static double norm_of_mags(const gb_interval v[3])
     return sqrt(a * a + b * b + c * c) * (1.0 + 1e-12);
 }
 
-static void node_fill(const gb_certify *c, node *n, int region, int depth, double a_lo, double a_hi, double b_lo,
-                      double b_hi)
+static void node_fill(const gb_certify *c, node *n, gb_surface_enclosure *e, int region, int depth, double a_lo,
+                      double a_hi, double b_lo, double b_hi)
 {
     memset(n, 0, sizeof *n);
+    n->e = e;
     n->a_lo = a_lo, n->a_hi = a_hi, n->b_lo = b_lo, n->b_hi = b_hi;
     n->region = (unsigned char)region;
     n->depth = (unsigned char)depth;
-    gb_surface_enclose(&c->surface, region_chart(region), a_lo, a_hi, b_lo, b_hi, &n->e);
-    n->xmax = norm_of_mags(n->e.x);
-    n->xa_mag = norm_of_mags(n->e.x_a);
-    n->xb_mag = norm_of_mags(n->e.x_b);
-    n->xaa_mag = norm_of_mags(n->e.x_aa);
-    n->xbb_mag = norm_of_mags(n->e.x_bb);
+    gb_surface_enclose(&c->surface, region_chart(region), a_lo, a_hi, b_lo, b_hi, e);
+    n->xmax = norm_of_mags(e->x);
+    n->xa_mag = norm_of_mags(e->x_a);
+    n->xb_mag = norm_of_mags(e->x_b);
+    n->xaa_mag = norm_of_mags(e->x_aa);
+    n->xbb_mag = norm_of_mags(e->x_bb);
 }
 
 static void node_free_children(node *n)
@@ -126,14 +136,14 @@ static void node_free_children(node *n)
 static int node_split(gb_certify *c, node *n)
 {
     if (n->child) return GB_OK;
-    node *ch = malloc(4 * sizeof *ch);
-    if (!ch) return gb_error_set(GB_ENOMEM, "out of memory for the contact certificate's boxes");
+    quad *q = malloc(sizeof *q);
+    if (!q) return gb_error_set(GB_ENOMEM, "out of memory for the contact certificate's boxes");
     const double am = 0.5 * (n->a_lo + n->a_hi), bm = 0.5 * (n->b_lo + n->b_hi);
-    node_fill(c, &ch[0], n->region, n->depth + 1, n->a_lo, am, n->b_lo, bm);
-    node_fill(c, &ch[1], n->region, n->depth + 1, am, n->a_hi, n->b_lo, bm);
-    node_fill(c, &ch[2], n->region, n->depth + 1, n->a_lo, am, bm, n->b_hi);
-    node_fill(c, &ch[3], n->region, n->depth + 1, am, n->a_hi, bm, n->b_hi);
-    n->child = ch;
+    node_fill(c, &q->n[0], &q->e[0], n->region, n->depth + 1, n->a_lo, am, n->b_lo, bm);
+    node_fill(c, &q->n[1], &q->e[1], n->region, n->depth + 1, am, n->a_hi, n->b_lo, bm);
+    node_fill(c, &q->n[2], &q->e[2], n->region, n->depth + 1, n->a_lo, am, bm, n->b_hi);
+    node_fill(c, &q->n[3], &q->e[3], n->region, n->depth + 1, am, n->a_hi, bm, n->b_hi);
+    n->child = q->n;
     c->nodes += 4;
     if (n->depth + 1 > c->stats.deepest) c->stats.deepest = n->depth + 1;
     return GB_OK;
@@ -145,10 +155,27 @@ static gb_interval dot_interval(const double d[3], const gb_interval v[3])
     gb_interval s = {0.0, 0.0};
     for (int k = 0; k < 3; k++) {
         const double p = d[k] * v[k].lo, q = d[k] * v[k].hi;
-        s.lo += fmin(p, q);
-        s.hi += fmax(p, q);
+        s.lo += gb_interval_min(p, q);
+        s.hi += gb_interval_max(p, q);
     }
     return s;
+}
+
+/* A lower bound of d·x over the box: the direct enclosure met with the Taylor form about the box
+ * centre with d applied first (see gb_surface_enclosure), whose first-order term is the gradient of h
+ * at the centre times the offset, not Σ|d_k| |∂x_k| times it. Near a critical point that is the
+ * difference between a bound good to O(size²) and one good to O(size). Plain double sums (see
+ * SLACK_ROUNDING). */
+static double height_lower_bound(const double d[3], const gb_surface_enclosure *e)
+{
+    const double direct = dot_interval(d, e->x).lo;
+    const gb_interval hc = dot_interval(d, e->x_c), ga = dot_interval(d, e->x_a_c), gb = dot_interval(d, e->x_b_c);
+    const gb_interval Haa = dot_interval(d, e->x_aa), Hab = dot_interval(d, e->x_ab), Hbb = dot_interval(d, e->x_bb);
+    const gb_interval second = gb_interval_add(
+        gb_interval_add(gb_interval_mul(Haa, gb_interval_sqr(e->da)), gb_interval_mul(Hbb, gb_interval_sqr(e->db))),
+        gb_interval_scale(2.0, gb_interval_mul(Hab, gb_interval_mul(e->da, e->db))));
+    const double taylor = hc.lo + gb_interval_mul(ga, e->da).lo + gb_interval_mul(gb, e->db).lo + 0.5 * second.lo;
+    return gb_interval_max(direct, taylor);
 }
 
 /* Is the interval Hessian d·x'' positive definite over the whole box? */
@@ -156,7 +183,7 @@ static int hessian_definite(const double d[3], const gb_interval aa[3], const gb
 {
     const gb_interval Haa = dot_interval(d, aa), Hab = dot_interval(d, ab), Hbb = dot_interval(d, bb);
     if (!(Haa.lo > HESSIAN_ROUNDING && Hbb.lo > HESSIAN_ROUNDING)) return 0;
-    const double m = fmax(fabs(Hab.lo), fabs(Hab.hi));
+    const double m = gb_interval_max(fabs(Hab.lo), fabs(Hab.hi));
     return Haa.lo * Hbb.lo - m * m > HESSIAN_ROUNDING;
 }
 
@@ -208,10 +235,10 @@ static int basin_holds_well(const basin *b, const double ab[2])
 static int basin_build(gb_certify *c, basin *b, gb_surface_chart chart, const double ab[2], const double d[3],
                        const gb_contact_point *point, owner who)
 {
-    double w = fmin(BASIN_MAX_HALF_WIDTH, 2.0 * c->last_half_width);
+    double w = gb_interval_min(BASIN_MAX_HALF_WIDTH, 2.0 * c->last_half_width);
     for (; w >= BASIN_MIN_HALF_WIDTH; w *= 0.5) {
         /* stay clear of the chart's own poles (a = 0, π) */
-        const double a_lo = fmax(ab[0] - w, 0.05), a_hi = fmin(ab[0] + w, M_PI - 0.05);
+        const double a_lo = gb_interval_max(ab[0] - w, 0.05), a_hi = gb_interval_min(ab[0] + w, M_PI - 0.05);
         if (!(ab[0] > a_lo + INSIDE_MARGIN && ab[0] < a_hi - INSIDE_MARGIN)) continue;
         gb_surface_enclosure e;
         gb_surface_enclose(&c->surface, chart, a_lo, a_hi, ab[1] - w, ab[1] + w, &e);
@@ -315,14 +342,60 @@ static int lower_found(pass *p, const gb_contact_point *q)
 
 static int visit(gb_certify *c, node *n, pass *p, int *status);
 
+/* The kept verdict of a box settled by basin `serial`: SETTLED or FOUND while that basin is valid (its
+ * minimum then bounds the box from below), −1 when it is gone. */
+static int basin_verdict(gb_certify *c, pass *p, unsigned long serial)
+{
+    for (int k = 0; k < BASIN_SLOTS; k++) {
+        basin *b = &c->basins[k];
+        if (b->serial != serial || !b->valid) continue;
+        b->used = 1;
+        return b->point.height >= p->H - p->eta ? SETTLED : lower_found(p, &b->point);
+    }
+    return -1;
+}
+
+/* The FAR verdicts of a split box's children, (s_i, d_i), hold while s_i − path·d_i ≥ e_A − η. Their
+ * minimum f(path) = min_i (s_i − path·d_i) is concave, so on [p0, p1] it lies above its chord: the box
+ * keeps that chord as (far_s, far_d), valid up to p1 (a due). p0 is the current path and p1 the path at
+ * which the first child would expire at the current e_A; beyond p1 the box is walked again. Taking
+ * min s_i with max d_i instead, one near child and one far child together would expire at once. */
+static void far_chord(const gb_certify *c, const pass *p, const double s[4], const double d[4], int count,
+                      double *far_s, double *far_d, double *due)
+{
+    const double p0 = c->path, level = c->excess - p->eta + SLACK_ROUNDING;
+    double p1 = INFINITY, steepest = 0.0, f0 = INFINITY;
+    for (int k = 0; k < count; k++) {
+        f0 = gb_interval_min(f0, s[k] - p0 * d[k]);
+        steepest = gb_interval_max(steepest, d[k]);
+        if (d[k] > 0.0) p1 = gb_interval_min(p1, (s[k] - level) / d[k]);
+    }
+    if (count == 0) {
+        *far_s = INFINITY, *far_d = 0.0;
+        return;
+    }
+    if (!(p1 > p0 * (1.0 + 1e-12) + 1e-15) || !isfinite(p1)) {
+        /* through (p0, f0) with the steepest slope: below every child for every path ≥ p0 */
+        *far_d = steepest;
+        *far_s = f0 + p0 * steepest;
+        return;
+    }
+    double f1 = INFINITY;
+    for (int k = 0; k < count; k++) f1 = gb_interval_min(f1, s[k] - p1 * d[k]);
+    *far_d = (f0 - f1) / (p1 - p0) * (1.0 + 1e-12);
+    *far_s = f0 + p0 * *far_d - SLACK_ROUNDING;
+    *due = gb_interval_min(*due, p1);
+}
+
 /* A split box keeps the weakest of its children's kept verdicts: the earliest due of the SLOPE and
- * NO-MIN ones, and the smallest far_s with the largest far_d of the FAR ones. While both hold, the whole
- * subtree holds without being walked. A child settled by a basin, or not settled at all, leaves the box
- * to be walked at every check. */
+ * NO-MIN ones, the chord of the FAR ones (far_chord), and the basin of the BASIN ones when they share
+ * one. While all hold, the whole subtree holds without being walked. Children settled by different
+ * basins, or a child not settled, leave the box to be walked at every check. */
 static int visit_children(gb_certify *c, node *n, pass *p, int *status)
 {
-    int undecided = 0;
-    double due = INFINITY, far_s = INFINITY, far_d = 0.0;
+    int undecided = 0, fars = 0;
+    double due = INFINITY, far_s = INFINITY, far_d = 0.0, child_s[4], child_d[4];
+    unsigned long serial = 0;
     for (int k = 0; k < 4; k++) {
         const node *child = &n->child[k];
         const int r = visit(c, &n->child[k], p, status);
@@ -332,14 +405,18 @@ static int visit_children(gb_certify *c, node *n, pass *p, int *status)
         }
         undecided |= r == UNDECIDED;
         const reason v = child->epoch == c->epoch && r == SETTLED ? (reason)child->verdict : R_NONE;
-        if (v == R_SLOPE || v == R_NOMIN || v == R_SPLIT) due = fmin(due, child->due);
-        if (v == R_FAR || v == R_SPLIT) {
-            far_s = fmin(far_s, child->far_s);
-            far_d = fmax(far_d, child->far_d);
+        if (v == R_SLOPE || v == R_NOMIN || v == R_SPLIT) due = gb_interval_min(due, child->due);
+        if ((v == R_FAR || v == R_SPLIT) && isfinite(child->far_s)) {
+            child_s[fars] = child->far_s;
+            child_d[fars++] = child->far_d;
         }
-        if (v == R_NONE || v == R_BASIN) due = -INFINITY;
+        const unsigned long child_serial = v == R_BASIN || v == R_SPLIT ? child->basin_serial : 0;
+        if (child_serial && serial && child_serial != serial) due = -INFINITY;
+        if (child_serial) serial = child_serial;
+        if (v == R_NONE) due = -INFINITY;
     }
-    n->due = due, n->far_s = far_s, n->far_d = far_d;
+    far_chord(c, p, child_s, child_d, fars, &far_s, &far_d, &due);
+    n->due = due, n->far_s = far_s, n->far_d = far_d, n->basin_serial = serial;
     return undecided ? UNDECIDED : SETTLED;
 }
 
@@ -367,17 +444,16 @@ static int visit(gb_certify *c, node *n, pass *p, int *status)
         case R_NOMIN:
             if (c->path <= n->due) return SETTLED;
             break;
-        case R_BASIN:
-            for (int k = 0; k < BASIN_SLOTS; k++) {
-                basin *b = &c->basins[k];
-                if (b->serial != n->basin_serial || !b->valid) continue;
-                b->used = 1;
-                return b->point.height >= p->H - p->eta ? SETTLED : lower_found(p, &b->point);
-            }
+        case R_BASIN: {
+            const int r = basin_verdict(c, p, n->basin_serial);
+            if (r >= 0) return r;
             break;
+        }
         case R_SPLIT:
-            if (c->path <= n->due && n->far_s - c->path * n->far_d >= c->excess - p->eta + SLACK_ROUNDING)
-                return SETTLED;
+            if (c->path <= n->due && n->far_s - c->path * n->far_d >= c->excess - p->eta + SLACK_ROUNDING) {
+                const int r = n->basin_serial ? basin_verdict(c, p, n->basin_serial) : SETTLED;
+                if (r >= 0) return r;
+            }
             return visit_children(c, n, p, status);
         case R_NONE:
             break;
@@ -388,15 +464,15 @@ static int visit(gb_certify *c, node *n, pass *p, int *status)
     n->verdict = R_NONE;
     const double *d = p->d;
     /* FAR: nothing in the box lower than H − η. */
-    const gb_interval h = dot_interval(d, n->e.x);
-    const double slack = h.lo - (p->H - p->eta) - SLACK_ROUNDING;
+    const double h_lo = height_lower_bound(d, n->e);
+    const double slack = h_lo - (p->H - p->eta) - SLACK_ROUNDING;
     if (slack > 0.0) {
         /* For q in the box and a later vertical d': d'·x(q) − d'·x_A ≥ (lb − d·x_A) − |d' − d|·max|x(q) − x_A|. */
         gb_interval rel[3];
-        for (int k = 0; k < 3; k++) rel[k] = (gb_interval){n->e.x[k].lo - c->anchor[k], n->e.x[k].hi - c->anchor[k]};
+        for (int k = 0; k < 3; k++) rel[k] = (gb_interval){n->e->x[k].lo - c->anchor[k], n->e->x[k].hi - c->anchor[k]};
         n->verdict = R_FAR;
         n->far_d = norm_of_mags(rel);
-        n->far_s = (h.lo - gb_vec_dot(d, c->anchor)) + c->path * n->far_d;
+        n->far_s = (h_lo - gb_vec_dot(d, c->anchor)) + c->path * n->far_d;
         n->due = INFINITY;
         return SETTLED;
     }
@@ -409,24 +485,24 @@ static int visit(gb_certify *c, node *n, pass *p, int *status)
         return b->point.height >= p->H - p->eta ? SETTLED : lower_found(p, &b->point);
     }
     /* SLOPE: no critical point. */
-    const gb_interval ga = dot_interval(d, n->e.x_a), gb = dot_interval(d, n->e.x_b);
-    const double ma = fmax(ga.lo, -ga.hi) - SLACK_ROUNDING, mb = fmax(gb.lo, -gb.hi) - SLACK_ROUNDING;
+    const gb_interval ga = dot_interval(d, n->e->x_a), gb = dot_interval(d, n->e->x_b);
+    const double ma = gb_interval_max(ga.lo, -ga.hi) - SLACK_ROUNDING, mb = gb_interval_max(gb.lo, -gb.hi) - SLACK_ROUNDING;
     if (ma > 0.0 || mb > 0.0) {
         n->verdict = R_SLOPE;
-        n->due = c->path + fmax(ma > 0.0 ? ma / n->xa_mag : 0.0, mb > 0.0 ? mb / n->xb_mag : 0.0);
+        n->due = c->path + gb_interval_max(ma > 0.0 ? ma / n->xa_mag : 0.0, mb > 0.0 ? mb / n->xb_mag : 0.0);
         return SETTLED;
     }
     /* NO-MIN: where C², a minimum needs ∂_aa h ≥ 0, ∂_bb h ≥ 0 and det ≥ 0. */
-    const gb_interval Haa = dot_interval(d, n->e.x_aa), Hab = dot_interval(d, n->e.x_ab), Hbb = dot_interval(d, n->e.x_bb);
-    const double hab_max = fmax(fabs(Hab.lo), fabs(Hab.hi));
-    const double hab_min = Hab.lo * Hab.hi > 0.0 ? fmin(fabs(Hab.lo), fabs(Hab.hi)) : 0.0;
-    const double prod_max = fmax(fmax(Haa.lo * Hbb.lo, Haa.lo * Hbb.hi), fmax(Haa.hi * Hbb.lo, Haa.hi * Hbb.hi));
-    if (n->e.smooth) {
+    const gb_interval Haa = dot_interval(d, n->e->x_aa), Hab = dot_interval(d, n->e->x_ab), Hbb = dot_interval(d, n->e->x_bb);
+    const double hab_max = gb_interval_max(fabs(Hab.lo), fabs(Hab.hi));
+    const double hab_min = Hab.lo * Hab.hi > 0.0 ? gb_interval_min(fabs(Hab.lo), fabs(Hab.hi)) : 0.0;
+    const double prod_max = gb_interval_max(gb_interval_max(Haa.lo * Hbb.lo, Haa.lo * Hbb.hi), gb_interval_max(Haa.hi * Hbb.lo, Haa.hi * Hbb.hi));
+    if (n->e->smooth) {
         const double na = -Haa.hi - HESSIAN_ROUNDING, nb = -Hbb.hi - HESSIAN_ROUNDING;
         if (na > 0.0 || nb > 0.0) {
             n->verdict = R_NOMIN;
             n->far_s = INFINITY, n->far_d = 0.0;
-            n->due = c->path + fmax(na > 0.0 ? na / n->xaa_mag : 0.0, nb > 0.0 ? nb / n->xbb_mag : 0.0);
+            n->due = c->path + gb_interval_max(na > 0.0 ? na / n->xaa_mag : 0.0, nb > 0.0 ? nb / n->xbb_mag : 0.0);
             return SETTLED;
         }
         if (prod_max + HESSIAN_ROUNDING < hab_min * hab_min) return SETTLED; /* det < 0: saddles only */
@@ -503,7 +579,10 @@ int gb_certify_create(const gb_surface *surface, const gb_certify_def *def, gb_c
             for (int j = 0; j < nb; j++) {
                 const double a_lo = g[0] + (g[1] - g[0]) * i / na, a_hi = i + 1 == na ? g[1] : g[0] + (g[1] - g[0]) * (i + 1) / na;
                 const double b_lo = g[2] + (g[3] - g[2]) * j / nb, b_hi = j + 1 == nb ? g[3] : g[2] + (g[3] - g[2]) * (j + 1) / nb;
-                node_fill(c, &c->roots[k++], r, 0, a_lo, a_hi, b_lo, b_hi);
+                {
+                    node_fill(c, &c->roots[k], &c->root_enclosures[k], r, 0, a_lo, a_hi, b_lo, b_hi);
+                    k++;
+                }
             }
     }
     c->nodes = ROOT_COUNT;

@@ -10,7 +10,9 @@
  * polar-x caps (α, γ) ∈ [0.75, π − 0.75]² and [0.75, π − 0.75] × [π + 0.75, 2π − 0.75], which overlap
  * it. The global minimiser is a critical point in every regular chart, and (where the surface is C²) has a
  * positive-semidefinite chart Hessian. A box is settled, for the unit vertical d, when
- *   - FAR:    its lower bound of d·x is at least H − η (H = h(p)); or
+ *   - FAR:    its lower bound of d·x is at least H − η (H = h(p)); the bound is the direct enclosure
+ *             met with the Taylor form about the box centre with d applied first, whose first-order
+ *             term is h's own gradient there (small near a critical point), so it is good to O(size²); or
  *   - SLOPE:  an interval of ∂_a h or ∂_b h excludes 0 (no critical point); or
  *   - NO-MIN: (C² boxes) an interval of ∂_aa h or ∂_bb h lies below 0 (no local minimum); or
  *   - BASIN:  it lies inside a basin of p: a box around p on which the interval Hessian of h is positive
@@ -23,7 +25,9 @@
  * while its margin exceeds its Lipschitz bound times |d − d₀| (for FAR: (max|x| over the box + r_max),
  * since H moves by at most r_max|d − d₀|, the envelope theorem); |d − d₀| is bounded by the path length
  * of the verticals checked since. A BASIN verdict holds while that basin is positive definite at d and
- * still holds the current minimum. A check therefore re-tests only the boxes whose margin ran out. */
+ * still holds the current minimum. A split box keeps a summary of its children's verdicts (the earliest
+ * due, the chord of their FAR margins, their common basin), so a settled subtree is not walked. A check
+ * therefore re-tests only the boxes whose margin ran out. */
 #ifndef GB_CERTIFY_H
 #define GB_CERTIFY_H
 

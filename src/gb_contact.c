@@ -514,6 +514,7 @@ static void fill_point(const gb_surface *surface, const double d[3], double phi,
  * h with the Armijo factor 1e-4. Converged when the step is below step_tol, or when it stops
  * shrinking below 1e-8 rad (the rounding floor of the gradient). Returns 0 when converged to a
  * point with positive-definite Hessian, 1 otherwise (including nearing a pole). */
+#define WHOLE_STEP 1e-4
 static int newton(const gb_surface *surface, const double d[3], double *phi, double *theta,
                   const gb_contact_refine_def *def, int *iterations, gb_surface_point *p)
 {
@@ -524,14 +525,14 @@ static int newton(const gb_surface *surface, const double d[3], double *phi, dou
         if (sin(*phi) < def->pole_guard) return 1;
         /* Eigen-decomposition of the symmetric 2 × 2 Hessian. */
         const double mean = 0.5 * (H[0] + H[2]), half_diff = 0.5 * (H[0] - H[2]);
-        const double radius = hypot(half_diff, H[1]);
+        const double radius = sqrt(half_diff * half_diff + H[1] * H[1]);
         const double lambda[2] = {mean - radius, mean + radius};
         double v0[2];
         if (radius > 0.0) {
             /* eigenvector of lambda[0]: (H01, λ0 − H00) or (λ0 − H11, H01), the better conditioned */
             double a0 = H[1], a1 = lambda[0] - H[0];
             if (fabs(H[0] - lambda[0]) < fabs(H[2] - lambda[0])) a0 = lambda[0] - H[2], a1 = H[1];
-            const double n = hypot(a0, a1);
+            const double n = sqrt(a0 * a0 + a1 * a1);
             v0[0] = a0 / n, v0[1] = a1 / n;
         } else {
             v0[0] = 1.0, v0[1] = 0.0;
@@ -543,7 +544,7 @@ static int newton(const gb_surface *surface, const double d[3], double *phi, dou
         const double c0 = (v0[0] * g[0] + v0[1] * g[1]) / fmax(fabs(lambda[0]), floor_lambda);
         const double c1 = (v1[0] * g[0] + v1[1] * g[1]) / fmax(fabs(lambda[1]), floor_lambda);
         double s[2] = {-(c0 * v0[0] + c1 * v1[0]), -(c0 * v0[1] + c1 * v1[1])};
-        double step = hypot(s[0], s[1]);
+        double step = sqrt(s[0] * s[0] + s[1] * s[1]);
         if (!isfinite(step)) return 1;
         if (step > 0.5) s[0] *= 0.5 / step, s[1] *= 0.5 / step, step = 0.5;
         if (definite && (step < def->step_tol || (step < 1e-8 && step > 0.5 * previous_step)))
@@ -551,9 +552,13 @@ static int newton(const gb_surface *surface, const double d[3], double *phi, dou
         previous_step = step;
         const double slope = g[0] * s[0] + g[1] * s[1];
         double t = 1.0, new_phi = *phi, new_theta = *theta, new_h = h;
-        /* A definite step below 1e-6 rad is taken whole (the test below would accept it without
-         * comparing heights), so its height is not computed. */
-        int accepted = definite && step < 1e-6;
+        /* A definite step below WHOLE_STEP rad is taken whole, without computing its height. By
+         * Taylor's theorem h(x + s) − h(x) ≤ −½ sᵀHs + |h‴| |s|³ / 6, so the Armijo test below passes
+         * whenever λ_min(H) ≥ |h‴| |s| / 3; for a nearly flat minimum it may not, but a Newton step on a
+         * positive-definite Hessian this short still converges locally, every iterate's Hessian is
+         * tested again, and the point returned is tested as a minimum. This skips the height
+         * evaluation of the continuation's first step from its predictor (~1e-4 rad). */
+        int accepted = definite && step < WHOLE_STEP;
         if (accepted) new_phi += s[0], new_theta += s[1], wrap_angles(&new_phi, &new_theta);
         for (int k = 0; k < 50 && !accepted; k++, t *= 0.5) {
             new_phi = *phi + t * s[0];
@@ -562,7 +567,7 @@ static int newton(const gb_surface *surface, const double d[3], double *phi, dou
             double x[3];
             gb_surface_position(surface, new_phi, new_theta, x);
             new_h = gb_vec_dot(d, x);
-            accepted = new_h <= h + 1e-4 * t * slope || (definite && t * step < 1e-6);
+            accepted = new_h <= h + 1e-4 * t * slope || (definite && t * step < WHOLE_STEP);
         }
         if (!accepted) return 1;
         *phi = new_phi;

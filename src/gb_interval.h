@@ -114,38 +114,55 @@ static inline double gb_interval_mag(gb_interval a) { return gb_interval_max(fab
 
 /* ---------------------------------------------------------------- jets */
 
+/* `order` is 2 for a full jet and 1 for one that carries only the value and first derivatives (its
+ * second-derivative fields are zero and mean nothing): the centre of a box needs no more, and the
+ * operations then skip the second-order work, which is most of it. A result has the lower order of
+ * its operands. */
 typedef struct gb_jet {
     gb_interval v, a, b, aa, ab, bb;
+    int order;
 } gb_jet;
 
 static inline gb_jet gb_jet_const(double c)
 {
     const gb_interval z = {0.0, 0.0};
-    return (gb_jet){gb_interval_point(c), z, z, z, z, z};
+    return (gb_jet){gb_interval_point(c), z, z, z, z, z, 2};
+}
+
+static inline int gb_jet_order(gb_jet u, gb_jet w) { return u.order < w.order ? u.order : w.order; }
+
+/* u with its second derivatives dropped. */
+static inline gb_jet gb_jet_first_order(gb_jet u)
+{
+    const gb_interval z = {0.0, 0.0};
+    u.aa = u.ab = u.bb = z;
+    u.order = 1;
+    return u;
 }
 
 /* The chart parameter a (or b) itself over [lo, hi]. */
 static inline gb_jet gb_jet_param_a(double lo, double hi)
 {
     const gb_interval z = {0.0, 0.0}, one = {1.0, 1.0};
-    return (gb_jet){{lo, hi}, one, z, z, z, z};
+    return (gb_jet){{lo, hi}, one, z, z, z, z, 2};
 }
 static inline gb_jet gb_jet_param_b(double lo, double hi)
 {
     const gb_interval z = {0.0, 0.0}, one = {1.0, 1.0};
-    return (gb_jet){{lo, hi}, z, one, z, z, z};
+    return (gb_jet){{lo, hi}, z, one, z, z, z, 2};
 }
 
 static inline gb_jet gb_jet_add(gb_jet u, gb_jet w)
 {
     return (gb_jet){gb_interval_add(u.v, w.v),   gb_interval_add(u.a, w.a),   gb_interval_add(u.b, w.b),
-                    gb_interval_add(u.aa, w.aa), gb_interval_add(u.ab, w.ab), gb_interval_add(u.bb, w.bb)};
+                    gb_interval_add(u.aa, w.aa), gb_interval_add(u.ab, w.ab), gb_interval_add(u.bb, w.bb),
+                    gb_jet_order(u, w)};
 }
 
 static inline gb_jet gb_jet_scale(double c, gb_jet u)
 {
     return (gb_jet){gb_interval_scale(c, u.v),  gb_interval_scale(c, u.a),  gb_interval_scale(c, u.b),
-                    gb_interval_scale(c, u.aa), gb_interval_scale(c, u.ab), gb_interval_scale(c, u.bb)};
+                    gb_interval_scale(c, u.aa), gb_interval_scale(c, u.ab), gb_interval_scale(c, u.bb), u.order};
 }
 
 static inline gb_jet gb_jet_add_const(double c, gb_jet u)
@@ -161,6 +178,11 @@ static inline gb_jet gb_jet_mul(gb_jet u, gb_jet w)
     r.v = gb_interval_mul(u.v, w.v);
     r.a = gb_interval_add(gb_interval_mul(u.a, w.v), gb_interval_mul(u.v, w.a));
     r.b = gb_interval_add(gb_interval_mul(u.b, w.v), gb_interval_mul(u.v, w.b));
+    r.order = gb_jet_order(u, w);
+    if (r.order < 2) {
+        r.aa = r.ab = r.bb = (gb_interval){0.0, 0.0};
+        return r;
+    }
     r.aa = gb_interval_add(gb_interval_add(gb_interval_mul(u.aa, w.v), gb_interval_scale(2.0, gb_interval_mul(u.a, w.a))),
                            gb_interval_mul(u.v, w.aa));
     r.ab = gb_interval_add(gb_interval_add(gb_interval_mul(u.ab, w.v), gb_interval_mul(u.a, w.b)),
@@ -177,6 +199,11 @@ static inline gb_jet gb_jet_chain(gb_jet u, gb_interval F, gb_interval F1, gb_in
     r.v = F;
     r.a = gb_interval_mul(F1, u.a);
     r.b = gb_interval_mul(F1, u.b);
+    r.order = u.order;
+    if (r.order < 2) {
+        r.aa = r.ab = r.bb = (gb_interval){0.0, 0.0};
+        return r;
+    }
     r.aa = gb_interval_add(gb_interval_mul(F1, u.aa), gb_interval_mul(F2, gb_interval_sqr(u.a)));
     r.ab = gb_interval_add(gb_interval_mul(F1, u.ab), gb_interval_mul(F2, gb_interval_mul(u.a, u.b)));
     r.bb = gb_interval_add(gb_interval_mul(F1, u.bb), gb_interval_mul(F2, gb_interval_sqr(u.b)));
@@ -205,12 +232,28 @@ static inline gb_jet gb_jet_root4(gb_jet u)
     return gb_jet_chain(u, F, F1, F2);
 }
 
-/* c₀ + c₁u + … + cₙuⁿ by Horner. */
+/* c₀ + c₁u + … + cₙuⁿ over the interval u, by Horner, with interval coefficients. */
+static inline gb_interval gb_interval_poly(gb_interval u, const gb_interval *c, int degree)
+{
+    gb_interval p = c[degree];
+    for (int k = degree - 1; k >= 0; k--) p = gb_interval_add(gb_interval_mul(p, u), c[k]);
+    return p;
+}
+
+/* P(u) = c₀ + c₁u + … + cₙuⁿ (n ≤ 8) by the chain rule, with P, P′ and P″ enclosed over u's range by
+ * Horner: three interval polynomials instead of n jet products. The derivative's coefficients k·c_k
+ * and k(k−1)·c_k are enclosed too (a product of doubles may round). */
 static inline gb_jet gb_jet_poly(gb_jet u, const double *c, int degree)
 {
-    gb_jet p = gb_jet_const(c[degree]);
-    for (int k = degree - 1; k >= 0; k--) p = gb_jet_add_const(c[k], gb_jet_mul(p, u));
-    return p;
+    gb_interval c0[9], c1[8], c2[8];
+    for (int k = 0; k <= degree; k++) c0[k] = gb_interval_point(c[k]);
+    for (int k = 1; k <= degree; k++) c1[k - 1] = gb_interval_scale((double)k, c0[k]);
+    for (int k = 2; k <= degree; k++) c2[k - 2] = gb_interval_scale((double)(k * (k - 1)), c0[k]);
+    const gb_interval zero = {0.0, 0.0};
+    const gb_interval P = gb_interval_poly(u.v, c0, degree);
+    const gb_interval P1 = degree >= 1 ? gb_interval_poly(u.v, c1, degree - 1) : zero;
+    const gb_interval P2 = degree >= 2 ? gb_interval_poly(u.v, c2, degree - 2) : zero;
+    return gb_jet_chain(u, P, P1, P2);
 }
 
 /* g = y·√(x² + y²), which is C¹,¹ but not C² where x = y = 0. With ρ = √(x² + y²), c = x/ρ, s = y/ρ and
@@ -230,12 +273,17 @@ static inline gb_jet gb_jet_y_hypot(gb_jet x, gb_jet y)
     }
     const gb_interval rho_a = gb_interval_add(gb_interval_mul(c, x.a), gb_interval_mul(s, y.a));
     const gb_interval rho_b = gb_interval_add(gb_interval_mul(c, x.b), gb_interval_mul(s, y.b));
-    const gb_interval w_a = gb_interval_sub(gb_interval_mul(c, y.a), gb_interval_mul(s, x.a));
-    const gb_interval w_b = gb_interval_sub(gb_interval_mul(c, y.b), gb_interval_mul(s, x.b));
     gb_jet g;
     g.v = gb_interval_mul(y.v, rho);
     g.a = gb_interval_add(gb_interval_mul(y.a, rho), gb_interval_mul(y.v, rho_a));
     g.b = gb_interval_add(gb_interval_mul(y.b, rho), gb_interval_mul(y.v, rho_b));
+    g.order = gb_jet_order(x, y);
+    if (g.order < 2) {
+        g.aa = g.ab = g.bb = (gb_interval){0.0, 0.0};
+        return g;
+    }
+    const gb_interval w_a = gb_interval_sub(gb_interval_mul(c, y.a), gb_interval_mul(s, x.a));
+    const gb_interval w_b = gb_interval_sub(gb_interval_mul(c, y.b), gb_interval_mul(s, x.b));
 #define GB_Y_HYPOT_SECOND(yij, xij, yi, yj, rhoi, rhoj, wwij)                                                       \
     gb_interval_add(gb_interval_add(gb_interval_mul(yij, rho),                                                      \
                                     gb_interval_add(gb_interval_mul(yi, rhoj), gb_interval_mul(yj, rhoi))),         \

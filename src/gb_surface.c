@@ -119,7 +119,7 @@ void gb_surface_eval(const gb_surface *surface, double phi, double theta, gb_sur
     p->S_thetatheta = -beta4 * sp * (cc * v->chi_theta * v->chi_theta + sc * v->chi_thetatheta);
 
     /* Radius (eq 12, 14): r_a = ¼ S^(-3/4) S_a, r_ab = ¼ S^(-3/4) S_ab − (3/16) S^(-7/4) S_a S_b. */
-    p->r = pow(p->S, 0.25);
+    p->r = sqrt(sqrt(p->S)); /* S^(1/4): two correctly rounded square roots, cheaper than pow */
     const double d1 = 0.25 * p->r / p->S;                 /* ¼ S^(-3/4) */
     const double d2 = -0.1875 * p->r / (p->S * p->S);     /* −(3/16) S^(-7/4) */
     p->r_phi = d1 * p->S_phi;
@@ -166,7 +166,7 @@ double gb_surface_kernel(const gb_surface *surface, double phi, double theta)
 
 double gb_surface_radius(const gb_surface *surface, double phi, double theta)
 {
-    return pow(gb_surface_kernel(surface, phi, theta), 0.25);
+    return sqrt(sqrt(gb_surface_kernel(surface, phi, theta)));
 }
 
 void gb_surface_position(const gb_surface *surface, double phi, double theta, double x[3])
@@ -265,10 +265,12 @@ void gb_surface_enclose(const gb_surface *surface, gb_surface_chart chart, doubl
     gb_jet box[3], mid[3];
     out->smooth = position_jets(surface, chart, gb_jet_param_a(a_lo, a_hi), gb_jet_param_b(b_lo, b_hi), box);
     const double ac = 0.5 * (a_lo + a_hi), bc = 0.5 * (b_lo + b_hi);
-    position_jets(surface, chart, gb_jet_param_a(ac, ac), gb_jet_param_b(bc, bc), mid);
+    position_jets(surface, chart, gb_jet_first_order(gb_jet_param_a(ac, ac)), gb_jet_first_order(gb_jet_param_b(bc, bc)), mid);
     const gb_interval da = offset(a_lo, a_hi, ac), db = offset(b_lo, b_hi, bc);
     const gb_interval da2 = gb_interval_sqr(da), db2 = gb_interval_sqr(db), dadb = gb_interval_mul(da, db);
+    out->da = da, out->db = db;
     for (int i = 0; i < 3; i++) {
+        out->x_c[i] = mid[i].v, out->x_a_c[i] = mid[i].a, out->x_b_c[i] = mid[i].b;
         /* Second-order Taylor form with the box Hessian as Lagrange remainder, met with the direct
          * enclosure; first-order form for the tangents. */
         gb_interval taylor = gb_interval_add(mid[i].v, gb_interval_add(gb_interval_mul(mid[i].a, da), gb_interval_mul(mid[i].b, db)));

@@ -96,6 +96,12 @@ void gb_surface_chart_angles(gb_surface_chart chart, double a, double b, double 
  * intervals then hold the Hessian wherever it exists (the surface is C¹,¹ there). */
 typedef struct gb_surface_enclosure {
     gb_interval x[3], x_a[3], x_b[3], x_aa[3], x_ab[3], x_bb[3];
+    /* At the box centre (a_c, b_c) = midpoints: x, x_a, x_b (narrow intervals), and the offsets of the
+     * box from it, a − a_c ∈ da and b − b_c ∈ db. A caller that contracts x with a vector d first can
+     * bound d·x over the box by the Taylor form d·x_c + (d·x_a,c) da + (d·x_b,c) db + ½ d·x''(da, db),
+     * whose first-order term keeps the cancellation in d·x_a (small near a critical point). */
+    gb_interval x_c[3], x_a_c[3], x_b_c[3];
+    gb_interval da, db;
     int smooth;
 } gb_surface_enclosure;
 
