@@ -7,7 +7,10 @@ BUILD     := build
 OUT       := reports/out
 PKGS      := gsl cunit inih libcjson qhull_r
 CC        ?= cc
-CFLAGS    ?= -O2 -g
+# Loops aligned to 64 bytes: make bench's reference, the paper's plain loop over the grid, is a 63-byte
+# loop that ran 37 % slower (18.5 against 13.7 us a query) when a change elsewhere in the library moved it
+# across a 64-byte line; aligned, its speed no longer depends on the link layout. No result changes.
+CFLAGS    ?= -O2 -g -falign-loops=64
 WARN      := -std=c11 -D_GNU_SOURCE -ffp-contract=off -Wall -Wextra -Werror
 ALL_CFLAGS = $(WARN) $(CFLAGS) $(shell pkg-config --cflags $(PKGS)) -Isrc
 CORE_LIBS  = $(shell pkg-config --libs gsl libcjson inih qhull_r) -lm
