@@ -607,6 +607,72 @@ static void test_scene_builds_what_it_needs(void)
     }
 }
 
+/* The fold fallback of continuous contact (gb_dynamics.c, contact_at): when the local search from the
+ * accepted contact fails, or ends on a point that is no minimum, the contact is the certified global
+ * minimum found from scratch. No Table 1 run reaches it, so it is forced: the accepted contact is set
+ * (gb_dynamics_switch_to) to the top of the body, the global maximum of h (the global minimum for −z_b).
+ * From there the local search finds no minimum (it is the premise, and checked: Newton fails at a
+ * maximum, and the simplex fallback's tangent chart, centred on the top, holds only the upper
+ * hemisphere). The right-hand side must then equal that of an untouched run at the same state, and
+ * the event be counted once. */
+static void test_fold_fallback(void)
+{
+    static const char *const bodies[2] = {"I", "II"};
+    for (int b = 0; b < 2; b++) {
+        gb_dynamics_def def = gb_dynamics_default_def();
+        def.contact = GB_CONTACT_MODEL_CONTINUOUS, def.variant = GB_VARIANT_ROLLING;
+        const double w0[3] = {0.3, -0.2, 0.1};
+        gb_dynamics *forced = NULL, *plain = NULL;
+        double y[GB_STATE_SIZE], y_plain[GB_STATE_SIZE], f[GB_STATE_SIZE], f_plain[GB_STATE_SIZE];
+        int status = gb_dynamics_start(bodies[b], 0.12, &def, IDENTITY, w0, &forced, y);
+        if (!status) status = gb_dynamics_start(bodies[b], 0.12, &def, IDENTITY, w0, &plain, y_plain);
+        /* the top: the certified global minimum of h for the opposite vertical */
+        gb_surface surface;
+        gb_certify *top_search = NULL;
+        gb_contact_point top = {0}, at_top = {0};
+        const double down[3] = {0.0, 0.0, -1.0}, up[3] = {0.0, 0.0, 1.0}; /* R0 = I: z_b = e_z */
+        const gb_contact_refine_def refine = gb_contact_refine_default_def();
+        const gb_certify_def cdef = gb_certify_default_def();
+        if (!status) status = gb_surface_init(&surface, bodies[b], 0.12);
+        if (!status) status = gb_certify_create(&surface, &cdef, &top_search);
+        if (!status) status = gb_certify_global_minimum(top_search, down, &refine, &top);
+        /* the premise: the local search from the top, for the actual vertical, finds no minimum */
+        int lost = 0;
+        char premise[160] = "";
+        if (!status) {
+            const int r = gb_contact_refine(&surface, up, top.phi, top.theta, &refine, &at_top);
+            lost = r != GB_OK || !at_top.is_minimum;
+            snprintf(premise, sizeof premise, "%s", r != GB_OK ? gb_error_message() : at_top.is_minimum ? "a minimum" : "no minimum");
+        }
+        gb_certify_free(top_search);
+        gb_dynamics_observables before = {0}, after = {0};
+        if (!status) status = gb_dynamics_observe(forced, 0.0, y, &before);
+        /* the observation evaluates the contact (from the top: one branch lost) before it reads the counter */
+        if (!status) {
+            gb_dynamics_switch_to(forced, &top);
+            status = gb_dynamics_observe(forced, 0.0, y, &after);
+        }
+        if (!status) status = gb_dynamics_rhs(forced, 0.0, y, f);
+        if (!status) status = gb_dynamics_rhs(plain, 0.0, y_plain, f_plain);
+        double worst = 0.0, scale = 0.0;
+        for (int k = 0; k < GB_STATE_SIZE && !status; k++) {
+            worst = fmax(worst, fabs(f[k] - f_plain[k]));
+            scale = fmax(scale, fabs(f_plain[k]));
+        }
+        char q[200];
+        snprintf(q, sizeof q, "Gomboc %s: Newton from the top of the body (no minimum) falls back to the certified global "
+                 "minimum", bodies[b]);
+        gb_check c = {"4, 8", "29, 44", q, "the right-hand side of an untouched run at the same state; one branch lost counted",
+                      "1e-12 of the largest component: both contacts converge to Newton's step tolerance 1e-14 rad"};
+        gb_check_true(&c, !status && lost && after.branches_lost == before.branches_lost + 1 && worst <= 1e-12 * scale,
+                      "local search from the top: %s; branches lost %zu -> %zu; largest |rhs - untouched rhs| %.2e of "
+                      "%.2e%s%s", premise, before.branches_lost, after.branches_lost, worst, scale, status ? "; error: " : "",
+                      status ? gb_error_message() : "");
+        gb_dynamics_free(forced);
+        gb_dynamics_free(plain);
+    }
+}
+
 int verify_register_s5_dynamics(void)
 {
     static const verify_test tests[] = {
@@ -623,6 +689,7 @@ int verify_register_s5_dynamics(void)
         {"section 8: stiff and extreme scenes with every integrator", test_extreme_scenes},
         {"eq 38-39: switch-event location for continuous contact", test_switch_location},
         {"section 8: a scene builds only the grid its contact model needs", test_scene_builds_what_it_needs},
+        {"eq 29, 44: a lost continued branch falls back to the certified global minimum", test_fold_fallback},
         {NULL, NULL},
     };
     return verify_register_suite("Sections 3, 5: dynamics and energy", tests);
