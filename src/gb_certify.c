@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/mman.h>
+#include <time.h>
 
 /* Rounding allowances of the per-check tests, which use plain double sums of a few products of
  * O(1) numbers (error ~1e-16): a margin must exceed these before a verdict is given. */
@@ -298,6 +299,10 @@ static int basin_build(gb_certify *c, basin *b, gb_surface_chart chart, const do
         b->point = *point;
         c->last_half_width = w;
         c->stats.basins_built++;
+        if (who == OWNER_MINIMUM) {
+            c->stats.minimum_basins++;
+            c->stats.basin_log_width_sum += log(w);
+        }
 
         return 1;
     }
@@ -605,6 +610,8 @@ int gb_certify_create(const gb_surface *surface, const gb_certify_def *def, gb_c
         return gb_error_set(GB_EDOM, "certificate height tolerance %g is out of range (allowed: [0, 1e-3])", def->height_tol);
     if (def->max_depth < 0 || def->max_depth > 40)
         return gb_error_set(GB_EDOM, "certificate max_depth %d is out of range (allowed: 0..40)", def->max_depth);
+    if (def->time_checks != 0 && def->time_checks != 1)
+        return gb_error_set(GB_EDOM, "certificate time_checks %d is out of range (allowed: 0 or 1)", def->time_checks);
     if (def->max_nodes < 4 * (size_t)ROOT_COUNT)
         return gb_error_set(GB_EDOM, "certificate max_nodes %zu is out of range (allowed: >= %d)", def->max_nodes,
                             4 * ROOT_COUNT);
@@ -647,8 +654,28 @@ void gb_certify_forget(gb_certify *c)
     c->has_previous = 0;
 }
 
+static int certify_check(gb_certify *c, const double zb[3], const gb_contact_point *minimum,
+                         const gb_contact_refine_def *refine, gb_certify_result *out);
+
+static double wall_seconds(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
 int gb_certify_check(gb_certify *c, const double zb[3], const gb_contact_point *minimum,
                      const gb_contact_refine_def *refine, gb_certify_result *out)
+{
+    if (!c->def.time_checks) return certify_check(c, zb, minimum, refine, out);
+    const double start = wall_seconds();
+    const int status = certify_check(c, zb, minimum, refine, out);
+    c->stats.check_seconds += wall_seconds() - start;
+    return status;
+}
+
+static int certify_check(gb_certify *c, const double zb[3], const gb_contact_point *minimum,
+                         const gb_contact_refine_def *refine, gb_certify_result *out)
 {
     memset(out, 0, sizeof *out);
     pass p = {.eta = c->def.height_tol, .refine = refine, .out = out};

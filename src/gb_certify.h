@@ -40,6 +40,7 @@ typedef struct gb_certify_def {
     double height_tol;  /* η: allowed depth of a lower point [body length units] (default 1e-12) */
     int max_depth;      /* splits of a root box (default 24: boxes down to ~2.3e-8 rad) */
     size_t max_nodes;   /* boxes kept with their enclosures; beyond it the cache restarts (default 2^18) */
+    int time_checks;    /* 1: add each check's wall time to the stats (make bench; default 0) */
 } gb_certify_def;
 
 gb_certify_def gb_certify_default_def(void);
@@ -62,6 +63,11 @@ typedef struct gb_certify_stats {
     size_t boxes_tested, newton_runs, basins_built, cache_restarts;
     size_t boxes_kept;       /* boxes with enclosures now held */
     int deepest;             /* deepest split level reached */
+    /* basins built for the checked minimum, and the sum of the logarithms of their half-widths [rad]
+     * (their geometric mean is exp(sum / count)) */
+    size_t minimum_basins;
+    double basin_log_width_sum;
+    double check_seconds;    /* wall time inside gb_certify_check, when def.time_checks is 1 (else 0) */
 } gb_certify_stats;
 
 typedef struct gb_certify gb_certify;

@@ -295,18 +295,20 @@ static void test_trajectory_audit(void)
  * from the root boxes) changes what is kept, never a verdict: the same run with a cache of 400 boxes,
  * which restarts many times, must switch at the same steps and end in the same state as with the
  * default cache, which never restarts here. Over 5 periods the runs may differ only by the rounding of
- * a lower minimum reached by another path. */
+ * a lower minimum reached by another path. A third run times its checks (what make bench does), which
+ * must change nothing at all. */
 static void test_cache_restart(void)
 {
     for (int m = 0; m < 2; m++) {
-        double y[2][GB_STATE_SIZE];
-        size_t switches[2] = {0, 0};
-        gb_certify_stats cs[2] = {{0}};
+        double y[3][GB_STATE_SIZE];
+        size_t switches[3] = {0, 0, 0};
+        gb_certify_stats cs[3] = {{0}};
         int status = GB_OK;
-        for (int run = 0; run < 2 && !status; run++) {
+        for (int run = 0; run < 3 && !status; run++) {
             gb_dynamics_def def = gb_dynamics_default_def();
             def.contact = GB_CONTACT_MODEL_CONTINUOUS, def.variant = GB_VARIANT_ROLLING;
             if (run == 1) def.certify.max_nodes = 400; /* the smallest allowed is 4 x 96 root boxes */
+            if (run == 2) def.certify.time_checks = 1;
             const double R0[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1}, w0[3] = {0, 0, 0};
             gb_dynamics *d = NULL;
             status = gb_dynamics_start(m ? "II" : "I", 0.12, &def, R0, w0, &d, y[run]);
@@ -332,6 +334,14 @@ static void test_cache_restart(void)
                       "difference %.2e; boxes tested %zu and %zu", status ? gb_error_message() : "ran", cs[1].cache_restarts,
                       cs[0].cache_restarts, switches[1], switches[0], cs[1].undecided, cs[0].undecided, worst,
                       cs[1].boxes_tested, cs[0].boxes_tested);
+        snprintf(q, sizeof q, "Gomboc %s, continuous rolling, 5 periods: timing the certificate's checks changes no bit",
+                 m ? "II" : "I");
+        gb_check t = {"4", "29", q, "the same run untimed", "exact (state bits, switches)"};
+        gb_check_true(&t, !status && memcmp(y[2], y[0], sizeof y[0]) == 0 && switches[2] == switches[0] &&
+                              cs[2].check_seconds > 0.0 && cs[0].check_seconds == 0.0,
+                      "%s; switches %zu and %zu; %.3f s inside %zu timed checks (untimed run: %g s)",
+                      status ? gb_error_message() : "ran", switches[2], switches[0], cs[2].check_seconds, cs[2].checks,
+                      cs[0].check_seconds);
     }
 }
 
@@ -346,6 +356,13 @@ static void test_bad_definition(void)
     const int status = gb_certify_create(&s, &def, &c);
     gb_check k = {"4", "29", "a negative certificate tolerance is refused, naming the allowed range", "error path", "exact"};
     gb_check_true(&k, status == GB_EDOM && c == NULL && strstr(gb_error_message(), "allowed") != NULL, "%s",
+                  gb_error_message());
+    def = gb_certify_default_def();
+    def.time_checks = 2;
+    const int timed = gb_certify_create(&s, &def, &c);
+    gb_check t = {"4", "29", "a check-timing switch other than 0 or 1 is refused, naming the allowed range", "error path",
+                  "exact"};
+    gb_check_true(&t, timed == GB_EDOM && c == NULL && strstr(gb_error_message(), "allowed: 0 or 1") != NULL, "%s",
                   gb_error_message());
 }
 
