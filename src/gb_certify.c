@@ -52,7 +52,7 @@ typedef struct node {
     /* read when the box is tested */
     gb_surface_enclosure *e;
     double a_lo, a_hi, b_lo, b_hi;
-    double xmax, xa_mag, xb_mag, xaa_mag, xbb_mag; /* Lipschitz constants in the vertical */
+    double xa_mag, xb_mag, xaa_mag, xbb_mag;       /* Lipschitz constants in the vertical (SLOPE, NO-MIN) */
     double hint_phi, hint_theta;                   /* last critical point found inside */
 } node;
 
@@ -91,7 +91,6 @@ typedef struct block {
 struct gb_certify {
     gb_surface surface;
     gb_certify_def def;
-    double r_max;
     node roots[ROOT_COUNT];
     gb_surface_enclosure root_enclosures[ROOT_COUNT];
     block *blocks;   /* the newest first */
@@ -137,7 +136,6 @@ static void node_fill(const gb_certify *c, node *n, gb_surface_enclosure *e, int
     n->region = (unsigned char)region;
     n->depth = (unsigned char)depth;
     gb_surface_enclose(&c->surface, region_chart(region), a_lo, a_hi, b_lo, b_hi, e);
-    n->xmax = norm_of_mags(e->x);
     n->xa_mag = norm_of_mags(e->x_a);
     n->xb_mag = norm_of_mags(e->x_b);
     n->xaa_mag = norm_of_mags(e->x_aa);
@@ -619,7 +617,6 @@ int gb_certify_create(const gb_surface *surface, const gb_certify_def *def, gb_c
     if (!c) return gb_error_set(GB_ENOMEM, "out of memory for the contact certificate");
     c->surface = *surface;
     c->def = *def;
-    c->r_max = pow(1.0 + 4.0 * surface->beta, 0.25) * (1.0 + 1e-12); /* r ≤ (1 + 4β)^(1/4), eq 12 */
     c->epoch = 1;
     c->last_half_width = BASIN_MAX_HALF_WIDTH;
     int k = 0;
@@ -630,10 +627,8 @@ int gb_certify_create(const gb_surface *surface, const gb_certify_def *def, gb_c
             for (int j = 0; j < nb; j++) {
                 const double a_lo = g[0] + (g[1] - g[0]) * i / na, a_hi = i + 1 == na ? g[1] : g[0] + (g[1] - g[0]) * (i + 1) / na;
                 const double b_lo = g[2] + (g[3] - g[2]) * j / nb, b_hi = j + 1 == nb ? g[3] : g[2] + (g[3] - g[2]) * (j + 1) / nb;
-                {
-                    node_fill(c, &c->roots[k], &c->root_enclosures[k], r, 0, a_lo, a_hi, b_lo, b_hi);
-                    k++;
-                }
+                node_fill(c, &c->roots[k], &c->root_enclosures[k], r, 0, a_lo, a_hi, b_lo, b_hi);
+                k++;
             }
     }
     c->nodes = ROOT_COUNT;

@@ -22,9 +22,10 @@
  * critical point; lower than H − η makes it a lower minimum.
  *
  * Along a trajectory the verdicts are kept: a FAR, SLOPE or NO-MIN verdict at vertical d₀ holds at d
- * while its margin exceeds its Lipschitz bound times |d − d₀| (for FAR: (max|x| over the box + r_max),
- * since H moves by at most r_max|d − d₀|, the envelope theorem); |d − d₀| is bounded by the path length
- * of the verticals checked since. A BASIN verdict holds while that basin is positive definite at d and
+ * while its margin exceeds its Lipschitz bound times |d − d₀|. FAR is measured from an anchor x_A (the
+ * minimum when the current epoch began): d·x(q) − d·x_A moves by at most |d − d₀|·max|x(q) − x_A| over
+ * the box, and the verdict holds while that bound stays above H − d·x_A − η. |d − d₀| is bounded by the
+ * path length of the verticals checked since. A BASIN verdict holds while that basin is positive definite at d and
  * still holds the current minimum. A split box keeps a summary of its children's verdicts (the earliest
  * due, the chord of their FAR margins, their common basin), so a settled subtree is not walked. A check
  * therefore re-tests only the boxes whose margin ran out. */

@@ -235,6 +235,8 @@ static int take_sample(void *context, double t, const double y[GB_STATE_SIZE])
     return 0;
 }
 
+/* The certificate's definiteness test on the ranges of (h_aa, h_ab, h_bb), with its allowance 1e-12
+ * (HESSIAN_ROUNDING in gb_certify.c). */
 static int ranges_definite(const double lo[3], const double hi[3])
 {
     const double m = fmax(fabs(lo[1]), fabs(hi[1]));
