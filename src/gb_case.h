@@ -25,7 +25,13 @@
  *                 `batches`); batches = b >= 2; omega_scale = Ω > 0 [rad/s] (the separation's
  *                 ω-part is Δω/Ω; default: the forcing omega)
  *
- * Errors name the file, the line, the key and the allowed values; nothing is returned half-filled. */
+ * The reader is strict: a file is read whole (a regular file of at most GB_CASE_FILE_MAX bytes) and
+ * every line is checked before libinih sees it: at most 198 bytes (libinih's buffer, less the newline
+ * and the NUL), UTF-8 with no NUL and no control character but TAB, no indented (continuation) line,
+ * only known sections, each once. Every key is given at most once, and its value is one whole token
+ * inside the key's physical range (gb_case_key_allowed); adaptive steppers are refused with grid
+ * contact. Errors name the file, the line, the key and the allowed values, with status GB_EINVAL or
+ * GB_EDOM (bad input); nothing is returned half-filled. */
 #ifndef GB_CASE_H
 #define GB_CASE_H
 
@@ -35,8 +41,13 @@
 #include "gb_spectrum.h"
 #include "gb_strobe.h"
 
+/* A scene file holds at most this many bytes; a text value at most GB_CASE_TEXT_MAX - 1. */
+#define GB_CASE_FILE_MAX (1 << 20)
+#define GB_CASE_TEXT_MAX 256
+#define GB_CASE_KEY_MAX 48
+
 typedef struct gb_case {
-    char description[256];
+    char description[GB_CASE_TEXT_MAX];
     char morphology[8];
     double beta;
     gb_dynamics_def dynamics;     /* forcing in m/s² after reading amplitude_units */
@@ -44,7 +55,7 @@ typedef struct gb_case {
     double A1, A2;                /* as written in the file */
     gb_integrate_def integrate;
     double attitude[9];           /* R0, row-major */
-    char attitude_text[128];
+    char attitude_text[GB_CASE_TEXT_MAX];
     double omega0[3];
     int write_history, write_summary;
     int monitors;
@@ -55,6 +66,7 @@ typedef struct gb_case {
     gb_lyapunov_def lyapunov_def;     /* interval in seconds and intervals set from the scene's periods */
     size_t lyapunov_interval_periods;
     double omega_scale;               /* [rad/s]; the forcing omega unless given */
+    int key_line[GB_CASE_KEY_MAX];    /* the line each key was read from (0: the default), by key index */
 } gb_case;
 
 /* The defaults: Table 1 with the paper's model (m/s² reading of A1, A2; R0 = I; ω0 = 0). */
@@ -63,6 +75,14 @@ gb_case gb_case_default(void);
 /* Read `path` over the defaults. GB_EIO when the file cannot be read; GB_EINVAL / GB_EDOM with
  * "FILE:LINE: [section] key = value: reason (allowed: ...)". */
 int gb_case_load(const char *path, gb_case *out);
+
+/* The same for `size` bytes of `text` (NUL bytes and all), named `name` in messages. */
+int gb_case_load_text(const char *name, const char *text, size_t size, gb_case *out);
+
+/* The keys a scene may set: their count, and for key `index` its section, name and allowed values
+ * in words (the text every error message and cases/README.md use). GB_EDOM past the last key. */
+size_t gb_case_key_count(void);
+int gb_case_key_allowed(size_t index, const char **section, const char **name, char *allowed, size_t size);
 
 /* The [lyapunov] section against the run (gb_case_load does this when [diagnostics] lyapunov = yes;
  * `gomboc lyapunov` asks for it whatever the flag): sets lyapunov_def.interval [s] and .intervals and

@@ -1,10 +1,12 @@
 /* gomboc — the command. Subcommands map onto the library's modules; options are parsed strictly
  * (an unknown or malformed option is an error naming it and its allowed form). Exit status: 0 on
- * success, 2 for bad input, 1 when a computation fails. */
+ * success, 2 for bad input, 1 when a computation fails or its output cannot be written (standard
+ * output included). */
 #include "gomboc_cli.h"
 
 #include "gb_error.h"
 
+#include <errno.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -28,7 +30,8 @@ static const struct {
     int (*run)(int argc, char **argv);
 } commands[] = {{"shape", command_shape}, {"contact", command_contact}, {"run", command_run}, {"lyapunov", command_lyapunov}};
 
-int main(int argc, char **argv)
+/* The command (main without the process): the option fuzzer calls it with cli_parse_only set. */
+int gomboc_main(int argc, char **argv)
 {
     gb_error_init_gsl();
     if (argc < 2) {
@@ -40,7 +43,20 @@ int main(int argc, char **argv)
         return 0;
     }
     for (size_t k = 0; k < sizeof commands / sizeof commands[0]; k++)
-        if (!strcmp(argv[1], commands[k].name)) return commands[k].run(argc - 2, argv + 2);
+        if (!strcmp(argv[1], commands[k].name)) {
+            cli_install_cleanup();
+            int status = commands[k].run(argc - 2, argv + 2);
+            /* What was printed must have reached standard output (a full disk, a closed pipe). */
+            if (fflush(stdout) != 0 || ferror(stdout)) {
+                fprintf(stderr, "gomboc %s: cannot write standard output: %s\n", argv[1], strerror(errno ? errno : EIO));
+                if (!status) status = EXIT_COMPUTE;
+            }
+            return status;
+        }
     fprintf(stderr, "gomboc: unknown command '%s' (allowed: shape, contact, run, lyapunov)\n\n%s", argv[1], usage_main);
     return EXIT_INPUT;
 }
+
+#ifndef GOMBOC_NO_MAIN
+int main(int argc, char **argv) { return gomboc_main(argc, argv); }
+#endif

@@ -7,15 +7,20 @@
 #include "gb_lyapunov.h"
 
 #include <cjson/cJSON.h>
+#include <stdio.h>
 
 enum { EXIT_INPUT = 2, EXIT_COMPUTE = 1 };
 
-/* Print "gomboc COMMAND: " + fmt (with `what` and `allowed`) and a pointer to --help; returns
- * EXIT_INPUT. */
-int cli_input_error(const char *command, const char *fmt, const char *what, const char *allowed);
+/* Print "gomboc COMMAND: " + the printf-formatted message and a pointer to --help; returns
+ * EXIT_INPUT. The message names the option and its allowed values. */
+int cli_input_error(const char *command, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 
-/* A whole-string finite double, or 0. */
-int cli_parse_double(const char *text, double *value);
+/* The value of `option` as a number in [min, max] (an end excluded per `open`: CLI_OPEN_MIN,
+ * CLI_OPEN_MAX), read by gb_parse_double (one whole token): 0, or EXIT_INPUT after an error that names
+ * the option, the value, the reason (not a number, beyond a double, out of range) and `allowed`. */
+enum { CLI_OPEN_MIN = 1, CLI_OPEN_MAX = 2 };
+int cli_number(const char *command, const char *option, const char *value, double min, double max, int open,
+               const char *allowed, double *out);
 
 /* The body every body-level command names: --morphology and --beta. */
 typedef struct cli_body {
@@ -34,10 +39,43 @@ int cli_next_option(const char *command, int argc, char **argv, int *i, const ch
                     const char *const *valued, const char *allowed, cli_body *body, int *json,
                     const char **value);
 
+/* For the option fuzzer (verify/fuzz): when set, a command returns 0 as soon as all its input (options,
+ * output targets, the scene file) has been read and judged, before any computation or output. */
+extern int cli_parse_only;
+
 /* After parsing: both given? Returns 0 or EXIT_INPUT after printing an error. */
 int cli_body_required(const char *command, const cli_body *body);
 
-/* Write `text` to `path` atomically: a temporary file beside it, then rename. gb_ status. */
+/* Output files. Before any work, a command checks each target: cli_output_check (its directory exists
+ * and is writable; an existing target is a regular file, never a link, a directory or a device) and
+ * cli_output_dir_check (--out DIR). Both print the error and return EXIT_INPUT, or 0.
+ * The files themselves are written as one set: each to a temporary ".gomboc-PID-XXXXXX" beside it,
+ * renamed into place only when the whole set is written (cli_outputs_commit with status GB_OK), and
+ * otherwise removed, with any file of the set already renamed. Temporaries are removed on SIGINT,
+ * SIGTERM and SIGHUP (cli_install_cleanup); those of a process killed outright are removed by the next
+ * command that writes to the same directory. */
+int cli_output_check(const char *command, const char *option, const char *path);
+int cli_output_dir_check(const char *command, const char *option, const char *dir);
+void cli_install_cleanup(void);
+
+enum { CLI_OUTPUTS_MAX = 8 };
+typedef struct cli_output {
+    char *path, *tmp;
+    FILE *file;
+} cli_output;
+typedef struct cli_outputs {
+    cli_output items[CLI_OUTPUTS_MAX];
+    int count;
+} cli_outputs;
+
+/* A new member of the set, open for writing (NULL with *status set on failure; does nothing when
+ * *status is already non-zero). */
+FILE *cli_outputs_open(cli_outputs *set, const char *path, int *status);
+/* Close every member; with status GB_OK rename them all into place, otherwise (or when a close or a
+ * rename fails) remove them all. Returns the final status. */
+int cli_outputs_commit(cli_outputs *set, int status);
+
+/* Write `text` to `path` as a set of one. gb_ status. */
 int cli_write_atomically(const char *path, const char *text);
 
 /* Print a library failure and map its status to the exit status. */
@@ -57,6 +95,7 @@ int cli_scene_lyapunov(const gb_case *scene, gb_integrate_sample sample, void *c
  * instantaneous. */
 cJSON *cli_lyapunov_json(const gb_case *scene, const gb_lyapunov_result *result, int with_record);
 
+int gomboc_main(int argc, char **argv);
 int command_shape(int argc, char **argv);
 int command_lyapunov(int argc, char **argv);
 int command_contact(int argc, char **argv);

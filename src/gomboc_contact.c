@@ -3,6 +3,7 @@
 
 #include "gb_contact.h"
 #include "gb_error.h"
+#include "gb_parse.h"
 #include "gb_surface.h"
 
 #include <errno.h>
@@ -39,36 +40,8 @@ static const char *usage_contact =
 enum contact_method { METHOD_GRID, METHOD_FAST_GRID, METHOD_CONTINUOUS };
 static const char *const method_names[] = {"grid", "fast-grid", "continuous"};
 
-static int parse_zb(const char *text, double zb[3])
-{
-    char *end;
-    const char *p = text;
-    for (int k = 0; k < 3; k++) {
-        errno = 0;
-        zb[k] = strtod(p, &end);
-        if (end == p || errno || !isfinite(zb[k])) return 0;
-        if (k < 2 && *end != ',') return 0;
-        p = end + (k < 2);
-    }
-    return *end == '\0';
-}
-
-static int parse_grid(const char *text, size_t *n_phi, size_t *n_theta)
-{
-    char *end;
-    errno = 0;
-    const unsigned long a = strtoul(text, &end, 10);
-    if (end == text || errno || (*end != 'x' && *end != 'X') || text[0] == '-') return 0;
-    const char *second = end + 1;
-    const unsigned long b = strtoul(second, &end, 10);
-    if (end == second || errno || *end != '\0' || second[0] == '-') return 0;
-    *n_phi = a;
-    *n_theta = b;
-    return 1;
-}
-
-/* h at every node of `grid` as CSV. */
-static int write_landscape(const gb_contact_grid *grid, const double zb[3], const char *path)
+/* h at every node of `grid` as CSV, written to the member `file` of the command's output set. */
+static int write_landscape(const gb_contact_grid *grid, const double zb[3], FILE *file)
 {
     const gb_contact_grid_def *def = gb_contact_grid_get_def(grid);
     const gb_surface *surface = gb_contact_grid_surface(grid);
@@ -87,14 +60,14 @@ static int write_landscape(const gb_contact_grid *grid, const double zb[3], cons
         used += (size_t)snprintf(text + used, cap - used, "%.9g,%.9g,%.12g\n", phi, theta,
                                  zb[0] * x[0] + zb[1] * x[1] + zb[2] * x[2]);
     }
-    const int status = cli_write_atomically(path, text);
+    const int status = fputs(text, file) < 0 ? gb_error_set(GB_EIO, "cannot write the landscape: %s", strerror(errno)) : GB_OK;
     free(text);
     return status;
 }
 
 /* h on a 201 × 201 window of half-width w around (φ*, θ*), as CSV. */
 static int write_zoom(const gb_surface *surface, const double zb[3], double phi0, double theta0, double w,
-                      const char *path)
+                      FILE *file)
 {
     enum { N = 201 };
     size_t cap = 512 + (size_t)N * N * 64, used = 0;
@@ -112,7 +85,7 @@ static int write_zoom(const gb_surface *surface, const double zb[3], double phi0
             used += (size_t)snprintf(text + used, cap - used, "%.12g,%.12g,%.12g\n", phi, theta,
                                      zb[0] * x[0] + zb[1] * x[1] + zb[2] * x[2]);
         }
-    const int status = cli_write_atomically(path, text);
+    const int status = fputs(text, file) < 0 ? gb_error_set(GB_EIO, "cannot write the zoom window: %s", strerror(errno)) : GB_OK;
     free(text);
     return status;
 }
@@ -148,12 +121,14 @@ int command_contact(int argc, char **argv)
             return kind == CLI_HELP ? 0 : kind;
         }
         if (!strcmp(opt, "--zb")) {
-            if (!parse_zb(value, zb))
-                return cli_input_error("contact", "--zb '%s' is not three numbers%s", value,
-                                       " (allowed: X,Y,Z, finite, not all zero)");
+            static const char *const zb_allowed = " (allowed: X,Y,Z, each -1e100 <= component <= 1e100, not all zero)";
+            const gb_parse_result p = gb_parse_list(value, zb, 3);
+            if (p == GB_PARSE_OVERFLOW) return cli_input_error("contact", "--zb '%s' is beyond the range of a double%s", value, zb_allowed);
+            if (p) return cli_input_error("contact", "--zb '%s' is not three numbers%s", value, zb_allowed);
+            if (!(fabs(zb[0]) <= 1e100 && fabs(zb[1]) <= 1e100 && fabs(zb[2]) <= 1e100))
+                return cli_input_error("contact", "--zb '%s' is out of range%s", value, zb_allowed);
             if (zb[0] == 0.0 && zb[1] == 0.0 && zb[2] == 0.0)
-                return cli_input_error("contact", "--zb '%s' is the zero vector%s", value,
-                                       " (allowed: any non-zero X,Y,Z; it is the body-frame vertical)");
+                return cli_input_error("contact", "--zb '%s' is the zero vector%s", value, zb_allowed);
             have_zb = 1;
         } else if (!strcmp(opt, "--method")) {
             for (int k = 0; k < 3; k++)
@@ -162,10 +137,13 @@ int command_contact(int argc, char **argv)
                 return cli_input_error("contact", "--method '%s' is unknown%s", value,
                                        " (allowed: grid, fast-grid, continuous)");
         } else if (!strcmp(opt, "--grid")) {
-            if (!parse_grid(value, &grid_def.n_phi, &grid_def.n_theta) || grid_def.n_phi < 2 ||
-                grid_def.n_theta < 3 || grid_def.n_phi > GB_CONTACT_GRID_MAX_NODES / grid_def.n_theta)
-                return cli_input_error("contact", "--grid '%s' is out of range%s", value,
+            unsigned long long np, nt;
+            const gb_parse_result p = gb_parse_pair(value, GB_CONTACT_GRID_MAX_NODES, &np, &nt);
+            if (p || np < 2 || nt < 3 || np > GB_CONTACT_GRID_MAX_NODES / nt)
+                return cli_input_error("contact", "--grid '%s' is %s%s", value, p == GB_PARSE_SYNTAX ? "not a grid" : "out of range",
                                        " (allowed: NPxNT with NP >= 2, NT >= 3, NP*NT <= 67108864)");
+            grid_def.n_phi = (size_t)np;
+            grid_def.n_theta = (size_t)nt;
             have_grid = 1;
         } else if (!strcmp(opt, "--nodes")) {
             if (gb_contact_nodes_parse(value, &grid_def.nodes))
@@ -175,9 +153,9 @@ int command_contact(int argc, char **argv)
         } else if (!strcmp(opt, "--zoom")) {
             zoom = value;
         } else {
-            if (!cli_parse_double(value, &zoom_halfwidth) || !(zoom_halfwidth > 0.0 && zoom_halfwidth <= 1.0))
-                return cli_input_error("contact", "--zoom-halfwidth '%s' is out of range%s", value,
-                                       " (allowed: 0 < W <= 1 rad)");
+            if (cli_number("contact", "--zoom-halfwidth", value, 0.0, 1.0, CLI_OPEN_MIN, " (allowed: 0 < W <= 1 rad)",
+                           &zoom_halfwidth))
+                return EXIT_INPUT;
         }
     }
     if (cli_body_required("contact", &body)) return EXIT_INPUT;
@@ -186,6 +164,11 @@ int command_contact(int argc, char **argv)
     if (!have_zb) return cli_input_error("contact", "missing %s%s", "--zb", " (allowed: X,Y,Z, not all zero)");
     if (method < 0)
         return cli_input_error("contact", "missing %s%s", "--method", " (allowed: grid, fast-grid, continuous)");
+    if ((landscape && cli_output_check("contact", "--landscape", landscape)) || (zoom && cli_output_check("contact", "--zoom", zoom)))
+        return EXIT_INPUT;
+    if (landscape && zoom && !strcmp(landscape, zoom))
+        return cli_input_error("contact", "--zoom '%s' is also the --landscape file%s", zoom, " (allowed: two different files)");
+    if (cli_parse_only) return 0;
 
     gb_surface surface;
     int status = gb_surface_init(&surface, morphology, beta);
@@ -213,8 +196,17 @@ int command_contact(int argc, char **argv)
         phi = method == METHOD_CONTINUOUS ? contact->phi : node.phi;
         theta = method == METHOD_CONTINUOUS ? contact->theta : node.theta;
     }
-    if (!status && landscape) status = write_landscape(grid ? grid : seeds, unit, landscape);
-    if (!status && zoom) status = write_zoom(&surface, unit, phi, theta, zoom_halfwidth, zoom);
+    /* The two files are one set: both are written, or neither. */
+    cli_outputs files = {0};
+    if (landscape) {
+        FILE *f = cli_outputs_open(&files, landscape, &status);
+        if (f) status = write_landscape(grid ? grid : seeds, unit, f);
+    }
+    if (zoom) {
+        FILE *f = cli_outputs_open(&files, zoom, &status);
+        if (f) status = write_zoom(&surface, unit, phi, theta, zoom_halfwidth, f);
+    }
+    status = cli_outputs_commit(&files, status);
     if (status) {
         gb_contact_grid_free(grid);
         gb_contact_grid_free(seeds);

@@ -44,6 +44,7 @@ int command_lyapunov(int argc, char **argv)
     int status = gb_case_load(case_path, &scene);
     if (!status) status = gb_case_lyapunov_check(case_path, &scene);
     if (status) return cli_failure("lyapunov", status);
+    if (cli_parse_only) return 0;
     gb_lyapunov_body *body = NULL;
     gb_lyapunov_result r;
     const clock_t start = clock();

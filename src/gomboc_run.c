@@ -8,11 +8,11 @@
 #include "gb_strobe.h"
 
 #include <errno.h>
-#include <libgen.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -155,66 +155,74 @@ static cJSON *scene_json(const gb_case *c)
     return o;
 }
 
-/* "DIR/NAME-suffix" where NAME is the case file's base name without ".ini". */
-static void output_path(const char *dir, const char *case_path, const char *suffix, char *out, size_t size)
+/* "DIR/NAME-suffix" where NAME is the case file's base name without ".ini" (malloc'd, NULL when out of
+ * memory). */
+static char *output_path(const char *dir, const char *case_path, const char *suffix)
 {
-    char copy[1024];
-    snprintf(copy, sizeof copy, "%s", case_path);
-    char *name = basename(copy), *dot = strrchr(name, '.');
-    if (dot && !strcmp(dot, ".ini")) *dot = '\0';
-    snprintf(out, size, "%s/%s-%s", dir, name, suffix);
+    const char *slash = strrchr(case_path, '/'), *name = slash ? slash + 1 : case_path;
+    size_t len = strlen(name);
+    if (len > 4 && !strcmp(name + len - 4, ".ini")) len -= 4;
+    const size_t size = strlen(dir) + len + strlen(suffix) + 3;
+    char *out = malloc(size);
+    if (out) snprintf(out, size, "%s/%.*s-%s", dir, (int)len, name, suffix);
+    return out;
 }
 
-/* Output files are written beside their final names and renamed only when the whole run succeeded:
- * nothing half-written is left that looks complete. */
-typedef struct staged {
-    char path[1200], tmp[1300];
-    int used;
-} staged;
-
+/* The files a run may write. They are one set (cli_outputs): renamed into place together when the whole
+ * run succeeded, removed otherwise; then the files of this name that this run did not write (left by an
+ * earlier run of another scene of the same name) are removed, so that what stands beside the summary is
+ * this run's. */
 enum { OUT_HISTORY, OUT_STROBE, OUT_SPECTRUM, OUT_LYAPUNOV, OUT_SUMMARY, OUT_COUNT };
 static const char *const out_suffix[OUT_COUNT] = {"history.csv", "strobe.csv", "spectrum.csv", "lyapunov.csv",
                                                   "summary.json"};
 
-static FILE *stage_open(staged *f, const char *dir, const char *case_path, int which, int *status)
+typedef struct run_outputs {
+    cli_outputs set;
+    const char *dir, *case_path;
+    int written[OUT_COUNT];
+} run_outputs;
+
+static FILE *stage_open(run_outputs *out, int which, int *status)
 {
-    output_path(dir, case_path, out_suffix[which], f->path, sizeof f->path);
-    snprintf(f->tmp, sizeof f->tmp, "%s.tmp%ld", f->path, (long)getpid());
-    FILE *file = fopen(f->tmp, "w");
-    if (!file) *status = gb_error_set(GB_EIO, "cannot write '%s': %s", f->path, strerror(errno));
-    else f->used = 1;
+    if (*status) return NULL;
+    char *path = output_path(out->dir, out->case_path, out_suffix[which]);
+    if (!path) {
+        *status = gb_error_set(GB_ENOMEM, "out of memory for an output name");
+        return NULL;
+    }
+    FILE *file = cli_outputs_open(&out->set, path, status);
+    if (file) out->written[which] = 1;
+    free(path);
     return file;
 }
 
-static int stage_close(staged *f, FILE *file, int status)
+/* The error of a failed write to member `which`. */
+static int stage_error(const run_outputs *out, int which)
 {
-    if (file && fclose(file) != 0 && !status) status = gb_error_set(GB_EIO, "cannot write '%s': %s", f->path, strerror(errno));
+    char *path = output_path(out->dir, out->case_path, out_suffix[which]);
+    const int status = gb_error_set(GB_EIO, "cannot write '%s': %s", path ? path : out_suffix[which], strerror(errno));
+    free(path);
     return status;
 }
 
-/* Rename every staged file into place (status OK), or remove the temporaries, and any file this
- * commit already renamed when a later rename fails (the set would be mixed). */
-static int stage_commit(staged *files, int status)
+static int stage_commit(run_outputs *out, int status)
 {
-    int renamed = 0; /* files[0 .. renamed) are in place */
-    for (; renamed < OUT_COUNT && !status; renamed++)
-        if (files[renamed].used && rename(files[renamed].tmp, files[renamed].path) != 0) {
-            status = gb_error_set(GB_EIO, "cannot write '%s': %s", files[renamed].path, strerror(errno));
-            break;
-        }
-    if (status)
-        for (int k = 0; k < OUT_COUNT; k++)
-            if (files[k].used) {
-                remove(files[k].tmp);
-                if (k < renamed) remove(files[k].path);
-            }
+    status = cli_outputs_commit(&out->set, status);
+    for (int k = 0; !status && k < OUT_COUNT; k++) {
+        if (out->written[k]) continue;
+        char *path = output_path(out->dir, out->case_path, out_suffix[k]);
+        struct stat st;
+        if (path && lstat(path, &st) == 0 && S_ISREG(st.st_mode) && unlink(path) != 0)
+            status = gb_error_set(GB_EIO, "cannot remove the stale '%s': %s", path, strerror(errno));
+        free(path);
+    }
     return status;
 }
 
-static int write_strobe(staged *f, const char *dir, const char *case_path, const gb_strobe *strobe, double period)
+static int write_strobe(run_outputs *out, const gb_strobe *strobe, double period)
 {
     int status = GB_OK;
-    FILE *file = stage_open(f, dir, case_path, OUT_STROBE, &status);
+    FILE *file = stage_open(out, OUT_STROBE, &status);
     if (!file) return status;
     if (fputs("n,t,omega_x,omega_y,omega_z\n", file) < 0) status = GB_EIO;
     for (size_t n = 0; !status && n < strobe->count; n++) {
@@ -223,27 +231,24 @@ static int write_strobe(staged *f, const char *dir, const char *case_path, const
                     w[2]) < 0)
             status = GB_EIO;
     }
-    if (status == GB_EIO) status = gb_error_set(GB_EIO, "cannot write '%s': %s", f->path, strerror(errno));
-    return stage_close(f, file, status);
+    return status == GB_EIO ? stage_error(out, OUT_STROBE) : status;
 }
 
-static int write_spectrum(staged *f, const char *dir, const char *case_path, const gb_spectrum *spectrum)
+static int write_spectrum(run_outputs *out, const gb_spectrum *spectrum)
 {
     int status = GB_OK;
-    FILE *file = stage_open(f, dir, case_path, OUT_SPECTRUM, &status);
+    FILE *file = stage_open(out, OUT_SPECTRUM, &status);
     if (!file) return status;
     if (fputs("frequency_hz,power\n", file) < 0) status = GB_EIO;
     for (size_t k = 0; !status && k < spectrum->count; k++)
         if (fprintf(file, "%.10g,%.10e\n", spectrum->frequency[k], spectrum->power[k]) < 0) status = GB_EIO;
-    if (status == GB_EIO) status = gb_error_set(GB_EIO, "cannot write '%s': %s", f->path, strerror(errno));
-    return stage_close(f, file, status);
+    return status == GB_EIO ? stage_error(out, OUT_SPECTRUM) : status;
 }
 
-static int write_lyapunov(staged *f, const char *dir, const char *case_path, const gb_case *scene,
-                          const gb_lyapunov_result *r)
+static int write_lyapunov(run_outputs *out, const gb_case *scene, const gb_lyapunov_result *r)
 {
     int status = GB_OK;
-    FILE *file = stage_open(f, dir, case_path, OUT_LYAPUNOV, &status);
+    FILE *file = stage_open(out, OUT_LYAPUNOV, &status);
     if (!file) return status;
     if (fputs("interval,period_end,lambda_inst,lambda_running\n", file) < 0) status = GB_EIO;
     for (size_t n = 0; !status && n < r->intervals; n++)
@@ -251,8 +256,7 @@ static int write_lyapunov(staged *f, const char *dir, const char *case_path, con
                     scene->lyapunov_def.transient + (n + 1) * scene->lyapunov_interval_periods, r->instantaneous[n],
                     r->running[n]) < 0)
             status = GB_EIO;
-    if (status == GB_EIO) status = gb_error_set(GB_EIO, "cannot write '%s': %s", f->path, strerror(errno));
-    return stage_close(f, file, status);
+    return status == GB_EIO ? stage_error(out, OUT_LYAPUNOV) : status;
 }
 
 static cJSON *strobe_json(const gb_strobe *strobe)
@@ -302,11 +306,13 @@ int command_run(int argc, char **argv)
         dir = value;
     }
     if (!case_path) return cli_input_error("run", "missing %s%s", "CASE", " (allowed: a scene file, e.g. cases/table1-gomboc-I.ini)");
+    if (cli_output_dir_check("run", "--out", dir)) return EXIT_INPUT;
     gb_case scene;
     int status = gb_case_load(case_path, &scene);
     if (status) return cli_failure("run", status);
+    if (cli_parse_only) return 0;
 
-    staged files[OUT_COUNT] = {0};
+    run_outputs files = {.dir = dir, .case_path = case_path};
     run_state s = {.scene = &scene, .geff_min = INFINITY, .normal_min = INFINITY};
     s.period = gb_forcing_period(&scene.dynamics.forcing);
     s.step = s.period / (double)scene.integrate.steps_per_period;
@@ -318,7 +324,7 @@ int command_run(int argc, char **argv)
     if (!status && scene.strobe)
         status = gb_strobe_init(&s.strobe, 3, 0.0, s.period, scene.integrate.steps_per_period, &scene.strobe_def);
     if (!status && scene.write_history) {
-        s.history = stage_open(&files[OUT_HISTORY], dir, case_path, OUT_HISTORY, &status);
+        s.history = stage_open(&files, OUT_HISTORY, &status);
         if (s.history)
             fputs("t,omega_x,omega_y,omega_z,h,E,residual,geff,index,grid_switch,branch_switch,switch_rate,"
                   "rc_x,rc_y,rc_z,normal_force,friction_needed\n", s.history);
@@ -345,16 +351,16 @@ int command_run(int argc, char **argv)
     }
     if (!status) status = s.status;
     const double seconds = (double)(clock() - start) / CLOCKS_PER_SEC;
-    status = stage_close(&files[OUT_HISTORY], s.history, status);
+    if (s.history && ferror(s.history) && !status) status = stage_error(&files, OUT_HISTORY);
     free(s.window);
 
     gb_spectrum spectrum = {0};
     if (!status && scene.spectrum)
         status = gb_spectrum_compute(s.spectrum_x, s.spectrum_count, s.step * (double)scene.integrate.sample_every,
                                      scene.spectrum_window, &spectrum);
-    if (!status && scene.strobe) status = write_strobe(&files[OUT_STROBE], dir, case_path, &s.strobe, s.period);
-    if (!status && scene.spectrum) status = write_spectrum(&files[OUT_SPECTRUM], dir, case_path, &spectrum);
-    if (!status && scene.lyapunov) status = write_lyapunov(&files[OUT_LYAPUNOV], dir, case_path, &scene, &lyapunov);
+    if (!status && scene.strobe) status = write_strobe(&files, &s.strobe, s.period);
+    if (!status && scene.spectrum) status = write_spectrum(&files, &spectrum);
+    if (!status && scene.lyapunov) status = write_lyapunov(&files, &scene, &lyapunov);
 
     cJSON *root = NULL;
     if (!status) {
@@ -401,14 +407,21 @@ int command_run(int argc, char **argv)
         if (scene.strobe) cJSON_AddItemToObject(root, "strobe", strobe_json(&s.strobe));
         if (scene.spectrum) cJSON_AddItemToObject(root, "spectrum", spectrum_json(&scene, &spectrum, s.spectrum_count));
         if (scene.lyapunov) cJSON_AddItemToObject(root, "lyapunov", cli_lyapunov_json(&scene, &lyapunov, 0));
+        /* Exactly the files of this run (any other NAME-* output of an earlier run is removed). */
+        cJSON *list = cJSON_AddArrayToObject(root, "files");
+        for (int k = 0; k < OUT_COUNT; k++)
+            if (files.written[k] || (k == OUT_SUMMARY && scene.write_summary)) {
+                char *path = output_path(dir, case_path, out_suffix[k]);
+                if (path) cJSON_AddItemToArray(list, cJSON_CreateString(strrchr(path, '/') + 1));
+                free(path);
+            }
     }
     char *text = root ? cJSON_Print(root) : NULL;
     if (!status && scene.write_summary) {
-        FILE *file = stage_open(&files[OUT_SUMMARY], dir, case_path, OUT_SUMMARY, &status);
-        if (file && fputs(text, file) < 0) status = gb_error_set(GB_EIO, "cannot write '%s': %s", files[OUT_SUMMARY].path, strerror(errno));
-        status = stage_close(&files[OUT_SUMMARY], file, status);
+        FILE *file = stage_open(&files, OUT_SUMMARY, &status);
+        if (file && fputs(text, file) < 0) status = stage_error(&files, OUT_SUMMARY);
     }
-    status = stage_commit(files, status);
+    status = stage_commit(&files, status);
     if (!status && json) puts(text);
     free(text);
     cJSON_Delete(root);

@@ -17,7 +17,7 @@ static const char *usage_shape =
     "  --morphology I|II  phase function chi: I is theta - 5 phi (eq 8), II is\n"
     "                     theta - (3 pi/2)(cos phi - cos^3 phi/3) (eq 9)\n"
     "  --beta B           shape parameter, 0 <= B < 0.25 (r^4 = 1 + 4 B sin phi cos chi > 0)\n"
-    "  --mass M           mass of the homogeneous body, M > 0 (default 1, as Table 1)\n"
+    "  --mass M           mass of the homogeneous body, 1e-6 <= M <= 1e6 kg (default 1, as Table 1)\n"
     "  --json             print one JSON object instead of text\n"
     "  --radial-map FILE  also write r(phi, theta) and x on a 90 x 180 midpoint grid as CSV\n"
     "                     (columns phi, theta, r, x, y, z), for Figure 1\n"
@@ -64,15 +64,15 @@ int command_shape(int argc, char **argv)
             return kind == CLI_HELP ? 0 : kind;
         }
         if (!strcmp(opt, "--mass")) {
-            if (!cli_parse_double(value, &mass))
-                return cli_input_error("shape", "--mass '%s' is not a number%s", value, " (allowed: mass > 0)");
-            if (!(mass > 0.0))
-                return cli_input_error("shape", "--mass %s is out of range%s", value, " (allowed: mass > 0)");
+            if (cli_number("shape", "--mass", value, 1e-6, 1e6, 0, " (allowed: 1e-06 <= mass <= 1000000 [kg])", &mass))
+                return EXIT_INPUT;
         } else {
             radial_map = value;
         }
     }
     if (cli_body_required("shape", &body)) return EXIT_INPUT;
+    if (radial_map && cli_output_check("shape", "--radial-map", radial_map)) return EXIT_INPUT;
+    if (cli_parse_only) return 0;
     const char *morphology = body.morphology;
     const double beta = body.beta;
 

@@ -10,13 +10,15 @@
 
 int main(int argc, char **argv)
 {
-    const char *results = "checks.json";
+    const char *results = "checks.json", *only = NULL;
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--results") && i + 1 < argc) results = argv[++i];
         else if (!strcmp(argv[i], "--data") && i + 1 < argc) gb_check_data_dir = argv[++i];
         else if (!strcmp(argv[i], "--full")) gb_check_full = 1;
+        else if (!strcmp(argv[i], "--only") && i + 1 < argc) only = argv[++i];
         else {
-            fprintf(stderr, "usage: %s [--results FILE] [--data DIR] [--full]\n", argv[0]);
+            fprintf(stderr, "usage: %s [--results FILE] [--data DIR] [--full] [--only TEXT]\n"
+                            "  --only TEXT  run only the suites whose name contains TEXT (for development)\n", argv[0]);
             return 2;
         }
     }
@@ -25,13 +27,18 @@ int main(int argc, char **argv)
     if (verify_register_s2_surface() || verify_register_s2_massprops() ||
         verify_register_s2_shape() || verify_register_s4_contact() || verify_register_s4_certify() ||
         verify_register_s5_dynamics() || verify_register_s6_chaos() || verify_register_s6_diagnostics() ||
-        verify_register_command()) {
+        verify_register_command() || verify_register_bad_input()) {
         fprintf(stderr, "verify: cannot register suites: %s\n", CU_get_error_msg());
         CU_cleanup_registry();
         return 1;
     }
     CU_basic_set_mode(CU_BRM_VERBOSE);
-    CU_basic_run_tests();
+    if (only) {
+        for (CU_pSuite suite = CU_get_registry()->pSuite; suite; suite = suite->pNext)
+            if (strstr(suite->pName, only)) CU_basic_run_suite(suite);
+    } else {
+        CU_basic_run_tests();
+    }
     const unsigned failures = CU_get_number_of_failures() + CU_get_number_of_tests_failed();
     const int write_failed = gb_check_write(results);
     CU_cleanup_registry();

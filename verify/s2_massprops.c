@@ -61,7 +61,7 @@ static void test_sphere(void)
     gb_check_close(&cl, p.L, 1.0, 0.0, p.L_err + 4 * DBL_EPSILON);
     for (int i = 0; i < 3; i++)
         for (int j = 0; j < 3; j++) {
-            char q[64];
+            char q[96];
             snprintf(q, sizeof q, "inertia I_C[%d][%d] of a solid sphere, m = 2.385", i, j);
             gb_check ci = {"2", "40", q, "2 m / 5 on the diagonal, 0 off it", estimate_origin};
             gb_check_close(&ci, p.inertia[i][j], i == j ? 0.4 * mass : 0.0, 0.0, p.inertia_err[i][j] + 8 * DBL_EPSILON);

@@ -13,6 +13,7 @@ int verify_register_s5_dynamics(void);
 int verify_register_s6_chaos(void);
 int verify_register_s6_diagnostics(void);
 int verify_register_command(void);
+int verify_register_bad_input(void);
 
 /* Register `tests` (NULL-terminated) as one suite whose every test starts the row timer. */
 typedef struct verify_test {

@@ -1,0 +1,480 @@
+/* Bad input, never misread: the standing gate of the `gomboc` command and its scene reader.
+ *
+ * Every row of the table is one bad input, a scene file or command-line options, given to the real
+ * binary ($GOMBOC_BIN) in a fresh directory that already holds a file of its own. A row passes when
+ * the exit status is the one stated (2 for bad input, 1 for a computation or a write that failed), the
+ * message names the file and line or the option, the key, and the allowed range, and the directory
+ * is byte for byte what it was: no file appeared, none changed, none vanished. Rows a fuzzer found
+ * are added here too. Beside the table: values that are strict but valid are accepted, paths of any
+ * length work, temporaries are removed after SIGTERM and after a kill -9, and the ranges written in
+ * cases/README.md are the ranges the reader enforces. */
+#include "gb_case.h"
+#include "gb_check.h"
+#include "verify_sections.h"
+
+#include <dirent.h>
+#include <errno.h>
+#include <ftw.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+/* The binary as an absolute path: every row runs in its own directory. */
+static const char *binary(void)
+{
+    static char path[4096];
+    if (!path[0] && !realpath(getenv("GOMBOC_BIN") ? getenv("GOMBOC_BIN") : "build/gomboc", path))
+        snprintf(path, sizeof path, "%s", getenv("GOMBOC_BIN") ? getenv("GOMBOC_BIN") : "build/gomboc");
+    return path;
+}
+
+/* ---- a directory's state: every entry's name, type, size, link target and content hash ---------- */
+
+static unsigned long long fnv1a(const unsigned char *p, size_t n, unsigned long long h)
+{
+    for (size_t k = 0; k < n; k++) h = (h ^ p[k]) * 1099511628211ull;
+    return h;
+}
+
+/* A text that changes when anything in `dir` (not below it) changes. malloc'd. */
+static char *snapshot(const char *dir)
+{
+    size_t cap = 4096, used = 0;
+    char *out = calloc(cap, 1);
+    struct dirent **names = NULL;
+    const int n = scandir(dir, &names, NULL, alphasort);
+    for (int k = 0; k < n; k++) {
+        char path[4096], line[1024];
+        snprintf(path, sizeof path, "%s/%s", dir, names[k]->d_name);
+        struct stat st;
+        unsigned long long h = 1469598103934665603ull;
+        if (lstat(path, &st) == 0 && S_ISREG(st.st_mode)) {
+            FILE *f = fopen(path, "rb");
+            unsigned char buf[8192];
+            size_t got;
+            while (f && (got = fread(buf, 1, sizeof buf, f)) > 0) h = fnv1a(buf, got, h);
+            if (f) fclose(f);
+        } else if (S_ISLNK(st.st_mode)) {
+            char target[1024] = "";
+            const ssize_t len = readlink(path, target, sizeof target - 1);
+            h = fnv1a((const unsigned char *)target, len > 0 ? (size_t)len : 0, h);
+        }
+        const int len = snprintf(line, sizeof line, "%s %o %lld %016llx\n", names[k]->d_name, (unsigned)st.st_mode,
+                                 (long long)st.st_size, h);
+        if (used + (size_t)len + 1 > cap) out = realloc(out, cap = 2 * cap + (size_t)len);
+        memcpy(out + used, line, (size_t)len + 1);
+        used += (size_t)len;
+        free(names[k]);
+    }
+    free(names);
+    return out;
+}
+
+static int remove_entry(const char *path, const struct stat *st, int flag, struct FTW *ftw)
+{
+    (void)st, (void)flag, (void)ftw;
+    return remove(path);
+}
+static void remove_tree(const char *dir) { nftw(dir, remove_entry, 16, FTW_DEPTH | FTW_PHYS); }
+
+/* Run `command` (a shell fragment) in `dir`, its standard error and output captured in `out`. */
+static int run_in(const char *dir, const char *command, char *out, size_t cap)
+{
+    size_t size = strlen(dir) + strlen(command) + 64;
+    char *shell = malloc(size);
+    snprintf(shell, size, "cd '%s' && { %s ; } 2>&1; echo \"@@exit=$?\"", dir, command);
+    FILE *p = popen(shell, "r");
+    free(shell);
+    size_t used = 0;
+    out[0] = '\0';
+    if (!p) return -1;
+    while (used + 1 < cap && fgets(out + used, (int)(cap - used), p)) used += strlen(out + used);
+    while (fgetc(p) != EOF) {
+    }
+    pclose(p);
+    char *mark = strstr(out, "@@exit=");
+    return mark ? atoi(mark + 7) : -1;
+}
+
+/* ---- the table ---------------------------------------------------------------------------------- */
+
+/* `args` follows `gomboc`; @CASE@ is the row's scene file (case.ini, holding `text`), @D@ the row's
+ * directory. A row's message must hold every string of `must`. */
+typedef struct bad_row {
+    const char *args;
+    const char *text;
+    size_t text_len; /* 0: strlen(text) */
+    int exit;
+    const char *must[3];
+} bad_row;
+
+#define RUN "run @CASE@ --out @D@"
+#define BYTES(s) s, sizeof(s) - 1
+
+static const bad_row rows[] = {
+    /* Misread or accepted before: each is a refusal now. */
+    {RUN, "@LONG@", 0, 2, {"case.ini:1:", "bytes long", "at most 198 bytes a line"}},
+    {RUN, "[forcing]\npsi = 0.1x\n", 0, 2, {"case.ini:2: [forcing] psi = 0.1x", "not an angle", "-1000 <= psi <= 1000 [rad]"}},
+    {RUN, "[forcing]\npsi = pi/3junk\n", 0, 2, {"case.ini:2: [forcing] psi = pi/3junk", "not an angle", "p*pi/q"}},
+    {RUN, "[model]\ngrid = 2x-18446744073709551613\n", 0, 2, {"case.ini:2: [model] grid", "not a grid", "NP*NT <= 67108864"}},
+    {RUN, "[model]\ngrid = +8x +9\n", 0, 2, {"case.ini:2: [model] grid = +8x +9", "not a grid", "NT >= 3"}},
+    {RUN, "[body]\nbeta = 0.1 # note\n", 0, 2, {"case.ini:2: [body] beta = 0.1 # note", "not a number", "0 <= beta < 0.25"}},
+    {RUN, "[body]\nbeta = 0.1\nbeta = 0.2\n", 0, 2, {"case.ini:3: [body] beta = 0.2", "given twice (first at line 2", "each key once"}},
+    {RUN, "[body]\nbeta = 0.1\n  mass = 2\n", 0, 2, {"case.ini:3:", "indented line", "continuation lines are not read"}},
+    {RUN, BYTES("[body]\nbeta = 0.1\0 9\n"), 2, {"case.ini:2:", "NUL byte at column 11", "without NUL bytes"}},
+    {RUN, "[scene]\ndescription = caf\xe9\n", 0, 2, {"case.ini:2:", "byte 0xE9 at column 18 is not UTF-8", "allowed: UTF-8 text"}},
+    {RUN, "[scene]\ndescription = \x1b[31mred\n", 0, 2, {"case.ini:2:", "control character U+001B", "printable text and TAB"}},
+    {RUN, "[scene]\ndescription = a\rb\n", 0, 2, {"case.ini:2:", "control character U+000D", "printable text"}},
+    {RUN, "[scene]\ndescription = \xc2\x9b" "31m\n", 0, 2, {"case.ini:2:", "control character U+009B", "printable text"}},
+    {RUN, "[scene]\ndescription = \xed\xa0\x80\n", 0, 2, {"case.ini:2:", "not UTF-8", "UTF-8 text"}},
+    {RUN, "[scene]\ndescription = \xc0\xaf\n", 0, 2, {"case.ini:2:", "byte 0xC0", "UTF-8 text"}},
+    /* Finite values that overflowed later: refused by the reader with their physical range. */
+    {RUN, "[forcing]\nomega = 1e-300\n", 0, 2, {"case.ini:2: [forcing] omega = 1e-300", "out of range", "0.01 <= omega <= 10000 [rad/s]"}},
+    {RUN, "[forcing]\ng = 1e308\n", 0, 2, {"case.ini:2: [forcing] g = 1e308", "out of range", "0 <= g <= 1000 [m/s2]"}},
+    {RUN, "[model]\ndamping = 1e300\n", 0, 2, {"case.ini:2: [model] damping", "out of range", "0 <= damping <= 1000 [N m s]"}},
+    {RUN, "[initial]\nomega = 1e308,0,0\n", 0, 2, {"case.ini:2: [initial] omega", "out of range", "-1000 <= each component <= 1000 [rad/s]"}},
+    {RUN, "[forcing]\nA2 = 1e308\n", 0, 2, {"case.ini:2: [forcing] A2", "out of range", "-1000 <= A2 <= 1000"}},
+    {RUN, "[body]\nmass = 1e-300\n", 0, 2, {"case.ini:2: [body] mass", "out of range", "1e-06 <= mass <= 1000000 [kg]"}},
+    {RUN, "[body]\nbeta = 1e999\n", 0, 2, {"case.ini:2: [body] beta = 1e999", "beyond the range of a double", "0 <= beta < 0.25"}},
+    {RUN, "[forcing]\npsi = 1e400\n", 0, 2, {"case.ini:2: [forcing] psi", "beyond the range of a double", "psi <= 1000"}},
+    /* Messages that contradicted their own ranges. */
+    {RUN, "[integrator]\nsteps_per_period = 1e8\n", 0, 2, {"case.ini:2: [integrator] steps_per_period = 1e8", "not an integer", "an integer from 1 to 100000000"}},
+    {RUN, "[integrator]\nsteps_per_period = 100000001\n", 0, 2, {"steps_per_period = 100000001", "out of range", "an integer from 1 to 100000000"}},
+    {RUN, "[output]\nsample_every = 0\n", 0, 2, {"case.ini:2: [output] sample_every = 0", "out of range", "an integer from 1 to 100000000"}},
+    {RUN, "[output]\nsample_every = 184467440737095516160\n", 0, 2, {"[output] sample_every", "out of range", "an integer from 1 to 100000000"}},
+    /* Every other kind of key and value. */
+    {RUN, "[body]\n\nbeta = 0.25\n", 0, 2, {"case.ini:3: [body] beta = 0.25", "out of range", "0 <= beta < 0.25"}},
+    {RUN, "[body]\nbeta = nan\n", 0, 2, {"[body] beta = nan", "not a number", "0 <= beta < 0.25"}},
+    {RUN, "[body]\nbeta = 0x1p-3\n", 0, 2, {"[body] beta = 0x1p-3", "not a number", "0 <= beta"}},
+    {RUN, "[body]\nbeta =\n", 0, 2, {"case.ini:2: [body] beta = ", "not a number", "0 <= beta"}},
+    {RUN, "[body]\nmorphology = III\n", 0, 2, {"case.ini:2: [body] morphology = III", "unknown", "allowed: I, II"}},
+    {RUN, "[body]\nmorphology = I\ncolour = red\n", 0, 2, {"case.ini:3: [body] colour = red: unknown key", "allowed in [body]: morphology, beta, mass", ""}},
+    {RUN, "[bdoy]\nbeta = 0.1\n", 0, 2, {"case.ini:1: unknown section [bdoy]", "allowed: scene, body, forcing", ""}},
+    {RUN, "[body]\nbeta = 0.1\n[forcing]\n[body]\nmass = 2\n", 0, 2, {"case.ini:4: [body] again (first at line 1", "each section once", ""}},
+    {RUN, "beta = 0.1\n", 0, 2, {"case.ini:1: beta = 0.1", "before any [section]", ""}},
+    {RUN, "[body] beta = 0.2\n", 0, 2, {"case.ini:1: text after [body]", "a section header alone on its line", ""}},
+    {RUN, "[body]\nmorphology I\n", 0, 2, {"case.ini:2: malformed line 'morphology I'", "allowed: [section], key = value", ""}},
+    {RUN, "[body\nbeta = 0.1\n", 0, 2, {"case.ini:1: malformed line '[body'", "[section]", ""}},
+    {RUN, "[model]\ncontact = magnetic\n", 0, 2, {"case.ini:2: [model] contact = magnetic", "unknown", "allowed: grid, fast-grid, continuous"}},
+    {RUN, "[model]\nequation = newton\n", 0, 2, {"case.ini:2: [model] equation = newton", "unknown", "allowed: paper, rolling"}},
+    {RUN, "[model]\nnodes = gauss\n", 0, 2, {"case.ini:2: [model] nodes = gauss", "unknown", "allowed: centred, linspace"}},
+    {RUN, "[forcing]\namplitude_units = furlongs\n", 0, 2, {"case.ini:2: [forcing] amplitude_units = furlongs", "unknown", "allowed: m/s2, g"}},
+    {RUN, "[integrator]\nmethod = rk8pd\n", 0, 2, {"case.ini:2: [integrator] method: = rk8pd with [model] contact = grid", "cannot cross the jumps", "allowed: rk4 with grid or fast-grid"}},
+    {RUN, "[model]\ncontact = fast-grid\n[integrator]\nmethod = rkf45\n", 0, 2, {"case.ini:4: [integrator] method", "contact = fast-grid", "any method with contact = continuous"}},
+    {RUN, "[integrator]\nmethod = euler\n", 0, 2, {"case.ini:2: [integrator] method = euler", "unknown", "allowed: rk4, rk8pd, rkf45, rk4imp"}},
+    {RUN, "[integrator]\nsteps_per_period = -3\n", 0, 2, {"case.ini:2: [integrator] steps_per_period = -3", "not an integer", "1 to 100000000"}},
+    {RUN, "[integrator]\nperiods = 0\n", 0, 2, {"case.ini:2: [integrator] periods = 0", "out of range", "0 < periods <= 10000000"}},
+    {RUN, "[integrator]\nrtol = 1e-20\n", 0, 2, {"case.ini:2: [integrator] rtol", "out of range", "1e-15 <= rtol <= 0.1"}},
+    {RUN, "[integrator]\nlocate_switches = maybe\n", 0, 2, {"case.ini:2: [integrator] locate_switches = maybe", "not a flag", "allowed: yes, no"}},
+    {RUN, "[initial]\nattitude = axis-angle 0,0,0,1\n", 0, 2, {"case.ini:2: [initial] attitude = axis-angle 0,0,0,1", "out of range", "non-zero axis"}},
+    {RUN, "[initial]\nattitude = axis-angle 1,0,0\n", 0, 2, {"case.ini:2: [initial] attitude", "not an attitude", "AX,AY,AZ,ANGLE"}},
+    {RUN, "[initial]\nomega = 1,2\n", 0, 2, {"case.ini:2: [initial] omega = 1,2", "not three numbers", "X,Y,Z"}},
+    {RUN, "[diagnostics]\nspectrum = yes\n[spectrum]\nwindow = blackman\n", 0, 2, {"case.ini:4: [spectrum] window = blackman", "unknown", "allowed: rectangular, hann"}},
+    {RUN, "[integrator]\nsteps_per_period = 4\n[diagnostics]\nstrobe = yes\n[strobe]\nphase = 0.3\n", 0, 2, {"case.ini:6: [strobe] phase: = 0.3 is not on the sample grid", "a multiple of 1/4", ""}},
+    {RUN, "[integrator]\nperiods = 10\n[diagnostics]\nlyapunov = yes\n[lyapunov]\ninterval_periods = 3\n", 0, 2, {"case.ini:6: [lyapunov] interval_periods: = 3", "does not divide", "at least 2 intervals"}},
+    {RUN, "[integrator]\nperiods = 10\n[diagnostics]\nlyapunov = yes\n[lyapunov]\nbatches = 20\n", 0, 2, {"case.ini:6: [lyapunov] batches: = 20 exceeds the 10 intervals", "2 <= batches <= intervals", ""}},
+    {RUN, "[lyapunov]\ndelta0 = 2\n", 0, 2, {"case.ini:2: [lyapunov] delta0 = 2", "out of range", "1e-15 <= delta0 <= 0.1"}},
+    {RUN, "[lyapunov]\nomega_scale = -1\n", 0, 2, {"case.ini:2: [lyapunov] omega_scale = -1", "out of range", "0.001 <= omega_scale <= 1000000 [rad/s]"}},
+    {RUN, "[integrator]\nperiods = 5\n[diagnostics]\nstrobe = yes\n[strobe]\ntransient_periods = 5\n", 0, 2, {"case.ini:6: [strobe] transient_periods: = 5 leaves no strobe samples", "< [integrator] periods = 5", ""}},
+    {"lyapunov @CASE@", "[integrator]\nperiods = 10\n[lyapunov]\nbatches = 20\n", 0, 2, {"case.ini:4: [lyapunov] batches: = 20 exceeds", "2 <= batches <= intervals", ""}},
+    /* The case file itself, and the output directory. */
+    {"run @D@", NULL, 0, 2, {"not a regular file", "allowed: a scene file", ""}},
+    {"lyapunov @D@", NULL, 0, 2, {"not a regular file", "allowed: a scene file", ""}},
+    {"run @D@/missing.ini", NULL, 0, 2, {"missing.ini: cannot open the case file", "No such file", ""}},
+    {"run @CASE@ --out @D@/missing", "[body]\nbeta = 0.1\n", 0, 2, {"--out", "missing' does not exist", "allowed: an existing, writable directory"}},
+    {"run @CASE@ --out @D@/keep.txt", "[body]\nbeta = 0.1\n", 0, 2, {"--out", "is not a directory", "allowed: an existing, writable directory"}},
+    {"run @CASE@ --out", "[body]\nbeta = 0.1\n", 0, 2, {"option '--out' needs a value", "", ""}},
+    {"run @CASE@ @CASE@", "[body]\nbeta = 0.1\n", 0, 2, {"a second case file", "allowed: one CASE", ""}},
+    {"run", NULL, 0, 2, {"missing CASE", "allowed: a scene file", ""}},
+    /* Options. */
+    {"shape --morphology I --beta 0.25", NULL, 0, 2, {"--beta '0.25' is out of range", "0 <= beta < 0.25", ""}},
+    {"shape --morphology II --beta 0.3", NULL, 0, 2, {"--beta '0.3' is out of range", "0 <= beta < 0.25", ""}},
+    {"shape --morphology I --beta -0.01", NULL, 0, 2, {"--beta '-0.01' is out of range", "0 <= beta < 0.25", ""}},
+    {"shape --morphology I --beta abc", NULL, 0, 2, {"--beta 'abc' is not a number", "0 <= beta < 0.25", ""}},
+    {"shape --morphology I --beta 0.1x", NULL, 0, 2, {"--beta '0.1x' is not a number", "0 <= beta < 0.25", ""}},
+    {"shape --morphology I --beta nan", NULL, 0, 2, {"--beta 'nan' is not a number", "0 <= beta", ""}},
+    {"shape --morphology I --beta ' 0.1'", NULL, 0, 2, {"--beta ' 0.1' is not a number", "0 <= beta", ""}},
+    {"shape --morphology I --beta 1e999", NULL, 0, 2, {"--beta '1e999' is beyond the range of a double", "0 <= beta", ""}},
+    {"shape --morphology III --beta 0.1", NULL, 0, 2, {"--morphology 'III' is unknown", "allowed: I, II", ""}},
+    {"shape --morphology I --beta 0.1 --colour red", NULL, 0, 2, {"unknown option '--colour'", "allowed: --morphology", ""}},
+    {"shape --morphology I --beta", NULL, 0, 2, {"'--beta' needs a value", "", ""}},
+    {"shape --morphology I", NULL, 0, 2, {"missing --beta", "0 <= beta < 0.25", ""}},
+    {"shape --beta 0.1", NULL, 0, 2, {"missing --morphology", "allowed: I, II", ""}},
+    {"shape --morphology I --beta 0.1 --mass 0", NULL, 0, 2, {"--mass '0' is out of range", "1e-06 <= mass <= 1000000 [kg]", ""}},
+    {"shape --morphology I --beta 0.1 --mass 1e-300", NULL, 0, 2, {"--mass '1e-300' is out of range", "1e-06 <= mass", ""}},
+    {"shape --morphology I --beta 0.02 --radial-map /dev/null", NULL, 0, 2, {"--radial-map '/dev/null' exists and is not a regular file", "allowed: a new or regular file", ""}},
+    {"shape --morphology I --beta 0.02 --radial-map @D@/link.csv", NULL, 0, 2, {"--radial-map", "link.csv' exists and is not a regular file", "allowed: a new or regular file"}},
+    {"shape --morphology I --beta 0.02 --radial-map @D@/sub", NULL, 0, 2, {"--radial-map", "sub' exists and is not a regular file", "a directory, link or device"}},
+    {"shape --morphology I --beta 0.02 --radial-map @D@/missing/map.csv", NULL, 0, 2, {"--radial-map", "its directory does not exist", "in an existing, writable directory"}},
+    {"shape --morphology I --beta 0.02 --radial-map ''", NULL, 0, 2, {"--radial-map '' is empty", "allowed: a new or regular file", ""}},
+    {"shape --morphology I --beta 0.02 --json > /dev/full", NULL, 0, 1, {"gomboc shape: cannot write standard output", "No space left on device", ""}},
+    {"contact --morphology I --beta 0.12 --zb 0,0,0 --method grid", NULL, 0, 2, {"--zb '0,0,0' is the zero vector", "not all zero", ""}},
+    {"contact --morphology I --beta 0.12 --zb 0,0 --method grid", NULL, 0, 2, {"--zb '0,0' is not three numbers", "X,Y,Z", ""}},
+    {"contact --morphology I --beta 0.12 --zb 1,2,nan --method grid", NULL, 0, 2, {"--zb '1,2,nan' is not three numbers", "X,Y,Z", ""}},
+    {"contact --morphology I --beta 0.12 --zb 1e200,0,0 --method grid", NULL, 0, 2, {"--zb '1e200,0,0' is out of range", "-1e100 <= component <= 1e100", ""}},
+    {"contact --morphology I --beta 0.12 --zb 1e400,0,0 --method grid", NULL, 0, 2, {"--zb '1e400,0,0' is beyond the range of a double", "-1e100 <= component", ""}},
+    {"contact --morphology I --beta 0.25 --zb 0,0,1 --method grid", NULL, 0, 2, {"--beta '0.25' is out of range", "0 <= beta < 0.25", ""}},
+    {"contact --morphology I --beta 0.12 --zb 0,0,1 --method simplex", NULL, 0, 2, {"--method 'simplex' is unknown", "allowed: grid, fast-grid, continuous", ""}},
+    {"contact --morphology I --beta 0.12 --zb 0,0,1 --method grid --grid 1x180", NULL, 0, 2, {"--grid '1x180' is out of range", "NP >= 2", ""}},
+    {"contact --morphology I --beta 0.12 --zb 0,0,1 --method grid --grid 90by180", NULL, 0, 2, {"--grid '90by180' is not a grid", "NPxNT with NP >= 2", ""}},
+    {"contact --morphology I --beta 0.12 --zb 0,0,1 --method grid --grid 2x-18446744073709551613", NULL, 0, 2, {"--grid", "is not a grid", "NP*NT <= 67108864"}},
+    {"contact --morphology I --beta 0.12 --zb 0,0,1 --method grid --nodes gauss", NULL, 0, 2, {"--nodes 'gauss' is unknown", "allowed: centred, linspace", ""}},
+    {"contact --morphology I --beta 0.12 --zb 0,0,1 --method grid --zoom-halfwidth 2", NULL, 0, 2, {"--zoom-halfwidth '2' is out of range", "0 < W <= 1", ""}},
+    {"contact --morphology I --beta 0.12 --zb 0,0,1", NULL, 0, 2, {"missing --method", "allowed: grid, fast-grid, continuous", ""}},
+    {"contact --morphology I --beta 0.12 --method grid", NULL, 0, 2, {"missing --zb", "not all zero", ""}},
+    {"contact --morphology I --beta 0.12 --zb 0,0,1 --method grid --speed 3", NULL, 0, 2, {"unknown option '--speed'", "allowed: --morphology", ""}},
+    {"contact --morphology I --beta 0.12 --zb 0,0,1 --method grid --landscape @D@/A.csv --zoom @D@/missing/B.csv", NULL, 0, 2,
+     {"--zoom", "its directory does not exist", "in an existing, writable directory"}},
+    {"contact --morphology I --beta 0.12 --zb 0,0,1 --method grid --landscape @D@/A.csv --zoom @D@/A.csv", NULL, 0, 2,
+     {"--zoom", "is also the --landscape file", "two different files"}},
+    {"frobnicate", NULL, 0, 2, {"unknown command 'frobnicate'", "allowed: shape, contact, run, lyapunov", ""}},
+    {"", NULL, 0, 2, {"usage: gomboc", "", ""}},
+};
+
+/* Replace every @CASE@ and @D@ in `args` (malloc'd result). */
+static char *expand(const char *args, const char *dir)
+{
+    size_t cap = strlen(args) * 2 + 8 * strlen(dir) + 64, used = 0;
+    char *out = malloc(cap);
+    for (const char *p = args; *p;) {
+        if (!strncmp(p, "@CASE@", 6)) used += (size_t)sprintf(out + used, "'%s/case.ini'", dir), p += 6;
+        else if (!strncmp(p, "@D@", 3)) used += (size_t)sprintf(out + used, "%s", dir), p += 3;
+        else out[used++] = *p++;
+    }
+    out[used] = '\0';
+    return out;
+}
+
+static void write_bytes(const char *path, const char *text, size_t len)
+{
+    FILE *f = fopen(path, "wb");
+    if (!f) return;
+    fwrite(text, 1, len, f);
+    fclose(f);
+}
+
+/* A fresh row directory: a file of its own, a symbolic link and a subdirectory (for the rows that
+ * name them), and the row's scene file. */
+static void prepare(char *dir, const bad_row *row)
+{
+    strcpy(dir, "/tmp/gomboc-bad-XXXXXX");
+    if (!mkdtemp(dir)) return;
+    char path[512];
+    snprintf(path, sizeof path, "%s/keep.txt", dir);
+    write_bytes(path, "a file the command must leave alone\n", 36);
+    snprintf(path, sizeof path, "%s/link.csv", dir);
+    if (symlink("keep.txt", path) != 0) return;
+    snprintf(path, sizeof path, "%s/sub", dir);
+    mkdir(path, 0755);
+    if (!row->text) return;
+    snprintf(path, sizeof path, "%s/case.ini", dir);
+    if (!strcmp(row->text, "@LONG@")) {
+        /* A comment longer than libinih's 200-byte buffer, with a key at its end: read as two lines,
+         * the key would be applied. */
+        char text[400];
+        memset(text, 'x', sizeof text);
+        memcpy(text, "; ", 2);
+        const char *tail = " beta = 0.2\n";
+        memcpy(text + 300, tail, strlen(tail));
+        write_bytes(path, text, 300 + strlen(tail));
+        return;
+    }
+    write_bytes(path, row->text, row->text_len ? row->text_len : strlen(row->text));
+}
+
+static void test_bad_input_table(void)
+{
+    size_t passed = 0;
+    const size_t total = sizeof rows / sizeof rows[0];
+    for (size_t k = 0; k < total; k++) {
+        const bad_row *row = &rows[k];
+        char dir[64];
+        prepare(dir, row);
+        char *before = snapshot(dir), *args = expand(row->args, dir);
+        size_t size = strlen(binary()) + strlen(args) + 4;
+        char *command = malloc(size);
+        snprintf(command, size, "%s %s", binary(), args);
+        static char out[16384];
+        const int code = run_in(dir, command, out, sizeof out);
+        char *after = snapshot(dir);
+        int named = 1;
+        for (int m = 0; m < 3; m++)
+            if (row->must[m] && row->must[m][0] && !strstr(out, row->must[m])) named = 0;
+        const int unchanged = !strcmp(before, after);
+        char q[400];
+        snprintf(q, sizeof q, "gomboc %.200s%s%.60s", row->args, row->text ? " with case.ini = " : "",
+                 row->text && strcmp(row->text, "@LONG@") ? row->text : row->text ? "(a 312-byte comment line)" : "");
+        for (char *c = q; *c; c++)
+            if ((unsigned char)*c < 0x20 || (unsigned char)*c >= 0x7F) *c = '?';
+        gb_check c = {"-", "-", q, "exit status, message names the key or option and its range, directory unchanged", "exact"};
+        passed += gb_check_true(&c, code == row->exit && named && unchanged,
+                                "exit %d (expected %d), message %s, directory %s: %.400s", code, row->exit,
+                                named ? "complete" : "INCOMPLETE", unchanged ? "unchanged" : "CHANGED", out);
+        free(before), free(after), free(args), free(command);
+        remove_tree(dir);
+    }
+    struct stat st;
+    gb_check cd = {"-", "-", "/dev/null is still a character device after the --radial-map /dev/null row", "stat", "exact"};
+    gb_check_true(&cd, stat("/dev/null", &st) == 0 && S_ISCHR(st.st_mode), "mode %o", (unsigned)st.st_mode);
+    gb_check cn = {"-", "-", "the table holds at least 60 bad inputs, and every one was refused as stated", "count", "exact"};
+    gb_check_true(&cn, total >= 60 && passed == total, "%zu of %zu rows", passed, total);
+}
+
+/* Valid input that a strict reader must still accept, and paths of any length. */
+static void test_strict_but_fair(void)
+{
+    static const struct { const char *args, *text, *expect; } good[] = {
+        {"shape --morphology I --beta 1e-320 --json", NULL, "\"beta\":\t9.99988867182683e-321"},
+        {"run @CASE@ --out @D@ --json", "[body]\r\nbeta = 0.11\r\n[integrator]\r\nperiods = 1\r\nsteps_per_period = 20\r\n[model]\r\ncontact = fast-grid\r\n",
+         "\"beta\":\t0.11"},
+        {"run @CASE@ --out @D@ --json", "\xEF\xBB\xBF[initial]\nomega = 1.3 , -0.7,\t0.4\n[forcing]\npsi = -2*pi/3\n[integrator]\nperiods = 1\nsteps_per_period = 20\n"
+         "[model]\ncontact = fast-grid\n[scene]\ndescription = caf\xc3\xa9 \xe2\x80\x94 \"quoted\" ; an inline comment\n",
+         "\"description\":\t\"caf\xc3\xa9 \xe2\x80\x94 \\\"quoted\\\"\","},
+    };
+    for (size_t k = 0; k < sizeof good / sizeof good[0]; k++) {
+        const bad_row row = {good[k].args, good[k].text, 0, 0, {NULL, NULL, NULL}};
+        char dir[64];
+        prepare(dir, &row);
+        char *args = expand(good[k].args, dir);
+        size_t size = strlen(binary()) + strlen(args) + 4;
+        char *command = malloc(size);
+        snprintf(command, size, "%s %s", binary(), args);
+        static char out[1 << 16];
+        const int code = run_in(dir, command, out, sizeof out);
+        char q[300];
+        snprintf(q, sizeof q, "strict but fair: gomboc %s is accepted (%s)", good[k].args, k == 0 ? "a subnormal beta" : k == 1 ? "CRLF lines" : "BOM, spaced list, -2*pi/3, UTF-8 text with quotes, an inline ; comment stripped");
+        gb_check c = {"-", "-", q, "exit 0 and the value as written", "exact"};
+        gb_check_true(&c, code == 0 && strstr(out, good[k].expect), "exit %d: %.300s", code, out);
+        free(args), free(command);
+        remove_tree(dir);
+    }
+
+    /* An output directory 1190 characters deep and a case file of 240 characters: no path is cut. */
+    char dir[64] = "/tmp/gomboc-long-XXXXXX";
+    if (!mkdtemp(dir)) return;
+    char deep[1400];
+    snprintf(deep, sizeof deep, "%s", dir);
+    while (strlen(deep) < 1180) {
+        strcat(deep, "/ppppppppppppppppppppppppppppppppppppppppppppppppp");
+        mkdir(deep, 0755);
+    }
+    char name[300];
+    memset(name, 'n', 236);
+    strcpy(name + 236, ".ini");
+    char case_path[1800];
+    snprintf(case_path, sizeof case_path, "%s/%s", dir, name);
+    const char *scene = "[integrator]\nperiods = 1\nsteps_per_period = 20\n[model]\ncontact = fast-grid\n";
+    write_bytes(case_path, scene, strlen(scene));
+    char command[4000], out[8192];
+    snprintf(command, sizeof command, "%s run '%s' --out '%s'", binary(), case_path, deep);
+    const int code = run_in(dir, command, out, sizeof out);
+    char history[1800];
+    snprintf(history, sizeof history, "%s/%.236s-history.csv", deep, name);
+    gb_check cl = {"-", "-", "gomboc run into a 1190-character --out with a 240-character case name writes the full names",
+                   "file system", "exact"};
+    gb_check_true(&cl, code == 0 && access(history, F_OK) == 0, "exit %d, %zu-character output path: %.200s", code,
+                  strlen(history), out);
+    remove_tree(dir);
+}
+
+/* A run writes NAME-* outputs only through temporaries ".gomboc-PID-XXXXXX": none may survive a
+ * SIGTERM, and one left by a process killed outright is removed by the next command writing there. */
+static int count_temporaries(const char *dir)
+{
+    int n = 0;
+    DIR *d = opendir(dir);
+    for (struct dirent *e; d && (e = readdir(d));) n += !strncmp(e->d_name, ".gomboc-", 8);
+    if (d) closedir(d);
+    return n;
+}
+
+static void test_temporaries(void)
+{
+    char dir[64] = "/tmp/gomboc-temp-XXXXXX";
+    if (!mkdtemp(dir)) return;
+    char case_path[128];
+    snprintf(case_path, sizeof case_path, "%s/long.ini", dir);
+    const char *scene = "[integrator]\nperiods = 100000\n[model]\ncontact = fast-grid\n";
+    write_bytes(case_path, scene, strlen(scene));
+    const pid_t child = fork();
+    if (child == 0) {
+        freopen("/dev/null", "w", stderr);
+        execl(binary(), "gomboc", "run", case_path, "--out", dir, (char *)NULL);
+        _exit(127);
+    }
+    int seen = 0;
+    for (int k = 0; k < 200 && !seen; k++) { /* up to 10 s for the history's temporary to appear */
+        seen = count_temporaries(dir) > 0;
+        if (!seen) usleep(50000);
+    }
+    kill(child, SIGTERM);
+    int wstatus = 0;
+    waitpid(child, &wstatus, 0);
+    gb_check ct = {"-", "-", "SIGTERM during gomboc run: its temporary existed and is removed, no output appears", "file system", "exact"};
+    char history[160];
+    snprintf(history, sizeof history, "%s/long-history.csv", dir);
+    gb_check_true(&ct, seen && WIFSIGNALED(wstatus) && WTERMSIG(wstatus) == SIGTERM && count_temporaries(dir) == 0 &&
+                       access(history, F_OK) != 0,
+                  "temporary seen %d, signalled %d, temporaries left %d", seen, WIFSIGNALED(wstatus), count_temporaries(dir));
+
+    /* A temporary of a process that is gone (a child that has exited: its pid is free). */
+    const pid_t gone = fork();
+    if (gone == 0) _exit(0);
+    waitpid(gone, NULL, 0);
+    char stale[160], other[160];
+    snprintf(stale, sizeof stale, "%s/.gomboc-%ld-Ab3dEf", dir, (long)gone);
+    snprintf(other, sizeof other, "%s/.gomboc-notours", dir);
+    write_bytes(stale, "half", 4);
+    write_bytes(other, "not a temporary of ours", 23);
+    const char *quick = "[integrator]\nperiods = 1\nsteps_per_period = 20\n[model]\ncontact = fast-grid\n";
+    write_bytes(case_path, quick, strlen(quick));
+    char command[400], out[4096];
+    snprintf(command, sizeof command, "%s run '%s' --out '%s'", binary(), case_path, dir);
+    const int code = run_in(dir, command, out, sizeof out);
+    gb_check cs = {"-", "-", "a temporary left by a killed process is removed by the next run in its directory; other files stay",
+                   "file system", "exact"};
+    gb_check_true(&cs, code == 0 && access(stale, F_OK) != 0 && access(other, F_OK) == 0, "exit %d, stale %s, other %s", code,
+                  access(stale, F_OK) ? "removed" : "LEFT", access(other, F_OK) ? "REMOVED" : "kept");
+    remove_tree(dir);
+}
+
+/* cases/README.md states, for every key, the allowed values the reader enforces, in the same words. */
+static void test_documented_ranges(void)
+{
+    FILE *f = fopen("cases/README.md", "r");
+    static char text[1 << 17];
+    const size_t n = f ? fread(text, 1, sizeof text - 1, f) : 0;
+    if (f) fclose(f);
+    text[n] = '\0';
+    size_t documented = 0;
+    const size_t total = gb_case_key_count();
+    char missing[2048] = "";
+    for (size_t k = 0; k < total; k++) {
+        const char *section, *name;
+        char allowed[256], row[400];
+        gb_case_key_allowed(k, &section, &name, allowed, sizeof allowed);
+        snprintf(row, sizeof row, "| `[%s]` | `%s` | %s |", section, name, allowed);
+        if (strstr(text, row)) documented++;
+        else if (strlen(missing) < sizeof missing - 300) strcat(missing, row), strcat(missing, "\n");
+    }
+    gb_check c = {"-", "-", "cases/README.md has a row `| [section] | key | allowed |` for every key, as the reader enforces it",
+                  "gb_case_key_allowed", "exact"};
+    gb_check_true(&c, documented == total, "%zu of %zu keys documented; missing or different:\n%s", documented, total, missing);
+}
+
+int verify_register_bad_input(void)
+{
+    static const verify_test tests[] = {
+        {"bad input: every row refused with exit status, key or option, range, and nothing written", test_bad_input_table},
+        {"bad input: strict but fair (valid values accepted, long paths whole)", test_strict_but_fair},
+        {"bad input: temporaries removed after SIGTERM and after a kill -9", test_temporaries},
+        {"bad input: the documented ranges are the enforced ranges", test_documented_ranges},
+        {NULL, NULL},
+    };
+    return verify_register_suite("Bad input, never misread", tests);
+}
