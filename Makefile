@@ -28,7 +28,8 @@ VERIFY_BIN := $(BUILD)/verify-gomboc
 BENCH_BIN  := $(BUILD)/bench-gomboc
 
 .PHONY: all deps run verify verify-full bench references report install clean \
-        build run-only verify-only references-only bench-only
+        build run-only verify-only references-only bench-only fuzz fuzz-only sanitize sanitize-only \
+        valgrind valgrind-only
 
 all: deps
 	@$(MAKE) --no-print-directory build
@@ -96,7 +97,89 @@ bench-only: $(BENCH_BIN)
 # Everything `make verify` does, plus the long studies (harness --full): continuous rolling over 10000
 # periods, post-transient exponents of the unforced bodies. A few minutes more.
 verify-full: deps
+	@sh scripts/install-deps.sh fuzz
+	@$(MAKE) --no-print-directory fuzz-only FUZZ_SECONDS=30
 	@$(MAKE) --no-print-directory verify-only VERIFY_FLAGS=--full
+
+# --- quality gates on bad input and memory; each writes $(OUT)/gates/GATE.json for the report ----------
+GATES := $(OUT)/gates
+
+# The scene reader and the option parser under libFuzzer (clang, with ASan and UBSan), FUZZ_SECONDS
+# each, seeded from cases/ and verify/fuzz/options.seeds, with a dictionary of the keys and options.
+# A crash or a broken invariant stops it and leaves build-fuzz/crash-*; add such an input to
+# verify/bad_input.c's table.
+FUZZ_SECONDS ?= 300
+FUZZ_DIR     := build-fuzz
+FUZZ_CFLAGS  := -std=c11 -D_GNU_SOURCE -ffp-contract=off -Wall -Wextra -Werror -g -O1 \
+                -fsanitize=address,undefined -fno-sanitize-recover=undefined
+fuzz: deps
+	@sh scripts/install-deps.sh fuzz
+	@$(MAKE) --no-print-directory fuzz-only
+
+fuzz-only: $(FUZZ_DIR)/fuzz-case $(FUZZ_DIR)/fuzz-options
+	@mkdir -p $(FUZZ_DIR)/corpus-case $(FUZZ_DIR)/corpus-options
+	@n=0; while IFS= read -r line; do n=$$((n+1)); printf '%s' "$$line" | tr ' ' '\000' > $(FUZZ_DIR)/corpus-options/seed-$$n; \
+	  done < verify/fuzz/options.seeds
+	status=0; \
+	$(FUZZ_DIR)/fuzz-case -max_total_time=$(FUZZ_SECONDS) -dict=verify/fuzz/case.dict -close_fd_mask=3 \
+	  -artifact_prefix=$(FUZZ_DIR)/crash-case- $(FUZZ_DIR)/corpus-case cases > $(FUZZ_DIR)/fuzz-case.log 2>&1 || status=1; \
+	$(FUZZ_DIR)/fuzz-options -max_total_time=$(FUZZ_SECONDS) -dict=verify/fuzz/options.dict -close_fd_mask=3 \
+	  -artifact_prefix=$(FUZZ_DIR)/crash-options- $(FUZZ_DIR)/corpus-options > $(FUZZ_DIR)/fuzz-options.log 2>&1 || status=1; \
+	runs="$$(grep -h '^Done' $(FUZZ_DIR)/fuzz-case.log $(FUZZ_DIR)/fuzz-options.log | tr '\n' ';')"; \
+	tail -n 3 $(FUZZ_DIR)/fuzz-case.log $(FUZZ_DIR)/fuzz-options.log; \
+	sh scripts/gate-stamp.sh $(GATES) fuzz $$status "$(FUZZ_SECONDS) s per target (case reader; option parser): $$runs"; \
+	echo "fuzz: $$( [ $$status -eq 0 ] && echo 'no crash' || echo 'FAILED: see build-fuzz/*.log and build-fuzz/crash-*')"; \
+	exit $$status
+
+$(FUZZ_DIR)/fuzz-case: verify/fuzz/fuzz_case.c $(CORE_SRC) $(wildcard src/*.h)
+	@mkdir -p $(FUZZ_DIR)
+	clang $(FUZZ_CFLAGS) -fsanitize=fuzzer $(shell pkg-config --cflags $(PKGS)) -Isrc -o $@ $< $(CORE_SRC) $(CORE_LIBS)
+
+$(FUZZ_DIR)/fuzz-options: verify/fuzz/fuzz_options.c $(CORE_SRC) $(CLI_SRC) $(wildcard src/*.h)
+	@mkdir -p $(FUZZ_DIR)
+	clang $(FUZZ_CFLAGS) -fsanitize=fuzzer -DGOMBOC_NO_MAIN $(shell pkg-config --cflags $(PKGS)) -Isrc -o $@ $< \
+	  $(CORE_SRC) $(CLI_SRC) $(CORE_LIBS)
+
+# Every check of the harness under AddressSanitizer and UndefinedBehaviorSanitizer (a separate build in
+# build-san; the command the checks run is the sanitized one too). Any report fails the gate.
+SAN_FLAGS := -O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=undefined
+sanitize: deps
+	@$(MAKE) --no-print-directory sanitize-only
+
+sanitize-only:
+	@$(MAKE) --no-print-directory BUILD=build-san CFLAGS="$(SAN_FLAGS)" build-san/gomboc build-san/verify-gomboc
+	@mkdir -p build-san/data
+	status=0; \
+	ASAN_OPTIONS=detect_leaks=1:abort_on_error=0 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+	  GOMBOC_BIN=build-san/gomboc build-san/verify-gomboc --results build-san/checks.json --data build-san/data \
+	  > build-san/verify.log 2>&1 || status=1; \
+	reports=$$(grep -c -E 'ERROR: (Address|Leak)Sanitizer|runtime error:' build-san/verify.log || true); \
+	summary=$$(grep -A3 'Run Summary' build-san/verify.log | tail -n 1 | tr -s ' '); \
+	tail -n 6 build-san/verify.log; \
+	sh scripts/gate-stamp.sh $(GATES) sanitize $$status "ASan+UBSan, every check: $$reports sanitizer reports;$$summary"; \
+	echo "sanitize: $$reports sanitizer reports (log: build-san/verify.log)"; \
+	exit $$status
+
+# One short scene of each model (verify/valgrind/*.ini) and the shape and contact commands under
+# valgrind's memcheck: any error or definite/indirect leak fails the gate.
+VALGRIND := valgrind --quiet --error-exitcode=3 --leak-check=full --errors-for-leak-kinds=definite,indirect \
+            --show-leak-kinds=definite,indirect
+valgrind: deps
+	@sh scripts/install-deps.sh valgrind
+	@$(MAKE) --no-print-directory valgrind-only
+
+valgrind-only: $(BIN)
+	@mkdir -p $(BUILD)/valgrind
+	status=0; n=0; \
+	for s in verify/valgrind/*.ini; do n=$$((n+1)); \
+	  $(VALGRIND) $(BIN) run $$s --out $(BUILD)/valgrind || { status=1; echo "valgrind: $$s FAILED"; }; done; \
+	$(VALGRIND) $(BIN) shape --morphology II --beta 0.12 --json > /dev/null || { status=1; echo "valgrind: shape FAILED"; }; \
+	$(VALGRIND) $(BIN) contact --morphology I --beta 0.12 --zb 0.6,0.6,-0.5 --method continuous --json \
+	  --landscape $(BUILD)/valgrind/landscape.csv --zoom $(BUILD)/valgrind/zoom.csv > /dev/null || { status=1; echo "valgrind: contact FAILED"; }; \
+	$(VALGRIND) $(BIN) run verify/valgrind/missing.ini 2> /dev/null; [ $$? -eq 2 ] || { status=1; echo "valgrind: bad input FAILED"; }; \
+	sh scripts/gate-stamp.sh $(GATES) valgrind $$status "memcheck: $$n scenes (verify/valgrind), shape, contact and a refused input"; \
+	echo "valgrind: $$( [ $$status -eq 0 ] && echo 'no errors, no leaks' || echo FAILED)"; \
+	exit $$status
 
 references: deps
 	@$(MAKE) --no-print-directory references-only
@@ -113,7 +196,7 @@ install: deps
 	install -m 755 $(BIN) $(DESTDIR)/usr/local/bin/gomboc
 
 clean:
-	rm -rf $(BUILD) $(OUT)
+	rm -rf $(BUILD) $(OUT) build-san $(FUZZ_DIR)
 
 # --- compilation
 $(BUILD)/obj/%.o: src/%.c $(wildcard src/*.h) | $(BUILD)/obj

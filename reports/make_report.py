@@ -33,7 +33,31 @@ SECTION_FILES = {
     "Sections 6, 8.2: Lyapunov exponents and chaos": "verify/s6_chaos.c",
     "Sections 6, 8.2: stroboscopic maps and spectra": "verify/s6_diagnostics.c",
     "The gomboc command": "verify/command.c",
+    "Bad input, never misread": "verify/bad_input.c",
 }
+
+GATES = (("fuzz", "make fuzz", "the scene reader and the option parser under libFuzzer with ASan and UBSan"),
+         ("sanitize", "make sanitize", "every check of the harness built with ASan and UBSan"),
+         ("valgrind", "make valgrind", "one short scene of each model, shape and contact under memcheck"))
+
+
+def gate_lines(out):
+    """When each quality gate last ran in this checkout and what it gave (OUT/gates/GATE.json, written by
+    scripts/gate-stamp.sh); a gate never run here says so."""
+    lines = ["## Quality gates on bad input and memory", "",
+             "`make verify` runs the table of bad inputs (suite 'Bad input, never misread'). The gates below run "
+             "apart, by their own targets; this table reads what they last recorded in this checkout.", "",
+             "| gate | what it runs | last run (UTC) | commit | result | detail |", "|---|---|---|---|---|---|"]
+    for name, target, what in GATES:
+        path = os.path.join(out, "gates", f"{name}.json")
+        if not os.path.exists(path):
+            lines.append(f"| `{target}` | {what} | not run in this checkout | — | — | — |")
+            continue
+        g = load_json(path)
+        commit = g["commit"] + (" (with uncommitted changes)" if g.get("uncommitted_changes") else "")
+        result = g["result"] if g["result"] == "passed" else f"**{g['result']}**"
+        lines.append(f"| `{target}` | {what} | {g['date']} | {commit} | {result} | {g['detail'].replace('|', '/')} |")
+    return lines + [""]
 
 
 def command_output(args):
@@ -100,6 +124,7 @@ def main():
              f"{len(findings)} findings about the paper (a finding passes when its evidence is conclusive).", "",
              "## Environment", "", "| item | value |", "|---|---|"]
     lines += [f"| {k} | {v} |" for k, v in environment(cc, cflags)]
+    lines += [""] + gate_lines(out)
     lines += ["", "## What the paper claims and what we measured", "",
               "| section | paper claims | we measured | claim holds |", "|---|---|---|---|"]
     for r in findings:

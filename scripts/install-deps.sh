@@ -1,9 +1,19 @@
 #!/bin/sh
 # Install the Debian packages gomboc needs, only those missing. Needs root (or sudo) when
 # anything is missing; does nothing, and needs no privileges, when everything is present.
+#   install-deps.sh            what every build, run and verify needs
+#   install-deps.sh fuzz       and clang with its libFuzzer runtime (make fuzz)
+#   install-deps.sh valgrind   and valgrind (make valgrind)
 set -eu
 packages="build-essential pkg-config libgsl-dev libcunit1-dev libinih-dev libcjson-dev libqhull-dev
 python3 python3-numpy python3-scipy python3-matplotlib"
+for extra in "$@"; do
+    case "$extra" in
+        fuzz) packages="$packages clang libclang-rt-dev" ;;
+        valgrind) packages="$packages valgrind" ;;
+        *) echo "install-deps: unknown extra '$extra' (allowed: fuzz, valgrind)" >&2; exit 2 ;;
+    esac
+done
 missing=""
 for p in $packages; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"
