@@ -29,7 +29,7 @@ BENCH_BIN  := $(BUILD)/bench-gomboc
 
 .PHONY: all deps run verify verify-full bench references report install clean \
         build run-only verify-only references-only bench-only fuzz fuzz-only sanitize sanitize-only \
-        valgrind valgrind-only
+        valgrind valgrind-only install-only example-only
 
 all: deps
 	@$(MAKE) --no-print-directory build
@@ -68,6 +68,7 @@ FIG2     = $(BIN) contact --beta 0.12 --zb $(FIG2_ZB) --json
 
 verify-only: $(BIN) $(VERIFY_BIN)
 	@$(MAKE) --no-print-directory run-only
+	@$(MAKE) --no-print-directory example-only
 	@mkdir -p $(OUT)
 	for s in $(filter-out $(RUN_SCENES),$(VERIFY_SCENES)); do $(BIN) run cases/$$s.ini --out $(OUT) || exit 1; done
 	$(PYTHON) reports/run_report.py $(OUT) $(VERIFY_SCENES)
@@ -190,10 +191,31 @@ references-only:
 	$(PYTHON) references/dynamics.py > references/dynamics.json.tmp && mv references/dynamics.json.tmp references/dynamics.json
 	$(PYTHON) references/spectrum.py > references/spectrum.json.tmp && mv references/spectrum.json.tmp references/spectrum.json
 
+# The command, the library, its public headers (src/gomboc.h includes them all; the internal ones,
+# *_internal.h, gb_interval.h, gb_arena.h and gb_vec.h, stay) and a
+# pkg-config file, under $(DESTDIR)$(PREFIX).
+PREFIX  ?= /usr/local
+VERSION := $(shell git describe --always --dirty 2>/dev/null || echo unknown)
+PUBLIC_HEADERS = src/gomboc.h $(filter-out %_internal.h src/gb_interval.h src/gb_arena.h src/gb_vec.h,$(wildcard src/gb_*.h))
+
 install: deps
 	@$(MAKE) --no-print-directory build
-	install -d $(DESTDIR)/usr/local/bin
-	install -m 755 $(BIN) $(DESTDIR)/usr/local/bin/gomboc
+	@$(MAKE) --no-print-directory install-only
+
+install-only: $(BIN) $(LIB)
+	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/lib/pkgconfig $(DESTDIR)$(PREFIX)/include/gomboc
+	install -m 755 $(BIN) $(DESTDIR)$(PREFIX)/bin/gomboc
+	install -m 644 $(LIB) $(DESTDIR)$(PREFIX)/lib/libgomboc.a
+	install -m 644 $(PUBLIC_HEADERS) $(DESTDIR)$(PREFIX)/include/gomboc/
+	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(VERSION)|' scripts/gomboc.pc.in > $(DESTDIR)$(PREFIX)/lib/pkgconfig/gomboc.pc
+
+# The README's example, compiled against a staged install with pkg-config and run (make verify).
+STAGE := $(abspath $(BUILD))/stage
+example-only: $(BIN) $(LIB)
+	@$(MAKE) --no-print-directory install-only DESTDIR=$(STAGE) PREFIX=/usr/local > /dev/null
+	$(CC) -std=c11 -Wall -Wextra -Werror examples/contact_and_scene.c -o $(BUILD)/example \
+	  $$(PKG_CONFIG_PATH=$(STAGE)/usr/local/lib/pkgconfig pkg-config --define-variable=prefix=$(STAGE)/usr/local --cflags --libs gomboc)
+	$(BUILD)/example verify/valgrind/paper-grid.ini
 
 clean:
 	rm -rf $(BUILD) $(OUT) build-san $(FUZZ_DIR)
@@ -205,7 +227,9 @@ $(BUILD)/obj/%.o: src/%.c $(wildcard src/*.h) | $(BUILD)/obj
 $(BUILD)/obj/verify_%.o: verify/%.c $(wildcard src/*.h verify/*.h) | $(BUILD)/obj
 	$(CC) $(ALL_CFLAGS) -Iverify -c $< -o $@
 
+# Made anew each time: an object whose source was removed must not stay in the archive.
 $(LIB): $(CORE_OBJ)
+	rm -f $@
 	ar rcs $@ $^
 
 $(BIN): $(CLI_OBJ) $(LIB)

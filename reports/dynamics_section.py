@@ -79,6 +79,15 @@ def dynamics_section(out, rows):
                      f"{branches} | {certified} | {s['energy_residual_max']:.3g} | "
                      f"{100 * m.get('geff_nonpositive_fraction', float('nan')):.1f} % | "
                      f"{100 * m.get('lift_off_fraction', float('nan')):.1f} % | {m.get('friction_needed_max', float('nan')):.3f} |")
+    lines += ["", "**Determinism fingerprints.** Each run's summary carries an FNV-1a hash of its final state and one "
+              "of its switch sequence (`gomboc run` prints both on its last line). The same binary and libm give "
+              "the same two hashes on any machine; a different compiler or libm may change the last bits of a "
+              "chaotic run, and with them both hashes.", "",
+              "| scene | final state | switch sequence |", "|---|---|---|"]
+    for n in names:
+        fp = load_json(os.path.join(out, f"{n}-summary.json")).get("fingerprint")
+        if fp:
+            lines.append(f"| `{n}` | `{fp['final_state']}` | `{fp['switches']}` |")
     for r in fractions:
         if r["measured"] > 0:
             reading = r["quantity"].split("read in ")[-1]

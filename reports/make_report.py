@@ -24,17 +24,17 @@ from contact_section import contact_section  # noqa: E402
 from dynamics_section import dynamics_section  # noqa: E402
 from chaos_section import chaos_section  # noqa: E402
 
-SECTION_FILES = {
-    "Section 2: surface geometry (eqs 1-19, 66-68)": "verify/s2_surface.c",
-    "Section 2: mass properties (nested GSL quadrature)": "verify/s2_massprops.c",
-    "Section 2: the paper's claims about the bodies": "verify/s2_shape.c",
-    "Section 4: contact selection": "verify/s4_contact.c",
-    "Sections 3, 5: dynamics and energy": "verify/s5_dynamics.c",
-    "Sections 6, 8.2: Lyapunov exponents and chaos": "verify/s6_chaos.c",
-    "Sections 6, 8.2: stroboscopic maps and spectra": "verify/s6_diagnostics.c",
-    "The gomboc command": "verify/command.c",
-    "Bad input, never misread": "verify/bad_input.c",
-}
+CHECKS_SCHEMA = 2  # verify/gb_check.h GB_CHECK_SCHEMA: {"schema": 2, "rows": [...]}, rows name suite and file
+
+
+def load_checks(path):
+    """The rows the harness recorded; refuses a file of another schema rather than misreading it."""
+    document = load_json(path)
+    if not isinstance(document, dict) or document.get("schema") != CHECKS_SCHEMA:
+        found = document.get("schema") if isinstance(document, dict) else "none (a bare list)"
+        sys.exit(f"make_report: {path} has schema {found}, this report reads schema {CHECKS_SCHEMA}")
+    return document["rows"]
+
 
 GATES = (("fuzz", "make fuzz", "the scene reader and the option parser under libFuzzer with ASan and UBSan"),
          ("sanitize", "make sanitize", "every check of the harness built with ASan and UBSan"),
@@ -113,7 +113,7 @@ def error_vs_time(out, rows):
 
 def main():
     out, cc, cflags = sys.argv[1], sys.argv[2], sys.argv[3]
-    rows = load_json(os.path.join(out, "checks.json"))
+    rows = load_checks(os.path.join(out, "checks.json"))
     shapes = [(n, load_json(os.path.join(out, f"shape-{n}.json"))) for n in ("I", "II")]
     failed = [r for r in rows if not r["passed"]]
     findings = [r for r in rows if r["kind"] == "finding"]
@@ -126,10 +126,11 @@ def main():
     lines += [f"| {k} | {v} |" for k, v in environment(cc, cflags)]
     lines += [""] + gate_lines(out)
     lines += ["", "## What the paper claims and what we measured", "",
-              "| section | paper claims | we measured | claim holds |", "|---|---|---|---|"]
+              "Each row names what it was measured on (body, model, reading, record length).", "",
+              "| section | paper claims | measured on | we measured | claim holds |", "|---|---|---|---|---|"]
     for r in findings:
-        claim, detail = (text.replace("|", "\\|") for text in (r["claim"], r["detail"]))
-        lines.append(f"| §{r['section']} | {claim} | {detail} | {'yes' if r['paper_holds'] else '**no**'} |")
+        claim, where, detail = (text.replace("|", "\\|") for text in (r["claim"], r["quantity"], r["detail"]))
+        lines.append(f"| §{r['section']} | {claim} | {where} | {detail} | {'yes' if r['paper_holds'] else '**no**'} |")
     # Results that are not findings, stated only as far as their checks passed in this run.
     established = [
         ("eq 2, 40, 53: closed forms for every beta; centroid at the origin",
@@ -204,7 +205,14 @@ def main():
         quantity, oracle, origin = (text.replace("|", "\\|") for text in (r["quantity"], r["oracle"], r["origin"]))
         lines.append(f"| {r['section']} | {r['equation']} | {quantity} | {oracle} | {measured} | {error} | "
                      f"{tol} | {origin} | {r['seconds']:.2g} | {result} |")
-    lines += ["", "## Where the checks live", ""] + [f"- {k}: `{v}`" for k, v in SECTION_FILES.items()] + [""]
+    # Each suite and the files its checks are written in, as the harness recorded them.
+    where = {}
+    for r in rows:
+        where.setdefault(r["suite"], [])
+        if r["file"] not in where[r["suite"]]:
+            where[r["suite"]].append(r["file"])
+    lines += ["", "## Where the checks live", ""] + \
+             [f"- {suite}: " + ", ".join(f"`{f}`" for f in files) for suite, files in where.items()] + [""]
     write_atomically(os.path.join(out, "verification.md"), "\n".join(lines))
 
 

@@ -72,13 +72,9 @@ typedef struct key_def {
 
 static int parse_morphology(const char *value, gb_case *c)
 {
-    char allowed[128] = "";
-    size_t used = 0;
-    for (size_t k = 0; k < gb_surface_morphology_count(); k++)
-        used += (size_t)snprintf(allowed + used, sizeof allowed - used, "%s%s", k ? ", " : "", gb_surface_morphology_at(k)->name);
-    if (!gb_surface_morphology_find(value)) return gb_error_set(GB_EINVAL, "morphology '%s' is unknown (allowed: %s)", value, allowed);
-    snprintf(c->morphology, sizeof c->morphology, "%s", value);
-    return GB_OK;
+    const int status = gb_surface_init(&(gb_surface){0}, value, 0.0); /* its message lists the morphologies */
+    if (!status) snprintf(c->morphology, sizeof c->morphology, "%s", value);
+    return status;
 }
 static int parse_units(const char *value, gb_case *c)
 {
@@ -89,7 +85,7 @@ static int parse_units(const char *value, gb_case *c)
     return status;
 }
 static int parse_equation(const char *value, gb_case *c) { return gb_dynamics_variant_parse(value, &c->dynamics.variant); }
-static int parse_contact(const char *value, gb_case *c) { return gb_dynamics_contact_parse(value, &c->dynamics.contact); }
+static int parse_contact(const char *value, gb_case *c) { return gb_contact_model_parse(value, &c->dynamics.contact); }
 static int parse_nodes(const char *value, gb_case *c) { return gb_contact_nodes_parse(value, &c->dynamics.grid.nodes); }
 static int parse_method(const char *value, gb_case *c) { return gb_integrate_parse(value, &c->integrate.method); }
 static int parse_window(const char *value, gb_case *c) { return gb_window_parse(value, &c->spectrum_window); }
@@ -501,7 +497,7 @@ static int cross_check(const char *path, gb_case *c)
                           "= %s with [model] contact = %s: an adaptive stepper cannot cross the jumps of a grid "
                           "contact (its steps collapse at every node change) (allowed: rk4 with grid or fast-grid; "
                           "any method with contact = continuous)",
-                          gb_integrate_name(c->integrate.method), gb_dynamics_contact_name(c->dynamics.contact));
+                          gb_integrate_name(c->integrate.method), gb_contact_model_name(c->dynamics.contact));
     if (c->strobe || c->spectrum || c->lyapunov) {
         if (spp % c->integrate.sample_every)
             return cross_fail(path, c, "output", "sample_every",

@@ -1,12 +1,13 @@
 #include "gb_certify.h"
 
+#include "gb_arena.h"
 #include "gb_error.h"
+#include "gb_surface_internal.h"
 #include "gb_vec.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/mman.h>
 #include <time.h>
 
 /* Rounding allowances of the per-check tests, which use plain double sums of a few products of
@@ -74,26 +75,17 @@ typedef struct basin {
     gb_contact_point point; /* its minimum at the current vertical */
 } basin;
 
-/* The split boxes' quads come from blocks of QUADS_PER_BLOCK, handed out in order and released all at
+/* The split boxes' quads come from an arena (gb_arena: 2 MiB blocks, huge-page advice), released all at
  * once (a cache restart, or gb_certify_free): a run creates tens of thousands of quads and never frees
- * one alone. Blocks are 2 MiB-aligned and offered to the kernel as huge pages where it takes the advice:
- * on this machine each first touch of a 4 KiB page cost about 5 µs (a virtualised page fault), 10 % of
- * the certified run before blocks. */
-#define BLOCK_BYTES ((size_t)2 << 20)
-#define QUADS_PER_BLOCK (BLOCK_BYTES / sizeof(quad))
-
-typedef struct block {
-    struct block *next;
-    size_t used;
-    quad *quads;
-} block;
+ * one alone. On this machine each first touch of a 4 KiB page cost about 5 µs (a virtualised page
+ * fault), 10 % of the certified run before the arena. */
 
 struct gb_certify {
     gb_surface surface;
     gb_certify_def def;
     node roots[ROOT_COUNT];
     gb_surface_enclosure root_enclosures[ROOT_COUNT];
-    block *blocks;   /* the newest first */
+    gb_arena quads;  /* every split box's four children */
     size_t nodes;
     unsigned long epoch, next_serial;
     basin basins[BASIN_SLOTS];
@@ -142,37 +134,13 @@ static void node_fill(const gb_certify *c, node *n, gb_surface_enclosure *e, int
     n->xbb_mag = norm_of_mags(e->x_bb);
 }
 
-static quad *quad_take(gb_certify *c)
-{
-    block *b = c->blocks;
-    if (!b || b->used == QUADS_PER_BLOCK) {
-        b = malloc(sizeof *b);
-        void *mem = NULL;
-        if (!b || posix_memalign(&mem, BLOCK_BYTES, QUADS_PER_BLOCK * sizeof(quad))) {
-            free(b);
-            return NULL;
-        }
-#ifdef MADV_HUGEPAGE
-        madvise(mem, QUADS_PER_BLOCK * sizeof(quad), MADV_HUGEPAGE); /* advice only: ignored where unsupported */
-#endif
-        b->quads = mem;
-        b->used = 0;
-        b->next = c->blocks;
-        c->blocks = b;
-    }
-    return &b->quads[b->used++];
-}
+static quad *quad_take(gb_certify *c) { return gb_arena_take(&c->quads); }
 
 /* Release every quad: the roots lose their children. */
 static void quads_release(gb_certify *c)
 {
     for (int k = 0; k < ROOT_COUNT; k++) c->roots[k].child = NULL;
-    while (c->blocks) {
-        block *b = c->blocks;
-        c->blocks = b->next;
-        free(b->quads);
-        free(b);
-    }
+    gb_arena_release(&c->quads);
 }
 
 static int node_split(gb_certify *c, node *n)
@@ -617,6 +585,7 @@ int gb_certify_create(const gb_surface *surface, const gb_certify_def *def, gb_c
     if (!c) return gb_error_set(GB_ENOMEM, "out of memory for the contact certificate");
     c->surface = *surface;
     c->def = *def;
+    gb_arena_init(&c->quads, sizeof(quad));
     c->epoch = 1;
     c->last_half_width = BASIN_MAX_HALF_WIDTH;
     int k = 0;

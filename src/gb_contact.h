@@ -35,6 +35,19 @@ const char *gb_contact_nodes_name(gb_contact_nodes nodes);
 /* Parse a name; GB_EINVAL naming the allowed values when unknown. */
 int gb_contact_nodes_parse(const char *name, gb_contact_nodes *nodes);
 
+/* The contact models a run may use: the paper's brute-force grid (§8), the same nodes found by the
+ * exact fast search and tracker, and the certified continuous minimum. */
+typedef enum gb_contact_model {
+    GB_CONTACT_MODEL_GRID = 0,
+    GB_CONTACT_MODEL_FAST_GRID = 1,
+    GB_CONTACT_MODEL_CONTINUOUS = 2
+} gb_contact_model;
+
+/* "grid" / "fast-grid" / "continuous"; NULL for an unknown value. */
+const char *gb_contact_model_name(gb_contact_model model);
+/* Parse a name; GB_EINVAL naming the allowed values when unknown (or NULL). */
+int gb_contact_model_parse(const char *name, gb_contact_model *model);
+
 typedef struct gb_contact_grid_def {
     size_t n_phi, n_theta;   /* Table 1: 90 × 180; each at least 2 (linspace) or 1 (centred) */
     gb_contact_nodes nodes;  /* default centred */

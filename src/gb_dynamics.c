@@ -9,10 +9,8 @@
 #include <string.h>
 
 static const char *const variant_names[] = {"paper", "rolling"};
-static const char *const contact_names[] = {"grid", "fast-grid", "continuous"};
 
 const char *gb_dynamics_variant_name(gb_dynamics_variant v) { return (unsigned)v < 2 ? variant_names[v] : NULL; }
-const char *gb_dynamics_contact_name(gb_contact_model m) { return (unsigned)m < 3 ? contact_names[m] : NULL; }
 
 int gb_dynamics_variant_parse(const char *name, gb_dynamics_variant *variant)
 {
@@ -22,13 +20,6 @@ int gb_dynamics_variant_parse(const char *name, gb_dynamics_variant *variant)
     return status;
 }
 
-int gb_dynamics_contact_parse(const char *name, gb_contact_model *model)
-{
-    int k = 0;
-    const int status = gb_error_parse_name(name, contact_names, 3, "contact model", &k);
-    if (!status) *model = (gb_contact_model)k;
-    return status;
-}
 
 gb_dynamics_def gb_dynamics_default_def(void)
 {
@@ -81,7 +72,7 @@ size_t gb_dynamics_grid_size(const gb_dynamics *d) { return d->grid ? gb_contact
 int gb_dynamics_create(const gb_surface *surface, const gb_dynamics_def *def, gb_dynamics **out)
 {
     *out = NULL;
-    if (!gb_dynamics_variant_name(def->variant) || !gb_dynamics_contact_name(def->contact))
+    if (!gb_dynamics_variant_name(def->variant) || !gb_contact_model_name(def->contact))
         return gb_error_set(GB_EINVAL, "unknown equation variant %d or contact model %d", (int)def->variant,
                             (int)def->contact);
     if (!(isfinite(def->mass) && def->mass > 0.0))

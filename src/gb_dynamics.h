@@ -30,16 +30,9 @@
 enum { GB_STATE_Q = 0, GB_STATE_OMEGA = 4, GB_STATE_WORK = 7, GB_STATE_SIZE = 8 };
 
 typedef enum gb_dynamics_variant { GB_VARIANT_PAPER = 0, GB_VARIANT_ROLLING = 1 } gb_dynamics_variant;
-typedef enum gb_contact_model {
-    GB_CONTACT_MODEL_GRID = 0,
-    GB_CONTACT_MODEL_FAST_GRID = 1,
-    GB_CONTACT_MODEL_CONTINUOUS = 2
-} gb_contact_model;
 
 const char *gb_dynamics_variant_name(gb_dynamics_variant variant);
 int gb_dynamics_variant_parse(const char *name, gb_dynamics_variant *variant);
-const char *gb_dynamics_contact_name(gb_contact_model model);
-int gb_dynamics_contact_parse(const char *name, gb_contact_model *model);
 
 typedef struct gb_dynamics_def {
     gb_dynamics_variant variant;

@@ -15,6 +15,9 @@
 #include <float.h>
 #include <math.h>
 
+/* π as glibc's M_PI writes it (the same double), so that this header needs no _GNU_SOURCE. */
+#define GB_INTERVAL_PI 3.14159265358979323846
+
 typedef struct gb_interval {
     double lo, hi;
 } gb_interval;
@@ -73,27 +76,27 @@ static inline gb_interval gb_interval_sqrt(gb_interval a)
  * so an extremum of sin or cos is never missed through the rounding of π. */
 static inline int gb_interval_holds_phase(gb_interval a, double c)
 {
-    const double k = ceil((a.lo - c - 1e-12) / (2.0 * M_PI));
-    return c + 2.0 * M_PI * k <= a.hi + 1e-12;
+    const double k = ceil((a.lo - c - 1e-12) / (2.0 * GB_INTERVAL_PI));
+    return c + 2.0 * GB_INTERVAL_PI * k <= a.hi + 1e-12;
 }
 
 static inline gb_interval gb_interval_cos(gb_interval a)
 {
-    if (!(a.hi - a.lo < 2.0 * M_PI)) return (gb_interval){-1.0, 1.0};
+    if (!(a.hi - a.lo < 2.0 * GB_INTERVAL_PI)) return (gb_interval){-1.0, 1.0};
     const double c0 = cos(a.lo), c1 = cos(a.hi);
     double lo = gb_interval_min(c0, c1), hi = gb_interval_max(c0, c1);
     if (gb_interval_holds_phase(a, 0.0)) hi = 1.0;
-    if (gb_interval_holds_phase(a, M_PI)) lo = -1.0;
+    if (gb_interval_holds_phase(a, GB_INTERVAL_PI)) lo = -1.0;
     return (gb_interval){gb_interval_max(-1.0, gb_interval_down(lo)), gb_interval_min(1.0, gb_interval_up(hi))};
 }
 
 static inline gb_interval gb_interval_sin(gb_interval a)
 {
-    if (!(a.hi - a.lo < 2.0 * M_PI)) return (gb_interval){-1.0, 1.0};
+    if (!(a.hi - a.lo < 2.0 * GB_INTERVAL_PI)) return (gb_interval){-1.0, 1.0};
     const double s0 = sin(a.lo), s1 = sin(a.hi);
     double lo = gb_interval_min(s0, s1), hi = gb_interval_max(s0, s1);
-    if (gb_interval_holds_phase(a, 0.5 * M_PI)) hi = 1.0;
-    if (gb_interval_holds_phase(a, 1.5 * M_PI)) lo = -1.0;
+    if (gb_interval_holds_phase(a, 0.5 * GB_INTERVAL_PI)) hi = 1.0;
+    if (gb_interval_holds_phase(a, 1.5 * GB_INTERVAL_PI)) lo = -1.0;
     return (gb_interval){gb_interval_max(-1.0, gb_interval_down(lo)), gb_interval_min(1.0, gb_interval_up(hi))};
 }
 

@@ -1,9 +1,10 @@
-#include "gb_surface.h"
+#include "gb_surface_internal.h"
 
 #include "gb_error.h"
 #include "gb_vec.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 /* Morphology I: χ₁ = θ − 5φ (eq 8); ∂φχ₁ = −5, ∂θχ₁ = 1 (eq 18). */
@@ -77,9 +78,13 @@ const gb_morphology *gb_surface_morphology_find(const char *name)
 int gb_surface_init(gb_surface *surface, const char *morphology, double beta)
 {
     const gb_morphology *m = gb_surface_morphology_find(morphology);
-    if (!m)
-        return gb_error_set(GB_EINVAL, "morphology '%s' is unknown (allowed: I, II)",
-                            morphology ? morphology : "(null)");
+    if (!m) {
+        char allowed[128] = "";
+        size_t used = 0;
+        for (size_t k = 0; k < gb_surface_morphology_count() && used < sizeof allowed; k++)
+            used += (size_t)snprintf(allowed + used, sizeof allowed - used, "%s%s", k ? ", " : "", morphologies[k].name);
+        return gb_error_set(GB_EINVAL, "morphology '%s' is unknown (allowed: %s)", morphology ? morphology : "(null)", allowed);
+    }
     if (!(beta >= 0.0 && beta < GB_SURFACE_BETA_MAX))
         return gb_error_set(GB_EDOM,
                             "beta = %.17g is outside [0, 0.25): r^4 = 1 + 4 beta sin(phi) cos(chi) "

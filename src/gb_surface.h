@@ -9,11 +9,12 @@
 #ifndef GB_SURFACE_H
 #define GB_SURFACE_H
 
-#include "gb_interval.h"
 
 #include <stddef.h>
 
 /* χ and its derivatives at one (φ, θ). */
+struct gb_jet; /* an interval jet: gb_interval.h, internal */
+
 typedef struct gb_phase_value {
     double chi, chi_phi, chi_theta, chi_phiphi, chi_phitheta, chi_thetatheta;
 } gb_phase_value;
@@ -25,7 +26,7 @@ typedef struct gb_morphology {
     void (*phase)(double phi, double theta, gb_phase_value *out);
     /* sinφ cos χ as an interval jet of the unit direction s (for gb_surface_enclose); returns 1 when
      * it is C² over the jet's box, 0 when its second derivatives hold the Hessian only where it exists. */
-    int (*kernel_jet)(const gb_jet s[3], gb_jet *out);
+    int (*kernel_jet)(const struct gb_jet *s, struct gb_jet *out); /* s: three jets (gb_interval.h) */
     /* A unit vector on the body's two-fold rotation axis through the minimum of r (see
      * gb_shape): the rotation by π about it maps the surface onto itself. */
     double symmetry_axis[3];
@@ -88,24 +89,5 @@ void gb_surface_chart_direction(gb_surface_chart chart, double a, double b, doub
 /* Chart coordinates of the direction (φ, θ) (b in [0, 2π) for POLAR_X), and back (θ in [0, 2π)). */
 void gb_surface_chart_coordinates(gb_surface_chart chart, double phi, double theta, double *a, double *b);
 void gb_surface_chart_angles(gb_surface_chart chart, double a, double b, double *phi, double *theta);
-
-/* Intervals that hold x and its first and second chart derivatives at every point of the box
- * [a_lo, a_hi] × [b_lo, b_hi] (interval arithmetic with outward widening, see gb_interval.h; value and
- * tangents also by Taylor forms about the centre, met with the direct enclosure). `smooth` is 0 when the
- * box may hold a point where the surface is not C² (morphology I at ±e_z); the second-derivative
- * intervals then hold the Hessian wherever it exists (the surface is C¹,¹ there). */
-typedef struct gb_surface_enclosure {
-    gb_interval x[3], x_a[3], x_b[3], x_aa[3], x_ab[3], x_bb[3];
-    /* At the box centre (a_c, b_c) = midpoints: x, x_a, x_b (narrow intervals), and the offsets of the
-     * box from it, a − a_c ∈ da and b − b_c ∈ db. A caller that contracts x with a vector d first can
-     * bound d·x over the box by the Taylor form d·x_c + (d·x_a,c) da + (d·x_b,c) db + ½ d·x''(da, db),
-     * whose first-order term keeps the cancellation in d·x_a (small near a critical point). */
-    gb_interval x_c[3], x_a_c[3], x_b_c[3];
-    gb_interval da, db;
-    int smooth;
-} gb_surface_enclosure;
-
-void gb_surface_enclose(const gb_surface *surface, gb_surface_chart chart, double a_lo, double a_hi, double b_lo,
-                        double b_hi, gb_surface_enclosure *out);
 
 #endif

@@ -28,6 +28,12 @@ int cli_input_error(const char *command, const char *fmt, ...)
 
 int cli_parse_only = 0;
 
+const char *cli_allowed(void)
+{
+    const char *list = strstr(gb_error_message(), "(allowed: ");
+    return list ? list : "";
+}
+
 int cli_number(const char *command, const char *option, const char *value, double min, double max, int open,
                const char *allowed, double *out)
 {
@@ -54,8 +60,8 @@ static int listed(const char *opt, const char *const *names)
 static int body_option(const char *command, const char *opt, const char *value, cli_body *body)
 {
     if (!strcmp(opt, "--morphology")) {
-        if (!gb_surface_morphology_find(value))
-            return cli_input_error(command, "--morphology '%s' is unknown%s", value, " (allowed: I, II)");
+        if (gb_surface_init(&(gb_surface){0}, value, 0.0))
+            return cli_input_error(command, "--morphology '%s' is unknown %s", value, cli_allowed());
         body->morphology = value;
         return 0;
     }
@@ -92,7 +98,10 @@ int cli_next_option(const char *command, int argc, char **argv, int *i, const ch
 
 int cli_body_required(const char *command, const cli_body *body)
 {
-    if (!body->morphology) return cli_input_error(command, "missing %s%s", "--morphology", " (allowed: I, II)");
+    if (!body->morphology) {
+        gb_surface_init(&(gb_surface){0}, NULL, 0.0); /* its message lists the morphologies */
+        return cli_input_error(command, "missing --morphology %s", cli_allowed());
+    }
     if (!body->have_beta) return cli_input_error(command, "missing %s%s", "--beta", " (allowed: 0 <= beta < 0.25)");
     return 0;
 }

@@ -4,7 +4,7 @@
 #define GOMBOC_CLI_H
 
 #include "gb_case.h"
-#include "gb_lyapunov.h"
+#include "gb_lyapunov_body.h"
 
 #include <cjson/cJSON.h>
 #include <stdio.h>
@@ -42,6 +42,9 @@ int cli_next_option(const char *command, int argc, char **argv, int *i, const ch
 /* For the option fuzzer (verify/fuzz): when set, a command returns 0 as soon as all its input (options,
  * output targets, the scene file) has been read and judged, before any computation or output. */
 extern int cli_parse_only;
+
+/* The "(allowed: …)" part of the last library error (a name parser's list of names), or "". */
+const char *cli_allowed(void);
 
 /* After parsing: both given? Returns 0 or EXIT_INPUT after printing an error. */
 int cli_body_required(const char *command, const cli_body *body);

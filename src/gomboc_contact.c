@@ -37,8 +37,6 @@ static const char *usage_contact =
     "minimum of h with its height (branches, from continuous minimisation seeded on the 180x360 grid\n"
     "or, for --method continuous, on --grid), and the gap between the two lowest (eqs 38-39).\n";
 
-enum contact_method { METHOD_GRID, METHOD_FAST_GRID, METHOD_CONTINUOUS };
-static const char *const method_names[] = {"grid", "fast-grid", "continuous"};
 
 /* h at every node of `grid` as CSV, written to the member `file` of the command's output set. */
 static int write_landscape(const gb_contact_grid *grid, const double zb[3], FILE *file)
@@ -106,7 +104,8 @@ int command_contact(int argc, char **argv)
 {
     const char *landscape = NULL, *zoom = NULL;
     double zb[3] = {0, 0, 0}, zoom_halfwidth = 0.25;
-    int json = 0, have_zb = 0, have_grid = 0, method = -1;
+    int json = 0, have_zb = 0, have_grid = 0, have_method = 0;
+    gb_contact_model method = GB_CONTACT_MODEL_GRID;
     cli_body body = {NULL, NAN, 0};
     gb_contact_grid_def grid_def = gb_contact_grid_default_def();
     static const char *const valued[] = {"--morphology", "--beta", "--zb", "--method", "--grid", "--nodes",
@@ -131,11 +130,9 @@ int command_contact(int argc, char **argv)
                 return cli_input_error("contact", "--zb '%s' is the zero vector%s", value, zb_allowed);
             have_zb = 1;
         } else if (!strcmp(opt, "--method")) {
-            for (int k = 0; k < 3; k++)
-                if (!strcmp(value, method_names[k])) method = k;
-            if (method < 0)
-                return cli_input_error("contact", "--method '%s' is unknown%s", value,
-                                       " (allowed: grid, fast-grid, continuous)");
+            if (gb_contact_model_parse(value, &method))
+                return cli_input_error("contact", "--method '%s' is unknown %s", value, cli_allowed());
+            have_method = 1;
         } else if (!strcmp(opt, "--grid")) {
             unsigned long long np, nt;
             const gb_parse_result p = gb_parse_pair(value, GB_CONTACT_GRID_MAX_NODES, &np, &nt);
@@ -147,7 +144,7 @@ int command_contact(int argc, char **argv)
             have_grid = 1;
         } else if (!strcmp(opt, "--nodes")) {
             if (gb_contact_nodes_parse(value, &grid_def.nodes))
-                return cli_input_error("contact", "--nodes '%s' is unknown%s", value, " (allowed: centred, linspace)");
+                return cli_input_error("contact", "--nodes '%s' is unknown %s", value, cli_allowed());
         } else if (!strcmp(opt, "--landscape")) {
             landscape = value;
         } else if (!strcmp(opt, "--zoom")) {
@@ -162,8 +159,10 @@ int command_contact(int argc, char **argv)
     const char *morphology = body.morphology;
     const double beta = body.beta;
     if (!have_zb) return cli_input_error("contact", "missing %s%s", "--zb", " (allowed: X,Y,Z, not all zero)");
-    if (method < 0)
-        return cli_input_error("contact", "missing %s%s", "--method", " (allowed: grid, fast-grid, continuous)");
+    if (!have_method) {
+        gb_contact_model_parse(NULL, &method); /* its message lists the models */
+        return cli_input_error("contact", "missing --method %s", cli_allowed());
+    }
     if ((landscape && cli_output_check("contact", "--landscape", landscape)) || (zoom && cli_output_check("contact", "--zoom", zoom)))
         return EXIT_INPUT;
     if (landscape && zoom && !strcmp(landscape, zoom))
@@ -175,7 +174,7 @@ int command_contact(int argc, char **argv)
     if (status) return cli_failure("contact", status);
     /* The seed grid of the branch search; for --method continuous, --grid replaces it. */
     gb_contact_grid_def seed_def = gb_contact_default_branch_grid();
-    if (method == METHOD_CONTINUOUS) {
+    if (method == GB_CONTACT_MODEL_CONTINUOUS) {
         if (have_grid) seed_def.n_phi = grid_def.n_phi, seed_def.n_theta = grid_def.n_theta;
         seed_def.nodes = grid_def.nodes;
     }
@@ -184,17 +183,17 @@ int command_contact(int argc, char **argv)
     gb_contact_branches branches;
     gb_contact_refine_def refine = gb_contact_refine_default_def();
     status = gb_contact_grid_create(&surface, &seed_def, &seeds);
-    if (!status && method != METHOD_CONTINUOUS) status = gb_contact_grid_create(&surface, &grid_def, &grid);
-    if (!status && method == METHOD_GRID) status = gb_contact_grid_brute(grid, zb, &node);
-    if (!status && method == METHOD_FAST_GRID) status = gb_contact_grid_fast(grid, zb, &node);
+    if (!status && method != GB_CONTACT_MODEL_CONTINUOUS) status = gb_contact_grid_create(&surface, &grid_def, &grid);
+    if (!status && method == GB_CONTACT_MODEL_GRID) status = gb_contact_grid_brute(grid, zb, &node);
+    if (!status && method == GB_CONTACT_MODEL_FAST_GRID) status = gb_contact_grid_fast(grid, zb, &node);
     if (!status) status = gb_contact_branches_find(seeds, zb, &refine, &branches);
     double unit[3];
     if (!status) status = gb_contact_unit_vertical(zb, unit);
     const gb_contact_point *contact = &branches.branch[0];
     double phi = NAN, theta = NAN;
     if (!status) {
-        phi = method == METHOD_CONTINUOUS ? contact->phi : node.phi;
-        theta = method == METHOD_CONTINUOUS ? contact->theta : node.theta;
+        phi = method == GB_CONTACT_MODEL_CONTINUOUS ? contact->phi : node.phi;
+        theta = method == GB_CONTACT_MODEL_CONTINUOUS ? contact->theta : node.theta;
     }
     /* The two files are one set: both are written, or neither. */
     cli_outputs files = {0};
@@ -217,8 +216,8 @@ int command_contact(int argc, char **argv)
     cJSON_AddStringToObject(root, "morphology", surface.morphology->name);
     cJSON_AddNumberToObject(root, "beta", beta);
     cJSON_AddItemToObject(root, "zb", cli_json_vector(unit, 3));
-    cJSON_AddStringToObject(root, "method", method_names[method]);
-    if (method != METHOD_CONTINUOUS) {
+    cJSON_AddStringToObject(root, "method", gb_contact_model_name(method));
+    if (method != GB_CONTACT_MODEL_CONTINUOUS) {
         cJSON_AddItemToObject(root, "grid", cli_json_vector((double[]){(double)grid_def.n_phi, (double)grid_def.n_theta}, 2));
         cJSON_AddStringToObject(root, "nodes", gb_contact_nodes_name(grid_def.nodes));
         cJSON_AddNumberToObject(root, "phi", node.phi);
@@ -249,16 +248,16 @@ int command_contact(int argc, char **argv)
         printf("body          morphology %s (chi = %s), beta = %.17g\n", surface.morphology->name,
                surface.morphology->chi_formula, beta);
         printf("z_b (unit)    %.12f %.12f %.12f\n", unit[0], unit[1], unit[2]);
-        if (method != METHOD_CONTINUOUS)
-            printf("method        %s on a %zux%zu %s grid: node %zu (%zu of %zu nodes visited)\n", method_names[method],
+        if (method != GB_CONTACT_MODEL_CONTINUOUS)
+            printf("method        %s on a %zux%zu %s grid: node %zu (%zu of %zu nodes visited)\n", gb_contact_model_name(method),
                    grid_def.n_phi, grid_def.n_theta, gb_contact_nodes_name(grid_def.nodes), node.index, node.visited,
                    gb_contact_grid_size(grid));
         else
             printf("method        continuous (Newton, eqs 31-35) seeded on a %zux%zu grid; |z_b x n| = %.2e\n",
                    seed_def.n_phi, seed_def.n_theta, contact->residual);
-        const double *rc = method == METHOD_CONTINUOUS ? contact->rc : node.x;
+        const double *rc = method == GB_CONTACT_MODEL_CONTINUOUS ? contact->rc : node.x;
         printf("contact       phi* = %.12f  theta* = %.12f  h* = %.15f\n", phi, theta,
-               method == METHOD_CONTINUOUS ? contact->height : node.height);
+               method == GB_CONTACT_MODEL_CONTINUOUS ? contact->height : node.height);
         printf("r_c           %.12f %.12f %.12f\n", rc[0], rc[1], rc[2]);
         printf("local minima  %zu (seeded on %zux%zu)", branches.count, seed_def.n_phi, seed_def.n_theta);
         if (isfinite(branches.gap)) printf(", gap h2 - h1 = %.6e", branches.gap);

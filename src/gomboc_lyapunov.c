@@ -57,7 +57,7 @@ int command_lyapunov(int argc, char **argv)
         cJSON_AddStringToObject(root, "morphology", scene.morphology);
         cJSON_AddNumberToObject(root, "beta", scene.beta);
         cJSON_AddStringToObject(root, "equation", gb_dynamics_variant_name(scene.dynamics.variant));
-        cJSON_AddStringToObject(root, "contact", gb_dynamics_contact_name(scene.dynamics.contact));
+        cJSON_AddStringToObject(root, "contact", gb_contact_model_name(scene.dynamics.contact));
         cli_print_json(root);
         cJSON_Delete(root);
     } else {

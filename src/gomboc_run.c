@@ -9,6 +9,7 @@
 
 #include <errno.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -40,11 +41,23 @@ typedef struct run_state {
     size_t samples, geff_nonpositive, lift_off, friction_over_half;
     double geff_min, normal_min, friction_max, residual_max, orthonormality_max;
     /* diagnostics the scene asked for */
+    uint64_t switch_hash;   /* the switch sequence's fingerprint (see fingerprint_add) */
     gb_strobe strobe;
     double *spectrum_x, step;
     size_t spectrum_count, spectrum_capacity, spectrum_first_step;
     int status;
 } run_state;
+
+/* Fingerprints: FNV-1a (64 bits) over bytes. Two runs with the same final state and the same switches
+ * (at the same samples, to the same contact) have the same two fingerprints; one line compares runs. */
+static const uint64_t FNV_OFFSET = 14695981039346656037ull;
+
+static uint64_t fingerprint_add(uint64_t hash, const void *bytes, size_t size)
+{
+    const unsigned char *p = bytes;
+    for (size_t k = 0; k < size; k++) hash = (hash ^ p[k]) * 1099511628211ull;
+    return hash;
+}
 
 /* ω_x for the spectrum, from the first sample after its transient on. */
 static int collect_spectrum(run_state *s, double t, double omega_x)
@@ -71,6 +84,10 @@ static int sample(void *context, double t, const double y[GB_STATE_SIZE])
     const int grid_switch = o.grid_switches != s->last_grid, branch_switch = o.branch_switches != s->last_branch;
     s->last_grid = o.grid_switches;
     s->last_branch = o.branch_switches;
+    if (grid_switch || branch_switch) {
+        const uint64_t event[4] = {s->samples, o.index, o.grid_switches, o.branch_switches};
+        s->switch_hash = fingerprint_add(s->switch_hash, event, sizeof event);
+    }
     /* Switching rate: switches in the trailing forcing period, per second. */
     const size_t oldest = s->window_fill < s->window_size ? (s->window_fill ? s->window[0] : switches)
                                                           : s->window[s->window_next];
@@ -119,7 +136,7 @@ static cJSON *scene_json(const gb_case *c)
     cJSON_AddNumberToObject(o, "omega", d->forcing.omega);
     cJSON_AddNumberToObject(o, "psi", d->forcing.psi);
     cJSON_AddStringToObject(o, "equation", gb_dynamics_variant_name(d->variant));
-    cJSON_AddStringToObject(o, "contact", gb_dynamics_contact_name(d->contact));
+    cJSON_AddStringToObject(o, "contact", gb_contact_model_name(d->contact));
     if (d->contact == GB_CONTACT_MODEL_CONTINUOUS) {
         cJSON_AddNumberToObject(o, "certificate_height_tol", d->certify.height_tol);
         cJSON_AddNumberToObject(o, "certificate_max_depth", d->certify.max_depth);
@@ -313,7 +330,7 @@ int command_run(int argc, char **argv)
     if (cli_parse_only) return 0;
 
     run_outputs files = {.dir = dir, .case_path = case_path};
-    run_state s = {.scene = &scene, .geff_min = INFINITY, .normal_min = INFINITY};
+    run_state s = {.scene = &scene, .geff_min = INFINITY, .normal_min = INFINITY, .switch_hash = FNV_OFFSET};
     s.period = gb_forcing_period(&scene.dynamics.forcing);
     s.step = s.period / (double)scene.integrate.steps_per_period;
     s.spectrum_first_step = scene.spectrum_transient * scene.integrate.steps_per_period;
@@ -363,6 +380,9 @@ int command_run(int argc, char **argv)
     if (!status && scene.lyapunov) status = write_lyapunov(&files, &scene, &lyapunov);
 
     cJSON *root = NULL;
+    char state_print[17] = "", switch_print[17] = "";
+    snprintf(state_print, sizeof state_print, "%016llx", (unsigned long long)fingerprint_add(FNV_OFFSET, y, sizeof y));
+    snprintf(switch_print, sizeof switch_print, "%016llx", (unsigned long long)s.switch_hash);
     if (!status) {
         gb_dynamics_observables o;
         const double t_end = scene.integrate.periods * s.period;
@@ -381,6 +401,11 @@ int command_run(int argc, char **argv)
         cJSON_AddNumberToObject(root, "steps", (double)stats.steps);
         cJSON_AddNumberToObject(root, "rhs_evaluations", (double)stats.rhs_evaluations);
         cJSON_AddNumberToObject(root, "samples", (double)s.samples);
+        cJSON *fp = cJSON_AddObjectToObject(root, "fingerprint");
+        cJSON_AddStringToObject(fp, "final_state", state_print);
+        cJSON_AddStringToObject(fp, "switches", switch_print);
+        cJSON_AddStringToObject(fp, "method", "FNV-1a 64: the bytes of the final state (q, omega, W); the (sample, "
+                                "contact index, grid and branch switch counts) of every sample with a switch");
         if (scene.monitors) {
             cJSON *m = cJSON_AddObjectToObject(root, "monitors");
             cJSON_AddNumberToObject(m, "geff_nonpositive_fraction", (double)s.geff_nonpositive / (double)s.samples);
@@ -432,6 +457,7 @@ int command_run(int argc, char **argv)
     if (body) gb_lyapunov_body_free(body);
     else gb_dynamics_free(dynamics);
     if (status) return cli_failure("run", status);
-    fprintf(stderr, "gomboc run: %s: %zu steps in %.2f s CPU\n", case_path, stats.steps, seconds);
+    fprintf(stderr, "gomboc run: %s: %zu steps in %.2f s CPU; fingerprint %s/%s\n", case_path, stats.steps, seconds,
+            state_print, switch_print);
     return 0;
 }

@@ -20,6 +20,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <sys/sysmacros.h>
 #include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
@@ -207,7 +208,7 @@ static const bad_row rows[] = {
     {"shape --beta 0.1", NULL, 0, 2, {"missing --morphology", "allowed: I, II", ""}},
     {"shape --morphology I --beta 0.1 --mass 0", NULL, 0, 2, {"--mass '0' is out of range", "1e-06 <= mass <= 1000000 [kg]", ""}},
     {"shape --morphology I --beta 0.1 --mass 1e-300", NULL, 0, 2, {"--mass '1e-300' is out of range", "1e-06 <= mass", ""}},
-    {"shape --morphology I --beta 0.02 --radial-map /dev/null", NULL, 0, 2, {"--radial-map '/dev/null' exists and is not a regular file", "allowed: a new or regular file", ""}},
+    {"shape --morphology I --beta 0.02 --radial-map @D@/device", NULL, 0, 2, {"--radial-map", "device' exists and is not a regular file", "allowed: a new or regular file"}},
     {"shape --morphology I --beta 0.02 --radial-map @D@/link.csv", NULL, 0, 2, {"--radial-map", "link.csv' exists and is not a regular file", "allowed: a new or regular file"}},
     {"shape --morphology I --beta 0.02 --radial-map @D@/sub", NULL, 0, 2, {"--radial-map", "sub' exists and is not a regular file", "a directory, link or device"}},
     {"shape --morphology I --beta 0.02 --radial-map @D@/missing/map.csv", NULL, 0, 2, {"--radial-map", "its directory does not exist", "in an existing, writable directory"}},
@@ -258,8 +259,10 @@ static void write_bytes(const char *path, const char *text, size_t len)
     fclose(f);
 }
 
-/* A fresh row directory: a file of its own, a symbolic link and a subdirectory (for the rows that
- * name them), and the row's scene file. */
+/* A fresh row directory: a file of its own, a symbolic link, a subdirectory and a device (for the rows
+ * that name them), and the row's scene file. The device is the row's own (a null character device
+ * where mknod is allowed, else a FIFO): a binary that replaced it would change the directory, and never
+ * a file of the system such as /dev/null. */
 static void prepare(char *dir, const bad_row *row)
 {
     strcpy(dir, "/tmp/gomboc-bad-XXXXXX");
@@ -271,6 +274,8 @@ static void prepare(char *dir, const bad_row *row)
     if (symlink("keep.txt", path) != 0) return;
     snprintf(path, sizeof path, "%s/sub", dir);
     mkdir(path, 0755);
+    snprintf(path, sizeof path, "%s/device", dir);
+    if (mknod(path, S_IFCHR | 0666, makedev(1, 3)) != 0) mkfifo(path, 0666);
     if (!row->text) return;
     snprintf(path, sizeof path, "%s/case.ini", dir);
     if (!strcmp(row->text, "@LONG@")) {
@@ -318,9 +323,6 @@ static void test_bad_input_table(void)
         free(before), free(after), free(args), free(command);
         remove_tree(dir);
     }
-    struct stat st;
-    gb_check cd = {"-", "-", "/dev/null is still a character device after the --radial-map /dev/null row", "stat", "exact"};
-    gb_check_true(&cd, stat("/dev/null", &st) == 0 && S_ISCHR(st.st_mode), "mode %o", (unsigned)st.st_mode);
     gb_check cn = {"-", "-", "the table holds at least 60 bad inputs, and every one was refused as stated", "count", "exact"};
     gb_check_true(&cn, total >= 60 && passed == total, "%zu of %zu rows", passed, total);
 }

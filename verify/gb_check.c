@@ -31,7 +31,7 @@ static double lap(void)
     return dt;
 }
 
-static cJSON *new_row(const gb_check *c, const char *kind, int passed, double seconds)
+static cJSON *new_row(const gb_check *c, const char *kind, int passed, double seconds, const char *file)
 {
     if (!rows) rows = cJSON_CreateArray();
     cJSON *row = cJSON_CreateObject();
@@ -42,6 +42,8 @@ static cJSON *new_row(const gb_check *c, const char *kind, int passed, double se
     cJSON_AddStringToObject(row, "oracle", c->oracle);
     cJSON_AddStringToObject(row, "origin", c->origin ? c->origin : "");
     cJSON_AddStringToObject(row, "test", CU_get_current_test() ? CU_get_current_test()->pName : "");
+    cJSON_AddStringToObject(row, "suite", CU_get_current_suite() ? CU_get_current_suite()->pName : "");
+    cJSON_AddStringToObject(row, "file", file);
     cJSON_AddNumberToObject(row, "seconds", seconds);
     cJSON_AddBoolToObject(row, "passed", passed);
     cJSON_AddItemToArray(rows, row);
@@ -54,7 +56,7 @@ static cJSON *assert_and_record(const gb_check *c, const char *kind, int passed,
 {
     if (!passed) fprintf(stdout, "\n%s %s:%d %s\n", label, file, line, message);
     CU_assertImplementation(passed ? CU_TRUE : CU_FALSE, (unsigned)line, message, file, "", CU_FALSE);
-    return new_row(c, kind, passed, seconds);
+    return new_row(c, kind, passed, seconds, file);
 }
 
 /* JSON has no NaN or infinity: those go as strings. */
@@ -156,7 +158,12 @@ static int write_text_atomically(const char *path, const char *text)
 
 int gb_check_write(const char *path)
 {
-    char *text = cJSON_Print(rows ? rows : cJSON_CreateArray());
+    /* Schema 2: {"schema": 2, "rows": [...]}, every row naming its suite and its source file. */
+    cJSON *document = cJSON_CreateObject();
+    cJSON_AddNumberToObject(document, "schema", GB_CHECK_SCHEMA);
+    cJSON_AddItemReferenceToObject(document, "rows", rows ? rows : (rows = cJSON_CreateArray()));
+    char *text = cJSON_Print(document);
+    cJSON_Delete(document);
     const int failed = write_text_atomically(path, text);
     free(text);
     if (failed) fprintf(stderr, "verify: cannot write results to '%s'\n", path);

@@ -47,7 +47,9 @@ double gb_check_observed_order(double e1, double e2, double h1, double h2);
 /* Per-test timer reset (a CUnit test setup function). */
 void gb_check_test_start(void);
 
-/* Write every recorded row to `path` (atomically). Returns 0 on success. */
+/* Write every recorded row to `path` (atomically) as {"schema": GB_CHECK_SCHEMA, "rows": [...]}; each
+ * row also names its CUnit suite and test and the source file of the check. Returns 0 on success. */
+#define GB_CHECK_SCHEMA 2
 int gb_check_write(const char *path);
 
 /* 1 under `make verify-full` (main's --full): the long studies run too. */

@@ -9,6 +9,7 @@
  *     grid (gb_contact_branches_find) at random verticals, and at every step of continuous runs. The
  *     certificate must refuse every non-global minimum (a check that fails if it certifies a wrong one). */
 #include "gb_certify.h"
+#include "gb_surface_internal.h"
 #include "gb_check.h"
 #include "gb_dynamics.h"
 #include "gb_error.h"

@@ -147,7 +147,7 @@ static run_result run_scene(const scene *s, gb_integrator method, size_t steps_p
 static const char *scene_label(const scene *s, char *out, size_t size)
 {
     snprintf(out, size, "Gomboc %s, %s equation, %s contact, %s, %s%s", s->morphology, gb_dynamics_variant_name(s->variant),
-             gb_dynamics_contact_name(s->contact), s->forced ? "forced" : "unforced", s->damped ? "damped" : "undamped",
+             gb_contact_model_name(s->contact), s->forced ? "forced" : "unforced", s->damped ? "damped" : "undamped",
              s->spun ? ", omega0 = (1.3, -0.7, 0.4)" : "");
     return out;
 }
@@ -467,7 +467,7 @@ static void test_work_precision(void)
                 }
                 cJSON *row = cJSON_CreateObject();
                 cJSON_AddBoolToObject(row, "finished", !gave_up);
-                cJSON_AddStringToObject(row, "contact", gb_dynamics_contact_name(s.contact));
+                cJSON_AddStringToObject(row, "contact", gb_contact_model_name(s.contact));
                 cJSON_AddStringToObject(row, "integrator", gb_integrate_name(methods[m]));
                 cJSON_AddNumberToObject(row, "setting", methods[m] == GB_INTEGRATOR_RK4 ? (double)idef.steps_per_period : idef.rtol);
                 cJSON_AddNumberToObject(row, "error", error);
@@ -599,7 +599,7 @@ static void test_scene_builds_what_it_needs(void)
             snprintf(q, sizeof q, "continuous contact builds no grid, only the certificate of the global minimum");
         else
             snprintf(q, sizeof q, "%s contact builds exactly one grid, of %zu x %zu nodes, and no certificate",
-                     gb_dynamics_contact_name(models[k]), def.grid.n_phi, def.grid.n_theta);
+                     gb_contact_model_name(models[k]), def.grid.n_phi, def.grid.n_theta);
         gb_check c = {"8", "-", q, "node count of the grid the dynamics built; certificate present", "exact"};
         gb_check_true(&c, !status && built == expected && has_certificate == continuous,
                       "%zu nodes built, %zu expected; certificate %s", built, expected, has_certificate ? "built" : "not built");

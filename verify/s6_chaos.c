@@ -9,7 +9,7 @@
  * variations that decide whether the exponent belongs to the physics or to the numerics. */
 #include "gb_check.h"
 #include "gb_error.h"
-#include "gb_lyapunov.h"
+#include "gb_lyapunov_body.h"
 #include "gb_massprops.h"
 #include "known_systems.h"
 #include "verify_sections.h"

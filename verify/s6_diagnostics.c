@@ -10,7 +10,7 @@
 #include "gb_check.h"
 #include "gb_error.h"
 #include "gb_integrate.h"
-#include "gb_lyapunov.h"
+#include "gb_lyapunov_body.h"
 #include "gb_spectrum.h"
 #include "gb_strobe.h"
 #include "verify_sections.h"
@@ -179,7 +179,7 @@ static void test_strobe_gomboc(void)
         }
         char q[160];
         snprintf(q, sizeof q, "Gomboc I, %s: strobe samples (n + 1/4) T, n = 3 ... 7, against runs stopped there",
-                 gb_dynamics_contact_name(models[m]));
+                 gb_contact_model_name(models[m]));
         gb_check c = {"6", "73, 74", q, "the state of a run of (n + 1/4) periods", "bit-identical (the same steps)"};
         gb_check_true(&c, !status && s.strobe.count == 5 && mismatches == 0, "%zu samples, %zu differ; %s", s.strobe.count,
                       mismatches, status ? gb_error_message() : "");
@@ -218,7 +218,7 @@ static void test_pair_reference_is_the_run(void)
                              stats.steps == gb_lyapunov_body_stats(body, 0)->steps;
             char q[200];
             snprintf(q, sizeof q, "Gomboc II, %s, %s: the pair's reference after 2 + 10 periods against the plain run",
-                     gb_dynamics_contact_name(models[m]), gb_integrate_name(methods[k]));
+                     gb_contact_model_name(models[m]), gb_integrate_name(methods[k]));
             gb_check c = {"6", "77", q, "the scene's plain run of 12 periods", "bit-identical state and step count"};
             gb_check_true(&c, same, "%s", status ? gb_error_message() : "states or step counts differ");
             gb_dynamics_free(d);

@@ -8,7 +8,8 @@
 #include "gb_contact.h"
 #include "gb_error.h"
 #include "gb_integrate.h"
-#include "gb_lyapunov.h"
+#include "gb_lyapunov_body.h"
+#include "gb_surface_internal.h"
 
 #include <gsl/gsl_randist.h>
 #include <gsl/gsl_rng.h>

@@ -1,0 +1,347 @@
+/* gb_lyapunov_body — a Gömböc as a pair system and as a tangent system (see gb_lyapunov_body.h). */
+#include "gb_lyapunov_body.h"
+
+#include "gb_error.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* ---------------------------------------------------------------- a Gömböc as a pair system */
+
+struct gb_lyapunov_body {
+    gb_dynamics *dynamics[2];
+    gb_integrate_session *session[2];
+    double y[2][GB_STATE_SIZE];
+    double period, omega_scale;
+    gb_integrate_sample sample; /* the reference's samples (gb_lyapunov_body_observe) */
+    void *sample_context;
+    /* the variational estimator's own RK4 stepping of the reference */
+    gb_integrator method;
+    size_t steps_per_period, tangent_steps;
+    size_t saltations, unlocated, grazing, jumps;
+};
+
+int gb_lyapunov_body_create(const char *morphology, double beta, const gb_dynamics_def *dynamics,
+                            const gb_integrate_def *integrate, const double R0[9], const double omega0[3],
+                            double omega_scale, gb_lyapunov_body **out)
+{
+    *out = NULL;
+    if (!(isfinite(omega_scale) && omega_scale > 0.0))
+        return gb_error_set(GB_EDOM, "omega_scale = %g is out of range (allowed: finite, > 0)", omega_scale);
+    gb_lyapunov_body *b = calloc(1, sizeof *b);
+    if (!b) return gb_error_set(GB_ENOMEM, "out of memory for a Lyapunov pair");
+    b->period = 2.0 * M_PI / dynamics->forcing.omega;
+    b->method = integrate->method;
+    b->steps_per_period = integrate->steps_per_period;
+    b->omega_scale = omega_scale;
+    int status = GB_OK;
+    for (int k = 0; k < 2 && !status; k++) {
+        status = gb_dynamics_start(morphology, beta, dynamics, R0, omega0, &b->dynamics[k], b->y[k]);
+        if (!status) status = gb_integrate_begin(b->dynamics[k], integrate, 0.0, &b->session[k]);
+    }
+    if (status) {
+        gb_lyapunov_body_free(b);
+        return status;
+    }
+    *out = b;
+    return GB_OK;
+}
+
+void gb_lyapunov_body_free(gb_lyapunov_body *body)
+{
+    if (!body) return;
+    gb_integrate_end(body->session[0]);
+    gb_integrate_end(body->session[1]);
+    gb_dynamics_free(body->dynamics[0]);
+    gb_dynamics_free(body->dynamics[1]);
+    free(body);
+}
+
+gb_dynamics *gb_lyapunov_body_dynamics(gb_lyapunov_body *body) { return body->dynamics[0]; }
+const double *gb_lyapunov_body_state(const gb_lyapunov_body *body) { return body->y[0]; }
+const gb_integrate_stats *gb_lyapunov_body_stats(const gb_lyapunov_body *body, int which)
+{
+    return gb_integrate_session_stats(body->session[which ? 1 : 0]);
+}
+
+void gb_lyapunov_body_observe(gb_lyapunov_body *body, gb_integrate_sample sample, void *context)
+{
+    body->sample = sample;
+    body->sample_context = context;
+}
+
+/* Hamilton product a ⊗ b of quaternions (w, x, y, z). */
+static void quaternion_product(const double a[4], const double b[4], double out[4])
+{
+    out[0] = a[0] * b[0] - a[1] * b[1] - a[2] * b[2] - a[3] * b[3];
+    out[1] = a[0] * b[1] + a[1] * b[0] + a[2] * b[3] - a[3] * b[2];
+    out[2] = a[0] * b[2] - a[1] * b[3] + a[2] * b[0] + a[3] * b[1];
+    out[3] = a[0] * b[3] + a[1] * b[2] - a[2] * b[1] + a[3] * b[0];
+}
+
+static int body_advance(void *context, int which, double t, double interval)
+{
+    gb_lyapunov_body *b = context;
+    gb_integrate_session *session = b->session[which];
+    if (fabs(gb_integrate_time(session) - t) > 1e-9 * b->period)
+        return gb_error_set(GB_EINVAL, "trajectory %d is at t = %.17g, asked to advance from t = %.17g", which,
+                            gb_integrate_time(session), t);
+    const size_t steps = gb_integrate_steps_for(session, interval / b->period);
+    const int status = which == 0 ? gb_integrate_advance(session, steps, b->y[0], b->sample, b->sample_context)
+                                  : gb_integrate_advance(session, steps, b->y[1], NULL, NULL);
+    if (!status && gb_integrate_stopped(session))
+        return gb_error_set(GB_EINVAL, "the reference run was stopped by its sampler at t = %.17g",
+                            gb_integrate_time(session));
+    return status;
+}
+
+static int body_separation(void *context, double *e)
+{
+    gb_lyapunov_body *b = context;
+    const double *qa = b->y[0] + GB_STATE_Q, *qb = b->y[1] + GB_STATE_Q;
+    const double na = sqrt(qa[0] * qa[0] + qa[1] * qa[1] + qa[2] * qa[2] + qa[3] * qa[3]);
+    const double conj[4] = {qa[0] / na, -qa[1] / na, -qa[2] / na, -qa[3] / na};
+    double dq[4];
+    quaternion_product(conj, qb, dq);
+    const double sign = dq[0] < 0.0 ? -1.0 : 1.0; /* q and −q are the same attitude */
+    const double v = sqrt(dq[1] * dq[1] + dq[2] * dq[2] + dq[3] * dq[3]);
+    const double angle = 2.0 * atan2(v, sign * dq[0]);
+    for (int k = 0; k < 3; k++) e[k] = v > 0.0 ? angle * sign * dq[k + 1] / v : 0.0;
+    for (int k = 0; k < 3; k++) e[3 + k] = (b->y[1][GB_STATE_OMEGA + k] - b->y[0][GB_STATE_OMEGA + k]) / b->omega_scale;
+    return GB_OK;
+}
+
+static int body_place(void *context, const double *e)
+{
+    gb_lyapunov_body *b = context;
+    const double angle = sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
+    const double s = angle > 0.0 ? sin(0.5 * angle) / angle : 0.5;
+    const double dq[4] = {cos(0.5 * angle), s * e[0], s * e[1], s * e[2]};
+    memcpy(b->y[1], b->y[0], sizeof b->y[1]);
+    quaternion_product(b->y[0] + GB_STATE_Q, dq, b->y[1] + GB_STATE_Q);
+    for (int k = 0; k < 3; k++) b->y[1][GB_STATE_OMEGA + k] = b->y[0][GB_STATE_OMEGA + k] + b->omega_scale * e[3 + k];
+    gb_dynamics_adopt_contact(b->dynamics[1], b->dynamics[0]);
+    gb_integrate_follow(b->session[1], b->session[0]);
+    return GB_OK;
+}
+
+gb_lyapunov_pair_system gb_lyapunov_body_pair(void)
+{
+    return (gb_lyapunov_pair_system){6, body_advance, body_separation, body_place};
+}
+
+/* ---------------------------------------------------------------- the variational equation on a Gömböc */
+
+/* Tangent coordinates e = (δθ, δω/Ω) ↔ state displacements dy: δq = ½ q ⊗ (0, δθ), δω = Ω e_ω, δW = 0.
+ * Back: δθ = 2 vec(q̄ ⊗ δq)/|q|², which drops the radial part of δq (the norm of q carries no attitude):
+ * that projection is applied at every step. */
+static void tangent_to_state(const double q[4], double scale, const double *e, double dy[GB_STATE_SIZE])
+{
+    const double v[4] = {0.0, e[0], e[1], e[2]};
+    quaternion_product(q, v, dy);
+    for (int k = 0; k < 4; k++) dy[k] *= 0.5;
+    for (int k = 0; k < 3; k++) dy[GB_STATE_OMEGA + k] = scale * e[3 + k];
+    dy[GB_STATE_WORK] = 0.0;
+}
+
+static void state_to_tangent(const double q[4], double scale, const double dy[GB_STATE_SIZE], double *e)
+{
+    const double n2 = q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3];
+    const double conj[4] = {q[0], -q[1], -q[2], -q[3]};
+    double p[4];
+    quaternion_product(conj, dy, p);
+    for (int k = 0; k < 3; k++) e[k] = 2.0 * p[k + 1] / n2;
+    for (int k = 0; k < 3; k++) e[3 + k] = dy[GB_STATE_OMEGA + k] / scale;
+}
+
+/* A·dy at (t, y) by central differences of the vector field (the contact re-solved at both points). */
+static int jacobian_times(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const double dy[GB_STATE_SIZE],
+                          double out[GB_STATE_SIZE])
+{
+    double size = 0.0, yp[GB_STATE_SIZE], ym[GB_STATE_SIZE], fp[GB_STATE_SIZE], fm[GB_STATE_SIZE];
+    for (int i = 0; i < GB_STATE_SIZE; i++) size = fmax(size, fabs(dy[i]));
+    if (size == 0.0) {
+        memset(out, 0, GB_STATE_SIZE * sizeof *out);
+        return GB_OK;
+    }
+    /* ε|dy| = 1e-6: the contact's Newton solves to ~1e-15, so the difference quotient carries ~1e-9
+     * relative noise, and the O(ε²) truncation is ~1e-12 */
+    const double eps = 1e-6 / size;
+    for (int i = 0; i < GB_STATE_SIZE; i++) yp[i] = y[i] + eps * dy[i], ym[i] = y[i] - eps * dy[i];
+    int status = gb_dynamics_rhs(d, t, yp, fp);
+    if (!status) status = gb_dynamics_rhs(d, t, ym, fm);
+    for (int i = 0; !status && i < GB_STATE_SIZE; i++) out[i] = (fp[i] - fm[i]) / (2.0 * eps);
+    return status;
+}
+
+/* One classical RK4 step of size h of the reference and of k state displacements Y (k × 8, in place):
+ * the RK4 discretisation of (ẏ = f, Ẏ = A(t) Y), eq 75. */
+static int tangent_rk4(gb_dynamics *d, double t, double h, double y[GB_STATE_SIZE], size_t k, double *Y)
+{
+    enum { S = GB_STATE_SIZE };
+    double K[4][S], ys[S], KY[4][GB_LYAPUNOV_MAX_EXPONENTS][S], Ys[S];
+    static const double c[4] = {0.0, 0.5, 0.5, 1.0};
+    int status = GB_OK;
+    for (int st = 0; st < 4 && !status; st++) {
+        for (int i = 0; i < S; i++) ys[i] = y[i] + (st ? c[st] * h * K[st - 1][i] : 0.0);
+        status = gb_dynamics_rhs(d, t + c[st] * h, ys, K[st]);
+        for (size_t j = 0; j < k && !status; j++) {
+            for (int i = 0; i < S; i++) Ys[i] = Y[j * S + i] + (st ? c[st] * h * KY[st - 1][j][i] : 0.0);
+            status = jacobian_times(d, t + c[st] * h, ys, Ys, KY[st][j]);
+        }
+    }
+    if (status) return status;
+    for (int i = 0; i < S; i++) y[i] += h / 6.0 * (K[0][i] + 2.0 * K[1][i] + 2.0 * K[2][i] + K[3][i]);
+    for (size_t j = 0; j < k; j++)
+        for (int i = 0; i < S; i++)
+            Y[j * S + i] += h / 6.0 * (KY[0][j][i] + 2.0 * KY[1][j][i] + 2.0 * KY[2][j][i] + KY[3][j][i]);
+    return GB_OK;
+}
+
+/* The gap g(y) = Δh between the current branch and `other` (eq 39), differentiated along dy. */
+static int gap_along(gb_dynamics *d, const double y[GB_STATE_SIZE], const gb_contact_point *other,
+                     const double dy[GB_STATE_SIZE], double *derivative)
+{
+    double size = 0.0, yp[GB_STATE_SIZE], ym[GB_STATE_SIZE], gp, gm;
+    for (int i = 0; i < GB_STATE_SIZE; i++) size = fmax(size, fabs(dy[i]));
+    if (size == 0.0) return *derivative = 0.0, GB_OK;
+    const double eps = 1e-6 / size;
+    for (int i = 0; i < GB_STATE_SIZE; i++) yp[i] = y[i] + eps * dy[i], ym[i] = y[i] - eps * dy[i];
+    gb_contact_point here;
+    int status = gb_dynamics_branch_gap(d, yp, other, &gp, &here);
+    if (!status) status = gb_dynamics_branch_gap(d, ym, other, &gm, &here);
+    if (!status) *derivative = (gp - gm) / (2.0 * eps);
+    return status;
+}
+
+/* A located switch inside the step (t, y) → t + h onto `other`: the time where Δh = 0 by the Illinois
+ * method on the step fraction (the reference alone), then the tangent step to it on the old branch,
+ * the saltation Y ← Y + (f⁺ − f⁻)(∇g·Y)/(∇g·f⁻) there, and the rest of the step on the new branch. */
+static int tangent_switch_step(gb_lyapunov_body *b, double t, double h, double y[GB_STATE_SIZE], size_t k, double *Y,
+                               const gb_contact_point *other)
+{
+    gb_dynamics *d = b->dynamics[0];
+    double a = 0.0, c = 1.0, ga, gc, z[GB_STATE_SIZE];
+    gb_contact_point there;
+    int status = gb_dynamics_branch_gap(d, y, other, &ga, &there);
+    memcpy(z, y, sizeof z);
+    if (!status) status = tangent_rk4(d, t, h, z, 0, NULL);
+    if (!status) status = gb_dynamics_branch_gap(d, z, other, &gc, &there);
+    if (status) return status;
+    if (ga < 0.0 && gc > 0.0) {
+        int side = 0;
+        for (int it = 0; it < 60 && c - a > 1e-13; it++) {
+            const double m = (a * gc - c * ga) / (gc - ga);
+            double gm;
+            memcpy(z, y, sizeof z);
+            status = tangent_rk4(d, t, m * h, z, 0, NULL);
+            if (!status) status = gb_dynamics_branch_gap(d, z, other, &gm, &there);
+            if (status) return status;
+            if (gm == 0.0) {
+                a = c = m;
+                break;
+            }
+            if (gm < 0.0) a = m, ga = gm, gc *= side == -1 ? 0.5 : 1.0, side = -1;
+            else c = m, gc = gm, ga *= side == 1 ? 0.5 : 1.0, side = 1;
+        }
+    } else {
+        /* No crossing inside the step: the other branch was lower already at its start, or appears only
+         * at its end (a branch born or lost in a fold, where Δh jumps): switch at that end, and count it. */
+        a = ga >= 0.0 ? 0.0 : 1.0;
+        b->jumps++;
+    }
+    /* To the switch on the old branch. */
+    if (a > 0.0) status = tangent_rk4(d, t, a * h, y, k, Y);
+    if (status) return status;
+    double gap, f_old[GB_STATE_SIZE], f_new[GB_STATE_SIZE], g_flow;
+    status = gb_dynamics_branch_gap(d, y, other, &gap, &there);
+    if (!status) status = gb_dynamics_rhs(d, t + a * h, y, f_old);
+    if (!status) status = gap_along(d, y, &there, f_old, &g_flow);
+    double g_dir[GB_LYAPUNOV_MAX_EXPONENTS];
+    for (size_t j = 0; j < k && !status; j++) status = gap_along(d, y, &there, Y + j * GB_STATE_SIZE, &g_dir[j]);
+    if (status) return status;
+    gb_dynamics_switch_to(d, &there);
+    status = gb_dynamics_rhs(d, t + a * h, y, f_new);
+    if (status) return status;
+    if (g_flow != 0.0 && isfinite(g_flow)) {
+        for (size_t j = 0; j < k; j++)
+            for (int i = 0; i < GB_STATE_SIZE; i++) Y[j * GB_STATE_SIZE + i] += (f_new[i] - f_old[i]) * g_dir[j] / g_flow;
+        b->saltations++;
+    } else {
+        b->grazing++;
+    }
+    return a < 1.0 ? tangent_rk4(d, t + a * h, (1.0 - a) * h, y, k, Y) : GB_OK;
+}
+
+static int tangent_steps(gb_lyapunov_body *b, double t, double interval, size_t k, double *vectors)
+{
+    gb_dynamics *d = b->dynamics[0];
+    double *y = b->y[0];
+    const size_t steps = (size_t)llround(interval / b->period * (double)b->steps_per_period);
+    const double h = b->period / (double)b->steps_per_period;
+    double Y[GB_LYAPUNOV_MAX_EXPONENTS * GB_STATE_SIZE];
+    if (fabs(t - (double)b->tangent_steps * h) > 1e-9 * b->period)
+        return gb_error_set(GB_EINVAL, "the variational reference is at t = %.17g, asked to advance from t = %.17g",
+                            (double)b->tangent_steps * h, t);
+    for (size_t n = 0; n < steps; n++, b->tangent_steps++) {
+        const double tn = (double)b->tangent_steps * h;
+        for (size_t j = 0; j < k; j++) tangent_to_state(y + GB_STATE_Q, b->omega_scale, vectors + 6 * j, Y + j * GB_STATE_SIZE);
+        double start[GB_STATE_SIZE], Ystart[GB_LYAPUNOV_MAX_EXPONENTS * GB_STATE_SIZE];
+        memcpy(start, y, sizeof start);
+        memcpy(Ystart, Y, k * GB_STATE_SIZE * sizeof *Y);
+        int status = tangent_rk4(d, tn, h, y, k, Y);
+        gb_contact_point other;
+        int found = 0;
+        if (!status) status = gb_dynamics_switch_pending(d, tn + h, y, &other, &found);
+        if (!status && found) {
+            memcpy(y, start, sizeof start);
+            memcpy(Y, Ystart, k * GB_STATE_SIZE * sizeof *Y);
+            status = tangent_switch_step(b, tn, h, y, k, Y, &other);
+        }
+        const size_t before = gb_dynamics_switch_count(d);
+        double drift;
+        if (!status) status = gb_dynamics_accept(d, tn + h, y, &drift);
+        if (status) return status;
+        b->unlocated += gb_dynamics_switch_count(d) - before;
+        for (size_t j = 0; j < k; j++) state_to_tangent(y + GB_STATE_Q, b->omega_scale, Y + j * GB_STATE_SIZE, vectors + 6 * j);
+    }
+    return GB_OK;
+}
+
+static int tangent_advance(void *context, double t, double interval)
+{
+    return tangent_steps(context, t, interval, 0, NULL);
+}
+
+static int tangent_advance_vectors(void *context, double t, double interval, size_t k, double *vectors)
+{
+    return tangent_steps(context, t, interval, k, vectors);
+}
+
+gb_lyapunov_tangent_system gb_lyapunov_body_tangent(void)
+{
+    return (gb_lyapunov_tangent_system){6, tangent_advance, tangent_advance_vectors};
+}
+
+int gb_lyapunov_body_tangent_ready(const gb_lyapunov_body *body)
+{
+    const gb_dynamics_def *def = gb_dynamics_get_def(body->dynamics[0]);
+    if (def->contact != GB_CONTACT_MODEL_CONTINUOUS || body->method != GB_INTEGRATOR_RK4)
+        return gb_error_set(GB_EINVAL,
+                            "the variational estimator needs continuous contact and RK4 (got %s, %s): a grid contact "
+                            "makes the vector field jump at every node change, where no variational equation holds",
+                            gb_contact_model_name(def->contact), gb_integrate_name(body->method));
+    if (body->tangent_steps == 0 && gb_integrate_time(body->session[0]) != 0.0)
+        return gb_error_set(GB_EINVAL, "the body's reference has already been advanced by the pair estimator");
+    return GB_OK;
+}
+
+size_t gb_lyapunov_body_tangent_jumps(const gb_lyapunov_body *body) { return body->jumps; }
+
+void gb_lyapunov_body_tangent_counts(const gb_lyapunov_body *body, size_t *saltations, size_t *unlocated, size_t *grazing)
+{
+    *saltations = body->saltations;
+    *unlocated = body->unlocated;
+    *grazing = body->grazing;
+}
