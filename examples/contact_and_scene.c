@@ -25,7 +25,7 @@ int main(int argc, char **argv)
     gb_integrate_stats stats;
     double y[GB_STATE_SIZE];
     status = gb_case_load(argc > 1 ? argv[1] : "cases/table1-gomboc-I.ini", &scene);
-    if (!status) status = gb_dynamics_start(scene.morphology, scene.beta, &scene.dynamics, scene.attitude, scene.omega0, &dynamics, y);
+    if (!status) status = gb_dynamics_start(&scene.body, &scene.dynamics, scene.attitude, scene.omega0, &dynamics, y);
     if (!status) status = gb_integrate_run(dynamics, &scene.integrate, 0.0, y, NULL, NULL, &stats);
     gb_dynamics_free(dynamics);
     if (status) return fprintf(stderr, "scene: %s\n", gb_error_message()), status == GB_EINVAL || status == GB_EDOM ? 2 : 1;

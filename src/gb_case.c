@@ -22,8 +22,7 @@ gb_case gb_case_default(void)
     gb_case c;
     memset(&c, 0, sizeof c);
     snprintf(c.description, sizeof c.description, "Table 1 defaults");
-    snprintf(c.morphology, sizeof c.morphology, "I");
-    c.beta = 0.12;
+    gb_surface_init(&c.body, "I", 0.12);
     c.dynamics = gb_dynamics_default_def();
     c.A1 = c.dynamics.forcing.a1;
     c.A2 = c.dynamics.forcing.a2;
@@ -72,8 +71,9 @@ typedef struct key_def {
 
 static int parse_morphology(const char *value, gb_case *c)
 {
-    const int status = gb_surface_init(&(gb_surface){0}, value, 0.0); /* its message lists the morphologies */
-    if (!status) snprintf(c->morphology, sizeof c->morphology, "%s", value);
+    gb_surface body;
+    const int status = gb_surface_init(&body, value, 0.0); /* its message lists the morphologies */
+    if (!status) c->body.morphology = body.morphology;
     return status;
 }
 static int parse_units(const char *value, gb_case *c)
@@ -102,7 +102,7 @@ static int parse_window(const char *value, gb_case *c) { return gb_window_parse(
 static const key_def keys[] = {
     {"scene", "description", KEY_TEXT, 0, 0, 0, NULL, AT(description), NULL},
     NAME("body", "morphology", parse_morphology),
-    REAL("body", "beta", 0.0, GB_SURFACE_BETA_MAX, OPEN_MAX, "(r^4 = 1 + 4 beta sin(phi) cos(chi) > 0)", beta),
+    REAL("body", "beta", 0.0, GB_SURFACE_BETA_MAX, OPEN_MAX, "(r^4 = 1 + 4 beta sin(phi) cos(chi) > 0)", body.beta),
     REAL("body", "mass", 1e-6, 1e6, 0, "[kg]", dynamics.mass),
     REAL("forcing", "g", 0.0, 1000.0, 0, "[m/s2]", dynamics.forcing.g),
     REAL("forcing", "A1", -1000.0, 1000.0, 0, "[amplitude_units]", A1),

@@ -48,8 +48,7 @@
 
 typedef struct gb_case {
     char description[GB_CASE_TEXT_MAX];
-    char morphology[8];
-    double beta;
+    gb_surface body;              /* [body] morphology and beta (eqs 3-9): one value, as every module takes it */
     gb_dynamics_def dynamics;     /* forcing in m/s² after reading amplitude_units */
     int amplitudes_in_g;          /* 1 when A1, A2 were given in units of g (eq 61) */
     double A1, A2;                /* as written in the file */

@@ -135,9 +135,10 @@ int gb_contact_grid_create(const gb_surface *surface, const gb_contact_grid_def 
     *out = NULL;
     const size_t min_phi = def->nodes == GB_CONTACT_NODES_LINSPACE ? 2 : 1;
     const size_t min_theta = def->nodes == GB_CONTACT_NODES_LINSPACE ? 3 : 2;
-    if (!gb_contact_nodes_name(def->nodes))
-        return gb_error_set(GB_EINVAL, "grid node placement %d is unknown (allowed: centred, linspace)",
-                            (int)def->nodes);
+    if (!gb_contact_nodes_name(def->nodes)) {
+        gb_contact_nodes unused;
+        return gb_contact_nodes_parse(NULL, &unused); /* "… is unknown (allowed: …)" from the name table */
+    }
     if (def->n_phi < min_phi || def->n_theta < min_theta || def->n_phi > GB_CONTACT_GRID_MAX_NODES ||
         def->n_theta > GB_CONTACT_GRID_MAX_NODES ||
         def->n_phi * def->n_theta > GB_CONTACT_GRID_MAX_NODES)

@@ -516,13 +516,11 @@ int gb_dynamics_observe(gb_dynamics *d, double t, const double y[GB_STATE_SIZE],
     return GB_OK;
 }
 
-int gb_dynamics_start(const char *morphology, double beta, const gb_dynamics_def *def, const double R0[9],
-                      const double omega0[3], gb_dynamics **out, double y[GB_STATE_SIZE])
+int gb_dynamics_start(const gb_surface *body, const gb_dynamics_def *def, const double R0[9], const double omega0[3],
+                      gb_dynamics **out, double y[GB_STATE_SIZE])
 {
-    gb_surface surface;
     *out = NULL;
-    int status = gb_surface_init(&surface, morphology, beta);
-    if (!status) status = gb_dynamics_create(&surface, def, out);
+    int status = gb_dynamics_create(body, def, out);
     if (!status) status = gb_dynamics_init_state(*out, 0.0, R0, omega0, y);
     if (status) {
         gb_dynamics_free(*out);

@@ -73,9 +73,9 @@ int gb_dynamics_certify_stats(const gb_dynamics *dynamics, gb_certify_stats *out
 int gb_dynamics_init_state(gb_dynamics *dynamics, double t0, const double R0[9], const double omega0[3],
                            double y[GB_STATE_SIZE]);
 
-/* gb_surface_init + gb_dynamics_create + gb_dynamics_init_state in one call; *out is NULL on failure. */
-int gb_dynamics_start(const char *morphology, double beta, const gb_dynamics_def *def, const double R0[9],
-                      const double omega0[3], gb_dynamics **out, double y[GB_STATE_SIZE]);
+/* gb_dynamics_create + gb_dynamics_init_state in one call for the body `body`; *out is NULL on failure. */
+int gb_dynamics_start(const gb_surface *body, const gb_dynamics_def *def, const double R0[9], const double omega0[3],
+                      gb_dynamics **out, double y[GB_STATE_SIZE]);
 
 /* dy/dt (eqs 23, 44 or rolling, and Ẇ). GB_ENOCONV when the contact cannot be found. */
 int gb_dynamics_rhs(gb_dynamics *dynamics, double t, const double y[GB_STATE_SIZE], double dydt[GB_STATE_SIZE]);

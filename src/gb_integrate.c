@@ -1,4 +1,4 @@
-#include "gb_integrate.h"
+#include "gb_integrate_internal.h"
 
 #include "gb_error.h"
 
@@ -45,41 +45,63 @@ static void note_drift(gb_integrate_stats *stats, double drift)
     if (fabs(drift) > stats->max_norm_drift) stats->max_norm_drift = fabs(drift);
 }
 
-/* One classical RK4 step of size h from (t, y) into out. */
-static int rk4_step(gb_dynamics *d, double t, double h, const double y[], double out[], gb_integrate_stats *stats)
+int gb_integrate_rk4_step(gb_dynamics *d, double t, double h, const double y[GB_STATE_SIZE], double out[GB_STATE_SIZE],
+                          size_t k, double *Y, gb_integrate_tangent tangent, void *context, gb_integrate_stats *stats)
 {
-    double k1[GB_STATE_SIZE], k2[GB_STATE_SIZE], k3[GB_STATE_SIZE], k4[GB_STATE_SIZE], tmp[GB_STATE_SIZE];
-    int status = gb_dynamics_rhs(d, t, y, k1);
-    for (int i = 0; !status && i < GB_STATE_SIZE; i++) tmp[i] = y[i] + 0.5 * h * k1[i];
-    if (!status) status = gb_dynamics_rhs(d, t + 0.5 * h, tmp, k2);
-    for (int i = 0; !status && i < GB_STATE_SIZE; i++) tmp[i] = y[i] + 0.5 * h * k2[i];
-    if (!status) status = gb_dynamics_rhs(d, t + 0.5 * h, tmp, k3);
-    for (int i = 0; !status && i < GB_STATE_SIZE; i++) tmp[i] = y[i] + h * k3[i];
-    if (!status) status = gb_dynamics_rhs(d, t + h, tmp, k4);
+    enum { S = GB_STATE_SIZE };
+    static const double c[4] = {0.0, 0.5, 0.5, 1.0};
+    double K[4][S], stage[S], KY[4][GB_INTEGRATE_TANGENT_MAX][S], Ystage[S];
+    if (k > GB_INTEGRATE_TANGENT_MAX) return gb_error_set(GB_EDOM, "%zu tangent vectors (allowed: at most %d)", k, GB_INTEGRATE_TANGENT_MAX);
+    int status = GB_OK;
+    for (int st = 0; st < 4 && !status; st++) {
+        /* Stage 0 at y itself; stage st at y + c_st h K_{st-1}. */
+        const double *ys = y, *Ys;
+        if (st) {
+            for (int i = 0; i < S; i++) stage[i] = y[i] + c[st] * h * K[st - 1][i];
+            ys = stage;
+        }
+        status = gb_dynamics_rhs(d, t + c[st] * h, ys, K[st]);
+        for (size_t j = 0; j < k && !status; j++) {
+            Ys = Y + j * S;
+            if (st) {
+                for (int i = 0; i < S; i++) Ystage[i] = Y[j * S + i] + c[st] * h * KY[st - 1][j][i];
+                Ys = Ystage;
+            }
+            status = tangent(context, d, t + c[st] * h, ys, Ys, KY[st][j]);
+        }
+    }
     if (status) return status;
-    for (int i = 0; i < GB_STATE_SIZE; i++) out[i] = y[i] + h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
-    stats->rhs_evaluations += 4;
+    for (int i = 0; i < S; i++) out[i] = y[i] + h / 6.0 * (K[0][i] + 2.0 * K[1][i] + 2.0 * K[2][i] + K[3][i]);
+    for (size_t j = 0; j < k; j++)
+        for (int i = 0; i < S; i++)
+            Y[j * S + i] += h / 6.0 * (KY[0][j][i] + 2.0 * KY[1][j][i] + 2.0 * KY[2][j][i] + KY[3][j][i]);
+    if (stats) stats->rhs_evaluations += 4;
     return GB_OK;
 }
 
-/* A switch was found at the end of the step (t, y) → t + h: locate the fraction θ where Δh = 0 by the
- * Illinois method on gap(θ) = Δh at the RK4 step of size θh (on the old branch), switch there, and
- * finish the step on the new branch into out. */
-static int located_step(gb_dynamics *d, double t, double h, const double y[], const gb_contact_point *other,
-                        double out[], gb_integrate_stats *stats)
+static int rk4_step(gb_dynamics *d, double t, double h, const double y[], double out[], gb_integrate_stats *stats)
 {
-    double a = 0.0, b = 1.0, ga, gb, ya[GB_STATE_SIZE], yb[GB_STATE_SIZE], ymid[GB_STATE_SIZE];
+    return gb_integrate_rk4_step(d, t, h, y, out, 0, NULL, NULL, NULL, stats);
+}
+
+int gb_integrate_locate_switch(gb_dynamics *d, double t, double h, const double y[GB_STATE_SIZE],
+                               const gb_contact_point *other, gb_integrate_switch *out, gb_integrate_stats *stats)
+{
+    double a = 0.0, b = 1.0, ga, gb, yb[GB_STATE_SIZE], ymid[GB_STATE_SIZE];
     gb_contact_point other_a, other_b, other_mid;
     int status = gb_dynamics_branch_gap(d, y, other, &ga, &other_a);
     if (!status) status = rk4_step(d, t, h, y, yb, stats);
     if (!status) status = gb_dynamics_branch_gap(d, yb, other, &gb, &other_b);
     if (status) return status;
-    memcpy(ya, y, sizeof ya);
-    if (!(ga < 0.0 && gb > 0.0)) {
-        /* Already lower at the start (or no sign change): switch at the start of the step. */
-        gb_dynamics_switch_to(d, ga >= 0.0 ? &other_a : &other_b);
-        return ga >= 0.0 ? rk4_step(d, t, h, y, out, stats) : (memcpy(out, yb, sizeof yb), GB_OK);
+    out->crossed = ga < 0.0 && gb > 0.0;
+    if (!out->crossed) {
+        /* Already lower at the start, or lower only at the end (a branch born or lost in a fold). */
+        out->fraction = ga >= 0.0 ? 0.0 : 1.0;
+        memcpy(out->y, ga >= 0.0 ? y : yb, sizeof out->y);
+        out->other = ga >= 0.0 ? other_a : other_b;
+        return GB_OK;
     }
+    memcpy(out->y, y, sizeof out->y);
     int side = 0;
     for (int it = 0; it < 60 && b - a > 1e-13; it++) {
         const double m = (a * gb - b * ga) / (gb - ga); /* regula falsi, Illinois-modified */
@@ -89,28 +111,37 @@ static int located_step(gb_dynamics *d, double t, double h, const double y[], co
         if (status) return status;
         if (gm == 0.0) {
             a = b = m;
-            memcpy(ya, ymid, sizeof ya);
-            other_a = other_mid;
+            memcpy(out->y, ymid, sizeof out->y);
             break;
         }
         if (gm < 0.0) {
             a = m, ga = gm;
-            memcpy(ya, ymid, sizeof ya);
+            memcpy(out->y, ymid, sizeof out->y);
             if (side == -1) gb *= 0.5;
             side = -1;
         } else {
             b = m, gb = gm;
-            other_b = other_mid;
             if (side == 1) ga *= 0.5;
             side = 1;
         }
     }
-    /* Switch at θ = a (the old branch still lowest there), to the other branch continued to ya. */
+    /* θ = a: the current branch is still the lower there; `other` continued to that state. */
     double gap;
-    status = gb_dynamics_branch_gap(d, ya, other, &gap, &other_a);
+    out->fraction = a;
+    return gb_dynamics_branch_gap(d, out->y, other, &gap, &out->other);
+}
+
+/* A switch was found at the end of the step (t, y) → t + h: locate it, switch there, and finish the
+ * step on the new branch into out. */
+static int located_step(gb_dynamics *d, double t, double h, const double y[], const gb_contact_point *other,
+                        double out[], gb_integrate_stats *stats)
+{
+    gb_integrate_switch at;
+    const int status = gb_integrate_locate_switch(d, t, h, y, other, &at, stats);
     if (status) return status;
-    gb_dynamics_switch_to(d, &other_a);
-    return rk4_step(d, t + a * h, (1.0 - a) * h, ya, out, stats);
+    gb_dynamics_switch_to(d, &at.other);
+    if (at.fraction == 1.0) return memcpy(out, at.y, sizeof at.y), GB_OK;
+    return rk4_step(d, t + at.fraction * h, (1.0 - at.fraction) * h, at.y, out, stats);
 }
 
 /* A run that can be continued: the nominal time grid t_n = t0 + n·h is global (n counts steps from

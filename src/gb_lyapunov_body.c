@@ -2,10 +2,13 @@
 #include "gb_lyapunov_body.h"
 
 #include "gb_error.h"
+#include "gb_integrate_internal.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+
+_Static_assert(GB_LYAPUNOV_MAX_EXPONENTS <= GB_INTEGRATE_TANGENT_MAX, "one RK4 step carries every tangent vector");
 
 /* ---------------------------------------------------------------- a Gömböc as a pair system */
 
@@ -22,7 +25,7 @@ struct gb_lyapunov_body {
     size_t saltations, unlocated, grazing, jumps;
 };
 
-int gb_lyapunov_body_create(const char *morphology, double beta, const gb_dynamics_def *dynamics,
+int gb_lyapunov_body_create(const gb_surface *surface, const gb_dynamics_def *dynamics,
                             const gb_integrate_def *integrate, const double R0[9], const double omega0[3],
                             double omega_scale, gb_lyapunov_body **out)
 {
@@ -37,7 +40,7 @@ int gb_lyapunov_body_create(const char *morphology, double beta, const gb_dynami
     b->omega_scale = omega_scale;
     int status = GB_OK;
     for (int k = 0; k < 2 && !status; k++) {
-        status = gb_dynamics_start(morphology, beta, dynamics, R0, omega0, &b->dynamics[k], b->y[k]);
+        status = gb_dynamics_start(surface, dynamics, R0, omega0, &b->dynamics[k], b->y[k]);
         if (!status) status = gb_integrate_begin(b->dynamics[k], integrate, 0.0, &b->session[k]);
     }
     if (status) {
@@ -177,26 +180,17 @@ static int jacobian_times(gb_dynamics *d, double t, const double y[GB_STATE_SIZE
 
 /* One classical RK4 step of size h of the reference and of k state displacements Y (k × 8, in place):
  * the RK4 discretisation of (ẏ = f, Ẏ = A(t) Y), eq 75. */
+static int jacobian_along(void *context, gb_dynamics *d, double t, const double y[GB_STATE_SIZE],
+                          const double dy[GB_STATE_SIZE], double out[GB_STATE_SIZE])
+{
+    (void)context;
+    return jacobian_times(d, t, y, dy, out);
+}
+
+/* The reference y and k tangent vectors Y over one RK4 step, in place (the library's one RK4). */
 static int tangent_rk4(gb_dynamics *d, double t, double h, double y[GB_STATE_SIZE], size_t k, double *Y)
 {
-    enum { S = GB_STATE_SIZE };
-    double K[4][S], ys[S], KY[4][GB_LYAPUNOV_MAX_EXPONENTS][S], Ys[S];
-    static const double c[4] = {0.0, 0.5, 0.5, 1.0};
-    int status = GB_OK;
-    for (int st = 0; st < 4 && !status; st++) {
-        for (int i = 0; i < S; i++) ys[i] = y[i] + (st ? c[st] * h * K[st - 1][i] : 0.0);
-        status = gb_dynamics_rhs(d, t + c[st] * h, ys, K[st]);
-        for (size_t j = 0; j < k && !status; j++) {
-            for (int i = 0; i < S; i++) Ys[i] = Y[j * S + i] + (st ? c[st] * h * KY[st - 1][j][i] : 0.0);
-            status = jacobian_times(d, t + c[st] * h, ys, Ys, KY[st][j]);
-        }
-    }
-    if (status) return status;
-    for (int i = 0; i < S; i++) y[i] += h / 6.0 * (K[0][i] + 2.0 * K[1][i] + 2.0 * K[2][i] + K[3][i]);
-    for (size_t j = 0; j < k; j++)
-        for (int i = 0; i < S; i++)
-            Y[j * S + i] += h / 6.0 * (KY[0][j][i] + 2.0 * KY[1][j][i] + 2.0 * KY[2][j][i] + KY[3][j][i]);
-    return GB_OK;
+    return gb_integrate_rk4_step(d, t, h, y, y, k, Y, jacobian_along, NULL, NULL);
 }
 
 /* The gap g(y) = Δh between the current branch and `other` (eq 39), differentiated along dy. */
@@ -222,35 +216,15 @@ static int tangent_switch_step(gb_lyapunov_body *b, double t, double h, double y
                                const gb_contact_point *other)
 {
     gb_dynamics *d = b->dynamics[0];
-    double a = 0.0, c = 1.0, ga, gc, z[GB_STATE_SIZE];
-    gb_contact_point there;
-    int status = gb_dynamics_branch_gap(d, y, other, &ga, &there);
-    memcpy(z, y, sizeof z);
-    if (!status) status = tangent_rk4(d, t, h, z, 0, NULL);
-    if (!status) status = gb_dynamics_branch_gap(d, z, other, &gc, &there);
+    /* The switch time by the library's one locator (the reference alone). No crossing inside the step
+     * (the other branch lower already at its start, or only at its end, born or lost in a fold, where Δh
+     * jumps): switch at that end, and count it. */
+    gb_integrate_switch at;
+    int status = gb_integrate_locate_switch(d, t, h, y, other, &at, NULL);
     if (status) return status;
-    if (ga < 0.0 && gc > 0.0) {
-        int side = 0;
-        for (int it = 0; it < 60 && c - a > 1e-13; it++) {
-            const double m = (a * gc - c * ga) / (gc - ga);
-            double gm;
-            memcpy(z, y, sizeof z);
-            status = tangent_rk4(d, t, m * h, z, 0, NULL);
-            if (!status) status = gb_dynamics_branch_gap(d, z, other, &gm, &there);
-            if (status) return status;
-            if (gm == 0.0) {
-                a = c = m;
-                break;
-            }
-            if (gm < 0.0) a = m, ga = gm, gc *= side == -1 ? 0.5 : 1.0, side = -1;
-            else c = m, gc = gm, ga *= side == 1 ? 0.5 : 1.0, side = 1;
-        }
-    } else {
-        /* No crossing inside the step: the other branch was lower already at its start, or appears only
-         * at its end (a branch born or lost in a fold, where Δh jumps): switch at that end, and count it. */
-        a = ga >= 0.0 ? 0.0 : 1.0;
-        b->jumps++;
-    }
+    const double a = at.fraction;
+    if (!at.crossed) b->jumps++;
+    gb_contact_point there;
     /* To the switch on the old branch. */
     if (a > 0.0) status = tangent_rk4(d, t, a * h, y, k, Y);
     if (status) return status;

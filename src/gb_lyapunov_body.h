@@ -18,7 +18,7 @@
  * perturbed copy takes over the reference's contact (gb_dynamics_adopt_contact). */
 typedef struct gb_lyapunov_body gb_lyapunov_body;
 
-int gb_lyapunov_body_create(const char *morphology, double beta, const gb_dynamics_def *dynamics,
+int gb_lyapunov_body_create(const gb_surface *body, const gb_dynamics_def *dynamics,
                             const gb_integrate_def *integrate, const double R0[9], const double omega0[3],
                             double omega_scale, gb_lyapunov_body **out);
 void gb_lyapunov_body_free(gb_lyapunov_body *body);

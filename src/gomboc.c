@@ -53,7 +53,9 @@ int gomboc_main(int argc, char **argv)
             }
             return status;
         }
-    fprintf(stderr, "gomboc: unknown command '%s' (allowed: shape, contact, run, lyapunov)\n\n%s", argv[1], usage_main);
+    fprintf(stderr, "gomboc: unknown command '%s' (allowed:", argv[1]);
+    for (size_t k = 0; k < sizeof commands / sizeof commands[0]; k++) fprintf(stderr, "%s %s", k ? "," : "", commands[k].name);
+    fprintf(stderr, ")\n\n%s", usage_main);
     return EXIT_INPUT;
 }
 

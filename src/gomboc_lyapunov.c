@@ -54,8 +54,8 @@ int command_lyapunov(int argc, char **argv)
     if (json) {
         cJSON *root = cli_lyapunov_json(&scene, &r, 1);
         cJSON_AddStringToObject(root, "case", case_path);
-        cJSON_AddStringToObject(root, "morphology", scene.morphology);
-        cJSON_AddNumberToObject(root, "beta", scene.beta);
+        cJSON_AddStringToObject(root, "morphology", scene.body.morphology->name);
+        cJSON_AddNumberToObject(root, "beta", scene.body.beta);
         cJSON_AddStringToObject(root, "equation", gb_dynamics_variant_name(scene.dynamics.variant));
         cJSON_AddStringToObject(root, "contact", gb_contact_model_name(scene.dynamics.contact));
         cli_print_json(root);

@@ -124,8 +124,8 @@ static cJSON *scene_json(const gb_case *c)
     const gb_dynamics_def *d = &c->dynamics;
     cJSON *o = cJSON_CreateObject();
     cJSON_AddStringToObject(o, "description", c->description);
-    cJSON_AddStringToObject(o, "morphology", c->morphology);
-    cJSON_AddNumberToObject(o, "beta", c->beta);
+    cJSON_AddStringToObject(o, "morphology", c->body.morphology->name);
+    cJSON_AddNumberToObject(o, "beta", c->body.beta);
     cJSON_AddNumberToObject(o, "mass", d->mass);
     cJSON_AddNumberToObject(o, "g", d->forcing.g);
     cJSON_AddNumberToObject(o, "A1", c->A1);
@@ -362,7 +362,7 @@ int command_run(int argc, char **argv)
             stats = *gb_lyapunov_body_stats(body, 0);
         }
     } else if (!status) {
-        status = gb_dynamics_start(scene.morphology, scene.beta, &scene.dynamics, scene.attitude, scene.omega0, &dynamics, y);
+        status = gb_dynamics_start(&scene.body, &scene.dynamics, scene.attitude, scene.omega0, &dynamics, y);
         s.dynamics = dynamics;
         if (!status) status = gb_integrate_run(dynamics, &scene.integrate, 0.0, y, sample, &s, &stats);
     }

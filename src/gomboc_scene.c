@@ -11,7 +11,7 @@ int cli_scene_lyapunov(const gb_case *scene, gb_integrate_sample sample, void *c
 {
     gb_lyapunov_body *body = NULL;
     memset(result, 0, sizeof *result);
-    int status = gb_lyapunov_body_create(scene->morphology, scene->beta, &scene->dynamics, &scene->integrate,
+    int status = gb_lyapunov_body_create(&scene->body, &scene->dynamics, &scene->integrate,
                                          scene->attitude, scene->omega0, scene->omega_scale, &body);
     if (status) return status;
     if (observer) *observer = gb_lyapunov_body_dynamics(body);

@@ -472,11 +472,11 @@ static void test_documented_ranges(void)
 int verify_register_bad_input(void)
 {
     static const verify_test tests[] = {
-        {"bad input: every row refused with exit status, key or option, range, and nothing written", test_bad_input_table},
-        {"bad input: strict but fair (valid values accepted, long paths whole)", test_strict_but_fair},
-        {"bad input: temporaries removed after SIGTERM and after a kill -9", test_temporaries},
-        {"bad input: the documented ranges are the enforced ranges", test_documented_ranges},
-        {NULL, NULL},
+        {"bad input: every row refused with exit status, key or option, range, and nothing written", test_bad_input_table, NULL},
+        {"bad input: strict but fair (valid values accepted, long paths whole)", test_strict_but_fair, NULL},
+        {"bad input: temporaries removed after SIGTERM and after a kill -9", test_temporaries, NULL},
+        {"bad input: the documented ranges are the enforced ranges", test_documented_ranges, NULL},
+        {NULL, NULL, NULL},
     };
     return verify_register_suite("Bad input, never misread", tests);
 }

@@ -228,11 +228,11 @@ static void test_run_command(void)
 int verify_register_command(void)
 {
     static const verify_test tests[] = {
-        {"command: JSON keys, verdicts and determinism", test_json_keys_and_determinism},
-        {"command: atomic output", test_failed_write_leaves_nothing},
-        {"command: gomboc contact, its methods and keys", test_contact_command},
-        {"command: gomboc run, case files and outputs", test_run_command},
-        {NULL, NULL},
+        {"command: JSON keys, verdicts and determinism", test_json_keys_and_determinism, NULL},
+        {"command: atomic output", test_failed_write_leaves_nothing, NULL},
+        {"command: gomboc contact, its methods and keys", test_contact_command, NULL},
+        {"command: gomboc run, case files and outputs", test_run_command, NULL},
+        {NULL, NULL, NULL},
     };
     return verify_register_suite("The gomboc command", tests);
 }

@@ -1,5 +1,7 @@
 #include "gb_check.h"
 
+#include "gb_error.h"
+
 #include <CUnit/CUnit.h>
 #include <cjson/cJSON.h>
 #include <math.h>
@@ -12,7 +14,7 @@
 
 const char *gb_check_data_dir = ".";
 int gb_check_full = 0;
-static cJSON *rows;
+static cJSON *rows, *tests;
 static double last_time;
 
 static double now(void)
@@ -156,11 +158,23 @@ static int write_text_atomically(const char *path, const char *text)
     return 1;
 }
 
+int gb_check_register_test(const char *suite, const char *test, const char *establishes)
+{
+    if (!tests) tests = cJSON_CreateArray();
+    cJSON *t = cJSON_CreateObject();
+    if (!tests || !t) return 1;
+    cJSON_AddStringToObject(t, "suite", suite);
+    cJSON_AddStringToObject(t, "test", test);
+    if (establishes) cJSON_AddStringToObject(t, "establishes", establishes);
+    cJSON_AddItemToArray(tests, t);
+    return 0;
+}
+
 int gb_check_write(const char *path)
 {
-    /* Schema 2: {"schema": 2, "rows": [...]}, every row naming its suite and its source file. */
     cJSON *document = cJSON_CreateObject();
     cJSON_AddNumberToObject(document, "schema", GB_CHECK_SCHEMA);
+    cJSON_AddItemReferenceToObject(document, "tests", tests ? tests : (tests = cJSON_CreateArray()));
     cJSON_AddItemReferenceToObject(document, "rows", rows ? rows : (rows = cJSON_CreateArray()));
     char *text = cJSON_Print(document);
     cJSON_Delete(document);
@@ -199,4 +213,16 @@ const cJSON *gb_check_reference_cases(const char *name, const char *section, cJS
     const cJSON *cases = cJSON_GetObjectItem(*root, "cases");
     gb_check c = {section, "-", "reference file readable, with cases", path, "exact"};
     return gb_check_true(&c, cJSON_GetArraySize(cases) > 0, "%d cases in %s", cJSON_GetArraySize(cases), path) ? cases : NULL;
+}
+
+const gb_surface *gb_check_body(const char *morphology, double beta)
+{
+    static gb_surface ring[64];
+    static unsigned next;
+    gb_surface *body = &ring[next++ % 64];
+    if (gb_surface_init(body, morphology, beta)) {
+        fprintf(stderr, "verify: gb_check_body: %s\n", gb_error_message());
+        abort();
+    }
+    return body;
 }

@@ -9,6 +9,8 @@
 #ifndef GB_CHECK_H
 #define GB_CHECK_H
 
+#include "gb_surface.h"
+
 #include <stddef.h>
 
 typedef struct gb_check {
@@ -41,15 +43,25 @@ int gb_check_finding_at(const gb_check *check, const char *claim, int paper_hold
 #define gb_check_finding(check, claim, paper_holds, conclusive, ...) \
     gb_check_finding_at(check, claim, paper_holds, conclusive, __FILE__, __LINE__, __VA_ARGS__)
 
+/* The body a check names by literals (morphology, beta), for calls that take one body value. The
+ * literals are known valid: a failure is a bug in the check, and aborts. The pointer stays valid for the
+ * next 63 calls (the callee copies the body). */
+const gb_surface *gb_check_body(const char *morphology, double beta);
+
 /* Observed order of convergence p = log(e1/e2) / log(h1/h2). */
 double gb_check_observed_order(double e1, double e2, double h1, double h2);
 
 /* Per-test timer reset (a CUnit test setup function). */
 void gb_check_test_start(void);
 
-/* Write every recorded row to `path` (atomically) as {"schema": GB_CHECK_SCHEMA, "rows": [...]}; each
- * row also names its CUnit suite and test and the source file of the check. Returns 0 on success. */
-#define GB_CHECK_SCHEMA 2
+/* Write every registered test and every recorded row to `path` (atomically) as {"schema":
+ * GB_CHECK_SCHEMA, "tests": [...], "rows": [...]}; each row also names its CUnit suite and test and the
+ * source file of the check. Returns 0 on success. */
+#define GB_CHECK_SCHEMA 3
+
+/* Record a registered test: its suite, its name and what it establishes when all its rows pass (may be
+ * NULL); written as "tests" beside the rows. Returns 0, or 1 when out of memory. */
+int gb_check_register_test(const char *suite, const char *test, const char *establishes);
 int gb_check_write(const char *path);
 
 /* 1 under `make verify-full` (main's --full): the long studies run too. */

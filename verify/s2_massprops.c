@@ -189,12 +189,16 @@ static void test_massprops_error_paths(void)
 int verify_register_s2_massprops(void)
 {
     static const verify_test tests[] = {
-        {"eq 40, 53: sphere closed forms at beta = 0", test_sphere},
-        {"eq 2, 40, 53: closed forms for every beta; centroid at the origin", test_closed_forms_and_centroid},
-        {"eq 53: convergence as the quadrature tolerance tightens", test_convergence_with_tolerance},
-        {"eq 40, 53: agreement with the scipy reference", test_scipy_reference},
-        {"eq 53: bad mass and tolerances refused", test_massprops_error_paths},
-        {NULL, NULL},
+        {"eq 40, 53: sphere closed forms at beta = 0", test_sphere, NULL},
+        {"eq 2, 40, 53: closed forms for every beta; centroid at the origin", test_closed_forms_and_centroid,
+         "the centroid of both bodies is at the origin to quadrature accuracy (the paper measures r from "
+         "the centre of mass: this holds), and volume, L and the trace of the inertia tensor agree with "
+         "closed forms that hold for every β"},
+        {"eq 53: convergence as the quadrature tolerance tightens", test_convergence_with_tolerance, NULL},
+        {"eq 40, 53: agreement with the scipy reference", test_scipy_reference,
+         "the full inertia tensor, volume and L agree with an independent scipy computation"},
+        {"eq 53: bad mass and tolerances refused", test_massprops_error_paths, NULL},
+        {NULL, NULL, NULL},
     };
     return verify_register_suite("Section 2: mass properties (nested GSL quadrature)", tests);
 }

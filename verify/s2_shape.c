@@ -241,15 +241,17 @@ static void test_shape_error_paths(void)
 int verify_register_s2_shape(void)
 {
     static const verify_test tests[] = {
-        {"eq 13-17: curvature of the sphere and on the symmetry axis in closed form", test_curvature_closed_forms},
-        {"eq 3-6: convexity limit of beta vs closed form", test_convexity_limit},
-        {"eq 3-6: negative-curvature fraction converges with the grid", test_negative_fraction_convergence},
-        {"finding: Table 1 bodies are not convex", test_finding_convexity_at_table1},
-        {"eq 4, 6: critical points of r, Poincare-Hopf", test_equilibria_of_r},
-        {"eq 4, 6: hull equilibria of a convex body", test_hull_on_convex_body},
-        {"finding: Table 1 bodies are not mono-monostatic", test_finding_mono_monostatic_at_table1},
-        {"shape: bad parameters refused", test_shape_error_paths},
-        {NULL, NULL},
+        {"eq 13-17: curvature of the sphere and on the symmetry axis in closed form", test_curvature_closed_forms, NULL},
+        {"eq 3-6: convexity limit of beta vs closed form", test_convexity_limit, NULL},
+        {"eq 3-6: negative-curvature fraction converges with the grid", test_negative_fraction_convergence, NULL},
+        {"finding: Table 1 bodies are not convex", test_finding_convexity_at_table1, NULL},
+        {"eq 4, 6: critical points of r, Poincare-Hopf", test_equilibria_of_r,
+         "the radial function r has exactly one minimum and one maximum (Poincaré–Hopf S − H + U = 2) at β "
+         "= 0.02, 0.12 and 0.2385"},
+        {"eq 4, 6: hull equilibria of a convex body", test_hull_on_convex_body, NULL},
+        {"finding: Table 1 bodies are not mono-monostatic", test_finding_mono_monostatic_at_table1, NULL},
+        {"shape: bad parameters refused", test_shape_error_paths, NULL},
+        {NULL, NULL, NULL},
     };
     return verify_register_suite("Section 2: the paper's claims about the bodies", tests);
 }

@@ -267,14 +267,14 @@ static void test_surface_error_paths(void)
 int verify_register_s2_surface(void)
 {
     static const verify_test tests[] = {
-        {"eq 18-19: phase derivatives vs finite differences", test_eq18_19_phase_derivatives},
-        {"eq 13-15, 34: kernel, radius, tangents and second derivatives vs finite differences", test_eq13_14_15_34_derivatives},
-        {"eq 13: observed O(h^2) order of the central difference, then round-off", test_eq13_fd_convergence_order},
-        {"eq 66-68: beta-sensitivity vs finite differences in beta", test_eq66_67_68_beta_sensitivity},
-        {"eq 16-17: normal orthogonal, unit, outward", test_eq16_17_normal},
-        {"eq 7-9: beta = 0 is the unit sphere; morphologies differ only in phase", test_eq7_sphere_and_phase_only},
-        {"eq 7: bad beta or morphology refused", test_surface_error_paths},
-        {NULL, NULL},
+        {"eq 18-19: phase derivatives vs finite differences", test_eq18_19_phase_derivatives, NULL},
+        {"eq 13-15, 34: kernel, radius, tangents and second derivatives vs finite differences", test_eq13_14_15_34_derivatives, NULL},
+        {"eq 13: observed O(h^2) order of the central difference, then round-off", test_eq13_fd_convergence_order, NULL},
+        {"eq 66-68: beta-sensitivity vs finite differences in beta", test_eq66_67_68_beta_sensitivity, NULL},
+        {"eq 16-17: normal orthogonal, unit, outward", test_eq16_17_normal, NULL},
+        {"eq 7-9: beta = 0 is the unit sphere; morphologies differ only in phase", test_eq7_sphere_and_phase_only, NULL},
+        {"eq 7: bad beta or morphology refused", test_surface_error_paths, NULL},
+        {NULL, NULL, NULL},
     };
     return verify_register_suite("Section 2: surface geometry (eqs 1-19, 66-68)", tests);
 }

@@ -312,7 +312,7 @@ static void test_cache_restart(void)
             if (run == 2) def.certify.time_checks = 1;
             const double R0[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1}, w0[3] = {0, 0, 0};
             gb_dynamics *d = NULL;
-            status = gb_dynamics_start(m ? "II" : "I", 0.12, &def, R0, w0, &d, y[run]);
+            status = gb_dynamics_start(gb_check_body(m ? "II" : "I", 0.12), &def, R0, w0, &d, y[run]);
             gb_integrate_def idef = gb_integrate_default_def();
             idef.periods = 5;
             gb_integrate_stats stats;
@@ -370,12 +370,12 @@ static void test_bad_definition(void)
 int verify_register_s4_certify(void)
 {
     static const verify_test tests[] = {
-        {"eq 29: interval enclosures of the surface over chart boxes", test_enclosures},
-        {"eq 29: certificate verdicts against an exhaustive search", test_verdicts_at_random_verticals},
-        {"eq 29: every accepted contact of continuous runs is the global minimum", test_trajectory_audit},
-        {"eq 29: certificate definition out of range", test_bad_definition},
-        {"eq 29: a restarting cache changes no verdict", test_cache_restart},
-        {NULL, NULL},
+        {"eq 29: interval enclosures of the surface over chart boxes", test_enclosures, NULL},
+        {"eq 29: certificate verdicts against an exhaustive search", test_verdicts_at_random_verticals, NULL},
+        {"eq 29: every accepted contact of continuous runs is the global minimum", test_trajectory_audit, NULL},
+        {"eq 29: certificate definition out of range", test_bad_definition, NULL},
+        {"eq 29: a restarting cache changes no verdict", test_cache_restart, NULL},
+        {NULL, NULL, NULL},
     };
     return verify_register_suite("Section 4: the certificate of the global minimum", tests);
 }

@@ -832,16 +832,25 @@ static void free_samples(void)
 int verify_register_s4_contact(void)
 {
     static const verify_test tests[] = {
-        {"eq 29: grid nodes where documented; every bad input refused", test_grid_nodes_and_errors},
-        {"eq 29: the exact fast grid search returns the brute-force node", test_fast_equals_brute},
-        {"eq 31-35: continuous minima are stationary (eq 33) and strict (eq 35)", test_continuous_minima},
-        {"eq 29: branch seeding finds the global minimum", test_branch_seeding},
-        {"eq 29-33: the multimin fallback near a pole", test_fallback},
-        {"eq 29, 36: grid against continuous, 45x90 to 720x1440", test_grid_convergence},
-        {"eq 29, 36: agreement with the scipy reference", test_scipy_reference},
-        {"eq 72: contact sensitivity and r_c rate against finite differences", test_sensitivity},
-        {"eq 38-39: branch switching along a great circle", test_switching},
-        {NULL, NULL},
+        {"eq 29: grid nodes where documented; every bad input refused", test_grid_nodes_and_errors, NULL},
+        {"eq 29: the exact fast grid search returns the brute-force node", test_fast_equals_brute,
+         "the fast grid search returns the paper's brute-force node, bit for bit and with the same "
+         "tie-break, for 10⁴ random verticals per body, β and node placement"},
+        {"eq 31-35: continuous minima are stationary (eq 33) and strict (eq 35)", test_continuous_minima,
+         "every continuous minimum satisfies eq 33 to 1e-12 and eq 35; at β = 0.02 every vertical has "
+         "exactly one minimum, as strict convexity demands"},
+        {"eq 29: branch seeding finds the global minimum", test_branch_seeding, NULL},
+        {"eq 29-33: the multimin fallback near a pole", test_fallback, NULL},
+        {"eq 29, 36: grid against continuous, 45x90 to 720x1440", test_grid_convergence, NULL},
+        {"eq 29, 36: agreement with the scipy reference", test_scipy_reference,
+         "continuous minima (count, heights, positions) agree with an independent sympy/scipy.optimize "
+         "search"},
+        {"eq 72: contact sensitivity and r_c rate against finite differences", test_sensitivity,
+         "eq 72's contact sensitivity and the contact rate ṙ_c agree with central differences in attitude"},
+        {"eq 38-39: branch switching along a great circle", test_switching,
+         "branch switches (eqs 38–39) are detected exactly where the global contact jumps, and h* stays "
+         "continuous (no global branch is lost at a fold)"},
+        {NULL, NULL, NULL},
     };
     const int status = verify_register_suite("Section 4: contact selection", tests);
     if (!status) atexit(free_samples);

@@ -314,7 +314,7 @@ static int lyapunov_run_counted(const char *morphology, const variation *v, size
     const double R0[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1}, w0[3] = {0, 0, 0};
     gb_lyapunov_body *body;
     const double norm = (v->norm_scale > 0.0 ? v->norm_scale : 1.0) * def.forcing.omega;
-    int status = gb_lyapunov_body_create(morphology, v->beta, &def, &idef, R0, w0, norm, &body);
+    int status = gb_lyapunov_body_create(gb_check_body(morphology, v->beta), &def, &idef, R0, w0, norm, &body);
     if (status) return status;
     gb_lyapunov_def ldef = gb_lyapunov_default_def();
     ldef.delta0 = v->delta0, ldef.interval = 2 * M_PI / def.forcing.omega, ldef.intervals = periods;
@@ -767,9 +767,9 @@ static void test_gomboc_estimators(void)
         size_t saltations = 0, unlocated = 0, grazing = 0;
         const gb_lyapunov_pair_system ps = gb_lyapunov_body_pair();
         const gb_lyapunov_tangent_system ts = gb_lyapunov_body_tangent();
-        int status = gb_lyapunov_body_create(runs[n].body, runs[n].beta, &def, &idef, R0, w0, def.forcing.omega, &a);
+        int status = gb_lyapunov_body_create(gb_check_body(runs[n].body, runs[n].beta), &def, &idef, R0, w0, def.forcing.omega, &a);
         if (!status) status = gb_lyapunov_pair(&ps, a, &ldef, 0.0, NULL, &pair);
-        if (!status) status = gb_lyapunov_body_create(runs[n].body, runs[n].beta, &def, &idef, R0, w0, def.forcing.omega, &b);
+        if (!status) status = gb_lyapunov_body_create(gb_check_body(runs[n].body, runs[n].beta), &def, &idef, R0, w0, def.forcing.omega, &b);
         if (!status) status = gb_lyapunov_body_tangent_ready(b);
         if (!status) status = gb_lyapunov_tangent(&ts, b, &ldef, 0.0, 1, &tangent);
         if (!status) gb_lyapunov_body_tangent_counts(b, &saltations, &unlocated, &grazing);
@@ -808,13 +808,13 @@ static void test_gomboc_estimators(void)
 int verify_register_s6_chaos(void)
 {
     static const verify_test tests[] = {
-        {"eq 75, 77: both estimators on the logistic and Henon maps", test_maps},
-        {"eq 74, 75, 77: both estimators on the Lorenz and Ueda flows", test_flows},
-        {"eq 77: observation time, delta0 and renormalisation interval", test_estimator_parameters},
-        {"section 8.2: is the chaos real? lambda_max under every variation", test_chaos_real},
-        {"eq 75 against eq 77 on the Gomboc (saltation at located switches)", test_gomboc_estimators},
-        {"section 8.2 (make verify-full): 10000-period rolling runs and post-transient exponents", test_chaos_real_long},
-        {NULL, NULL},
+        {"eq 75, 77: both estimators on the logistic and Henon maps", test_maps, NULL},
+        {"eq 74, 75, 77: both estimators on the Lorenz and Ueda flows", test_flows, NULL},
+        {"eq 77: observation time, delta0 and renormalisation interval", test_estimator_parameters, NULL},
+        {"section 8.2: is the chaos real? lambda_max under every variation", test_chaos_real, NULL},
+        {"eq 75 against eq 77 on the Gomboc (saltation at located switches)", test_gomboc_estimators, NULL},
+        {"section 8.2 (make verify-full): 10000-period rolling runs and post-transient exponents", test_chaos_real_long, NULL},
+        {NULL, NULL, NULL},
     };
     return verify_register_suite("Sections 6, 8.2: Lyapunov exponents and chaos", tests);
 }

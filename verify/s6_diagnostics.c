@@ -160,7 +160,7 @@ static void test_strobe_gomboc(void)
         const gb_strobe_def sdef = {.transient = 3, .phase = 0.25};
         strobe_sampler s = {0};
         double y[GB_STATE_SIZE];
-        int status = gb_dynamics_start("I", 0.12, &def, R0, w0, &s.dynamics, y);
+        int status = gb_dynamics_start(gb_check_body("I", 0.12), &def, R0, w0, &s.dynamics, y);
         if (!status) status = gb_strobe_init(&s.strobe, GB_STATE_SIZE, 0.0, T, idef.steps_per_period, &sdef);
         gb_integrate_stats stats;
         if (!status) status = gb_integrate_run(s.dynamics, &idef, 0.0, y, strobe_sample, &s, &stats);
@@ -172,7 +172,7 @@ static void test_strobe_gomboc(void)
             double z[GB_STATE_SIZE];
             gb_integrate_def stop = idef;
             stop.periods = (double)(sdef.transient + n) + sdef.phase;
-            status = gb_dynamics_start("I", 0.12, &def, R0, w0, &d, z);
+            status = gb_dynamics_start(gb_check_body("I", 0.12), &def, R0, w0, &d, z);
             if (!status) status = gb_integrate_run(d, &stop, 0.0, z, NULL, NULL, &stats);
             mismatches += !status && memcmp(z, s.strobe.x + n * GB_STATE_SIZE, sizeof z) != 0;
             gb_dynamics_free(d);
@@ -206,13 +206,13 @@ static void test_pair_reference_is_the_run(void)
             gb_lyapunov_result r = {0};
             gb_lyapunov_def ldef = gb_lyapunov_default_def();
             ldef.interval = 2.0 * M_PI / def.forcing.omega, ldef.intervals = 10, ldef.transient = 2, ldef.batches = 5;
-            int status = gb_lyapunov_body_create("II", 0.12, &def, &idef, R0, w0, def.forcing.omega, &body);
+            int status = gb_lyapunov_body_create(gb_check_body("II", 0.12), &def, &idef, R0, w0, def.forcing.omega, &body);
             const gb_lyapunov_pair_system ps = gb_lyapunov_body_pair();
             if (!status) status = gb_lyapunov_pair(&ps, body, &ldef, 0.0, NULL, &r);
             gb_dynamics *d = NULL;
             double y[GB_STATE_SIZE];
             gb_integrate_stats stats;
-            if (!status) status = gb_dynamics_start("II", 0.12, &def, R0, w0, &d, y);
+            if (!status) status = gb_dynamics_start(gb_check_body("II", 0.12), &def, R0, w0, &d, y);
             if (!status) status = gb_integrate_run(d, &idef, 0.0, y, NULL, NULL, &stats);
             const int same = !status && memcmp(y, gb_lyapunov_body_state(body), sizeof y) == 0 &&
                              stats.steps == gb_lyapunov_body_stats(body, 0)->steps;
@@ -309,12 +309,12 @@ static void test_spectrum_scipy(void)
 int verify_register_s6_diagnostics(void)
 {
     static const verify_test tests[] = {
-        {"eq 73-74: the strobe against closed forms (forced oscillator, logistic cycles)", test_strobe_closed_forms},
-        {"eq 73-74: Gomboc strobe samples are the states of runs stopped there", test_strobe_gomboc},
-        {"eq 77: the pair's reference trajectory is the plain run", test_pair_reference_is_the_run},
-        {"Fig 8: spectrum against closed forms (peak, Parseval)", test_spectrum_closed_forms},
-        {"Fig 8: spectrum against scipy.signal.periodogram", test_spectrum_scipy},
-        {NULL, NULL},
+        {"eq 73-74: the strobe against closed forms (forced oscillator, logistic cycles)", test_strobe_closed_forms, NULL},
+        {"eq 73-74: Gomboc strobe samples are the states of runs stopped there", test_strobe_gomboc, NULL},
+        {"eq 77: the pair's reference trajectory is the plain run", test_pair_reference_is_the_run, NULL},
+        {"Fig 8: spectrum against closed forms (peak, Parseval)", test_spectrum_closed_forms, NULL},
+        {"Fig 8: spectrum against scipy.signal.periodogram", test_spectrum_scipy, NULL},
+        {NULL, NULL, NULL},
     };
     return verify_register_suite("Sections 6, 8.2: stroboscopic maps and spectra", tests);
 }

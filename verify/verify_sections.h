@@ -19,6 +19,7 @@ int verify_register_bad_input(void);
 typedef struct verify_test {
     const char *name;
     CU_TestFunc function;
+    const char *establishes; /* optional: what holds when every row of the test passes (for the report) */
 } verify_test;
 int verify_register_suite(const char *name, const verify_test *tests);
 

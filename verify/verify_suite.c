@@ -9,6 +9,6 @@ int verify_register_suite(const char *name, const verify_test *tests)
     CU_pSuite suite = CU_add_suite_with_setup_and_teardown(name, NULL, NULL, test_setup, test_teardown);
     if (!suite) return 1;
     for (const verify_test *t = tests; t->name; t++)
-        if (!CU_add_test(suite, t->name, t->function)) return 1;
+        if (!CU_add_test(suite, t->name, t->function) || gb_check_register_test(name, t->name, t->establishes)) return 1;
     return 0;
 }

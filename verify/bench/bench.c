@@ -19,6 +19,17 @@
 #include <string.h>
 #include <time.h>
 
+/* The body (morphology, beta) of a bench run; the names are literals known valid. */
+static const gb_surface *bench_body(const char *morphology, double beta)
+{
+    static gb_surface body;
+    if (gb_surface_init(&body, morphology, beta)) {
+        fprintf(stderr, "bench: %s\n", gb_error_message());
+        exit(1);
+    }
+    return &body;
+}
+
 enum { VERTICALS = 2000, REPEATS = 3 };
 
 static double now(void)
@@ -118,7 +129,7 @@ static double time_lyapunov(const char *m, gb_contact_model contact, gb_dynamics
         gb_lyapunov_body *body;
         gb_lyapunov_result res;
         const gb_lyapunov_pair_system ps = gb_lyapunov_body_pair();
-        if (gb_lyapunov_body_create(m, 0.12, &def, &idef, R0, w0, def.forcing.omega, &body) ||
+        if (gb_lyapunov_body_create(bench_body(m, 0.12), &def, &idef, R0, w0, def.forcing.omega, &body) ||
             gb_lyapunov_pair(&ps, body, &ldef, 0.0, NULL, &res)) {
             fprintf(stderr, "bench: %s\n", gb_error_message());
             exit(1);
@@ -304,7 +315,7 @@ static void bench_headroom(void)
         gb_integrate_def idef = gb_integrate_default_def();
         gb_integrate_stats stats;
         idef.sample_every = (size_t)(idef.periods * idef.steps_per_period) / HEADROOM_SAMPLES;
-        if (gb_dynamics_start(name, 0.12, &def, R0, w0, &sp.dynamics, y) ||
+        if (gb_dynamics_start(bench_body(name, 0.12), &def, R0, w0, &sp.dynamics, y) ||
             gb_integrate_run(sp.dynamics, &idef, 0.0, y, take_sample, &sp, &stats)) {
             fprintf(stderr, "bench: %s\n", gb_error_message());
             exit(1);

@@ -23,7 +23,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         return 0;
     }
     const gb_dynamics_def *d = &c.dynamics;
-    require(c.beta >= 0.0 && c.beta < 0.25);
+    require(c.body.morphology != NULL && c.body.beta >= 0.0 && c.body.beta < 0.25);
     require(d->mass >= 1e-6 && d->mass <= 1e6);
     require(d->forcing.g >= 0.0 && d->forcing.g <= 1000.0);
     require(fabs(c.A1) <= 1000.0 && fabs(c.A2) <= 1000.0 && isfinite(d->forcing.a1) && isfinite(d->forcing.a2));

@@ -1,0 +1,37 @@
+/* gb_integrate_internal — the one RK4 step and the one switch locator of the library, shared by the
+ * integrator (gb_integrate) and the variational estimator (gb_lyapunov_body); internal. */
+#ifndef GB_INTEGRATE_INTERNAL_H
+#define GB_INTEGRATE_INTERNAL_H
+
+#include "gb_integrate.h"
+
+/* The most tangent vectors one step carries (gb_lyapunov's GB_LYAPUNOV_MAX_EXPONENTS). */
+#define GB_INTEGRATE_TANGENT_MAX 8
+
+/* The derivative of the vector field along a tangent vector: out = A(t, y)·dy (eq 75). */
+typedef int (*gb_integrate_tangent)(void *context, gb_dynamics *dynamics, double t, const double y[GB_STATE_SIZE],
+                                    const double dy[GB_STATE_SIZE], double out[GB_STATE_SIZE]);
+
+/* One classical RK4 step of size h from (t, y) into out (out may be y). With k > 0 it also carries the
+ * k tangent vectors Y (k × GB_STATE_SIZE, updated in place) by the same stages, the tangent's stage
+ * derivatives from `tangent` at the reference's stage states. The reference's arithmetic does not
+ * depend on k. stats (may be NULL) counts the right-hand sides. */
+int gb_integrate_rk4_step(gb_dynamics *dynamics, double t, double h, const double y[GB_STATE_SIZE],
+                          double out[GB_STATE_SIZE], size_t k, double *Y, gb_integrate_tangent tangent,
+                          void *context, gb_integrate_stats *stats);
+
+/* Where inside the RK4 step (t, y) → t + h the branch `other` becomes the lower one (eqs 38–39): the
+ * fraction θ of the step at which Δh = 0, by the Illinois method on the RK4 step of size θh on the
+ * current branch. */
+typedef struct gb_integrate_switch {
+    double fraction;                 /* θ: 0 when `other` is no higher at the start, 1 when it is lower
+                                        only at the end (no sign change inside the step) */
+    int crossed;                     /* 1 when Δh changes sign inside the step */
+    double y[GB_STATE_SIZE];         /* the state at θ, on the current branch */
+    gb_contact_point other;          /* `other` continued to that state */
+} gb_integrate_switch;
+
+int gb_integrate_locate_switch(gb_dynamics *dynamics, double t, double h, const double y[GB_STATE_SIZE],
+                               const gb_contact_point *other, gb_integrate_switch *out, gb_integrate_stats *stats);
+
+#endif
