@@ -93,14 +93,17 @@ bench: deps
 
 bench-only: $(BENCH_BIN)
 	@mkdir -p $(OUT)
-	$(BENCH_BIN) $(OUT)/bench.json
+	status=0; $(BENCH_BIN) $(OUT)/bench.json || status=$$?; \
+	sh scripts/gate-stamp.sh $(GATES) bench $$status "speed ratios measured side by side in one run"; exit $$status
 
 # Everything `make verify` does, plus the long studies (harness --full): continuous rolling over 10000
 # periods, post-transient exponents of the unforced bodies. A few minutes more.
 verify-full: deps
 	@sh scripts/install-deps.sh fuzz
 	@$(MAKE) --no-print-directory fuzz-only FUZZ_SECONDS=30
-	@$(MAKE) --no-print-directory verify-only VERIFY_FLAGS=--full
+	@status=0; $(MAKE) --no-print-directory verify-only VERIFY_FLAGS=--full || status=$$?; \
+	sh scripts/gate-stamp.sh $(GATES) verify-full $$status "every check and the long studies"; \
+	$(PYTHON) reports/make_report.py $(OUT) "$(CC)" "$(WARN) $(CFLAGS)" || status=1; exit $$status
 
 # --- quality gates on bad input and memory; each writes $(OUT)/gates/GATE.json for the report ----------
 GATES := $(OUT)/gates
@@ -190,6 +193,7 @@ references-only:
 	$(PYTHON) references/contact.py > references/contact.json.tmp && mv references/contact.json.tmp references/contact.json
 	$(PYTHON) references/dynamics.py > references/dynamics.json.tmp && mv references/dynamics.json.tmp references/dynamics.json
 	$(PYTHON) references/spectrum.py > references/spectrum.json.tmp && mv references/spectrum.json.tmp references/spectrum.json
+	$(PYTHON) references/grid_model.py > references/grid_model.json.tmp && mv references/grid_model.json.tmp references/grid_model.json
 
 # The command, the library, its public headers (src/gomboc.h includes them all; the internal ones,
 # *_internal.h, gb_interval.h, gb_arena.h and gb_vec.h, stay) and a

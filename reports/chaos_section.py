@@ -106,7 +106,7 @@ def chaos_section(out, rows):
         lines += ["### Verdicts on the claims of section 8.2", "", "| claim | measured | quantity | the paper's claim |",
                   "|---|---|---|---|"]
         for r in verdicts:
-            holds = "holds" if r.get("paper_holds") else "**does not hold**"
+            holds = {"holds": "holds", "fails": "**fails**"}.get(r.get("verdict"), "*undecided*")
             lines.append(f"| {r['claim'].replace('|', '/')} | {r.get('detail', '').replace('|', '/')} | "
                          f"{r['quantity'].replace('|', '/')} | {holds} |")
         lines.append("")

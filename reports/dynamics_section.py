@@ -82,7 +82,9 @@ def dynamics_section(out, rows):
     lines += ["", "**Determinism fingerprints.** Each run's summary carries an FNV-1a hash of its final state and one "
               "of its switch sequence (`gomboc run` prints both on its last line). The same binary and libm give "
               "the same two hashes on any machine; a different compiler or libm may change the last bits of a "
-              "chaotic run, and with them both hashes.", "",
+              "chaotic run, and with them both hashes. Across such builds the statistics are what must agree: "
+              "two runs' exponents are the same when the 'equivalent' rule holds for them (difference + 2.26 "
+              "combined errors within 10 %), and the checks' tolerances, not the bits, are the criterion.", "",
               "| scene | final state | switch sequence |", "|---|---|---|"]
     for n in names:
         fp = load_json(os.path.join(out, f"{n}-summary.json")).get("fingerprint")
@@ -106,12 +108,21 @@ def dynamics_section(out, rows):
             measured = r.get("detail") if r["kind"] != "compare" else f"{r['measured']:.3g}"
             verdict = "pass" if r["passed"] else "**FAIL**"
             if r["kind"] == "finding":
-                verdict = ("paper holds" if r["paper_holds"] else "**paper refuted**") + ("" if r["passed"] else ", inconclusive")
+                verdict = {"holds": "paper holds", "fails": "**paper refuted**"}.get(r["verdict"], "*undecided*") + \
+                          ("" if r["passed"] else ", evidence not computed")
             quantity = r["quantity"].replace("|", "\\|")
             lines.append(f"| {quantity} | {str(measured).replace('|', '/')} | {verdict} |")
     bench = os.path.join(out, "bench.json")
+    stamp = os.path.join(out, "gates", "bench.json")
     lines += ["### Speed (from the last `make bench` on this machine)", ""]
     if os.path.exists(bench):
+        if os.path.exists(stamp):
+            s = load_json(stamp)
+            dirty = " with uncommitted changes" if s.get("uncommitted_changes") else ""
+            lines += [f"Measured by `make bench` on {s['date']} at commit {s['commit']}{dirty}, not by this run of "
+                      "`make verify`: compare the commit with this report's before quoting a ratio.", ""]
+        else:
+            lines += ["These ratios carry no record of when or at which commit they were measured: rerun `make bench`.", ""]
         lines += ["Whole Table 1 runs (300 periods, RK4, 160 steps per period), measured side by side in one `make bench` run "
                   "(best of 2); targets: fast grid ≥ 20×, continuous contact certified global at every step ≥ 50× the "
                   "paper's plain loop over every node. The certificate columns count its checks in the continuous run: "

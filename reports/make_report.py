@@ -24,7 +24,7 @@ from contact_section import contact_section  # noqa: E402
 from dynamics_section import dynamics_section  # noqa: E402
 from chaos_section import chaos_section  # noqa: E402
 
-CHECKS_SCHEMA = 3  # verify/gb_check.h GB_CHECK_SCHEMA: {"schema": 3, "tests": [...], "rows": [...]}
+CHECKS_SCHEMA = 4  # verify/gb_check.h GB_CHECK_SCHEMA: {"schema": 4, "tests": [...], "rows": [...]}; findings carry verdict and rule
 
 
 def load_checks(path):
@@ -38,7 +38,46 @@ def load_checks(path):
 
 GATES = (("fuzz", "make fuzz", "the scene reader and the option parser under libFuzzer with ASan and UBSan"),
          ("sanitize", "make sanitize", "every check of the harness built with ASan and UBSan"),
-         ("valgrind", "make valgrind", "one short scene of each model, shape and contact under memcheck"))
+         ("valgrind", "make valgrind", "one short scene of each model, shape and contact under memcheck"),
+         ("verify-full", "make verify-full", "every check and the long studies (10000-period records)"),
+         ("bench", "make bench", "speed ratios measured side by side in one run"))
+
+
+def convergence(out):
+    """The 300-period exponents (chaos.json) against the long records of `make verify-full`
+    (chaos-long.json, no transient), per body and variation: {(body, variation): text} and the lines of
+    the report's convergence paragraph. A 300-period value more than 4 combined errors from the long
+    record is preliminary, and the long record is the verdict."""
+    short_path, long_path = os.path.join(out, "chaos.json"), os.path.join(out, "chaos-long.json")
+    stamp_path = os.path.join(out, "gates", "verify-full.json")
+    notes, lines = {}, ["### Convergence of the 300-period exponents", ""]
+    if not (os.path.exists(short_path) and os.path.exists(long_path)):
+        lines += ["No long records in this checkout (`make verify-full` writes them): the 300-period exponents of the "
+                  "continuous rolling model are not known to have converged, and their verdicts are preliminary.", ""]
+        return notes, lines
+    when = ""
+    if os.path.exists(stamp_path):
+        s = load_json(stamp_path)
+        when = f" (`make verify-full` on {s['date']} at commit {s['commit']}, {s['result']})"
+    lines += [f"Each 300-period λ against the long record of the same body and variation{when}:", "",
+              "| body | variation | 300 periods | long record | difference [combined errors] | reading |", "|---|---|---|---|---|---|"]
+    short = {(r["body"], r["variation"]): r for r in load_json(short_path).get("variations", []) if "lambda_max" in r}
+    for r in load_json(long_path):
+        s = short.get((r["body"], r["variation"]))
+        if not s or r.get("transient_periods", 0) != 0:
+            continue
+        combined = (s["error_bar"] ** 2 + r["error_bar"] ** 2) ** 0.5
+        sigmas = abs(s["lambda_max"] - r["lambda_max"]) / combined if combined > 0 else float("inf")
+        reading = ("**preliminary: the long record is the verdict**" if sigmas > 4 else "consistent")
+        notes[(r["body"], r["variation"])] = reading
+        lines.append(f"| {r['body']} | {r['variation']} | {s['lambda_max']:.3f} ± {s['error_bar']:.3f} | "
+                     f"{r['lambda_max']:.3f} ± {r['error_bar']:.3f} ({r['periods']:.0f} periods) | {sigmas:.1f} | {reading} |")
+    return notes, lines + [""]
+
+
+def verdict_text(verdict):
+    """A finding's verdict as the report prints it: the paper's claim holds, fails, or is undecided."""
+    return {"holds": "holds", "fails": "**fails**", "undecided": "*undecided*"}.get(verdict, verdict)
 
 
 def gate_lines(out):
@@ -117,21 +156,33 @@ def main():
     shapes = [(n, load_json(os.path.join(out, f"shape-{n}.json"))) for n in ("I", "II")]
     failed = [r for r in rows if not r["passed"]]
     findings = [r for r in rows if r["kind"] == "finding"]
+    counts = {v: sum(1 for r in findings if r["verdict"] == v) for v in ("holds", "fails", "undecided")}
     error_vs_time(out, rows)
 
     lines = ["# gomboc — verification report", "",
              f"{len(rows)} checks recorded, **{len(rows) - len(failed)} passed, {len(failed)} failed**; "
-             f"{len(findings)} findings about the paper (a finding passes when its evidence is conclusive).", "",
+             f"{len(findings)} findings about the paper (a finding's check passes when its evidence was computed; "
+             f"its verdict is holds, fails or undecided).", "",
              "## Environment", "", "| item | value |", "|---|---|"]
     lines += [f"| {k} | {v} |" for k, v in environment(cc, cflags)]
     lines += [""] + gate_lines(out)
     lines += ["", "## What the paper claims and what we measured", "",
               "Each row names what it was measured on (body, model, reading, record length).", "",
-              "| section | paper claims | measured on | we measured | claim holds |", "|---|---|---|---|---|"]
+              "Every verdict is one of holds, fails or undecided, decided by the rule in its row (written in",
+              "`verify/gb_verdict.h` before the data, symmetric for the paper and against it).", "",
+              f"**{counts['holds']} hold, {counts['fails']} fail, {counts['undecided']} undecided** "
+              f"(of {len(findings)} findings, recomputed in this run).", "",
+              "| section | paper claims | measured on | we measured | verdict | rule |", "|---|---|---|---|---|---|"]
+    notes, convergence_lines = convergence(out)
     for r in findings:
         claim, where, detail = (text.replace("|", "\\|") for text in (r["claim"], r["quantity"], r["detail"]))
-        lines.append(f"| §{r['section']} | {claim} | {where} | {detail} | {'yes' if r['paper_holds'] else '**no**'} |")
+        for (body, variation), reading in notes.items():
+            if where.startswith(f"Gomboc {body}, {variation}:") and reading != "consistent":
+                detail += f" — {reading} (see 'Convergence')"
+        lines.append(f"| §{r['section']} | {claim} | {where} | {detail} | {verdict_text(r['verdict'])} | "
+                     f"{r['rule'].replace('|', '/')} |")
     # Results that are not findings, stated only as far as their checks passed in this run.
+    lines += [""] + convergence_lines
     # What each test establishes when all its rows pass (recorded by the harness beside the test).
     lines += [""]
     for t in tests:
@@ -171,8 +222,7 @@ def main():
             measured, error, tol = r.get("detail", "")[:160].replace("|", "/"), "—", "—"
         result = "pass" if r["passed"] else "**FAIL**"
         if r["kind"] == "finding":
-            result = ("conclusive" if r["passed"] else "**inconclusive**") + \
-                     (", paper holds" if r["paper_holds"] else ", paper refuted")
+            result = ("evidence computed" if r["passed"] else "**evidence not computed**") + f", {verdict_text(r['verdict'])}"
         quantity, oracle, origin = (text.replace("|", "\\|") for text in (r["quantity"], r["oracle"], r["origin"]))
         lines.append(f"| {r['section']} | {r['equation']} | {quantity} | {oracle} | {measured} | {error} | "
                      f"{tol} | {origin} | {r['seconds']:.2g} | {result} |")

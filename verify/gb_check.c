@@ -126,18 +126,20 @@ int gb_check_true_at(const gb_check *c, int condition, const char *file, int lin
     return condition;
 }
 
-int gb_check_finding_at(const gb_check *c, const char *claim, int paper_holds, int conclusive,
+int gb_check_verdict_at(const gb_check *c, const char *claim, int evidence_ok, gb_verdict verdict, const char *rule,
                         const char *file, int line, const char *measured, ...)
 {
     char head[1024];
-    snprintf(head, sizeof head, "[finding, eq %s] paper: %s | measured: ", c->equation, claim);
+    snprintf(head, sizeof head, "[finding, eq %s] paper: %s | verdict: %s | measured: ", c->equation, claim,
+             gb_verdict_name(verdict));
     va_list args;
     va_start(args, measured);
-    cJSON *row = record_formatted(c, "finding", conclusive, file, line, "INCONCLUSIVE", head, measured, args);
+    cJSON *row = record_formatted(c, "finding", evidence_ok, file, line, "EVIDENCE NOT COMPUTED", head, measured, args);
     va_end(args);
     cJSON_AddStringToObject(row, "claim", claim);
-    cJSON_AddBoolToObject(row, "paper_holds", paper_holds);
-    return conclusive;
+    cJSON_AddStringToObject(row, "verdict", gb_verdict_name(verdict));
+    cJSON_AddStringToObject(row, "rule", rule);
+    return evidence_ok;
 }
 
 double gb_check_observed_order(double e1, double e2, double h1, double h2)

@@ -10,6 +10,7 @@
 #define GB_CHECK_H
 
 #include "gb_surface.h"
+#include "gb_verdict.h"
 
 #include <stddef.h>
 
@@ -34,14 +35,15 @@ int gb_check_true_at(const gb_check *check, int condition, const char *file, int
 #define gb_check_true(check, condition, ...) \
     gb_check_true_at(check, condition, __FILE__, __LINE__, __VA_ARGS__)
 
-/* A documented finding: the paper claims `claim`; we measured `measured` (printf-formatted). The
- * CUnit assertion is that the evidence is conclusive (`conclusive`), so the finding is recomputed
- * and re-judged on every run; `paper_holds` says whether the claim survived. */
-int gb_check_finding_at(const gb_check *check, const char *claim, int paper_holds, int conclusive,
-                        const char *file, int line, const char *measured, ...)
-    __attribute__((format(printf, 7, 8)));
-#define gb_check_finding(check, claim, paper_holds, conclusive, ...) \
-    gb_check_finding_at(check, claim, paper_holds, conclusive, __FILE__, __LINE__, __VA_ARGS__)
+/* A finding about the paper, decided by a rule of gb_verdict.h written before the data: `verdict` is
+ * holds, fails or undecided, and `rule` states the rule, its margin and where the margin comes from. The
+ * CUnit assertion is that the evidence was computed (`evidence_ok`: runs completed, numbers finite),
+ * never the verdict: the finding is recomputed and re-judged on every run. The row records claim,
+ * verdict, rule and the measured text (printf-formatted). */
+int gb_check_verdict_at(const gb_check *check, const char *claim, int evidence_ok, gb_verdict verdict, const char *rule,
+                        const char *file, int line, const char *measured, ...) __attribute__((format(printf, 8, 9)));
+#define gb_check_verdict(check, claim, evidence_ok, verdict, rule, ...) \
+    gb_check_verdict_at(check, claim, evidence_ok, verdict, rule, __FILE__, __LINE__, __VA_ARGS__)
 
 /* The body a check names by literals (morphology, beta), for calls that take one body value. The
  * literals are known valid: a failure is a bug in the check, and aborts. The pointer stays valid for the
@@ -57,7 +59,7 @@ void gb_check_test_start(void);
 /* Write every registered test and every recorded row to `path` (atomically) as {"schema":
  * GB_CHECK_SCHEMA, "tests": [...], "rows": [...]}; each row also names its CUnit suite and test and the
  * source file of the check. Returns 0 on success. */
-#define GB_CHECK_SCHEMA 3
+#define GB_CHECK_SCHEMA 4
 
 /* Record a registered test: its suite, its name and what it establishes when all its rows pass (may be
  * NULL); written as "tests" beside the rows. Returns 0, or 1 when out of memory. */

@@ -46,16 +46,21 @@ static void test_forcing(void)
     /* The two readings of Table 1: A1 = 2, A2 = 1 in m/s² or in units of g (eq 61). */
     const gb_forcing readings[2] = {{9.81, 2.0, 1.0, 18.0, M_PI / 3}, {9.81, 2.0 * 9.81, 1.0 * 9.81, 18.0, M_PI / 3}};
     for (int r = 0; r < 2; r++) {
-        double fraction, minimum;
-        gb_forcing_nonpositive_fraction(&readings[r], &fraction, &minimum);
-        /* Oracle: the fraction of 10^6 equally spaced samples with g_eff ≤ 0 (error ≤ 2 sign changes / 1e6). */
+        double fraction = NAN, minimum;
+        const int status = gb_forcing_nonpositive_fraction(&readings[r], &fraction, &minimum);
+        /* Oracle: the fraction of 10^6 equally spaced samples with g_eff ≤ 0, eq 25 written out here (not
+         * the library's gb_forcing_geff), in the phase τ = ωt (error ≤ 2 sign changes / 1e6). */
+        const gb_forcing *f = &readings[r];
         const int samples = 1000000;
         int count = 0;
-        for (int k = 0; k < samples; k++) count += gb_forcing_geff(&readings[r], (k + 0.5) / samples * 2 * M_PI / 18.0) <= 0.0;
+        for (int k = 0; k < samples; k++) {
+            const double tau = (k + 0.5) / samples * 2 * M_PI;
+            count += f->g + f->a1 * cos(tau) + f->a2 * cos(2.0 * tau + f->psi) <= 0.0;
+        }
         char q[160];
         snprintf(q, sizeof q, "fraction of each period with g_eff <= 0, Table 1 read in %s", r ? "units of g" : "m/s^2");
-        gb_check cf = {"3", "25, 61", q, "10^6 equally spaced samples", "4e-6: each of at most 4 sign changes misplaced by one sample"};
-        gb_check_close(&cf, fraction, (double)count / samples, 0.0, 4e-6);
+        gb_check cf = {"3", "25, 61", q, "10^6 equally spaced samples of eq 25 written out", "4e-6: each of at most 4 sign changes misplaced by one sample"};
+        gb_check_close(&cf, status ? NAN : fraction, (double)count / samples, 0.0, 4e-6);
     }
     gb_forcing bad = readings[0];
     bad.omega = 0.0;
@@ -181,17 +186,20 @@ static void test_energy_conservation(void)
                        "1e-9: ten digits of E (~10 J) at twice the paper's 160 steps per period"};
         gb_check_close(&ce, rolling_error[3], 0.0, 0.0, 1e-9);
         /* The paper's eq 44: the error does not shrink with the step. */
-        const int stalls = paper_error[3] > 0.5 * paper_error[0] && paper_error[3] > 1e3 * rolling_error[3];
         const scene paper = {body, GB_VARIANT_PAPER, GB_CONTACT_MODEL_CONTINUOUS, 0, 0, 1};
         scene_label(&paper, label, sizeof label);
         snprintf(q, sizeof q, "energy of eq 44 as written (continuous contact), Gomboc %s", body);
         gb_check cf = {"5", "44-48", q, "the energy balance, RK4 at 40 to 320 steps per period",
-                       "conclusive when the error stays within a factor 2 while the step shrinks 8x, and is 1000x the rolling error"};
-        gb_check_finding(&cf, "eq 44 (with I_P dot of eq 45) is the equation of motion about the contact point", !stalls,
-                         stalls || paper_error[3] < 10 * rolling_error[3],
+                       "the floor: the rolling equation's error at 320 steps/period, which conserves energy"};
+        int computed = 1;
+        for (int k = 0; k < 4; k++) computed &= isfinite(paper_error[k]) && isfinite(rolling_error[k]);
+        gb_check_verdict(&cf, "eq 44 (with I_P dot of eq 45) is the equation of motion about the contact point", computed,
+                         gb_verdict_conserved(paper_error[0], paper_error[3], rolling_error[3]),
+                         "conserved: holds when eq 44's error at 320 steps/period is within 10x the rolling equation's; fails "
+                         "when it stalls (more than half its 40-step value) and exceeds 1000x the rolling equation's",
                          "unforced and undamped, max |E - E0| over half a period is %.3g, %.3g, %.3g, %.3g at 40, 80, 160, 320 "
-                         "steps/period (rolling equation: %.2g, %.2g, %.2g, %.2g): eq 44 does not conserve energy; its extra "
-                         "term -m r_c_dot x (r_c x omega) does work",
+                         "steps/period (rolling equation: %.2g, %.2g, %.2g, %.2g); the extra term of eq 44 is "
+                         "-m r_c_dot x (r_c x omega)",
                          paper_error[0], paper_error[1], paper_error[2], paper_error[3], rolling_error[0], rolling_error[1],
                          rolling_error[2], rolling_error[3]);
     }
@@ -210,13 +218,15 @@ static void test_grid_energy_jumps(void)
         scene_label(&s, label, sizeof label);
         snprintf(q, sizeof q, "energy of the paper's grid model, %s, 10 periods", label);
         const double per_switch = coarse.grid_switches ? coarse.max_residual / coarse.grid_switches : NAN;
-        const int conclusive = !coarse.status && !fine.status && coarse.grid_switches > 0;
+        const int computed = !coarse.status && !fine.status && coarse.grid_switches > 0;
         gb_check cf = {"8", "44-48", q, "energy balance at 160 and 640 RK4 steps per period",
-                       "conclusive when both runs finish with grid switches"};
-        gb_check_finding(&cf, "the grid contact model conserves energy when unforced and undamped (section 5 energy relations)",
-                         fine.max_residual < 1e-6, conclusive,
+                       "the floor 1e-9: ten digits of E, what the rolling equation keeps at 320 steps/period (checked above)"};
+        gb_check_verdict(&cf, "the grid contact model conserves energy when unforced and undamped (section 5 energy relations)",
+                         computed, gb_verdict_conserved(coarse.max_residual, fine.max_residual, 1e-9),
+                         "conserved: holds when the error at 640 steps/period is within 10 x 1e-9; fails when it stalls (more "
+                         "than half the 160-step value) above 1000 x 1e-9",
                          "max |E - E0| = %.3g (160 steps/period, %zu grid switches, %.2g per switch) and %.3g (640 steps/period, "
-                         "%zu switches): every change of the minimising node changes I_P at fixed omega, so T jumps",
+                         "%zu switches); each change of the minimising node changes I_P at fixed omega",
                          coarse.max_residual, coarse.grid_switches, per_switch, fine.max_residual, fine.grid_switches);
     }
 }
@@ -264,10 +274,12 @@ static void test_trajectory_order(void)
             gb_check_close(&c, order, 4.0, 0.0, 0.3);
         } else {
             gb_check c = {"8", "23, 44", q, "RK4 at 2560 steps/period; a right-hand side with jumps",
-                          "recorded: the grid's node hops make the vector field discontinuous, so RK4 cannot reach order 4"};
-            gb_check_finding(&c, "the fixed-step RK4 of section 8 gives fourth-order phase accuracy (\"to ensure consistent phase accuracy\")",
-                             order > 3.5, isfinite(order),
-                             "state errors %.3g, %.3g, %.3g at 40, 80, 160 steps/period: observed order %.2f with the grid contact",
+                          "expected order 4: holds from 3.5, fails at 3 or less"};
+            gb_check_verdict(&c, "the fixed-step RK4 of section 8 gives fourth-order phase accuracy (\"to ensure consistent phase accuracy\")",
+                             isfinite(errors[0]) && isfinite(errors[1]) && isfinite(errors[2]), gb_verdict_order(errors, 4.0),
+                             "order: errors at 40, 80, 160 steps/period must fall monotonically; then holds when the last "
+                             "order is >= 3.5, fails when it is <= 3; undecided otherwise (no order without monotone errors)",
+                             "state errors %.3g, %.3g, %.3g at 40, 80, 160 steps/period: last observed order %.2f with the grid contact",
                              errors[0], errors[1], errors[2], order);
         }
         snprintf(q, sizeof q, "max |R^T R - I| along the run, %s, 2560 steps", label);
@@ -362,7 +374,7 @@ static void test_nondimensional(void)
     char detail[200];
     snprintf(detail, sizeof detail, "L = %.12f, gamma = %.6g, kappa = %.6g, A1 = %.6g, A2 = %.6g", groups.L, groups.gamma,
              groups.kappa, groups.A1, groups.A2);
-    gb_check cg = {"6", "59-61", "nondimensional groups of Table 1 (m = 2.385)", "eqs 59-61", "recorded"};
+    gb_check cg = {"6", "59-61", "nondimensional groups of the scaled run (m = 2.385, its own mass)", "eqs 59-61", "recorded"};
     gb_check_true(&cg, !status && groups.kappa > 0, "%s", detail);
     gb_dynamics_free(dim);
     gb_dynamics_free(nondim);
@@ -381,6 +393,53 @@ static int collect(void *context, double t, const double y[GB_STATE_SIZE])
     collected *c = context;
     if (c->count < 64) memcpy(c->states[c->count++], y, sizeof c->states[0]);
     return 0;
+}
+
+/* The paper's own model (eq 44, the lowest node of the 90 x 180 grid by brute force, RK4 at 160 steps a
+ * period, Table 1 in m/s^2) against references/grid_model.py, an independent numpy implementation
+ * written from the paper's equations, state by state at the end of each of the first five periods (the
+ * model's exponent, about 2.6 1/s, separates any two implementations within a few tens of periods). */
+static void test_numpy_grid_model(void)
+{
+    cJSON *root;
+    const cJSON *cases = gb_check_reference_cases("grid_model.json", "8", &root);
+    if (!cases) {
+        cJSON_Delete(root);
+        return;
+    }
+    const cJSON *jc;
+    cJSON_ArrayForEach(jc, cases) {
+        const char *name = cJSON_GetStringValue(cJSON_GetObjectItem(jc, "morphology"));
+        const double beta = cJSON_GetNumberValue(cJSON_GetObjectItem(jc, "beta"));
+        gb_dynamics_def def = gb_dynamics_default_def(); /* Table 1: eq 44, grid 90 x 180, A in m/s^2 */
+        gb_dynamics *d = NULL;
+        double y[GB_STATE_SIZE];
+        static const double zero[3] = {0, 0, 0};
+        int status = gb_dynamics_start(gb_check_body(name, beta), &def, IDENTITY, zero, &d, y);
+        gb_integrate_def idef = gb_integrate_default_def(); /* RK4, 160 steps a period */
+        gb_integrate_session *session = NULL;
+        if (!status) status = gb_integrate_begin(d, &idef, 0.0, &session);
+        double worst = 0.0;
+        int compared = 0;
+        const cJSON *jp;
+        cJSON_ArrayForEach(jp, cJSON_GetObjectItem(jc, "periods")) {
+            if (!status) status = gb_integrate_advance(session, idef.steps_per_period, y, NULL, NULL);
+            if (status) break;
+            const cJSON *q = cJSON_GetObjectItem(jp, "quaternion"), *w = cJSON_GetObjectItem(jp, "omega");
+            for (int k = 0; k < 4; k++) worst = fmax(worst, fabs(y[GB_STATE_Q + k] - cJSON_GetNumberValue(cJSON_GetArrayItem(q, k))));
+            for (int k = 0; k < 3; k++)
+                worst = fmax(worst, fabs(y[GB_STATE_OMEGA + k] - cJSON_GetNumberValue(cJSON_GetArrayItem(w, k))));
+            compared++;
+        }
+        char q[200];
+        snprintf(q, sizeof q, "Gomboc %s, the paper's grid model: max |state - numpy| at the ends of periods 1 to %d", name, compared);
+        gb_check c = {"8", "40-44", q, "references/grid_model.py (numpy, written from the paper; inertia from scipy)",
+                      "1e-10: the two inertia tensors agree to ~1e-12 relative, grown at most 100x (lambda 2.6 1/s over 1.75 s)"};
+        gb_check_close(&c, status || compared < 5 ? NAN : worst, 0.0, 0.0, 1e-10);
+        if (session) gb_integrate_end(session);
+        gb_dynamics_free(d);
+    }
+    cJSON_Delete(root);
 }
 
 static void test_scipy_trajectory(void)
@@ -686,6 +745,9 @@ int verify_register_s5_dynamics(void)
          "the fast-grid run of the paper's model equals the paper's brute-force run bit for bit"},
         {"eq 53-65: the dimensionless run equals the dimensional one", test_nondimensional,
          "the nondimensional form (eqs 53–65) reproduces the dimensional run after rescaling"},
+        {"eq 40-44: the paper's grid model against an independent numpy implementation", test_numpy_grid_model,
+         "the paper's grid model (eq 44, brute-force contact, RK4) agrees with an independent numpy implementation "
+         "written from the paper, over the first five periods of both bodies"},
         {"eq 23, 44: the rolling model against a scipy reference trajectory", test_scipy_trajectory,
          "the rolling model with continuous contact agrees with an independent scipy DOP853 trajectory"},
         {"section 8: work-precision of every integrator and contact model", test_work_precision, NULL},

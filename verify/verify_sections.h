@@ -4,6 +4,7 @@
 
 #include <CUnit/CUnit.h>
 
+int verify_register_s0_verdicts(void);
 int verify_register_s2_surface(void);
 int verify_register_s2_massprops(void);
 int verify_register_s2_shape(void);
