@@ -228,3 +228,11 @@ const gb_surface *gb_check_body(const char *morphology, double beta)
     }
     return body;
 }
+
+void gb_check_each_reference_case(const char *name, const char *section, void (*check)(const cJSON *reference_case))
+{
+    cJSON *root = NULL;
+    const cJSON *cases = gb_check_reference_cases(name, section, &root), *one;
+    if (cases) cJSON_ArrayForEach(one, cases) check(one);
+    cJSON_Delete(root);
+}

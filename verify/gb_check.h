@@ -81,4 +81,8 @@ int gb_check_write_data(const char *name, const struct cJSON *document);
  * gets the document to free with cJSON_Delete (NULL when unreadable). */
 const struct cJSON *gb_check_reference_cases(const char *name, const char *section, struct cJSON **root);
 
+/* gb_check_reference_cases, then `check` on every case of the file (nothing when it is unreadable: that
+ * is recorded as a failed check already). */
+void gb_check_each_reference_case(const char *name, const char *section, void (*check)(const struct cJSON *reference_case));
+
 #endif

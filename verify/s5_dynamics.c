@@ -399,85 +399,69 @@ static int collect(void *context, double t, const double y[GB_STATE_SIZE])
  * period, Table 1 in m/s^2) against references/grid_model.py, an independent numpy implementation
  * written from the paper's equations, state by state at the end of each of the first five periods (the
  * model's exponent, about 2.6 1/s, separates any two implementations within a few tens of periods). */
-static void test_numpy_grid_model(void)
+static void numpy_grid_case(const cJSON *jc)
 {
-    cJSON *root;
-    const cJSON *cases = gb_check_reference_cases("grid_model.json", "8", &root);
-    if (!cases) {
-        cJSON_Delete(root);
-        return;
+    const char *name = cJSON_GetStringValue(cJSON_GetObjectItem(jc, "morphology"));
+    const double beta = cJSON_GetNumberValue(cJSON_GetObjectItem(jc, "beta"));
+    gb_dynamics_def def = gb_dynamics_default_def(); /* Table 1: eq 44, grid 90 x 180, A in m/s^2 */
+    gb_dynamics *d = NULL;
+    double y[GB_STATE_SIZE];
+    static const double zero[3] = {0, 0, 0};
+    int status = gb_dynamics_start(gb_check_body(name, beta), &def, IDENTITY, zero, &d, y);
+    gb_integrate_def idef = gb_integrate_default_def(); /* RK4, 160 steps a period */
+    gb_integrate_session *session = NULL;
+    if (!status) status = gb_integrate_begin(d, &idef, 0.0, &session);
+    double worst = 0.0;
+    int compared = 0;
+    const cJSON *jp;
+    cJSON_ArrayForEach(jp, cJSON_GetObjectItem(jc, "periods")) {
+        if (!status) status = gb_integrate_advance(session, idef.steps_per_period, y, NULL, NULL);
+        if (status) break;
+        const cJSON *q = cJSON_GetObjectItem(jp, "quaternion"), *w = cJSON_GetObjectItem(jp, "omega");
+        for (int k = 0; k < 4; k++) worst = fmax(worst, fabs(y[GB_STATE_Q + k] - cJSON_GetNumberValue(cJSON_GetArrayItem(q, k))));
+        for (int k = 0; k < 3; k++)
+            worst = fmax(worst, fabs(y[GB_STATE_OMEGA + k] - cJSON_GetNumberValue(cJSON_GetArrayItem(w, k))));
+        compared++;
     }
-    const cJSON *jc;
-    cJSON_ArrayForEach(jc, cases) {
-        const char *name = cJSON_GetStringValue(cJSON_GetObjectItem(jc, "morphology"));
-        const double beta = cJSON_GetNumberValue(cJSON_GetObjectItem(jc, "beta"));
-        gb_dynamics_def def = gb_dynamics_default_def(); /* Table 1: eq 44, grid 90 x 180, A in m/s^2 */
-        gb_dynamics *d = NULL;
-        double y[GB_STATE_SIZE];
-        static const double zero[3] = {0, 0, 0};
-        int status = gb_dynamics_start(gb_check_body(name, beta), &def, IDENTITY, zero, &d, y);
-        gb_integrate_def idef = gb_integrate_default_def(); /* RK4, 160 steps a period */
-        gb_integrate_session *session = NULL;
-        if (!status) status = gb_integrate_begin(d, &idef, 0.0, &session);
-        double worst = 0.0;
-        int compared = 0;
-        const cJSON *jp;
-        cJSON_ArrayForEach(jp, cJSON_GetObjectItem(jc, "periods")) {
-            if (!status) status = gb_integrate_advance(session, idef.steps_per_period, y, NULL, NULL);
-            if (status) break;
-            const cJSON *q = cJSON_GetObjectItem(jp, "quaternion"), *w = cJSON_GetObjectItem(jp, "omega");
-            for (int k = 0; k < 4; k++) worst = fmax(worst, fabs(y[GB_STATE_Q + k] - cJSON_GetNumberValue(cJSON_GetArrayItem(q, k))));
-            for (int k = 0; k < 3; k++)
-                worst = fmax(worst, fabs(y[GB_STATE_OMEGA + k] - cJSON_GetNumberValue(cJSON_GetArrayItem(w, k))));
-            compared++;
-        }
-        char q[200];
-        snprintf(q, sizeof q, "Gomboc %s, the paper's grid model: max |state - numpy| at the ends of periods 1 to %d", name, compared);
-        gb_check c = {"8", "40-44", q, "references/grid_model.py (numpy, written from the paper; inertia from scipy)",
-                      "1e-10: the two inertia tensors agree to ~1e-12 relative, grown at most 100x (lambda 2.6 1/s over 1.75 s)"};
-        gb_check_close(&c, status || compared < 5 ? NAN : worst, 0.0, 0.0, 1e-10);
-        if (session) gb_integrate_end(session);
-        gb_dynamics_free(d);
-    }
-    cJSON_Delete(root);
+    char q[200];
+    snprintf(q, sizeof q, "Gomboc %s, the paper's grid model: max |state - numpy| at the ends of periods 1 to %d", name, compared);
+    gb_check c = {"8", "40-44", q, "references/grid_model.py (numpy, written from the paper; inertia from scipy)",
+                  "1e-10: the two inertia tensors agree to ~1e-12 relative, grown at most 100x (lambda 2.6 1/s over 1.75 s)"};
+    gb_check_close(&c, status || compared < 5 ? NAN : worst, 0.0, 0.0, 1e-10);
+    if (session) gb_integrate_end(session);
+    gb_dynamics_free(d);
 }
 
-static void test_scipy_trajectory(void)
+static void test_numpy_grid_model(void) { gb_check_each_reference_case("grid_model.json", "8", numpy_grid_case); }
+
+static void scipy_trajectory_case(const cJSON *jc)
 {
-    cJSON *root;
-    const cJSON *cases = gb_check_reference_cases("dynamics.json", "5", &root);
-    if (!cases) {
-        cJSON_Delete(root);
-        return;
-    }
-    const cJSON *jc;
-    cJSON_ArrayForEach(jc, cases) {
-        const char *name = cJSON_GetStringValue(cJSON_GetObjectItem(jc, "morphology"));
-        const scene s = {name, GB_VARIANT_ROLLING, GB_CONTACT_MODEL_CONTINUOUS, 1, 1, 0};
-        gb_dynamics *d = NULL;
-        double y[GB_STATE_SIZE];
-        int status = start_scene(&s, &d, y);
-        gb_integrate_def idef = gb_integrate_default_def();
-        idef.steps_per_period = 2560;
-        idef.periods = 1.0;
-        idef.sample_every = 320; /* an eighth of a period */
-        collected got = {.count = 0};
-        gb_integrate_stats stats;
-        if (!status) status = gb_integrate_run(d, &idef, 0.0, y, collect, &got, &stats);
-        const cJSON *states = cJSON_GetObjectItem(jc, "states");
-        double worst = status || got.count != cJSON_GetArraySize(states) ? NAN : 0.0;
-        for (int k = 0; isfinite(worst) && k < got.count; k++)
-            for (int i = 0; i < 7; i++)
-                worst = fmax(worst, fabs(got.states[k][i] - cJSON_GetNumberValue(cJSON_GetArrayItem(cJSON_GetArrayItem(states, k), i))));
-        char q[200];
-        snprintf(q, sizeof q, "state (q, omega) at 9 times over one period, Gomboc %s, RK4 2560 steps/period", name);
-        gb_check c = {"5", "23, 44 (rolling)", q, "scipy solve_ivp DOP853 rtol 1e-12 (references/dynamics.json)",
-                      "1e-9: the reference's rtol 1e-12 over ~150 steps plus RK4's 1e-13 at this step, with margin"};
-        gb_check_close(&c, worst, 0.0, 0.0, 1e-9);
-        gb_dynamics_free(d);
-    }
-    cJSON_Delete(root);
+    const char *name = cJSON_GetStringValue(cJSON_GetObjectItem(jc, "morphology"));
+    const scene s = {name, GB_VARIANT_ROLLING, GB_CONTACT_MODEL_CONTINUOUS, 1, 1, 0};
+    gb_dynamics *d = NULL;
+    double y[GB_STATE_SIZE];
+    int status = start_scene(&s, &d, y);
+    gb_integrate_def idef = gb_integrate_default_def();
+    idef.steps_per_period = 2560;
+    idef.periods = 1.0;
+    idef.sample_every = 320; /* an eighth of a period */
+    collected got = {.count = 0};
+    gb_integrate_stats stats;
+    if (!status) status = gb_integrate_run(d, &idef, 0.0, y, collect, &got, &stats);
+    const cJSON *states = cJSON_GetObjectItem(jc, "states");
+    double worst = status || got.count != cJSON_GetArraySize(states) ? NAN : 0.0;
+    for (int k = 0; isfinite(worst) && k < got.count; k++)
+        for (int i = 0; i < 7; i++)
+            worst = fmax(worst, fabs(got.states[k][i] - cJSON_GetNumberValue(cJSON_GetArrayItem(cJSON_GetArrayItem(states, k), i))));
+    char q[200];
+    snprintf(q, sizeof q, "state (q, omega) at 9 times over one period, Gomboc %s, RK4 2560 steps/period", name);
+    gb_check c = {"5", "23, 44 (rolling)", q, "scipy solve_ivp DOP853 rtol 1e-12 (references/dynamics.json)",
+                  "1e-9: the reference's rtol 1e-12 over ~150 steps plus RK4's 1e-13 at this step, with margin"};
+    gb_check_close(&c, worst, 0.0, 0.0, 1e-9);
+    gb_dynamics_free(d);
 }
+
+static void test_scipy_trajectory(void) { gb_check_each_reference_case("dynamics.json", "5", scipy_trajectory_case); }
 
 /* Work–precision data for the report: final-state error against wall time over one period of the
  * Table 1 forcing (R0 = I, ω0 = 0, rolling equation), per integrator and contact model, against a
