@@ -194,6 +194,7 @@ references-only:
 	$(PYTHON) references/dynamics.py > references/dynamics.json.tmp && mv references/dynamics.json.tmp references/dynamics.json
 	$(PYTHON) references/spectrum.py > references/spectrum.json.tmp && mv references/spectrum.json.tmp references/spectrum.json
 	$(PYTHON) references/grid_model.py > references/grid_model.json.tmp && mv references/grid_model.json.tmp references/grid_model.json
+	$(PYTHON) references/switching.py > references/switching.json.tmp && mv references/switching.json.tmp references/switching.json
 
 # The command, the library, its public headers (src/gomboc.h includes them all; the internal ones,
 # *_internal.h, gb_interval.h, gb_arena.h and gb_vec.h, stay) and a
