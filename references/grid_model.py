@@ -81,7 +81,7 @@ def run(morphology, inertia):
         y = y + h / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
         y[:4] /= np.linalg.norm(y[:4])
         if (n + 1) % STEPS == 0:
-            states.append({"period": (n + 1) // STEPS, "quaternion": y[:4].tolist(), "omega": y[4:7].tolist()})
+            states.append({"period": (n + 1) // STEPS, "state": y[:7].tolist()})
     return states
 
 
@@ -96,6 +96,7 @@ def main():
     emit({"provenance": {"script": "references/grid_model.py",
                          "method": "numpy: eq 44 with brute-force grid contact 90x180 (centred nodes), RK4 160 steps "
                                    "per period, quaternion renormalised each step; inertia from references/massprops.json",
+                         "state": "quaternion (w, x, y, z), then body angular velocity",
                          "scene": {"g": G, "A1": A1, "A2": A2, "omega": OMEGA, "psi": PSI, "damping": DAMPING,
                                    "mass": MASS, "R0": "identity", "omega0": [0, 0, 0]},
                          **versions()},
