@@ -1,29 +1,11 @@
 /* gb_case — scenes: INI files read with libinih into one struct, defaults in code.
  *
  * Every key is optional; gb_case_default() holds every default, once. A scene names its model, its
- * outputs and its diagnostics; nothing else is computed or written. Sections and keys:
- *
- *   [scene]       description = free text
- *   [body]        morphology = I | II;  beta = 0 <= B < 0.25;  mass = m > 0 [kg]
- *   [forcing]     g [m/s²] >= 0; A1, A2 (amplitudes, finite); amplitude_units = m/s2 | g (A_i are a_i
- *                 in m/s², or a_i/g as eq 61); omega > 0 [rad/s]; psi [rad] (a number, or "pi/3"-style
- *                 p/q multiples of pi)
- *   [model]       equation = paper | rolling; contact = grid | fast-grid | continuous;
- *                 grid = NPxNT; nodes = centred | linspace; damping = c >= 0 [N m s]
- *   [integrator]  method = rk4 | rk8pd | rkf45 | rk4imp; steps_per_period >= 1; periods > 0;
- *                 rtol, atol in (0, 1); locate_switches = yes | no (RK4, continuous contact)
- *   [initial]     attitude = identity | axis-angle AX,AY,AZ,ANGLE (rotation body → inertial, radians);
- *                 omega = WX,WY,WZ [rad/s]
- *   [output]      history = yes | no (time histories CSV); summary = yes | no (JSON);
- *                 sample_every = n >= 1 (nominal steps between history rows)
- *   [diagnostics] monitors = yes | no (validity monitors: g_eff, normal force, friction);
- *                 strobe, spectrum, lyapunov = yes | no (Figs 7, 8, 9: what `gomboc run` computes and writes)
- *   [strobe]      transient_periods = n >= 0 (< periods); phase = p in [0, 1), on the step grid
- *   [spectrum]    transient_periods = n >= 0 (< periods); window = hann | rectangular
- *   [lyapunov]    delta0 in (0, 1); transient_periods = n >= 0; interval_periods = k >= 1 (the record,
- *                 periods − transient, must be a whole number of intervals, at least 2 and at least
- *                 `batches`); batches = b >= 2; omega_scale = Ω > 0 [rad/s] (the separation's
- *                 ω-part is Δω/Ω; default: the forcing omega)
+ * outputs and its diagnostics; nothing else is computed or written. The sections ([scene], [body],
+ * [forcing], [model], [integrator], [initial], [output], [diagnostics], [strobe], [spectrum],
+ * [lyapunov]), their keys and each key's physical range are one table in gb_case.c, read through
+ * gb_case_key_count and gb_case_key_allowed; cases/README.md lists them in the same words (a check
+ * compares the two).
  *
  * The reader is strict: a file is read whole (a regular file of at most GB_CASE_FILE_MAX bytes) and
  * every line is checked before libinih sees it: at most 198 bytes (libinih's buffer, less the newline
@@ -79,7 +61,8 @@ int gb_case_load(const char *path, gb_case *out);
 int gb_case_load_text(const char *name, const char *text, size_t size, gb_case *out);
 
 /* The keys a scene may set: their count, and for key `index` its section, name and allowed values
- * in words (the text every error message and cases/README.md use). GB_EDOM past the last key. */
+ * in words (the text every error message and cases/README.md use). GB_EDOM past the last key. It
+ * leaves no library message behind (gb_error_message() is cleared). */
 size_t gb_case_key_count(void);
 int gb_case_key_allowed(size_t index, const char **section, const char **name, char *allowed, size_t size);
 

@@ -198,7 +198,10 @@ int cli_output_check(const char *command, const char *option, const char *path)
 FILE *cli_outputs_open(cli_outputs *set, const char *path, int *status)
 {
     if (*status) return NULL;
-    if (set->count == CLI_OUTPUTS_MAX || temp_count == TEMP_MAX) {
+    /* A slot for the signal handler: one a committed set has freed, or a new one. */
+    sig_atomic_t slot = 0;
+    while (slot < temp_count && temp_paths[slot]) slot++;
+    if (set->count == CLI_OUTPUTS_MAX || slot == TEMP_MAX) {
         *status = gb_error_set(GB_ENOMEM, "too many output files at once (at most %d)", CLI_OUTPUTS_MAX);
         return NULL;
     }
@@ -217,8 +220,8 @@ FILE *cli_outputs_open(cli_outputs *set, const char *path, int *status)
     free(dir);
     const int fd = mkstemp(o->tmp);
     if (fd >= 0) {
-        temp_paths[temp_count] = o->tmp;
-        temp_count = temp_count + 1;
+        temp_paths[slot] = o->tmp;
+        if (slot == temp_count) temp_count = temp_count + 1;
         const mode_t mask = umask(0);
         umask(mask);
         fchmod(fd, 0666 & ~mask); /* what fopen would have made */
