@@ -9,7 +9,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-from common import load_json, save_figure  # noqa: E402
+from common import layout, load_json, save_figure  # noqa: E402
 
 
 def figure_9(out, records):
@@ -34,19 +34,24 @@ def chaos_section(out, rows):
     if not os.path.exists(path):
         return lines + ["(chaos data missing: the test did not write it)", ""]
     data = load_json(path)
-    periods, batches = data["periods"], data["batches"]
+    periods = data["periods"]
     lines += ["The maximal Lyapunov exponent by the pair estimator of eq 77: two trajectories, the second put back at",
               f"delta0 along the current separation once per forcing period; {periods:g} periods from R0 = I, omega0 = 0;",
-              f"error bar = batch-means standard error ({batches:g} batches). The separation is a 6-vector: the body-frame rotation",
+              "each record's warm-up (left out of its mean) by MSER-5 and its error bar by batch means, the batch length",
+              "the shortest whose means are uncorrelated at lag 1 (at least 10 batches), both chosen from the record itself",
+              "(`src/gb_lyapunov.h`; a record whose warm-up reaches the bound of half its length did not settle).",
+              "The separation is a 6-vector: the body-frame rotation",
               "vector between the two attitudes [rad] and the angular-velocity difference divided by the forcing frequency.",
               "The estimator itself is checked first on the logistic, Hénon, Lorenz and Ueda systems (the checks of",
               "`verify/s6_chaos.c` in the table of every check).", "",
-              "| body | variation | lambda_max [1/s] | error bar | late drift | converged |", "|---|---|---|---|---|---|"]
+              "| body | variation | lambda_max [1/s] | error bar | warm-up, batches | whole record | late drift | converged |",
+              "|---|---|---|---|---|---|---|---|"]
     for r in data["variations"]:
         if "error" in r:
-            lines.append(f"| {r['body']} | {r['variation']} | failed: {r['error']} | | | |")
+            lines.append(f"| {r['body']} | {r['variation']} | failed: {r['error']} | | | | | |")
             continue
         lines.append(f"| {r['body']} | {r['variation']} | {r['lambda_max']:.3f} | {r['error_bar']:.3f} | "
+                     f"{layout(r, '')} | {r.get('whole_record_mean', float('nan')):.3f} | "
                      f"{r['late_drift']:.3f} | {'yes' if r['converged'] else 'no'} |")
     lines.append("")
     if data.get("baseline_records"):
@@ -86,9 +91,9 @@ def chaos_section(out, rows):
                   "of the record: a rate that grows while the body comes to rest is chattering between two tied contact",
                   "branches (a two-point support the single-contact model cannot represent), and λ then measures the",
                   "kinetic-energy jumps at the switches, not chaos.", "",
-                  "| body | variation | periods | transient | λ_max [1/s] | error bar | λ − 4σ > 0 | switches/period, first tenth | "
-                  "last tenth |",
-                  "|---|---|---|---|---|---|---|---|---|"]
+                  "| body | variation | periods | transient | warm-up, batches | λ_max [1/s] | error bar | λ − 4σ > 0 | "
+                  "switches/period, first tenth | last tenth |",
+                  "|---|---|---|---|---|---|---|---|---|---|"]
         for r in load_json(long_path):
             clear = "yes" if r["lambda_max"] - 4 * r["error_bar"] > 0 else "no"
             if r.get("chattering"):
@@ -96,7 +101,7 @@ def chaos_section(out, rows):
             early, late = r.get("switches_per_period_first_tenth"), r.get("switches_per_period_last_tenth")
             rates = f"{early:.2f} | {late:.2f}" if early is not None and late is not None else "— | —"
             lines.append(f"| {r['body']} | {r['variation']} | {r['periods']:.0f} | {r['transient_periods']:.0f} | "
-                         f"{r['lambda_max']:.3f} | {r['error_bar']:.3f} | {clear} | {rates} |")
+                         f"{layout(r, '') or '—'} | {r['lambda_max']:.3f} | {r['error_bar']:.3f} | {clear} | {rates} |")
         lines.append("")
     else:
         lines += ["Continuous rolling needs longer records than 300 periods to decide whether its exponent needs the forcing",

@@ -59,3 +59,14 @@ def shape_summary_lines(shape):
         f"(raw polyhedral: {hull['raw_stable']:.0f}, {hull['raw_unstable']:.0f}); rests: {rests}",
         f"- mono-monostatic: **{'yes' if shape['mono_monostatic'] else 'no'}**",
     ]
+
+
+def layout(row, lead=" ("):
+    """How an exponent's record was laid out (src/gb_lyapunov.h: warm-up by MSER-5, batches chosen from the
+    record), as the report prints it beside the exponent; empty for a record written without it."""
+    if "warmup_intervals" not in row:
+        return ""
+    text = f"warm-up {row['warmup_intervals']:.0f}, {row['batches']:.0f} batches"
+    if not row.get("warmup_found", True):
+        text += ", warm-up not found"
+    return f"{lead}{text}{')' if lead == ' (' else ''}"

@@ -3,19 +3,15 @@
 #include "gb_case.h"
 
 #include "gb_error.h"
+#include "gb_ini.h"
 #include "gb_parse.h"
 
-#include <errno.h>
-#include <fcntl.h>
-#include <ini.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
-#include <unistd.h>
 
 gb_case gb_case_default(void)
 {
@@ -57,7 +53,7 @@ typedef enum key_kind {
     KEY_ATTITUDE   /* identity | axis-angle AX,AY,AZ,ANGLE */
 } key_kind;
 
-enum { OPEN_MIN = 1, OPEN_MAX = 2 };
+enum { OPEN_MIN = 1, OPEN_MAX = 2, COUNT_CHOSEN = 4 /* a count that may be "chosen" (GB_LYAPUNOV_CHOSEN) */ };
 
 typedef struct key_def {
     const char *section, *name;
@@ -94,6 +90,7 @@ static int parse_window(const char *value, gb_case *c) { return gb_window_parse(
 #define NAME(sec, key, fn) {sec, key, KEY_NAME, 0, 0, 0, NULL, 0, fn}
 #define REAL(sec, key, lo, hi, open, units, field) {sec, key, KEY_REAL, lo, hi, open, units, AT(field), NULL}
 #define COUNT(sec, key, lo, hi, field) {sec, key, KEY_COUNT, lo, hi, 0, NULL, AT(field), NULL}
+#define CHOSEN_COUNT(sec, key, lo, hi, field) {sec, key, KEY_COUNT, lo, hi, COUNT_CHOSEN, NULL, AT(field), NULL}
 #define FLAG(sec, key, field) {sec, key, KEY_FLAG, 0, 0, 0, NULL, AT(field), NULL}
 
 /* Every key a scene may set, with its physical range. The ranges are wide (they refuse what has no
@@ -137,7 +134,8 @@ static const key_def keys[] = {
     REAL("lyapunov", "delta0", 1e-15, 0.1, 0, "", lyapunov_def.delta0),
     COUNT("lyapunov", "transient_periods", 0, 10000000, lyapunov_def.transient),
     COUNT("lyapunov", "interval_periods", 1, 10000000, lyapunov_interval_periods),
-    COUNT("lyapunov", "batches", 2, 1000000, lyapunov_def.batches),
+    CHOSEN_COUNT("lyapunov", "warmup_intervals", 0, 10000000, lyapunov_def.warmup),
+    CHOSEN_COUNT("lyapunov", "batches", 2, 1000000, lyapunov_def.batches),
     REAL("lyapunov", "omega_scale", 1e-3, 1e6, 0, "[rad/s]", omega_scale),
 };
 enum { KEY_TOTAL = sizeof keys / sizeof keys[0] };
@@ -151,7 +149,8 @@ enum { SECTION_TOTAL = sizeof sections / sizeof sections[0] };
 static void range_text(const key_def *k, char *out, size_t size)
 {
     if (k->kind == KEY_COUNT) {
-        snprintf(out, size, "an integer from %.0f to %.0f", k->min, k->max);
+        snprintf(out, size, "%san integer from %.0f to %.0f", k->open & COUNT_CHOSEN ? "chosen (from the record), or " : "",
+                 k->min, k->max);
         return;
     }
     const char *what = k->kind == KEY_VECTOR ? "each component" : k->name;
@@ -198,133 +197,21 @@ size_t gb_case_key_count(void) { return KEY_TOTAL; }
 
 /* ---- the reader -------------------------------------------------------------------------------- */
 
+/* The scene being read: by gb_ini's handler (ini set) or by an override (the message kept here). */
 typedef struct reader {
+    gb_ini_reader *ini;
     gb_case *scene;
-    const char *name;          /* the file, for messages */
-    const char *text;          /* the whole file */
-    size_t size, pos;
-    int line;                  /* the line last handed to libinih */
-    int error_line;            /* the first error found by the reader or the handler (0: none) */
-    char message[768];         /* its text, without the file and line */
-    int section_line[SECTION_TOTAL];
+    char message[768];
 } reader;
 
 static int reader_fail(reader *r, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 static int reader_fail(reader *r, const char *fmt, ...)
 {
-    if (r->error_line) return 0;
     va_list ap;
     va_start(ap, fmt);
     vsnprintf(r->message, sizeof r->message, fmt, ap);
     va_end(ap);
-    r->error_line = r->line;
-    return 0;
-}
-
-/* The length of the valid UTF-8 character at s (at most n bytes), or 0. Overlong forms, surrogates
- * and code points above U+10FFFF are not valid. *code gets the code point. */
-static size_t utf8_length(const unsigned char *s, size_t n, unsigned *code)
-{
-    const unsigned c = s[0];
-    size_t len;
-    unsigned min;
-    if (c < 0x80) return *code = c, 1;
-    if (c >= 0xC2 && c <= 0xDF) len = 2, min = 0x80, *code = c & 0x1F;
-    else if (c >= 0xE0 && c <= 0xEF) len = 3, min = 0x800, *code = c & 0x0F;
-    else if (c >= 0xF0 && c <= 0xF4) len = 4, min = 0x10000, *code = c & 0x07;
-    else return 0;
-    if (len > n) return 0;
-    for (size_t k = 1; k < len; k++) {
-        if ((s[k] & 0xC0) != 0x80) return 0;
-        *code = (*code << 6) | (s[k] & 0x3F);
-    }
-    if (*code < min || *code > 0x10FFFF || (*code >= 0xD800 && *code <= 0xDFFF)) return 0;
-    return len;
-}
-
-/* Check one line's bytes: UTF-8, no NUL, no control character but TAB (C0, DEL, C1). */
-static int line_bytes_ok(reader *r, const unsigned char *s, size_t n)
-{
-    for (size_t k = 0; k < n;) {
-        unsigned code;
-        const size_t len = utf8_length(s + k, n - k, &code);
-        if (!len) return reader_fail(r, "byte 0x%02X at column %zu is not UTF-8 (allowed: UTF-8 text)", s[k], k + 1);
-        if (code == 0) return reader_fail(r, "a NUL byte at column %zu (allowed: text without NUL bytes)", k + 1);
-        if ((code < 0x20 && code != '\t') || (code >= 0x7F && code <= 0x9F))
-            return reader_fail(r, "control character U+%04X at column %zu (allowed: printable text and TAB)", code, k + 1);
-        k += len;
-    }
-    return 1;
-}
-
-static int section_index(const char *name, size_t len)
-{
-    for (int k = 0; k < SECTION_TOTAL; k++)
-        if (strlen(sections[k]) == len && !strncmp(sections[k], name, len)) return k;
-    return -1;
-}
-
-static void section_list(char *out, size_t size)
-{
-    size_t used = 0;
-    for (int k = 0; k < SECTION_TOTAL && used < size; k++)
-        used += (size_t)snprintf(out + used, size - used, "%s%s", k ? ", " : "", sections[k]);
-}
-
-/* A section header line (after leading blanks): known, and only once. */
-static int check_section(reader *r, const char *p, size_t n)
-{
-    const char *end = memchr(p, ']', n);
-    if (!end) return 1; /* libinih reports it as malformed */
-    const size_t len = (size_t)(end - p - 1);
-    /* libinih ignores what follows the ']': "[body] beta = 0.2" would lose its key without a word. */
-    const char *rest = end + 1;
-    while (rest < p + n && (*rest == ' ' || *rest == '\t')) rest++;
-    if (rest < p + n && *rest != ';' && *rest != '#')
-        return reader_fail(r, "text after [%.*s] (allowed: a section header alone on its line, or with a ; comment)",
-                           (int)len, p + 1);
-    const int k = section_index(p + 1, len);
-    char list[256];
-    section_list(list, sizeof list);
-    if (k < 0) return reader_fail(r, "unknown section [%.*s] (allowed: %s)", (int)len, p + 1, list);
-    if (r->section_line[k])
-        return reader_fail(r, "[%s] again (first at line %d; allowed: each section once)", sections[k], r->section_line[k]);
-    r->section_line[k] = r->line;
-    return 1;
-}
-
-/* libinih's reader: hands over one line at a time, each checked first. An error ends the file. */
-static char *next_line(char *out, int capacity, void *stream)
-{
-    reader *r = stream;
-    if (r->error_line || r->pos >= r->size) return NULL;
-    const char *start = r->text + r->pos;
-    const char *newline = memchr(start, '\n', r->size - r->pos);
-    size_t n = newline ? (size_t)(newline - start) : r->size - r->pos;
-    r->pos += n + (newline != NULL);
-    r->line++;
-    if (n && start[n - 1] == '\r') n--; /* CRLF */
-    if (r->line == 1 && n >= 3 && !memcmp(start, "\xEF\xBB\xBF", 3)) start += 3, n -= 3; /* a UTF-8 BOM */
-    const size_t limit = (size_t)capacity - 2; /* the line, its newline and the NUL in libinih's buffer */
-    if (n > limit) {
-        reader_fail(r, "the line is %zu bytes long (allowed: at most %zu bytes a line)", n, limit);
-        return NULL;
-    }
-    if (!line_bytes_ok(r, (const unsigned char *)start, n)) return NULL;
-    size_t lead = 0;
-    while (lead < n && (start[lead] == ' ' || start[lead] == '\t')) lead++;
-    if (lead < n && start[lead] != ';' && start[lead] != '#') {
-        if (lead > 0) {
-            reader_fail(r, "an indented line (allowed: keys and [sections] start in the first column; continuation "
-                           "lines are not read)");
-            return NULL;
-        }
-        if (start[0] == '[' && !check_section(r, start, n)) return NULL;
-    }
-    memcpy(out, start, n);
-    out[n] = '\n';
-    out[n + 1] = '\0';
-    return out;
+    return r->ini ? gb_ini_fail(r->ini, "%s", r->message) : 0;
 }
 
 static int key_fail(reader *r, const key_def *k, const char *value, const char *fmt, ...) __attribute__((format(printf, 4, 5)));
@@ -418,6 +305,10 @@ static int set_value(reader *r, const key_def *k, size_t index, const char *valu
         *(double *)field = x;
         return 1;
     case KEY_COUNT:
+        if ((k->open & COUNT_CHOSEN) && !strcmp(value, "chosen")) {
+            *(size_t *)field = GB_LYAPUNOV_CHOSEN;
+            return 1;
+        }
         p = gb_parse_count(value, (unsigned long long)k->max, &n);
         if (p || (double)n < k->min) return value_fail(r, k, index, value, p);
         *(size_t *)field = (size_t)n;
@@ -438,11 +329,9 @@ static int set_value(reader *r, const key_def *k, size_t index, const char *valu
     return 0;
 }
 
-static int handler(void *user, const char *section, const char *name, const char *value)
+static int handler(gb_ini_reader *ini, void *user, const char *section, const char *name, const char *value)
 {
-    reader *r = user;
-    if (r->error_line) return 0;
-    if (!section[0]) return reader_fail(r, "%s = %s: a key before any [section] (allowed: [section] first)", name, value);
+    reader *r = &(reader){.ini = ini, .scene = user};
     size_t index = KEY_TOTAL;
     char allowed[512] = "";
     size_t used = 0;
@@ -457,7 +346,7 @@ static int handler(void *user, const char *section, const char *name, const char
     if (c->key_line[index])
         return reader_fail(r, "[%s] %s = %s: given twice (first at line %d; allowed: each key once)", section, name, value,
                            c->key_line[index]);
-    c->key_line[index] = r->line;
+    c->key_line[index] = gb_ini_line(ini);
     return set_value(r, &keys[index], index, value);
 }
 
@@ -534,43 +423,45 @@ int gb_case_lyapunov_check(const char *path, gb_case *c)
                           "intervals (allowed: periods - transient_periods = a multiple of interval_periods, at least 2 "
                           "intervals)",
                           c->lyapunov_interval_periods, l->transient, periods);
-    if ((double)l->batches > nearbyint(intervals))
+    /* A chosen warm-up is at most half the record (MSER-5). */
+    const double warmup = l->warmup == GB_LYAPUNOV_CHOSEN ? floor(nearbyint(intervals) / 2.0) : (double)l->warmup;
+    if (l->warmup != GB_LYAPUNOV_CHOSEN && !(2.0 * warmup < nearbyint(intervals)))
+        return cross_fail(path, c, "lyapunov", "warmup_intervals",
+                          "= %zu is not less than half the %g intervals of the record (allowed: chosen, or 0 <= "
+                          "warmup_intervals < intervals / 2)",
+                          l->warmup, nearbyint(intervals));
+    if (l->batches != GB_LYAPUNOV_CHOSEN && (double)l->batches > nearbyint(intervals) - warmup)
         return cross_fail(path, c, "lyapunov", "batches",
-                          "= %zu exceeds the %g intervals of the record (allowed: 2 <= batches <= intervals)", l->batches,
-                          nearbyint(intervals));
+                          "= %zu exceeds the %g intervals of the record after its longest warm-up (allowed: chosen, "
+                          "or 2 <= batches <= intervals - warmup_intervals, where a chosen warm-up may reach half the "
+                          "intervals)",
+                          l->batches, nearbyint(intervals) - warmup);
     l->interval = k * 2.0 * M_PI / c->dynamics.forcing.omega;
     l->intervals = (size_t)nearbyint(intervals);
     if (c->omega_scale == 0.0) c->omega_scale = c->dynamics.forcing.omega;
     return GB_OK;
 }
 
-/* The text of line `line` (1-based) of `text`, at most `cap` bytes, for a message. */
-static void line_text(const char *text, size_t size, int line, char *out, size_t cap)
+/* Set key [section] name to `value` over what the file said (an override of `origin`). */
+static int apply_override(gb_case *scene, const gb_case_override *o)
 {
-    size_t pos = 0;
-    for (int k = 1; k < line && pos < size; k++) {
-        const char *nl = memchr(text + pos, '\n', size - pos);
-        pos = nl ? (size_t)(nl - text) + 1 : size;
-    }
-    size_t n = 0;
-    while (pos + n < size && text[pos + n] != '\n' && text[pos + n] != '\r' && n + 1 < cap) n++;
-    memcpy(out, text + pos, n);
-    out[n] = '\0';
+    const int index = key_index(o->section, o->key);
+    if (index < 0)
+        return gb_error_set(GB_EINVAL, "%s: [%s] %s: unknown scene key (allowed: the keys of cases/README.md)", o->origin,
+                            o->section, o->key);
+    reader r = {.scene = scene};
+    if (!set_value(&r, &keys[index], (size_t)index, o->value)) return gb_error_set(GB_EINVAL, "%s: %s", o->origin, r.message);
+    scene->key_line[index] = 0; /* no line of the scene file */
+    return GB_OK;
 }
 
-int gb_case_load_text(const char *name, const char *text, size_t size, gb_case *out)
+int gb_case_load_text_with(const char *name, const char *text, size_t size, const gb_case_override *overrides,
+                           size_t count, gb_case *out)
 {
     gb_case scene = gb_case_default();
-    reader r = {.scene = &scene, .name = name, .text = text, .size = size};
-    const int ret = ini_parse_stream(next_line, &r, handler, &r);
-    if (ret == -2) return gb_error_set(GB_ENOMEM, "%s: out of memory while reading", name);
-    if (ret > 0 && (!r.error_line || ret < r.error_line)) {
-        char bad[256];
-        line_text(text, size, ret, bad, sizeof bad);
-        return gb_error_set(GB_EINVAL, "%s:%d: malformed line '%s' (allowed: [section], key = value, ; comment)", name, ret, bad);
-    }
-    if (r.error_line) return gb_error_set(GB_EINVAL, "%s:%d: %s", name, r.error_line, r.message);
-    const int status = cross_check(name, &scene);
+    int status = gb_ini_read(name, text, size, sections, SECTION_TOTAL, handler, &scene);
+    for (size_t k = 0; k < count && !status; k++) status = apply_override(&scene, &overrides[k]);
+    if (!status) status = cross_check(name, &scene);
     if (status) return status;
     /* Amplitudes in m/s² for the dynamics. */
     const double unit = scene.amplitudes_in_g ? scene.dynamics.forcing.g : 1.0;
@@ -580,46 +471,20 @@ int gb_case_load_text(const char *name, const char *text, size_t size, gb_case *
     return GB_OK;
 }
 
-int gb_case_load(const char *path, gb_case *out)
+int gb_case_load_text(const char *name, const char *text, size_t size, gb_case *out)
 {
-    const int fd = open(path, O_RDONLY | O_CLOEXEC);
-    if (fd < 0) return gb_error_set(GB_EINVAL, "%s: cannot open the case file: %s", path, strerror(errno));
-    struct stat st;
-    if (fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
-        close(fd);
-        return gb_error_set(GB_EINVAL, "%s: not a regular file (allowed: a scene file, see cases/README.md)", path);
-    }
-    if (st.st_size > GB_CASE_FILE_MAX) {
-        close(fd);
-        return gb_error_set(GB_EINVAL, "%s: %lld bytes (allowed: a scene file of at most %d bytes)", path,
-                            (long long)st.st_size, GB_CASE_FILE_MAX);
-    }
-    char *text = malloc((size_t)st.st_size + 1);
-    if (!text) {
-        close(fd);
-        return gb_error_set(GB_ENOMEM, "%s: out of memory for %lld bytes", path, (long long)st.st_size);
-    }
-    size_t size = 0;
-    for (;;) {
-        const ssize_t got = read(fd, text + size, (size_t)st.st_size + 1 - size);
-        if (got < 0 && errno == EINTR) continue;
-        if (got < 0) {
-            const int err = errno;
-            free(text);
-            close(fd);
-            return gb_error_set(GB_EIO, "%s: cannot read the case file: %s", path, strerror(err));
-        }
-        if (got == 0) break;
-        size += (size_t)got;
-        if (size > (size_t)st.st_size) break; /* grew while read: at most the limit is read */
-    }
-    close(fd);
-    int status;
-    if (size > GB_CASE_FILE_MAX)
-        status = gb_error_set(GB_EINVAL, "%s: more than %d bytes (allowed: a scene file of at most %d bytes)", path,
-                              GB_CASE_FILE_MAX, GB_CASE_FILE_MAX);
-    else
-        status = gb_case_load_text(path, text, size, out);
+    return gb_case_load_text_with(name, text, size, NULL, 0, out);
+}
+
+int gb_case_load_with(const char *path, const gb_case_override *overrides, size_t count, gb_case *out)
+{
+    char *text;
+    size_t size;
+    int status = gb_ini_slurp(path, GB_CASE_FILE_MAX, "case file", "a scene file, see cases/README.md", &text, &size);
+    if (status) return status;
+    status = gb_case_load_text_with(path, text, size, overrides, count, out);
     free(text);
     return status;
 }
+
+int gb_case_load(const char *path, gb_case *out) { return gb_case_load_with(path, NULL, 0, out); }

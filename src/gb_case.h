@@ -8,9 +8,9 @@
  * compares the two).
  *
  * The reader is strict: a file is read whole (a regular file of at most GB_CASE_FILE_MAX bytes) and
- * every line is checked before libinih sees it: at most 198 bytes (libinih's buffer, less the newline
- * and the NUL), UTF-8 with no NUL and no control character but TAB, no indented (continuation) line,
- * only known sections, each once. Every key is given at most once, and its value is one whole token
+ * every line is checked by gb_ini before libinih sees it (at most GB_INI_LINE_MAX bytes, UTF-8 with no
+ * NUL and no control character but TAB, no indented continuation line, only known sections, each
+ * once). Every key is given at most once, and its value is one whole token
  * inside the key's physical range (gb_case_key_allowed); adaptive steppers are refused with grid
  * contact. Errors name the file, the line, the key and the allowed values, with status GB_EINVAL or
  * GB_EDOM (bad input); nothing is returned half-filled. */
@@ -59,6 +59,18 @@ int gb_case_load(const char *path, gb_case *out);
 
 /* The same for `size` bytes of `text` (NUL bytes and all), named `name` in messages. */
 int gb_case_load_text(const char *name, const char *text, size_t size, gb_case *out);
+
+/* A key set over what the scene file says (a scan point's coordinate): the same parser and range as
+ * the file's own line, before the checks no single key can make. `origin` names where it comes from
+ * in messages ("scan.ini:12"). */
+typedef struct gb_case_override {
+    const char *section, *key, *value, *origin;
+} gb_case_override;
+
+/* gb_case_load and gb_case_load_text with overrides applied in order. */
+int gb_case_load_with(const char *path, const gb_case_override *overrides, size_t count, gb_case *out);
+int gb_case_load_text_with(const char *name, const char *text, size_t size, const gb_case_override *overrides,
+                           size_t count, gb_case *out);
 
 /* The keys a scene may set: their count, and for key `index` its section, name and allowed values
  * in words (the text every error message and cases/README.md use). GB_EDOM past the last key. It

@@ -57,6 +57,7 @@ struct gb_dynamics {
     double contact_time, contact_rate[2];
     double energy0, t0;
     size_t grid_switches, branch_switches;
+    double last_switch_time; /* of the latest grid or branch switch (NAN before the first) */
     size_t branches_lost; /* continuous: evaluations where the continued branch had no minimum */
     /* The last competitor() answer and the state it was for: with switch location, the step's end is
      * checked by gb_dynamics_switch_pending and then again by gb_dynamics_accept at the same state. */
@@ -372,7 +373,7 @@ int gb_dynamics_accept(gb_dynamics *d, double t, double y[GB_STATE_SIZE], double
         contact_eval c;
         const int status = contact_at(d, t, zb, y + GB_STATE_OMEGA, &c);
         if (status) return status;
-        d->grid_switches += c.index != d->index;
+        if (c.index != d->index) d->grid_switches++, d->last_switch_time = t;
         d->index = c.index;
         return GB_OK;
     }
@@ -383,6 +384,7 @@ int gb_dynamics_accept(gb_dynamics *d, double t, double y[GB_STATE_SIZE], double
     d->contact = found ? other : continued;
     d->memo_valid = 0; /* the accepted contact changed */
     d->branch_switches += found;
+    if (found) d->last_switch_time = t;
     return remember_rate(d, t, y);
 }
 
@@ -408,8 +410,9 @@ int gb_dynamics_branch_gap(gb_dynamics *d, const double y[GB_STATE_SIZE], const 
     return GB_OK;
 }
 
-void gb_dynamics_switch_to(gb_dynamics *d, const gb_contact_point *branch)
+void gb_dynamics_switch_to(gb_dynamics *d, double t, const gb_contact_point *branch)
 {
+    d->last_switch_time = t;
     d->memo_valid = 0;
     d->contact = *branch;
     d->contact_rate[0] = d->contact_rate[1] = 0.0; /* no predictor until the next accepted step */
@@ -417,6 +420,8 @@ void gb_dynamics_switch_to(gb_dynamics *d, const gb_contact_point *branch)
 }
 
 size_t gb_dynamics_switch_count(const gb_dynamics *d) { return d->grid_switches + d->branch_switches; }
+
+double gb_dynamics_last_switch_time(const gb_dynamics *d) { return d->last_switch_time; }
 
 void gb_dynamics_adopt_contact(gb_dynamics *to, const gb_dynamics *from)
 {
@@ -450,6 +455,7 @@ int gb_dynamics_init_state(gb_dynamics *d, double t0, const double R0[9], const 
     if (status) return status;
     if (d->def.contact == GB_CONTACT_MODEL_CONTINUOUS) remember_rate(d, t0, y);
     d->grid_switches = d->branch_switches = d->branches_lost = 0;
+    d->last_switch_time = NAN;
     d->memo_valid = 0;
     d->t0 = t0;
     d->energy0 = 0.0;

@@ -94,8 +94,8 @@ int gb_dynamics_switch_pending(gb_dynamics *dynamics, double t, const double y[G
  * *other_here is the other branch at y. */
 int gb_dynamics_branch_gap(gb_dynamics *dynamics, const double y[GB_STATE_SIZE], const gb_contact_point *other,
                            double *gap, gb_contact_point *other_here);
-/* Make `branch` the contact from now on (a located switch). */
-void gb_dynamics_switch_to(gb_dynamics *dynamics, const gb_contact_point *branch);
+/* Make `branch` the contact from time t on (a located switch). */
+void gb_dynamics_switch_to(gb_dynamics *dynamics, double t, const gb_contact_point *branch);
 
 /* Take over the accepted contact of `from` (same body and model): for a trajectory placed next to
  * another one (a Lyapunov perturbation), whose contact is then continued from there. The next accepted
@@ -104,6 +104,9 @@ void gb_dynamics_adopt_contact(gb_dynamics *to, const gb_dynamics *from);
 
 /* Grid-index changes plus branch switches so far. */
 size_t gb_dynamics_switch_count(const gb_dynamics *dynamics);
+/* The time of the latest switch: the located time for a located switch, else the accepted step's end
+ * (NAN before the first). */
+double gb_dynamics_last_switch_time(const gb_dynamics *dynamics);
 
 typedef struct gb_dynamics_observables {
     double t;

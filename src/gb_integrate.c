@@ -84,13 +84,25 @@ static int rk4_step(gb_dynamics *d, double t, double h, const double y[], double
     return gb_integrate_rk4_step(d, t, h, y, out, 0, NULL, NULL, NULL, stats);
 }
 
-int gb_integrate_locate_switch(gb_dynamics *d, double t, double h, const double y[GB_STATE_SIZE],
-                               const gb_contact_point *other, gb_integrate_switch *out, gb_integrate_stats *stats)
+/* One step of size h from (t, y) into out on the current branch, by the stepper that took the step. */
+typedef int (*substep_fn)(void *context, gb_dynamics *d, double t, double h, const double y[], double out[],
+                          gb_integrate_stats *stats);
+
+static int rk4_substep(void *context, gb_dynamics *d, double t, double h, const double y[], double out[],
+                       gb_integrate_stats *stats)
+{
+    (void)context;
+    return rk4_step(d, t, h, y, out, stats);
+}
+
+/* The locator on the step fraction, for any one-step method. */
+static int locate(gb_dynamics *d, double t, double h, const double y[GB_STATE_SIZE], const gb_contact_point *other,
+                  substep_fn substep, void *context, gb_integrate_switch *out, gb_integrate_stats *stats)
 {
     double a = 0.0, b = 1.0, ga, gb, yb[GB_STATE_SIZE], ymid[GB_STATE_SIZE];
     gb_contact_point other_a, other_b, other_mid;
     int status = gb_dynamics_branch_gap(d, y, other, &ga, &other_a);
-    if (!status) status = rk4_step(d, t, h, y, yb, stats);
+    if (!status) status = substep(context, d, t, h, y, yb, stats);
     if (!status) status = gb_dynamics_branch_gap(d, yb, other, &gb, &other_b);
     if (status) return status;
     out->crossed = ga < 0.0 && gb > 0.0;
@@ -106,7 +118,7 @@ int gb_integrate_locate_switch(gb_dynamics *d, double t, double h, const double 
     for (int it = 0; it < 60 && b - a > 1e-13; it++) {
         const double m = (a * gb - b * ga) / (gb - ga); /* regula falsi, Illinois-modified */
         double gm;
-        status = rk4_step(d, t, m * h, y, ymid, stats);
+        status = substep(context, d, t, m * h, y, ymid, stats);
         if (!status) status = gb_dynamics_branch_gap(d, ymid, other, &gm, &other_mid);
         if (status) return status;
         if (gm == 0.0) {
@@ -131,17 +143,23 @@ int gb_integrate_locate_switch(gb_dynamics *d, double t, double h, const double 
     return gb_dynamics_branch_gap(d, out->y, other, &gap, &out->other);
 }
 
+int gb_integrate_locate_switch(gb_dynamics *d, double t, double h, const double y[GB_STATE_SIZE],
+                               const gb_contact_point *other, gb_integrate_switch *out, gb_integrate_stats *stats)
+{
+    return locate(d, t, h, y, other, rk4_substep, NULL, out, stats);
+}
+
 /* A switch was found at the end of the step (t, y) → t + h: locate it, switch there, and finish the
  * step on the new branch into out. */
 static int located_step(gb_dynamics *d, double t, double h, const double y[], const gb_contact_point *other,
-                        double out[], gb_integrate_stats *stats)
+                        substep_fn substep, void *context, double out[], gb_integrate_stats *stats)
 {
     gb_integrate_switch at;
-    const int status = gb_integrate_locate_switch(d, t, h, y, other, &at, stats);
+    const int status = locate(d, t, h, y, other, substep, context, &at, stats);
     if (status) return status;
-    gb_dynamics_switch_to(d, &at.other);
+    gb_dynamics_switch_to(d, t + at.fraction * h, &at.other);
     if (at.fraction == 1.0) return memcpy(out, at.y, sizeof at.y), GB_OK;
-    return rk4_step(d, t + at.fraction * h, (1.0 - at.fraction) * h, at.y, out, stats);
+    return substep(context, d, t + at.fraction * h, (1.0 - at.fraction) * h, at.y, out, stats);
 }
 
 /* A run that can be continued: the nominal time grid t_n = t0 + n·h is global (n counts steps from
@@ -174,7 +192,7 @@ static int advance_rk4(gb_integrate_session *s, size_t steps, double y[], gb_int
             gb_contact_point other;
             int found = 0;
             status = gb_dynamics_switch_pending(d, t + h, next, &other, &found);
-            if (!status && found) status = located_step(d, t, h, y, &other, next, &s->stats);
+            if (!status && found) status = located_step(d, t, h, y, &other, rk4_substep, NULL, next, &s->stats);
             if (status) return status;
         }
         memcpy(y, next, sizeof next);
@@ -199,6 +217,25 @@ struct gsl_context {
     int status; /* the first gb_ status a right-hand side returned */
 };
 typedef struct gsl_context gsl_context;
+
+/* One step of the session's GSL stepper of size h (no error control: the accepted step it divides
+ * already met the tolerance), from a fresh derivative. */
+static int gsl_substep(void *context, gb_dynamics *d, double t, double h, const double y[], double out[],
+                       gb_integrate_stats *stats)
+{
+    (void)d, (void)stats;
+    gb_integrate_session *s = context;
+    double err[GB_STATE_SIZE];
+    memcpy(out, y, GB_STATE_SIZE * sizeof *out);
+    gsl_odeiv2_step_reset(s->driver->s);
+    if (h == 0.0) return GB_OK;
+    const int gsl_status = gsl_odeiv2_step_apply(s->driver->s, t, h, out, err, NULL, NULL, &s->system);
+    if (gsl_status != GSL_SUCCESS)
+        return s->gsl->status ? s->gsl->status
+                              : gb_error_set(GB_ENUMERIC, "GSL odeiv2 (%s) failed locating a switch at t = %.17g: %s",
+                                             names[s->def.method], t, gsl_strerror(gsl_status));
+    return GB_OK;
+}
 
 static int gsl_rhs(double t, const double y[], double dydt[], void *params)
 {
@@ -252,6 +289,8 @@ static int advance_adaptive(gb_integrate_session *s, size_t steps, double y[], g
         const double target = s->t0 + (double)(s->n + 1) * s->h;
         while (!status && s->t < target) {
             const double before = s->t;
+            double y_before[GB_STATE_SIZE];
+            memcpy(y_before, y, sizeof y_before);
             const int gsl_status = gsl_odeiv2_evolve_apply(evolve, control, step, &s->system, &s->t, target, &s->dt, y);
             if (gsl_status != GSL_SUCCESS) {
                 status = s->gsl->status ? s->gsl->status
@@ -270,6 +309,15 @@ static int advance_adaptive(gb_integrate_session *s, size_t steps, double y[], g
                                       "collapsed, as it does at the jumps of a grid contact",
                                       name, s->stats.steps, s->t);
                 break;
+            }
+            if (s->def.locate_switches) {
+                /* As for RK4: a switch found at the end of the accepted step is located inside it, and the
+                 * step is redone to there on the old branch and finished on the new one. */
+                gb_contact_point other;
+                int found = 0;
+                status = gb_dynamics_switch_pending(d, s->t, y, &other, &found);
+                if (!status && found) status = located_step(d, before, s->t - before, y_before, &other, gsl_substep, s, y, &s->stats);
+                if (status) break;
             }
             double drift;
             status = gb_dynamics_accept(d, s->t, y, &drift);

@@ -7,9 +7,11 @@
  *  GB_INTEGRATOR_RK4IMP  GSL odeiv2 implicit Gauss 4th order, adaptive, Jacobian by central differences
  *
  * After every accepted step gb_dynamics_accept renormalises the quaternion and updates the contact.
- * With locate_switches (RK4, continuous contact) a branch switch found at the end of a step is moved
- * to the time inside the step where the two branches are equally low (eqs 38–39): the step is
- * redone up to that time on the old branch and finished on the new one.
+ * With locate_switches (continuous contact, any method) a branch switch found at the end of a step is
+ * moved to the time inside the step where the two branches are equally low (eqs 38–39): the step is
+ * redone up to that time on the old branch and finished on the new one, by the same stepper (an
+ * adaptive one takes both parts as single steps without error control: together they replace an
+ * accepted step that met the tolerance).
  * Samples are delivered every `sample_every` nominal steps (T / steps_per_period) to a callback. */
 #ifndef GB_INTEGRATE_H
 #define GB_INTEGRATE_H
@@ -33,8 +35,8 @@ typedef struct gb_integrate_def {
     double rtol, atol;       /* adaptive steppers (default 1e-10, 1e-12) */
     size_t sample_every;     /* deliver every n-th nominal step (default 1) */
     size_t max_steps;        /* adaptive steppers: give up (GB_ENOCONV) after this many steps; 0: no limit */
-    int locate_switches;     /* RK4 with continuous contact: find the time where Δh = 0 inside the step
-                                (Illinois on the step fraction), switch there, finish the step (default 0) */
+    int locate_switches;     /* continuous contact: find the time where Δh = 0 inside the step (Illinois on
+                                the step fraction), switch there, finish the step (default 0) */
 } gb_integrate_def;
 
 gb_integrate_def gb_integrate_default_def(void);

@@ -8,7 +8,8 @@
 
 gb_lyapunov_def gb_lyapunov_default_def(void)
 {
-    return (gb_lyapunov_def){.delta0 = 1e-7, .interval = 1.0, .intervals = 300, .transient = 0, .batches = 10};
+    return (gb_lyapunov_def){.delta0 = 1e-7, .interval = 1.0, .intervals = 300, .transient = 0,
+                             .warmup = GB_LYAPUNOV_CHOSEN, .batches = GB_LYAPUNOV_CHOSEN};
 }
 
 void gb_lyapunov_result_free(gb_lyapunov_result *result)
@@ -19,35 +20,111 @@ void gb_lyapunov_result_free(gb_lyapunov_result *result)
     result->instantaneous = result->running = NULL;
 }
 
-void gb_lyapunov_statistics(const double *x, size_t n, size_t batches, double *mean, double *error_bar,
-                            double *late_drift)
+size_t gb_lyapunov_mser5(const double *x, size_t n, int *found)
 {
-    double sum = 0.0;
-    for (size_t i = 0; i < n; i++) sum += x[i];
-    *mean = n ? sum / (double)n : NAN;
-    /* Batch b holds x[b n / B, (b + 1) n / B); the spread of the batch means gives the error. */
-    double s = 0.0, s2 = 0.0;
-    for (size_t b = 0; b < batches; b++) {
-        const size_t lo = b * n / batches, hi = (b + 1) * n / batches;
-        double batch = 0.0;
-        for (size_t i = lo; i < hi; i++) batch += x[i];
-        batch /= (double)(hi - lo);
-        s += batch;
-        s2 += batch * batch;
+    const size_t m = n / 5;
+    *found = 0;
+    if (m < 4) return 0; /* too short to tell a warm-up from noise */
+    /* Suffix sums of the block means give every candidate's variance in one pass. */
+    double *z = malloc(m * sizeof *z);
+    if (!z) return 0;
+    for (size_t j = 0; j < m; j++) {
+        double s = 0.0;
+        for (size_t i = 0; i < 5; i++) s += x[5 * j + i];
+        z[j] = s / 5.0;
     }
-    const double bm = s / (double)batches;
-    const double var = fmax(0.0, (s2 - (double)batches * bm * bm) / (double)(batches - 1));
-    *error_bar = sqrt(var / (double)batches);
-    /* The running mean over the last quarter of the record. */
+    size_t best = 0;
+    double best_value = INFINITY, s = 0.0, s2 = 0.0;
+    for (size_t d = m; d-- > 0;) {
+        s += z[d], s2 += z[d] * z[d];
+        if (d > m / 2) continue;
+        const double k = (double)(m - d), value = fmax(0.0, s2 - s * s / k) / (k * k);
+        if (value <= best_value) best_value = value, best = d; /* ties: the shorter warm-up */
+    }
+    free(z);
+    *found = best < m / 2;
+    return 5 * best;
+}
+
+/* Mean of x over batch k of B equal batches of x[0..n). */
+static double batch_mean(const double *x, size_t n, size_t B, size_t k)
+{
+    const size_t lo = k * n / B, hi = (k + 1) * n / B;
+    double s = 0.0;
+    for (size_t i = lo; i < hi; i++) s += x[i];
+    return s / (double)(hi - lo);
+}
+
+/* Standard error and lag-1 autocorrelation of the B batch means of x[0..n). */
+static void batch_statistics(const double *x, size_t n, size_t B, double *error_bar, double *correlation)
+{
+    double mean = 0.0;
+    for (size_t k = 0; k < B; k++) mean += batch_mean(x, n, B, k);
+    mean /= (double)B;
+    double var = 0.0, lag = 0.0, previous = NAN;
+    for (size_t k = 0; k < B; k++) {
+        const double d = batch_mean(x, n, B, k) - mean;
+        var += d * d;
+        if (k) lag += d * previous;
+        previous = d;
+    }
+    *error_bar = sqrt(var / (double)(B - 1) / (double)B);
+    *correlation = var > 0.0 ? lag / var : 0.0;
+}
+
+int gb_lyapunov_statistics(const double *x, size_t n, const gb_lyapunov_def *def, gb_lyapunov_result *out, double *mean)
+{
+    double whole = 0.0;
+    for (size_t i = 0; i < n; i++) whole += x[i];
+    out->whole_record = n ? whole / (double)n : NAN;
+    if (def->warmup == GB_LYAPUNOV_CHOSEN) {
+        out->warmup = gb_lyapunov_mser5(x, n, &out->warmup_found);
+    } else {
+        if (2 * def->warmup >= n) {
+            return gb_error_set(GB_EDOM, "warm-up = %zu intervals is out of range (allowed: < half the record of %zu)",
+                                def->warmup, n);
+        }
+        out->warmup = def->warmup, out->warmup_found = 1;
+    }
+    const double *kept = x + out->warmup;
+    const size_t k = n - out->warmup;
+    if (def->batches == GB_LYAPUNOV_CHOSEN) {
+        const size_t fewest = k < 10 ? k : 10;
+        out->batches = 0;
+        for (size_t b = 1; k / b >= fewest && fewest >= 2; b *= 2) {
+            batch_statistics(kept, k, k / b, &out->error_bar, &out->batch_correlation);
+            out->batches = k / b;
+            if (fabs(out->batch_correlation) <= 2.0 / sqrt((double)out->batches)) break;
+        }
+        if (out->batches < 2) {
+            return gb_error_set(GB_EDOM, "a record of %zu kept intervals is too short for batch means (allowed: >= 2)", k);
+        }
+        if (!(fabs(out->batch_correlation) <= 2.0 / sqrt((double)out->batches)) && out->batches != fewest) {
+            out->batches = fewest;
+            batch_statistics(kept, k, fewest, &out->error_bar, &out->batch_correlation);
+        }
+    } else {
+        if (def->batches < 2 || def->batches > k) {
+            return gb_error_set(GB_EDOM, "batches = %zu is out of range (allowed: 2 ... the %zu intervals after the warm-up)",
+                                def->batches, k);
+        }
+        out->batches = def->batches;
+        batch_statistics(kept, k, out->batches, &out->error_bar, &out->batch_correlation);
+    }
+    out->batches_independent = fabs(out->batch_correlation) <= 2.0 / sqrt((double)out->batches);
+    /* The running mean of the kept part over its last quarter. */
     double lo = INFINITY, hi = -INFINITY, running = 0.0;
-    for (size_t i = 0; i < n; i++) {
-        running += x[i];
-        if (4 * (i + 1) > 3 * n) {
+    for (size_t i = 0; i < k; i++) {
+        running += kept[i];
+        if (4 * (i + 1) > 3 * k) {
             const double r = running / (double)(i + 1);
             lo = fmin(lo, r), hi = fmax(hi, r);
         }
     }
-    *late_drift = hi - lo;
+    out->late_drift = hi - lo;
+    out->converged = out->warmup_found && out->batches_independent && out->late_drift <= 2.0 * out->error_bar;
+    *mean = running / (double)k;
+    return GB_OK;
 }
 
 static int check_def(const gb_lyapunov_def *def, int pair)
@@ -58,9 +135,13 @@ static int check_def(const gb_lyapunov_def *def, int pair)
         return gb_error_set(GB_EDOM, "renormalisation interval = %g is out of range (allowed: finite, > 0)", def->interval);
     if (def->intervals < 2)
         return gb_error_set(GB_EDOM, "intervals = %zu is out of range (allowed: >= 2)", def->intervals);
-    if (def->batches < 2 || def->batches > def->intervals)
-        return gb_error_set(GB_EDOM, "batches = %zu is out of range (allowed: 2 ... intervals = %zu)", def->batches,
+    if (def->warmup != GB_LYAPUNOV_CHOSEN && 2 * def->warmup >= def->intervals)
+        return gb_error_set(GB_EDOM, "warm-up = %zu is out of range (allowed: < intervals / 2 = %zu / 2)", def->warmup,
                             def->intervals);
+    const size_t kept = def->intervals - (def->warmup == GB_LYAPUNOV_CHOSEN ? 0 : def->warmup);
+    if (def->batches != GB_LYAPUNOV_CHOSEN && (def->batches < 2 || def->batches > kept))
+        return gb_error_set(GB_EDOM, "batches = %zu is out of range (allowed: 2 ... intervals - warm-up = %zu)",
+                            def->batches, kept);
     return GB_OK;
 }
 
@@ -78,17 +159,25 @@ static int start_result(const gb_lyapunov_def *def, gb_lyapunov_result *out)
     return GB_OK;
 }
 
-static void finish_result(const gb_lyapunov_def *def, gb_lyapunov_result *out)
+/* The running mean, the statistics, and the k exponents as the means of their kept parts; rates holds
+ * the per-interval rate of exponent j at rates[j N + n] (row 0 is the instantaneous record). */
+static int finish_result(const gb_lyapunov_def *def, size_t k, const double *rates, gb_lyapunov_result *out)
 {
     double running = 0.0;
     for (size_t n = 0; n < def->intervals; n++) {
         running += out->instantaneous[n];
         out->running[n] = running / (double)(n + 1);
     }
-    double mean;
-    gb_lyapunov_statistics(out->instantaneous, def->intervals, def->batches, &mean, &out->error_bar, &out->late_drift);
+    out->count = k;
+    const int status = gb_lyapunov_statistics(out->instantaneous, def->intervals, def, out, &out->exponent[0]);
+    if (status) return status;
+    for (size_t j = 1; j < k; j++) {
+        double s = 0.0;
+        for (size_t n = out->warmup; n < def->intervals; n++) s += rates[j * def->intervals + n];
+        out->exponent[j] = s / (double)(def->intervals - out->warmup);
+    }
     out->lambda_max = out->exponent[0];
-    out->converged = out->late_drift <= 2.0 * out->error_bar;
+    return GB_OK;
 }
 
 static double norm(const double *e, size_t n)
@@ -117,7 +206,6 @@ int gb_lyapunov_pair(const gb_lyapunov_pair_system *system, void *context, const
         if (!(size > 0.0 && isfinite(size))) status = gb_error_set(GB_EDOM, "initial perturbation direction is zero or not finite");
         for (size_t i = 0; i < n && !status; i++) e[i] *= def->delta0 / size;
     }
-    double sum = 0.0;
     for (size_t k = 0; k < def->intervals && !status; k++) {
         const double tk = t + (double)k * def->interval;
         status = system->place(context, e);
@@ -132,7 +220,6 @@ int gb_lyapunov_pair(const gb_lyapunov_pair_system *system, void *context, const
             break;
         }
         out->instantaneous[k] = log(delta / def->delta0) / def->interval; /* eq 77, one term */
-        sum += out->instantaneous[k];
         for (size_t i = 0; i < n; i++) e[i] *= def->delta0 / delta; /* back to δ₀ along the separation */
     }
     free(e);
@@ -140,11 +227,10 @@ int gb_lyapunov_pair(const gb_lyapunov_pair_system *system, void *context, const
         gb_lyapunov_result_free(out);
         return status;
     }
-    out->count = 1;
-    out->exponent[0] = sum / (double)def->intervals;
     out->delta0 = def->delta0;
-    finish_result(def, out);
-    return GB_OK;
+    status = finish_result(def, 1, out->instantaneous, out);
+    if (status) gb_lyapunov_result_free(out);
+    return status;
 }
 
 int gb_lyapunov_tangent(const gb_lyapunov_tangent_system *system, void *context, const gb_lyapunov_def *def,
@@ -164,7 +250,8 @@ int gb_lyapunov_tangent(const gb_lyapunov_tangent_system *system, void *context,
         status = system->advance(context, t0 + (double)s * def->interval, def->interval);
     const double t = t0 + (double)def->transient * def->interval;
     if (!status) status = start_result(def, out);
-    double sums[GB_LYAPUNOV_MAX_EXPONENTS] = {0};
+    double *rates = status ? NULL : malloc(k * def->intervals * sizeof *rates);
+    if (!status && !rates) status = gb_error_set(GB_ENOMEM, "out of memory for %zu records of %zu intervals", k, def->intervals);
     for (size_t s = 0; s < def->intervals && !status; s++) {
         const double ts = t + (double)s * def->interval;
         status = system->advance_tangent(context, ts, def->interval, k, v);
@@ -186,18 +273,13 @@ int gb_lyapunov_tangent(const gb_lyapunov_tangent_system *system, void *context,
                 break;
             }
             for (size_t m = 0; m < n; m++) vj[m] /= size;
-            const double rate = log(size) / def->interval;
-            sums[j] += rate;
-            if (j == 0) out->instantaneous[s] = rate;
+            rates[j * def->intervals + s] = log(size) / def->interval;
+            if (j == 0) out->instantaneous[s] = rates[s];
         }
     }
     free(v);
-    if (status) {
-        gb_lyapunov_result_free(out);
-        return status;
-    }
-    out->count = k;
-    for (size_t j = 0; j < k; j++) out->exponent[j] = sums[j] / (double)def->intervals;
-    finish_result(def, out);
-    return GB_OK;
+    if (!status) status = finish_result(def, k, rates, out);
+    free(rates);
+    if (status) gb_lyapunov_result_free(out);
+    return status;
 }

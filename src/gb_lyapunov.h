@@ -10,10 +10,24 @@
  * Both work on any system through a small table of callbacks, so the same estimator is checked on maps
  * and flows whose exponents are known (logistic, Hénon, Lorenz, Ueda) before it is used on a Gömböc.
  *
- * Statistics. The error bar is the standard error of the mean by batch means: the record of λ_inst is
- * cut into `batches` equal consecutive batches, and error = sd(batch means)/√batches. The running
- * estimate is "converged" when, over the last quarter of the record, it stays within a band of
- * width 2·error (the band, `late_drift`, is reported either way). */
+ * Statistics, chosen from the record. A record of λ_inst starts with the time the perturbation takes
+ * to align with the most unstable direction, and a transiently chaotic motion ends with a different
+ * rate than it starts with: how much of the record to leave out, and how long the batches of the error
+ * bar must be, are read from the record itself rather than fixed in advance.
+ *
+ *  - Warm-up: MSER-5 (White 1997; Franklin & White 2008). The record is cut into blocks of 5 intervals,
+ *    z_j their means (m blocks); the warm-up is 5·d for the d in 0 … ⌊m/2⌋ that minimises
+ *    Σ_{j>d} (z_j − z̄_d)² / (m − d)², the squared standard error of what is kept. A minimum at the
+ *    last admissible d means the record never settled (`warmup_found` = 0).
+ *  - Batches: of what is kept (n intervals), batches of b = 1, 2, 4, … intervals, the first b whose
+ *    B = ⌊n/b⌋ batch means have a lag-1 autocorrelation within ±2/√B (the 95 % band of uncorrelated
+ *    means), with B ≥ 10; if none, B = 10 and `batches_independent` = 0 (the error bar is then a lower
+ *    bound). Batch k holds the kept intervals [k n/B, (k + 1) n/B).
+ *  - error = sd(batch means)/√B; late_drift = max − min of the running mean of the kept part over its
+ *    last quarter; converged when the warm-up was found, the batches are independent and late_drift ≤
+ *    2·error.
+ *
+ * Either choice may be fixed instead (gb_lyapunov_def.warmup, .batches), as a case file may ask. */
 #ifndef GB_LYAPUNOV_H
 #define GB_LYAPUNOV_H
 
@@ -24,8 +38,12 @@ typedef struct gb_lyapunov_def {
     double interval;        /* τ: time between renormalisations (1 for a map; T for a forced flow) */
     size_t intervals;       /* N: the record length in intervals (after the transient) */
     size_t transient;       /* intervals the reference runs alone before the record starts */
-    size_t batches;         /* batch means for the error bar (default 10; 2 <= batches <= N) */
+    size_t warmup;          /* intervals of the record left out of the means (< N/2), or GB_LYAPUNOV_CHOSEN */
+    size_t batches;         /* batch means for the error bar (2 <= batches <= N − warmup), or GB_LYAPUNOV_CHOSEN */
 } gb_lyapunov_def;
+
+/* A warm-up or a batch count chosen from the record (the default of both). */
+#define GB_LYAPUNOV_CHOSEN ((size_t)-1)
 
 gb_lyapunov_def gb_lyapunov_default_def(void);
 
@@ -57,8 +75,14 @@ typedef struct gb_lyapunov_result {
     double exponent[GB_LYAPUNOV_MAX_EXPONENTS];  /* λ₁ ≥ λ₂ ≥ … per unit time */
     double lambda_max;                           /* exponent[0] */
     double error_bar;                            /* batch-means standard error of λ_max */
-    double late_drift;                           /* max − min of the running λ_max over the last quarter */
-    int converged;                               /* late_drift ≤ 2·error_bar */
+    double late_drift;                           /* max − min of the kept part's running λ_max, last quarter */
+    int converged;                               /* warm-up found, batches independent, late_drift ≤ 2·error_bar */
+    size_t warmup;                               /* intervals left out at the start of the record */
+    int warmup_found;                            /* MSER's minimum lies inside its range (or fixed) */
+    size_t batches;                              /* batches of the error bar */
+    double batch_correlation;                    /* lag-1 autocorrelation of the batch means */
+    int batches_independent;                     /* |batch_correlation| ≤ 2/√batches */
+    double whole_record;                         /* mean of λ_inst over the whole record, warm-up included */
     size_t intervals;
     double interval, delta0;                     /* as run (delta0 = 0 for the tangent estimator) */
     double *instantaneous;                       /* λ_inst per interval [intervals], owned */
@@ -79,8 +103,14 @@ int gb_lyapunov_pair(const gb_lyapunov_pair_system *system, void *context, const
 int gb_lyapunov_tangent(const gb_lyapunov_tangent_system *system, void *context, const gb_lyapunov_def *def,
                         double t0, size_t k, gb_lyapunov_result *out);
 
-/* Batch-means mean and standard error of x[0..n); the convergence band of its running mean. */
-void gb_lyapunov_statistics(const double *x, size_t n, size_t batches, double *mean, double *error_bar,
-                            double *late_drift);
+/* The statistics of a record x[0..n) as the estimators compute them: warm-up and batches as `def` asks
+ * (chosen from the record by default); fills warmup, warmup_found, batches, batch_correlation,
+ * batches_independent, error_bar, late_drift, converged and whole_record of `out`, and puts the mean of
+ * the kept part in *mean. GB_EDOM when a fixed warm-up or batch count does not fit n. */
+int gb_lyapunov_statistics(const double *x, size_t n, const gb_lyapunov_def *def, gb_lyapunov_result *out,
+                           double *mean);
+
+/* MSER-5's warm-up of x[0..n) (a multiple of 5, at most n/2), and whether its minimum is interior. */
+size_t gb_lyapunov_mser5(const double *x, size_t n, int *found);
 
 #endif

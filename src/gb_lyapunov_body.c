@@ -235,7 +235,7 @@ static int tangent_switch_step(gb_lyapunov_body *b, double t, double h, double y
     double g_dir[GB_LYAPUNOV_MAX_EXPONENTS];
     for (size_t j = 0; j < k && !status; j++) status = gap_along(d, y, &there, Y + j * GB_STATE_SIZE, &g_dir[j]);
     if (status) return status;
-    gb_dynamics_switch_to(d, &there);
+    gb_dynamics_switch_to(d, t + a * h, &there);
     status = gb_dynamics_rhs(d, t + a * h, y, f_new);
     if (status) return status;
     if (g_flow != 0.0 && isfinite(g_flow)) {

@@ -24,5 +24,6 @@
 #include "gb_lyapunov.h"
 #include "gb_lyapunov_body.h"
 #include "gb_case.h"
+#include "gb_run.h"
 
 #endif

@@ -84,7 +84,7 @@ int cli_next_option(const char *command, int argc, char **argv, int *i, const ch
         fputs(usage, stdout);
         return CLI_HELP;
     }
-    if (!strcmp(opt, "--json")) {
+    if (json && !strcmp(opt, "--json")) {
         *json = 1;
         return CLI_NEXT;
     }
@@ -285,11 +285,48 @@ int cli_failure(const char *command, int status)
     return status == GB_EDOM || status == GB_EINVAL ? EXIT_INPUT : EXIT_COMPUTE;
 }
 
-cJSON *cli_json_vector(const double *v, int n) { return cJSON_CreateDoubleArray(v, n); }
+/* cJSON prints a double with 15 digits whenever they read back to within its epsilon, so two numbers
+ * that differ in the last bits can print alike: the command's JSON holds the shortest decimal (15, 16
+ * or 17 digits) that reads back to the same double, and null for what is not finite. */
+cJSON *cli_json_number(double value)
+{
+    if (!isfinite(value)) return cJSON_CreateNull();
+    char text[40];
+    for (int digits = 15; digits <= 17; digits++) {
+        snprintf(text, sizeof text, "%.*g", digits, value);
+        if (strtod(text, NULL) == value) break;
+    }
+    return cJSON_CreateRaw(text);
+}
+
+cJSON *cli_json_add(cJSON *object, const char *key, double value)
+{
+    cJSON *item = cli_json_number(value);
+    cJSON_AddItemToObject(object, key, item);
+    return item;
+}
+
+cJSON *cli_json_vector(const double *v, int n)
+{
+    cJSON *array = cJSON_CreateArray();
+    for (int k = 0; k < n; k++) cJSON_AddItemToArray(array, cli_json_number(v[k]));
+    return array;
+}
 
 void cli_print_json(const cJSON *root)
 {
     char *text = cJSON_Print(root);
     puts(text);
     free(text);
+}
+
+char *cli_output_name(const char *dir, const char *input, const char *suffix)
+{
+    const char *slash = strrchr(input, '/'), *name = slash ? slash + 1 : input;
+    size_t len = strlen(name);
+    if (len > 4 && !strcmp(name + len - 4, ".ini")) len -= 4;
+    const size_t size = strlen(dir) + len + strlen(suffix) + 3;
+    char *out = malloc(size);
+    if (out) snprintf(out, size, "%s/%.*s-%s", dir, (int)len, name, suffix);
+    return out;
 }

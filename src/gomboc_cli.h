@@ -4,7 +4,7 @@
 #define GOMBOC_CLI_H
 
 #include "gb_case.h"
-#include "gb_lyapunov_body.h"
+#include "gb_lyapunov.h"
 
 #include <cjson/cJSON.h>
 #include <stdio.h>
@@ -30,7 +30,7 @@ typedef struct cli_body {
 } cli_body;
 
 /* Read the option argv[*i]. Returns CLI_HELP after printing `usage` for --help/-h; CLI_NEXT after
- * consuming --json (sets *json) or a body option (--morphology, --beta, into *body; refused when
+ * consuming --json (sets *json; refused when json is NULL) or a body option (--morphology, --beta, into *body; refused when
  * body is NULL); CLI_VALUE for
  * an option listed in `valued` (NULL-terminated), with its value in *value and *i advanced past it;
  * otherwise EXIT_INPUT after printing an error that lists `allowed`. */
@@ -58,6 +58,8 @@ int cli_body_required(const char *command, const cli_body *body);
  * SIGTERM and SIGHUP (cli_install_cleanup); those of a process killed outright are removed by the next
  * command that writes to the same directory. */
 int cli_output_check(const char *command, const char *option, const char *path);
+/* "DIR/NAME-suffix", NAME the input file's base name without ".ini" (malloc'd; NULL when out of memory). */
+char *cli_output_name(const char *dir, const char *input, const char *suffix);
 int cli_output_dir_check(const char *command, const char *option, const char *dir);
 void cli_install_cleanup(void);
 
@@ -84,16 +86,15 @@ int cli_write_atomically(const char *path, const char *text);
 /* Print a library failure and map its status to the exit status. */
 int cli_failure(const char *command, int status);
 
+/* JSON numbers that read back to the same double (cJSON's own printing may drop the last bits): a
+ * number (null when not finite), a member of `object`, an array. */
+cJSON *cli_json_number(double value);
+cJSON *cli_json_add(cJSON *object, const char *key, double value);
 cJSON *cli_json_vector(const double *v, int n);
 
 /* Print `root` as JSON on stdout. */
 void cli_print_json(const cJSON *root);
 
-/* The scene's λ_max by the pair estimator (eq 77) with its [lyapunov] definition; the reference is the
- * scene's run, whose samples (t = 0 included) go to `sample`, observed through *observer (may be NULL).
- * On success *body holds the final states (free it with gb_lyapunov_body_free); *result is filled. */
-int cli_scene_lyapunov(const gb_case *scene, gb_integrate_sample sample, void *context, gb_dynamics **observer,
-                       gb_lyapunov_body **body, gb_lyapunov_result *result);
 /* The JSON of a scene's λ: lambda_max, error_bar, periods, delta0, …; with `with_record`, running and
  * instantaneous. */
 cJSON *cli_lyapunov_json(const gb_case *scene, const gb_lyapunov_result *result, int with_record);
@@ -103,5 +104,6 @@ int command_shape(int argc, char **argv);
 int command_lyapunov(int argc, char **argv);
 int command_contact(int argc, char **argv);
 int command_run(int argc, char **argv);
+int command_scan(int argc, char **argv);
 
 #endif

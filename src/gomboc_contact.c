@@ -91,12 +91,12 @@ static int write_zoom(const gb_surface *surface, const double zb[3], double phi0
 static cJSON *point_json(const gb_contact_point *p)
 {
     cJSON *o = cJSON_CreateObject();
-    cJSON_AddNumberToObject(o, "phi", p->phi);
-    cJSON_AddNumberToObject(o, "theta", p->theta);
-    cJSON_AddNumberToObject(o, "height", p->height);
+    cli_json_add(o, "phi", p->phi);
+    cli_json_add(o, "theta", p->theta);
+    cli_json_add(o, "height", p->height);
     cJSON_AddItemToObject(o, "rc", cli_json_vector(p->rc, 3));
     cJSON_AddItemToObject(o, "hessian", cli_json_vector(p->hessian, 3));
-    cJSON_AddNumberToObject(o, "residual", p->residual);
+    cli_json_add(o, "residual", p->residual);
     return o;
 }
 
@@ -214,31 +214,31 @@ int command_contact(int argc, char **argv)
 
     cJSON *root = cJSON_CreateObject();
     cJSON_AddStringToObject(root, "morphology", surface.morphology->name);
-    cJSON_AddNumberToObject(root, "beta", beta);
+    cli_json_add(root, "beta", beta);
     cJSON_AddItemToObject(root, "zb", cli_json_vector(unit, 3));
     cJSON_AddStringToObject(root, "method", gb_contact_model_name(method));
     if (method != GB_CONTACT_MODEL_CONTINUOUS) {
         cJSON_AddItemToObject(root, "grid", cli_json_vector((double[]){(double)grid_def.n_phi, (double)grid_def.n_theta}, 2));
         cJSON_AddStringToObject(root, "nodes", gb_contact_nodes_name(grid_def.nodes));
-        cJSON_AddNumberToObject(root, "phi", node.phi);
-        cJSON_AddNumberToObject(root, "theta", node.theta);
-        cJSON_AddNumberToObject(root, "height", node.height);
+        cli_json_add(root, "phi", node.phi);
+        cli_json_add(root, "theta", node.theta);
+        cli_json_add(root, "height", node.height);
         cJSON_AddItemToObject(root, "rc", cli_json_vector(node.x, 3));
-        cJSON_AddNumberToObject(root, "index", (double)node.index);
-        cJSON_AddNumberToObject(root, "nodes_visited", (double)node.visited);
+        cli_json_add(root, "index", (double)node.index);
+        cli_json_add(root, "nodes_visited", (double)node.visited);
     } else {
         cJSON_AddItemToObject(root, "grid", cli_json_vector((double[]){(double)seed_def.n_phi, (double)seed_def.n_theta}, 2));
         cJSON_AddStringToObject(root, "nodes", gb_contact_nodes_name(seed_def.nodes));
-        cJSON_AddNumberToObject(root, "phi", contact->phi);
-        cJSON_AddNumberToObject(root, "theta", contact->theta);
-        cJSON_AddNumberToObject(root, "height", contact->height);
+        cli_json_add(root, "phi", contact->phi);
+        cli_json_add(root, "theta", contact->theta);
+        cli_json_add(root, "height", contact->height);
         cJSON_AddItemToObject(root, "rc", cli_json_vector(contact->rc, 3));
         cJSON_AddNullToObject(root, "index");
-        cJSON_AddNumberToObject(root, "residual", contact->residual);
+        cli_json_add(root, "residual", contact->residual);
     }
     cJSON *list = cJSON_AddArrayToObject(root, "branches");
     for (size_t k = 0; k < branches.count; k++) cJSON_AddItemToArray(list, point_json(&branches.branch[k]));
-    if (isfinite(branches.gap)) cJSON_AddNumberToObject(root, "gap", branches.gap);
+    if (isfinite(branches.gap)) cli_json_add(root, "gap", branches.gap);
     else cJSON_AddNullToObject(root, "gap");
     cJSON_AddItemToObject(root, "branch_seed_grid", cli_json_vector((double[]){(double)seed_def.n_phi, (double)seed_def.n_theta}, 2));
 

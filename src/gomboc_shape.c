@@ -99,49 +99,49 @@ int command_shape(int argc, char **argv)
 
     cJSON *root = cJSON_CreateObject();
     cJSON_AddStringToObject(root, "morphology", surface.morphology->name);
-    cJSON_AddNumberToObject(root, "beta", beta);
-    cJSON_AddNumberToObject(root, "mass", mass);
-    cJSON_AddNumberToObject(root, "volume", props.volume);
-    cJSON_AddNumberToObject(root, "volume_error", props.volume_err);
+    cli_json_add(root, "beta", beta);
+    cli_json_add(root, "mass", mass);
+    cli_json_add(root, "volume", props.volume);
+    cli_json_add(root, "volume_error", props.volume_err);
     cJSON_AddItemToObject(root, "centroid", cli_json_vector(props.centroid, 3));
     cJSON_AddItemToObject(root, "centroid_error", cli_json_vector(props.centroid_err, 3));
     cJSON *inertia = cJSON_AddArrayToObject(root, "inertia");
     for (int i = 0; i < 3; i++) cJSON_AddItemToArray(inertia, cli_json_vector(props.inertia[i], 3));
-    cJSON_AddNumberToObject(root, "L", props.L);
-    cJSON_AddNumberToObject(root, "L_error", props.L_err);
-    cJSON_AddNumberToObject(root, "curvature_min", survey.K_min);
+    cli_json_add(root, "L", props.L);
+    cli_json_add(root, "L_error", props.L_err);
+    cli_json_add(root, "curvature_min", survey.K_min);
     cJSON_AddItemToObject(root, "curvature_min_at", cli_json_vector((double[]){survey.K_min_phi, survey.K_min_theta}, 2));
-    cJSON_AddNumberToObject(root, "principal_curvature_min", survey.kappa_min);
+    cli_json_add(root, "principal_curvature_min", survey.kappa_min);
     cJSON_AddItemToObject(root, "principal_curvature_min_at",
                           cli_json_vector((double[]){survey.kappa_min_phi, survey.kappa_min_theta}, 2));
-    cJSON_AddNumberToObject(root, "negative_curvature_fraction", survey.negative_fraction);
-    cJSON_AddNumberToObject(root, "convexity_beta_limit", beta_limit);
+    cli_json_add(root, "negative_curvature_fraction", survey.negative_fraction);
+    cli_json_add(root, "convexity_beta_limit", beta_limit);
     cJSON_AddItemToObject(root, "convexity_lost_at", cli_json_vector((double[]){limit_phi, limit_theta}, 2));
     cJSON_AddBoolToObject(root, "convex", convex);
     cJSON *eqs = cJSON_AddArrayToObject(root, "equilibria");
     for (size_t k = 0; k < equilibria.count; k++) {
         cJSON *e = cJSON_CreateObject();
         cJSON_AddStringToObject(e, "type", gb_shape_equilibrium_name(equilibria.points[k].type));
-        cJSON_AddNumberToObject(e, "phi", equilibria.points[k].phi);
-        cJSON_AddNumberToObject(e, "theta", equilibria.points[k].theta);
-        cJSON_AddNumberToObject(e, "r", equilibria.points[k].r);
+        cli_json_add(e, "phi", equilibria.points[k].phi);
+        cli_json_add(e, "theta", equilibria.points[k].theta);
+        cli_json_add(e, "r", equilibria.points[k].r);
         cJSON_AddItemToArray(eqs, e);
     }
-    cJSON_AddNumberToObject(root, "polar_cap_gradient_min", equilibria.polar_gradient_min);
+    cli_json_add(root, "polar_cap_gradient_min", equilibria.polar_gradient_min);
     cJSON *h = cJSON_AddObjectToObject(root, "hull_equilibria");
     cJSON_AddItemToObject(h, "sample", cli_json_vector((double[]){(double)sdef.hull_phi, (double)sdef.hull_theta}, 2));
-    cJSON_AddNumberToObject(h, "neighbourhood_rad", sdef.hull_neighbourhood);
-    cJSON_AddNumberToObject(h, "vertices", (double)hull.vertices);
-    cJSON_AddNumberToObject(h, "sampled_fraction_on_hull", hull.sampled_fraction_on_hull);
-    cJSON_AddNumberToObject(h, "raw_stable", (double)hull.raw_stable);
-    cJSON_AddNumberToObject(h, "raw_unstable", (double)hull.raw_unstable);
-    cJSON_AddNumberToObject(h, "stable", (double)hull.stable);
-    cJSON_AddNumberToObject(h, "unstable", (double)hull.unstable);
+    cli_json_add(h, "neighbourhood_rad", sdef.hull_neighbourhood);
+    cli_json_add(h, "vertices", (double)hull.vertices);
+    cli_json_add(h, "sampled_fraction_on_hull", hull.sampled_fraction_on_hull);
+    cli_json_add(h, "raw_stable", (double)hull.raw_stable);
+    cli_json_add(h, "raw_unstable", (double)hull.raw_unstable);
+    cli_json_add(h, "stable", (double)hull.stable);
+    cli_json_add(h, "unstable", (double)hull.unstable);
     cJSON *rests = cJSON_AddArrayToObject(h, "rests");
     for (size_t k = 0; k < hull.stable; k++) {
         cJSON *r = cJSON_CreateObject();
         cJSON_AddItemToObject(r, "normal", cli_json_vector(hull.rests[k].normal, 3));
-        cJSON_AddNumberToObject(r, "height", hull.rests[k].height);
+        cli_json_add(r, "height", hull.rests[k].height);
         cJSON_AddItemToArray(rests, r);
     }
     cJSON *tops = cJSON_AddArrayToObject(h, "unstable_points");

@@ -14,19 +14,7 @@
 
 static const char *binary(void) { return getenv("GOMBOC_BIN") ? getenv("GOMBOC_BIN") : "build/gomboc"; }
 
-/* Run `gomboc ARGS`, capturing stdout and stderr (stderr appended after a marker). */
-static int run(const char *args, char *out, size_t cap)
-{
-    char command[1024];
-    snprintf(command, sizeof command, "%s %s 2>&1; echo \"@@exit=$?\"", binary(), args);
-    FILE *p = popen(command, "r");
-    size_t used = 0;
-    if (!p) return -1;
-    while (used + 1 < cap && fgets(out + used, (int)(cap - used), p)) used += strlen(out + used);
-    pclose(p);
-    const char *mark = strstr(out, "@@exit=");
-    return mark ? atoi(mark + 7) : -1;
-}
+static int run(const char *args, char *out, size_t cap) { return gb_check_command(binary(), args, out, cap); }
 
 static void test_json_keys_and_determinism(void)
 {

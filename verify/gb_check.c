@@ -236,3 +236,17 @@ void gb_check_each_reference_case(const char *name, const char *section, void (*
     if (cases) cJSON_ArrayForEach(one, cases) check(one);
     cJSON_Delete(root);
 }
+
+int gb_check_command(const char *binary, const char *args, char *out, size_t cap)
+{
+    char command[8192];
+    snprintf(command, sizeof command, "%s %s 2>&1; echo \"@@exit=$?\"", binary, args);
+    FILE *p = popen(command, "r");
+    size_t used = 0;
+    if (cap) out[0] = '\0';
+    if (!p) return -1;
+    while (used + 1 < cap && fgets(out + used, (int)(cap - used), p)) used += strlen(out + used);
+    pclose(p);
+    const char *mark = strstr(out, "@@exit=");
+    return mark ? atoi(mark + 7) : -1;
+}

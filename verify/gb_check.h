@@ -66,6 +66,10 @@ void gb_check_test_start(void);
 int gb_check_register_test(const char *suite, const char *test, const char *establishes);
 int gb_check_write(const char *path);
 
+/* Run `BINARY ARGS` through the shell, its standard output and error into `out` (at most cap − 1 bytes,
+ * NUL-terminated); the exit status, or -1 when it could not be run. */
+int gb_check_command(const char *binary, const char *args, char *out, size_t cap);
+
 /* 1 under `make verify-full` (main's --full): the long studies run too. */
 extern int gb_check_full;
 

@@ -396,17 +396,17 @@ static int collect(void *context, double t, const double y[GB_STATE_SIZE])
 }
 
 /* Run `d` from y one period at a time under `idef` and compare (q, omega) at each period end with the
- * "state" of every entry of `periods` (a reference's array). *worst gets the largest difference, *compared
- * the periods compared; returns the integration status. */
+ * "state" of every entry of `periods` (a reference's array); samples (may be NULL) go to `sample`. *worst
+ * gets the largest difference, *compared the periods compared; returns the integration status. */
 static int compare_period_ends(gb_dynamics *d, const gb_integrate_def *idef, double y[GB_STATE_SIZE], const cJSON *periods,
-                               double *worst, int *compared, double *t_end)
+                               gb_integrate_sample sample, void *context, double *worst, int *compared, double *t_end)
 {
     gb_integrate_session *session = NULL;
     int status = gb_integrate_begin(d, idef, 0.0, &session);
     *worst = 0.0, *compared = 0;
     const cJSON *jp;
     cJSON_ArrayForEach(jp, periods) {
-        if (!status) status = gb_integrate_advance(session, idef->steps_per_period, y, NULL, NULL);
+        if (!status) status = gb_integrate_advance(session, idef->steps_per_period, y, sample, context);
         if (status) break;
         const cJSON *state = cJSON_GetObjectItem(jp, "state");
         for (int k = 0; k < 7; k++) *worst = fmax(*worst, fabs(y[k] - cJSON_GetNumberValue(cJSON_GetArrayItem(state, k))));
@@ -433,7 +433,7 @@ static void numpy_grid_case(const cJSON *jc)
     const gb_integrate_def idef = gb_integrate_default_def(); /* RK4, 160 steps a period */
     double worst = NAN;
     int compared = 0;
-    if (!status) status = compare_period_ends(d, &idef, y, cJSON_GetObjectItem(jc, "periods"), &worst, &compared, NULL);
+    if (!status) status = compare_period_ends(d, &idef, y, cJSON_GetObjectItem(jc, "periods"), NULL, NULL, &worst, &compared, NULL);
     char q[200];
     snprintf(q, sizeof q, "Gomboc %s, the paper's grid model: max |state - numpy| at the ends of periods 1 to %d", name, compared);
     gb_check c = {"8", "40-44", q, "references/grid_model.py (numpy, written from the paper; inertia from scipy)",
@@ -482,12 +482,45 @@ static void scipy_trajectory_case(const cJSON *jc)
     gb_dynamics_free(d);
 }
 
+/* The switch times of a run, read after every sample from the dynamics' switch counter and the time of
+ * its latest switch (the located time). More than one switch between two samples is counted apart. */
+typedef struct switch_log {
+    gb_dynamics *dynamics;
+    size_t seen, missed, count;
+    double times[256];
+} switch_log;
+
+static int log_switches(void *context, double t, const double y[GB_STATE_SIZE])
+{
+    (void)t, (void)y;
+    switch_log *log = context;
+    const size_t now = gb_dynamics_switch_count(log->dynamics);
+    if (now == log->seen) return 0;
+    if (now > log->seen + 1) log->missed += now - log->seen - 1;
+    if (log->count < sizeof log->times / sizeof log->times[0])
+        log->times[log->count++] = gb_dynamics_last_switch_time(log->dynamics);
+    log->seen = now;
+    return 0;
+}
+
+/* The largest |t − t_ref| over the switches of a run against the reference's switch_times, NAN when the
+ * counts differ or a switch was missed between samples. */
+static double switch_time_error(const switch_log *log, const cJSON *times)
+{
+    if (log->missed || (int)log->count != cJSON_GetArraySize(times)) return NAN;
+    double worst = 0.0;
+    for (size_t k = 0; k < log->count; k++)
+        worst = fmax(worst, fabs(log->times[k] - cJSON_GetNumberValue(cJSON_GetArrayItem(times, (int)k))));
+    return worst;
+}
+
 /* The rolling model with continuous contact across branch switches, against references/switching.py:
  * scipy DOP853 with its own switch handling (a grid scan for a lower minimum after every step, the switch
- * time by brentq on the dense output), over 20 periods of each body. gomboc: RK4 at 2560 steps a period
- * with located switches (Illinois), the certificate proving each contact global. States at every period
- * end and the number of switches are compared. */
-static void switching_case(const cJSON *jc)
+ * time by brentq on the dense output), over 20 periods of each body. gomboc, twice: RK4 at 2560 steps a
+ * period and GSL's rk8pd at the reference's tolerances (rtol 1e-12, atol 1e-14), both with located switches
+ * (Illinois on the step fraction), the certificate proving each contact global. States at every period
+ * end, the number of switches and every switch time are compared. */
+static void switching_run(const cJSON *jc, gb_integrator method)
 {
     const char *name;
     gb_dynamics *d = NULL;
@@ -495,24 +528,45 @@ static void switching_case(const cJSON *jc)
     gb_integrate_def idef;
     int status = rolling_reference_start(jc, &name, &d, y, &idef);
     idef.locate_switches = 1;
+    const int adaptive = method != GB_INTEGRATOR_RK4;
+    if (adaptive) idef.method = method, idef.rtol = 1e-12, idef.atol = 1e-14, idef.steps_per_period = 160;
     double worst = NAN, t_end = 0.0;
     int compared = 0;
-    if (!status) status = compare_period_ends(d, &idef, y, cJSON_GetObjectItem(jc, "periods"), &worst, &compared, &t_end);
+    switch_log log = {.dynamics = d};
+    if (!status) status = compare_period_ends(d, &idef, y, cJSON_GetObjectItem(jc, "periods"), log_switches, &log, &worst,
+                                              &compared, &t_end);
     gb_dynamics_observables o = {0};
     if (!status) status = gb_dynamics_observe(d, t_end, y, &o);
-    const int reference_switches = cJSON_GetArraySize(cJSON_GetObjectItem(jc, "switch_times"));
-    char q[220];
-    snprintf(q, sizeof q, "Gomboc %s, rolling model across branch switches: max |state - scipy| at the ends of periods 1 to %d",
-             name, compared);
+    const cJSON *times = cJSON_GetObjectItem(jc, "switch_times");
+    const int reference_switches = cJSON_GetArraySize(times);
+    char q[220], stepper[60];
+    snprintf(stepper, sizeof stepper, adaptive ? "rk8pd rtol 1e-12" : "RK4 2560 steps/period");
+    snprintf(q, sizeof q, "Gomboc %s, rolling model across branch switches (%s): max |state - scipy| at the ends of periods 1 to %d",
+             name, stepper, compared);
     gb_check c = {"5, 4", "38-39, 44 (rolling)", q, "references/switching.py (DOP853, grid-scan global minimum, brentq switch times)",
-                  "1e-9: RK4 at 2560 steps meets DOP853 to 1e-15 a period without a switch; a switch time off by ~1e-13 s "
-                  "moves the state ~1e-12 (|dy/dt| <= 10); e^(lambda t) <= 30 over 20 periods; margin 30"};
+                  adaptive ? "1e-9: both steppers at rtol 1e-12 (|y| <= 1, so ~1e-12 a period); a switch time off by ~1e-13 s "
+                             "moves the state ~1e-12 (|dy/dt| <= 10); e^(lambda t) <= 30 over 20 periods; margin 30"
+                           : "1e-9: RK4 at 2560 steps meets DOP853 to 1e-15 a period without a switch; a switch time off by "
+                             "~1e-13 s moves the state ~1e-12 (|dy/dt| <= 10); e^(lambda t) <= 30 over 20 periods; margin 30"};
     gb_check_close(&c, status || compared < 20 ? NAN : worst, 0.0, 0.0, 1e-9);
-    snprintf(q, sizeof q, "Gomboc %s, rolling model: branch switches in 20 periods, gomboc against the scipy reference", name);
+    snprintf(q, sizeof q, "Gomboc %s, rolling model (%s): branch switches in 20 periods, gomboc against the scipy reference",
+             name, stepper);
     gb_check cs = {"4", "38-39", q, "references/switching.py", "exact: the same switches"};
     gb_check_true(&cs, !status && (int)o.branch_switches == reference_switches, "gomboc %zu, reference %d", o.branch_switches,
                   reference_switches);
+    snprintf(q, sizeof q, "Gomboc %s, rolling model (%s): max |switch time - scipy| over the %d switches", name, stepper,
+             reference_switches);
+    gb_check ct = {"4", "38-39", q, "references/switching.py (brentq on DOP853's dense output, xtol 1e-15)",
+                   "1e-9 s: a state error of 1e-9 (the row above) moves the zero of the height gap by 1e-9 / |d(gap)/dt| "
+                   "with |d(gap)/dt| >~ 1 at a transversal crossing"};
+    gb_check_close(&ct, status ? NAN : switch_time_error(&log, times), 0.0, 0.0, 1e-9);
     gb_dynamics_free(d);
+}
+
+static void switching_case(const cJSON *jc)
+{
+    switching_run(jc, GB_INTEGRATOR_RK4);
+    switching_run(jc, GB_INTEGRATOR_RK8PD);
 }
 
 static void test_switching_trajectory(void) { gb_check_each_reference_case("switching.json", "5", switching_case); }
@@ -748,7 +802,7 @@ static void test_fold_fallback(void)
         if (!status) status = gb_dynamics_observe(forced, 0.0, y, &before);
         /* the observation evaluates the contact (from the top: one branch lost) before it reads the counter */
         if (!status) {
-            gb_dynamics_switch_to(forced, &top);
+            gb_dynamics_switch_to(forced, 0.0, &top);
             status = gb_dynamics_observe(forced, 0.0, y, &after);
         }
         if (!status) status = gb_dynamics_rhs(forced, 0.0, y, f);

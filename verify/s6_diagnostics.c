@@ -11,6 +11,7 @@
 #include "gb_error.h"
 #include "gb_integrate.h"
 #include "gb_lyapunov_body.h"
+#include "gb_run.h"
 #include "gb_spectrum.h"
 #include "gb_strobe.h"
 #include "verify_sections.h"
@@ -227,6 +228,49 @@ static void test_pair_reference_is_the_run(void)
         }
 }
 
+/* gb_run takes one path: with λ asked for, the trajectory is the pair's reference; without, a plain run.
+ * Everything observed along it (state, switches, monitors, strobe, spectrum) must be the same bits. */
+static int same_run(const gb_run_result *a, const gb_run_result *b)
+{
+    return a->state_fingerprint == b->state_fingerprint && a->switch_fingerprint == b->switch_fingerprint &&
+           a->samples == b->samples && memcmp(&a->monitors, &b->monitors, sizeof a->monitors) == 0 &&
+           a->residual_max == b->residual_max && a->strobe.count == b->strobe.count &&
+           memcmp(a->strobe.x, b->strobe.x, 3 * a->strobe.count * sizeof *a->strobe.x) == 0 &&
+           a->spectrum.count == b->spectrum.count &&
+           memcmp(a->spectrum.power, b->spectrum.power, a->spectrum.count * sizeof *a->spectrum.power) == 0;
+}
+
+static void test_run_one_path(void)
+{
+    static const gb_contact_model models[2] = {GB_CONTACT_MODEL_FAST_GRID, GB_CONTACT_MODEL_CONTINUOUS};
+    for (int m = 0; m < 2; m++) {
+        gb_case scene = gb_case_default();
+        scene.dynamics.contact = models[m];
+        scene.dynamics.variant = m ? GB_VARIANT_ROLLING : GB_VARIANT_PAPER;
+        scene.integrate.locate_switches = m;
+        scene.integrate.periods = 20.0;
+        scene.strobe = scene.spectrum = scene.monitors = 1;
+        scene.strobe_def.transient = 5, scene.spectrum_transient = 5;
+        gb_run_result plain, with;
+        int status = gb_run(&scene, NULL, &plain);
+        scene.lyapunov = 1;
+        if (!status) status = gb_case_lyapunov_check("(the check's scene)", &scene);
+        if (!status) {
+            status = gb_run(&scene, NULL, &with);
+            if (status) gb_run_result_free(&plain);
+        }
+        char q[200];
+        snprintf(q, sizeof q, "Gomboc I, %s, 20 periods: gb_run with lambda against gb_run without",
+                 gb_contact_model_name(models[m]));
+        gb_check c = {"6", "77", q, "the same scene without lambda",
+                      "bit-identical state, switches, monitors, strobe and spectrum"};
+        gb_check_true(&c, !status && same_run(&plain, &with) && with.has_lyapunov && !plain.has_lyapunov, "%s",
+                      status ? gb_error_message() : same_run(&plain, &with) ? "the same bits; lambda only in the second"
+                                                                            : "the runs differ");
+        if (!status) gb_run_result_free(&plain), gb_run_result_free(&with);
+    }
+}
+
 /* ---------------------------------------------------------------- spectrum */
 
 static void test_spectrum_closed_forms(void)
@@ -312,6 +356,8 @@ int verify_register_s6_diagnostics(void)
         {"eq 73-74: the strobe against closed forms (forced oscillator, logistic cycles)", test_strobe_closed_forms, NULL},
         {"eq 73-74: Gomboc strobe samples are the states of runs stopped there", test_strobe_gomboc, NULL},
         {"eq 77: the pair's reference trajectory is the plain run", test_pair_reference_is_the_run, NULL},
+        {"gb_run: one path, with or without lambda", test_run_one_path,
+         "a scene's run is the same trajectory, monitors and diagnostics whether or not it computes lambda"},
         {"Fig 8: spectrum against closed forms (peak, Parseval)", test_spectrum_closed_forms, NULL},
         {"Fig 8: spectrum against scipy.signal.periodogram", test_spectrum_scipy, NULL},
         {NULL, NULL, NULL},

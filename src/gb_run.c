@@ -1,0 +1,181 @@
+#include "gb_run.h"
+
+#include "gb_error.h"
+#include "gb_lyapunov_body.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+/* FNV-1a, 64 bits. */
+static const uint64_t FNV_OFFSET = 14695981039346656037ull;
+
+static uint64_t fingerprint_add(uint64_t hash, const void *bytes, size_t size)
+{
+    const unsigned char *p = bytes;
+    for (size_t k = 0; k < size; k++) hash = (hash ^ p[k]) * 1099511628211ull;
+    return hash;
+}
+
+/* What the observer keeps between samples. */
+typedef struct observer {
+    const gb_case *scene;
+    const gb_run_sinks *sinks;
+    gb_dynamics *dynamics;
+    gb_run_result *out;
+    double period, step;
+    /* switching-rate window: switch counts at the samples of the last period */
+    size_t *window;
+    size_t window_size, window_fill, window_next;
+    size_t last_grid, last_branch;
+    /* spectrum: ω_x from its first sample after the transient on */
+    double *spectrum_x;
+    size_t spectrum_capacity, spectrum_first_step;
+    int status;
+} observer;
+
+static int collect_spectrum(observer *s, double t, double omega_x)
+{
+    if (llround(t / s->step) < (long long)s->spectrum_first_step) return GB_OK;
+    gb_run_result *r = s->out;
+    if (r->spectrum_samples == s->spectrum_capacity) {
+        const size_t capacity = s->spectrum_capacity ? 2 * s->spectrum_capacity : 4096;
+        double *grown = realloc(s->spectrum_x, capacity * sizeof *grown);
+        if (!grown) return gb_error_set(GB_ENOMEM, "out of memory for %zu spectrum samples", capacity);
+        s->spectrum_x = grown;
+        s->spectrum_capacity = capacity;
+    }
+    s->spectrum_x[r->spectrum_samples++] = omega_x;
+    return GB_OK;
+}
+
+static int observe(void *context, double t, const double y[GB_STATE_SIZE])
+{
+    observer *s = context;
+    gb_run_result *r = s->out;
+    gb_dynamics_observables o;
+    s->status = gb_dynamics_observe(s->dynamics, t, y, &o);
+    if (s->status) return 1;
+    const size_t switches = o.grid_switches + o.branch_switches;
+    const int grid_switch = o.grid_switches != s->last_grid, branch_switch = o.branch_switches != s->last_branch;
+    s->last_grid = o.grid_switches;
+    s->last_branch = o.branch_switches;
+    if (grid_switch || branch_switch) {
+        const uint64_t event[4] = {r->samples, o.index, o.grid_switches, o.branch_switches};
+        r->switch_fingerprint = fingerprint_add(r->switch_fingerprint, event, sizeof event);
+    }
+    /* Switching rate: switches in the trailing forcing period, per second. */
+    const size_t oldest = s->window_fill < s->window_size ? (s->window_fill ? s->window[0] : switches)
+                                                          : s->window[s->window_next];
+    const double span = s->window_fill < s->window_size ? (double)s->window_fill : (double)s->window_size;
+    const double rate = span > 0 ? (double)(switches - oldest) / (s->period * span / (double)s->window_size) : 0.0;
+    s->window[s->window_next] = switches;
+    s->window_next = (s->window_next + 1) % s->window_size;
+    if (s->window_fill < s->window_size) s->window_fill++;
+    r->samples++;
+    if (s->scene->strobe && (s->status = gb_strobe_offer(&r->strobe, t, o.omega, NULL))) return 1;
+    if (s->scene->spectrum && (s->status = collect_spectrum(s, t, o.omega[0]))) return 1;
+    r->residual_max = fmax(r->residual_max, fabs(o.residual));
+    r->orthonormality_max = fmax(r->orthonormality_max, o.orthonormality);
+    if (s->scene->monitors) {
+        gb_run_monitors *m = &r->monitors;
+        m->geff_nonpositive += o.geff <= 0.0;
+        m->lift_off += o.normal_force <= 0.0;
+        m->friction_over_half += o.friction_needed > 0.5;
+        m->geff_min = fmin(m->geff_min, o.geff);
+        m->normal_min = fmin(m->normal_min, o.normal_force);
+        if (isfinite(o.friction_needed)) m->friction_max = fmax(m->friction_max, o.friction_needed);
+    }
+    if (s->sinks && s->sinks->sample) {
+        const gb_run_sample sample = {t, y, &o, grid_switch, branch_switch, rate};
+        if ((s->status = s->sinks->sample(s->sinks->context, &sample))) return 1;
+    }
+    return 0;
+}
+
+void gb_run_result_free(gb_run_result *r)
+{
+    if (!r) return;
+    gb_strobe_free(&r->strobe);
+    gb_spectrum_free(&r->spectrum);
+    gb_lyapunov_result_free(&r->lyapunov);
+    r->has_strobe = r->has_spectrum = r->has_lyapunov = 0;
+}
+
+/* The trajectory as the reference of the Lyapunov pair, λ beside it. */
+static int run_with_lyapunov(const gb_case *scene, observer *s, gb_dynamics **dynamics, gb_lyapunov_body **body)
+{
+    gb_run_result *r = s->out;
+    int status = gb_lyapunov_body_create(&scene->body, &scene->dynamics, &scene->integrate, scene->attitude,
+                                         scene->omega0, scene->omega_scale, body);
+    if (status) return status;
+    *dynamics = s->dynamics = gb_lyapunov_body_dynamics(*body);
+    /* The sample at t = 0 is ours; the reference delivers the rest as a plain run would. */
+    if (observe(s, 0.0, gb_lyapunov_body_state(*body)))
+        return s->status ? s->status : gb_error_set(GB_EINVAL, "the sampler stopped the run at t = 0");
+    gb_lyapunov_body_observe(*body, observe, s);
+    const gb_lyapunov_pair_system system = gb_lyapunov_body_pair();
+    status = gb_lyapunov_pair(&system, *body, &scene->lyapunov_def, 0.0, NULL, &r->lyapunov);
+    if (status) return s->status ? s->status : status;
+    r->has_lyapunov = 1;
+    memcpy(r->y, gb_lyapunov_body_state(*body), sizeof r->y);
+    r->stats = *gb_lyapunov_body_stats(*body, 0);
+    return GB_OK;
+}
+
+int gb_run(const gb_case *scene, const gb_run_sinks *sinks, gb_run_result *out)
+{
+    memset(out, 0, sizeof *out);
+    if (scene->lyapunov && scene->lyapunov_def.intervals == 0)
+        return gb_error_set(GB_EINVAL, "the scene's Lyapunov record is not laid out (read it with gb_case_load)");
+    out->switch_fingerprint = FNV_OFFSET;
+    out->has_monitors = scene->monitors;
+    out->monitors = (gb_run_monitors){.geff_min = INFINITY, .normal_min = INFINITY};
+    observer s = {.scene = scene, .sinks = sinks, .out = out};
+    s.period = gb_forcing_period(&scene->dynamics.forcing);
+    s.step = s.period / (double)scene->integrate.steps_per_period;
+    s.spectrum_first_step = scene->spectrum_transient * scene->integrate.steps_per_period;
+    s.window_size = scene->integrate.steps_per_period / scene->integrate.sample_every;
+    if (s.window_size < 1) s.window_size = 1;
+    s.window = calloc(s.window_size, sizeof *s.window);
+    int status = s.window ? GB_OK : gb_error_set(GB_ENOMEM, "out of memory for the switching-rate window");
+    if (!status && scene->strobe) {
+        status = gb_strobe_init(&out->strobe, 3, 0.0, s.period, scene->integrate.steps_per_period, &scene->strobe_def);
+        out->has_strobe = !status;
+    }
+
+    gb_dynamics *dynamics = NULL;
+    gb_lyapunov_body *body = NULL;
+    const clock_t start = clock();
+    if (!status && scene->lyapunov) {
+        status = run_with_lyapunov(scene, &s, &dynamics, &body);
+    } else if (!status) {
+        status = gb_dynamics_start(&scene->body, &scene->dynamics, scene->attitude, scene->omega0, &dynamics, out->y);
+        s.dynamics = dynamics;
+        if (!status) status = gb_integrate_run(dynamics, &scene->integrate, 0.0, out->y, observe, &s, &out->stats);
+        if (!status) status = s.status;
+    }
+    out->seconds = (double)(clock() - start) / CLOCKS_PER_SEC;
+    free(s.window);
+
+    if (!status && scene->spectrum) {
+        status = gb_spectrum_compute(s.spectrum_x, out->spectrum_samples, s.step * (double)scene->integrate.sample_every,
+                                     scene->spectrum_window, &out->spectrum);
+        out->has_spectrum = !status;
+    }
+    free(s.spectrum_x);
+    if (!status) {
+        out->t_end = scene->integrate.periods * s.period;
+        status = gb_dynamics_observe(dynamics, out->t_end, out->y, &out->final);
+    }
+    if (!status) {
+        out->state_fingerprint = fingerprint_add(FNV_OFFSET, out->y, sizeof out->y);
+        out->has_certificate = gb_dynamics_certify_stats(dynamics, &out->certificate) == GB_OK;
+        gb_error_clear(); /* a grid model has no certificate: not an error of the run */
+    }
+    if (body) gb_lyapunov_body_free(body);
+    else gb_dynamics_free(dynamics);
+    if (status) gb_run_result_free(out);
+    return status;
+}

@@ -1,0 +1,72 @@
+/* gb_run — one scene, run as its case file asks: the trajectory, its validity monitors, the switching
+ * rate, the fingerprints, and the diagnostics the scene names (strobe, spectrum, λ). `gomboc run`,
+ * `gomboc lyapunov`, the parameter scan and the harness all call it, so a scan point is, bit for bit,
+ * the run of the same scene.
+ *
+ * One path. With λ asked for, the trajectory is the reference of the Lyapunov pair (eq 77), which takes
+ * exactly the steps of a plain run (gb_lyapunov_body); otherwise it is a plain run. Either way every
+ * sample goes through the same observer, so the monitors, the strobe and the spectrum are the same
+ * whether λ is computed or not.
+ *
+ * A scene computes only what it asks for: the monitors when [diagnostics] monitors = yes, the strobe,
+ * the spectrum and λ when asked; the caller receives the samples (for a history file) only through
+ * `sinks`. */
+#ifndef GB_RUN_H
+#define GB_RUN_H
+
+#include "gb_case.h"
+#include "gb_certify.h"
+#include "gb_spectrum.h"
+#include "gb_strobe.h"
+
+#include <stdint.h>
+
+/* One sample of the run, as the observer saw it. */
+typedef struct gb_run_sample {
+    double t;
+    const double *y;                      /* the state [GB_STATE_SIZE] */
+    const gb_dynamics_observables *o;
+    int grid_switch, branch_switch;       /* a switch since the previous sample */
+    double switch_rate;                   /* switches in the trailing forcing period, per second */
+} gb_run_sample;
+
+typedef struct gb_run_sinks {
+    /* Every sample, t = 0 included (may be NULL). Non-zero stops the run with that gb_ status. */
+    int (*sample)(void *context, const gb_run_sample *sample);
+    void *context;
+} gb_run_sinks;
+
+/* The validity monitors of the single-contact model (computed when the scene asks for them). */
+typedef struct gb_run_monitors {
+    size_t geff_nonpositive, lift_off, friction_over_half; /* samples with g_eff ≤ 0, N ≤ 0, |F_t|/N > 0.5 */
+    double geff_min, normal_min, friction_max;
+} gb_run_monitors;
+
+typedef struct gb_run_result {
+    double y[GB_STATE_SIZE];             /* the final state */
+    double t_end;
+    gb_dynamics_observables final;       /* at t_end: switch counts, energy residual, … */
+    gb_integrate_stats stats;            /* of the (reference) trajectory */
+    size_t samples;
+    double residual_max, orthonormality_max;
+    int has_monitors;
+    gb_run_monitors monitors;
+    int has_certificate;                 /* continuous contact */
+    gb_certify_stats certificate;
+    /* Fingerprints (FNV-1a 64): the bytes of the final state; the (sample, contact index, grid and
+     * branch switch counts) of every sample with a switch. Equal runs have equal fingerprints. */
+    uint64_t state_fingerprint, switch_fingerprint;
+    int has_strobe, has_spectrum, has_lyapunov;
+    gb_strobe strobe;
+    gb_spectrum spectrum;
+    size_t spectrum_samples;
+    gb_lyapunov_result lyapunov;
+    double seconds;                      /* CPU time of the trajectory and λ */
+} gb_run_result;
+
+/* Run `scene` (as gb_case_load returned it). The result owns its strobe, spectrum and λ record:
+ * gb_run_result_free. On failure nothing is left to free. */
+int gb_run(const gb_case *scene, const gb_run_sinks *sinks, gb_run_result *out);
+void gb_run_result_free(gb_run_result *result);
+
+#endif

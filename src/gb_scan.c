@@ -1,0 +1,394 @@
+#include "gb_scan.h"
+
+#include "gb_error.h"
+#include "gb_ini.h"
+#include "gb_parse.h"
+#include "gb_run.h"
+
+#include <inttypes.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const char *const scan_sections[] = {"scan", "x", "y"};
+
+static const struct {
+    unsigned bit;
+    const char *name;
+} metric_names[] = {{GB_SCAN_OMEGA_RMS, "omega_rms"},     {GB_SCAN_SWITCH_RATE, "switch_rate"},
+                    {GB_SCAN_STROBE_SD, "strobe_sd"},     {GB_SCAN_MEAN_HEIGHT, "mean_height"},
+                    {GB_SCAN_MONITORS, "monitors"},       {GB_SCAN_LAMBDA, "lambda"}};
+enum { METRIC_COUNT = sizeof metric_names / sizeof metric_names[0] };
+#define METRIC_LIST "omega_rms, switch_rate, strobe_sd, mean_height, monitors, lambda, or all"
+
+static uint64_t fnv(uint64_t hash, const void *bytes, size_t size)
+{
+    const unsigned char *p = bytes;
+    for (size_t k = 0; k < size; k++) hash = (hash ^ p[k]) * 1099511628211ull;
+    return hash;
+}
+
+/* ---- the scan file ----------------------------------------------------------------------------- */
+
+typedef struct scan_reader {
+    gb_scan *scan;
+    int seen[3][8]; /* the line of each key, per section, for "given twice" */
+} scan_reader;
+
+static int once(gb_ini_reader *ini, scan_reader *r, int section, int key, const char *sname, const char *kname,
+                const char *value)
+{
+    if (r->seen[section][key])
+        return gb_ini_fail(ini, "[%s] %s = %s: given twice (first at line %d; allowed: each key once)", sname, kname, value,
+                           r->seen[section][key]);
+    r->seen[section][key] = gb_ini_line(ini);
+    return 1;
+}
+
+static int number(gb_ini_reader *ini, const char *s, const char *k, const char *value, double lo, double hi, double *out)
+{
+    double x;
+    const gb_parse_result p = gb_parse_double(value, &x);
+    if (p || !(x >= lo && x <= hi))
+        return gb_ini_fail(ini, "[%s] %s = %s: %s (allowed: %.15g <= %s <= %.15g)", s, k, value,
+                           p ? gb_parse_describe(p, "a number") : "out of range", lo, k, hi);
+    *out = x;
+    return 1;
+}
+
+static int count(gb_ini_reader *ini, const char *s, const char *k, const char *value, unsigned long long lo,
+                 unsigned long long hi, size_t *out)
+{
+    unsigned long long n;
+    const gb_parse_result p = gb_parse_count(value, hi, &n);
+    if (p || n < lo)
+        return gb_ini_fail(ini, "[%s] %s = %s: %s (allowed: an integer from %llu to %llu)", s, k, value,
+                           p == GB_PARSE_SYNTAX ? "not an integer" : "out of range", lo, hi);
+    *out = (size_t)n;
+    return 1;
+}
+
+static int parse_metrics(gb_ini_reader *ini, const char *value, unsigned *out)
+{
+    if (!strcmp(value, "all")) return *out = GB_SCAN_METRICS_ALL, 1;
+    unsigned bits = 0;
+    const char *p = value;
+    for (;;) {
+        while (*p == ' ' || *p == '\t') p++;
+        size_t n = strcspn(p, ", \t");
+        int found = -1;
+        for (int k = 0; k < METRIC_COUNT && found < 0; k++)
+            if (strlen(metric_names[k].name) == n && !strncmp(metric_names[k].name, p, n)) found = k;
+        if (found < 0)
+            return gb_ini_fail(ini, "[scan] metrics = %s: unknown metric '%.*s' (allowed: a comma-separated list of " METRIC_LIST ")",
+                               value, (int)n, p);
+        if (bits & metric_names[found].bit)
+            return gb_ini_fail(ini, "[scan] metrics = %s: '%s' twice (allowed: each metric once)", value, metric_names[found].name);
+        bits |= metric_names[found].bit;
+        p += n;
+        while (*p == ' ' || *p == '\t') p++;
+        if (!*p) break;
+        if (*p != ',') return gb_ini_fail(ini, "[scan] metrics = %s: not a list (allowed: names separated by commas)", value);
+        p++;
+    }
+    *out = bits;
+    return 1;
+}
+
+static int axis_key(gb_ini_reader *ini, const char *s, const char *value, gb_scan_axis *a)
+{
+    const char *dot = strchr(value, '.');
+    const size_t ns = dot ? (size_t)(dot - value) : 0, nk = dot ? strlen(dot + 1) : 0;
+    if (!dot || ns == 0 || nk == 0 || ns >= sizeof a->section || nk >= sizeof a->key)
+        return gb_ini_fail(ini, "[%s] key = %s: not a scene key (allowed: SECTION.KEY of cases/README.md, e.g. forcing.omega)",
+                           s, value);
+    memcpy(a->section, value, ns);
+    a->section[ns] = '\0';
+    memcpy(a->key, dot + 1, nk + 1);
+    /* What the scan itself sets on every point cannot be an axis. */
+    static const char *const own[] = {"integrator.periods", "output.", "diagnostics.", "strobe.transient_periods",
+                                      "lyapunov.transient_periods", "lyapunov.interval_periods"};
+    for (size_t k = 0; k < sizeof own / sizeof own[0]; k++) {
+        const size_t n = strlen(own[k]);
+        if (own[k][n - 1] == '.' ? !strncmp(value, own[k], n) : !strcmp(value, own[k]))
+            return gb_ini_fail(ini, "[%s] key = %s: set by the scan on every point (allowed: a key of [body], [forcing], "
+                               "[model], [integrator] other than periods, [initial], [strobe] phase, [spectrum] or "
+                               "[lyapunov] delta0, warmup_intervals, batches, omega_scale)", s, value);
+    }
+    a->line = gb_ini_line(ini);
+    return 1;
+}
+
+static int scan_handler(gb_ini_reader *ini, void *user, const char *section, const char *key, const char *value)
+{
+    scan_reader *r = user;
+    gb_scan *scan = r->scan;
+    if (!strcmp(section, "scan")) {
+        static const char *const names[] = {"description", "base", "periods", "transient_periods", "metrics"};
+        for (int k = 0; k < 5; k++) {
+            if (strcmp(key, names[k])) continue;
+            if (!once(ini, r, 0, k, section, key, value)) return 0;
+            switch (k) {
+            case 0: snprintf(scan->description, sizeof scan->description, "%s", value); return 1;
+            case 1:
+                if (!value[0] || strlen(value) >= sizeof scan->base)
+                    return gb_ini_fail(ini, "[scan] base = %s: not a path (allowed: a scene file, relative to the scan file)", value);
+                snprintf(scan->base, sizeof scan->base, "%s", value);
+                return 1;
+            case 2: return number(ini, section, key, value, 1.0, 1e7, &scan->periods);
+            case 3: return count(ini, section, key, value, 0, 10000000, &scan->transient_periods);
+            default: return parse_metrics(ini, value, &scan->metrics);
+            }
+        }
+        return gb_ini_fail(ini, "[scan] %s = %s: unknown key (allowed in [scan]: description, base, periods, "
+                           "transient_periods, metrics)", key, value);
+    }
+    const int s = !strcmp(section, "x") ? 1 : 2;
+    gb_scan_axis *a = &scan->axis[s - 1];
+    static const char *const names[] = {"key", "from", "to", "count", "scale"};
+    for (int k = 0; k < 5; k++) {
+        if (strcmp(key, names[k])) continue;
+        if (!once(ini, r, s, k, section, key, value)) return 0;
+        switch (k) {
+        case 0: return axis_key(ini, section, value, a);
+        case 1: return number(ini, section, key, value, -1e6, 1e6, &a->from);
+        case 2: return number(ini, section, key, value, -1e6, 1e6, &a->to);
+        case 3: return count(ini, section, key, value, 1, GB_SCAN_AXIS_MAX, &a->count);
+        default:
+            if (!strcmp(value, "linear")) a->scale = GB_SCAN_LINEAR;
+            else if (!strcmp(value, "pi")) a->scale = GB_SCAN_PI;
+            else return gb_ini_fail(ini, "[%s] scale = %s: unknown scale (allowed: linear, pi)", section, value);
+            return 1;
+        }
+    }
+    return gb_ini_fail(ini, "[%s] %s = %s: unknown key (allowed in [%s]: key, from, to, count, scale)", section, key, value,
+                       section);
+}
+
+size_t gb_scan_points(const gb_scan *scan) { return scan->axis[0].count * scan->axis[1].count; }
+
+static double axis_value(const gb_scan_axis *a, size_t k)
+{
+    const double u = a->count > 1 ? a->from + (a->to - a->from) * (double)k / (double)(a->count - 1) : a->from;
+    return a->scale == GB_SCAN_PI ? u * M_PI : u;
+}
+
+void gb_scan_coordinates(const gb_scan *scan, size_t index, double *x, double *y)
+{
+    *x = axis_value(&scan->axis[0], index % scan->axis[0].count);
+    *y = axis_value(&scan->axis[1], index / scan->axis[0].count);
+}
+
+int gb_scan_point_case(const gb_scan *scan, size_t index, gb_case *out)
+{
+    double x, y;
+    gb_scan_coordinates(scan, index, &x, &y);
+    char xv[40], yv[40], periods[40], transient[24], origin_x[GB_SCAN_PATH_MAX + 48], origin_y[GB_SCAN_PATH_MAX + 48],
+        origin[GB_SCAN_PATH_MAX + 16];
+    snprintf(xv, sizeof xv, "%.17g", x);
+    snprintf(yv, sizeof yv, "%.17g", y);
+    snprintf(periods, sizeof periods, "%.17g", scan->periods);
+    snprintf(transient, sizeof transient, "%zu", scan->transient_periods);
+    snprintf(origin_x, sizeof origin_x, "%s:%d (point %zu)", scan->path, scan->axis[0].line, index);
+    snprintf(origin_y, sizeof origin_y, "%s:%d (point %zu)", scan->path, scan->axis[1].line, index);
+    snprintf(origin, sizeof origin, "%s [scan]", scan->path);
+    const int strobe = (scan->metrics & GB_SCAN_STROBE_SD) != 0, lambda = (scan->metrics & GB_SCAN_LAMBDA) != 0;
+    const gb_case_override o[] = {
+        {scan->axis[0].section, scan->axis[0].key, xv, origin_x},
+        {scan->axis[1].section, scan->axis[1].key, yv, origin_y},
+        {"integrator", "periods", periods, origin},
+        {"output", "history", "no", origin},
+        {"output", "summary", "no", origin},
+        {"diagnostics", "spectrum", "no", origin},
+        {"diagnostics", "monitors", scan->metrics & GB_SCAN_MONITORS ? "yes" : "no", origin},
+        {"diagnostics", "strobe", strobe ? "yes" : "no", origin},
+        {"strobe", "transient_periods", transient, origin},
+        {"diagnostics", "lyapunov", lambda ? "yes" : "no", origin},
+        {"lyapunov", "transient_periods", transient, origin},
+        {"lyapunov", "interval_periods", "1", origin},
+    };
+    return gb_case_load_text_with(scan->base, scan->base_text, scan->base_size, o, sizeof o / sizeof o[0], out);
+}
+
+void gb_scan_free(gb_scan *scan)
+{
+    free(scan->base_text);
+    scan->base_text = NULL;
+}
+
+int gb_scan_load(const char *path, gb_scan *out)
+{
+    memset(out, 0, sizeof *out);
+    if (strlen(path) >= sizeof out->path) return gb_error_set(GB_EINVAL, "%s: the path is too long", path);
+    snprintf(out->path, sizeof out->path, "%s", path);
+    out->periods = 100.0;
+    out->transient_periods = 20;
+    out->metrics = GB_SCAN_METRICS_ALL & ~(unsigned)GB_SCAN_LAMBDA;
+    for (int k = 0; k < 2; k++) out->axis[k].count = 0;
+    char *text;
+    size_t size;
+    int status = gb_ini_slurp(path, GB_SCAN_FILE_MAX, "scan file", "a scan file, see cases/README.md", &text, &size);
+    if (status) return status;
+    scan_reader r = {.scan = out};
+    status = gb_ini_read(path, text, size, scan_sections, 3, scan_handler, &r);
+    out->fingerprint = fnv(14695981039346656037ull, text, size);
+    free(text);
+    if (status) return status;
+    /* What every scan must say. */
+    static const char *const required[3][2] = {{"scan", "base"}, {"x", "key"}, {"y", "key"}};
+    const int required_key[3] = {1, 0, 0};
+    for (int s = 0; s < 3; s++)
+        if (!r.seen[s][required_key[s]])
+            return gb_error_set(GB_EINVAL, "%s: [%s] %s is missing (allowed: see cases/README.md, \"Scan files\")", path,
+                                required[s][0], required[s][1]);
+    for (int s = 0; s < 2; s++) {
+        const char *name = s ? "y" : "x";
+        gb_scan_axis *a = &out->axis[s];
+        if (!r.seen[s + 1][1] || !r.seen[s + 1][2] || !r.seen[s + 1][3])
+            return gb_error_set(GB_EINVAL, "%s: [%s] needs from, to and count (allowed: see cases/README.md, \"Scan files\")",
+                                path, name);
+        if (a->count > 1 && !(a->to > a->from))
+            return gb_error_set(GB_EINVAL, "%s:%d: [%s] to = %.17g: an empty range (allowed: to > from = %.17g when count > 1)",
+                                path, r.seen[s + 1][2], name, a->to, a->from);
+    }
+    if (!strcmp(out->axis[0].section, out->axis[1].section) && !strcmp(out->axis[0].key, out->axis[1].key))
+        return gb_error_set(GB_EINVAL, "%s:%d: [y] key = %s.%s: the same key as [x] (allowed: two different keys)", path,
+                            out->axis[1].line, out->axis[1].section, out->axis[1].key);
+    if (!((double)out->transient_periods + 1.0 <= out->periods))
+        return gb_error_set(GB_EINVAL, "%s:%d: [scan] transient_periods = %zu leaves less than one period (allowed: <= "
+                            "periods - 1 = %g)", path, r.seen[0][3], out->transient_periods, out->periods - 1.0);
+    if (!out->metrics)
+        return gb_error_set(GB_EINVAL, "%s:%d: [scan] metrics: none (allowed: " METRIC_LIST ")", path, r.seen[0][4]);
+    /* The base scene, relative to the scan file's directory. */
+    if (out->base[0] != '/') {
+        const char *slash = strrchr(path, '/');
+        char joined[2 * GB_SCAN_PATH_MAX];
+        snprintf(joined, sizeof joined, "%.*s%s", slash ? (int)(slash - path + 1) : 0, path, out->base);
+        if (strlen(joined) >= sizeof out->base)
+            return gb_error_set(GB_EINVAL, "%s:%d: [scan] base: the path is too long", path, r.seen[0][1]);
+        snprintf(out->base, sizeof out->base, "%s", joined);
+    }
+    status = gb_ini_slurp(out->base, GB_CASE_FILE_MAX, "case file", "a scene file, see cases/README.md", &out->base_text,
+                          &out->base_size);
+    if (status) return status;
+    out->fingerprint = fnv(out->fingerprint, out->base_text, out->base_size);
+    /* Every point's scene, before any run. */
+    gb_case scene;
+    for (size_t k = 0; k < gb_scan_points(out) && !status; k++) status = gb_scan_point_case(out, k, &scene);
+    if (status) gb_scan_free(out);
+    return status;
+}
+
+/* ---- a point ----------------------------------------------------------------------------------- */
+
+void gb_scan_accumulate(gb_scan_accumulator *a, double t, const double omega[3], double height, size_t switches)
+{
+    if (!(t >= a->first_t)) return;
+    if (a->samples == 0) a->t_start = t, a->switches_start = switches;
+    a->samples++;
+    a->omega2_sum += omega[0] * omega[0] + omega[1] * omega[1] + omega[2] * omega[2];
+    a->height_sum += height;
+    a->t_last = t;
+    a->switches_last = switches;
+}
+
+void gb_scan_accumulated(const gb_scan_accumulator *a, double *omega_rms, double *mean_height, double *switch_rate)
+{
+    const double n = (double)a->samples;
+    *omega_rms = a->samples ? sqrt(a->omega2_sum / n) : NAN;
+    *mean_height = a->samples ? a->height_sum / n : NAN;
+    *switch_rate = a->samples > 1 && a->t_last > a->t_start
+                       ? (double)(a->switches_last - a->switches_start) / (a->t_last - a->t_start)
+                       : NAN;
+}
+
+static int accumulate_sample(void *context, const gb_run_sample *s)
+{
+    gb_scan_accumulate(context, s->t, s->o->omega, s->o->height, s->o->grid_switches + s->o->branch_switches);
+    return GB_OK;
+}
+
+int gb_scan_point_run(const gb_scan *scan, size_t index, gb_scan_metrics *out)
+{
+    gb_case scene;
+    int status = gb_scan_point_case(scan, index, &scene);
+    if (status) return status;
+    const double T = gb_forcing_period(&scene.dynamics.forcing);
+    const double step = T / (double)scene.integrate.steps_per_period;
+    /* Samples from the first one at the end of the transient (half a step of slack for rounding). */
+    gb_scan_accumulator acc = {.first_t = (double)scan->transient_periods * T - 0.5 * step};
+    const gb_run_sinks sinks = {accumulate_sample, &acc};
+    gb_run_result r;
+    status = gb_run(&scene, &sinks, &r);
+    if (status) return status;
+    gb_scan_metrics m = {.lambda = NAN, .lambda_error = NAN, .strobe_sd = NAN, .geff_nonpositive = NAN, .lift_off = NAN};
+    gb_scan_coordinates(scan, index, &m.x, &m.y);
+    double rms, height, rate;
+    gb_scan_accumulated(&acc, &rms, &height, &rate);
+    m.omega_rms = scan->metrics & GB_SCAN_OMEGA_RMS ? rms : NAN;
+    m.mean_height = scan->metrics & GB_SCAN_MEAN_HEIGHT ? height : NAN;
+    m.switch_rate = scan->metrics & GB_SCAN_SWITCH_RATE ? rate : NAN;
+    if (r.has_strobe && r.strobe.count) {
+        double mean[3], sd[3];
+        gb_strobe_spread(r.strobe.x, r.strobe.count, 3, mean, sd);
+        m.strobe_sd = sd[0];
+    }
+    if (r.has_monitors) {
+        m.geff_nonpositive = (double)r.monitors.geff_nonpositive / (double)r.samples;
+        m.lift_off = (double)r.monitors.lift_off / (double)r.samples;
+    }
+    if (r.has_lyapunov) m.lambda = r.lyapunov.lambda_max, m.lambda_error = r.lyapunov.error_bar;
+    m.certificate_undecided = r.has_certificate ? r.certificate.undecided : 0;
+    m.state_fingerprint = r.state_fingerprint;
+    m.switch_fingerprint = r.switch_fingerprint;
+    gb_run_result_free(&r);
+    *out = m;
+    return GB_OK;
+}
+
+/* ---- rows -------------------------------------------------------------------------------------- */
+
+const char *gb_scan_csv_header(void)
+{
+    return "index,x,y,omega_rms,switch_rate,strobe_sd,mean_height,geff_nonpositive_fraction,lift_off_fraction,"
+           "lambda_max,lambda_error,certificate_undecided,state_fingerprint,switch_fingerprint\n";
+}
+
+int gb_scan_csv_row(const gb_scan_metrics *m, size_t index, char *out, size_t size)
+{
+    const int n = snprintf(out, size, "%zu,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%zu,%016" PRIx64
+                           ",%016" PRIx64 "\n",
+                           index, m->x, m->y, m->omega_rms, m->switch_rate, m->strobe_sd, m->mean_height,
+                           m->geff_nonpositive, m->lift_off, m->lambda, m->lambda_error, m->certificate_undecided,
+                           m->state_fingerprint, m->switch_fingerprint);
+    return n > 0 && (size_t)n < size ? GB_OK : gb_error_set(GB_EINVAL, "a scan row does not fit %zu bytes", size);
+}
+
+int gb_scan_csv_parse(const char *line, size_t *index, gb_scan_metrics *out)
+{
+    gb_scan_metrics m;
+    double *fields[] = {&m.x, &m.y, &m.omega_rms, &m.switch_rate, &m.strobe_sd, &m.mean_height, &m.geff_nonpositive,
+                        &m.lift_off, &m.lambda, &m.lambda_error};
+    char *end;
+    const char *p = line;
+    const unsigned long long i = strtoull(p, &end, 10);
+    if (end == p || *end != ',') return GB_EINVAL;
+    for (size_t k = 0; k < sizeof fields / sizeof fields[0]; k++) {
+        p = end + 1;
+        *fields[k] = strtod(p, &end);
+        if (end == p || *end != ',') return GB_EINVAL;
+    }
+    p = end + 1;
+    m.certificate_undecided = (size_t)strtoull(p, &end, 10);
+    if (end == p || *end != ',') return GB_EINVAL;
+    p = end + 1;
+    m.state_fingerprint = strtoull(p, &end, 16);
+    if (end != p + 16 || *end != ',') return GB_EINVAL;
+    p = end + 1;
+    m.switch_fingerprint = strtoull(p, &end, 16);
+    if (end != p + 16 || (*end != '\n' && *end != '\0')) return GB_EINVAL;
+    *index = (size_t)i;
+    *out = m;
+    return GB_OK;
+}

@@ -1,0 +1,101 @@
+/* gb_scan — maps over two keys of a scene (paper §8.3, Figs 10–13).
+ *
+ * A scan file names a base scene, two of its keys (any section: ω, A₁, A₂, ψ, β, c, …) with their ranges
+ * and counts, the run per point and the metrics (cases/README.md, "Scan files"). Every point is the base
+ * scene with three kinds of keys set over it (gb_case_override): the two coordinates, the run length, and
+ * what the metrics need (the strobe and λ when asked; no history, spectrum or files). A point is then
+ * run by gb_run, the same call as `gomboc run`: a scan point is, bit for bit, the run of that scene.
+ *
+ * The scan file is read by the strict reader (gb_ini): known sections and keys, each once, every value
+ * one whole token in its range; errors name the file, the line, the key and the allowed values. */
+#ifndef GB_SCAN_H
+#define GB_SCAN_H
+
+#include "gb_case.h"
+
+#include <stdint.h>
+
+#define GB_SCAN_FILE_MAX (64 * 1024)
+#define GB_SCAN_AXIS_MAX 10000
+#define GB_SCAN_PATH_MAX 4096
+
+typedef enum gb_scan_scale { GB_SCAN_LINEAR = 0, GB_SCAN_PI = 1 } gb_scan_scale;
+
+typedef struct gb_scan_axis {
+    char section[32], key[32];  /* the scene key this axis sets */
+    double from, to;            /* in the key's units; with scale = pi, in multiples of π */
+    size_t count;               /* points along the axis (1: from alone) */
+    gb_scan_scale scale;
+    int line;                   /* the scan file's line of `key`, for messages */
+} gb_scan_axis;
+
+/* The metrics a point may compute (its `metrics` key lists them). */
+enum {
+    GB_SCAN_OMEGA_RMS = 1 << 0,   /* √(mean |ω|²) over the samples after the transient [rad/s] */
+    GB_SCAN_SWITCH_RATE = 1 << 1, /* contact changes (grid + branch) after the transient, per second [1/s] */
+    GB_SCAN_STROBE_SD = 1 << 2,   /* std of ω_x over the stroboscopic samples after the transient [rad/s] */
+    GB_SCAN_MEAN_HEIGHT = 1 << 3, /* mean h* (eq 36) after the transient [body length units] */
+    GB_SCAN_MONITORS = 1 << 4,    /* fractions of samples with g_eff ≤ 0 and with N ≤ 0 (the whole run) */
+    GB_SCAN_LAMBDA = 1 << 5,      /* λ_max and its error bar over the record after the transient [1/s] */
+    GB_SCAN_METRICS_ALL = (1 << 6) - 1
+};
+
+typedef struct gb_scan {
+    char path[GB_SCAN_PATH_MAX];       /* the scan file */
+    char description[GB_CASE_TEXT_MAX];
+    char base[GB_SCAN_PATH_MAX];       /* the base scene, resolved against the scan file's directory */
+    gb_scan_axis axis[2];              /* x (columns), y (rows) */
+    double periods;                    /* per point */
+    size_t transient_periods;          /* metrics from this period on */
+    unsigned metrics;                  /* GB_SCAN_* */
+    uint64_t fingerprint;              /* FNV-1a of the scan file's and the base scene's bytes */
+    char *base_text;                   /* the base scene as read once (every point starts from it) */
+    size_t base_size;
+} gb_scan;
+
+/* Read a scan file and its base scene, and check every point's scene (each point loads: a bad range is
+ * found before any run). GB_EINVAL / GB_EDOM with "FILE:LINE: [section] key = value: reason (allowed:
+ * ...)". On success the scan holds the base scene's text: gb_scan_free. */
+int gb_scan_load(const char *path, gb_scan *out);
+
+void gb_scan_free(gb_scan *scan);
+
+size_t gb_scan_points(const gb_scan *scan);
+
+/* The coordinates of point `index` (row-major: index = iy · count_x + ix), in the keys' own units. */
+void gb_scan_coordinates(const gb_scan *scan, size_t index, double *x, double *y);
+
+/* The scene of point `index`. */
+int gb_scan_point_case(const gb_scan *scan, size_t index, gb_case *out);
+
+typedef struct gb_scan_metrics {
+    double x, y;
+    double omega_rms, switch_rate, strobe_sd, mean_height;
+    double geff_nonpositive, lift_off;
+    double lambda, lambda_error;
+    size_t certificate_undecided;      /* continuous contact: certificate checks left undecided */
+    uint64_t state_fingerprint, switch_fingerprint; /* as `gomboc run` prints them */
+} gb_scan_metrics;
+
+/* Run point `index`; metrics not asked for are NAN. */
+int gb_scan_point_run(const gb_scan *scan, size_t index, gb_scan_metrics *out);
+
+/* The accumulators of the per-sample metrics (exposed for their checks against closed forms). */
+typedef struct gb_scan_accumulator {
+    double first_t;                    /* samples at t ≥ first_t count */
+    size_t samples;
+    double omega2_sum, height_sum, t_start, t_last;
+    size_t switches_start, switches_last;
+} gb_scan_accumulator;
+
+void gb_scan_accumulate(gb_scan_accumulator *a, double t, const double omega[3], double height, size_t switches);
+/* omega_rms, mean height and switch rate of what was accumulated (NAN when nothing was). */
+void gb_scan_accumulated(const gb_scan_accumulator *a, double *omega_rms, double *mean_height, double *switch_rate);
+
+/* The CSV header and one row (every metric %.17g, fingerprints in hex); the row ends with '\n'. */
+const char *gb_scan_csv_header(void);
+int gb_scan_csv_row(const gb_scan_metrics *m, size_t index, char *out, size_t size);
+/* Parse a row written by gb_scan_csv_row (a journal line): 0, or GB_EINVAL. */
+int gb_scan_csv_parse(const char *line, size_t *index, gb_scan_metrics *out);
+
+#endif

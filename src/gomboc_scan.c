@@ -1,0 +1,358 @@
+/* gomboc scan — a map over two keys of a scene (paper §8.3), parallel over points, resumable. */
+#include "gomboc_cli.h"
+
+#include "gb_error.h"
+#include "gb_parse.h"
+#include "gb_scan.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <inttypes.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+#include <unistd.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+static const char *usage_scan =
+    "usage: gomboc scan SCAN [--out DIR] [--resume] [--threads N]\n"
+    "\n"
+    "  SCAN         a scan file (INI; cases/README.md, \"Scan files\"): a base scene, two of its keys with\n"
+    "               their ranges and counts, the periods and transient per point, the metrics\n"
+    "  --out DIR    where the outputs go (default: the current directory): NAME-scan.csv, one row a\n"
+    "               point in index order (row-major, x fastest), every metric; NAME-scan.json, the scan\n"
+    "               as read, the environment and the timings. NAME is SCAN without .ini\n"
+    "  --resume     finish an interrupted scan from its journal (NAME-scan.journal in DIR): the points\n"
+    "               it holds are not run again, and the CSV is byte for byte that of an uninterrupted run\n"
+    "  --threads N  points run in parallel on N threads (1 ... 256; default: OpenMP's own choice);\n"
+    "               the results do not depend on N\n"
+    "\n"
+    "Every finished point is appended to the journal and flushed; the journal is removed when the scan\n"
+    "is complete and its outputs are written. Progress goes to standard error.\n";
+
+/* The running binary's fingerprint (FNV-1a of /proc/self/exe): a journal is resumed by the same build. */
+static uint64_t binary_fingerprint(void)
+{
+    uint64_t hash = 14695981039346656037ull;
+    FILE *f = fopen("/proc/self/exe", "rb");
+    if (!f) return 0;
+    unsigned char buffer[65536];
+    size_t n;
+    while ((n = fread(buffer, 1, sizeof buffer, f)) > 0)
+        for (size_t k = 0; k < n; k++) hash = (hash ^ buffer[k]) * 1099511628211ull;
+    fclose(f);
+    return hash;
+}
+
+typedef struct journal {
+    char *path;
+    FILE *file;
+    char header[160];
+} journal;
+
+/* Read an existing journal: its header must be this scan's and this binary's; every complete line is
+ * a point; an incomplete last line (a kill during a write) is cut off. Returns 0, EXIT_INPUT or
+ * EXIT_COMPUTE after printing the error. */
+static int journal_resume(journal *j, gb_scan_metrics *results, unsigned char *done, size_t points, size_t *count)
+{
+    FILE *f = fopen(j->path, "r+");
+    if (!f) {
+        fprintf(stderr, "gomboc scan: cannot open the journal '%s': %s\n", j->path, strerror(errno));
+        return EXIT_COMPUTE;
+    }
+    char line[1024];
+    long good = 0;
+    int status = 0, number = 0;
+    *count = 0;
+    while (!status && fgets(line, sizeof line, f)) {
+        number++;
+        const size_t len = strlen(line);
+        if (len == 0 || line[len - 1] != '\n') break; /* the incomplete last line */
+        if (number == 1) {
+            if (strcmp(line, j->header)) {
+                fprintf(stderr, "gomboc scan: the journal '%s' is not this scan's (its header: %.*s; this scan and binary: "
+                        "%.*s) (allowed: a journal written by this binary for this scan file and base scene; remove it to "
+                        "start again)\n", j->path, (int)len - 1, line, (int)strlen(j->header) - 1, j->header);
+                status = EXIT_INPUT;
+            }
+        } else {
+            size_t index;
+            gb_scan_metrics m;
+            if (gb_scan_csv_parse(line, &index, &m) || index >= points) {
+                fprintf(stderr, "gomboc scan: the journal '%s' line %d is malformed (allowed: lines this command wrote; "
+                        "remove it to start again)\n", j->path, number);
+                status = EXIT_INPUT;
+            } else {
+                if (!done[index]) ++*count;
+                results[index] = m, done[index] = 1;
+            }
+        }
+        if (!status) good = ftell(f);
+    }
+    if (!status && number == 0) {
+        fprintf(stderr, "gomboc scan: the journal '%s' is empty (allowed: a journal this command wrote)\n", j->path);
+        status = EXIT_INPUT;
+    }
+    if (!status && (fflush(f) != 0 || ftruncate(fileno(f), good) != 0 || fseek(f, good, SEEK_SET) != 0)) {
+        fprintf(stderr, "gomboc scan: cannot cut the incomplete last line of '%s': %s\n", j->path, strerror(errno));
+        status = EXIT_COMPUTE;
+    }
+    if (status) {
+        fclose(f);
+        return status;
+    }
+    j->file = f;
+    return 0;
+}
+
+static int journal_create(journal *j)
+{
+    const int fd = open(j->path, O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+    if (fd < 0 || !(j->file = fdopen(fd, "w"))) {
+        fprintf(stderr, "gomboc scan: cannot create the journal '%s': %s\n", j->path, strerror(errno));
+        if (fd >= 0) close(fd);
+        return EXIT_COMPUTE;
+    }
+    if (fputs(j->header, j->file) < 0 || fflush(j->file) != 0) {
+        fprintf(stderr, "gomboc scan: cannot write the journal '%s': %s\n", j->path, strerror(errno));
+        return EXIT_COMPUTE;
+    }
+    return 0;
+}
+
+static double wall_seconds(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static cJSON *axis_json(const gb_scan_axis *a)
+{
+    cJSON *o = cJSON_CreateObject();
+    char key[72];
+    snprintf(key, sizeof key, "%s.%s", a->section, a->key);
+    cJSON_AddStringToObject(o, "key", key);
+    cli_json_add(o, "from", a->from);
+    cli_json_add(o, "to", a->to);
+    cli_json_add(o, "count", (double)a->count);
+    cJSON_AddStringToObject(o, "scale", a->scale == GB_SCAN_PI ? "pi" : "linear");
+    return o;
+}
+
+static int write_outputs(const char *dir, const char *path, const gb_scan *scan, const gb_scan_metrics *results,
+                         int threads, double seconds, size_t run_here)
+{
+    cli_outputs set = {0};
+    int status = GB_OK;
+    char *csv_path = cli_output_name(dir, path, "scan.csv"), *json_path = cli_output_name(dir, path, "scan.json");
+    if (!csv_path || !json_path) status = gb_error_set(GB_ENOMEM, "out of memory for an output name");
+    FILE *csv = cli_outputs_open(&set, csv_path, &status);
+    if (csv && fputs(gb_scan_csv_header(), csv) < 0) status = gb_error_set(GB_EIO, "cannot write '%s': %s", csv_path, strerror(errno));
+    char row[1024];
+    for (size_t k = 0; !status && k < gb_scan_points(scan); k++) {
+        status = gb_scan_csv_row(&results[k], k, row, sizeof row);
+        if (!status && fputs(row, csv) < 0) status = gb_error_set(GB_EIO, "cannot write '%s': %s", csv_path, strerror(errno));
+    }
+    FILE *json = cli_outputs_open(&set, json_path, &status);
+    if (json) {
+        cJSON *root = cJSON_CreateObject();
+        cJSON_AddStringToObject(root, "scan", scan->path);
+        cJSON_AddStringToObject(root, "description", scan->description);
+        cJSON_AddStringToObject(root, "base", scan->base);
+        cJSON_AddItemToObject(root, "x", axis_json(&scan->axis[0]));
+        cJSON_AddItemToObject(root, "y", axis_json(&scan->axis[1]));
+        cli_json_add(root, "periods", scan->periods);
+        cli_json_add(root, "transient_periods", (double)scan->transient_periods);
+        cli_json_add(root, "points", (double)gb_scan_points(scan));
+        char fp[17];
+        snprintf(fp, sizeof fp, "%016" PRIx64, scan->fingerprint);
+        cJSON_AddStringToObject(root, "fingerprint", fp);
+        cJSON *env = cJSON_AddObjectToObject(root, "environment");
+#ifdef _OPENMP
+        cJSON_AddStringToObject(env, "parallel", "OpenMP");
+#else
+        cJSON_AddStringToObject(env, "parallel", "none (built without OpenMP)");
+#endif
+        cli_json_add(env, "threads", threads);
+        cJSON *timing = cJSON_AddObjectToObject(root, "timing");
+        cli_json_add(timing, "wall_seconds", seconds);
+        cli_json_add(timing, "points_run", (double)run_here);
+        cli_json_add(timing, "points_per_second", seconds > 0 ? (double)run_here / seconds : 0.0);
+        char *text = cJSON_Print(root);
+        if (!text || fputs(text, json) < 0 || fputc('\n', json) < 0)
+            status = gb_error_set(GB_EIO, "cannot write '%s': %s", json_path, strerror(errno));
+        free(text);
+        cJSON_Delete(root);
+    }
+    status = cli_outputs_commit(&set, status);
+    free(csv_path);
+    free(json_path);
+    return status;
+}
+
+int command_scan(int argc, char **argv)
+{
+    const char *scan_path = NULL, *dir = ".", *threads_text = NULL;
+    int resume = 0;
+    static const char *const valued[] = {"--out", "--threads", NULL};
+    for (int i = 0; i < argc; i++) {
+        const char *opt = argv[i], *value = NULL;
+        if (opt[0] != '-' || opt[1] == '\0') {
+            if (scan_path) return cli_input_error("scan", "a second scan file '%s'%s", opt, " (allowed: one SCAN)");
+            scan_path = opt;
+            continue;
+        }
+        if (!strcmp(opt, "--resume")) {
+            resume = 1;
+            continue;
+        }
+        const int kind = cli_next_option("scan", argc, argv, &i, usage_scan, valued,
+                                         " (allowed: --out, --resume, --threads, --help)", NULL, NULL, &value);
+        if (kind != CLI_VALUE) {
+            if (kind == CLI_NEXT) continue;
+            return kind == CLI_HELP ? 0 : kind;
+        }
+        if (!strcmp(opt, "--out")) dir = value;
+        else threads_text = value;
+    }
+    if (!scan_path) return cli_input_error("scan", "missing %s%s", "SCAN", " (allowed: a scan file, e.g. cases/scans/fig10-gomboc-I-omega-A1.ini)");
+    int threads = 0;
+    if (threads_text) {
+        double n;
+        if (cli_number("scan", "--threads", threads_text, 1, 256, 0, "an integer from 1 to 256", &n)) return EXIT_INPUT;
+        if (n != floor(n)) return cli_input_error("scan", "--threads %s: not an integer (allowed: an integer from 1 to 256)", threads_text);
+        threads = (int)n;
+    }
+    if (cli_output_dir_check("scan", "--out", dir)) return EXIT_INPUT;
+    char *csv_path = cli_output_name(dir, scan_path, "scan.csv"), *json_path = cli_output_name(dir, scan_path, "scan.json");
+    journal j = {.path = cli_output_name(dir, scan_path, "scan.journal")};
+    int bad = !csv_path || !json_path || !j.path;
+    if (!bad) bad = cli_output_check("scan", "--out", csv_path) || cli_output_check("scan", "--out", json_path) ||
+                    cli_output_check("scan", "--out", j.path);
+    free(csv_path);
+    free(json_path);
+    if (bad) {
+        free(j.path);
+        return EXIT_INPUT;
+    }
+    gb_scan scan;
+    int status = gb_scan_load(scan_path, &scan);
+    if (status) {
+        free(j.path);
+        return cli_failure("scan", status);
+    }
+    if (cli_parse_only) {
+        gb_scan_free(&scan);
+        free(j.path);
+        return 0;
+    }
+    const size_t points = gb_scan_points(&scan);
+    snprintf(j.header, sizeof j.header, "gomboc scan journal 1: scan %016" PRIx64 ", binary %016" PRIx64 ", %zu points\n",
+             scan.fingerprint, binary_fingerprint(), points);
+    gb_scan_metrics *results = calloc(points, sizeof *results);
+    unsigned char *done = calloc(points, 1);
+    size_t already = 0;
+    int exit_status = 0;
+    if (!results || !done) {
+        fprintf(stderr, "gomboc scan: out of memory for %zu points\n", points);
+        exit_status = EXIT_COMPUTE;
+    }
+    struct stat st;
+    const int exists = lstat(j.path, &st) == 0;
+    if (!exit_status && exists && !resume) {
+        fprintf(stderr, "gomboc scan: a journal of an unfinished scan exists: '%s' (allowed: --resume to finish it, or "
+                "remove it to start again)\n", j.path);
+        exit_status = EXIT_INPUT;
+    }
+    if (!exit_status) exit_status = exists ? journal_resume(&j, results, done, points, &already) : journal_create(&j);
+
+#ifdef _OPENMP
+    if (threads > 0) omp_set_num_threads(threads);
+    const int used_threads = omp_get_max_threads();
+#else
+    const int used_threads = 1;
+#endif
+    const double start = wall_seconds();
+    double last_report = start;
+    size_t finished = already, run_here = 0;
+    int failed = 0;
+    char failure[1200] = "";
+    if (!exit_status) {
+        if (already) fprintf(stderr, "gomboc scan: %s: resuming, %zu of %zu points in the journal\n", scan_path, already, points);
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 1)
+#endif
+        for (size_t k = 0; k < points; k++) {
+            int skip;
+#ifdef _OPENMP
+#pragma omp atomic read
+#endif
+            skip = failed;
+            if (done[k] || skip) continue;
+            gb_scan_metrics m;
+            const int s = gb_scan_point_run(&scan, k, &m);
+            char row[1024];
+            const int r = s ? s : gb_scan_csv_row(&m, k, row, sizeof row);
+#ifdef _OPENMP
+#pragma omp critical(scan_journal)
+#endif
+            {
+                if (r && !failed) {
+                    double x, y;
+                    gb_scan_coordinates(&scan, k, &x, &y);
+                    snprintf(failure, sizeof failure, "point %zu (%s.%s = %.17g, %s.%s = %.17g) failed: %s", k,
+                             scan.axis[0].section, scan.axis[0].key, x, scan.axis[1].section, scan.axis[1].key, y,
+                             gb_error_message());
+                    failed = 1;
+                } else if (!r && !failed) {
+                    if (fputs(row, j.file) < 0 || fflush(j.file) != 0) {
+                        snprintf(failure, sizeof failure, "cannot append to the journal '%s': %s (the points before are "
+                                 "kept: --resume continues from them)", j.path, strerror(errno));
+                        failed = 1;
+                    } else {
+                        results[k] = m, done[k] = 1;
+                        finished++, run_here++;
+                        const double now = wall_seconds();
+                        if (now - last_report >= 2.0 || finished == points) {
+                            const double rate = (double)run_here / (now - start);
+                            fprintf(stderr, "gomboc scan: %zu of %zu points, %.2f points/s, %.0f s left\n", finished,
+                                    points, rate, rate > 0 ? (double)(points - finished) / rate : 0.0);
+                            last_report = now;
+                        }
+                    }
+                }
+            }
+        }
+        if (failed) {
+            fprintf(stderr, "gomboc scan: %s: %s\n", scan_path, failure);
+            exit_status = EXIT_COMPUTE;
+        }
+    }
+    const double seconds = wall_seconds() - start;
+    if (j.file && fclose(j.file) != 0 && !exit_status) {
+        fprintf(stderr, "gomboc scan: cannot close the journal '%s': %s\n", j.path, strerror(errno));
+        exit_status = EXIT_COMPUTE;
+    }
+    if (!exit_status) {
+        status = write_outputs(dir, scan_path, &scan, results, used_threads, seconds, run_here);
+        if (status) exit_status = cli_failure("scan", status);
+        else if (unlink(j.path) != 0) {
+            fprintf(stderr, "gomboc scan: cannot remove the finished journal '%s': %s\n", j.path, strerror(errno));
+            exit_status = EXIT_COMPUTE;
+        } else {
+            fprintf(stderr, "gomboc scan: %s: %zu points (%zu run now) in %.1f s on %d thread(s)\n", scan_path, points,
+                    run_here, seconds, used_threads);
+        }
+    }
+    free(results);
+    free(done);
+    free(j.path);
+    gb_scan_free(&scan);
+    return exit_status;
+}

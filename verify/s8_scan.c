@@ -1,0 +1,395 @@
+/* Section 8.3: parameter scans (gomboc scan, gb_scan). A scan point must be, bit for bit, the run of the
+ * same scene: here that scene is written out as its own file, independently of how the scan sets its
+ * keys, run by `gomboc run`, and its summary and history compared with the scan's row. The per-sample
+ * metrics are checked against closed forms; the CSV must not depend on the thread count or on an
+ * interruption (a kill -9 mid-scan, a half-written journal line) followed by --resume; a journal of
+ * another scan is refused. The binary comes from $GOMBOC_BIN. */
+#include "gb_check.h"
+#include "gb_error.h"
+#include "gb_scan.h"
+#include "verify_sections.h"
+
+#include <cjson/cJSON.h>
+#include <errno.h>
+#include <float.h>
+#include <math.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+static const char *binary(void) { return getenv("GOMBOC_BIN") ? getenv("GOMBOC_BIN") : "build/gomboc"; }
+
+static int run(const char *args, char *out, size_t cap) { return gb_check_command(binary(), args, out, cap); }
+
+static char *slurp(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f) return NULL;
+    fseek(f, 0, SEEK_END);
+    const long n = ftell(f);
+    rewind(f);
+    char *text = malloc((size_t)n + 1);
+    if (text && fread(text, 1, (size_t)n, f) != (size_t)n) free(text), text = NULL;
+    if (text) text[n] = '\0';
+    fclose(f);
+    return text;
+}
+
+static int spill(const char *path, const char *text)
+{
+    FILE *f = fopen(path, "w");
+    if (!f) return 1;
+    const int bad = fputs(text, f) < 0;
+    return fclose(f) != 0 || bad;
+}
+
+/* ---- the per-sample metrics against closed forms ------------------------------------------------ */
+
+static void test_accumulators(void)
+{
+    /* ω = (A sin t, B, 0) sampled at 160 points a period over 10 periods after a transient of 2:
+     * √(mean |ω|²) = √(A²/2 + B²) exactly for whole periods of uniform samples (the discrete mean of
+     * sin² over a whole period is 1/2). */
+    const double A = 1.3, B = 0.4, T = 2 * M_PI, h = T / 160;
+    gb_scan_accumulator a = {.first_t = 2 * T - 0.5 * h};
+    size_t switches = 0;
+    for (int n = 0; n <= 12 * 160; n++) {
+        const double t = n * h, w[3] = {A * sin(t), B, 0.0};
+        if (n % 40 == 0 && n > 0) switches++; /* four contact changes a period */
+        if (n < 12 * 160) gb_scan_accumulate(&a, t, w, -0.97 + 0.01 * sin(t), switches);
+    }
+    double rms, height, rate;
+    gb_scan_accumulated(&a, &rms, &height, &rate);
+    gb_check cr = {"8.3", "-", "omega_rms of omega = (A sin t, B, 0) over 10 whole periods", "sqrt(A^2/2 + B^2)",
+                   "1600 eps relative: the worst-case rounding of a sum of 1600 terms"};
+    gb_check_close(&cr, rms, sqrt(A * A / 2 + B * B), 1600 * DBL_EPSILON, 0.0);
+    gb_check ch = {"8.3", "36", "mean h* of -0.97 + 0.01 sin t over 10 whole periods", "-0.97",
+                   "1600 eps relative: the worst-case rounding of a sum of 1600 terms"};
+    gb_check_close(&ch, height, -0.97, 1600 * DBL_EPSILON, 0.0);
+    /* From the first counted sample (t = 2T) to the last (t = 12T − h): 4 changes a period, the first
+     * at 2T + 40h; 40 counted in all but the one at 12T, which is not sampled. */
+    gb_check cs = {"8.3", "-", "switch rate of a counted sequence (4 changes a period, 10 periods)", "39 / (10 T - h)",
+                   "1e-14: rounding of the time span"};
+    gb_check_close(&cs, rate, 39.0 / (10 * T - h), 1e-14, 0.0);
+    gb_scan_accumulator empty = {.first_t = 1.0};
+    gb_scan_accumulated(&empty, &rms, &height, &rate);
+    gb_check ce = {"8.3", "-", "metrics of a run shorter than its transient", "NaN (no sample counted)", "exact"};
+    gb_check_true(&ce, isnan(rms) && isnan(height) && isnan(rate), "%g, %g, %g", rms, height, rate);
+}
+
+/* ---- a scan against the single runs of its points ----------------------------------------------- */
+
+/* A scene file with every key the comparison needs: both the scan's base (history off, 300 periods)
+ * and, written the way a user would, each point's own scene. */
+static void scene_text(char *out, size_t size, double omega, double a2, double periods, int transient, int history)
+{
+    snprintf(out, size,
+             "[body]\nmorphology = I\nbeta = 0.12\n"
+             "[forcing]\nomega = %.17g\nA1 = 2.0\nA2 = %.17g\npsi = pi/3\n"
+             "[model]\nequation = paper\ncontact = fast-grid\n"
+             "[integrator]\nperiods = %.17g\n"
+             "[output]\nhistory = %s\nsummary = yes\n"
+             "[diagnostics]\nmonitors = yes\nstrobe = yes\nspectrum = no\nlyapunov = yes\n"
+             "[strobe]\ntransient_periods = %d\n"
+             "[lyapunov]\ntransient_periods = %d\ninterval_periods = 1\n",
+             omega, a2, periods, history ? "yes" : "no", transient, transient);
+}
+
+static const char scan_text[] = "[scan]\ndescription = the harness's scan\nbase = base.ini\nperiods = 12\n"
+                                "transient_periods = 4\nmetrics = all\n"
+                                "[x]\nkey = forcing.omega\nfrom = 16\nto = 20\ncount = 3\n"
+                                "[y]\nkey = forcing.A2\nfrom = 0.5\nto = 1.5\ncount = 3\n";
+enum { SCAN_POINTS = 9 };
+
+typedef struct scan_dir {
+    char path[64], scan[128], csv[160], journal[160];
+} scan_dir;
+
+/* A fresh directory with the base scene and the scan file; on failure `check` fails and 1 returns. */
+static int make_scan_dir(scan_dir *d, const gb_check *check)
+{
+    snprintf(d->path, sizeof d->path, "/tmp/gomboc-scan-XXXXXX");
+    if (!mkdtemp(d->path)) return !gb_check_true(check, 0, "cannot make a directory: %s", strerror(errno));
+    char base[8192], path[160];
+    scene_text(base, sizeof base, 18.0, 1.0, 300.0, 50, 0);
+    snprintf(path, sizeof path, "%s/base.ini", d->path);
+    snprintf(d->scan, sizeof d->scan, "%s/map.ini", d->path);
+    snprintf(d->csv, sizeof d->csv, "%s/map-scan.csv", d->path);
+    snprintf(d->journal, sizeof d->journal, "%s/map-scan.journal", d->path);
+    if (spill(path, base) || spill(d->scan, scan_text)) return !gb_check_true(check, 0, "cannot write the scan files");
+    return 0;
+}
+
+/* `gomboc scan` of the directory's scan file into it, with `extra` options; the exit status. */
+static int scan_run(const scan_dir *d, const char *extra, char *out, size_t cap)
+{
+    char args[1024];
+    snprintf(args, sizeof args, "scan '%s' --out '%s' %s", d->scan, d->path, extra);
+    return run(args, out, cap);
+}
+
+static void remove_scan_dir(const scan_dir *d)
+{
+    char command[256];
+    snprintf(command, sizeof command, "rm -rf '%s'", d->path);
+    if (system(command) != 0) fprintf(stderr, "verify: cannot remove %s\n", d->path);
+}
+
+/* The metrics of a history CSV (gomboc run) after the transient, recomputed here. */
+static int history_metrics(const char *path, double first_t, double *rms, double *height, double *rate)
+{
+    FILE *f = fopen(path, "r");
+    if (!f) return 1;
+    char line[2048];
+    double sum2 = 0, hsum = 0, t0 = NAN, t1 = NAN;
+    size_t n = 0, switches = 0;
+    if (!fgets(line, sizeof line, f)) return fclose(f), 1;
+    while (fgets(line, sizeof line, f)) {
+        double v[17];
+        char *p = line, *end;
+        int k = 0;
+        for (; k < 17; k++, p = end + 1) {
+            v[k] = strtod(p, &end);
+            if (end == p || (*end != ',' && *end != '\n')) break;
+        }
+        if (k != 17) return fclose(f), 1;
+        if (v[0] < first_t) continue;
+        if (n) switches += (size_t)(v[9] + v[10]); /* grid_switch, branch_switch */
+        if (!n) t0 = v[0];
+        t1 = v[0];
+        n++;
+        sum2 += v[1] * v[1] + v[2] * v[2] + v[3] * v[3];
+        hsum += v[4];
+    }
+    fclose(f);
+    *rms = sqrt(sum2 / (double)n), *height = hsum / (double)n, *rate = (double)switches / (t1 - t0);
+    return n == 0;
+}
+
+static double number_at(const cJSON *o, const char *a, const char *b)
+{
+    const cJSON *x = cJSON_GetObjectItem(o, a);
+    if (b) x = cJSON_GetObjectItem(x, b);
+    return cJSON_IsNumber(x) ? x->valuedouble : NAN;
+}
+
+static void test_point_is_the_run(void)
+{
+    scan_dir d;
+    char out[1 << 14], args[1024];
+    gb_check cs = {"8.3", "-", "gomboc scan of 3 x 3 points (omega, A2), 12 periods, fast grid, every metric", "-", "exact: exit 0"};
+    if (make_scan_dir(&d, &cs)) return;
+    const int code = scan_run(&d, "", out, sizeof out);
+    char *csv = slurp(d.csv);
+    gb_check_true(&cs, code == 0 && csv != NULL, "exit %d: %.300s", code, out);
+    int rows = 0, same_fingerprint = 0, same_diagnostics = 0;
+    double worst = 0.0;
+    for (const char *line = csv ? strchr(csv, '\n') : NULL; line && line[1]; line = strchr(line + 1, '\n')) {
+        size_t index;
+        gb_scan_metrics m;
+        if (gb_scan_csv_parse(line + 1, &index, &m)) break;
+        rows++;
+        /* The point's scene as a user would write it, run alone with its history. */
+        char text[8192], scene[200], summary[220], history[220];
+        const int transient = 4;
+        scene_text(text, sizeof text, m.x, m.y, 12.0, transient, 1);
+        snprintf(scene, sizeof scene, "%s/point.ini", d.path);
+        snprintf(summary, sizeof summary, "%s/point-summary.json", d.path);
+        snprintf(history, sizeof history, "%s/point-history.csv", d.path);
+        if (spill(scene, text)) break;
+        snprintf(args, sizeof args, "run '%s' --out '%s'", scene, d.path);
+        if (run(args, out, sizeof out) != 0) break;
+        char *json = slurp(summary);
+        cJSON *root = json ? cJSON_Parse(json) : NULL;
+        free(json);
+        char fp[40], sw[40];
+        snprintf(fp, sizeof fp, "%016llx", (unsigned long long)m.state_fingerprint);
+        snprintf(sw, sizeof sw, "%016llx", (unsigned long long)m.switch_fingerprint);
+        const cJSON *f = cJSON_GetObjectItem(root, "fingerprint");
+        same_fingerprint += f && !strcmp(cJSON_GetStringValue(cJSON_GetObjectItem(f, "final_state")), fp) &&
+                            !strcmp(cJSON_GetStringValue(cJSON_GetObjectItem(f, "switches")), sw);
+        const cJSON *sd = cJSON_GetObjectItem(cJSON_GetObjectItem(root, "strobe"), "sd");
+        same_diagnostics += number_at(root, "lyapunov", "lambda_max") == m.lambda &&
+                            number_at(root, "lyapunov", "error_bar") == m.lambda_error &&
+                            cJSON_GetArrayItem(sd, 0) && cJSON_GetArrayItem(sd, 0)->valuedouble == m.strobe_sd &&
+                            number_at(root, "monitors", "geff_nonpositive_fraction") == m.geff_nonpositive &&
+                            number_at(root, "monitors", "lift_off_fraction") == m.lift_off;
+        cJSON_Delete(root);
+        const double T = 2 * M_PI / m.x, h = T / 160;
+        double rms, height, rate;
+        if (history_metrics(history, transient * T - 0.5 * h, &rms, &height, &rate)) break;
+        worst = fmax(worst, fmax(fabs(rms - m.omega_rms) / fabs(m.omega_rms),
+                                 fmax(fabs(height - m.mean_height) / fabs(m.mean_height),
+                                      fabs(rate - m.switch_rate) / fmax(fabs(m.switch_rate), 1e-300))));
+    }
+    free(csv);
+    gb_check cf = {"8.3", "-", "scan points whose fingerprints equal the single run of the point's scene (gomboc run)",
+                   "9 of 9: the point's scene written out by hand and run alone", "exact"};
+    gb_check_true(&cf, rows == SCAN_POINTS && same_fingerprint == SCAN_POINTS, "%d rows, %d equal fingerprints", rows, same_fingerprint);
+    gb_check cl = {"8.3", "77", "scan points whose lambda, error bar, strobe spread and monitors equal the single run's",
+                   "the single runs' summaries", "exact (bit for bit)"};
+    gb_check_true(&cl, rows == SCAN_POINTS && same_diagnostics == SCAN_POINTS, "%d rows, %d equal", rows, same_diagnostics);
+    gb_check cm = {"8.3", "-", "omega_rms, mean h* and switch rate of each point against the single run's history, recomputed",
+                   "the history CSV of gomboc run, after the transient",
+                   "1e-9 relative: the history prints t with 10 significant digits (t <= 4.8 s over spans >= 2.8 s), "
+                   "omega with 12"};
+    gb_check_close(&cm, rows == SCAN_POINTS ? worst : NAN, 0.0, 0.0, 1e-9);
+    remove_scan_dir(&d);
+}
+
+/* ---- threads, interruption and resume ----------------------------------------------------------- */
+
+static size_t lines_of(const char *path)
+{
+    FILE *f = fopen(path, "r");
+    size_t n = 0;
+    for (int ch; f && (ch = fgetc(f)) != EOF;) n += ch == '\n';
+    if (f) fclose(f);
+    return n;
+}
+
+/* Start `gomboc scan` on one thread and kill -9 it once its journal holds `lines` lines; the wait status. */
+static int killed_scan(const scan_dir *d, size_t lines)
+{
+    const pid_t pid = fork();
+    if (pid == 0) {
+        if (!freopen("/dev/null", "w", stderr)) _exit(127);
+        execl(binary(), binary(), "scan", d->scan, "--out", d->path, "--threads", "1", (char *)NULL);
+        _exit(127);
+    }
+    const struct timespec ms = {0, 1000000};
+    for (int k = 0; k < 60000 && lines_of(d->journal) < lines; k++) nanosleep(&ms, NULL);
+    kill(pid, SIGKILL);
+    int wstatus = 0;
+    waitpid(pid, &wstatus, 0);
+    return wstatus;
+}
+
+static void test_threads_and_resume(void)
+{
+    scan_dir d;
+    char out[1 << 14];
+    gb_check ct = {"8.3", "-", "scan CSV on 1 and on 2 threads", "byte for byte", "exact"};
+    if (make_scan_dir(&d, &ct)) return;
+    const int c1 = scan_run(&d, "--threads 1", out, sizeof out);
+    char *one = slurp(d.csv);
+    const int c2 = scan_run(&d, "--threads 2", out, sizeof out);
+    char *two = slurp(d.csv);
+    gb_check_true(&ct, c1 == 0 && c2 == 0 && one && two && !strcmp(one, two), "exits %d, %d; %s", c1, c2,
+                  one && two && !strcmp(one, two) ? "identical" : "different");
+    free(two);
+
+    /* Kill the scan once its journal holds two points, leave half a line behind, resume. */
+    remove(d.csv);
+    const int wstatus = killed_scan(&d, 3);
+    const size_t kept = lines_of(d.journal);
+    FILE *j = fopen(d.journal, "a");
+    if (j) fputs("7,18.5,0.7", j), fclose(j); /* a line cut off by the kill */
+    const int cr = scan_run(&d, "--resume", out, sizeof out);
+    char *resumed = slurp(d.csv);
+    gb_check ck = {"8.3", "-", "scan CSV after a kill -9 with 2 or more points in the journal, a half-written line, and --resume",
+                   "the uninterrupted run's CSV, byte for byte", "exact"};
+    gb_check_true(&ck, WIFSIGNALED(wstatus) && kept >= 3 && kept < 1 + SCAN_POINTS && cr == 0 && resumed && one &&
+                  !strcmp(one, resumed) && access(d.journal, F_OK) != 0,
+                  "killed with %zu journal lines; resume exit %d; %s; journal %s", kept, cr,
+                  resumed && one && !strcmp(one, resumed) ? "identical" : "different",
+                  access(d.journal, F_OK) ? "removed" : "left");
+    free(resumed);
+
+    /* A journal of another scan (another header), and a malformed line: refused, the journal kept. */
+    spill(d.journal, "gomboc scan journal 1: scan 0000000000000000, binary 0000000000000000, 9 points\n");
+    const int cm = scan_run(&d, "--resume", out, sizeof out);
+    gb_check cj = {"8.3", "-", "--resume with the journal of another scan", "refused (exit 2), the journal kept", "exact"};
+    gb_check_true(&cj, cm == 2 && strstr(out, "is not this scan's") && access(d.journal, F_OK) == 0, "exit %d: %.200s", cm, out);
+    remove(d.journal);
+    const int first = scan_run(&d, "--threads 1", out, sizeof out); /* a complete run: no journal left */
+    /* The header this binary writes, from a run killed at once (the header is written first). */
+    char header[256] = "";
+    killed_scan(&d, 1);
+    FILE *h = fopen(d.journal, "r");
+    if (h && !fgets(header, sizeof header, h)) header[0] = '\0';
+    if (h) fclose(h);
+    char bad[512];
+    snprintf(bad, sizeof bad, "%s0,not a number\n", header);
+    spill(d.journal, bad);
+    const int cb = scan_run(&d, "--resume", out, sizeof out);
+    gb_check cb2 = {"8.3", "-", "--resume with a malformed journal line", "refused (exit 2) naming the line, the journal kept", "exact"};
+    gb_check_true(&cb2, first == 0 && header[0] && cb == 2 && strstr(out, "line 2 is malformed") && access(d.journal, F_OK) == 0,
+                  "exit %d: %.200s", cb, out);
+    free(one);
+    remove_scan_dir(&d);
+}
+
+/* A point whose coordinate is outside its key's range is refused before any run, naming the scan
+ * file's line, the point and the range; nothing is written. */
+static void test_point_out_of_range(void)
+{
+    scan_dir d;
+    char out[1 << 14];
+    gb_check c = {"8.3", "-", "a scan whose last point has beta = 0.3", "refused (exit 2) before any run, naming line, point, range",
+                  "exact"};
+    if (make_scan_dir(&d, &c)) return;
+    spill(d.scan, "[scan]\nbase = base.ini\nperiods = 12\ntransient_periods = 4\n"
+                  "[x]\nkey = body.beta\nfrom = 0.1\nto = 0.3\ncount = 3\n[y]\nkey = forcing.A2\nfrom = 0.5\nto = 1.5\ncount = 2\n");
+    const int code = scan_run(&d, "", out, sizeof out);
+    gb_check_true(&c, code == 2 && strstr(out, "map.ini:6 (point 2): [body] beta = 0.2999") && strstr(out, "beta < 0.25") &&
+                  access(d.csv, F_OK) != 0 && access(d.journal, F_OK) != 0,
+                  "exit %d: %.300s", code, out);
+    remove_scan_dir(&d);
+}
+
+/* The maps of Figs 10–13 (cases/scans): each reads, every point's scene is valid, and Table 1's point
+ * (ω = 18, A1 = 2, A2 = 1, ψ = π/3, the base scene's values) is a node of the grid. */
+static void test_shipped_scans(void)
+{
+    static const char *const names[] = {"fig10-gomboc-I-omega-A1", "fig11-gomboc-I-A2-psi", "fig12-gomboc-II-omega-A1",
+                                        "fig13-gomboc-II-A2-psi"};
+    static const char *const models[] = {"paper", "rolling"};
+    for (int f = 0; f < 4; f++)
+        for (int m = 0; m < 2; m++) {
+            char path[256], q[320];
+            snprintf(path, sizeof path, "cases/scans/%s-%s.ini", names[f], models[m]);
+            snprintf(q, sizeof q, "%s: every point's scene reads, and Table 1's point is a node", path);
+            gb_check c = {"8.3", "Figs 10-13", q, "Table 1: omega 18, A1 2, A2 1, psi pi/3", "exact: a node within 1e-12"};
+            gb_scan scan;
+            if (gb_scan_load(path, &scan)) {
+                gb_check_true(&c, 0, "%s", gb_error_message());
+                continue;
+            }
+            gb_case base;
+            int found = -1;
+            const int status = gb_case_load(scan.base, &base);
+            const double table1[4] = {base.dynamics.forcing.omega, base.A1, base.A2, base.dynamics.forcing.psi};
+            for (size_t k = 0; !status && k < gb_scan_points(&scan) && found < 0; k++) {
+                gb_case point;
+                if (gb_scan_point_case(&scan, k, &point)) break;
+                const double here[4] = {point.dynamics.forcing.omega, point.A1, point.A2, point.dynamics.forcing.psi};
+                int same = 1;
+                for (int i = 0; i < 4; i++) same = same && fabs(here[i] - table1[i]) <= 1e-12 * fmax(1.0, fabs(table1[i]));
+                if (same) found = (int)k;
+            }
+            gb_check_true(&c, !status && found >= 0 && base.dynamics.forcing.omega == 18.0 && base.A1 == 2.0 && base.A2 == 1.0,
+                          "%zu points; Table 1's point %s%d", gb_scan_points(&scan), found >= 0 ? "is node " : "is missing ",
+                          found);
+            gb_scan_free(&scan);
+        }
+}
+
+int verify_register_s8_scan(void)
+{
+    static const verify_test tests[] = {
+        {"section 8.3: scan metrics against closed forms", test_accumulators, NULL},
+        {"section 8.3: a scan point is the single run of its scene", test_point_is_the_run,
+         "every scan point is, bit for bit, the run of the scene it stands for"},
+        {"section 8.3: threads, kill -9 and --resume give the same bytes", test_threads_and_resume,
+         "a scan's CSV does not depend on the thread count or on an interruption"},
+        {"section 8.3: a point out of its key's range is refused before any run", test_point_out_of_range, NULL},
+        {"Figs 10-13: the shipped maps read, and hold Table 1's point", test_shipped_scans, NULL},
+        {NULL, NULL, NULL},
+    };
+    return verify_register_suite("Section 8.3: parameter scans", tests);
+}
