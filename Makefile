@@ -31,7 +31,7 @@ BENCH_BIN  := $(BUILD)/bench-gomboc
 
 .PHONY: all deps run verify verify-full bench references report install clean \
         build run-only verify-only references-only bench-only fuzz fuzz-only sanitize sanitize-only \
-        valgrind valgrind-only install-only example-only
+        valgrind valgrind-only install-only example-only scans scans-only
 
 all: deps
 	@$(MAKE) --no-print-directory build
@@ -105,6 +105,20 @@ verify-full: deps
 	@$(MAKE) --no-print-directory fuzz-only FUZZ_SECONDS=30
 	@status=0; $(MAKE) --no-print-directory verify-only VERIFY_FLAGS=--full || status=$$?; \
 	sh scripts/gate-stamp.sh $(GATES) verify-full $$status "every check and the long studies"; \
+	$(PYTHON) reports/make_report.py $(OUT) "$(CC)" "$(WARN) $(CFLAGS)" || status=1; exit $$status
+
+# --- the maps of Figs 10-13 (cases/scans: both bodies, both planes, the paper's and the rolling model),
+# 25 x 25 points of 100 periods each, lambda included; resumable (an interrupted `make scans` goes on
+# from each scan's journal). The report shows the last maps made, with their date and commit.
+SCANS := $(sort $(wildcard cases/scans/*.ini))
+
+scans: deps
+	@$(MAKE) --no-print-directory scans-only
+
+scans-only: $(BIN)
+	@mkdir -p $(OUT)/scans
+	status=0; for s in $(SCANS); do $(BIN) scan $$s --out $(OUT)/scans --resume || { status=$$?; break; }; done; \
+	sh scripts/gate-stamp.sh $(GATES) scans $$status "the $(words $(SCANS)) maps of cases/scans"; \
 	$(PYTHON) reports/make_report.py $(OUT) "$(CC)" "$(WARN) $(CFLAGS)" || status=1; exit $$status
 
 # --- quality gates on bad input and memory; each writes $(OUT)/gates/GATE.json for the report ----------

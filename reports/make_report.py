@@ -23,6 +23,7 @@ from common import layout, load_json, save_figure, shape_summary_lines, write_at
 from contact_section import contact_section  # noqa: E402
 from dynamics_section import dynamics_section  # noqa: E402
 from chaos_section import chaos_section  # noqa: E402
+from scan_section import scan_section  # noqa: E402
 
 CHECKS_SCHEMA = 4  # verify/gb_check.h GB_CHECK_SCHEMA: {"schema": 4, "tests": [...], "rows": [...]}; findings carry verdict and rule
 
@@ -40,7 +41,8 @@ GATES = (("fuzz", "make fuzz", "the scene reader and the option parser under lib
          ("sanitize", "make sanitize", "every check of the harness built with ASan and UBSan"),
          ("valgrind", "make valgrind", "one short scene of each model, shape and contact under memcheck"),
          ("verify-full", "make verify-full", "every check and the long studies (10000-period records)"),
-         ("bench", "make bench", "speed ratios measured side by side in one run"))
+         ("bench", "make bench", "speed ratios measured side by side in one run"),
+         ("scans", "make scans", "the maps of Figs 10-13 (cases/scans), 25 x 25 points each"))
 
 
 def convergence(out):
@@ -204,6 +206,7 @@ def main():
     lines += contact_section(out, rows)
     lines += dynamics_section(out, rows)
     lines += chaos_section(out, rows)
+    lines += scan_section(out)
     lines += ["## Error against run time", "",
               "Each numeric check's relative error against its oracle, against the wall time since the",
               "previous check in the same test (the time of computing that row).", "",
