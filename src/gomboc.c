@@ -23,6 +23,7 @@ static const char *usage_main =
     "  lyapunov  the maximal Lyapunov exponent of one scene, with its error bar and convergence\n"
     "            record (section 6, eq 77)\n"
     "  scan      a map over two keys of a scene, parallel and resumable (section 8.3, Figs 10-13)\n"
+    "  melnikov  the reduced separatrix-splitting criterion for a scene's body and forcing (section 7)\n"
     "\n"
     "'gomboc <command> --help' describes each command's options.\n";
 
@@ -30,7 +31,7 @@ static const struct {
     const char *name;
     int (*run)(int argc, char **argv);
 } commands[] = {{"shape", command_shape}, {"contact", command_contact}, {"run", command_run}, {"lyapunov", command_lyapunov},
-                {"scan", command_scan}};
+                {"scan", command_scan}, {"melnikov", command_melnikov}};
 
 /* The command (main without the process): the option fuzzer calls it with cli_parse_only set. */
 int gomboc_main(int argc, char **argv)

@@ -25,5 +25,8 @@
 #include "gb_lyapunov_body.h"
 #include "gb_case.h"
 #include "gb_run.h"
+#include "gb_scan.h"
+#include "gb_melnikov.h"
+#include "gb_melnikov_body.h"
 
 #endif

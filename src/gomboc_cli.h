@@ -105,5 +105,6 @@ int command_lyapunov(int argc, char **argv);
 int command_contact(int argc, char **argv);
 int command_run(int argc, char **argv);
 int command_scan(int argc, char **argv);
+int command_melnikov(int argc, char **argv);
 
 #endif

@@ -201,6 +201,13 @@ static const bad_row rows[] = {
     {"scan @CASE@ --out @D@ --threads 0", "[scan]\n", 0, 2, {"--threads", "out of range", "an integer from 1 to 256"}},
     {"scan @CASE@ --out @D@ --json", "[scan]\n", 0, 2, {"unknown option '--json'", "--out, --resume, --threads", ""}},
     {"scan --out @D@", NULL, 0, 2, {"missing SCAN", "a scan file", ""}},
+    /* gomboc melnikov: the reduced model needs a saddle. */
+    {"melnikov @CASE@", "[body]\nbeta = 0\n", 0, 2, {"beta = 0: a sphere has no unstable equilibrium", "0 < beta < 0.25", ""}},
+    {"melnikov @CASE@", "[forcing]\ng = 0\n", 0, 2, {"[forcing] g = 0", "no saddle", "g > 0"}},
+    {"melnikov @CASE@ --mass heavy", "[body]\nbeta = 0.1\n", 0, 2, {"--mass heavy: unknown", "allowed: top, variable", ""}},
+    {"melnikov @CASE@ --weight p", "[body]\nbeta = 0.1\n", 0, 2, {"--weight p: unknown", "allowed: exact, paper", ""}},
+    {"melnikov @CASE@ --curve-points 1", "[body]\nbeta = 0.1\n", 0, 2, {"--curve-points", "out of range", "an integer from 2 to 1000"}},
+    {"melnikov @CASE@ --curve @D@/sub", "[body]\nbeta = 0.1\n", 0, 2, {"--curve", "is not a regular file", ""}},
     /* The case file itself, and the output directory. */
     {"run @D@", NULL, 0, 2, {"not a regular file", "allowed: a scene file", ""}},
     {"lyapunov @D@", NULL, 0, 2, {"not a regular file", "allowed: a scene file", ""}},

@@ -13,6 +13,7 @@ int verify_register_s4_certify(void);
 int verify_register_s5_dynamics(void);
 int verify_register_s6_chaos(void);
 int verify_register_s6_diagnostics(void);
+int verify_register_s7_melnikov(void);
 int verify_register_s8_scan(void);
 int verify_register_command(void);
 int verify_register_bad_input(void);

@@ -1,0 +1,646 @@
+#include "gb_melnikov.h"
+
+#include "gb_error.h"
+
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_integration.h>
+#include <gsl/gsl_min.h>
+#include <gsl/gsl_odeiv2.h>
+#include <gsl/gsl_roots.h>
+#include <float.h>
+#include <math.h>
+#include <string.h>
+
+enum { WORK = 2000 };
+/* The saddle ends of the path are mapped to u = −ln|q − s| and integrated by quadrature while |q − s| is
+ * at least CUT_RELATIVE·max(1, |s|) (where q − s is still known to 1e-7 of itself); beyond, the orbit is
+ * the saddle's linearisation (|q − s| ∝ e^{−λ|t|}, |p| ∝ |q − s|) and the rest is one QAGIU integral. */
+#define CUT_RELATIVE 1e-9
+#define CHECKPOINT 0.25
+enum { CHECKPOINTS = 512 };
+#define NEAR_SADDLE 0.1
+
+static int eval(const gb_melnikov_model *m, double q, gb_melnikov_values *v)
+{
+    const int status = m->eval(m->context, q, v);
+    if (status) return status;
+    if (!(v->M > 0.0) || !isfinite(v->M) || !isfinite(v->U) || !isfinite(v->dU) || !isfinite(v->S))
+        return gb_error_set(GB_EDOM, "the reduced model at q = %.17g: M = %g, U = %g, U' = %g, S = %g (allowed: M > 0 and "
+                            "finite values, eq 80)", q, v->M, v->U, v->dU, v->S);
+    return GB_OK;
+}
+
+/* ---- the saddle and the separatrix -------------------------------------------------------------- */
+
+typedef struct call {
+    const gb_melnikov_model *model;
+    const gb_melnikov_orbit *orbit;
+    int status;
+} call;
+
+/* The model at q for a GSL callback: the first failure is kept in the call. */
+static gb_melnikov_values values_at(double q, call *c)
+{
+    gb_melnikov_values v = {NAN, NAN, NAN, NAN, NAN};
+    const int s = eval(c->model, q, &v);
+    if (s && !c->status) c->status = s;
+    return v;
+}
+
+static double dU_at(double q, void *p) { return values_at(q, p).dU; }
+static double U_at(double q, void *p) { return values_at(q, p).U; }
+
+static int brent(double (*f)(double, void *), call *c, double lo, double hi, double *root)
+{
+    gsl_function F = {f, c};
+    gsl_root_fsolver *s = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
+    if (!s) return gb_error_set(GB_ENOMEM, "out of memory for a root finder");
+    int status = gsl_root_fsolver_set(s, &F, lo, hi) == GSL_SUCCESS ? GB_OK : GB_EDOM;
+    for (int it = 0; !status && it < 200; it++) {
+        if (gsl_root_fsolver_iterate(s) != GSL_SUCCESS) status = GB_ENUMERIC;
+        const double a = gsl_root_fsolver_x_lower(s), b = gsl_root_fsolver_x_upper(s);
+        if (gsl_root_test_interval(a, b, 0.0, 4 * DBL_EPSILON) == GSL_SUCCESS) break;
+    }
+    *root = gsl_root_fsolver_root(s);
+    gsl_root_fsolver_free(s);
+    if (c->status) return c->status;
+    return status ? gb_error_set(status, "root finding failed in [%.17g, %.17g]", lo, hi) : GB_OK;
+}
+
+/* E_s − U(q) without cancellation near a point a where U(a) = E_s (the saddle, its periodic copy, or a
+ * loop's turning point): −∫_a^q U′ by 5-point Gauss–Legendre on U′ within NEAR_SADDLE of a (exact for
+ * U′ of degree 9; at the switch both forms agree to rounding), E_s − U(q) beyond. */
+static double gap(const gb_melnikov_model *m, const gb_melnikov_orbit *o, double q, const gb_melnikov_values *v, int *status)
+{
+    double a = o->q_u;
+    if (fabs(q - o->q_end) < fabs(q - a)) a = o->q_end;
+    if (fabs(q - a) >= NEAR_SADDLE) return o->E_s - v->U;
+    /* a periodic model's far saddle has the values of q_u */
+    const double shift = m->period > 0.0 && a == o->q_end ? o->q_u - o->q_end : 0.0;
+    static const double node[5] = {-0.9061798459386640, -0.5384693101056831, 0.0, 0.5384693101056831, 0.9061798459386640};
+    static const double weight[5] = {0.2369268850561891, 0.4786286704993665, 0.5688888888888889, 0.4786286704993665,
+                                     0.2369268850561891};
+    const double half = 0.5 * (q - a), centre = a + shift + half;
+    double sum = 0.0;
+    for (int k = 0; k < 5 && !*status; k++) {
+        gb_melnikov_values w;
+        *status = eval(m, centre + half * node[k], &w);
+        sum += weight[k] * w.dU;
+    }
+    return *status ? NAN : -half * sum;
+}
+
+int gb_melnikov_orbit_find(const gb_melnikov_model *m, gb_melnikov_orbit *o)
+{
+    memset(o, 0, sizeof *o);
+    if (m->direction != 1 && m->direction != -1)
+        return gb_error_set(GB_EDOM, "direction = %d (allowed: +1 or -1)", m->direction);
+    call c = {m, o, GB_OK};
+    const double a = dU_at(m->saddle_lo, &c), b = dU_at(m->saddle_hi, &c);
+    if (c.status) return c.status;
+    if (!(a * b < 0.0))
+        return gb_error_set(GB_EDOM, "no saddle: U' = %g and %g at the ends of [%g, %g] (allowed: a bracket where U' changes "
+                            "sign, eq 81)", a, b, m->saddle_lo, m->saddle_hi);
+    int status = brent(dU_at, &c, m->saddle_lo, m->saddle_hi, &o->q_u);
+    if (status) return status;
+    gb_melnikov_values v, vp, vm;
+    const double h = 1e-5 * fmax(1.0, fabs(o->q_u));
+    status = eval(m, o->q_u, &v);
+    if (!status) status = eval(m, o->q_u + h, &vp);
+    if (!status) status = eval(m, o->q_u - h, &vm);
+    if (status) return status;
+    o->E_s = v.U;
+    o->curvature = (vp.dU - vm.dU) / (2.0 * h);
+    if (!(o->curvature < 0.0))
+        return gb_error_set(GB_EDOM, "U' vanishes at q = %.17g but U'' = %g there is not negative: a minimum, not a saddle "
+                            "(allowed: U'' < 0, eq 81)", o->q_u, o->curvature);
+    o->rate = sqrt(-o->curvature / v.M);
+    if (m->period > 0.0) {
+        o->q_end = o->q_u + m->direction * m->period;
+        if (isfinite(m->origin)) {
+            if (!((m->origin - o->q_u) * m->direction > 0.0 && (o->q_end - m->origin) * m->direction > 0.0))
+                return gb_error_set(GB_EDOM, "origin = %g is not between the saddle %g and its copy %g", m->origin, o->q_u, o->q_end);
+            o->q0 = m->origin;
+            return GB_OK;
+        }
+        /* t = 0 at the lowest U between the two copies of the saddle. */
+        double best = o->q_u, lowest = INFINITY;
+        for (int k = 1; k < 400; k++) {
+            const double q = o->q_u + m->direction * m->period * k / 400.0, u = U_at(q, &c);
+            if (c.status) return c.status;
+            if (!(u < o->E_s)) return gb_error_set(GB_EDOM, "U(%.6g) = %.6g is not below the saddle's %.6g: no rotation orbit over one period (allowed: a potential whose saddle is its only maximum on the period)", q, u, o->E_s);
+            if (u < lowest) lowest = u, best = q;
+        }
+        gsl_function F = {U_at, &c};
+        const double step = m->period / 400.0;
+        gsl_min_fminimizer *s = gsl_min_fminimizer_alloc(gsl_min_fminimizer_brent);
+        if (s && gsl_min_fminimizer_set(s, &F, best, best - step, best + step) == GSL_SUCCESS) {
+            for (int it = 0; it < 100; it++) {
+                if (gsl_min_fminimizer_iterate(s) != GSL_SUCCESS) break;
+                if (gsl_min_test_interval(gsl_min_fminimizer_x_lower(s), gsl_min_fminimizer_x_upper(s), 1e-12, 0.0) == GSL_SUCCESS) break;
+            }
+            best = gsl_min_fminimizer_x_minimum(s);
+        }
+        if (s) gsl_min_fminimizer_free(s);
+        o->q0 = best;
+        return c.status;
+    }
+    /* A loop: march away from the saddle until U rises back to E_s, then Brent. */
+    if (!(m->reach > 0.0)) return gb_error_set(GB_EDOM, "reach = %g (allowed: > 0 for a loop)", m->reach);
+    const int n = 2000;
+    double prev = o->q_u + m->direction * 1e-6 * m->reach;
+    for (int k = 1; k <= n; k++) {
+        const double q = o->q_u + m->direction * m->reach * k / n, g = U_at(q, &c) - o->E_s;
+        if (c.status) return c.status;
+        if (g >= 0.0) {
+            /* Bisection on U − E_s between the last point below and the first at or above. */
+            double lo = prev, hi = q;
+            for (int it = 0; it < 200 && fabs(hi - lo) > 4 * DBL_EPSILON * fmax(1.0, fabs(q)); it++) {
+                const double mid = 0.5 * (lo + hi), gm = U_at(mid, &c) - o->E_s;
+                if (c.status) return c.status;
+                if (gm >= 0.0) hi = mid;
+                else lo = mid;
+            }
+            o->q_end = o->q0 = 0.5 * (lo + hi);
+            return GB_OK;
+        }
+        prev = q;
+    }
+    return gb_error_set(GB_EDOM, "no turning point within %g of the saddle q_u = %.6g: U stays below E_s (allowed: a loop "
+                        "that returns, or a periodic potential with period > 0)", m->reach, o->q_u);
+}
+
+/* ---- the separatrix in q: |p|, t(q) -------------------------------------------------------------- */
+
+typedef struct path {
+    const gb_melnikov_model *m;
+    const gb_melnikov_orbit *o;
+    gsl_integration_workspace *outer, *inner;
+    gsl_integration_qaws_table *table;
+    gsl_integration_workspace *qaws_work;
+    int status;
+    /* the integrand F(q, p, t) and the weight */
+    double (*F)(void *context, double q, double p, double t, const gb_melnikov_values *v);
+    void *context;
+    gb_melnikov_weight weight;
+    /* the current saddle segment: q(u) = s + σ e^{−u}, t(u) = t_r + sign_t ∫_{u_r}^{u} (M/|p|) e^{−u} du */
+    double s, sigma, u_r, t_r;
+    int sign_t;
+    double base; /* where the model is evaluated for s: s itself, or for the far copy of a periodic
+                    model's saddle, q_u (the same values, and offsets from it keep their digits) */
+    /* t at checkpoints u_r + k·CHECKPOINT (k < known), so that t(u) is a short quadrature from the last */
+    double checkpoint[CHECKPOINTS];
+    size_t known;
+} path;
+
+static void fail(path *P, int status)
+{
+    if (status && !P->status) P->status = status;
+}
+
+/* |p| on the separatrix at q. */
+static double momentum(path *P, double q, gb_melnikov_values *v)
+{
+    int status = eval(P->m, q, v);
+    const double g = status ? NAN : gap(P->m, P->o, q, v, &status);
+    fail(P, status);
+    return status ? NAN : sqrt(2.0 * v->M * fmax(g, 0.0));
+}
+
+/* QAG (61-point rule); where the integrand has kinks or jumps (contact ties) QAG may stall, and QAGS (with
+ * extrapolation) takes over. A result whose error estimate meets the tolerance tenfold relaxed is kept. */
+static double integrate(path *P, gsl_integration_workspace *w, double (*f)(double, void *), double a, double b, double epsabs,
+                        double epsrel)
+{
+    gsl_function F = {f, P};
+    double result = 0.0, error = 0.0;
+    int s = gsl_integration_qag(&F, a, b, epsabs, epsrel, WORK, GSL_INTEG_GAUSS61, w, &result, &error);
+    if (s != GSL_SUCCESS && s != GSL_EROUND) s = gsl_integration_qags(&F, a, b, epsabs, epsrel, WORK, w, &result, &error);
+    if (s != GSL_SUCCESS && s != GSL_EROUND && !(error <= fmax(10.0 * epsabs, 10.0 * epsrel * fabs(result))))
+        fail(P, gb_error_set(GB_ENUMERIC, "quadrature on [%.6g, %.6g] failed: %s (error estimate %.3g of %.6g)", a, b,
+                             gsl_strerror(s), error, result));
+    return result;
+}
+
+/* dt/du on a saddle segment: (M/|p|)(q(u)) e^{−u}. */
+static double dtdu(double u, void *p)
+{
+    path *P = p;
+    gb_melnikov_values v;
+    const double e = exp(-u), mom = momentum(P, P->base + P->sigma * e, &v);
+    return mom > 0.0 ? v.M / mom * e : 0.0;
+}
+
+static double segment_time(path *P, double u)
+{
+    if (!(u > P->u_r)) return P->t_r;
+    size_t k = (size_t)((u - P->u_r) / CHECKPOINT);
+    if (k >= CHECKPOINTS) k = CHECKPOINTS - 1;
+    if (P->known == 0) P->checkpoint[0] = 0.0, P->known = 1;
+    while (P->known <= k) {
+        const double a = P->u_r + CHECKPOINT * (double)(P->known - 1);
+        P->checkpoint[P->known] = P->checkpoint[P->known - 1] + integrate(P, P->inner, dtdu, a, a + CHECKPOINT, 1e-14, 1e-12);
+        P->known++;
+    }
+    const double a = P->u_r + CHECKPOINT * (double)k;
+    return P->t_r + P->sign_t * (P->checkpoint[k] + (u > a ? integrate(P, P->inner, dtdu, a, u, 1e-14, 1e-12) : 0.0));
+}
+
+/* M/|p| × √|x − q_t|, the smooth factor of a loop's time near its turning point: near q_t it is
+ * √(M / (2 s)) with s = (E_s − U)/|x − q_t| the mean slope of U between them (Simpson on U′), finite at
+ * q_t itself, where quadrature rules may evaluate it. */
+static double turning_factor(double x, void *p)
+{
+    path *P = p;
+    const double qt = P->o->q_end;
+    gb_melnikov_values v, mid, end;
+    if (fabs(x - qt) < NEAR_SADDLE) {
+        int status = eval(P->m, x, &v);
+        if (!status) status = eval(P->m, 0.5 * (x + qt), &mid);
+        if (!status) status = eval(P->m, qt, &end);
+        fail(P, status);
+        const double slope = fabs(end.dU + 4.0 * mid.dU + v.dU) / 6.0;
+        return status || !(slope > 0.0) ? 0.0 : sqrt(v.M / (2.0 * slope));
+    }
+    const double mom = momentum(P, x, &v);
+    return mom > 0.0 ? v.M / mom * sqrt(fabs(x - qt)) : 0.0;
+}
+
+/* A loop's time on its returning half at q (0 at the turning point). */
+static double return_time(path *P, double q)
+{
+    const double qt = P->o->q_end;
+    if (q == qt) return 0.0;
+    gsl_function F = {turning_factor, P};
+    double result = 0.0, error = 0.0;
+    const int up = qt > q;
+    gsl_integration_qaws_table_set(P->table, up ? 0.0 : -0.5, up ? -0.5 : 0.0, 0, 0);
+    const int s = gsl_integration_qaws(&F, up ? q : qt, up ? qt : q, P->table, 0.0, 1e-12, WORK, P->qaws_work, &result, &error);
+    if (s != GSL_SUCCESS && s != GSL_EROUND) fail(P, gb_error_set(GB_ENUMERIC, "the time to the turning point failed: %s", gsl_strerror(s)));
+    return result;
+}
+
+/* The integrand of the path at q, p = ±|p|, at time t (see the header: weight × F, signed per dq). */
+static double along(path *P, double q, double t, double mom, const gb_melnikov_values *v)
+{
+    const int dir = P->m->direction;
+    const double w = P->weight == GB_MELNIKOV_PAPER ? v->M : 1.0;
+    if (P->m->period > 0.0) return dir * w * P->F(P->context, q, dir * mom, t, v);
+    /* A loop: the outgoing half at −t (p has the sign of dir), the returning half at +t. */
+    return dir * w * (P->F(P->context, q, dir * mom, -t, v) - P->F(P->context, q, -dir * mom, t, v));
+}
+
+static double saddle_integrand(double u, void *p)
+{
+    path *P = p;
+    gb_melnikov_values v;
+    const double e = exp(-u), q = P->s + P->sigma * e, mom = momentum(P, P->base + P->sigma * e, &v);
+    if (P->status) return 0.0;
+    return along(P, q, segment_time(P, u), mom, &v) * e;
+}
+
+static double regular_integrand(double q, void *p)
+{
+    path *P = p;
+    gb_melnikov_values v;
+    const double mom = momentum(P, q, &v);
+    if (P->status) return 0.0;
+    return along(P, q, return_time(P, q), mom, &v);
+}
+
+/* The tail beyond the cut: q frozen at the cut, |p| decaying as e^{−(u − u_c)}, t advancing as (u − u_c)/λ. */
+typedef struct tail {
+    path *P;
+    double q, u, t, mom;
+    gb_melnikov_values v;
+} tail;
+
+static double tail_integrand(double u, void *p)
+{
+    tail *T = p;
+    const double d = u - T->u;
+    return along(T->P, T->q, T->t + T->P->sign_t * d / T->P->o->rate, T->mom * exp(-d), &T->v) * exp(-u);
+}
+
+static void enter_segment(path *P, double s, double r, double t_r, int sign_t)
+{
+    P->s = s, P->sigma = r > s ? 1.0 : -1.0, P->u_r = -log(fabs(r - s)), P->t_r = t_r, P->sign_t = sign_t;
+    P->base = P->m->period > 0.0 && s == P->o->q_end ? P->o->q_u : s;
+    P->known = 0;
+}
+
+static double saddle_segment(path *P, double s, double r, double t_r, int sign_t)
+{
+    enter_segment(P, s, r, t_r, sign_t);
+    const double u_cut = fmax(P->u_r, -log(CUT_RELATIVE * fmax(1.0, fabs(P->base))));
+    const double body = integrate(P, P->outer, saddle_integrand, P->u_r, u_cut, 1e-13, 1e-10);
+    tail T = {.P = P, .q = s + P->sigma * exp(-u_cut), .u = u_cut, .t = segment_time(P, u_cut)};
+    T.mom = momentum(P, P->base + P->sigma * exp(-u_cut), &T.v);
+    if (P->status) return NAN;
+    gsl_function F = {tail_integrand, &T};
+    double rest = 0.0, error = 0.0;
+    const int st = gsl_integration_qagiu(&F, u_cut, 1e-13, 1e-10, WORK, P->outer, &rest, &error);
+    if (st != GSL_SUCCESS && st != GSL_EROUND) fail(P, gb_error_set(GB_ENUMERIC, "the saddle tail's quadrature failed: %s", gsl_strerror(st)));
+    return body + rest;
+}
+
+static int path_open(path *P, const gb_melnikov_model *m, const gb_melnikov_orbit *o)
+{
+    memset(P, 0, sizeof *P);
+    P->m = m, P->o = o;
+    P->outer = gsl_integration_workspace_alloc(WORK);
+    P->inner = gsl_integration_workspace_alloc(WORK);
+    P->qaws_work = gsl_integration_workspace_alloc(WORK);
+    P->table = gsl_integration_qaws_table_alloc(0.0, -0.5, 0, 0);
+    if (!P->outer || !P->inner || !P->qaws_work || !P->table) return gb_error_set(GB_ENOMEM, "out of memory for quadrature");
+    return GB_OK;
+}
+
+static void path_close(path *P)
+{
+    if (P->outer) gsl_integration_workspace_free(P->outer);
+    if (P->inner) gsl_integration_workspace_free(P->inner);
+    if (P->qaws_work) gsl_integration_workspace_free(P->qaws_work);
+    if (P->table) gsl_integration_qaws_table_free(P->table);
+}
+
+/* ∫ over the whole separatrix (t from −∞ to ∞) of w·F dt, w = q̇ or p, as an integral in q. */
+static int path_integral(const gb_melnikov_model *m, const gb_melnikov_orbit *o, gb_melnikov_weight weight,
+                         double (*F)(void *, double, double, double, const gb_melnikov_values *), void *context, double *out)
+{
+    path P;
+    int status = path_open(&P, m, o);
+    P.F = F, P.context = context, P.weight = weight;
+    double total = 0.0;
+    if (!status && m->period > 0.0) {
+        /* From the saddle to q0 (t < 0), and from the far copy of the saddle back to q0 (t > 0). */
+        total = saddle_segment(&P, o->q_u, o->q0, 0.0, -1);
+        total += saddle_segment(&P, o->q_end, o->q0, 0.0, +1);
+    } else if (!status) {
+        const double mid = 0.5 * (o->q_u + o->q_end), t_mid = return_time(&P, mid);
+        total = saddle_segment(&P, o->q_u, mid, t_mid, +1);
+        total += integrate(&P, P.outer, regular_integrand, fmin(mid, o->q_end), fmax(mid, o->q_end), 1e-13, 1e-10);
+    }
+    status = status ? status : P.status;
+    path_close(&P);
+    *out = total;
+    return status;
+}
+
+int gb_melnikov_time(const gb_melnikov_model *m, const gb_melnikov_orbit *o, double q, double *t)
+{
+    path P;
+    int status = path_open(&P, m, o);
+    *t = NAN;
+    if (!status && m->period > 0.0) {
+        /* Signed time from q0 along the motion. */
+        const int after = (q - o->q0) * m->direction > 0.0;
+        const double s = after ? o->q_end : o->q_u;
+        enter_segment(&P, s, o->q0, 0.0, after ? 1 : -1);
+        *t = segment_time(&P, -log(fabs(q - s)));
+    } else if (!status) {
+        *t = return_time(&P, q);
+    }
+    status = status ? status : P.status;
+    path_close(&P);
+    return status;
+}
+
+/* ---- the integrals and the function ------------------------------------------------------------- */
+
+typedef struct harmonic {
+    double omega;
+    int kind; /* 0: p (for D), 1: S cos ωt, 2: S sin ωt */
+} harmonic;
+
+static double harmonic_F(void *context, double q, double p, double t, const gb_melnikov_values *v)
+{
+    (void)q;
+    const harmonic *h = context;
+    return h->kind == 0 ? p : h->kind == 1 ? v->S * cos(h->omega * t) : v->S * sin(h->omega * t);
+}
+
+int gb_melnikov_integrals_compute(const gb_melnikov_model *m, const gb_melnikov_orbit *o, double omega,
+                                  gb_melnikov_weight weight, gb_melnikov_integrals *out)
+{
+    memset(out, 0, sizeof *out);
+    out->omega = omega;
+    if (!(isfinite(omega) && omega > 0.0)) return gb_error_set(GB_EDOM, "omega = %g (allowed: > 0)", omega);
+    harmonic h[5] = {{omega, 0}, {omega, 1}, {omega, 2}, {2 * omega, 1}, {2 * omega, 2}};
+    double *slot[5] = {&out->D, &out->C1, &out->S1, &out->C2, &out->S2};
+    for (int k = 0; k < 5; k++) {
+        /* A loop's cosine integrals vanish by its time symmetry (q_h even, q̇_h odd in t). */
+        if (m->period == 0.0 && h[k].kind == 1) continue;
+        const int status = path_integral(m, o, weight, harmonic_F, &h[k], slot[k]);
+        if (status) return status;
+    }
+    out->A1 = hypot(out->C1, out->S1);
+    out->A2 = hypot(out->C2, out->S2);
+    return GB_OK;
+}
+
+double gb_melnikov_function(const gb_melnikov_integrals *I, const gb_melnikov_forcing *f, double t0)
+{
+    const double a = f->omega * t0, b = 2.0 * f->omega * t0 + f->psi;
+    return -f->mu * I->D + f->nu1 * (I->C1 * cos(a) - I->S1 * sin(a)) + f->nu2 * (I->C2 * cos(b) - I->S2 * sin(b));
+}
+
+typedef struct direct {
+    const gb_melnikov_forcing *f;
+    double t0;
+} direct;
+
+static double perturbation(void *context, double q, double p, double t, const gb_melnikov_values *v)
+{
+    (void)q;
+    const direct *d = context;
+    const double s = t + d->t0;
+    return -d->f->mu * p + d->f->nu1 * v->S * cos(d->f->omega * s) + d->f->nu2 * v->S * cos(2.0 * d->f->omega * s + d->f->psi);
+}
+
+int gb_melnikov_direct(const gb_melnikov_model *m, const gb_melnikov_orbit *o, const gb_melnikov_forcing *f,
+                       gb_melnikov_weight weight, double t0, double *value)
+{
+    direct d = {f, t0};
+    return path_integral(m, o, weight, perturbation, &d, value);
+}
+
+static double oscillatory(const gb_melnikov_integrals *I, const gb_melnikov_forcing *f, double t0)
+{
+    return gb_melnikov_function(I, f, t0) + f->mu * I->D;
+}
+
+typedef struct judged {
+    const gb_melnikov_integrals *I;
+    const gb_melnikov_forcing *f;
+} judged;
+
+static double minus_oscillatory(double t0, void *p)
+{
+    const judged *j = p;
+    return -oscillatory(j->I, j->f, t0);
+}
+
+void gb_melnikov_judge(const gb_melnikov_integrals *I, const gb_melnikov_forcing *f, gb_melnikov_criterion *out)
+{
+    const double T = 2.0 * M_PI / f->omega;
+    enum { N = 4096 };
+    double best = -INFINITY, at = 0.0;
+    for (int k = 0; k < N; k++) {
+        const double t0 = T * k / N, v = oscillatory(I, f, t0);
+        if (v > best) best = v, at = t0;
+    }
+    /* Refine the sampled maximum with Brent's minimiser on −oscillatory. */
+    judged j = {I, f};
+    gsl_function F = {minus_oscillatory, &j};
+    gsl_min_fminimizer *s = gsl_min_fminimizer_alloc(gsl_min_fminimizer_brent);
+    const double h = T / N;
+    if (s && -minus_oscillatory(at, &j) > fmax(-minus_oscillatory(at - h, &j), -minus_oscillatory(at + h, &j)) &&
+        gsl_min_fminimizer_set(s, &F, at, at - h, at + h) == GSL_SUCCESS) {
+        for (int it = 0; it < 100; it++) {
+            if (gsl_min_fminimizer_iterate(s) != GSL_SUCCESS) break;
+            if (gsl_min_test_interval(gsl_min_fminimizer_x_lower(s), gsl_min_fminimizer_x_upper(s), 1e-14 * T, 0.0) == GSL_SUCCESS) break;
+        }
+        at = gsl_min_fminimizer_x_minimum(s);
+        best = fmax(best, oscillatory(I, f, at));
+    }
+    if (s) gsl_min_fminimizer_free(s);
+    out->oscillatory_max = best;
+    out->t0_max = fmod(fmod(at, T) + T, T);
+    out->eq93 = f->nu1 * I->A1 + f->nu2 * I->A2 > f->mu * I->D;
+    out->sign_change = best > f->mu * I->D;
+}
+
+void gb_melnikov_threshold(const gb_melnikov_integrals *I, const gb_melnikov_forcing *f, double *by_eq93, double *exact)
+{
+    gb_melnikov_criterion c;
+    gb_melnikov_judge(I, f, &c);
+    *by_eq93 = f->mu * I->D / (f->nu1 * I->A1 + f->nu2 * I->A2);
+    *exact = f->mu * I->D / c.oscillatory_max;
+}
+
+/* ---- direct splitting under damping alone ------------------------------------------------------- */
+
+typedef struct flow {
+    const gb_melnikov_model *m;
+    double damping; /* εμ */
+    int status;
+} flow;
+
+static int flow_rhs(double t, const double y[], double dydt[], void *params)
+{
+    (void)t;
+    flow *F = params;
+    gb_melnikov_values v;
+    const int s = eval(F->m, y[0], &v);
+    if (s) {
+        if (!F->status) F->status = s;
+        return GSL_EBADFUNC;
+    }
+    dydt[0] = y[1] / v.M;
+    dydt[1] = y[1] * y[1] * v.dM / (2.0 * v.M * v.M) - v.dU - F->damping * y[1];
+    return GSL_SUCCESS;
+}
+
+/* Flow y from the saddle neighbourhood (forward when sign > 0, backward otherwise) until it crosses the
+ * section through x0 normal to f0 within `window` of x0 (a crossing of the line farther away is the
+ * orbit passing elsewhere); y is left on the section, located by bisection on the step. */
+static int to_section(flow *F, double sign, double limit, const double x0[2], const double f0[2], double window, double y[2],
+                      double *t_cross)
+{
+    gsl_odeiv2_system sys = {flow_rhs, NULL, 2, F};
+    gsl_odeiv2_step *step = gsl_odeiv2_step_alloc(gsl_odeiv2_step_rk8pd, 2);
+    gsl_odeiv2_control *control = gsl_odeiv2_control_y_new(1e-14, 1e-13);
+    gsl_odeiv2_evolve *evolve = gsl_odeiv2_evolve_alloc(2);
+    int status = step && control && evolve ? GB_OK : gb_error_set(GB_ENOMEM, "out of memory for the stepper"), crossed = 0;
+    double t = 0.0, h = sign * 1e-3;
+    while (!status && !crossed && fabs(t) < limit) {
+        double before[2] = {y[0], y[1]};
+        const double t_before = t, g0 = (y[0] - x0[0]) * f0[0] + (y[1] - x0[1]) * f0[1];
+        const int s = gsl_odeiv2_evolve_apply(evolve, control, step, &sys, &t, sign * limit, &h, y);
+        if (s != GSL_SUCCESS) {
+            status = F->status ? F->status : gb_error_set(GB_ENUMERIC, "the manifold's integration failed: %s", gsl_strerror(s));
+            break;
+        }
+        const double g = (y[0] - x0[0]) * f0[0] + (y[1] - x0[1]) * f0[1];
+        if (g * g0 > 0.0 || g0 == 0.0) continue;
+        /* Bisect the step for the crossing. */
+        double lo = 0.0, hi = t - t_before, mid[2] = {y[0], y[1]};
+        for (int it = 0; it < 200 && fabs(hi - lo) > 1e-16 * fmax(1.0, fabs(t)); it++) {
+            const double dt = 0.5 * (lo + hi);
+            double err[2];
+            memcpy(mid, before, sizeof mid);
+            gsl_odeiv2_step_reset(step);
+            if (gsl_odeiv2_step_apply(step, t_before, dt, mid, err, NULL, NULL, &sys) != GSL_SUCCESS) {
+                status = F->status ? F->status : gb_error_set(GB_ENUMERIC, "the manifold's crossing could not be located");
+                break;
+            }
+            const double gm = (mid[0] - x0[0]) * f0[0] + (mid[1] - x0[1]) * f0[1];
+            if (gm * g0 > 0.0) lo = dt;
+            else hi = dt;
+        }
+        gsl_odeiv2_step_reset(step);
+        gsl_odeiv2_evolve_reset(evolve);
+        if (hypot(mid[0] - x0[0], mid[1] - x0[1]) < window) {
+            memcpy(y, mid, sizeof mid), crossed = 1;
+            if (t_cross) *t_cross = t_before + 0.5 * (lo + hi);
+        }
+    }
+    if (evolve) gsl_odeiv2_evolve_free(evolve);
+    if (control) gsl_odeiv2_control_free(control);
+    if (step) gsl_odeiv2_step_free(step);
+    if (!status && !crossed) status = gb_error_set(GB_ENOCONV, "the manifold did not reach the section within t = %g", limit);
+    return status;
+}
+
+int gb_melnikov_split_damped(const gb_melnikov_model *m, const gb_melnikov_orbit *o, double epsilon_mu, double *measured,
+                             double *flow_speed)
+{
+    gb_melnikov_values v0, vu, ve;
+    int status = eval(m, o->q0, &v0);
+    if (!status) status = eval(m, o->q_u, &vu);
+    if (!status) status = eval(m, m->period > 0.0 ? o->q_end : o->q_u, &ve);
+    if (status) return status;
+    /* x_h(0) and the unperturbed field there. */
+    const int dir = m->direction;
+    const double p0 = m->period > 0.0 ? dir * sqrt(2.0 * v0.M * fmax(o->E_s - v0.U, 0.0)) : 0.0;
+    const double x0[2] = {o->q0, p0};
+    const double f0[2] = {p0 / v0.M, p0 * p0 * v0.dM / (2.0 * v0.M * v0.M) - v0.dU};
+    *flow_speed = hypot(f0[0], f0[1]);
+    /* Eigenvalues of the damped saddle: λ² + εμλ + U″/M = 0; eigenvectors (1, λM). */
+    const double disc = sqrt(epsilon_mu * epsilon_mu - 4.0 * o->curvature / vu.M);
+    const double up = 0.5 * (-epsilon_mu + disc), down_end = 0.5 * (-epsilon_mu - sqrt(epsilon_mu * epsilon_mu - 4.0 * o->curvature / ve.M));
+    const double delta = 1e-7, limit = 200.0 / o->rate;
+    flow F = {m, epsilon_mu, GB_OK};
+    double yu[2] = {o->q_u + dir * delta, dir * delta * up * vu.M};
+    /* The stable manifold: of the far copy of the saddle (a rotation) or of the saddle itself, entered
+     * from the side of the loop (q̇ of sign −dir on the way back). */
+    const double s_end = m->period > 0.0 ? o->q_end : o->q_u, side = m->period > 0.0 ? -dir : dir;
+    double ys[2] = {s_end + side * delta, side * delta * down_end * ve.M};
+    /* The crossing must lie within a tenth of the orbit's distance from the saddle to x_h(0). */
+    const double window = 0.1 * hypot(x0[0] - o->q_u, x0[1]);
+    status = to_section(&F, +1.0, limit, x0, f0, window, yu, NULL);
+    if (!status) status = to_section(&F, -1.0, limit, x0, f0, window, ys, NULL);
+    if (status) return status;
+    const double n[2] = {-f0[1] / *flow_speed, f0[0] / *flow_speed};
+    *measured = (yu[0] - ys[0]) * n[0] + (yu[1] - ys[1]) * n[1];
+    return GB_OK;
+}
+
+int gb_melnikov_flight_time(const gb_melnikov_model *m, const gb_melnikov_orbit *o, double q_a, double q_b, double *dt)
+{
+    gb_melnikov_values vu;
+    int status = eval(m, o->q_u, &vu);
+    if (status) return status;
+    const int dir = m->direction;
+    const double delta = 1e-9, up = o->rate, limit = 200.0 / o->rate;
+    flow F = {m, 0.0, GB_OK};
+    double y[2] = {o->q_u + dir * delta, dir * delta * up * vu.M}, ta = 0.0, tb = 0.0;
+    /* The levels as sections: the line q = level, crossed where the orbit reaches it. */
+    const double xa[2] = {q_a, 0.0}, xb[2] = {q_b, 0.0}, fq[2] = {1.0, 0.0};
+    status = to_section(&F, +1.0, limit, xa, fq, INFINITY, y, &ta);
+    if (!status) status = to_section(&F, +1.0, limit, xb, fq, INFINITY, y, &tb);
+    *dt = tb;
+    (void)ta;
+    return status;
+}

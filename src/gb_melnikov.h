@@ -1,0 +1,110 @@
+/* gb_melnikov — separatrix splitting in a reduced one-degree-of-freedom model (paper §7, eqs 78–93).
+ *
+ * The model: H₀ = p²/(2M(q)) + U(q) (eqs 79–80) with a saddle q_u of U (U′ = 0, U″ < 0, eq 81),
+ * perturbed by ṗ += ε G, G = −μp + ν₁S(q) cos ωt + ν₂S(q) cos(2ωt + ψ) (eqs 84–85). Its separatrix
+ * orbit (eq 83) is either a loop (from the saddle to a turning point q_t where U(q_t) = E_s, and back)
+ * or, for a potential of period P, a rotation from q_u to q_u ± P.
+ *
+ * The orbit is computed two independent ways: t(q) = ∫ M/|p| dq by GSL quadrature in q (QAWS for the
+ * square-root singularity at a turning point), and the flow of eq 78 integrated with GSL's rk8pd from
+ * the saddle's unstable direction. The integrals of eqs 88–90 are GSL adaptive quadratures in q, with the
+ * ends at the saddle mapped to u = −ln|q − q_u| ∈ [u₀, ∞) (QAGIU), where the integrand decays as e^{−u}.
+ *
+ * The weight. For ṗ = −∂H₀/∂q + εG the first-order splitting is ∫ q̇_h G dt (the wedge of the vector
+ * field with (0, G)); eq 86 writes ∫ p_h G dt, the same only when M ≡ 1. Both are offered:
+ * GB_MELNIKOV_EXACT (q̇ = p/M) and GB_MELNIKOV_PAPER (p); the direct-splitting check tells them apart.
+ *
+ * The criterion. With the integrals, M(t₀) = −μD + ν₁(C₁ cos ωt₀ − S₁ sin ωt₀) + ν₂(C₂ cos(2ωt₀ + ψ) −
+ * S₂ sin(2ωt₀ + ψ)) (eq 91). Eq 93, ν₁A₁* + ν₂A₂* > μD, bounds the oscillatory part from above: it is
+ * necessary for a sign change, and sufficient only when both harmonics peak at the same t₀. The exact
+ * condition is max over t₀ of the oscillatory part > μD, a one-dimensional maximisation. */
+#ifndef GB_MELNIKOV_H
+#define GB_MELNIKOV_H
+
+#include <stddef.h>
+
+typedef struct gb_melnikov_values {
+    double M, dM, U, dU, S; /* at one q: the effective mass and its derivative, the potential and its
+                               derivative, the coupling of the vertical excitation */
+} gb_melnikov_values;
+
+typedef int (*gb_melnikov_eval)(void *context, double q, gb_melnikov_values *out);
+
+typedef struct gb_melnikov_model {
+    gb_melnikov_eval eval;
+    void *context;
+    double saddle_lo, saddle_hi; /* a bracket in which U′ changes sign once, at the saddle */
+    int direction;               /* +1: the orbit leaves the saddle towards larger q; −1: smaller */
+    double period;               /* > 0: U, M, S have this period and the orbit is a rotation; 0: a loop */
+    double reach;                /* a loop's turning point lies within |q − q_u| < reach */
+    double origin;               /* a rotation's t = 0 point (NAN: where U is lowest); keep it where U
+                                    is smooth: the splitting is measured on the normal to the flow there */
+} gb_melnikov_model;
+
+typedef struct gb_melnikov_orbit {
+    double q_u, E_s, curvature;  /* the saddle, U(q_u) (eq 82), U″(q_u) */
+    double rate;                 /* the saddle's unstable rate λ = √(−U″/M) at q_u */
+    double q_end;                /* a loop's turning point q_t, or a rotation's q_u ± P */
+    double q0;                   /* where t = 0: the turning point, or a rotation's lowest U */
+} gb_melnikov_orbit;
+
+/* The saddle (GSL Brent on U′ in the bracket), E_s, the rate and the far end of the separatrix.
+ * GB_EDOM when the bracket holds no saddle (U′ keeps its sign, or U″ ≥ 0 there: a sphere has none),
+ * when M ≤ 0, or when a loop finds no turning point within `reach` (the orbit escapes). */
+int gb_melnikov_orbit_find(const gb_melnikov_model *model, gb_melnikov_orbit *out);
+
+/* t(q) on the separatrix by quadrature in q (t = 0 at q0; t < 0 between the saddle and q0 on the way
+ * out, for a loop the outgoing half). */
+int gb_melnikov_time(const gb_melnikov_model *model, const gb_melnikov_orbit *orbit, double q, double *t);
+
+typedef enum gb_melnikov_weight { GB_MELNIKOV_EXACT = 0, GB_MELNIKOV_PAPER = 1 } gb_melnikov_weight;
+
+typedef struct gb_melnikov_integrals {
+    double omega;
+    double D, C1, S1, C2, S2;    /* eqs 88–90 with the chosen weight */
+    double A1, A2;               /* eq 92 */
+} gb_melnikov_integrals;
+
+int gb_melnikov_integrals_compute(const gb_melnikov_model *model, const gb_melnikov_orbit *orbit, double omega,
+                                  gb_melnikov_weight weight, gb_melnikov_integrals *out);
+
+typedef struct gb_melnikov_forcing {
+    double mu, nu1, nu2, omega, psi;
+} gb_melnikov_forcing;
+
+/* Eq 91. */
+double gb_melnikov_function(const gb_melnikov_integrals *integrals, const gb_melnikov_forcing *forcing, double t0);
+
+/* Eq 86 directly: ∫ w G(q_h, p_h, t + t₀) dt by quadrature along the orbit (w = q̇ or p). */
+int gb_melnikov_direct(const gb_melnikov_model *model, const gb_melnikov_orbit *orbit, const gb_melnikov_forcing *forcing,
+                       gb_melnikov_weight weight, double t0, double *value);
+
+typedef struct gb_melnikov_criterion {
+    int eq93;                    /* ν₁A₁* + ν₂A₂* > μD */
+    int sign_change;             /* max over t₀ of the oscillatory part > μD */
+    double oscillatory_max;      /* that maximum */
+    double t0_max;               /* where it is reached, in [0, 2π/ω) */
+} gb_melnikov_criterion;
+
+void gb_melnikov_judge(const gb_melnikov_integrals *integrals, const gb_melnikov_forcing *forcing,
+                       gb_melnikov_criterion *out);
+
+/* The critical scale of the forcing: the smallest s such that (sν₁, sν₂) makes M(t₀) change sign, by
+ * eq 93 (s = μD/(ν₁A₁* + ν₂A₂*)) and exactly (s = μD / max oscillatory part at s = 1). */
+void gb_melnikov_threshold(const gb_melnikov_integrals *integrals, const gb_melnikov_forcing *forcing, double *by_eq93,
+                           double *exact);
+
+/* The first-order splitting distance ε M(t₀)/|f(x_h(0))| predicted at the orbit's t = 0 point, and its
+ * direct measurement for a perturbation of damping alone (G = −μp; the saddle stays put): the unstable
+ * manifold integrated forward and the stable one backward (rk8pd) to the line through x_h(0) normal to
+ * the flow, their signed distance along (−f_p, f_q)/|f|. */
+int gb_melnikov_split_damped(const gb_melnikov_model *model, const gb_melnikov_orbit *orbit, double epsilon_mu,
+                             double *measured, double *flow_speed);
+
+/* The second, independent orbit: the flow of eq 78 (rk8pd) started on the saddle's unstable direction,
+ * and the time it takes from q = q_a to q = q_b (both on the way out from the saddle, before a loop's
+ * turning point). To compare with gb_melnikov_time(q_b) − gb_melnikov_time(q_a). */
+int gb_melnikov_flight_time(const gb_melnikov_model *model, const gb_melnikov_orbit *orbit, double q_a, double q_b,
+                            double *dt);
+
+#endif

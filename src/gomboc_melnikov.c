@@ -1,0 +1,199 @@
+/* gomboc melnikov — the reduced separatrix-splitting criterion of §7 for one scene's body and forcing. */
+#include "gomboc_cli.h"
+
+#include "gb_error.h"
+#include "gb_melnikov_body.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const char *usage_melnikov =
+    "usage: gomboc melnikov CASE [--json] [--mass top|variable] [--weight exact|paper]\n"
+    "                            [--curve FILE] [--curve-points N]\n"
+    "\n"
+    "  CASE            a scene file: its body, mass, g, damping and forcing (omega, A1, A2, psi)\n"
+    "  --json          print one JSON object: q_u, E_s, D, C1, S1, C2, S2, A1_star, A2_star, mu_D,\n"
+    "                  eq93_holds, sign_change, epsilon, threshold_A1 (by eq 93 and exact), the body's\n"
+    "                  top, rocking axis and contact ties\n"
+    "  --mass          top (default): M frozen at M(q_u), the reading under which the reduced model is\n"
+    "                  Hamiltonian; variable: M(q) of the body, which jumps at contact ties\n"
+    "  --weight        exact (default): the splitting integral of q_dot G; paper: eq 86 as written (p G)\n"
+    "  --curve FILE    write the threshold A1 against omega as CSV (the scene's A2/A1 and psi), over\n"
+    "                  omega +- 33 %% of the scene's in --curve-points points (default 13)\n"
+    "\n"
+    "The reduced model rocks the body about a horizontal axis through its top (docs/melnikov.md).\n";
+
+static int parse_choice(const char *option, const char *value, const char *a, const char *b, int *out)
+{
+    if (!strcmp(value, a)) return *out = 0, 0;
+    if (!strcmp(value, b)) return *out = 1, 0;
+    return cli_input_error("melnikov", "%s %s: unknown (allowed: %s, %s)", option, value, a, b);
+}
+
+typedef struct melnikov_run {
+    gb_melnikov_model model;
+    gb_melnikov_orbit orbit;
+    gb_melnikov_weight weight;
+    double mu;            /* c / M(q_u) */
+    double psi;           /* of the scene */
+} melnikov_run;
+
+/* The integrals at omega and the critical A1 by both conditions (A2 scaled with it). */
+static int threshold_at(const melnikov_run *r, double omega, double A1, double A2, gb_melnikov_integrals *I,
+                        double *by_eq93, double *exact)
+{
+    int status = gb_melnikov_integrals_compute(&r->model, &r->orbit, omega, r->weight, I);
+    if (status) return status;
+    *by_eq93 = *exact = NAN; /* no fundamental to scale */
+    if (A1 == 0.0) return GB_OK;
+    const gb_melnikov_forcing f = {r->mu, A1, A2, omega, r->psi};
+    double s93, sx;
+    gb_melnikov_threshold(I, &f, &s93, &sx);
+    *by_eq93 = s93 * A1, *exact = sx * A1;
+    return GB_OK;
+}
+
+int command_melnikov(int argc, char **argv)
+{
+    const char *case_path = NULL, *curve = NULL, *points_text = NULL;
+    int json = 0, variable_mass = 0, paper_weight = 0;
+    static const char *const valued[] = {"--mass", "--weight", "--curve", "--curve-points", NULL};
+    for (int i = 0; i < argc; i++) {
+        const char *opt = argv[i], *value = NULL;
+        if (opt[0] != '-' || opt[1] == '\0') {
+            if (case_path) return cli_input_error("melnikov", "a second case file '%s'%s", opt, " (allowed: one CASE)");
+            case_path = opt;
+            continue;
+        }
+        const int kind = cli_next_option("melnikov", argc, argv, &i, usage_melnikov, valued,
+                                         " (allowed: --json, --mass, --weight, --curve, --curve-points, --help)", NULL,
+                                         &json, &value);
+        if (kind != CLI_VALUE) {
+            if (kind == CLI_NEXT) continue;
+            return kind == CLI_HELP ? 0 : kind;
+        }
+        int bad = 0;
+        if (!strcmp(opt, "--mass")) bad = parse_choice(opt, value, "top", "variable", &variable_mass);
+        else if (!strcmp(opt, "--weight")) bad = parse_choice(opt, value, "exact", "paper", &paper_weight);
+        else if (!strcmp(opt, "--curve")) curve = value;
+        else points_text = value;
+        if (bad) return bad;
+    }
+    if (!case_path) return cli_input_error("melnikov", "missing %s%s", "CASE", " (allowed: a scene file, e.g. cases/table1-gomboc-I.ini)");
+    double points = 13;
+    if (points_text && cli_number("melnikov", "--curve-points", points_text, 2, 1000, 0, "an integer from 2 to 1000", &points))
+        return EXIT_INPUT;
+    if (points != floor(points))
+        return cli_input_error("melnikov", "--curve-points %s: not an integer (allowed: an integer from 2 to 1000)", points_text);
+    if (curve && cli_output_check("melnikov", "--curve", curve)) return EXIT_INPUT;
+    gb_case scene;
+    int status = gb_case_load(case_path, &scene);
+    if (status) return cli_failure("melnikov", status);
+    const gb_forcing *F = &scene.dynamics.forcing;
+    if (!(F->g > 0.0))
+        return cli_input_error("melnikov", "%s: [forcing] g = %g: without gravity the reduced potential has no saddle (allowed: g > 0)",
+                               case_path, F->g);
+    if (cli_parse_only) return 0;
+
+    gb_melnikov_body *body = NULL;
+    status = gb_melnikov_body_create(&scene.body, scene.dynamics.mass, F->g, 256, &body);
+    if (status) return cli_failure("melnikov", status);
+    melnikov_run r = {.weight = paper_weight ? GB_MELNIKOV_PAPER : GB_MELNIKOV_EXACT, .psi = F->psi};
+    r.model = gb_melnikov_body_model(body, variable_mass ? GB_MELNIKOV_MASS_VARIABLE : GB_MELNIKOV_MASS_AT_TOP);
+    status = gb_melnikov_orbit_find(&r.model, &r.orbit);
+    gb_melnikov_values top;
+    if (!status) status = r.model.eval(r.model.context, r.orbit.q_u, &top);
+    gb_melnikov_integrals I;
+    double t93 = NAN, tx = NAN;
+    gb_melnikov_criterion c = {0};
+    if (!status) {
+        r.mu = scene.dynamics.damping / top.M;
+        status = threshold_at(&r, F->omega, F->a1, F->a2, &I, &t93, &tx);
+        const gb_melnikov_forcing f = {r.mu, F->a1, F->a2, F->omega, F->psi};
+        gb_melnikov_judge(&I, &f, &c);
+    }
+    cJSON *root = NULL;
+    FILE *csv = NULL;
+    cli_outputs set = {0};
+    if (!status && curve) {
+        csv = cli_outputs_open(&set, curve, &status);
+        if (csv && fputs("omega,threshold_A1_eq93,threshold_A1_exact,D,A1_star,A2_star\n", csv) < 0) status = GB_EIO;
+        for (int k = 0; !status && k < (int)points; k++) {
+            const double omega = F->omega * (2.0 / 3.0 + (2.0 / 3.0) * k / (points - 1.0));
+            gb_melnikov_integrals J;
+            double a, b;
+            status = threshold_at(&r, omega, F->a1, F->a2, &J, &a, &b);
+            if (!status && fprintf(csv, "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", omega, a, b, J.D, J.A1, J.A2) < 0)
+                status = gb_error_set(GB_EIO, "cannot write '%s'", curve);
+        }
+        if (status == GB_EIO) status = gb_error_set(GB_EIO, "cannot write '%s'", curve);
+    }
+    status = cli_outputs_commit(&set, status);
+    gb_melnikov_body_info info;
+    gb_melnikov_body_get_info(body, &info);
+    if (!status) {
+        root = cJSON_CreateObject();
+        cJSON_AddStringToObject(root, "case", case_path);
+        cJSON_AddStringToObject(root, "morphology", scene.body.morphology->name);
+        cli_json_add(root, "beta", scene.body.beta);
+        cJSON_AddStringToObject(root, "mass_reading", variable_mass ? "variable" : "top");
+        cJSON_AddStringToObject(root, "weight", paper_weight ? "paper" : "exact");
+        cli_json_add(root, "q_u", r.orbit.q_u);
+        cli_json_add(root, "E_s", r.orbit.E_s);
+        cli_json_add(root, "U2", r.orbit.curvature);
+        cli_json_add(root, "M_u", top.M);
+        cli_json_add(root, "saddle_rate", r.orbit.rate);
+        cli_json_add(root, "t0_point", r.orbit.q0);
+        cli_json_add(root, "D", I.D);
+        cli_json_add(root, "C1", I.C1);
+        cli_json_add(root, "S1", I.S1);
+        cli_json_add(root, "C2", I.C2);
+        cli_json_add(root, "S2", I.S2);
+        cli_json_add(root, "A1_star", I.A1);
+        cli_json_add(root, "A2_star", I.A2);
+        cli_json_add(root, "mu", r.mu);
+        cli_json_add(root, "mu_D", r.mu * I.D);
+        cli_json_add(root, "nu1_A1_plus_nu2_A2", F->a1 * I.A1 + F->a2 * I.A2);
+        cli_json_add(root, "oscillatory_max", c.oscillatory_max);
+        cJSON_AddBoolToObject(root, "eq93_holds", c.eq93);
+        cJSON_AddBoolToObject(root, "sign_change", c.sign_change);
+        cJSON *eps = cJSON_AddObjectToObject(root, "epsilon");
+        cli_json_add(eps, "forcing", (fabs(F->a1) + fabs(F->a2)) / F->g);
+        cli_json_add(eps, "damping", r.mu / r.orbit.rate);
+        cJSON *th = cJSON_AddObjectToObject(root, "threshold_A1");
+        cli_json_add(th, "eq93", t93);
+        cli_json_add(th, "exact", tx);
+        cJSON *b = cJSON_AddObjectToObject(root, "body");
+        cJSON_AddItemToObject(b, "top", cli_json_vector(info.top, 3));
+        cli_json_add(b, "r_max", info.r_max);
+        cJSON_AddItemToObject(b, "rocking_direction", cli_json_vector(info.rocking, 3));
+        cJSON_AddItemToObject(b, "axis", cli_json_vector(info.axis, 3));
+        cJSON_AddItemToObject(b, "height_curvatures", cli_json_vector(info.curvatures, 2));
+        cli_json_add(b, "contact_ties", (double)info.kinks);
+        const size_t shown = info.kinks < 16 ? info.kinks : 16;
+        cJSON_AddItemToObject(b, "tie_q", cli_json_vector(info.kink_q, (int)shown));
+        cJSON_AddItemToObject(b, "tie_dH_jump", cli_json_vector(info.kink_jump, (int)shown));
+    }
+    gb_melnikov_body_free(body);
+    if (status) {
+        cJSON_Delete(root);
+        return cli_failure("melnikov", status);
+    }
+    if (json) cli_print_json(root);
+    else {
+        printf("%s: Gomboc %s, beta = %g; the reduced model rocks over the top (r_max = %.6g)\n", case_path,
+               scene.body.morphology->name, scene.body.beta, info.r_max);
+        printf("  %zu contact ties over one turn (two-point contacts, where U' jumps)\n", info.kinks);
+        printf("  saddle q_u = %.3g, U'' = %.6g, M(q_u) = %.6g, rate %.6g 1/s\n", r.orbit.q_u, r.orbit.curvature, top.M, r.orbit.rate);
+        printf("  D = %.6g, A1* = %.6g, A2* = %.6g at omega = %g (weight %s, mass %s)\n", I.D, I.A1, I.A2, F->omega,
+               paper_weight ? "paper" : "exact", variable_mass ? "variable" : "top");
+        printf("  mu D = %.6g; nu1 A1* + nu2 A2* = %.6g (eq 93 %s); largest oscillatory part %.6g (sign change: %s)\n",
+               r.mu * I.D, F->a1 * I.A1 + F->a2 * I.A2, c.eq93 ? "holds" : "does not hold", c.oscillatory_max,
+               c.sign_change ? "yes" : "no");
+        printf("  threshold A1: %.6g by eq 93, %.6g exact (m/s2, A2/A1 and psi of the scene)\n", t93, tx);
+    }
+    cJSON_Delete(root);
+    return 0;
+}
