@@ -31,7 +31,7 @@ BENCH_BIN  := $(BUILD)/bench-gomboc
 
 .PHONY: all deps run verify verify-full bench references report install clean \
         build run-only verify-only references-only bench-only fuzz fuzz-only sanitize sanitize-only \
-        valgrind valgrind-only install-only example-only scans scans-only
+        valgrind valgrind-only install-only example-only scans scans-only study study-only
 
 all: deps
 	@$(MAKE) --no-print-directory build
@@ -119,6 +119,19 @@ scans-only: $(BIN)
 	@mkdir -p $(OUT)/scans
 	status=0; for s in $(SCANS); do $(BIN) scan $$s --out $(OUT)/scans --resume || { status=$$?; break; }; done; \
 	sh scripts/gate-stamp.sh $(GATES) scans $$status "the $(words $(SCANS)) maps of cases/scans"; \
+	$(PYTHON) reports/make_report.py $(OUT) "$(CC)" "$(WARN) $(CFLAGS)" || status=1; exit $$status
+
+# --- the ensembles of section 8.2 (cases/studies): 32 random initial attitudes per body, 3000 periods
+# each, lambda over the record and its halves; resumable like the scans (about 6 minutes on 2 cores).
+STUDIES := $(sort $(wildcard cases/studies/*.ini))
+
+study: deps
+	@$(MAKE) --no-print-directory study-only
+
+study-only: $(BIN)
+	@mkdir -p $(OUT)/studies
+	status=0; for s in $(STUDIES); do $(BIN) scan $$s --out $(OUT)/studies --resume || { status=$$?; break; }; done; \
+	sh scripts/gate-stamp.sh $(GATES) study $$status "the $(words $(STUDIES)) ensembles of cases/studies"; \
 	$(PYTHON) reports/make_report.py $(OUT) "$(CC)" "$(WARN) $(CFLAGS)" || status=1; exit $$status
 
 # --- quality gates on bad input and memory; each writes $(OUT)/gates/GATE.json for the report ----------

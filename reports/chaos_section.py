@@ -9,7 +9,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-from common import layout, load_json, save_figure  # noqa: E402
+from common import finish_figure, layout, load_json, section_start  # noqa: E402
 
 
 def figure_9(out, records):
@@ -23,17 +23,14 @@ def figure_9(out, records):
         ax.set_ylabel("1/s")
     axes[0].legend(fontsize=8)
     axes[-1].set_xlabel("forcing period")
-    fig.tight_layout()
-    save_figure(fig, os.path.join(out, "fig9-lyapunov.png"))
-    plt.close(fig)
+    finish_figure(fig, os.path.join(out, "fig9-lyapunov.png"))
 
 
 def chaos_section(out, rows):
-    lines = ["## Is the chaos real? (sections 6, 8.2)", ""]
-    path = os.path.join(out, "chaos.json")
-    if not os.path.exists(path):
-        return lines + ["(chaos data missing: the test did not write it)", ""]
-    data = load_json(path)
+    lines, data = section_start(out, "Is the chaos real? (sections 6, 8.2)", "chaos.json",
+                                "chaos data missing: the test did not write it")
+    if data is None:
+        return lines
     periods = data["periods"]
     lines += ["The maximal Lyapunov exponent by the pair estimator of eq 77: two trajectories, the second put back at",
               f"delta0 along the current separation once per forcing period; {periods:g} periods from R0 = I, omega0 = 0;",

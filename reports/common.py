@@ -70,3 +70,21 @@ def layout(row, lead=" ("):
     if not row.get("warmup_found", True):
         text += ", warm-up not found"
     return f"{lead}{text}{')' if lead == ' (' else ''}"
+
+
+def finish_figure(fig, path):
+    """Lay out, save (atomically, as save_figure does) and close a figure."""
+    import matplotlib.pyplot as plt
+    fig.tight_layout()
+    save_figure(fig, path)
+    plt.close(fig)
+
+
+def section_start(out, title, name, missing):
+    """A report section's heading and its data file OUT/name: (lines, data), data None (and the lines saying
+    `missing`) when the harness did not write it."""
+    lines = [f"## {title}", ""]
+    path = os.path.join(out, name)
+    if not os.path.exists(path):
+        return lines + [f"({missing})", ""], None
+    return lines, load_json(path)

@@ -23,7 +23,9 @@ from common import layout, load_json, save_figure, shape_summary_lines, write_at
 from contact_section import contact_section  # noqa: E402
 from dynamics_section import dynamics_section  # noqa: E402
 from chaos_section import chaos_section  # noqa: E402
+from melnikov_section import melnikov_section  # noqa: E402
 from scan_section import scan_section  # noqa: E402
+from study_section import study_section  # noqa: E402
 
 CHECKS_SCHEMA = 4  # verify/gb_check.h GB_CHECK_SCHEMA: {"schema": 4, "tests": [...], "rows": [...]}; findings carry verdict and rule
 
@@ -42,7 +44,8 @@ GATES = (("fuzz", "make fuzz", "the scene reader and the option parser under lib
          ("valgrind", "make valgrind", "one short scene of each model, shape and contact under memcheck"),
          ("verify-full", "make verify-full", "every check and the long studies (10000-period records)"),
          ("bench", "make bench", "speed ratios measured side by side in one run"),
-         ("scans", "make scans", "the maps of Figs 10-13 (cases/scans), 25 x 25 points each"))
+         ("scans", "make scans", "the maps of Figs 10-13 (cases/scans), 25 x 25 points each"),
+         ("study", "make study", "the ensembles of section 8.2 (cases/studies), 32 initial attitudes each"))
 
 
 def convergence(out):
@@ -206,6 +209,8 @@ def main():
     lines += contact_section(out, rows)
     lines += dynamics_section(out, rows)
     lines += chaos_section(out, rows)
+    lines += melnikov_section(out, rows)
+    lines += study_section(out)
     lines += scan_section(out)
     lines += ["## Error against run time", "",
               "Each numeric check's relative error against its oracle, against the wall time since the",

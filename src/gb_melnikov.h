@@ -62,6 +62,7 @@ typedef enum gb_melnikov_weight { GB_MELNIKOV_EXACT = 0, GB_MELNIKOV_PAPER = 1 }
 typedef struct gb_melnikov_integrals {
     double omega;
     double D, C1, S1, C2, S2;    /* eqs 88–90 with the chosen weight */
+    double D_mass;               /* ∫ w p/M dt: the damping integral of −c q̇ = −(c/M(q)) p */
     double A1, A2;               /* eq 92 */
 } gb_melnikov_integrals;
 
@@ -70,6 +71,7 @@ int gb_melnikov_integrals_compute(const gb_melnikov_model *model, const gb_melni
 
 typedef struct gb_melnikov_forcing {
     double mu, nu1, nu2, omega, psi;
+    int damping_per_mass;        /* 0: G ∋ −μp (eq 85); 1: −μ p/M(q) (the full model's −c q̇, μ = c) */
 } gb_melnikov_forcing;
 
 /* Eq 91. */
@@ -100,6 +102,15 @@ void gb_melnikov_threshold(const gb_melnikov_integrals *integrals, const gb_meln
  * the flow, their signed distance along (−f_p, f_q)/|f|. */
 int gb_melnikov_split_damped(const gb_melnikov_model *model, const gb_melnikov_orbit *orbit, double epsilon_mu,
                              double *measured, double *flow_speed);
+
+/* The same under the whole perturbation εG at phase t₀: the saddle becomes a hyperbolic periodic orbit
+ * (a fixed point of the period map, by Newton); points of its unstable manifold at time t₀ are flowed
+ * from t₀ − kT, of its stable manifold from t₀ + kT, both found on the section normal to the flow at
+ * x_h(0) by bisection on their displacement along the map's eigenvectors. To compare with
+ * ε M(t₀)/|f(x_h(0))|. */
+int gb_melnikov_split_forced(const gb_melnikov_model *model, const gb_melnikov_orbit *orbit,
+                             const gb_melnikov_forcing *forcing, double epsilon, double t0, double *measured,
+                             double *flow_speed);
 
 /* The second, independent orbit: the flow of eq 78 (rk8pd) started on the saddle's unstable direction,
  * and the time it takes from q = q_a to q = q_b (both on the way out from the saddle, before a loop's

@@ -5,6 +5,8 @@
 #include "gb_parse.h"
 #include "gb_run.h"
 
+#include <gsl/gsl_rng.h>
+
 #include <inttypes.h>
 #include <math.h>
 #include <stdio.h>
@@ -146,8 +148,8 @@ static int scan_handler(gb_ini_reader *ini, void *user, const char *section, con
     }
     const int s = !strcmp(section, "x") ? 1 : 2;
     gb_scan_axis *a = &scan->axis[s - 1];
-    static const char *const names[] = {"key", "from", "to", "count", "scale"};
-    for (int k = 0; k < 5; k++) {
+    static const char *const names[] = {"key", "from", "to", "count", "scale", "seed"};
+    for (int k = 0; k < 6; k++) {
         if (strcmp(key, names[k])) continue;
         if (!once(ini, r, s, k, section, key, value)) return 0;
         switch (k) {
@@ -155,21 +157,29 @@ static int scan_handler(gb_ini_reader *ini, void *user, const char *section, con
         case 1: return number(ini, section, key, value, -1e6, 1e6, &a->from);
         case 2: return number(ini, section, key, value, -1e6, 1e6, &a->to);
         case 3: return count(ini, section, key, value, 1, GB_SCAN_AXIS_MAX, &a->count);
-        default:
+        case 4:
             if (!strcmp(value, "linear")) a->scale = GB_SCAN_LINEAR;
             else if (!strcmp(value, "pi")) a->scale = GB_SCAN_PI;
-            else return gb_ini_fail(ini, "[%s] scale = %s: unknown scale (allowed: linear, pi)", section, value);
+            else if (!strcmp(value, "random")) a->scale = GB_SCAN_RANDOM;
+            else return gb_ini_fail(ini, "[%s] scale = %s: unknown scale (allowed: linear, pi, random)", section, value);
+            return 1;
+        default: {
+            size_t seed = 0;
+            if (!count(ini, section, key, value, 0, 4294967295ull, &seed)) return 0;
+            a->seed = (unsigned long)seed;
             return 1;
         }
+        }
     }
-    return gb_ini_fail(ini, "[%s] %s = %s: unknown key (allowed in [%s]: key, from, to, count, scale)", section, key, value,
-                       section);
+    return gb_ini_fail(ini, "[%s] %s = %s: unknown key (allowed in [%s]: key, from, to, count, scale, seed)", section, key,
+                       value, section);
 }
 
 size_t gb_scan_points(const gb_scan *scan) { return scan->axis[0].count * scan->axis[1].count; }
 
 static double axis_value(const gb_scan_axis *a, size_t k)
 {
+    if (a->scale == GB_SCAN_RANDOM) return (double)k;
     const double u = a->count > 1 ? a->from + (a->to - a->from) * (double)k / (double)(a->count - 1) : a->from;
     return a->scale == GB_SCAN_PI ? u * M_PI : u;
 }
@@ -184,10 +194,12 @@ int gb_scan_point_case(const gb_scan *scan, size_t index, gb_case *out)
 {
     double x, y;
     gb_scan_coordinates(scan, index, &x, &y);
-    char xv[40], yv[40], periods[40], transient[24], origin_x[GB_SCAN_PATH_MAX + 48], origin_y[GB_SCAN_PATH_MAX + 48],
+    char xv[160], yv[160], periods[40], transient[24], origin_x[GB_SCAN_PATH_MAX + 48], origin_y[GB_SCAN_PATH_MAX + 48],
         origin[GB_SCAN_PATH_MAX + 16];
-    snprintf(xv, sizeof xv, "%.17g", x);
-    snprintf(yv, sizeof yv, "%.17g", y);
+    if (scan->axis[0].scale == GB_SCAN_RANDOM) gb_scan_random_attitude(scan->axis[0].seed, (size_t)x, xv, sizeof xv);
+    else snprintf(xv, sizeof xv, "%.17g", x);
+    if (scan->axis[1].scale == GB_SCAN_RANDOM) gb_scan_random_attitude(scan->axis[1].seed, (size_t)y, yv, sizeof yv);
+    else snprintf(yv, sizeof yv, "%.17g", y);
     snprintf(periods, sizeof periods, "%.17g", scan->periods);
     snprintf(transient, sizeof transient, "%zu", scan->transient_periods);
     snprintf(origin_x, sizeof origin_x, "%s:%d (point %zu)", scan->path, scan->axis[0].line, index);
@@ -245,10 +257,20 @@ int gb_scan_load(const char *path, gb_scan *out)
     for (int s = 0; s < 2; s++) {
         const char *name = s ? "y" : "x";
         gb_scan_axis *a = &out->axis[s];
-        if (!r.seen[s + 1][1] || !r.seen[s + 1][2] || !r.seen[s + 1][3])
+        const int random = a->scale == GB_SCAN_RANDOM, is_attitude = !strcmp(a->section, "initial") && !strcmp(a->key, "attitude");
+        if (random != is_attitude)
+            return gb_error_set(GB_EINVAL, "%s:%d: [%s] key = %s.%s with scale = %s (allowed: initial.attitude with scale = "
+                                "random and a seed, every other key with linear or pi)", path, a->line, name, a->section, a->key,
+                                random ? "random" : a->scale == GB_SCAN_PI ? "pi" : "linear");
+        if (random && (!r.seen[s + 1][3] || !r.seen[s + 1][5] || r.seen[s + 1][1] || r.seen[s + 1][2]))
+            return gb_error_set(GB_EINVAL, "%s: [%s] a random axis takes count and seed, not from or to (allowed: see "
+                                "cases/README.md, \"Scan files\")", path, name);
+        if (!random && r.seen[s + 1][5])
+            return gb_error_set(GB_EINVAL, "%s:%d: [%s] seed: only a random axis takes a seed", path, r.seen[s + 1][5], name);
+        if (!random && (!r.seen[s + 1][1] || !r.seen[s + 1][2] || !r.seen[s + 1][3]))
             return gb_error_set(GB_EINVAL, "%s: [%s] needs from, to and count (allowed: see cases/README.md, \"Scan files\")",
                                 path, name);
-        if (a->count > 1 && !(a->to > a->from))
+        if (!random && a->count > 1 && !(a->to > a->from))
             return gb_error_set(GB_EINVAL, "%s:%d: [%s] to = %.17g: an empty range (allowed: to > from = %.17g when count > 1)",
                                 path, r.seen[s + 1][2], name, a->to, a->from);
     }
@@ -278,6 +300,28 @@ int gb_scan_load(const char *path, gb_scan *out)
     for (size_t k = 0; k < gb_scan_points(out) && !status; k++) status = gb_scan_point_case(out, k, &scene);
     if (status) gb_scan_free(out);
     return status;
+}
+
+void gb_scan_random_attitude(unsigned long seed, size_t k, char *text, size_t size)
+{
+    /* Shoemake's uniform quaternion from three uniform numbers of the k-th draw. */
+    gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
+    double u[3] = {0.5, 0.5, 0.5};
+    if (rng) {
+        gsl_rng_set(rng, seed + 1000003ul * (unsigned long)k);
+        for (int i = 0; i < 3; i++) u[i] = gsl_rng_uniform(rng);
+        gsl_rng_free(rng);
+    }
+    const double a = sqrt(1.0 - u[0]), b = sqrt(u[0]);
+    double q[4] = {b * cos(2 * M_PI * u[2]), a * sin(2 * M_PI * u[1]), a * cos(2 * M_PI * u[1]), b * sin(2 * M_PI * u[2])};
+    if (q[0] < 0.0) /* −q is the same rotation: keep the angle in [0, π] */
+        for (int i = 0; i < 4; i++) q[i] = -q[i];
+    const double n = sqrt(q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+    if (!(n > 0.0)) {
+        snprintf(text, size, "identity");
+        return;
+    }
+    snprintf(text, size, "axis-angle %.17g,%.17g,%.17g,%.17g", q[1] / n, q[2] / n, q[3] / n, 2.0 * atan2(n, q[0]));
 }
 
 /* ---- a point ----------------------------------------------------------------------------------- */
@@ -322,7 +366,8 @@ int gb_scan_point_run(const gb_scan *scan, size_t index, gb_scan_metrics *out)
     gb_run_result r;
     status = gb_run(&scene, &sinks, &r);
     if (status) return status;
-    gb_scan_metrics m = {.lambda = NAN, .lambda_error = NAN, .strobe_sd = NAN, .geff_nonpositive = NAN, .lift_off = NAN};
+    gb_scan_metrics m = {.lambda = NAN, .lambda_error = NAN, .strobe_sd = NAN, .geff_nonpositive = NAN, .lift_off = NAN,
+                         .lambda_early = NAN, .lambda_late = NAN};
     gb_scan_coordinates(scan, index, &m.x, &m.y);
     double rms, height, rate;
     gb_scan_accumulated(&acc, &rms, &height, &rate);
@@ -338,7 +383,17 @@ int gb_scan_point_run(const gb_scan *scan, size_t index, gb_scan_metrics *out)
         m.geff_nonpositive = (double)r.monitors.geff_nonpositive / (double)r.samples;
         m.lift_off = (double)r.monitors.lift_off / (double)r.samples;
     }
-    if (r.has_lyapunov) m.lambda = r.lyapunov.lambda_max, m.lambda_error = r.lyapunov.error_bar;
+    if (r.has_lyapunov) {
+        const gb_lyapunov_result *l = &r.lyapunov;
+        m.lambda = l->lambda_max, m.lambda_error = l->error_bar;
+        const size_t half = l->intervals / 2;
+        double early = 0.0, late = 0.0;
+        for (size_t k = 0; k < l->intervals; k++) {
+            if (k < half) early += l->instantaneous[k];
+            else late += l->instantaneous[k];
+        }
+        m.lambda_early = early / (double)half, m.lambda_late = late / (double)(l->intervals - half);
+    }
     m.certificate_undecided = r.has_certificate ? r.certificate.undecided : 0;
     m.state_fingerprint = r.state_fingerprint;
     m.switch_fingerprint = r.switch_fingerprint;
@@ -352,15 +407,17 @@ int gb_scan_point_run(const gb_scan *scan, size_t index, gb_scan_metrics *out)
 const char *gb_scan_csv_header(void)
 {
     return "index,x,y,omega_rms,switch_rate,strobe_sd,mean_height,geff_nonpositive_fraction,lift_off_fraction,"
-           "lambda_max,lambda_error,certificate_undecided,state_fingerprint,switch_fingerprint\n";
+           "lambda_max,lambda_error,lambda_first_half,lambda_second_half,certificate_undecided,state_fingerprint,"
+           "switch_fingerprint\n";
 }
 
 int gb_scan_csv_row(const gb_scan_metrics *m, size_t index, char *out, size_t size)
 {
-    const int n = snprintf(out, size, "%zu,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%zu,%016" PRIx64
+    const int n = snprintf(out, size, "%zu,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%zu,%016" PRIx64
                            ",%016" PRIx64 "\n",
                            index, m->x, m->y, m->omega_rms, m->switch_rate, m->strobe_sd, m->mean_height,
-                           m->geff_nonpositive, m->lift_off, m->lambda, m->lambda_error, m->certificate_undecided,
+                           m->geff_nonpositive, m->lift_off, m->lambda, m->lambda_error, m->lambda_early, m->lambda_late,
+                           m->certificate_undecided,
                            m->state_fingerprint, m->switch_fingerprint);
     return n > 0 && (size_t)n < size ? GB_OK : gb_error_set(GB_EINVAL, "a scan row does not fit %zu bytes", size);
 }
@@ -369,7 +426,7 @@ int gb_scan_csv_parse(const char *line, size_t *index, gb_scan_metrics *out)
 {
     gb_scan_metrics m;
     double *fields[] = {&m.x, &m.y, &m.omega_rms, &m.switch_rate, &m.strobe_sd, &m.mean_height, &m.geff_nonpositive,
-                        &m.lift_off, &m.lambda, &m.lambda_error};
+                        &m.lift_off, &m.lambda, &m.lambda_error, &m.lambda_early, &m.lambda_late};
     char *end;
     const char *p = line;
     const unsigned long long i = strtoull(p, &end, 10);

@@ -19,13 +19,16 @@
 #define GB_SCAN_AXIS_MAX 10000
 #define GB_SCAN_PATH_MAX 4096
 
-typedef enum gb_scan_scale { GB_SCAN_LINEAR = 0, GB_SCAN_PI = 1 } gb_scan_scale;
+/* linear: from … to; pi: from … to times π; random: `count` attitudes drawn uniformly on the rotations
+ * (initial.attitude only), the k-th from a generator seeded with `seed` and k (the column holds k). */
+typedef enum gb_scan_scale { GB_SCAN_LINEAR = 0, GB_SCAN_PI = 1, GB_SCAN_RANDOM = 2 } gb_scan_scale;
 
 typedef struct gb_scan_axis {
     char section[32], key[32];  /* the scene key this axis sets */
     double from, to;            /* in the key's units; with scale = pi, in multiples of π */
     size_t count;               /* points along the axis (1: from alone) */
     gb_scan_scale scale;
+    unsigned long seed;         /* random: the generator's seed */
     int line;                   /* the scan file's line of `key`, for messages */
 } gb_scan_axis;
 
@@ -65,6 +68,9 @@ size_t gb_scan_points(const gb_scan *scan);
 /* The coordinates of point `index` (row-major: index = iy · count_x + ix), in the keys' own units. */
 void gb_scan_coordinates(const gb_scan *scan, size_t index, double *x, double *y);
 
+/* The k-th uniformly random attitude of a random axis, as the case file's "axis-angle X,Y,Z,ANGLE". */
+void gb_scan_random_attitude(unsigned long seed, size_t k, char *text, size_t size);
+
 /* The scene of point `index`. */
 int gb_scan_point_case(const gb_scan *scan, size_t index, gb_case *out);
 
@@ -73,6 +79,7 @@ typedef struct gb_scan_metrics {
     double omega_rms, switch_rate, strobe_sd, mean_height;
     double geff_nonpositive, lift_off;
     double lambda, lambda_error;
+    double lambda_early, lambda_late;  /* means of λ_inst over the first and the second half of the record */
     size_t certificate_undecided;      /* continuous contact: certificate checks left undecided */
     uint64_t state_fingerprint, switch_fingerprint; /* as `gomboc run` prints them */
 } gb_scan_metrics;

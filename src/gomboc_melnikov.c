@@ -11,7 +11,7 @@
 
 static const char *usage_melnikov =
     "usage: gomboc melnikov CASE [--json] [--mass top|variable] [--weight exact|paper]\n"
-    "                            [--curve FILE] [--curve-points N]\n"
+    "                            [--damping paper|exact] [--curve FILE] [--curve-points N]\n"
     "\n"
     "  CASE            a scene file: its body, mass, g, damping and forcing (omega, A1, A2, psi)\n"
     "  --json          print one JSON object: q_u, E_s, D, C1, S1, C2, S2, A1_star, A2_star, mu_D,\n"
@@ -20,6 +20,8 @@ static const char *usage_melnikov =
     "  --mass          top (default): M frozen at M(q_u), the reading under which the reduced model is\n"
     "                  Hamiltonian; variable: M(q) of the body, which jumps at contact ties\n"
     "  --weight        exact (default): the splitting integral of q_dot G; paper: eq 86 as written (p G)\n"
+    "  --damping       paper (default): -mu p with mu = c / M(q_u); exact: -c q_dot = -(c / M(q)) p (the\n"
+    "                  same when M is frozen at the top)\n"
     "  --curve FILE    write the threshold A1 against omega as CSV (the scene's A2/A1 and psi), over\n"
     "                  omega +- 33 %% of the scene's in --curve-points points (default 13)\n"
     "\n"
@@ -36,7 +38,8 @@ typedef struct melnikov_run {
     gb_melnikov_model model;
     gb_melnikov_orbit orbit;
     gb_melnikov_weight weight;
-    double mu;            /* c / M(q_u) */
+    double mu;            /* c / M(q_u), or c for the exact damping */
+    int damping_exact;
     double psi;           /* of the scene */
 } melnikov_run;
 
@@ -48,7 +51,7 @@ static int threshold_at(const melnikov_run *r, double omega, double A1, double A
     if (status) return status;
     *by_eq93 = *exact = NAN; /* no fundamental to scale */
     if (A1 == 0.0) return GB_OK;
-    const gb_melnikov_forcing f = {r->mu, A1, A2, omega, r->psi};
+    const gb_melnikov_forcing f = {r->mu, A1, A2, omega, r->psi, r->damping_exact};
     double s93, sx;
     gb_melnikov_threshold(I, &f, &s93, &sx);
     *by_eq93 = s93 * A1, *exact = sx * A1;
@@ -58,8 +61,8 @@ static int threshold_at(const melnikov_run *r, double omega, double A1, double A
 int command_melnikov(int argc, char **argv)
 {
     const char *case_path = NULL, *curve = NULL, *points_text = NULL;
-    int json = 0, variable_mass = 0, paper_weight = 0;
-    static const char *const valued[] = {"--mass", "--weight", "--curve", "--curve-points", NULL};
+    int json = 0, variable_mass = 0, paper_weight = 0, damping_exact = 0;
+    static const char *const valued[] = {"--mass", "--weight", "--damping", "--curve", "--curve-points", NULL};
     for (int i = 0; i < argc; i++) {
         const char *opt = argv[i], *value = NULL;
         if (opt[0] != '-' || opt[1] == '\0') {
@@ -68,7 +71,7 @@ int command_melnikov(int argc, char **argv)
             continue;
         }
         const int kind = cli_next_option("melnikov", argc, argv, &i, usage_melnikov, valued,
-                                         " (allowed: --json, --mass, --weight, --curve, --curve-points, --help)", NULL,
+                                         " (allowed: --json, --mass, --weight, --damping, --curve, --curve-points, --help)", NULL,
                                          &json, &value);
         if (kind != CLI_VALUE) {
             if (kind == CLI_NEXT) continue;
@@ -77,6 +80,7 @@ int command_melnikov(int argc, char **argv)
         int bad = 0;
         if (!strcmp(opt, "--mass")) bad = parse_choice(opt, value, "top", "variable", &variable_mass);
         else if (!strcmp(opt, "--weight")) bad = parse_choice(opt, value, "exact", "paper", &paper_weight);
+        else if (!strcmp(opt, "--damping")) bad = parse_choice(opt, value, "paper", "exact", &damping_exact);
         else if (!strcmp(opt, "--curve")) curve = value;
         else points_text = value;
         if (bad) return bad;
@@ -100,7 +104,8 @@ int command_melnikov(int argc, char **argv)
     gb_melnikov_body *body = NULL;
     status = gb_melnikov_body_create(&scene.body, scene.dynamics.mass, F->g, 256, &body);
     if (status) return cli_failure("melnikov", status);
-    melnikov_run r = {.weight = paper_weight ? GB_MELNIKOV_PAPER : GB_MELNIKOV_EXACT, .psi = F->psi};
+    melnikov_run r = {.weight = paper_weight ? GB_MELNIKOV_PAPER : GB_MELNIKOV_EXACT, .psi = F->psi,
+                      .damping_exact = damping_exact};
     r.model = gb_melnikov_body_model(body, variable_mass ? GB_MELNIKOV_MASS_VARIABLE : GB_MELNIKOV_MASS_AT_TOP);
     status = gb_melnikov_orbit_find(&r.model, &r.orbit);
     gb_melnikov_values top;
@@ -109,9 +114,9 @@ int command_melnikov(int argc, char **argv)
     double t93 = NAN, tx = NAN;
     gb_melnikov_criterion c = {0};
     if (!status) {
-        r.mu = scene.dynamics.damping / top.M;
+        r.mu = damping_exact ? scene.dynamics.damping : scene.dynamics.damping / top.M;
         status = threshold_at(&r, F->omega, F->a1, F->a2, &I, &t93, &tx);
-        const gb_melnikov_forcing f = {r.mu, F->a1, F->a2, F->omega, F->psi};
+        const gb_melnikov_forcing f = {r.mu, F->a1, F->a2, F->omega, F->psi, damping_exact};
         gb_melnikov_judge(&I, &f, &c);
     }
     cJSON *root = NULL;
@@ -140,6 +145,8 @@ int command_melnikov(int argc, char **argv)
         cli_json_add(root, "beta", scene.body.beta);
         cJSON_AddStringToObject(root, "mass_reading", variable_mass ? "variable" : "top");
         cJSON_AddStringToObject(root, "weight", paper_weight ? "paper" : "exact");
+        cJSON_AddStringToObject(root, "damping", damping_exact ? "exact: -c q_dot" : "paper: -mu p, mu = c / M(q_u)");
+        cli_json_add(root, "D_mass", I.D_mass);
         cli_json_add(root, "q_u", r.orbit.q_u);
         cli_json_add(root, "E_s", r.orbit.E_s);
         cli_json_add(root, "U2", r.orbit.curvature);
@@ -154,7 +161,7 @@ int command_melnikov(int argc, char **argv)
         cli_json_add(root, "A1_star", I.A1);
         cli_json_add(root, "A2_star", I.A2);
         cli_json_add(root, "mu", r.mu);
-        cli_json_add(root, "mu_D", r.mu * I.D);
+        cli_json_add(root, "mu_D", r.mu * (damping_exact ? I.D_mass : I.D));
         cli_json_add(root, "nu1_A1_plus_nu2_A2", F->a1 * I.A1 + F->a2 * I.A2);
         cli_json_add(root, "oscillatory_max", c.oscillatory_max);
         cJSON_AddBoolToObject(root, "eq93_holds", c.eq93);
@@ -190,7 +197,7 @@ int command_melnikov(int argc, char **argv)
         printf("  D = %.6g, A1* = %.6g, A2* = %.6g at omega = %g (weight %s, mass %s)\n", I.D, I.A1, I.A2, F->omega,
                paper_weight ? "paper" : "exact", variable_mass ? "variable" : "top");
         printf("  mu D = %.6g; nu1 A1* + nu2 A2* = %.6g (eq 93 %s); largest oscillatory part %.6g (sign change: %s)\n",
-               r.mu * I.D, F->a1 * I.A1 + F->a2 * I.A2, c.eq93 ? "holds" : "does not hold", c.oscillatory_max,
+               r.mu * (damping_exact ? I.D_mass : I.D), F->a1 * I.A1 + F->a2 * I.A2, c.eq93 ? "holds" : "does not hold", c.oscillatory_max,
                c.sign_change ? "yes" : "no");
         printf("  threshold A1: %.6g by eq 93, %.6g exact (m/s2, A2/A1 and psi of the scene)\n", t93, tx);
     }

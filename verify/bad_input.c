@@ -198,6 +198,8 @@ static const bad_row rows[] = {
     {"scan @CASE@ --out @D@", "[scan]\nbase = x.ini\n[z]\n", 0, 2, {"case.ini:3: unknown section [z]", "allowed: scan, x, y", ""}},
     {"scan @CASE@ --out @D@", "[scan]\nbase = x.ini\n[x]\nkey = omega\n", 0, 2, {"case.ini:4: [x] key = omega: not a scene key", "SECTION.KEY", ""}},
     {"scan @CASE@ --out @D@", "[scan]\nbase = x.ini\ntransient_periods = 100\n[x]\nkey = forcing.omega\nfrom = 10\nto = 20\ncount = 3\n[y]\nkey = forcing.A1\nfrom = 1\nto = 2\ncount = 2\n", 0, 2, {"case.ini:3: [scan] transient_periods = 100 leaves less than one period", "periods - 1 = 99", ""}},
+    {"scan @CASE@ --out @D@", "[scan]\nbase = x.ini\n[x]\nkey = forcing.omega\nscale = random\nseed = 1\ncount = 4\n[y]\nkey = forcing.A1\nfrom = 1\nto = 2\ncount = 2\n", 0, 2, {"[x] key = forcing.omega with scale = random", "initial.attitude with scale = random and a seed", ""}},
+    {"scan @CASE@ --out @D@", "[scan]\nbase = x.ini\n[x]\nkey = initial.attitude\nscale = random\nfrom = 0\ncount = 4\nseed = 1\n[y]\nkey = forcing.A1\nfrom = 1\nto = 2\ncount = 2\n", 0, 2, {"[x] a random axis takes count and seed, not from or to", "", ""}},
     {"scan @CASE@ --out @D@ --threads 0", "[scan]\n", 0, 2, {"--threads", "out of range", "an integer from 1 to 256"}},
     {"scan @CASE@ --out @D@ --json", "[scan]\n", 0, 2, {"unknown option '--json'", "--out, --resume, --threads", ""}},
     {"scan --out @D@", NULL, 0, 2, {"missing SCAN", "a scan file", ""}},
@@ -206,6 +208,7 @@ static const bad_row rows[] = {
     {"melnikov @CASE@", "[forcing]\ng = 0\n", 0, 2, {"[forcing] g = 0", "no saddle", "g > 0"}},
     {"melnikov @CASE@ --mass heavy", "[body]\nbeta = 0.1\n", 0, 2, {"--mass heavy: unknown", "allowed: top, variable", ""}},
     {"melnikov @CASE@ --weight p", "[body]\nbeta = 0.1\n", 0, 2, {"--weight p: unknown", "allowed: exact, paper", ""}},
+    {"melnikov @CASE@ --damping viscous", "[body]\nbeta = 0.1\n", 0, 2, {"--damping viscous: unknown", "allowed: paper, exact", ""}},
     {"melnikov @CASE@ --curve-points 1", "[body]\nbeta = 0.1\n", 0, 2, {"--curve-points", "out of range", "an integer from 2 to 1000"}},
     {"melnikov @CASE@ --curve @D@/sub", "[body]\nbeta = 0.1\n", 0, 2, {"--curve", "is not a regular file", ""}},
     /* The case file itself, and the output directory. */

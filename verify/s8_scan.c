@@ -342,6 +342,31 @@ static void test_point_out_of_range(void)
     remove_scan_dir(&d);
 }
 
+/* The random axis: the k-th attitude depends only on (seed, k), and the draws are uniform on the
+ * rotations: the rotation angle θ of a uniform rotation has the density (1 − cos θ)/π on [0, π], so its
+ * mean is π/2 + 2/π. */
+static void test_random_attitudes(void)
+{
+    enum { DRAWS = 4096 };
+    double sum = 0.0, sum2 = 0.0;
+    int same = 1;
+    for (size_t k = 0; k < DRAWS; k++) {
+        char a[160], b[160];
+        gb_scan_random_attitude(20261123ul, k, a, sizeof a);
+        gb_scan_random_attitude(20261123ul, k, b, sizeof b);
+        same = same && !strcmp(a, b);
+        double x, y, z, angle;
+        if (sscanf(a, "axis-angle %lf,%lf,%lf,%lf", &x, &y, &z, &angle) != 4) angle = NAN;
+        sum += angle, sum2 += angle * angle;
+    }
+    const double mean = sum / DRAWS, sd = sqrt(fmax(0.0, sum2 / DRAWS - mean * mean));
+    gb_check cd = {"8.3", "-", "random attitudes: the same (seed, k), the same text", "determinism", "exact"};
+    gb_check_true(&cd, same, "%s", same ? "4096 draws repeated identically" : "a draw differs");
+    gb_check cm = {"8.3", "-", "random attitudes: mean rotation angle of 4096 draws", "pi/2 + 2/pi (uniform on SO(3))",
+                   "4 standard errors of the mean (sd / sqrt 4096)"};
+    gb_check_close(&cm, mean, M_PI / 2 + 2 / M_PI, 0.0, 4.0 * sd / sqrt((double)DRAWS));
+}
+
 /* The maps of Figs 10–13 (cases/scans): each reads, every point's scene is valid, and Table 1's point
  * (ω = 18, A1 = 2, A2 = 1, ψ = π/3, the base scene's values) is a node of the grid. */
 static void test_shipped_scans(void)
@@ -389,6 +414,7 @@ int verify_register_s8_scan(void)
          "a scan's CSV does not depend on the thread count or on an interruption"},
         {"section 8.3: a point out of its key's range is refused before any run", test_point_out_of_range, NULL},
         {"Figs 10-13: the shipped maps read, and hold Table 1's point", test_shipped_scans, NULL},
+        {"ensembles: random initial attitudes, seeded and uniform on the rotations", test_random_attitudes, NULL},
         {NULL, NULL, NULL},
     };
     return verify_register_suite("Section 8.3: parameter scans", tests);

@@ -1,0 +1,93 @@
+"""Report section "Chaotic for good, for a while, or not at all? (section 8.2, ensembles)": the ensembles of
+cases/studies that `make study` last ran (OUT/studies/*-scan.csv): the distribution of λ over random
+initial attitudes, the two halves of each record, and a verdict by a rule fixed here before the data.
+Recomputes no physics."""
+import csv
+import math
+import os
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy  # noqa: E402
+
+from common import finish_figure, load_json  # noqa: E402
+
+# The rule, fixed before the data. A member is chaotic over its record when λ − 2σ > 0.01 1/s (the no-chaos
+# margin of section 8.2 at 2 batch-means errors: one member is a weak piece of evidence, the ensemble decides).
+# Its late half is chaotic when the second half's mean rate exceeds LATE = 0.05 1/s: a separation growing by
+# e^(0.05 t) over half a 3000-period record (about 520 s) grows by e^26, far above the noise of a half-record
+# mean. The ensemble is
+#   sustained  when 75 % or more of the members are chaotic in their late half,
+#   regular    when 25 % or fewer are chaotic over their whole record,
+#   transient  when neither, and the median late half is below the median early half by LATE or more while
+#              fewer than half the members are chaotic late (chaos that dies out, with state-dependent lifetimes),
+#   undecided  otherwise.
+# The claim "the forced motion is chaotic" (section 8.2) holds when sustained, fails when transient or regular.
+MARGIN, LATE = 0.01, 0.05
+
+
+def classify(rows):
+    lam = numpy.array([float(r["lambda_max"]) for r in rows])
+    err = numpy.array([float(r["lambda_error"]) for r in rows])
+    early = numpy.array([float(r["lambda_first_half"]) for r in rows])
+    late = numpy.array([float(r["lambda_second_half"]) for r in rows])
+    chaotic = float(numpy.mean(lam - 2 * err > MARGIN))
+    chaotic_late = float(numpy.mean(late > LATE))
+    if chaotic_late >= 0.75:
+        kind = "sustained"
+    elif chaotic <= 0.25:
+        kind = "regular"
+    elif numpy.median(early) - numpy.median(late) >= LATE and chaotic_late < 0.5:
+        kind = "transient"
+    else:
+        kind = "undecided"
+    return lam, err, early, late, chaotic, chaotic_late, kind
+
+
+def study_section(out):
+    lines = ["## Chaotic for good, for a while, or not at all? (section 8.2, ensembles)", ""]
+    folder = os.path.join(out, "studies")
+    files = sorted(f for f in os.listdir(folder) if f.endswith("-scan.csv")) if os.path.isdir(folder) else []
+    if not files:
+        return lines + ["No ensembles in this checkout: `make study` runs those of `cases/studies` (32 random initial "
+                        "attitudes per body, 3000 periods each, about 16 minutes on 2 cores) and writes them here.", ""]
+    stamp = os.path.join(out, "gates", "study.json")
+    when = ""
+    if os.path.exists(stamp):
+        s = load_json(stamp)
+        when = f" Made by `make study` on {s['date']} at commit {s['commit']} ({s['result']})."
+    lines += ["Each ensemble runs one scene from initial attitudes drawn uniformly on the rotations (seeded), and "
+              f"records λ over the whole record and over its two halves.{when} The rule (fixed in "
+              "`reports/study_section.py` before the data): *sustained* when 75 % or more of the members still have a "
+              f"rate above {LATE} 1/s in their second half; *regular* when 25 % or fewer have λ − 2σ > {MARGIN} 1/s over "
+              "their record; *transient* when the median second half falls below the median first half by "
+              f"{LATE} 1/s or more and fewer than half the members stay chaotic; *undecided* otherwise. The claim that "
+              "the forced motion is chaotic holds when sustained and fails when transient or regular.", "",
+              "| ensemble | members | λ median [quartiles] | λ − 2σ > 0.01 | first half, median | second half, median | "
+              "chaotic in the second half | reading | the paper's claim |", "|---|---|---|---|---|---|---|---|---|"]
+    fig, ax = plt.subplots(figsize=(8, 4))
+    for k, name in enumerate(files):
+        rows = list(csv.DictReader(open(os.path.join(folder, name))))
+        lam, err, early, late, chaotic, chaotic_late, kind = classify(rows)
+        q1, med, q3 = numpy.percentile(lam, [25, 50, 75])
+        verdict = {"sustained": "holds", "transient": "**fails** (transient)", "regular": "**fails** (regular)"}.get(kind, "*undecided*")
+        label = name.replace("-scan.csv", "")
+        lines.append(f"| {label} | {len(rows)} | {med:.3f} [{q1:.3f}, {q3:.3f}] | {chaotic:.0%} | {numpy.median(early):.3f} | "
+                     f"{numpy.median(late):.3f} | {chaotic_late:.0%} | {kind} | {verdict} |")
+        ax.plot([k - 0.1] * len(early), early, "o", ms=3, color="C0", label="first half" if k == 0 else None)
+        ax.plot([k + 0.1] * len(late), late, "o", ms=3, color="C3", label="second half" if k == 0 else None)
+        for e, l in zip(early, late):
+            ax.plot([k - 0.1, k + 0.1], [e, l], color="0.8", lw=0.5)
+    ax.axhline(LATE, color="k", lw=0.5, ls="--")
+    ax.set_xticks(range(len(files)))
+    ax.set_xticklabels([f.replace("-scan.csv", "").replace("ensemble-", "") for f in files], fontsize=8)
+    ax.set_ylabel("λ over the half record [1/s]")
+    ax.legend(fontsize=8)
+    ax.set_title("Each member's exponent over the first and the second half of its record", fontsize=9)
+    finish_figure(fig, os.path.join(out, "ensembles.png"))
+    lines += ["", "![ensembles](ensembles.png)", ""]
+    if not all(math.isfinite(x) for x in (chaotic, chaotic_late)):
+        lines.append("(an ensemble without λ: its scan file must list the lambda metric)")
+    return lines
