@@ -115,11 +115,15 @@ SCANS := $(sort $(wildcard cases/scans/*.ini))
 scans: deps
 	@$(MAKE) --no-print-directory scans-only
 
-scans-only: $(BIN)
-	@mkdir -p $(OUT)/scans
-	status=0; for s in $(SCANS); do $(BIN) scan $$s --out $(OUT)/scans --resume || { status=$$?; break; }; done; \
-	sh scripts/gate-stamp.sh $(GATES) scans $$status "the $(words $(SCANS)) maps of cases/scans"; \
+# $(call scan_all,FILES,GATE,WHAT): every scan file into $(OUT)/GATE (resuming any journal), the gate
+# stamped, the report regenerated.
+scan_all = mkdir -p $(OUT)/$(2); status=0; \
+	for s in $(1); do $(BIN) scan $$s --out $(OUT)/$(2) --resume || { status=$$?; break; }; done; \
+	sh scripts/gate-stamp.sh $(GATES) $(2) $$status "the $(words $(1)) $(3)"; \
 	$(PYTHON) reports/make_report.py $(OUT) "$(CC)" "$(WARN) $(CFLAGS)" || status=1; exit $$status
+
+scans-only: $(BIN)
+	$(call scan_all,$(SCANS),scans,maps of cases/scans)
 
 # --- the ensembles of section 8.2 (cases/studies): 32 random initial attitudes per body, 3000 periods
 # each, lambda over the record and its halves; resumable like the scans (about 6 minutes on 2 cores).
@@ -129,10 +133,7 @@ study: deps
 	@$(MAKE) --no-print-directory study-only
 
 study-only: $(BIN)
-	@mkdir -p $(OUT)/studies
-	status=0; for s in $(STUDIES); do $(BIN) scan $$s --out $(OUT)/studies --resume || { status=$$?; break; }; done; \
-	sh scripts/gate-stamp.sh $(GATES) study $$status "the $(words $(STUDIES)) ensembles of cases/studies"; \
-	$(PYTHON) reports/make_report.py $(OUT) "$(CC)" "$(WARN) $(CFLAGS)" || status=1; exit $$status
+	$(call scan_all,$(STUDIES),study,ensembles of cases/studies)
 
 # --- quality gates on bad input and memory; each writes $(OUT)/gates/GATE.json for the report ----------
 GATES := $(OUT)/gates

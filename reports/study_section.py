@@ -48,7 +48,7 @@ def classify(rows):
 
 def study_section(out):
     lines = ["## Chaotic for good, for a while, or not at all? (section 8.2, ensembles)", ""]
-    folder = os.path.join(out, "studies")
+    folder = os.path.join(out, "study")
     files = sorted(f for f in os.listdir(folder) if f.endswith("-scan.csv")) if os.path.isdir(folder) else []
     if not files:
         return lines + ["No ensembles in this checkout: `make study` runs those of `cases/studies` (32 random initial "
