@@ -28,6 +28,10 @@ VERIFY_SRC := $(sort $(wildcard verify/*.c))
 VERIFY_OBJ := $(VERIFY_SRC:verify/%.c=$(BUILD)/obj/verify_%.o)
 VERIFY_BIN := $(BUILD)/verify-gomboc
 BENCH_BIN  := $(BUILD)/bench-gomboc
+# make bench's baseline: the same bench and library built apart with the best flags of this compiler
+NATIVE_FLAGS := -O3 -march=native -falign-loops=64
+NATIVE_OBJ := $(CORE_SRC:src/%.c=$(BUILD)/native/%.o)
+BENCH_NATIVE := $(BUILD)/bench-gomboc-native
 
 .PHONY: all deps run verify verify-full bench references report install clean \
         build run-only verify-only references-only bench-only fuzz fuzz-only sanitize sanitize-only \
@@ -93,9 +97,9 @@ verify-only: $(BIN) $(VERIFY_BIN)
 bench: deps
 	@$(MAKE) --no-print-directory bench-only
 
-bench-only: $(BENCH_BIN)
+bench-only: $(BENCH_BIN) $(BENCH_NATIVE)
 	@mkdir -p $(OUT)
-	status=0; $(BENCH_BIN) $(OUT)/bench.json || status=$$?; \
+	status=0; $(BENCH_BIN) $(OUT)/bench.json $(BENCH_NATIVE) || status=$$?; \
 	sh scripts/gate-stamp.sh $(GATES) bench $$status "speed ratios measured side by side in one run"; exit $$status
 
 # Everything `make verify` does, plus the long studies (harness --full): continuous rolling over 10000
@@ -276,6 +280,13 @@ $(VERIFY_BIN): $(VERIFY_OBJ) $(LIB)
 
 $(BENCH_BIN): verify/bench/bench.c $(LIB) $(wildcard src/*.h) | $(BUILD)/obj
 	$(CC) $(ALL_CFLAGS) -o $@ $< $(LIB) $(CORE_LIBS)
+
+$(BUILD)/native/%.o: src/%.c $(wildcard src/*.h)
+	@mkdir -p $(BUILD)/native
+	$(CC) $(WARN) $(NATIVE_FLAGS) $(shell pkg-config --cflags $(PKGS)) -Isrc -c $< -o $@
+
+$(BENCH_NATIVE): verify/bench/bench.c $(NATIVE_OBJ) $(wildcard src/*.h)
+	$(CC) $(WARN) $(NATIVE_FLAGS) $(shell pkg-config --cflags $(PKGS)) -Isrc -o $@ $< $(NATIVE_OBJ) $(CORE_LIBS)
 
 $(BUILD)/obj:
 	mkdir -p $@
