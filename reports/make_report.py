@@ -25,7 +25,7 @@ from dynamics_section import dynamics_section  # noqa: E402
 from chaos_section import chaos_section  # noqa: E402
 from melnikov_section import melnikov_section  # noqa: E402
 from scan_section import scan_section  # noqa: E402
-from study_section import study_section  # noqa: E402
+from study_section import ensemble_readings, study_section  # noqa: E402
 
 CHECKS_SCHEMA = 4  # verify/gb_check.h GB_CHECK_SCHEMA: {"schema": 4, "tests": [...], "rows": [...]}; findings carry verdict and rule
 
@@ -182,11 +182,19 @@ def main():
               f"(of {len(findings)} findings, recomputed in this run).", "",
               "| section | paper claims | measured on | we measured | verdict | rule |", "|---|---|---|---|---|---|"]
     notes, convergence_lines = convergence(out)
+    ensembles = ensemble_readings(out)
     for r in findings:
         claim, where, detail = (text.replace("|", "\\|") for text in (r["claim"], r["quantity"], r["detail"]))
         for (body, variation), reading in notes.items():
             if where.startswith(f"Gomboc {body}, {variation}:") and reading != "consistent":
                 detail += f" — {reading} (see 'Convergence')"
+        # The one-trajectory, 300-period chaos verdict of the rolling model against the ensemble of `make study`.
+        for body, reading in ensembles.items():
+            if where.startswith(f"Gomboc {body}, continuous contact, rolling equation: lambda_max - 4 sigma"):
+                agrees = (reading == "sustained") == (r["verdict"] == "holds")
+                if not agrees or reading == "undecided":
+                    detail += (f" — **preliminary: the ensemble of `make study` (32 initial attitudes, 3000 periods) "
+                               f"reads {reading}** (see 'Chaotic for good, for a while, or not at all?')")
         lines.append(f"| §{r['section']} | {claim} | {where} | {detail} | {verdict_text(r['verdict'])} | "
                      f"{r['rule'].replace('|', '/')} |")
     # Results that are not findings, stated only as far as their checks passed in this run.

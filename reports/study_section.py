@@ -46,6 +46,19 @@ def classify(rows):
     return lam, err, early, late, chaotic, chaotic_late, kind
 
 
+def ensemble_readings(out):
+    """{body: reading} of the ensembles `make study` last ran (sustained, transient, regular, undecided)."""
+    folder = os.path.join(out, "study")
+    readings = {}
+    if not os.path.isdir(folder):
+        return readings
+    for name in sorted(os.listdir(folder)):
+        if name.startswith("ensemble-gomboc-") and name.endswith("-rolling-scan.csv"):
+            body = name[len("ensemble-gomboc-"):-len("-rolling-scan.csv")]
+            readings[body] = classify(list(csv.DictReader(open(os.path.join(folder, name)))))[-1]
+    return readings
+
+
 def study_section(out):
     lines = ["## Chaotic for good, for a while, or not at all? (section 8.2, ensembles)", ""]
     folder = os.path.join(out, "study")
