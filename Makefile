@@ -97,9 +97,9 @@ verify-only: $(BIN) $(VERIFY_BIN)
 bench: deps
 	@$(MAKE) --no-print-directory bench-only
 
-bench-only: $(BENCH_BIN) $(BENCH_NATIVE)
+bench-only: $(BENCH_BIN) $(BENCH_NATIVE) $(BIN)
 	@mkdir -p $(OUT)
-	status=0; $(BENCH_BIN) $(OUT)/bench.json $(BENCH_NATIVE) || status=$$?; \
+	status=0; $(BENCH_BIN) $(OUT)/bench.json $(BENCH_NATIVE) $(BIN) || status=$$?; \
 	sh scripts/gate-stamp.sh $(GATES) bench $$status "speed ratios measured side by side in one run"; exit $$status
 
 # Everything `make verify` does, plus the long studies (harness --full): continuous rolling over 10000

@@ -51,6 +51,15 @@ def work_precision(out):
     return lines
 
 
+def bench_table(records, key, intro, header, row):
+    """The lines of one table of `make bench`'s records that hold `key`: intro, header, a row each."""
+    chosen = [r for r in records if key in r]
+    if not chosen:
+        return []
+    lines = ["", intro, "", "| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
+    return lines + ["| " + " | ".join(row(r)) + " |" for r in chosen]
+
+
 def dynamics_section(out, rows):
     names = [n for n in SCENE_ORDER if os.path.exists(os.path.join(out, f"{n}-summary.json"))]
     extra = sorted(os.path.basename(p)[:-len("-summary.json")] for p in glob.glob(os.path.join(out, "*-summary.json")))
@@ -146,6 +155,12 @@ def dynamics_section(out, rows):
                 lines.append(f"| {r['body']} | {native} | {r['plain_seconds']:.3f} | {r['fast_seconds']:.3f} | "
                              f"{base / r['fast_seconds']:.1f}× | {'yes' if r['fast_identical'] else '**no**'} | "
                              f"{r['continuous_seconds']:.3f} | {base / r['continuous_seconds']:.1f}× | {cert} |")
+        lines += bench_table(records, "scan_model",
+                             "Scans through `gomboc scan` (4 × 4 points of 50 periods around Table 1, λ included), the same "
+                             "`make bench` run; target (issue 19): parallel efficiency ≥ 90 % on 2 threads.",
+                             ["model", "points/s, 1 thread", "points/s, 2 threads", "efficiency"],
+                             lambda r: [r["scan_model"], f"{r['points_per_second_1']:.2f}", f"{r['points_per_second_2']:.2f}",
+                                        f"{r['parallel_efficiency']:.0%}"])
         headroom = [r for r in records if "headroom_total_seconds" in r]
         if headroom:
             lines += ["", "Why the certified run is far from 50× (the same `make bench` run): the run's time inside the "
@@ -165,14 +180,13 @@ def dynamics_section(out, rows):
                              f"{r['basin_enclosed_width']:.4f} | {r['basin_sampled_width']:.4f} "
                              f"(×{r['basin_sampled_width'] / r['basin_enclosed_width']:.1f}) | "
                              f"{r['basins_built']}, {r['basin_built_width']:.4f} |")
-        lyapunov = [r for r in records if "lambda_seconds" in r]
-        if lyapunov:
-            lines += ["", "λ_max over the same 300 periods (pair estimator, eq 77) against one run of the same scene, "
-                      "timed beside it in the same `make bench` run; target (issue 5): ≤ 2.2×.", "",
-                      "| body | model | one run [s] | λ run [s] | ratio | reference = the run |", "|---|---|---|---|---|---|"]
-            for r in lyapunov:
-                lines.append(f"| {r['body']} | {r['lambda_model']} | {r['run_seconds']:.3f} | {r['lambda_seconds']:.3f} | "
-                             f"{r['lambda_seconds'] / r['run_seconds']:.2f}× | {'yes' if r['reference_identical'] else '**no**'} |")
+        lines += bench_table(records, "lambda_seconds",
+                             "λ_max over the same 300 periods (pair estimator, eq 77) against one run of the same scene, "
+                             "timed beside it in the same `make bench` run; target (issue 5): ≤ 2.2×.",
+                             ["body", "model", "one run [s]", "λ run [s]", "ratio", "reference = the run"],
+                             lambda r: [r["body"], r["lambda_model"], f"{r['run_seconds']:.3f}", f"{r['lambda_seconds']:.3f}",
+                                        f"{r['lambda_seconds'] / r['run_seconds']:.2f}×",
+                                        "yes" if r["reference_identical"] else "**no**"])
         lines.append("")
     else:
         lines += ["`make bench` has not been run in this output folder; run it to see the ratios here.", ""]

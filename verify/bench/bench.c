@@ -403,10 +403,52 @@ static void bench_headroom(void)
     printf("\n(target, issue 4: >= 50x; the budget is the plain loop's time / 50 for the whole run)\n");
 }
 
+/* Scans (section 8.3) through the command: points per second for each model on 1 and 2 threads, and the
+ * parallel efficiency t1 / (2 t2). The scan is 4 x 4 points of 50 periods around Table 1, lambda included. */
+static int bench_scans(const char *gomboc, FILE *out)
+{
+    static const struct {
+        const char *name, *scene;
+    } models[] = {{"paper model (fast grid)", "cases/table1-gomboc-I.ini"}, {"rolling, certified continuous", "cases/table1-gomboc-I-rolling.ini"}};
+    char dir[] = "/tmp/gomboc-bench-XXXXXX";
+    if (!mkdtemp(dir)) return 1;
+    printf("\nbench: scans through gomboc scan (4 x 4 points of 50 periods, omega and A1 around Table 1, lambda included)\n\n");
+    printf("%-32s %14s %14s %12s\n", "model", "1 thread [pt/s]", "2 threads [pt/s]", "efficiency");
+    int failures = 0;
+    for (size_t k = 0; k < sizeof models / sizeof models[0]; k++) {
+        char base[4096], path[256], command[8192];
+        if (!realpath(models[k].scene, base)) return 1;
+        snprintf(path, sizeof path, "%s/bench.ini", dir);
+        FILE *f = fopen(path, "w");
+        if (!f) return 1;
+        fprintf(f, "[scan]\nbase = %s\nperiods = 50\ntransient_periods = 10\nmetrics = all\n"
+                   "[x]\nkey = forcing.omega\nfrom = 16\nto = 20\ncount = 4\n[y]\nkey = forcing.A1\nfrom = 1.5\nto = 2.5\ncount = 4\n", base);
+        fclose(f);
+        double seconds[2];
+        for (int threads = 1; threads <= 2; threads++) {
+            snprintf(command, sizeof command, "'%s' scan '%s' --out '%s' --threads %d 2>/dev/null", gomboc, path, dir, threads);
+            const double start = now();
+            failures += system(command) != 0;
+            seconds[threads - 1] = now() - start;
+        }
+        const double efficiency = seconds[0] / (2.0 * seconds[1]);
+        printf("%-32s %14.2f %14.2f %11.0f%%\n", models[k].name, 16.0 / seconds[0], 16.0 / seconds[1], 100.0 * efficiency);
+        if (out)
+            fprintf(out, ",\n  {\"scan_model\": \"%s\", \"points_per_second_1\": %.4f, \"points_per_second_2\": %.4f, "
+                         "\"parallel_efficiency\": %.4f}", models[k].name, 16.0 / seconds[0], 16.0 / seconds[1], efficiency);
+    }
+    printf("\n(target, issue 19: parallel efficiency >= 90 %% on 2 threads)\n");
+    char cleanup[128];
+    snprintf(cleanup, sizeof cleanup, "rm -rf '%s'", dir);
+    if (system(cleanup) != 0) fprintf(stderr, "bench: cannot remove %s\n", dir);
+    return failures;
+}
+
 int main(int argc, char **argv)
 {
-    /* bench-gomboc [FILE [NATIVE]]: also write the whole-run ratios as JSON to FILE (via FILE.tmp), against
-     * the plain loop of NATIVE (bench-gomboc-native); bench-gomboc --plain-only: that loop alone. */
+    /* bench-gomboc [FILE [NATIVE [GOMBOC]]]: also write the whole-run ratios as JSON to FILE (via FILE.tmp),
+     * against the plain loop of NATIVE (bench-gomboc-native), and time scans through the command GOMBOC;
+     * bench-gomboc --plain-only: that loop alone. */
     char tmp[1024] = "";
     gb_error_init_gsl();
     if (argc > 1 && !strcmp(argv[1], "--plain-only")) return plain_only();
@@ -489,8 +531,9 @@ int main(int argc, char **argv)
         fprintf(stderr, "bench: %d fast-grid nodes differ from brute force\n", mismatches);
         return 1;
     }
-    const int failures = bench_dynamics();
+    int failures = bench_dynamics();
     bench_headroom();
+    if (argc > 3) failures += bench_scans(argv[3], record);
     if (record) {
         fputs("\n]\n", record);
         if (fclose(record) == 0 && !failures) rename(tmp, argv[1]);
