@@ -276,7 +276,8 @@ int command_scan(int argc, char **argv)
     if (threads > 0) omp_set_num_threads(threads);
     const int used_threads = omp_get_max_threads();
 #else
-    const int used_threads = 1;
+    const int used_threads = 1; /* built without OpenMP: --threads is read and checked, and one thread runs */
+    (void)threads;
 #endif
     const double start = wall_seconds();
     double last_report = start;
