@@ -215,7 +215,9 @@ valgrind-only: $(BIN)
 	$(VALGRIND) $(BIN) contact --morphology I --beta 0.12 --zb 0.6,0.6,-0.5 --method continuous --json \
 	  --landscape $(BUILD)/valgrind/landscape.csv --zoom $(BUILD)/valgrind/zoom.csv > /dev/null || { status=1; echo "valgrind: contact FAILED"; }; \
 	$(VALGRIND) $(BIN) run verify/valgrind/missing.ini 2> /dev/null; [ $$? -eq 2 ] || { status=1; echo "valgrind: bad input FAILED"; }; \
-	sh scripts/gate-stamp.sh $(GATES) valgrind $$status "memcheck: $$n scenes (verify/valgrind), shape, contact and a refused input"; \
+	rm -f $(BUILD)/valgrind/small-scan.*; \
+	$(VALGRIND) $(BIN) scan verify/valgrind/scan/small.ini --out $(BUILD)/valgrind --threads 1 || { status=1; echo "valgrind: scan FAILED"; }; \
+	sh scripts/gate-stamp.sh $(GATES) valgrind $$status "memcheck: $$n scenes (verify/valgrind), shape, contact, a scan and a refused input"; \
 	echo "valgrind: $$( [ $$status -eq 0 ] && echo 'no errors, no leaks' || echo FAILED)"; \
 	exit $$status
 
