@@ -287,9 +287,10 @@ int gb_scan_load(const char *path, gb_scan *out)
         const char *slash = strrchr(path, '/');
         char joined[2 * GB_SCAN_PATH_MAX];
         snprintf(joined, sizeof joined, "%.*s%s", slash ? (int)(slash - path + 1) : 0, path, out->base);
-        if (strlen(joined) >= sizeof out->base)
+        const size_t length = strlen(joined);
+        if (length >= sizeof out->base)
             return gb_error_set(GB_EINVAL, "%s:%d: [scan] base: the path is too long", path, r.seen[0][1]);
-        snprintf(out->base, sizeof out->base, "%s", joined);
+        memcpy(out->base, joined, length + 1);
     }
     status = gb_ini_slurp(out->base, GB_CASE_FILE_MAX, "case file", "a scene file, see cases/README.md", &out->base_text,
                           &out->base_size);
