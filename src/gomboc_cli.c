@@ -330,3 +330,11 @@ char *cli_output_name(const char *dir, const char *input, const char *suffix)
     if (out) snprintf(out, size, "%s/%.*s-%s", dir, (int)len, name, suffix);
     return out;
 }
+
+int cli_positional(const char *command, const char *opt, const char **slot, const char *what, const char *name)
+{
+    if (opt[0] == '-' && opt[1] != '\0') return 0;
+    if (*slot) return cli_input_error(command, "a second %s '%s' (allowed: one %s)", what, opt, name);
+    *slot = opt;
+    return 1;
+}

@@ -46,6 +46,11 @@ extern int cli_parse_only;
 /* The "(allowed: …)" part of the last library error (a name parser's list of names), or "". */
 const char *cli_allowed(void);
 
+/* A positional argument (anything but an option; "-" is positional) into *slot, which takes one: 1 when
+ * taken, EXIT_INPUT after an error naming `what` and `name` when *slot already holds one, 0 when `opt`
+ * is an option. */
+int cli_positional(const char *command, const char *opt, const char **slot, const char *what, const char *name);
+
 /* After parsing: both given? Returns 0 or EXIT_INPUT after printing an error. */
 int cli_body_required(const char *command, const cli_body *body);
 

@@ -29,10 +29,10 @@ int command_lyapunov(int argc, char **argv)
     static const char *const valued[] = {NULL};
     for (int i = 0; i < argc; i++) {
         const char *opt = argv[i];
-        if (opt[0] != '-' || opt[1] == '\0') {
-            if (case_path) return cli_input_error("lyapunov", "a second case file '%s'%s", opt, " (allowed: one CASE)");
-            case_path = opt;
-            continue;
+        const int positional = cli_positional("lyapunov", opt, &case_path, "case file", "CASE");
+        if (positional) {
+            if (positional == 1) continue;
+            return positional;
         }
         const int kind = cli_next_option("lyapunov", argc, argv, &i, usage_lyapunov, valued, " (allowed: --json, --help)",
                                          NULL, &json, NULL);

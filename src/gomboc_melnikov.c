@@ -65,10 +65,10 @@ int command_melnikov(int argc, char **argv)
     static const char *const valued[] = {"--mass", "--weight", "--damping", "--curve", "--curve-points", NULL};
     for (int i = 0; i < argc; i++) {
         const char *opt = argv[i], *value = NULL;
-        if (opt[0] != '-' || opt[1] == '\0') {
-            if (case_path) return cli_input_error("melnikov", "a second case file '%s'%s", opt, " (allowed: one CASE)");
-            case_path = opt;
-            continue;
+        const int positional = cli_positional("melnikov", opt, &case_path, "case file", "CASE");
+        if (positional) {
+            if (positional == 1) continue;
+            return positional;
         }
         const int kind = cli_next_option("melnikov", argc, argv, &i, usage_melnikov, valued,
                                          " (allowed: --json, --mass, --weight, --damping, --curve, --curve-points, --help)", NULL,

@@ -219,10 +219,10 @@ int command_run(int argc, char **argv)
     static const char *const valued[] = {"--out", NULL};
     for (int i = 0; i < argc; i++) {
         const char *opt = argv[i], *value = NULL;
-        if (opt[0] != '-' || opt[1] == '\0') {
-            if (case_path) return cli_input_error("run", "a second case file '%s'%s", opt, " (allowed: one CASE)");
-            case_path = opt;
-            continue;
+        const int positional = cli_positional("run", opt, &case_path, "case file", "CASE");
+        if (positional) {
+            if (positional == 1) continue;
+            return positional;
         }
         const int kind = cli_next_option("run", argc, argv, &i, usage_run, valued, " (allowed: --out, --json, --help)",
                                          NULL, &json, &value);

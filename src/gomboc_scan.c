@@ -203,10 +203,10 @@ int command_scan(int argc, char **argv)
     static const char *const valued[] = {"--out", "--threads", NULL};
     for (int i = 0; i < argc; i++) {
         const char *opt = argv[i], *value = NULL;
-        if (opt[0] != '-' || opt[1] == '\0') {
-            if (scan_path) return cli_input_error("scan", "a second scan file '%s'%s", opt, " (allowed: one SCAN)");
-            scan_path = opt;
-            continue;
+        const int positional = cli_positional("scan", opt, &scan_path, "scan file", "SCAN");
+        if (positional) {
+            if (positional == 1) continue;
+            return positional;
         }
         if (!strcmp(opt, "--resume")) {
             resume = 1;
