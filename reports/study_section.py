@@ -77,9 +77,12 @@ def study_section(out):
               f"rate above {LATE} 1/s in their second half; *regular* when 25 % or fewer have λ − 2σ > {MARGIN} 1/s over "
               "their record; *transient* when the median second half falls below the median first half by "
               f"{LATE} 1/s or more and fewer than half the members stay chaotic; *undecided* otherwise. The claim that "
-              "the forced motion is chaotic holds when sustained and fails when transient or regular.", "",
+              "the forced motion is chaotic holds when sustained and fails when transient or regular. A member's chaos "
+              "has ended when the last of 12 windows of its record with a mean exponent above 0.05 1/s is not the last "
+              "window; its lifetime is that window's end (members still chaotic at the end are not counted: censored).", "",
               "| ensemble | members | λ median [quartiles] | λ − 2σ > 0.01 | first half, median | second half, median | "
-              "chaotic in the second half | reading | the paper's claim |", "|---|---|---|---|---|---|---|---|---|"]
+              "chaotic in the second half | chaos ended (lifetime, periods: median [range]) | reading | the paper's claim |",
+              "|---|---|---|---|---|---|---|---|---|---|"]
     fig, ax = plt.subplots(figsize=(8, 4))
     for k, name in enumerate(files):
         rows = list(csv.DictReader(open(os.path.join(folder, name))))
@@ -87,8 +90,14 @@ def study_section(out):
         q1, med, q3 = numpy.percentile(lam, [25, 50, 75])
         verdict = {"sustained": "holds", "transient": "**fails** (transient)", "regular": "**fails** (regular)"}.get(kind, "*undecided*")
         label = name.replace("-scan.csv", "")
+        lifetimes = numpy.array([float(r.get("chaos_lifetime_periods", "nan")) for r in rows])
+        ended = lifetimes[numpy.isfinite(lifetimes)]
+        ended_text = (f"{len(ended)} of {len(rows)}: {numpy.median(ended):.0f} [{ended.min():.0f}, {ended.max():.0f}]"
+                      if len(ended) else f"0 of {len(rows)}")
+        if not numpy.any(~numpy.isnan(lifetimes)):
+            ended_text = "—"
         lines.append(f"| {label} | {len(rows)} | {med:.3f} [{q1:.3f}, {q3:.3f}] | {chaotic:.0%} | {numpy.median(early):.3f} | "
-                     f"{numpy.median(late):.3f} | {chaotic_late:.0%} | {kind} | {verdict} |")
+                     f"{numpy.median(late):.3f} | {chaotic_late:.0%} | {ended_text} | {kind} | {verdict} |")
         ax.plot([k - 0.1] * len(early), early, "o", ms=3, color="C0", label="first half" if k == 0 else None)
         ax.plot([k + 0.1] * len(late), late, "o", ms=3, color="C3", label="second half" if k == 0 else None)
         for e, l in zip(early, late):

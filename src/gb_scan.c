@@ -368,7 +368,7 @@ int gb_scan_point_run(const gb_scan *scan, size_t index, gb_scan_metrics *out)
     status = gb_run(&scene, &sinks, &r);
     if (status) return status;
     gb_scan_metrics m = {.lambda = NAN, .lambda_error = NAN, .strobe_sd = NAN, .geff_nonpositive = NAN, .lift_off = NAN,
-                         .lambda_early = NAN, .lambda_late = NAN};
+                         .lambda_early = NAN, .lambda_late = NAN, .chaos_lifetime = NAN};
     gb_scan_coordinates(scan, index, &m.x, &m.y);
     double rms, height, rate;
     gb_scan_accumulated(&acc, &rms, &height, &rate);
@@ -394,6 +394,8 @@ int gb_scan_point_run(const gb_scan *scan, size_t index, gb_scan_metrics *out)
             else late += l->instantaneous[k];
         }
         m.lambda_early = early / (double)half, m.lambda_late = late / (double)(l->intervals - half);
+        m.chaos_lifetime = gb_scan_chaos_lifetime(l->instantaneous, l->intervals,
+                                                  l->interval * scene.dynamics.forcing.omega / (2.0 * M_PI));
     }
     m.certificate_undecided = r.has_certificate ? r.certificate.undecided : 0;
     m.state_fingerprint = r.state_fingerprint;
@@ -403,22 +405,36 @@ int gb_scan_point_run(const gb_scan *scan, size_t index, gb_scan_metrics *out)
     return GB_OK;
 }
 
+double gb_scan_chaos_lifetime(const double *lambda, size_t n, double periods_per_interval)
+{
+    const size_t window = n / 12;
+    if (window < 20) return NAN;
+    size_t last = 0; /* windows up to and including the last chaotic one */
+    for (size_t w = 0; w < 12; w++) {
+        double mean = 0.0;
+        for (size_t k = w * window; k < (w + 1) * window; k++) mean += lambda[k];
+        if (mean / (double)window > GB_SCAN_CHAOTIC) last = w + 1;
+    }
+    return last == 12 ? INFINITY : (double)(last * window) * periods_per_interval;
+}
+
 /* ---- rows -------------------------------------------------------------------------------------- */
 
 const char *gb_scan_csv_header(void)
 {
     return "index,x,y,omega_rms,switch_rate,strobe_sd,mean_height,geff_nonpositive_fraction,lift_off_fraction,"
-           "lambda_max,lambda_error,lambda_first_half,lambda_second_half,certificate_undecided,state_fingerprint,"
+           "lambda_max,lambda_error,lambda_first_half,lambda_second_half,chaos_lifetime_periods,certificate_undecided,"
+           "state_fingerprint,"
            "switch_fingerprint\n";
 }
 
 int gb_scan_csv_row(const gb_scan_metrics *m, size_t index, char *out, size_t size)
 {
-    const int n = snprintf(out, size, "%zu,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%zu,%016" PRIx64
+    const int n = snprintf(out, size, "%zu,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%zu,%016" PRIx64
                            ",%016" PRIx64 "\n",
                            index, m->x, m->y, m->omega_rms, m->switch_rate, m->strobe_sd, m->mean_height,
                            m->geff_nonpositive, m->lift_off, m->lambda, m->lambda_error, m->lambda_early, m->lambda_late,
-                           m->certificate_undecided,
+                           m->chaos_lifetime, m->certificate_undecided,
                            m->state_fingerprint, m->switch_fingerprint);
     return n > 0 && (size_t)n < size ? GB_OK : gb_error_set(GB_EINVAL, "a scan row does not fit %zu bytes", size);
 }
@@ -427,7 +443,7 @@ int gb_scan_csv_parse(const char *line, size_t *index, gb_scan_metrics *out)
 {
     gb_scan_metrics m;
     double *fields[] = {&m.x, &m.y, &m.omega_rms, &m.switch_rate, &m.strobe_sd, &m.mean_height, &m.geff_nonpositive,
-                        &m.lift_off, &m.lambda, &m.lambda_error, &m.lambda_early, &m.lambda_late};
+                        &m.lift_off, &m.lambda, &m.lambda_error, &m.lambda_early, &m.lambda_late, &m.chaos_lifetime};
     char *end;
     const char *p = line;
     const unsigned long long i = strtoull(p, &end, 10);

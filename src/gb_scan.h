@@ -74,12 +74,20 @@ void gb_scan_random_attitude(unsigned long seed, size_t k, char *text, size_t si
 /* The scene of point `index`. */
 int gb_scan_point_case(const gb_scan *scan, size_t index, gb_case *out);
 
+/* A window's mean exponent above this [1/s] counts as chaotic (a separation growing by e^(0.05 t)). */
+#define GB_SCAN_CHAOTIC 0.05
+
 typedef struct gb_scan_metrics {
     double x, y;
     double omega_rms, switch_rate, strobe_sd, mean_height;
     double geff_nonpositive, lift_off;
     double lambda, lambda_error;
     double lambda_early, lambda_late;  /* means of λ_inst over the first and the second half of the record */
+    /* The lifetime of the chaos: the record cut into 12 windows (of at least 20 intervals), the end of
+     * the last window whose mean λ_inst exceeds GB_SCAN_CHAOTIC, in forcing periods from the record's
+     * start; 0 when no window does, +inf when the last one does (still chaotic at the end: censored),
+     * NAN when the record is too short. */
+    double chaos_lifetime;
     size_t certificate_undecided;      /* continuous contact: certificate checks left undecided */
     uint64_t state_fingerprint, switch_fingerprint; /* as `gomboc run` prints them */
 } gb_scan_metrics;
@@ -98,6 +106,9 @@ typedef struct gb_scan_accumulator {
 void gb_scan_accumulate(gb_scan_accumulator *a, double t, const double omega[3], double height, size_t switches);
 /* omega_rms, mean height and switch rate of what was accumulated (NAN when nothing was). */
 void gb_scan_accumulated(const gb_scan_accumulator *a, double *omega_rms, double *mean_height, double *switch_rate);
+
+/* The lifetime of the chaos in a record λ_inst[0..n) (see gb_scan_metrics.chaos_lifetime). */
+double gb_scan_chaos_lifetime(const double *lambda, size_t n, double periods_per_interval);
 
 /* The CSV header and one row (every metric %.17g, fingerprints in hex); the row ends with '\n'. */
 const char *gb_scan_csv_header(void);

@@ -367,6 +367,27 @@ static void test_random_attitudes(void)
     gb_check_close(&cm, mean, M_PI / 2 + 2 / M_PI, 0.0, 4.0 * sd / sqrt((double)DRAWS));
 }
 
+/* The lifetime of the chaos on records whose answer is known: 12 windows of 25 intervals. */
+static void test_chaos_lifetime(void)
+{
+    enum { N = 300 };
+    double record[N];
+    gb_check c = {"8.2", "77", "chaos lifetime of synthetic records (12 windows of 25 intervals, 2 periods an interval)",
+                  "chaotic for 5 windows: 250 periods; for all 12: +inf; never: 0; a record of 200: too short (NaN)", "exact"};
+    for (int k = 0; k < N; k++) record[k] = k < 5 * 25 ? 0.4 + 0.3 * sin(k) : 0.01 * sin(k); /* 5 chaotic windows */
+    const double five = gb_scan_chaos_lifetime(record, N, 2.0);
+    for (int k = 0; k < N; k++) record[k] = 0.2;
+    const double all = gb_scan_chaos_lifetime(record, N, 2.0);
+    for (int k = 0; k < N; k++) record[k] = k % 2 ? 0.04 : -0.04;
+    const double none = gb_scan_chaos_lifetime(record, N, 2.0);
+    const double short_record = gb_scan_chaos_lifetime(record, 200, 2.0);
+    /* chaos that pauses and returns counts to its last window */
+    for (int k = 0; k < N; k++) record[k] = (k < 50 || (k >= 200 && k < 225)) ? 0.3 : 0.0;
+    const double returning = gb_scan_chaos_lifetime(record, N, 2.0);
+    gb_check_true(&c, five == 250.0 && isinf(all) && all > 0 && none == 0.0 && isnan(short_record) && returning == 450.0,
+                  "%g, %g, %g, %g, %g (returning chaos to window 9: 450)", five, all, none, short_record, returning);
+}
+
 /* The maps of Figs 10–13 (cases/scans): each reads, every point's scene is valid, and Table 1's point
  * (ω = 18, A1 = 2, A2 = 1, ψ = π/3, the base scene's values) is a node of the grid. */
 static void test_shipped_scans(void)
@@ -415,6 +436,7 @@ int verify_register_s8_scan(void)
         {"section 8.3: a point out of its key's range is refused before any run", test_point_out_of_range, NULL},
         {"Figs 10-13: the shipped maps read, and hold Table 1's point", test_shipped_scans, NULL},
         {"ensembles: random initial attitudes, seeded and uniform on the rotations", test_random_attitudes, NULL},
+        {"ensembles: the lifetime of the chaos in a record", test_chaos_lifetime, NULL},
         {NULL, NULL, NULL},
     };
     return verify_register_suite("Section 8.3: parameter scans", tests);
