@@ -651,13 +651,13 @@ int gb_melnikov_flight_time(const gb_melnikov_model *m, const gb_melnikov_orbit 
     const double delta = 1e-9, up = o->rate, limit = 200.0 / o->rate;
     const gb_melnikov_forcing none = {0.0, 0.0, 0.0, 1.0, 0.0, 0};
     forced F = {m, &none, 0.0, GB_OK};
-    double y[2] = {o->q_u + dir * delta, dir * delta * up * vu.M}, ta = 0.0, tb = 0.0;
-    /* The levels as sections: the line q = level, crossed where the orbit reaches it. */
+    double y[2] = {o->q_u + dir * delta, dir * delta * up * vu.M};
+    /* The levels as sections: the line q = level, crossed where the orbit reaches it; the time counts
+     * from the first crossing. */
     const double xa[2] = {q_a, 0.0}, xb[2] = {q_b, 0.0}, fq[2] = {1.0, 0.0};
-    status = to_section(&F, +1.0, limit, xa, fq, INFINITY, y, &ta);
-    if (!status) status = to_section(&F, +1.0, limit, xb, fq, INFINITY, y, &tb);
-    *dt = tb;
-    (void)ta;
+    *dt = NAN;
+    status = to_section(&F, +1.0, limit, xa, fq, INFINITY, y, NULL);
+    if (!status) status = to_section(&F, +1.0, limit, xb, fq, INFINITY, y, dt);
     return status;
 }
 
