@@ -32,10 +32,16 @@ BENCH_BIN  := $(BUILD)/bench-gomboc
 NATIVE_FLAGS := -O3 -march=native -falign-loops=64
 NATIVE_OBJ := $(CORE_SRC:src/%.c=$(BUILD)/native/%.o)
 BENCH_NATIVE := $(BUILD)/bench-gomboc-native
+# MPI: gomboc-mpi is the command with `gomboc scan` built by mpicc, where mpicc is (make mpi installs
+# Debian's OpenMPI). Its checks launch it through MPIRUN (root needs OpenMPI's explicit consent).
+MPICC     := $(shell command -v mpicc 2>/dev/null)
+MPI_BIN   := $(BUILD)/gomboc-mpi
+MPIRUN    := mpirun --oversubscribe$(if $(filter 0,$(shell id -u)), --allow-run-as-root)
+MPI_ENV    = $(if $(MPICC),GOMBOC_MPI_BIN=$(MPI_BIN) GOMBOC_MPIRUN="$(MPIRUN)")
 
 .PHONY: all deps run verify verify-full bench references report install clean \
         build run-only verify-only references-only bench-only fuzz fuzz-only sanitize sanitize-only \
-        valgrind valgrind-only install-only example-only scans scans-only study study-only
+        valgrind valgrind-only install-only example-only scans scans-only study study-only mpi mpi-only
 
 all: deps
 	@$(MAKE) --no-print-directory build
@@ -72,7 +78,7 @@ verify: deps
 FIG2_ZB := 0.6,0.6,-0.5
 FIG2     = $(BIN) contact --beta 0.12 --zb $(FIG2_ZB) --json
 
-verify-only: $(BIN) $(VERIFY_BIN)
+verify-only: $(BIN) $(VERIFY_BIN) $(if $(MPICC),$(MPI_BIN))
 	@$(MAKE) --no-print-directory run-only
 	@$(MAKE) --no-print-directory example-only
 	@mkdir -p $(OUT)
@@ -87,7 +93,7 @@ verify-only: $(BIN) $(VERIFY_BIN)
 	  $(FIG2) --morphology $$m --method grid > $(OUT)/fig2-grid-$$m.json.tmp && \
 	  mv $(OUT)/fig2-grid-$$m.json.tmp $(OUT)/fig2-grid-$$m.json || exit 1; \
 	done
-	GOMBOC_BIN=$(BIN) $(VERIFY_BIN) --results $(OUT)/checks.json --data $(OUT) $(VERIFY_FLAGS); \
+	GOMBOC_BIN=$(BIN) $(MPI_ENV) $(VERIFY_BIN) --results $(OUT)/checks.json --data $(OUT) $(VERIFY_FLAGS); \
 	status=$$?; \
 	$(PYTHON) reports/make_report.py $(OUT) "$(CC)" "$(WARN) $(CFLAGS)" || status=1; \
 	echo "verify: report written to $(OUT)/verification.md"; \
@@ -103,12 +109,13 @@ bench-only: $(BENCH_BIN) $(BENCH_NATIVE) $(BIN)
 	sh scripts/gate-stamp.sh $(GATES) bench $$status "speed ratios measured side by side in one run"; exit $$status
 
 # Everything `make verify` does, plus the long studies (harness --full): continuous rolling over 10000
-# periods, post-transient exponents of the unforced bodies. A few minutes more.
+# periods, post-transient exponents of the unforced bodies; then the ensembles of `make study`.
 verify-full: deps
 	@sh scripts/install-deps.sh fuzz
 	@$(MAKE) --no-print-directory fuzz-only FUZZ_SECONDS=30
 	@status=0; $(MAKE) --no-print-directory verify-only VERIFY_FLAGS=--full || status=$$?; \
-	sh scripts/gate-stamp.sh $(GATES) verify-full $$status "every check and the long studies"; \
+	$(MAKE) --no-print-directory study-only || status=1; \
+	sh scripts/gate-stamp.sh $(GATES) verify-full $$status "every check, the long studies and the ensembles"; \
 	$(PYTHON) reports/make_report.py $(OUT) "$(CC)" "$(WARN) $(CFLAGS)" || status=1; exit $$status
 
 # --- the maps of Figs 10-13 (cases/scans: both bodies, both planes, the paper's and the rolling model),
@@ -138,6 +145,22 @@ study: deps
 
 study-only: $(BIN)
 	$(call scan_all,$(STUDIES),study,ensembles of cases/studies)
+
+# --- scans on MPI ranks: OpenMPI installed, gomboc-mpi built, and its checks (1, 2 and 3 ranks, a kill -9
+# of every rank and --resume: the same bytes as one thread). make verify runs them too where mpicc is.
+mpi: deps
+	@sh scripts/install-deps.sh mpi
+	@$(MAKE) --no-print-directory mpi-only
+
+mpi-only: $(BIN) $(VERIFY_BIN)
+	@$(MAKE) --no-print-directory $(MPI_BIN)
+	@mkdir -p $(BUILD)/mpi
+	status=0; GOMBOC_BIN=$(BIN) GOMBOC_MPI_BIN=$(MPI_BIN) GOMBOC_MPIRUN="$(MPIRUN)" $(VERIFY_BIN) --only "MPI ranks" \
+	  --results $(BUILD)/mpi/checks.json --data $(BUILD)/mpi > $(BUILD)/mpi/verify.log 2>&1 || status=1; \
+	summary=$$(grep -A3 'Run Summary' $(BUILD)/mpi/verify.log | tail -n 1 | tr -s ' '); \
+	tail -n 6 $(BUILD)/mpi/verify.log; \
+	sh scripts/gate-stamp.sh $(GATES) mpi $$status "gomboc-mpi on 1, 2 and 3 ranks, kill -9 and --resume ($$(mpirun --version | head -n 1));$$summary"; \
+	exit $$status
 
 # --- quality gates on bad input and memory; each writes $(OUT)/gates/GATE.json for the report ----------
 GATES := $(OUT)/gates
@@ -282,6 +305,13 @@ $(VERIFY_BIN): $(VERIFY_OBJ) $(LIB)
 
 $(BENCH_BIN): verify/bench/bench.c $(LIB) $(wildcard src/*.h) | $(BUILD)/obj
 	$(CC) $(ALL_CFLAGS) -o $@ $< $(LIB) $(CORE_LIBS)
+
+$(BUILD)/mpi/gomboc_scan.o: src/gomboc_scan.c $(wildcard src/*.h)
+	@mkdir -p $(BUILD)/mpi
+	$(MPICC) $(ALL_CFLAGS) $(OPENMP) -DGOMBOC_MPI -c $< -o $@
+
+$(MPI_BIN): $(filter-out %/gomboc_scan.o,$(CLI_OBJ)) $(BUILD)/mpi/gomboc_scan.o $(LIB)
+	$(MPICC) $(ALL_CFLAGS) $(OPENMP) -o $@ $^ $(CORE_LIBS)
 
 $(BUILD)/native/%.o: src/%.c $(wildcard src/*.h)
 	@mkdir -p $(BUILD)/native

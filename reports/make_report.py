@@ -9,6 +9,7 @@ usage: make_report.py OUT CC CFLAGS
 import datetime
 import os
 import platform
+import shutil
 import subprocess
 import sys
 
@@ -45,7 +46,9 @@ GATES = (("fuzz", "make fuzz", "the scene reader and the option parser under lib
          ("verify-full", "make verify-full", "every check and the long studies (10000-period records)"),
          ("bench", "make bench", "speed ratios measured side by side in one run"),
          ("scans", "make scans", "the maps of Figs 10-13 (cases/scans), 25 x 25 points each"),
-         ("study", "make study", "the ensembles of section 8.2 (cases/studies), 32 initial attitudes each"))
+         ("study", "make study", "the ensembles of section 8.2 (cases/studies), 32 initial attitudes each"),
+         ("mpi", "make mpi", "OpenMPI installed; gomboc-mpi's scans on 1, 2 and 3 ranks and after a kill -9, "
+          "against one thread"))
 
 
 def convergence(out):
@@ -67,7 +70,8 @@ def convergence(out):
     lines += [f"Each 300-period λ against the long record of the same body and variation{when}. Each record's "
               "warm-up (left out of its mean, MSER-5) and batches (the error bar's) are chosen from the record itself "
               "(src/gb_lyapunov.h):", "",
-              "| body | variation | 300 periods | long record | difference [combined errors] | reading |", "|---|---|---|---|---|---|"]
+              "| body | variation | 300 periods | long record | difference [combined errors] | reading | windowed λ "
+              "(per 500 periods) |", "|---|---|---|---|---|---|---|"]
     short = {(r["body"], r["variation"]): r for r in load_json(short_path).get("variations", []) if "lambda_max" in r}
     for r in load_json(long_path):
         s = short.get((r["body"], r["variation"]))
@@ -79,8 +83,20 @@ def convergence(out):
         notes[(r["body"], r["variation"])] = reading
         lines.append(f"| {r['body']} | {r['variation']} | {s['lambda_max']:.3f} ± {s['error_bar']:.3f}{layout(s)} | "
                      f"{r['lambda_max']:.3f} ± {r['error_bar']:.3f} ({r['periods']:.0f} periods{layout(r, ', ')}) | "
-                     f"{sigmas:.1f} | {reading} |")
+                     f"{sigmas:.1f} | {reading} | {windows_text(r)} |")
     return notes, lines + [""]
+
+
+def windows_text(record):
+    """A long record's windowed exponents: how many windows are chaotic (above 0.05 1/s) and when the
+    last one ends."""
+    means = record.get("lambda_window")
+    if not means:
+        return "not recorded"
+    life = record.get("chaos_lifetime_periods")
+    life = "to the end" if isinstance(life, str) else f"chaos ends by period {life:.0f}"
+    return (f"{sum(1 for v in means if v > 0.05)} of {len(means)} above 0.05 1/s ({life}); range "
+            f"{min(means):.3f} to {max(means):.3f}")
 
 
 def verdict_text(verdict):
@@ -114,7 +130,7 @@ def command_output(args):
         return "unavailable"
 
 
-def environment(cc, cflags):
+def environment(cc, cflags, rows):
     def pkg(name):
         return command_output(["pkg-config", "--modversion", name]) or "unknown"
     qhull = command_output(["dpkg-query", "-W", "-f=${Version}", "libqhull-dev"]) or "unknown"
@@ -127,6 +143,11 @@ def environment(cc, cflags):
         ("flags", cflags),
         ("GSL", pkg("gsl")), ("CUnit", pkg("cunit")), ("inih", pkg("inih")), ("cJSON", pkg("libcjson")),
         ("Qhull (Debian)", qhull),
+        ("MPI", (command_output(["mpirun", "--version"]).splitlines() or ["unknown"])[0] +
+         (": the checks on MPI ranks ran (suite 'Section 8.3: scans on MPI ranks')"
+          if any("MPI ranks" in r.get("suite", "") for r in rows) else ": the checks on MPI ranks did not run")
+         if shutil.which("mpicc") else "absent (mpicc not found): the checks on MPI ranks did not run; `make mpi` "
+         "installs OpenMPI and runs them"),
         ("Python / numpy / scipy / matplotlib",
          f"{platform.python_version()} / {numpy.__version__} / {scipy.__version__} / {matplotlib.__version__}"),
     ]
@@ -172,7 +193,7 @@ def main():
              f"{len(findings)} findings about the paper (a finding's check passes when its evidence was computed; "
              f"its verdict is holds, fails or undecided).", "",
              "## Environment", "", "| item | value |", "|---|---|"]
-    lines += [f"| {k} | {v} |" for k, v in environment(cc, cflags)]
+    lines += [f"| {k} | {v} |" for k, v in environment(cc, cflags, rows)]
     lines += [""] + gate_lines(out)
     lines += ["", "## What the paper claims and what we measured", "",
               "Each row names what it was measured on (body, model, reading, record length).", "",

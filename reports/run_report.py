@@ -119,6 +119,12 @@ def lyapunov_figure(out, name, summary):
     fig, ax = plt.subplots(figsize=(9, 4.2))
     ax.plot(data["period_end"], data["lambda_inst"], lw=0.5, color="0.6", label="λ_inst (per interval)")
     ax.plot(data["period_end"], data["lambda_running"], lw=1.4, color="tab:blue", label="running λ_max")
+    windows = lyap.get("windows")
+    if windows:
+        w = numpy.genfromtxt(os.path.join(out, f"{name}-lyapunov-windows.csv"), delimiter=",", names=True, ndmin=1)
+        ax.hlines(w["lambda_window"], w["period_start"], w["period_end"], colors="tab:red", lw=2.0,
+                  label=f"windowed λ (per {windows['window_periods']:.0f} periods)")
+        ax.axhline(windows["chaotic_threshold"], color="tab:red", lw=0.5, ls=":")
     ax.axhline(0.0, color="black", lw=0.5)
     ax.set_xlabel("forcing period")
     ax.set_ylabel("λ [1/s]")
@@ -166,6 +172,15 @@ def summary_lines(name, summary):
                      f"{lyap['periods']:.0f} periods (δ0 = {lyap['delta0']:g}, {lyap['batches']:.0f} batches); running "
                      f"value moved {lyap['late_drift']:.3g} over the last quarter: "
                      f"{'converged' if lyap['converged'] else 'not converged'}")
+        windows = lyap.get("windows")
+        if windows:
+            life = windows["chaos_lifetime_periods"]
+            life = (f"the chaos lasts to period {life:.0f} of the record" if not isinstance(life, str)
+                    else "chaotic to the end of the record")
+            lines.append(f"- windowed λ per {windows['window_periods']:.0f} periods: "
+                         + ", ".join(f"{v:.3f}" for v in windows["lambda_window"])
+                         + f" 1/s; {windows['chaotic_windows']:.0f} of {windows['windows']:.0f} windows above "
+                         f"{windows['chaotic_threshold']:g} 1/s: {life}")
     lines.append("")
     for figure, label in ((f"fig-timeseries-{name}.png", "time histories"), (f"fig-contact-{name}.png", "contact"),
                           (f"fig7-strobe-{name}.png", "Fig 7"), (f"fig8-spectrum-{name}.png", "Fig 8"),

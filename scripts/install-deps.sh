@@ -4,6 +4,7 @@
 #   install-deps.sh            what every build, run and verify needs
 #   install-deps.sh fuzz       and clang with its libFuzzer runtime (make fuzz)
 #   install-deps.sh valgrind   and valgrind (make valgrind)
+#   install-deps.sh mpi        and OpenMPI (make mpi)
 set -eu
 packages="build-essential pkg-config libgsl-dev libcunit1-dev libinih-dev libcjson-dev libqhull-dev
 python3 python3-numpy python3-scipy python3-matplotlib"
@@ -11,7 +12,8 @@ for extra in "$@"; do
     case "$extra" in
         fuzz) packages="$packages clang libclang-rt-dev" ;;
         valgrind) packages="$packages valgrind" ;;
-        *) echo "install-deps: unknown extra '$extra' (allowed: fuzz, valgrind)" >&2; exit 2 ;;
+        mpi) packages="$packages libopenmpi-dev openmpi-bin" ;;
+        *) echo "install-deps: unknown extra '$extra' (allowed: fuzz, valgrind, mpi)" >&2; exit 2 ;;
     esac
 done
 missing=""

@@ -134,6 +134,7 @@ static const key_def keys[] = {
     REAL("lyapunov", "delta0", 1e-15, 0.1, 0, "", lyapunov_def.delta0),
     COUNT("lyapunov", "transient_periods", 0, 10000000, lyapunov_def.transient),
     COUNT("lyapunov", "interval_periods", 1, 10000000, lyapunov_interval_periods),
+    COUNT("lyapunov", "window_periods", 0, 10000000, lyapunov_window_periods),
     CHOSEN_COUNT("lyapunov", "warmup_intervals", 0, 10000000, lyapunov_def.warmup),
     CHOSEN_COUNT("lyapunov", "batches", 2, 1000000, lyapunov_def.batches),
     REAL("lyapunov", "omega_scale", 1e-3, 1e6, 0, "[rad/s]", omega_scale),
@@ -436,6 +437,13 @@ int gb_case_lyapunov_check(const char *path, gb_case *c)
                           "or 2 <= batches <= intervals - warmup_intervals, where a chosen warm-up may reach half the "
                           "intervals)",
                           l->batches, nearbyint(intervals) - warmup);
+    const size_t window = c->lyapunov_window_periods;
+    if (window && (window % c->lyapunov_interval_periods != 0 || (double)window > record))
+        return cross_fail(path, c, "lyapunov", "window_periods",
+                          "= %zu is not a whole number of intervals of %zu periods within the record of %g periods "
+                          "(allowed: 0 for no windows, or a multiple of interval_periods up to periods - "
+                          "transient_periods)",
+                          window, c->lyapunov_interval_periods, record);
     l->interval = k * 2.0 * M_PI / c->dynamics.forcing.omega;
     l->intervals = (size_t)nearbyint(intervals);
     if (c->omega_scale == 0.0) c->omega_scale = c->dynamics.forcing.omega;

@@ -46,6 +46,7 @@ typedef struct gb_case {
     gb_window spectrum_window;
     gb_lyapunov_def lyapunov_def;     /* interval in seconds and intervals set from the scene's periods */
     size_t lyapunov_interval_periods;
+    size_t lyapunov_window_periods;   /* windowed exponents over this many periods; 0: none */
     double omega_scale;               /* [rad/s]; the forcing omega unless given */
     int key_line[GB_CASE_KEY_MAX];    /* the line each key was read from (0: the default), by key index */
 } gb_case;

@@ -283,3 +283,23 @@ int gb_lyapunov_tangent(const gb_lyapunov_tangent_system *system, void *context,
     if (status) gb_lyapunov_result_free(out);
     return status;
 }
+
+size_t gb_lyapunov_windows(const double *lambda, size_t n, size_t per_window, double *mean)
+{
+    if (per_window == 0 || per_window > n) return 0;
+    const size_t count = n / per_window;
+    for (size_t w = 0; w < count; w++) {
+        double sum = 0.0;
+        for (size_t k = w * per_window; k < (w + 1) * per_window; k++) sum += lambda[k];
+        mean[w] = sum / (double)per_window;
+    }
+    return count;
+}
+
+double gb_lyapunov_lifetime(const double *mean, size_t count, double per_window)
+{
+    size_t last = 0; /* windows up to and including the last chaotic one */
+    for (size_t w = 0; w < count; w++)
+        if (mean[w] > GB_LYAPUNOV_CHAOTIC) last = w + 1;
+    return count && last == count ? INFINITY : (double)last * per_window;
+}

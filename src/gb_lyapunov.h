@@ -113,4 +113,19 @@ int gb_lyapunov_statistics(const double *x, size_t n, const gb_lyapunov_def *def
 /* MSER-5's warm-up of x[0..n) (a multiple of 5, at most n/2), and whether its minimum is interior. */
 size_t gb_lyapunov_mser5(const double *x, size_t n, int *found);
 
+/* Windowed exponents: the record λ_inst[0..n) cut into consecutive windows of `per_window` intervals
+ * from its start (an incomplete last window is left out), and the mean of each in mean[0..n/per_window).
+ * Where the running mean still remembers a chaotic start, the windows show when the chaos ended. Returns
+ * the number of windows (0 when per_window is 0 or exceeds n). */
+size_t gb_lyapunov_windows(const double *lambda, size_t n, size_t per_window, double *mean);
+
+/* A window whose mean exponent exceeds this [1/s] counts as chaotic: a separation growing by e^(0.05 t),
+ * one e-fold in 20 s (57 forcing periods at Table 1's ω = 18 rad/s). */
+#define GB_LYAPUNOV_CHAOTIC 0.05
+
+/* The lifetime of the chaos in `count` window means, each `per_window` long (any unit: the result is
+ * in the same): the end of the last chaotic window; 0 when none is, +inf when the last one is (chaotic
+ * to the end of the record: censored). */
+double gb_lyapunov_lifetime(const double *mean, size_t count, double per_window);
+
 #endif

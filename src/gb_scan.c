@@ -110,7 +110,7 @@ static int axis_key(gb_ini_reader *ini, const char *s, const char *value, gb_sca
     memcpy(a->key, dot + 1, nk + 1);
     /* What the scan itself sets on every point cannot be an axis. */
     static const char *const own[] = {"integrator.periods", "output.", "diagnostics.", "strobe.transient_periods",
-                                      "lyapunov.transient_periods", "lyapunov.interval_periods"};
+                                      "lyapunov.transient_periods", "lyapunov.interval_periods", "lyapunov.window_periods"};
     for (size_t k = 0; k < sizeof own / sizeof own[0]; k++) {
         const size_t n = strlen(own[k]);
         if (own[k][n - 1] == '.' ? !strncmp(value, own[k], n) : !strcmp(value, own[k]))
@@ -219,6 +219,7 @@ int gb_scan_point_case(const gb_scan *scan, size_t index, gb_case *out)
         {"diagnostics", "lyapunov", lambda ? "yes" : "no", origin},
         {"lyapunov", "transient_periods", transient, origin},
         {"lyapunov", "interval_periods", "1", origin},
+        {"lyapunov", "window_periods", "0", origin}, /* a file of gomboc run; the scan has its own windows */
     };
     return gb_case_load_text_with(scan->base, scan->base_text, scan->base_size, o, sizeof o / sizeof o[0], out);
 }
@@ -409,13 +410,10 @@ double gb_scan_chaos_lifetime(const double *lambda, size_t n, double periods_per
 {
     const size_t window = n / 12;
     if (window < 20) return NAN;
-    size_t last = 0; /* windows up to and including the last chaotic one */
-    for (size_t w = 0; w < 12; w++) {
-        double mean = 0.0;
-        for (size_t k = w * window; k < (w + 1) * window; k++) mean += lambda[k];
-        if (mean / (double)window > GB_SCAN_CHAOTIC) last = w + 1;
-    }
-    return last == 12 ? INFINITY : (double)(last * window) * periods_per_interval;
+    double mean[12];
+    const size_t count = gb_lyapunov_windows(lambda, 12 * window, window, mean);
+    const double windows = gb_lyapunov_lifetime(mean, count, 1.0); /* in windows */
+    return isinf(windows) ? windows : windows * (double)window * periods_per_interval;
 }
 
 /* ---- rows -------------------------------------------------------------------------------------- */

@@ -74,9 +74,6 @@ void gb_scan_random_attitude(unsigned long seed, size_t k, char *text, size_t si
 /* The scene of point `index`. */
 int gb_scan_point_case(const gb_scan *scan, size_t index, gb_case *out);
 
-/* A window's mean exponent above this [1/s] counts as chaotic (a separation growing by e^(0.05 t)). */
-#define GB_SCAN_CHAOTIC 0.05
-
 typedef struct gb_scan_metrics {
     double x, y;
     double omega_rms, switch_rate, strobe_sd, mean_height;
@@ -84,7 +81,7 @@ typedef struct gb_scan_metrics {
     double lambda, lambda_error;
     double lambda_early, lambda_late;  /* means of λ_inst over the first and the second half of the record */
     /* The lifetime of the chaos: the record cut into 12 windows (of at least 20 intervals), the end of
-     * the last window whose mean λ_inst exceeds GB_SCAN_CHAOTIC, in forcing periods from the record's
+     * the last window whose mean λ_inst exceeds GB_LYAPUNOV_CHAOTIC, in forcing periods from the record's
      * start; 0 when no window does, +inf when the last one does (still chaotic at the end: censored),
      * NAN when the record is too short. */
     double chaos_lifetime;

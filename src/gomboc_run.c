@@ -99,9 +99,9 @@ static cJSON *scene_json(const gb_case *c)
  * run succeeded, removed otherwise; then the files of this name that this run did not write (left by an
  * earlier run of another scene of the same name) are removed, so that what stands beside the summary is
  * this run's. */
-enum { OUT_HISTORY, OUT_STROBE, OUT_SPECTRUM, OUT_LYAPUNOV, OUT_SUMMARY, OUT_COUNT };
+enum { OUT_HISTORY, OUT_STROBE, OUT_SPECTRUM, OUT_LYAPUNOV, OUT_WINDOWS, OUT_SUMMARY, OUT_COUNT };
 static const char *const out_suffix[OUT_COUNT] = {"history.csv", "strobe.csv", "spectrum.csv", "lyapunov.csv",
-                                                  "summary.json"};
+                                                  "lyapunov-windows.csv", "summary.json"};
 
 typedef struct run_outputs {
     cli_outputs set;
@@ -186,6 +186,53 @@ static int write_lyapunov(run_outputs *out, const gb_case *scene, const gb_lyapu
     return status == GB_EIO ? stage_error(out, OUT_LYAPUNOV) : status;
 }
 
+/* The windowed exponents ([lyapunov] window_periods): the record's means over consecutive windows. */
+typedef struct windows {
+    size_t count, per_window; /* windows, and intervals a window */
+    double *mean;
+} windows;
+
+static int windows_of(const gb_case *scene, const gb_lyapunov_result *r, windows *w)
+{
+    w->per_window = scene->lyapunov_window_periods / scene->lyapunov_interval_periods;
+    w->mean = malloc((r->intervals / w->per_window + 1) * sizeof *w->mean);
+    if (!w->mean) return gb_error_set(GB_ENOMEM, "out of memory for the windowed exponents");
+    w->count = gb_lyapunov_windows(r->instantaneous, r->intervals, w->per_window, w->mean);
+    return GB_OK;
+}
+
+static int write_windows(run_outputs *out, const gb_case *scene, const windows *w)
+{
+    int status = GB_OK;
+    FILE *file = stage_open(out, OUT_WINDOWS, &status);
+    if (!file) return status;
+    if (fputs("window,period_start,period_end,lambda_window,chaotic\n", file) < 0) status = GB_EIO;
+    const size_t first = scene->lyapunov_def.transient, length = scene->lyapunov_window_periods;
+    for (size_t k = 0; !status && k < w->count; k++)
+        if (fprintf(file, "%zu,%zu,%zu,%.17g,%d\n", k + 1, first + k * length, first + (k + 1) * length, w->mean[k],
+                    w->mean[k] > GB_LYAPUNOV_CHAOTIC) < 0)
+            status = GB_EIO;
+    return status == GB_EIO ? stage_error(out, OUT_WINDOWS) : status;
+}
+
+static cJSON *windows_json(const gb_case *scene, const windows *w)
+{
+    cJSON *o = cJSON_CreateObject();
+    size_t chaotic = 0;
+    for (size_t k = 0; k < w->count; k++) chaotic += w->mean[k] > GB_LYAPUNOV_CHAOTIC;
+    const double length = (double)scene->lyapunov_window_periods;
+    const double lifetime = gb_lyapunov_lifetime(w->mean, w->count, length);
+    cli_json_add(o, "window_periods", length);
+    cli_json_add(o, "windows", (double)w->count);
+    cli_json_add(o, "chaotic_threshold", GB_LYAPUNOV_CHAOTIC);
+    cli_json_add(o, "chaotic_windows", (double)chaotic);
+    /* The end of the last chaotic window, in periods after the transient; chaotic to the end: censored. */
+    if (isinf(lifetime)) cJSON_AddStringToObject(o, "chaos_lifetime_periods", "censored: chaotic to the end of the record");
+    else cli_json_add(o, "chaos_lifetime_periods", lifetime);
+    cJSON_AddItemToObject(o, "lambda_window", cli_json_vector(w->mean, w->count));
+    return o;
+}
+
 static cJSON *strobe_json(const gb_strobe *strobe)
 {
     cJSON *o = cJSON_CreateObject();
@@ -254,6 +301,11 @@ int command_run(int argc, char **argv)
     if (!status && scene.strobe) status = write_strobe(&files, &r.strobe, period);
     if (!status && scene.spectrum) status = write_spectrum(&files, &r.spectrum);
     if (!status && scene.lyapunov) status = write_lyapunov(&files, &scene, &r.lyapunov);
+    windows w = {0};
+    if (!status && scene.lyapunov && scene.lyapunov_window_periods) {
+        status = windows_of(&scene, &r.lyapunov, &w);
+        if (!status) status = write_windows(&files, &scene, &w);
+    }
 
     cJSON *root = NULL;
     char state_print[17] = "", switch_print[17] = "";
@@ -307,7 +359,11 @@ int command_run(int argc, char **argv)
         }
         if (r.has_strobe) cJSON_AddItemToObject(root, "strobe", strobe_json(&r.strobe));
         if (r.has_spectrum) cJSON_AddItemToObject(root, "spectrum", spectrum_json(&scene, &r.spectrum, r.spectrum_samples));
-        if (r.has_lyapunov) cJSON_AddItemToObject(root, "lyapunov", cli_lyapunov_json(&scene, &r.lyapunov, 0));
+        if (r.has_lyapunov) {
+            cJSON *l = cli_lyapunov_json(&scene, &r.lyapunov, 0);
+            if (w.mean) cJSON_AddItemToObject(l, "windows", windows_json(&scene, &w));
+            cJSON_AddItemToObject(root, "lyapunov", l);
+        }
         /* Exactly the files of this run (any other NAME-* output of an earlier run is removed). */
         cJSON *list = cJSON_AddArrayToObject(root, "files");
         for (int k = 0; k < OUT_COUNT; k++)
@@ -326,6 +382,7 @@ int command_run(int argc, char **argv)
     if (!status && json) puts(text);
     free(text);
     cJSON_Delete(root);
+    free(w.mean);
     gb_run_result_free(&r);
     if (status) return cli_failure("run", status);
     fprintf(stderr, "gomboc run: %s: %zu steps in %.2f s CPU; fingerprint %s/%s\n", case_path, r.stats.steps, r.seconds,

@@ -18,6 +18,9 @@
 #ifdef _OPENMP
 #include <omp.h>
 #endif
+#ifdef GOMBOC_MPI
+#include <mpi.h>
+#endif
 
 static const char *usage_scan =
     "usage: gomboc scan SCAN [--out DIR] [--resume] [--threads N]\n"
@@ -33,7 +36,14 @@ static const char *usage_scan =
     "               the results do not depend on N\n"
     "\n"
     "Every finished point is appended to the journal and flushed; the journal is removed when the scan\n"
-    "is complete and its outputs are written. Progress goes to standard error.\n";
+    "is complete and its outputs are written. Progress goes to standard error.\n"
+#ifdef GOMBOC_MPI
+    "\n"
+    "Built with MPI: `mpirun -n N gomboc-mpi scan ...` shares the points among N ranks (each on its\n"
+    "threads). Rank 0 alone reads and writes the journal and the outputs; every rank reads SCAN and its\n"
+    "base scene. The CSV does not depend on N.\n"
+#endif
+    ;
 
 /* The running binary's fingerprint (FNV-1a of /proc/self/exe): a journal is resumed by the same build. */
 static uint64_t binary_fingerprint(void)
@@ -146,7 +156,7 @@ static cJSON *axis_json(const gb_scan_axis *a)
 }
 
 static int write_outputs(const char *dir, const char *path, const gb_scan *scan, const gb_scan_metrics *results,
-                         int threads, double seconds, size_t run_here)
+                         int ranks, int threads, double seconds, size_t run_here)
 {
     cli_outputs set = {0};
     int status = GB_OK;
@@ -179,6 +189,12 @@ static int write_outputs(const char *dir, const char *path, const gb_scan *scan,
 #else
         cJSON_AddStringToObject(env, "parallel", "none (built without OpenMP)");
 #endif
+#ifdef GOMBOC_MPI
+        cJSON_AddStringToObject(env, "distributed", "MPI");
+#else
+        cJSON_AddStringToObject(env, "distributed", "none (built without MPI)");
+#endif
+        cli_json_add(env, "ranks", ranks);
         cli_json_add(env, "threads", threads);
         cJSON *timing = cJSON_AddObjectToObject(root, "timing");
         cli_json_add(timing, "wall_seconds", seconds);
@@ -196,7 +212,164 @@ static int write_outputs(const char *dir, const char *path, const gb_scan *scan,
     return status;
 }
 
-int command_scan(int argc, char **argv)
+/* The ranks of the run: one, rank 0, without MPI. Rank 0 alone touches the journal and the outputs. */
+typedef struct ranks {
+    int rank, size;
+} ranks;
+
+/* Everything the loop over points shares, under the critical section of the journal. */
+typedef struct scan_state {
+    const gb_scan *scan;
+    const char *scan_path;
+    journal *j;
+    gb_scan_metrics *results;
+    unsigned char *done;
+    size_t points, finished, run_here;
+    double start, last_report;
+    int failed, workers_done;
+    char failure[1200];
+} scan_state;
+
+/* The first failure is the one reported. */
+static void fail_with(scan_state *st, const char *message)
+{
+    if (st->failed) return;
+    snprintf(st->failure, sizeof st->failure, "%s", message);
+    st->failed = 1;
+}
+
+static void fail_point(scan_state *st, size_t k)
+{
+    double x, y;
+    char message[sizeof st->failure];
+    gb_scan_coordinates(st->scan, k, &x, &y);
+    snprintf(message, sizeof message, "point %zu (%s.%s = %.17g, %s.%s = %.17g) failed: %s", k, st->scan->axis[0].section,
+             st->scan->axis[0].key, x, st->scan->axis[1].section, st->scan->axis[1].key, y, gb_error_message());
+    fail_with(st, message);
+}
+
+/* Rank 0: a finished point, as its journal row, appended to the journal and kept. */
+static void accept_point(scan_state *st, size_t k, const gb_scan_metrics *m, const char *row)
+{
+    if (st->failed) return;
+    if (fputs(row, st->j->file) < 0 || fflush(st->j->file) != 0) {
+        char message[sizeof st->failure];
+        snprintf(message, sizeof message, "cannot append to the journal '%s': %s (the points before are kept: --resume "
+                 "continues from them)", st->j->path, strerror(errno));
+        fail_with(st, message);
+        return;
+    }
+    if (!st->done[k]) st->finished++;
+    st->results[k] = *m, st->done[k] = 1;
+    st->run_here++;
+    const double now = wall_seconds();
+    if (now - st->last_report >= 2.0 || st->finished == st->points) {
+        const double rate = (double)st->run_here / (now - st->start);
+        fprintf(stderr, "gomboc scan: %zu of %zu points, %.2f points/s, %.0f s left\n", st->finished, st->points, rate,
+                rate > 0 ? (double)(st->points - st->finished) / rate : 0.0);
+        st->last_report = now;
+    }
+}
+
+#ifdef GOMBOC_MPI
+/* Messages to rank 0: a point's journal row, a failure's text, the end of a rank's points. */
+enum { TAG_ROW = 1, TAG_FAILURE = 2, TAG_DONE = 3 };
+
+/* Rank 0: one message from another rank (waiting for it when `wait`); 1 when one was handled. */
+static int receive_one(scan_state *st, int wait)
+{
+    MPI_Status status;
+    int flag = 1;
+    if (wait) MPI_Probe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &status);
+    else MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &flag, &status);
+    if (!flag) return 0;
+    char text[1200] = "";
+    MPI_Recv(text, (int)sizeof text, MPI_CHAR, status.MPI_SOURCE, status.MPI_TAG, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+    text[sizeof text - 1] = '\0';
+    if (status.MPI_TAG == TAG_DONE) st->workers_done++;
+    else if (status.MPI_TAG == TAG_FAILURE) fail_with(st, text);
+    else {
+        size_t index;
+        gb_scan_metrics m;
+        if (gb_scan_csv_parse(text, &index, &m) || index >= st->points) {
+            char message[sizeof st->failure];
+            snprintf(message, sizeof message, "rank %d sent a malformed point: %.200s", status.MPI_SOURCE, text);
+            fail_with(st, message);
+        } else accept_point(st, index, &m, text);
+    }
+    return 1;
+}
+
+static void send_to_root(const char *text, int tag)
+{
+    MPI_Send(text, (int)strlen(text) + 1, MPI_CHAR, 0, tag, MPI_COMM_WORLD);
+}
+#endif
+
+/* A status all ranks share: rank 0's. */
+static int shared_status(const ranks *r, int status)
+{
+#ifdef GOMBOC_MPI
+    if (r->size > 1) MPI_Bcast(&status, 1, MPI_INT, 0, MPI_COMM_WORLD);
+#else
+    (void)r;
+#endif
+    return status;
+}
+
+/* Run this rank's share of the points not yet done: the i-th of them for i ≡ rank (mod ranks), on the
+ * rank's threads; rank 0 journals its own points and those the other ranks send. */
+static void run_points(scan_state *st, const ranks *r)
+{
+    size_t *todo = malloc((st->points ? st->points : 1) * sizeof *todo), left = 0;
+    if (!todo) {
+        fail_with(st, "out of memory for the list of points");
+        left = 0;
+    }
+    for (size_t k = 0; todo && k < st->points; k++)
+        if (!st->done[k]) todo[left++] = k;
+    const size_t step = (size_t)r->size;
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 1)
+#endif
+    for (size_t i = (size_t)r->rank; i < left; i += step) {
+        int skip;
+#ifdef _OPENMP
+#pragma omp atomic read
+#endif
+        skip = st->failed;
+        if (skip) continue;
+        const size_t k = todo[i];
+        gb_scan_metrics m;
+        const int s = gb_scan_point_run(st->scan, k, &m);
+        char row[1024];
+        const int failure = s ? s : gb_scan_csv_row(&m, k, row, sizeof row);
+#ifdef _OPENMP
+#pragma omp critical(scan_journal)
+#endif
+        {
+            if (failure) fail_point(st, k);
+            if (r->rank == 0) {
+                if (!failure) accept_point(st, k, &m, row);
+#ifdef GOMBOC_MPI
+                while (r->size > 1 && receive_one(st, 0)) continue;
+#endif
+            }
+#ifdef GOMBOC_MPI
+            else if (failure) send_to_root(st->failure, TAG_FAILURE);
+            else send_to_root(row, TAG_ROW);
+#endif
+        }
+    }
+    free(todo);
+#ifdef GOMBOC_MPI
+    if (r->rank != 0) send_to_root("", TAG_DONE);
+    else
+        while (st->workers_done < r->size - 1) receive_one(st, 1);
+#endif
+}
+
+static int scan_command(int argc, char **argv, const ranks *r)
 {
     const char *scan_path = NULL, *dir = ".", *threads_text = NULL;
     int resume = 0;
@@ -229,20 +402,34 @@ int command_scan(int argc, char **argv)
         if (n != floor(n)) return cli_input_error("scan", "--threads %s: not an integer (allowed: an integer from 1 to 256)", threads_text);
         threads = (int)n;
     }
-    if (cli_output_dir_check("scan", "--out", dir)) return EXIT_INPUT;
-    char *csv_path = cli_output_name(dir, scan_path, "scan.csv"), *json_path = cli_output_name(dir, scan_path, "scan.json");
+    /* The outputs are rank 0's: only it checks where they go. */
     journal j = {.path = cli_output_name(dir, scan_path, "scan.journal")};
-    int bad = !csv_path || !json_path || !j.path;
-    if (!bad) bad = cli_output_check("scan", "--out", csv_path) || cli_output_check("scan", "--out", json_path) ||
-                    cli_output_check("scan", "--out", j.path);
-    free(csv_path);
-    free(json_path);
-    if (bad) {
+    int bad = !j.path;
+    if (r->rank == 0 && !bad) {
+        char *csv_path = cli_output_name(dir, scan_path, "scan.csv"), *json_path = cli_output_name(dir, scan_path, "scan.json");
+        bad = cli_output_dir_check("scan", "--out", dir) || !csv_path || !json_path ||
+              cli_output_check("scan", "--out", csv_path) || cli_output_check("scan", "--out", json_path) ||
+              cli_output_check("scan", "--out", j.path);
+        free(csv_path);
+        free(json_path);
+    }
+    if (shared_status(r, bad ? EXIT_INPUT : 0)) {
         free(j.path);
         return EXIT_INPUT;
     }
     gb_scan scan;
     int status = gb_scan_load(scan_path, &scan);
+#ifdef GOMBOC_MPI
+    int anywhere = status != 0;
+    if (r->size > 1) MPI_Allreduce(MPI_IN_PLACE, &anywhere, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+    if (anywhere && !status) {
+        gb_scan_free(&scan);
+        fprintf(stderr, "gomboc scan: another rank could not read '%s' or its base scene (allowed: paths every rank "
+                "can read)\n", scan_path);
+        free(j.path);
+        return EXIT_INPUT;
+    }
+#endif
     if (status) {
         free(j.path);
         return cli_failure("scan", status);
@@ -253,8 +440,6 @@ int command_scan(int argc, char **argv)
         return 0;
     }
     const size_t points = gb_scan_points(&scan);
-    snprintf(j.header, sizeof j.header, "gomboc scan journal 1: scan %016" PRIx64 ", binary %016" PRIx64 ", %zu points\n",
-             scan.fingerprint, binary_fingerprint(), points);
     gb_scan_metrics *results = calloc(points, sizeof *results);
     unsigned char *done = calloc(points, 1);
     size_t already = 0;
@@ -263,14 +448,27 @@ int command_scan(int argc, char **argv)
         fprintf(stderr, "gomboc scan: out of memory for %zu points\n", points);
         exit_status = EXIT_COMPUTE;
     }
-    struct stat st;
-    const int exists = lstat(j.path, &st) == 0;
-    if (!exit_status && exists && !resume) {
-        fprintf(stderr, "gomboc scan: a journal of an unfinished scan exists: '%s' (allowed: --resume to finish it, or "
-                "remove it to start again)\n", j.path);
-        exit_status = EXIT_INPUT;
+    if (r->rank == 0) {
+        snprintf(j.header, sizeof j.header, "gomboc scan journal 1: scan %016" PRIx64 ", binary %016" PRIx64 ", %zu points\n",
+                 scan.fingerprint, binary_fingerprint(), points);
+        struct stat st;
+        const int exists = lstat(j.path, &st) == 0;
+        if (!exit_status && exists && !resume) {
+            fprintf(stderr, "gomboc scan: a journal of an unfinished scan exists: '%s' (allowed: --resume to finish it, or "
+                    "remove it to start again)\n", j.path);
+            exit_status = EXIT_INPUT;
+        }
+        if (!exit_status) exit_status = exists ? journal_resume(&j, results, done, points, &already) : journal_create(&j);
     }
-    if (!exit_status) exit_status = exists ? journal_resume(&j, results, done, points, &already) : journal_create(&j);
+#ifdef GOMBOC_MPI
+    if (r->size > 1) { /* every rank learns what is done (or that nothing will be) */
+        int root_status = exit_status, no_memory = !results || !done;
+        MPI_Allreduce(MPI_IN_PLACE, &no_memory, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+        MPI_Bcast(&root_status, 1, MPI_INT, 0, MPI_COMM_WORLD);
+        exit_status = root_status ? root_status : no_memory ? EXIT_COMPUTE : 0;
+        if (!exit_status) MPI_Bcast(done, (int)points, MPI_UNSIGNED_CHAR, 0, MPI_COMM_WORLD);
+    }
+#endif
 
 #ifdef _OPENMP
     if (threads > 0) omp_set_num_threads(threads);
@@ -279,76 +477,32 @@ int command_scan(int argc, char **argv)
     const int used_threads = 1; /* built without OpenMP: --threads is read and checked, and one thread runs */
     (void)threads;
 #endif
-    const double start = wall_seconds();
-    double last_report = start;
-    size_t finished = already, run_here = 0;
-    int failed = 0;
-    char failure[1200] = "";
+    scan_state st = {.scan = &scan, .scan_path = scan_path, .j = &j, .results = results, .done = done,
+                     .points = points, .finished = already, .start = wall_seconds()};
+    st.last_report = st.start;
     if (!exit_status) {
-        if (already) fprintf(stderr, "gomboc scan: %s: resuming, %zu of %zu points in the journal\n", scan_path, already, points);
-#ifdef _OPENMP
-#pragma omp parallel for schedule(dynamic, 1)
-#endif
-        for (size_t k = 0; k < points; k++) {
-            int skip;
-#ifdef _OPENMP
-#pragma omp atomic read
-#endif
-            skip = failed;
-            if (done[k] || skip) continue;
-            gb_scan_metrics m;
-            const int s = gb_scan_point_run(&scan, k, &m);
-            char row[1024];
-            const int r = s ? s : gb_scan_csv_row(&m, k, row, sizeof row);
-#ifdef _OPENMP
-#pragma omp critical(scan_journal)
-#endif
-            {
-                if (r && !failed) {
-                    double x, y;
-                    gb_scan_coordinates(&scan, k, &x, &y);
-                    snprintf(failure, sizeof failure, "point %zu (%s.%s = %.17g, %s.%s = %.17g) failed: %s", k,
-                             scan.axis[0].section, scan.axis[0].key, x, scan.axis[1].section, scan.axis[1].key, y,
-                             gb_error_message());
-                    failed = 1;
-                } else if (!r && !failed) {
-                    if (fputs(row, j.file) < 0 || fflush(j.file) != 0) {
-                        snprintf(failure, sizeof failure, "cannot append to the journal '%s': %s (the points before are "
-                                 "kept: --resume continues from them)", j.path, strerror(errno));
-                        failed = 1;
-                    } else {
-                        results[k] = m, done[k] = 1;
-                        finished++, run_here++;
-                        const double now = wall_seconds();
-                        if (now - last_report >= 2.0 || finished == points) {
-                            const double rate = (double)run_here / (now - start);
-                            fprintf(stderr, "gomboc scan: %zu of %zu points, %.2f points/s, %.0f s left\n", finished,
-                                    points, rate, rate > 0 ? (double)(points - finished) / rate : 0.0);
-                            last_report = now;
-                        }
-                    }
-                }
-            }
-        }
-        if (failed) {
-            fprintf(stderr, "gomboc scan: %s: %s\n", scan_path, failure);
+        if (already && r->rank == 0)
+            fprintf(stderr, "gomboc scan: %s: resuming, %zu of %zu points in the journal\n", scan_path, already, points);
+        run_points(&st, r);
+        if (st.failed) {
+            fprintf(stderr, "gomboc scan: %s: %s\n", scan_path, st.failure);
             exit_status = EXIT_COMPUTE;
         }
     }
-    const double seconds = wall_seconds() - start;
+    const double seconds = wall_seconds() - st.start;
     if (j.file && fclose(j.file) != 0 && !exit_status) {
         fprintf(stderr, "gomboc scan: cannot close the journal '%s': %s\n", j.path, strerror(errno));
         exit_status = EXIT_COMPUTE;
     }
-    if (!exit_status) {
-        status = write_outputs(dir, scan_path, &scan, results, used_threads, seconds, run_here);
+    if (!exit_status && r->rank == 0) {
+        status = write_outputs(dir, scan_path, &scan, results, r->size, used_threads, seconds, st.run_here);
         if (status) exit_status = cli_failure("scan", status);
         else if (unlink(j.path) != 0) {
             fprintf(stderr, "gomboc scan: cannot remove the finished journal '%s': %s\n", j.path, strerror(errno));
             exit_status = EXIT_COMPUTE;
         } else {
-            fprintf(stderr, "gomboc scan: %s: %zu points (%zu run now) in %.1f s on %d thread(s)\n", scan_path, points,
-                    run_here, seconds, used_threads);
+            fprintf(stderr, "gomboc scan: %s: %zu points (%zu run now) in %.1f s on %d rank(s) of %d thread(s)\n",
+                    scan_path, points, st.run_here, seconds, r->size, used_threads);
         }
     }
     free(results);
@@ -356,4 +510,31 @@ int command_scan(int argc, char **argv)
     free(j.path);
     gb_scan_free(&scan);
     return exit_status;
+}
+
+int command_scan(int argc, char **argv)
+{
+    ranks r = {0, 1};
+#ifdef GOMBOC_MPI
+    /* The ranks' points run on threads; their messages pass one at a time (the journal's critical section). */
+    int provided = 0, initialized = 0;
+    MPI_Initialized(&initialized);
+    if (!initialized) MPI_Init_thread(NULL, NULL, MPI_THREAD_SERIALIZED, &provided);
+    else MPI_Query_thread(&provided);
+    MPI_Comm_rank(MPI_COMM_WORLD, &r.rank);
+    MPI_Comm_size(MPI_COMM_WORLD, &r.size);
+#ifdef _OPENMP
+    if (provided < MPI_THREAD_SERIALIZED && r.size > 1) omp_set_num_threads(1);
+#endif
+    /* Rank 0 speaks for all: the others' messages would repeat its own, and theirs reach it by message. */
+    if (r.rank != 0) {
+        FILE *quiet = freopen("/dev/null", "w", stderr);
+        (void)quiet;
+    }
+    const int status = scan_command(argc, argv, &r);
+    if (!initialized) MPI_Finalize();
+    return status;
+#else
+    return scan_command(argc, argv, &r);
+#endif
 }

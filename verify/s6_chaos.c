@@ -779,6 +779,17 @@ static void test_chaos_real_long(void)
             cJSON_AddNumberToObject(row, "switches_per_period_last_tenth", rates.late);
             cJSON_AddBoolToObject(row, "chattering", chattering(rates));
             if (!status) add_layout(row, &r), cJSON_AddBoolToObject(row, "converged", r.converged);
+            if (!status) { /* windowed exponents per 500 periods, beside the running mean */
+                const size_t per_window = (size_t)nearbyint(500.0 * (double)r.intervals / (double)periods[k]);
+                double means[64];
+                const size_t count = per_window && r.intervals / per_window <= 64 ?
+                                     gb_lyapunov_windows(r.instantaneous, r.intervals, per_window, means) : 0;
+                const double lifetime = gb_lyapunov_lifetime(means, count, 500.0);
+                cJSON_AddNumberToObject(row, "window_periods", 500.0);
+                cJSON_AddItemToObject(row, "lambda_window", cJSON_CreateDoubleArray(means, (int)count));
+                if (isinf(lifetime)) cJSON_AddStringToObject(row, "chaos_lifetime_periods", "censored");
+                else cJSON_AddNumberToObject(row, "chaos_lifetime_periods", lifetime);
+            }
             cJSON_AddItemToArray(doc, row);
             rate[k] = rates;
             if (!status) gb_lyapunov_result_free(&r);

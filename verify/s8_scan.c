@@ -10,6 +10,7 @@
 #include "verify_sections.h"
 
 #include <cjson/cJSON.h>
+#include <dirent.h>
 #include <errno.h>
 #include <float.h>
 #include <math.h>
@@ -324,6 +325,140 @@ static void test_threads_and_resume(void)
     remove_scan_dir(&d);
 }
 
+/* ---- MPI ranks (where an MPI build exists: $GOMBOC_MPI_BIN, launched by $GOMBOC_MPIRUN) ----------- */
+
+static const char *mpi_binary(void) { return getenv("GOMBOC_MPI_BIN"); }
+
+/* `LAUNCHER -n RANKS MPI-BINARY scan ...` into the scan directory; the exit status. */
+static int mpi_scan_run(const scan_dir *d, int ranks, const char *extra, char *out, size_t cap)
+{
+    char command[1024], args[1024];
+    snprintf(command, sizeof command, "%s -n %d '%s'", getenv("GOMBOC_MPIRUN"), ranks, mpi_binary());
+    snprintf(args, sizeof args, "scan '%s' --out '%s' %s", d->scan, d->path, extra);
+    return gb_check_command(command, args, out, cap);
+}
+
+/* The ranks the scan's JSON says it ran on. */
+static int ranks_of(const scan_dir *d)
+{
+    char path[200];
+    snprintf(path, sizeof path, "%s/map-scan.json", d->path);
+    char *text = slurp(path);
+    cJSON *root = text ? cJSON_Parse(text) : NULL;
+    free(text);
+    const double ranks = number_at(root, "environment", "ranks");
+    cJSON_Delete(root);
+    return isfinite(ranks) ? (int)ranks : -1;
+}
+
+/* SIGKILL to every process of session `sid` (mpirun and its ranks, which OpenMPI puts in process groups
+ * of their own) until none is left; the number killed. */
+static int kill_session(pid_t sid)
+{
+    int killed = 0;
+    for (int round = 0; round < 100; round++) {
+        int found = 0;
+        DIR *proc = opendir("/proc");
+        for (struct dirent *e; proc && (e = readdir(proc));) {
+            const long pid = strtol(e->d_name, NULL, 10);
+            if (pid <= 0) continue;
+            char path[64], stat[512];
+            snprintf(path, sizeof path, "/proc/%ld/stat", pid);
+            FILE *f = fopen(path, "r");
+            if (!f) continue;
+            const size_t n = fread(stat, 1, sizeof stat - 1, f);
+            fclose(f);
+            stat[n] = '\0';
+            const char *after = strrchr(stat, ')'); /* after the command's name: state, ppid, pgrp, session */
+            char state;
+            long ppid, pgrp, session;
+            if (!after || sscanf(after + 1, " %c %ld %ld %ld", &state, &ppid, &pgrp, &session) != 4) continue;
+            if (session != (long)sid || state == 'Z') continue;
+            found++;
+            if (kill((pid_t)pid, SIGKILL) == 0) killed++;
+        }
+        if (proc) closedir(proc);
+        if (!found) break;
+        const struct timespec pause = {0, 10000000};
+        nanosleep(&pause, NULL);
+    }
+    return killed;
+}
+
+static void test_mpi_ranks(void)
+{
+    scan_dir d;
+    char out[1 << 14];
+    gb_check c1 = {"8.3", "-", "scan CSV of the MPI build on 1 rank against the plain build on 1 thread", "byte for byte", "exact"};
+    if (make_scan_dir(&d, &c1)) return;
+    const int plain = scan_run(&d, "--threads 1", out, sizeof out);
+    char *reference = slurp(d.csv);
+    remove(d.csv);
+    const int one = mpi_scan_run(&d, 1, "--threads 1", out, sizeof out);
+    char *csv = slurp(d.csv);
+    const int same1 = plain == 0 && one == 0 && reference && csv && !strcmp(reference, csv) && ranks_of(&d) == 1;
+    gb_check_true(&c1, same1, "exits %d, %d; %d rank(s); %s%s%.200s", plain, one, ranks_of(&d),
+                  reference && csv && !strcmp(reference, csv) ? "identical" : "different", same1 ? "" : ": ", same1 ? "" : out);
+    free(csv);
+
+    static const struct {
+        int ranks;
+        const char *threads;
+    } runs[] = {{2, "--threads 1"}, {2, "--threads 2"}, {3, "--threads 1"}};
+    for (size_t k = 0; k < sizeof runs / sizeof runs[0]; k++) {
+        remove(d.csv);
+        const int code = mpi_scan_run(&d, runs[k].ranks, runs[k].threads, out, sizeof out);
+        csv = slurp(d.csv);
+        char quantity[160];
+        snprintf(quantity, sizeof quantity, "scan CSV on %d MPI ranks (%s) against the plain build on 1 thread",
+                 runs[k].ranks, runs[k].threads);
+        gb_check c = {"8.3", "-", quantity, "byte for byte; the JSON names the ranks", "exact"};
+        const int same = code == 0 && csv && reference && !strcmp(reference, csv) && ranks_of(&d) == runs[k].ranks;
+        gb_check_true(&c, same, "exit %d; %d rank(s); %s%s%.200s", code, ranks_of(&d),
+                      reference && csv && !strcmp(reference, csv) ? "identical" : "different", same ? "" : ": ", same ? "" : out);
+        free(csv);
+    }
+
+    /* The whole launch (mpirun and its ranks, one session) killed once the journal holds two points; a
+     * half-written line left behind; resumed on 2 ranks. */
+    remove(d.csv);
+    const pid_t pid = fork();
+    if (pid == 0) {
+        setsid();
+        if (!freopen("/dev/null", "w", stdout) || !freopen("/dev/null", "w", stderr)) _exit(127);
+        char command[1024];
+        snprintf(command, sizeof command, "exec %s -n 2 '%s' scan '%s' --out '%s' --threads 1", getenv("GOMBOC_MPIRUN"),
+                 mpi_binary(), d.scan, d.path);
+        execl("/bin/sh", "sh", "-c", command, (char *)NULL);
+        _exit(127);
+    }
+    const struct timespec ms = {0, 1000000};
+    for (int k = 0; k < 60000 && lines_of(d.journal) < 3; k++) nanosleep(&ms, NULL);
+    const int killed = kill_session(pid);
+    int wstatus = 0;
+    waitpid(pid, &wstatus, 0);
+    const size_t kept = lines_of(d.journal);
+    FILE *j = fopen(d.journal, "a");
+    if (j) fputs("5,18,1.", j), fclose(j);
+    const int resumed = mpi_scan_run(&d, 2, "--resume --threads 1", out, sizeof out);
+    csv = slurp(d.csv);
+    gb_check ck = {"8.3", "-", "scan CSV after a kill -9 of every rank with 2 or more points journaled, a half-written line, "
+                   "and --resume on 2 ranks", "the plain build's uninterrupted CSV, byte for byte", "exact"};
+    size_t journaled = SCAN_POINTS; /* what the resumed run found in the journal */
+    const char *said = strstr(out, "resuming, ");
+    if (!said || sscanf(said, "resuming, %zu of", &journaled) != 1) journaled = SCAN_POINTS;
+    const int resumed_same = WIFSIGNALED(wstatus) && killed >= 3 && kept >= 3 && journaled == kept - 1 &&
+                             journaled < SCAN_POINTS && resumed == 0 && csv && reference && !strcmp(reference, csv) &&
+                             access(d.journal, F_OK) != 0;
+    gb_check_true(&ck, resumed_same,
+                  "%d processes killed with %zu journal lines (%zu points found on resuming); resume exit %d; %s%s%.200s",
+                  killed, kept, journaled, resumed, reference && csv && !strcmp(reference, csv) ? "identical" : "different",
+                  resumed_same ? "" : ": ", resumed_same ? "" : out);
+    free(csv);
+    free(reference);
+    remove_scan_dir(&d);
+}
+
 /* A point whose coordinate is outside its key's range is refused before any run, naming the scan
  * file's line, the point and the range; nothing is written. */
 static void test_point_out_of_range(void)
@@ -388,6 +523,61 @@ static void test_chaos_lifetime(void)
                   "%g, %g, %g, %g, %g (returning chaos to window 9: 450)", five, all, none, short_record, returning);
 }
 
+/* Windowed exponents: a record whose window means are known (each window a constant plus a zero-sum
+ * oscillation), and `gomboc run`'s windows file against the means of its own λ record (lyapunov.csv,
+ * 12 significant digits), recomputed here. */
+static void test_windowed_exponents(void)
+{
+    enum { N = 230, PER = 40 };
+    double record[N], mean[N];
+    for (int k = 0; k < N; k++) record[k] = 0.1 * (k / PER) + (k % 2 ? 0.25 : -0.25);
+    const size_t count = gb_lyapunov_windows(record, N, PER, mean);
+    double worst = 0.0;
+    for (size_t w = 0; w < count; w++) worst = fmax(worst, fabs(mean[w] - 0.1 * (double)w));
+    gb_check ck = {"8.2", "77", "windowed exponents of a record of 230 intervals in windows of 40: count and worst error",
+                   "5 windows (the incomplete sixth left out), means 0, 0.1, ..., 0.4 (closed form)",
+                   "4e-16: a sum of 40 terms of size 0.4 in double precision"};
+    gb_check_true(&ck, count == 5 && gb_lyapunov_windows(record, N, 0, mean) == 0 &&
+                  gb_lyapunov_windows(record, 10, PER, mean) == 0, "%zu windows", count);
+    gb_check_close(&ck, worst, 0.0, 0.0, 4e-16);
+
+    scan_dir d;
+    char out[1 << 14], text[8192], scene[200], args[600], path[200];
+    gb_check cr = {"8.2", "77", "gomboc run's windowed exponents (40 periods, 5 windows of 8) against its own lambda record",
+                   "the means of lambda_inst in NAME-lyapunov.csv, recomputed",
+                   "1e-11 of the largest |lambda_inst|: the record is printed with 12 significant digits"};
+    if (make_scan_dir(&d, &cr)) return;
+    scene_text(text, sizeof text, 18.0, 1.0, 40.0, 0, 0);
+    strncat(text, "window_periods = 8\n", sizeof text - strlen(text) - 1);
+    snprintf(scene, sizeof scene, "%s/windows.ini", d.path);
+    snprintf(args, sizeof args, "run '%s' --out '%s'", scene, d.path);
+    const int code = spill(scene, text) ? -1 : run(args, out, sizeof out);
+    double inst[40], largest = 0.0, windows[5], error = NAN;
+    size_t got = 0, rows = 0;
+    snprintf(path, sizeof path, "%s/windows-lyapunov.csv", d.path);
+    FILE *f = fopen(path, "r");
+    char line[512];
+    if (f && fgets(line, sizeof line, f))
+        while (rows < 40 && fgets(line, sizeof line, f) && sscanf(line, "%*d,%*d,%lf", &inst[rows]) == 1)
+            largest = fmax(largest, fabs(inst[rows++]));
+    if (f) fclose(f);
+    snprintf(path, sizeof path, "%s/windows-lyapunov-windows.csv", d.path);
+    f = fopen(path, "r");
+    if (f && fgets(line, sizeof line, f))
+        while (got < 5 && fgets(line, sizeof line, f) && sscanf(line, "%*d,%*d,%*d,%lf", &windows[got]) == 1) got++;
+    if (f) fclose(f);
+    if (code == 0 && rows == 40 && got == 5) {
+        error = 0.0;
+        for (size_t w = 0; w < 5; w++) {
+            double sum = 0.0;
+            for (size_t k = 8 * w; k < 8 * (w + 1); k++) sum += inst[k];
+            error = fmax(error, fabs(windows[w] - sum / 8.0));
+        }
+    }
+    gb_check_close(&cr, error, 0.0, 0.0, 1e-11 * largest);
+    remove_scan_dir(&d);
+}
+
 /* The maps of Figs 10–13 (cases/scans): each reads, every point's scene is valid, and Table 1's point
  * (ω = 18, A1 = 2, A2 = 1, ψ = π/3, the base scene's values) is a node of the grid. */
 static void test_shipped_scans(void)
@@ -437,7 +627,15 @@ int verify_register_s8_scan(void)
         {"Figs 10-13: the shipped maps read, and hold Table 1's point", test_shipped_scans, NULL},
         {"ensembles: random initial attitudes, seeded and uniform on the rotations", test_random_attitudes, NULL},
         {"ensembles: the lifetime of the chaos in a record", test_chaos_lifetime, NULL},
+        {"windowed exponents: known records, and gomboc run's windows file", test_windowed_exponents, NULL},
         {NULL, NULL, NULL},
     };
-    return verify_register_suite("Section 8.3: parameter scans", tests);
+    static const verify_test mpi_tests[] = {
+        {"section 8.3: 1, 2 and 3 MPI ranks, kill -9 and --resume give the same bytes", test_mpi_ranks,
+         "a scan's CSV does not depend on the number of MPI ranks or on an interruption of all of them"},
+        {NULL, NULL, NULL},
+    };
+    /* The ranks' checks need an MPI build (make mpi; make verify builds one where mpicc is). */
+    return verify_register_suite("Section 8.3: parameter scans", tests) ||
+           (mpi_binary() && getenv("GOMBOC_MPIRUN") && verify_register_suite("Section 8.3: scans on MPI ranks", mpi_tests));
 }
