@@ -28,7 +28,8 @@ VERIFY_SRC := $(sort $(wildcard verify/*.c))
 VERIFY_OBJ := $(VERIFY_SRC:verify/%.c=$(BUILD)/obj/verify_%.o)
 VERIFY_BIN := $(BUILD)/verify-gomboc
 BENCH_BIN  := $(BUILD)/bench-gomboc
-# make bench's baseline: the same bench and library built apart with the best flags of this compiler
+# make bench's baseline: the best plain loop (verify/bench/plain.c) with the bench and the library around
+# it, built apart with the best flags of this compiler
 NATIVE_FLAGS := -O3 -march=native -falign-loops=64
 NATIVE_OBJ := $(CORE_SRC:src/%.c=$(BUILD)/native/%.o)
 BENCH_NATIVE := $(BUILD)/bench-gomboc-native
@@ -304,8 +305,8 @@ $(BIN): $(CLI_OBJ) $(LIB)
 $(VERIFY_BIN): $(VERIFY_OBJ) $(LIB)
 	$(CC) $(ALL_CFLAGS) -o $@ $^ $(TEST_LIBS) $(CORE_LIBS)
 
-$(BENCH_BIN): verify/bench/bench.c $(LIB) $(wildcard src/*.h) | $(BUILD)/obj
-	$(CC) $(ALL_CFLAGS) -o $@ $< $(LIB) $(CORE_LIBS)
+$(BENCH_BIN): verify/bench/bench.c verify/bench/plain.c $(LIB) $(wildcard src/*.h verify/bench/*.h) | $(BUILD)/obj
+	$(CC) $(ALL_CFLAGS) -fopenmp-simd -o $@ verify/bench/bench.c verify/bench/plain.c $(LIB) $(CORE_LIBS)
 
 $(BUILD)/mpi/gomboc_scan.o: src/gomboc_scan.c $(wildcard src/*.h)
 	@mkdir -p $(BUILD)/mpi
@@ -318,8 +319,12 @@ $(BUILD)/native/%.o: src/%.c $(wildcard src/*.h)
 	@mkdir -p $(BUILD)/native
 	$(CC) $(WARN) $(NATIVE_FLAGS) $(shell pkg-config --cflags $(PKGS)) -Isrc -c $< -o $@
 
-$(BENCH_NATIVE): verify/bench/bench.c $(NATIVE_OBJ) $(wildcard src/*.h)
-	$(CC) $(WARN) $(NATIVE_FLAGS) $(shell pkg-config --cflags $(PKGS)) -Isrc -o $@ $< $(NATIVE_OBJ) $(CORE_LIBS)
+$(BUILD)/native/plain.o: verify/bench/plain.c verify/bench/plain.h $(wildcard src/*.h)
+	@mkdir -p $(BUILD)/native
+	$(CC) $(WARN) $(NATIVE_FLAGS) -fopenmp-simd $(shell pkg-config --cflags $(PKGS)) -Isrc -c $< -o $@
+
+$(BENCH_NATIVE): verify/bench/bench.c $(BUILD)/native/plain.o $(NATIVE_OBJ) $(wildcard src/*.h verify/bench/*.h)
+	$(CC) $(WARN) $(NATIVE_FLAGS) $(shell pkg-config --cflags $(PKGS)) -Isrc -o $@ $< $(BUILD)/native/plain.o $(NATIVE_OBJ) $(CORE_LIBS)
 
 $(BUILD)/obj:
 	mkdir -p $@

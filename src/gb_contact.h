@@ -86,17 +86,18 @@ int gb_contact_grid_brute(const gb_contact_grid *grid, const double zb[3], gb_co
 /* The same node, by branch and bound over the patch tree (see gb_contact.c for the bound). */
 int gb_contact_grid_fast(const gb_contact_grid *grid, const double zb[3], gb_contact_node *out);
 
-/* Exact grid search along a trajectory. Around a reference vertical d₀ the tracker keeps the leaf
- * patches whose lower bound at d₀ is within 2·δ_max·r_max of the lowest node height h₀. For a unit
- * vertical d with |d − d₀| ≤ δ_max, every node's height moves by at most |d − d₀|·|x| (Cauchy–
- * Schwarz), so every leaf left out holds only nodes strictly higher than the lowest candidate node:
- * scanning the candidates returns the very node brute force returns, ties included. Farther away the
- * tracker re-searches the whole tree and takes d as its new reference. */
+/* Exact grid search along a trajectory: a descent over the vertices of the nodes' convex hull from
+ * the previous answer (the lowest node is a hull vertex, and on a convex polytope a vertex no higher
+ * than its neighbours is the lowest), then a certified search of the vertices within 1e-11 of where it
+ * stopped and of the nodes Qhull finds within 1e-12 of a facet (see gb_contact_tracker.c): the very
+ * node brute force returns, ties included, for the heights of a few dozen nodes a query. Where Qhull
+ * cannot build the hull it falls back to gb_contact_grid_search. */
 typedef struct gb_contact_tracker gb_contact_tracker;
 
-/* delta_max: the reference radius (chord length of unit verticals), 0 < delta_max <= 0.5. */
-int gb_contact_tracker_create(const gb_contact_grid *grid, double delta_max, gb_contact_tracker **out);
+int gb_contact_tracker_create(const gb_contact_grid *grid, gb_contact_tracker **out);
 void gb_contact_tracker_free(gb_contact_tracker *tracker);
+/* The hull's vertices (0 when the tracker fell back to the patch-tree search). */
+size_t gb_contact_tracker_vertices(const gb_contact_tracker *tracker);
 int gb_contact_tracker_find(gb_contact_tracker *tracker, const double zb[3], gb_contact_node *out);
 
 /* A stationary point of h polished by the continuous minimiser. */

@@ -3,7 +3,7 @@
  * brute force, the fast search, the tracker and the branch search compare bit-identical values.
  *
  *   gb_contact_grid.c     node placement, the patch tree, brute force and the exact fast search
- *   gb_contact_tracker.c  the trajectory tracker (candidate leaves around a reference vertical)
+ *   gb_contact_tracker.c  the trajectory tracker (a descent over the nodes' convex hull)
  *   gb_contact_minimum.c  the continuous minimiser, branches, switch detection, sensitivity (eq 72) */
 #ifndef GB_CONTACT_INTERNAL_H
 #define GB_CONTACT_INTERNAL_H

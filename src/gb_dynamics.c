@@ -32,10 +32,9 @@ gb_dynamics_def gb_dynamics_default_def(void)
         .forcing = {.g = 9.81, .a1 = 2.0, .a2 = 1.0, .omega = 18.0, .psi = M_PI / 3.0},
         .grid = gb_contact_grid_default_def(),
         .certify = gb_certify_default_def(),
-        .tracker_radius = 0.006,
     };
-    /* Leaves of 16 nodes and a tracker radius of 0.006 were the fastest of 8–32 and 0.001–0.03 on the
-     * Table 1 run (make bench); neither changes a result, only the work. */
+    /* Leaves of 16 nodes were the fastest of 8–32 for the patch tree's searches (make bench); the leaf
+     * size changes no result, only the work. */
     def.grid.leaf_size = 16;
     return def;
 }
@@ -57,6 +56,7 @@ struct gb_dynamics {
     double contact_time, contact_rate[2];
     double energy0, t0;
     size_t grid_switches, branch_switches;
+    size_t contact_queries, nodes_visited; /* grid models: the searches' work */
     double last_switch_time; /* of the latest grid or branch switch (NAN before the first) */
     size_t branches_lost; /* continuous: evaluations where the continued branch had no minimum */
     /* The last competitor() answer and the state it was for: with switch location, the step's end is
@@ -105,7 +105,7 @@ int gb_dynamics_create(const gb_surface *surface, const gb_dynamics_def *def, gb
             status = gb_contact_grid_create(surface, &def->grid, &d->grid);
     }
     if (!status && def->contact == GB_CONTACT_MODEL_FAST_GRID)
-        status = gb_contact_tracker_create(d->grid, def->tracker_radius, &d->tracker);
+        status = gb_contact_tracker_create(d->grid, &d->tracker);
     if (status) {
         gb_dynamics_free(d);
         return status;
@@ -168,9 +168,23 @@ static int contact_at(gb_dynamics *d, double t, const double zb[3], const double
     memset(c->rc_dot, 0, sizeof c->rc_dot);
     if (d->def.contact != GB_CONTACT_MODEL_CONTINUOUS) {
         gb_contact_node node;
-        const int status = d->def.contact == GB_CONTACT_MODEL_GRID ? gb_contact_grid_brute(d->grid, zb, &node)
-                                                                   : gb_contact_tracker_find(d->tracker, zb, &node);
+        int status;
+        if (d->def.contact == GB_CONTACT_MODEL_GRID && d->def.grid_lowest) {
+            double unit[3];
+            status = gb_contact_unit_vertical(zb, unit);
+            if (!status) {
+                node.index = d->def.grid_lowest(d->def.grid_lowest_context, unit);
+                node.visited = 0;
+                if (node.index < gb_contact_grid_size(d->grid)) gb_contact_grid_node(d->grid, node.index, NULL, NULL, node.x);
+                else status = gb_error_set(GB_EINVAL, "the lowest-node search returned node %zu of a grid of %zu",
+                                           node.index, gb_contact_grid_size(d->grid));
+            }
+        } else {
+            status = d->def.contact == GB_CONTACT_MODEL_GRID ? gb_contact_grid_brute(d->grid, zb, &node)
+                                                             : gb_contact_tracker_find(d->tracker, zb, &node);
+        }
         if (status) return status;
+        d->contact_queries++, d->nodes_visited += node.visited;
         for (int k = 0; k < 3; k++) c->rc[k] = l * node.x[k];
         c->index = node.index;
         return GB_OK; /* ṙ_c = 0 between grid switches */
@@ -351,6 +365,14 @@ static int competitor(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], g
     if (*found) d->memo_other = *other;
     d->memo_valid = 1;
     return GB_OK;
+}
+
+void gb_dynamics_contact_work(const gb_dynamics *d, size_t *queries, size_t *nodes)
+{
+    const int counted = d->def.contact != GB_CONTACT_MODEL_CONTINUOUS && !(d->def.contact == GB_CONTACT_MODEL_GRID &&
+                                                                          d->def.grid_lowest);
+    *queries = counted ? d->contact_queries : 0;
+    *nodes = counted ? d->nodes_visited : 0;
 }
 
 int gb_dynamics_certify_stats(const gb_dynamics *d, gb_certify_stats *out)

@@ -34,6 +34,11 @@ typedef enum gb_dynamics_variant { GB_VARIANT_PAPER = 0, GB_VARIANT_ROLLING = 1 
 const char *gb_dynamics_variant_name(gb_dynamics_variant variant);
 int gb_dynamics_variant_parse(const char *name, gb_dynamics_variant *variant);
 
+/* A lowest-node search of one's own for contact = grid (make bench's plain loop): the index of the
+ * lowest node of the grid for the unit vertical d (gb_contact_unit_vertical of z_b), ties to the lowest
+ * index, exactly as gb_contact_grid_brute returns it (the grid's nodes: gb_contact_grid_node). */
+typedef size_t (*gb_dynamics_lowest_node)(void *context, const double d[3]);
+
 typedef struct gb_dynamics_def {
     gb_dynamics_variant variant;
     gb_contact_model contact;
@@ -43,7 +48,8 @@ typedef struct gb_dynamics_def {
     gb_forcing forcing;            /* eq 25 */
     gb_contact_grid_def grid;      /* the grid of the grid models (Table 1: 90 × 180) */
     gb_certify_def certify;        /* continuous contact: the certificate of the global minimum */
-    double tracker_radius;         /* gb_contact_tracker's reference radius (fast-grid) */
+    gb_dynamics_lowest_node grid_lowest; /* contact = grid: this search instead of brute force (NULL) */
+    void *grid_lowest_context;
 } gb_dynamics_def;
 
 /* Table 1 with the paper's model: variant paper, grid contact 90 × 180, m = 1, c = 0.02, g = 9.81,
@@ -63,6 +69,11 @@ double gb_dynamics_mean_radius(const gb_dynamics *dynamics);
 /* The nodes of the grid built: the contact grid for grid models; 0 for continuous contact, which
  * builds none. */
 size_t gb_dynamics_grid_size(const gb_dynamics *dynamics);
+
+/* Grid models: the contact queries since creation and the nodes whose height they computed (the
+ * searches' work: every node for brute force, far fewer for the tracker); 0 and 0 for continuous
+ * contact and for a search of one's own. */
+void gb_dynamics_contact_work(const gb_dynamics *dynamics, size_t *queries, size_t *nodes);
 
 /* Continuous contact: the certificate's counters (checks, and how many ended global, lower-found or
  * undecided); GB_EINVAL for a grid model. */

@@ -207,6 +207,17 @@ static void test_grid_nodes_and_errors(void)
 /* ------------------------------------------------------------ fast grid search */
 
 /* The fast search against brute force, for `count` sample verticals on one grid. */
+/* 1 when the tracker's node for zb differs from brute force's (index or height bits); adds the nodes it
+ * visited to *visited. */
+static int tracker_differs(const gb_contact_grid *g, gb_contact_tracker *t, const double zb[3], double *visited)
+{
+    gb_contact_node a, b;
+    gb_contact_grid_brute(g, zb, &a);
+    gb_contact_tracker_find(t, zb, &b);
+    *visited += (double)b.visited;
+    return a.index != b.index || memcmp(&a.height, &b.height, sizeof a.height) != 0;
+}
+
 static void compare_fast_with_brute(int c, size_t n_phi, gb_contact_nodes nodes, int count)
 {
     gb_contact_grid_def def = gb_contact_grid_default_def();
@@ -236,6 +247,26 @@ static void compare_fast_with_brute(int c, size_t n_phi, gb_contact_nodes nodes,
     gb_check_true(&check, differ == 0 && max_visited < (double)size,
                   "%d differ; nodes visited: mean %.1f (%.4f of %zu), max %.0f", differ, visited / count,
                   visited / count / (double)size, size, max_visited);
+    /* The trajectory tracker (a descent over the nodes' convex hull): on the same random verticals, each
+     * a cold start from the previous one's answer, and along a slowly turning vertical (a warm start at
+     * every query, as in a run: 0.002 rad a query about an axis that itself turns). */
+    gb_contact_tracker *t = NULL;
+    const int tracker_status = status ? status : gb_contact_tracker_create(g, &t);
+    int cold = tracker_status ? count : 0, warm = tracker_status ? count : 0;
+    double cold_visited = 0.0, warm_visited = 0.0;
+    for (int k = 0; !tracker_status && k < count; k++) cold += tracker_differs(g, t, sample_zb[k], &cold_visited);
+    for (int k = 0; !tracker_status && k < count; k++) {
+        const double s1 = 0.002 * k, s2 = 0.00037 * k;
+        const double zb[3] = {cos(s1) * cos(s2), sin(s1) * cos(s2), sin(s2) + 0.3 * sin(0.0011 * k)};
+        warm += tracker_differs(g, t, zb, &warm_visited);
+    }
+    snprintf(q, sizeof q, "tracker node == brute-force node (index and height bits), %zu x %zu %s, %s, %d random and %d "
+             "turning verticals", def.n_phi, def.n_theta, gb_contact_nodes_name(nodes), label, count, count);
+    gb_check tc = {"8", "29", q, "brute force over every node", "exact: every vertical"};
+    gb_check_true(&tc, cold == 0 && warm == 0,
+                  "%d and %d differ; hull vertices %zu of %zu; nodes visited: mean %.1f (random), %.1f (turning)", cold, warm,
+                  t ? gb_contact_tracker_vertices(t) : 0, size, cold_visited / count, warm_visited / count);
+    gb_contact_tracker_free(t);
     if (!status) gb_contact_grid_free(g);
 }
 
@@ -264,14 +295,17 @@ static void test_fast_equals_brute(void)
             gb_contact_grid *g;
             gb_contact_grid_create(&sphere, &def, &g);
             const double zb[3] = {0.0, 0.0, up ? 1.0 : -1.0};
-            gb_contact_node a, b;
+            gb_contact_node a, b, c;
+            gb_contact_tracker *t = NULL;
             gb_contact_grid_brute(g, zb, &a);
             gb_contact_grid_fast(g, zb, &b);
+            ties_ok &= !gb_contact_tracker_create(g, &t) && !gb_contact_tracker_find(t, zb, &c) && c.index == a.index;
             tie_index[2 * placement + up] = b.index;
             ties_ok &= a.index == b.index;
+            gb_contact_tracker_free(t);
             gb_contact_grid_free(g);
         }
-    gb_check ct = {"8", "29", "exact ties (sphere, vertical along the axis): fast picks brute force's first node",
+    gb_check ct = {"8", "29", "exact ties (sphere, vertical along the axis): fast search and tracker pick brute force's first node",
                    "brute force", "exact"};
     gb_check_true(&ct, ties_ok, "indices centred %zu %zu, linspace %zu %zu", tie_index[0], tie_index[1], tie_index[2], tie_index[3]);
 }
