@@ -18,6 +18,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
@@ -459,6 +460,47 @@ static void test_mpi_ranks(void)
     remove_scan_dir(&d);
 }
 
+/* A disk that fills: the scan's files limited to 700 bytes (RLIMIT_FSIZE: every write past it fails with
+ * EFBIG, as on a full disk with ENOSPC). The scan must stop with exit 1 naming the journal, leave no
+ * CSV, keep the points it journaled, and finish them with --resume once there is room, byte for byte. */
+static void test_disk_full(void)
+{
+    scan_dir d;
+    char out[1 << 14];
+    gb_check c = {"8.3", "-", "a scan whose journal cannot grow (file size limit of 700 bytes: a full disk)",
+                  "exit 1 naming the journal, no CSV; --resume with room gives the uninterrupted CSV byte for byte",
+                  "exact"};
+    if (make_scan_dir(&d, &c)) return;
+    const int plain = scan_run(&d, "--threads 1", out, sizeof out);
+    char *reference = slurp(d.csv);
+    remove(d.csv);
+    char log[200];
+    snprintf(log, sizeof log, "%s/full.log", d.path);
+    const pid_t pid = fork();
+    if (pid == 0) {
+        const struct rlimit limit = {700, 700};
+        signal(SIGXFSZ, SIG_IGN);
+        if (setrlimit(RLIMIT_FSIZE, &limit) || !freopen(log, "w", stderr)) _exit(127);
+        execl(binary(), binary(), "scan", d.scan, "--out", d.path, "--threads", "1", (char *)NULL);
+        _exit(127);
+    }
+    int wstatus = 0;
+    waitpid(pid, &wstatus, 0);
+    char *message = slurp(log);
+    const size_t kept = lines_of(d.journal);
+    const int no_csv = access(d.csv, F_OK) != 0;
+    const int resumed = scan_run(&d, "--resume --threads 1", out, sizeof out);
+    char *csv = slurp(d.csv);
+    const int ok = plain == 0 && WIFEXITED(wstatus) && WEXITSTATUS(wstatus) == 1 && message &&
+                   strstr(message, "cannot append to the journal") && no_csv && kept >= 2 && kept < 1 + SCAN_POINTS &&
+                   resumed == 0 && csv && reference && !strcmp(csv, reference);
+    gb_check_true(&c, ok, "exit %d, %zu journal lines kept, %s; resume exit %d, %s; message: %.160s",
+                  WIFEXITED(wstatus) ? WEXITSTATUS(wstatus) : -1, kept, no_csv ? "no CSV" : "a CSV left", resumed,
+                  csv && reference && !strcmp(csv, reference) ? "identical" : "different", message ? message : "(none)");
+    free(message), free(csv), free(reference);
+    remove_scan_dir(&d);
+}
+
 /* A point whose coordinate is outside its key's range is refused before any run, naming the scan
  * file's line, the point and the range; nothing is written. */
 static void test_point_out_of_range(void)
@@ -624,6 +666,8 @@ int verify_register_s8_scan(void)
         {"section 8.3: threads, kill -9 and --resume give the same bytes", test_threads_and_resume,
          "a scan's CSV does not depend on the thread count or on an interruption"},
         {"section 8.3: a point out of its key's range is refused before any run", test_point_out_of_range, NULL},
+        {"section 8.3: a disk that fills stops the scan, and --resume finishes it", test_disk_full,
+         "a scan that cannot write its journal stops, names it, and loses none of the points it wrote"},
         {"Figs 10-13: the shipped maps read, and hold Table 1's point", test_shipped_scans, NULL},
         {"ensembles: random initial attitudes, seeded and uniform on the rotations", test_random_attitudes, NULL},
         {"ensembles: the lifetime of the chaos in a record", test_chaos_lifetime, NULL},
