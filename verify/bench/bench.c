@@ -67,6 +67,7 @@ static gb_certify_stats last_certificate;
 static gb_dynamics_lowest_node run_lowest;
 static void *run_lowest_context;
 static size_t last_queries, last_nodes;
+static double last_setup; /* seconds of gb_dynamics_create and init_state in the fastest repeat */
 
 /* One Table 1 run (300 periods, RK4 160 steps per period, R0 = I, ω0 = 0) of morphology `m` with
  * `contact`/`variant`; returns the CPU seconds of the integration (best of `repeats`), the final state
@@ -96,10 +97,12 @@ static double time_run_with(const char *m, gb_contact_model contact, gb_dynamics
         if (contact == GB_CONTACT_MODEL_GRID) def.grid_lowest = run_lowest, def.grid_lowest_context = run_lowest_context;
         gb_dynamics *d;
         const double R0[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1}, w0[3] = {0, 0, 0};
+        const double setup_start = now();
         if (gb_dynamics_create(&s, &def, &d) || gb_dynamics_init_state(d, 0.0, R0, w0, y)) {
             fprintf(stderr, "bench: %s\n", gb_error_message());
             exit(1);
         }
+        const double setup = now() - setup_start;
         gb_integrate_def idef = gb_integrate_default_def();
         gb_integrate_stats stats;
         const double start = now();
@@ -112,7 +115,7 @@ static double time_run_with(const char *m, gb_contact_model contact, gb_dynamics
         gb_dynamics_observe(d, 300 * 2 * M_PI / 18.0, y, &o);
         *switches = o.grid_switches + o.branch_switches;
         if (contact == GB_CONTACT_MODEL_CONTINUOUS && t < best) gb_dynamics_certify_stats(d, &last_certificate);
-        if (t < best) gb_dynamics_contact_work(d, &last_queries, &last_nodes);
+        if (t < best) gb_dynamics_contact_work(d, &last_queries, &last_nodes), last_setup = setup;
         if (t < best) best = t;
         gb_dynamics_free(d);
     }
@@ -160,9 +163,10 @@ static double plain_seconds[2]; /* the plain loop's Table 1 run per body (bench_
  * aligned arrays, a vectorised reduction) with the library's equations of motion around it, all built
  * apart with the best flags of this compiler (make bench builds bench-gomboc-native from this file,
  * plain.c and a library compiled with -O3 -march=native), and run here, side by side, as a subprocess:
- * "--plain-only" prints, per body, "BODY SECONDS STATE-HASH SWITCHES MISMATCHES LIBRARY-SECONDS": the
+ * "--plain-only" prints, per body, "BODY SECONDS STATE-HASH SWITCHES MISMATCHES LIBRARY-SECONDS SETUP": the
  * plain loop's run, its final state's hash and grid switches, the verticals (of 10^4 seeded) on which its
- * node differs from the library's brute force, and the library's own loop in the same build. */
+ * node differs from the library's brute force, the library's own loop in the same build, and the plain
+ * run's set-up (the body, the grid and the plain loop's copy of it). */
 static uint64_t state_hash(const double y[GB_STATE_SIZE])
 {
     uint64_t h = 14695981039346656037ull;
@@ -178,10 +182,12 @@ static int plain_only(void)
         const gb_dynamics_def def = gb_dynamics_default_def();
         gb_contact_grid *grid;
         plain_grid plain;
+        const double layout_start = now();
         if (gb_contact_grid_create(bench_body(name, 0.12), &def.grid, &grid) || plain_grid_create(grid, &plain)) {
             fprintf(stderr, "bench: cannot build the plain loop's grid\n");
             return 1;
         }
+        const double layout = now() - layout_start; /* the plain loop's own copy of the nodes */
         gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
         gsl_rng_set(rng, 20261123UL);
         size_t mismatches = 0;
@@ -197,9 +203,11 @@ static int plain_only(void)
         size_t switches, switches_library;
         run_lowest = plain_lowest, run_lowest_context = &plain;
         const double t = time_run(name, GB_CONTACT_MODEL_GRID, GB_VARIANT_PAPER, 2, y, &switches);
+        const double setup = last_setup + layout;
         run_lowest = NULL, run_lowest_context = NULL;
         const double library = time_run(name, GB_CONTACT_MODEL_GRID, GB_VARIANT_PAPER, 2, y_library, &switches_library);
-        printf("%s %.6f %016llx %zu %zu %.6f\n", name, t, (unsigned long long)state_hash(y), switches, mismatches, library);
+        printf("%s %.6f %016llx %zu %zu %.6f %.6f\n", name, t, (unsigned long long)state_hash(y), switches, mismatches, library,
+               setup);
         plain_grid_free(&plain);
         gb_contact_grid_free(grid);
     }
@@ -208,7 +216,7 @@ static int plain_only(void)
 
 /* The native baseline's seconds, state hashes, node mismatches and the library loop's seconds in the
  * same build; 0 seconds when it could not be run. */
-static double native_seconds[2], native_library_seconds[2];
+static double native_seconds[2], native_library_seconds[2], native_setup[2];
 static unsigned long long native_hash[2];
 static size_t native_mismatches[2];
 
@@ -219,12 +227,13 @@ static void run_native(const char *path)
     FILE *p = popen(command, "r");
     if (!p) return;
     char body[8];
-    double t, library;
+    double t, library, setup;
     unsigned long long h;
     size_t sw, mismatches;
-    while (fscanf(p, "%7s %lf %llx %zu %zu %lf", body, &t, &h, &sw, &mismatches, &library) == 6) {
+    while (fscanf(p, "%7s %lf %llx %zu %zu %lf %lf", body, &t, &h, &sw, &mismatches, &library, &setup) == 7) {
         const int m = !strcmp(body, "II");
         native_seconds[m] = t, native_hash[m] = h, native_mismatches[m] = mismatches, native_library_seconds[m] = library;
+        native_setup[m] = setup;
     }
     pclose(p);
 }
@@ -245,8 +254,9 @@ static int bench_dynamics(void)
         const double plain = time_run(name, GB_CONTACT_MODEL_GRID, GB_VARIANT_PAPER, 2, y_plain, &s_plain);
         plain_seconds[m] = plain;
         const double fast = time_run(name, GB_CONTACT_MODEL_FAST_GRID, GB_VARIANT_PAPER, 2, y_fast, &s_fast);
-        const double nodes = last_queries ? (double)last_nodes / (double)last_queries : NAN;
+        const double nodes = last_queries ? (double)last_nodes / (double)last_queries : NAN, fast_setup = last_setup;
         const double cont = time_run(name, GB_CONTACT_MODEL_CONTINUOUS, GB_VARIANT_ROLLING, 2, y_cont, &s_cont);
+        const double cont_setup = last_setup;
         const int same = s_plain == s_fast && memcmp(y_plain, y_fast, sizeof y_plain) == 0;
         const gb_certify_stats cs = last_certificate;
         const int native = native_seconds[m] > 0.0;
@@ -255,6 +265,9 @@ static int bench_dynamics(void)
         failures += !same || (native && !native_same);
         printf("%-4s %12.3f %14.3f %14.3f %12.3f %11.1f %8.1fx %22.3f %8.1fx\n", name, native_seconds[m],
                native_library_seconds[m], plain, fast, nodes, base / fast, cont, base / cont);
+        printf("     set-up (body, grid, tracker's hull or certificate) [s]: plain %.3f, fast grid %.3f, continuous %.3f; "
+               "speed-ups with it: fast grid %.1fx, continuous %.1fx\n", native_setup[m], fast_setup, cont_setup,
+               (base + native_setup[m]) / (fast + fast_setup), (base + native_setup[m]) / (cont + cont_setup));
         printf("     %s; %s\n", same ? "fast run identical to the library's loop (state bits, index changes)" : "FAST RUN DIFFERS",
                !native ? "NO NATIVE BASELINE (the ratios are against the -O2 library loop)"
                : native_same ? "the plain loop returns brute force's node on 10^4 seeded verticals and reaches the same state"
@@ -267,11 +280,12 @@ static int bench_dynamics(void)
             fprintf(record, "%s{\"body\": \"%s\", \"baseline_seconds\": %.6f, \"baseline_same_state\": %s, "
                             "\"baseline_node_mismatches\": %zu, \"library_native_seconds\": %.6f, "
                             "\"plain_seconds\": %.6f, \"fast_seconds\": %.6f, \"fast_nodes_per_query\": %.3f, "
+                            "\"baseline_setup_seconds\": %.6f, \"fast_setup_seconds\": %.6f, \"continuous_setup_seconds\": %.6f, "
                             "\"continuous_seconds\": %.6f, "
                             "\"fast_identical\": %s, \"certificate_checks\": %zu, \"certificate_global\": %zu, "
                             "\"certificate_lower_found\": %zu, \"certificate_undecided\": %zu, \"certificate_boxes_per_check\": %.2f}",
                     m ? ",\n  " : "  ", name, native_seconds[m], native_same ? "true" : "false", native_mismatches[m],
-                    native_library_seconds[m], plain, fast, nodes, cont, same ? "true" : "false", cs.checks, cs.global,
+                    native_library_seconds[m], plain, fast, nodes, native_setup[m], fast_setup, cont_setup, cont, same ? "true" : "false", cs.checks, cs.global,
                     cs.lower_found, cs.undecided, (double)cs.boxes_tested / (double)cs.checks);
     }
     printf("\ntargets (issue 20): fast grid >= 20x and continuous (certified global at every step) >= 20x the plain loop\n");
