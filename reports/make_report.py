@@ -43,9 +43,9 @@ def load_checks(path):
 GATES = (("fuzz", "make fuzz", "the scene reader and the option parser under libFuzzer with ASan and UBSan"),
          ("sanitize", "make sanitize", "every check of the harness built with ASan and UBSan"),
          ("valgrind", "make valgrind", "one short scene of each model, shape and contact under memcheck"),
-         ("verify-full", "make verify-full", "every check and the long studies (10000-period records)"),
+         ("verify-full", "make verify-full", "every check, the long studies (10000-period records) and the ensembles"),
          ("bench", "make bench", "speed ratios measured side by side in one run"),
-         ("scans", "make scans", "the maps of Figs 10-13 (cases/scans), 25 x 25 points each"),
+         ("scans", "make scans", "the maps of Figs 10-13 (cases/scans), 25 x 25 points each, and their stability maps"),
          ("study", "make study", "the ensembles of section 8.2 (cases/studies), 32 initial attitudes each"),
          ("mpi", "make mpi", "OpenMPI installed; gomboc-mpi's scans on 1, 2 and 3 ranks and after a kill -9, "
           "against one thread"))
