@@ -94,7 +94,8 @@ def windows_text(record):
     if not means:
         return "not recorded"
     life = record.get("chaos_lifetime_periods")
-    life = "to the end" if isinstance(life, str) else f"chaos ends by period {life:.0f}"
+    life = ("to the end" if isinstance(life, str) else "no chaotic window" if life == 0
+            else f"chaos ends by period {life:.0f}")
     return (f"{sum(1 for v in means if v > 0.05)} of {len(means)} above 0.05 1/s ({life}); range "
             f"{min(means):.3f} to {max(means):.3f}")
 

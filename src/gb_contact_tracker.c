@@ -36,6 +36,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+_Static_assert(GB_CONTACT_GRID_MAX_NODES < UINT32_MAX, "node indices fit the tracker's 32-bit arrays");
+
 static const double COPLANAR = 1e-12; /* Qhull's coplanar distance (option U) [body length] */
 static const double TIE = 1e-11;      /* the certified search's margin above h* [body length] */
 
@@ -171,10 +173,6 @@ int gb_contact_tracker_create(const gb_contact_grid *grid, gb_contact_tracker **
     if (!t) return gb_error_set(GB_ENOMEM, "out of memory for the contact tracker");
     t->grid = grid;
     t->last_index = SIZE_MAX;
-    if (grid->size >= UINT32_MAX) {
-        gb_contact_tracker_free(t);
-        return gb_error_set(GB_EDOM, "contact tracker: %zu nodes (allowed: fewer than 2^32)", grid->size);
-    }
     const int status = build_hull(t);
     if (status == GB_ENOMEM) {
         gb_contact_tracker_free(t);

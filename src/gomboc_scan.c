@@ -220,7 +220,6 @@ typedef struct ranks {
 /* Everything the loop over points shares, under the critical section of the journal. */
 typedef struct scan_state {
     const gb_scan *scan;
-    const char *scan_path;
     journal *j;
     gb_scan_metrics *results;
     unsigned char *done;
@@ -322,10 +321,7 @@ static int shared_status(const ranks *r, int status)
 static void run_points(scan_state *st, const ranks *r)
 {
     size_t *todo = malloc((st->points ? st->points : 1) * sizeof *todo), left = 0;
-    if (!todo) {
-        fail_with(st, "out of memory for the list of points");
-        left = 0;
-    }
+    if (!todo) fail_with(st, "out of memory for the list of points");
     for (size_t k = 0; todo && k < st->points; k++)
         if (!st->done[k]) todo[left++] = k;
     const size_t step = (size_t)r->size;
@@ -477,7 +473,7 @@ static int scan_command(int argc, char **argv, const ranks *r)
     const int used_threads = 1; /* built without OpenMP: --threads is read and checked, and one thread runs */
     (void)threads;
 #endif
-    scan_state st = {.scan = &scan, .scan_path = scan_path, .j = &j, .results = results, .done = done,
+    scan_state st = {.scan = &scan, .j = &j, .results = results, .done = done,
                      .points = points, .finished = already, .start = wall_seconds()};
     st.last_report = st.start;
     if (!exit_status) {

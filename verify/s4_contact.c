@@ -305,6 +305,26 @@ static void test_fast_equals_brute(void)
             gb_contact_tracker_free(t);
             gb_contact_grid_free(g);
         }
+    /* A grid whose nodes are flat for Qhull (linspace 2 x 3: every node on a pole) has no hull: the
+     * tracker falls back to the patch-tree search, and still returns brute force's node. */
+    {
+        gb_contact_grid_def def = gb_contact_grid_default_def();
+        def.nodes = GB_CONTACT_NODES_LINSPACE, def.n_phi = 2, def.n_theta = 3;
+        gb_contact_grid *g = NULL;
+        gb_contact_tracker *t = NULL;
+        int same = !gb_contact_grid_create(&sphere, &def, &g) && !gb_contact_tracker_create(g, &t);
+        const size_t vertices = t ? gb_contact_tracker_vertices(t) : 1;
+        for (int k = 0; same && k < 200; k++) {
+            gb_contact_node a, b;
+            gb_contact_grid_brute(g, sample_zb[k], &a);
+            same = !gb_contact_tracker_find(t, sample_zb[k], &b) && a.index == b.index;
+        }
+        gb_check cf = {"8", "29", "tracker on a grid without a hull (linspace 2 x 3): the patch-tree fallback, 200 verticals",
+                       "brute force", "exact"};
+        gb_check_true(&cf, same && vertices == 0, "%s; %zu hull vertices", same ? "same nodes" : "DIFFERENT nodes", vertices);
+        gb_contact_tracker_free(t);
+        gb_contact_grid_free(g);
+    }
     gb_check ct = {"8", "29", "exact ties (sphere, vertical along the axis): fast search and tracker pick brute force's first node",
                    "brute force", "exact"};
     gb_check_true(&ct, ties_ok, "indices centred %zu %zu, linspace %zu %zu", tie_index[0], tie_index[1], tie_index[2], tie_index[3]);
