@@ -12,7 +12,6 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy  # noqa: E402
 
 from common import load_json, save_figure  # noqa: E402
-from melnikov_section import threshold_curves  # noqa: E402
 
 FIGURES = (("fig10-gomboc-I-omega-A1", "Fig 10", "I", "ω [rad/s]", "A1 [m/s²]"),
            ("fig11-gomboc-I-A2-psi", "Fig 11", "I", "ψ [rad]", "A2 [m/s²]"),
@@ -35,6 +34,12 @@ AGREE = 0.5
 ROUGHER = 1.25
 # λ > 0 at a point: λ − 4σ above the no-chaos margin 0.01 1/s (the rule of section 8.2).
 NO_CHAOS = 0.01
+# "Where λ > 0 the forcing is above the Melnikov threshold": a point is above when its exact margin
+# (melnikov_margin, the point's own forcing over the reduced model's threshold) exceeds 1. Holds when
+# 90 % or more of the chaotic points are above and that share exceeds the other points' by 0.5 or more
+# (the threshold separates them); fails when fewer than half of the chaotic points are above.
+ABOVE_HOLDS, ABOVE_SEPARATES, ABOVE_FAILS = 0.9, 0.5, 0.5
+MARGINS = ("melnikov_margin", "melnikov_margin_eq93")
 # Stability of a map (cases/scans/stability). Longer runs: Spearman's ρ between the 100- and the
 # 200-period map of one metric, with the interval above; stable when the interval lies above 0.8 (the
 # two runs share two thirds of their rank variance), unstable when it lies below, undecided across.
@@ -56,15 +61,22 @@ def load_map(path):
     xs = sorted({float(r["x"]) for r in rows})
     ys = sorted({float(r["y"]) for r in rows})
     grid = {}
-    for key, _ in PANELS + (("lambda_error", ""),):
+    for key in [k for k, _ in PANELS] + ["lambda_error", *MARGINS]:
         a = numpy.full((len(ys), len(xs)), numpy.nan)
         for r in rows:
-            a[ys.index(float(r["y"])), xs.index(float(r["x"]))] = float(r[key])
+            if key in r:  # maps made before a column existed lack it: NaN
+                a[ys.index(float(r["y"])), xs.index(float(r["x"]))] = float(r[key])
         grid[key] = a
     return numpy.array(xs), numpy.array(ys), grid
 
 
-def draw(out, name, title, xlabel, ylabel, xs, ys, grid, curve=None):
+def crosses_one(a):
+    """Whether a margin map has points on both sides of 1 (a contour at 1 exists)."""
+    finite = a[numpy.isfinite(a)]
+    return finite.size > 0 and finite.min() < 1.0 < finite.max()
+
+
+def draw(out, name, title, xlabel, ylabel, xs, ys, grid):
     fig, axes = plt.subplots(2, 3, figsize=(13, 7.5))
     dx = (xs[1] - xs[0]) / 2 if len(xs) > 1 else 0.5
     dy = (ys[1] - ys[0]) / 2 if len(ys) > 1 else 0.5
@@ -77,10 +89,9 @@ def draw(out, name, title, xlabel, ylabel, xs, ys, grid, curve=None):
             chaotic = grid["lambda_max"] - 4 * grid["lambda_error"] > NO_CHAOS
             yy, xx = numpy.nonzero(chaotic)
             ax.plot(xs[xx], ys[yy], ".", color="w", ms=2, label="λ − 4σ > 0.01")
-        if curve:
-            ax.plot([p[0] for p in curve], [p[2] for p in curve], "r-", lw=1.2, label="Melnikov threshold (exact)")
-            ax.plot([p[0] for p in curve], [p[1] for p in curve], "r--", lw=0.8, label="eq 93")
-            ax.set_ylim(ys[0] - dy, ys[-1] + dy)
+        for margin, style in zip(MARGINS, ("-", "--")):
+            if len(xs) > 1 and len(ys) > 1 and crosses_one(grid[margin]):
+                ax.contour(xs, ys, grid[margin], levels=[1.0], colors="r", linestyles=style, linewidths=1.2)
         ax.set_title(label, fontsize=9)
         ax.set_xlabel(xlabel)
         ax.set_ylabel(ylabel)
@@ -126,6 +137,16 @@ def noise_floor(xs, grid):
     return out
 
 
+def margin_text(grid):
+    """The range of a map's exact Melnikov margins, and how many points lie above 1."""
+    a = grid["melnikov_margin"]
+    finite = a[numpy.isfinite(a)]
+    if finite.size == 0:
+        return ""
+    return (f" Melnikov margin {finite.min():.2f} … {finite.max():.2f} (eq 93: {numpy.nanmin(grid[MARGINS[1]]):.2f} … "
+            f"{numpy.nanmax(grid[MARGINS[1]]):.2f}); above 1 at {int((finite > 1.0).sum())} of {a.size} points.")
+
+
 def verdict(value, holds, fails):
     return "*undecided*" if not math.isfinite(value) else "holds" if holds else "**fails**" if fails else "*undecided*"
 
@@ -147,11 +168,12 @@ def scan_section(out):
     if os.path.exists(stamp):
         s = load_json(stamp)
         when = f" They were made by `make scans` on {s['date']} at commit {s['commit']} ({s['result']})."
-    curves = threshold_curves(out)
     lines += ["Each map is the scan file of `cases/scans` of the same name: the base scene (Table 1, A1 and A2 read in m/s²)",
               "with two keys set at every point, 100 periods a point, the metrics from period 20 on. Panels are drawn on the",
               "computed grid, one cell a point, without interpolation (the paper interpolates for display). White dots: λ − 4σ",
-              f"above the no-chaos margin 0.01 1/s.{when}", ""]
+              "above the no-chaos margin 0.01 1/s. Red: the reduced model's threshold (section 7), the line where the",
+              "point's Melnikov margin is 1 (solid: the exact condition, dashed: eq 93), drawn where the margins cross 1;",
+              f"it is the threshold of each point's own forcing (on an (ω, A1) map A2 stays fixed).{when}", ""]
     for name, fig, body, xl, yl in FIGURES:
         for model, label in MODELS:
             if (name, model) not in maps:
@@ -159,14 +181,12 @@ def scan_section(out):
                 continue
             xs, ys, grid = maps[(name, model)]
             png = f"scan-{name}-{model}"
-            curve = curves.get(body) if "omega-A1" in name else None
-            draw(out, png, f"{fig}: Gömböc {body}, {label}" + (" (red: the reduced model's threshold)" if curve else ""),
-                 xl, yl, xs, ys, grid, curve)
+            draw(out, png, f"{fig}: Gömböc {body}, {label}", xl, yl, xs, ys, grid)
             chaotic = grid["lambda_max"] - 4 * grid["lambda_error"] > NO_CHAOS
             invalid = grid["geff_nonpositive_fraction"] > 0
             lines += [f"### {fig}, {label}", "", f"![{fig} {model}]({png}.png)", "",
                       f"λ − 4σ > 0.01 1/s at {int(chaotic.sum())} of {chaotic.size} points; g_eff ≤ 0 somewhere in the run "
-                      f"at {int(invalid.sum())} (there the single-contact model does not apply).", ""]
+                      f"at {int(invalid.sum())} (there the single-contact model does not apply).{margin_text(grid)}", ""]
             floor = noise_floor(xs, grid)
             if floor:
                 text = ", ".join(f"{label} {floor[key]:.2f}" for key, label in PANELS[:5] if key in floor)
@@ -194,25 +214,32 @@ def scan_section(out):
                 lines.append(f"| {plane}, {label}: Gömböc I ridge-structured, II broad domains (section 8.3) | roughness I "
                              f"{ra:.3f}, II {rb:.3f} (ratio {ratio:.2f}) | {verdict(ratio, ratio >= ROUGHER, ratio <= 1.0)} |")
     for name, fig, body, _, _ in FIGURES:
-        if "omega-A1" not in name or body not in curves:
-            continue
         for model, label in MODELS:
             if (name, model) not in maps:
                 continue
-            xs, ys, grid = maps[(name, model)]
-            threshold = numpy.interp(xs, [p[0] for p in curves[body]], [p[2] for p in curves[body]])
-            above = ys[:, None] > threshold[None, :]
+            grid = maps[(name, model)][2]
             chaotic = grid["lambda_max"] - 4 * grid["lambda_error"] > NO_CHAOS
             n_c, n_r = int(chaotic.sum()), int((~chaotic).sum())
-            frac_c = float((above & chaotic).sum()) / n_c if n_c else math.nan
-            frac_r = float((above & ~chaotic).sum()) / n_r if n_r else math.nan
+            if not numpy.isfinite(grid["melnikov_margin"]).any():
+                lines.append(f"| {fig}, {label}: where λ > 0 the forcing is above the reduced Melnikov threshold (sections 7, "
+                             f"8.3) | no margins in this map (made before the margins were a metric: `make scans` again) | "
+                             f"*undecided* |")
+                continue
+            share = {}
+            for margin in MARGINS:
+                above = grid[margin] > 1.0
+                share[margin] = (float((above & chaotic).sum()) / n_c if n_c else math.nan,
+                                 float((above & ~chaotic).sum()) / n_r if n_r else math.nan)
+            frac_c, frac_r = share["melnikov_margin"]
+            pct = lambda f: f"{f:.0%}" if math.isfinite(f) else "—"  # noqa: E731
             lines.append(f"| {fig}, {label}: where λ > 0 the forcing is above the reduced Melnikov threshold (sections 7, 8.3) | "
-                         f"{frac_c:.0%} of {n_c} points with λ − 4σ > 0.01 lie above it, {frac_r:.0%} of the {n_r} others | "
-                         f"{verdict(frac_c, frac_c >= 0.9 and frac_c - frac_r >= 0.5, frac_c < 0.5)} |")
-    lines += ["", "λ above the threshold: holds when 90 % or more of the points with λ − 4σ > 0.01 lie above the exact "
-              "threshold (interpolated in ω between the 25 points `make verify` computes) and that share exceeds the other "
-              "points' by 0.5 or more (the threshold separates them); fails when fewer than half lie above; undecided "
-              "otherwise."]
+                         f"{pct(frac_c)} of {n_c} points with λ − 4σ > 0.01 have a margin above 1, {pct(frac_r)} of the {n_r} "
+                         f"others (by eq 93: {pct(share[MARGINS[1]][0])} and {pct(share[MARGINS[1]][1])}) | "
+                         f"{verdict(frac_c, frac_c >= ABOVE_HOLDS and frac_c - frac_r >= ABOVE_SEPARATES, frac_c < ABOVE_FAILS)} |")
+    lines += ["", f"λ above the threshold: holds when {ABOVE_HOLDS:.0%} or more of the points with λ − 4σ > 0.01 have an exact "
+              f"Melnikov margin above 1 (the point's own forcing above the reduced model's threshold: the `melnikov_margin` "
+              f"column) and that share exceeds the other points' by {ABOVE_SEPARATES} or more (the threshold separates them); "
+              f"fails when fewer than {ABOVE_FAILS:.0%} of them are above; undecided otherwise (and where no point is chaotic)."]
     return lines + [""] + stability_lines(out, maps)
 
 

@@ -29,6 +29,9 @@
 
 typedef struct gb_melnikov_body gb_melnikov_body;
 
+/* The table density `gomboc melnikov` and the scans' margins use (points a smooth piece per radian). */
+#define GB_MELNIKOV_BODY_NODES 256
+
 /* The reduced model of `body` with mass `mass` [kg] under gravity g [m/s²]; `nodes` table points a
  * smooth piece per radian (≥ 64). GB_EDOM when the body has no top that is a strict maximum of r (β =
  * 0: a sphere has no unstable equilibrium to rock over). */

@@ -2,6 +2,7 @@
 
 #include "gb_error.h"
 #include "gb_ini.h"
+#include "gb_melnikov_body.h"
 #include "gb_parse.h"
 #include "gb_run.h"
 
@@ -20,9 +21,10 @@ static const struct {
     const char *name;
 } metric_names[] = {{GB_SCAN_OMEGA_RMS, "omega_rms"},     {GB_SCAN_SWITCH_RATE, "switch_rate"},
                     {GB_SCAN_STROBE_SD, "strobe_sd"},     {GB_SCAN_MEAN_HEIGHT, "mean_height"},
-                    {GB_SCAN_MONITORS, "monitors"},       {GB_SCAN_LAMBDA, "lambda"}};
+                    {GB_SCAN_MONITORS, "monitors"},       {GB_SCAN_LAMBDA, "lambda"},
+                    {GB_SCAN_MELNIKOV, "melnikov"}};
 enum { METRIC_COUNT = sizeof metric_names / sizeof metric_names[0] };
-#define METRIC_LIST "omega_rms, switch_rate, strobe_sd, mean_height, monitors, lambda, or all"
+#define METRIC_LIST "omega_rms, switch_rate, strobe_sd, mean_height, monitors, lambda, melnikov, or all"
 
 static uint64_t fnv(uint64_t hash, const void *bytes, size_t size)
 {
@@ -237,7 +239,7 @@ int gb_scan_load(const char *path, gb_scan *out)
     snprintf(out->path, sizeof out->path, "%s", path);
     out->periods = 100.0;
     out->transient_periods = 20;
-    out->metrics = GB_SCAN_METRICS_ALL & ~(unsigned)GB_SCAN_LAMBDA;
+    out->metrics = GB_SCAN_METRICS_DEFAULT;
     for (int k = 0; k < 2; k++) out->axis[k].count = 0;
     char *text;
     size_t size;
@@ -355,11 +357,189 @@ static int accumulate_sample(void *context, const gb_run_sample *s)
     return GB_OK;
 }
 
-int gb_scan_point_run(const gb_scan *scan, size_t index, gb_scan_metrics *out)
+/* ---- the Melnikov margin ------------------------------------------------------------------------ */
+
+/* A reduced model: the key (what gb_melnikov_body_create reads) and what it yields. */
+typedef struct melnikov_body {
+    const gb_morphology *morphology;
+    double beta, mass, g;
+    int computed, status;       /* status GB_EDOM: not defined here (margins NAN) */
+    gb_melnikov_body *body;
+    gb_melnikov_model model;
+    gb_melnikov_orbit orbit;
+    double M_u;                 /* M(q_u): μ = c / M_u */
+} melnikov_body;
+
+/* The integrals of one body at one ω. */
+typedef struct melnikov_frequency {
+    size_t body;
+    double omega;
+    int computed, status;
+    gb_melnikov_integrals integrals;
+} melnikov_frequency;
+
+struct gb_scan_melnikov {
+    melnikov_body *bodies;
+    size_t n_bodies;
+    melnikov_frequency *frequencies;
+    size_t n_frequencies;
+};
+
+static int same_bits(double a, double b) { return !memcmp(&a, &b, sizeof a); }
+
+static int body_matches(const melnikov_body *b, const gb_case *scene)
+{
+    return b->morphology == scene->body.morphology && same_bits(b->beta, scene->body.beta) &&
+           same_bits(b->mass, scene->dynamics.mass) && same_bits(b->g, scene->dynamics.forcing.g);
+}
+
+/* Where the scene's body and ω sit in the plan (SIZE_MAX: not planned). */
+static void plan_find(const gb_scan_melnikov *p, const gb_case *scene, size_t *body, size_t *frequency)
+{
+    *body = *frequency = SIZE_MAX;
+    for (size_t k = 0; k < p->n_bodies && *body == SIZE_MAX; k++)
+        if (body_matches(&p->bodies[k], scene)) *body = k;
+    for (size_t k = 0; *body != SIZE_MAX && k < p->n_frequencies && *frequency == SIZE_MAX; k++)
+        if (p->frequencies[k].body == *body && same_bits(p->frequencies[k].omega, scene->dynamics.forcing.omega))
+            *frequency = k;
+}
+
+/* Add the scene's body and ω to the plan unless there (the reduced model needs g > 0). */
+static int plan_add(gb_scan_melnikov *p, const gb_case *scene)
+{
+    if (!(scene->dynamics.forcing.g > 0.0)) return GB_OK;
+    size_t b, f;
+    plan_find(p, scene, &b, &f);
+    if (b == SIZE_MAX) {
+        melnikov_body *grown = realloc(p->bodies, (p->n_bodies + 1) * sizeof *grown);
+        if (!grown) return gb_error_set(GB_ENOMEM, "out of memory for the reduced models of a scan");
+        p->bodies = grown;
+        b = p->n_bodies++;
+        p->bodies[b] = (melnikov_body){.morphology = scene->body.morphology, .beta = scene->body.beta,
+                                       .mass = scene->dynamics.mass, .g = scene->dynamics.forcing.g};
+    }
+    if (f == SIZE_MAX) {
+        melnikov_frequency *grown = realloc(p->frequencies, (p->n_frequencies + 1) * sizeof *grown);
+        if (!grown) return gb_error_set(GB_ENOMEM, "out of memory for the Melnikov integrals of a scan");
+        p->frequencies = grown;
+        p->frequencies[p->n_frequencies++] = (melnikov_frequency){.body = b, .omega = scene->dynamics.forcing.omega};
+    }
+    return GB_OK;
+}
+
+int gb_scan_melnikov_plan(const gb_scan *scan, const size_t *points, size_t count, gb_scan_melnikov **out)
+{
+    *out = NULL;
+    gb_scan_melnikov *p = calloc(1, sizeof *p);
+    if (!p) return gb_error_set(GB_ENOMEM, "out of memory for a scan's reduced models");
+    int status = GB_OK;
+    for (size_t k = 0; k < count && !status && (scan->metrics & GB_SCAN_MELNIKOV); k++) {
+        gb_case scene;
+        status = gb_scan_point_case(scan, points[k], &scene);
+        if (!status) status = plan_add(p, &scene);
+    }
+    if (status) {
+        gb_scan_melnikov_free(p);
+        return status;
+    }
+    *out = p;
+    return GB_OK;
+}
+
+size_t gb_scan_melnikov_bodies(const gb_scan_melnikov *plan) { return plan->n_bodies; }
+size_t gb_scan_melnikov_frequencies(const gb_scan_melnikov *plan) { return plan->n_frequencies; }
+
+int gb_scan_melnikov_body(gb_scan_melnikov *plan, size_t i)
+{
+    melnikov_body *b = &plan->bodies[i];
+    const gb_surface surface = {b->morphology, b->beta};
+    int status = gb_melnikov_body_create(&surface, b->mass, b->g, GB_MELNIKOV_BODY_NODES, &b->body);
+    if (!status) {
+        b->model = gb_melnikov_body_model(b->body, GB_MELNIKOV_MASS_AT_TOP);
+        status = gb_melnikov_orbit_find(&b->model, &b->orbit);
+    }
+    gb_melnikov_values top;
+    if (!status) status = b->model.eval(b->model.context, b->orbit.q_u, &top);
+    if (!status) b->M_u = top.M;
+    b->status = status, b->computed = 1;
+    return status == GB_EDOM ? GB_OK : status; /* not defined for this body: its margins are NAN */
+}
+
+int gb_scan_melnikov_frequency(gb_scan_melnikov *plan, size_t i)
+{
+    melnikov_frequency *f = &plan->frequencies[i];
+    const melnikov_body *b = &plan->bodies[f->body];
+    if (!b->computed) return gb_error_set(GB_EINVAL, "the Melnikov integrals at omega = %g before their body", f->omega);
+    f->status = b->status ? b->status
+                          : gb_melnikov_integrals_compute(&b->model, &b->orbit, f->omega, GB_MELNIKOV_EXACT, &f->integrals);
+    f->computed = 1;
+    return f->status == GB_EDOM ? GB_OK : f->status;
+}
+
+void gb_scan_melnikov_free(gb_scan_melnikov *plan)
+{
+    if (!plan) return;
+    for (size_t k = 0; k < plan->n_bodies; k++) gb_melnikov_body_free(plan->bodies[k].body);
+    free(plan->bodies);
+    free(plan->frequencies);
+    free(plan);
+}
+
+/* The margins of `scene` from a computed plan that holds it. */
+static int plan_margins(const gb_scan_melnikov *p, const gb_case *scene, double *margin, double *margin_eq93)
+{
+    *margin = *margin_eq93 = NAN;
+    if (!(scene->dynamics.forcing.g > 0.0)) return GB_OK;
+    size_t b, f;
+    plan_find(p, scene, &b, &f);
+    if (f == SIZE_MAX || !p->frequencies[f].computed)
+        return gb_error_set(GB_EINVAL, "the Melnikov margins of a point the scan did not plan (omega = %g)",
+                            scene->dynamics.forcing.omega);
+    const melnikov_frequency *w = &p->frequencies[f];
+    if (w->status) return GB_OK;
+    const gb_forcing *F = &scene->dynamics.forcing;
+    const double mu = scene->dynamics.damping / p->bodies[b].M_u, damping = mu * w->integrals.D;
+    const gb_melnikov_forcing forcing = {mu, F->a1, F->a2, F->omega, F->psi, 0};
+    gb_melnikov_criterion c;
+    gb_melnikov_judge(&w->integrals, &forcing, &c);
+    *margin = c.oscillatory_max / damping;
+    *margin_eq93 = (fabs(F->a1) * w->integrals.A1 + fabs(F->a2) * w->integrals.A2) / damping;
+    return GB_OK;
+}
+
+int gb_scan_melnikov_margins(const gb_case *scene, double *margin, double *margin_eq93)
+{
+    gb_scan_melnikov p = {0};
+    int status = plan_add(&p, scene);
+    for (size_t k = 0; !status && k < p.n_bodies; k++) status = gb_scan_melnikov_body(&p, k);
+    for (size_t k = 0; !status && k < p.n_frequencies; k++) status = gb_scan_melnikov_frequency(&p, k);
+    if (!status) status = plan_margins(&p, scene, margin, margin_eq93);
+    for (size_t k = 0; k < p.n_bodies; k++) gb_melnikov_body_free(p.bodies[k].body);
+    free(p.bodies);
+    free(p.frequencies);
+    return status;
+}
+
+/* ---- a point's run ------------------------------------------------------------------------------ */
+
+int gb_scan_point_run(const gb_scan *scan, const gb_scan_melnikov *melnikov, size_t index, gb_scan_metrics *out)
 {
     gb_case scene;
     int status = gb_scan_point_case(scan, index, &scene);
     if (status) return status;
+    gb_scan_metrics m = {.omega_rms = NAN, .switch_rate = NAN, .mean_height = NAN, .lambda = NAN, .lambda_error = NAN,
+                         .strobe_sd = NAN, .geff_nonpositive = NAN, .lift_off = NAN, .lambda_early = NAN,
+                         .lambda_late = NAN, .chaos_lifetime = NAN, .melnikov_margin = NAN, .melnikov_margin_eq93 = NAN};
+    gb_scan_coordinates(scan, index, &m.x, &m.y);
+    if (scan->metrics & GB_SCAN_MELNIKOV) {
+        status = melnikov ? plan_margins(melnikov, &scene, &m.melnikov_margin, &m.melnikov_margin_eq93)
+                          : gb_scan_melnikov_margins(&scene, &m.melnikov_margin, &m.melnikov_margin_eq93);
+        if (status) return status;
+    }
+    if (!(scan->metrics & ~(unsigned)GB_SCAN_MELNIKOV)) { /* margins alone: no dynamics */
+        *out = m;
+        return GB_OK;
+    }
     const double T = gb_forcing_period(&scene.dynamics.forcing);
     const double step = T / (double)scene.integrate.steps_per_period;
     /* Samples from the first one at the end of the transient (half a step of slack for rounding). */
@@ -368,9 +548,6 @@ int gb_scan_point_run(const gb_scan *scan, size_t index, gb_scan_metrics *out)
     gb_run_result r;
     status = gb_run(&scene, &sinks, &r);
     if (status) return status;
-    gb_scan_metrics m = {.lambda = NAN, .lambda_error = NAN, .strobe_sd = NAN, .geff_nonpositive = NAN, .lift_off = NAN,
-                         .lambda_early = NAN, .lambda_late = NAN, .chaos_lifetime = NAN};
-    gb_scan_coordinates(scan, index, &m.x, &m.y);
     double rms, height, rate;
     gb_scan_accumulated(&acc, &rms, &height, &rate);
     m.omega_rms = scan->metrics & GB_SCAN_OMEGA_RMS ? rms : NAN;
@@ -421,18 +598,19 @@ double gb_scan_chaos_lifetime(const double *lambda, size_t n, double periods_per
 const char *gb_scan_csv_header(void)
 {
     return "index,x,y,omega_rms,switch_rate,strobe_sd,mean_height,geff_nonpositive_fraction,lift_off_fraction,"
-           "lambda_max,lambda_error,lambda_first_half,lambda_second_half,chaos_lifetime_periods,certificate_undecided,"
+           "lambda_max,lambda_error,lambda_first_half,lambda_second_half,chaos_lifetime_periods,melnikov_margin,"
+           "melnikov_margin_eq93,certificate_undecided,"
            "state_fingerprint,"
            "switch_fingerprint\n";
 }
 
 int gb_scan_csv_row(const gb_scan_metrics *m, size_t index, char *out, size_t size)
 {
-    const int n = snprintf(out, size, "%zu,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%zu,%016" PRIx64
+    const int n = snprintf(out, size, "%zu,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%zu,%016" PRIx64
                            ",%016" PRIx64 "\n",
                            index, m->x, m->y, m->omega_rms, m->switch_rate, m->strobe_sd, m->mean_height,
                            m->geff_nonpositive, m->lift_off, m->lambda, m->lambda_error, m->lambda_early, m->lambda_late,
-                           m->chaos_lifetime, m->certificate_undecided,
+                           m->chaos_lifetime, m->melnikov_margin, m->melnikov_margin_eq93, m->certificate_undecided,
                            m->state_fingerprint, m->switch_fingerprint);
     return n > 0 && (size_t)n < size ? GB_OK : gb_error_set(GB_EINVAL, "a scan row does not fit %zu bytes", size);
 }
@@ -441,7 +619,8 @@ int gb_scan_csv_parse(const char *line, size_t *index, gb_scan_metrics *out)
 {
     gb_scan_metrics m;
     double *fields[] = {&m.x, &m.y, &m.omega_rms, &m.switch_rate, &m.strobe_sd, &m.mean_height, &m.geff_nonpositive,
-                        &m.lift_off, &m.lambda, &m.lambda_error, &m.lambda_early, &m.lambda_late, &m.chaos_lifetime};
+                        &m.lift_off, &m.lambda, &m.lambda_error, &m.lambda_early, &m.lambda_late, &m.chaos_lifetime,
+                        &m.melnikov_margin, &m.melnikov_margin_eq93};
     char *end;
     const char *p = line;
     const unsigned long long i = strtoull(p, &end, 10);

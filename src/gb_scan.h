@@ -40,7 +40,10 @@ enum {
     GB_SCAN_MEAN_HEIGHT = 1 << 3, /* mean h* (eq 36) after the transient [body length units] */
     GB_SCAN_MONITORS = 1 << 4,    /* fractions of samples with g_eff ≤ 0 and with N ≤ 0 (the whole run) */
     GB_SCAN_LAMBDA = 1 << 5,      /* λ_max and its error bar over the record after the transient [1/s] */
-    GB_SCAN_METRICS_ALL = (1 << 6) - 1
+    GB_SCAN_MELNIKOV = 1 << 6,    /* the reduced model's margins (§7): the point's forcing over the threshold */
+    GB_SCAN_METRICS_ALL = (1 << 7) - 1,
+    /* What a scan file without `metrics` computes: what the run itself yields (no λ, no margins). */
+    GB_SCAN_METRICS_DEFAULT = GB_SCAN_METRICS_ALL & ~(GB_SCAN_LAMBDA | GB_SCAN_MELNIKOV)
 };
 
 typedef struct gb_scan {
@@ -85,12 +88,43 @@ typedef struct gb_scan_metrics {
      * start; 0 when no window does, +inf when the last one does (still chaotic at the end: censored),
      * NAN when the record is too short. */
     double chaos_lifetime;
+    /* The Melnikov margins of the point's scene (see gb_scan_melnikov_margins): > 1 where the reduced
+     * model's manifolds cross; NAN where the reduced model is not defined (no top to rock over, g ≤ 0). */
+    double melnikov_margin, melnikov_margin_eq93;
     size_t certificate_undecided;      /* continuous contact: certificate checks left undecided */
     uint64_t state_fingerprint, switch_fingerprint; /* as `gomboc run` prints them */
 } gb_scan_metrics;
 
-/* Run point `index`; metrics not asked for are NAN. */
-int gb_scan_point_run(const gb_scan *scan, size_t index, gb_scan_metrics *out);
+/* ---- the Melnikov margin (paper §7, eqs 91–93; docs/melnikov.md) ----
+ * The reduced model rocks the point's body over its top with M frozen at M(q_u), the splitting integral
+ * weighted by q̇ (GB_MELNIKOV_EXACT) and the damping −μp, μ = c/M(q_u): the defaults of `gomboc melnikov`.
+ * With the point's forcing (ν₁ = A₁, ν₂ = A₂ in m/s², its ω and ψ):
+ *   margin       = max over t₀ of the oscillatory part of M(t₀) / μD  (> 1: M changes sign, eq 91)
+ *   margin_eq93  = (ν₁A₁* + ν₂A₂*) / μD                               (> 1: eq 93 holds; ≥ margin)
+ * Both are linear in the forcing's scale: a point at margin m is at m times its threshold A₁ with A₂/A₁
+ * and ψ held. +inf without damping, NAN where the reduced model is not defined (GB_EDOM from it: no strict
+ * top, no saddle; or g ≤ 0). */
+int gb_scan_melnikov_margins(const gb_case *scene, double *margin, double *margin_eq93);
+
+/* The reduced model costs a table per body (mass, g) and the integrals (eqs 88–90) once per ω, about a
+ * second each, while the margin of a point is then a one-dimensional maximisation. A scan computes them
+ * once for the points it will run: plan the distinct bodies and frequencies of `points[0..count)`, then
+ * compute every body (gb_scan_melnikov_body) before any frequency (gb_scan_melnikov_frequency); distinct
+ * indices may run on threads at once. A point's margins from the plan are those of
+ * gb_scan_melnikov_margins, bit for bit. A scan without the metric plans nothing. */
+typedef struct gb_scan_melnikov gb_scan_melnikov;
+
+int gb_scan_melnikov_plan(const gb_scan *scan, const size_t *points, size_t count, gb_scan_melnikov **out);
+size_t gb_scan_melnikov_bodies(const gb_scan_melnikov *plan);
+size_t gb_scan_melnikov_frequencies(const gb_scan_melnikov *plan);
+int gb_scan_melnikov_body(gb_scan_melnikov *plan, size_t i);
+int gb_scan_melnikov_frequency(gb_scan_melnikov *plan, size_t i);
+void gb_scan_melnikov_free(gb_scan_melnikov *plan);
+
+/* Run point `index`; metrics not asked for are NAN. The margins come from `melnikov` (computed; it must
+ * have planned this point) or, when it is NULL, are computed for this point alone. A scan of margins
+ * alone runs no dynamics: the run's fingerprints are then 0. */
+int gb_scan_point_run(const gb_scan *scan, const gb_scan_melnikov *melnikov, size_t index, gb_scan_metrics *out);
 
 /* The accumulators of the per-sample metrics (exposed for their checks against closed forms). */
 typedef struct gb_scan_accumulator {

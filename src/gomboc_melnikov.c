@@ -102,7 +102,7 @@ int command_melnikov(int argc, char **argv)
     if (cli_parse_only) return 0;
 
     gb_melnikov_body *body = NULL;
-    status = gb_melnikov_body_create(&scene.body, scene.dynamics.mass, F->g, 256, &body);
+    status = gb_melnikov_body_create(&scene.body, scene.dynamics.mass, F->g, GB_MELNIKOV_BODY_NODES, &body);
     if (status) return cli_failure("melnikov", status);
     melnikov_run r = {.weight = paper_weight ? GB_MELNIKOV_PAPER : GB_MELNIKOV_EXACT, .psi = F->psi,
                       .damping_exact = damping_exact};

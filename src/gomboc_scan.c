@@ -316,6 +316,55 @@ static int shared_status(const ranks *r, int status)
     return status;
 }
 
+/* The reduced models and Melnikov integrals this rank's points need (every i-th of todo[0..left) from
+ * its rank), computed on the threads before the points run: bodies first, then frequencies. NULL after
+ * a failure, which is recorded. */
+static gb_scan_melnikov *prepare_melnikov(scan_state *st, const ranks *r, const size_t *todo, size_t left)
+{
+    const size_t step = (size_t)r->size, mine = left > (size_t)r->rank ? (left - (size_t)r->rank + step - 1) / step : 0;
+    size_t *points = malloc((mine ? mine : 1) * sizeof *points);
+    if (!points) {
+        fail_with(st, "out of memory for the list of points");
+        return NULL;
+    }
+    for (size_t i = (size_t)r->rank, n = 0; i < left; i += step) points[n++] = todo[i];
+    gb_scan_melnikov *plan = NULL;
+    int status = gb_scan_melnikov_plan(st->scan, points, mine, &plan);
+    free(points);
+    if (!status && gb_scan_melnikov_frequencies(plan) && r->rank == 0)
+        fprintf(stderr, "gomboc scan: the Melnikov margins need %zu reduced model(s) and their integrals at %zu frequency(ies)\n",
+                gb_scan_melnikov_bodies(plan), gb_scan_melnikov_frequencies(plan));
+    const double start = wall_seconds();
+    for (int phase = 0; !status && phase < 2; phase++) {
+        const size_t n = phase ? gb_scan_melnikov_frequencies(plan) : gb_scan_melnikov_bodies(plan);
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 1)
+#endif
+        for (size_t k = 0; k < n; k++) {
+            const int s = phase ? gb_scan_melnikov_frequency(plan, k) : gb_scan_melnikov_body(plan, k);
+            if (s) {
+#ifdef _OPENMP
+#pragma omp critical(scan_journal)
+#endif
+                if (!status) {
+                    char message[sizeof st->failure];
+                    snprintf(message, sizeof message, "the Melnikov margins' reduced model failed: %s", gb_error_message());
+                    fail_with(st, message);
+                    status = s;
+                }
+            }
+        }
+    }
+    if (!status && gb_scan_melnikov_frequencies(plan) && r->rank == 0)
+        fprintf(stderr, "gomboc scan: the Melnikov margins' models and integrals in %.1f s\n", wall_seconds() - start);
+    if (status) {
+        if (!st->failed) fail_with(st, gb_error_message());
+        gb_scan_melnikov_free(plan);
+        return NULL;
+    }
+    return plan;
+}
+
 /* Run this rank's share of the points not yet done: the i-th of them for i ≡ rank (mod ranks), on the
  * rank's threads; rank 0 journals its own points and those the other ranks send. */
 static void run_points(scan_state *st, const ranks *r)
@@ -325,6 +374,7 @@ static void run_points(scan_state *st, const ranks *r)
     for (size_t k = 0; todo && k < st->points; k++)
         if (!st->done[k]) todo[left++] = k;
     const size_t step = (size_t)r->size;
+    gb_scan_melnikov *melnikov = todo ? prepare_melnikov(st, r, todo, left) : NULL;
 #ifdef _OPENMP
 #pragma omp parallel for schedule(dynamic, 1)
 #endif
@@ -337,7 +387,7 @@ static void run_points(scan_state *st, const ranks *r)
         if (skip) continue;
         const size_t k = todo[i];
         gb_scan_metrics m;
-        const int s = gb_scan_point_run(st->scan, k, &m);
+        const int s = gb_scan_point_run(st->scan, melnikov, k, &m);
         char row[1024];
         const int failure = s ? s : gb_scan_csv_row(&m, k, row, sizeof row);
 #ifdef _OPENMP
@@ -358,6 +408,7 @@ static void run_points(scan_state *st, const ranks *r)
         }
     }
     free(todo);
+    gb_scan_melnikov_free(melnikov);
 #ifdef GOMBOC_MPI
     if (r->rank != 0) send_to_root("", TAG_DONE);
     else

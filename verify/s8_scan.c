@@ -188,8 +188,8 @@ static void test_point_is_the_run(void)
     const int code = scan_run(&d, "", out, sizeof out);
     char *csv = slurp(d.csv);
     gb_check_true(&cs, code == 0 && csv != NULL, "exit %d: %.300s", code, out);
-    int rows = 0, same_fingerprint = 0, same_diagnostics = 0;
-    double worst = 0.0;
+    int rows = 0, same_fingerprint = 0, same_diagnostics = 0, same_margin = 0;
+    double worst = 0.0, worst_threshold = 0.0;
     for (const char *line = csv ? strchr(csv, '\n') : NULL; line && line[1]; line = strchr(line + 1, '\n')) {
         size_t index;
         gb_scan_metrics m;
@@ -221,6 +221,16 @@ static void test_point_is_the_run(void)
                             number_at(root, "monitors", "geff_nonpositive_fraction") == m.geff_nonpositive &&
                             number_at(root, "monitors", "lift_off_fraction") == m.lift_off;
         cJSON_Delete(root);
+        /* The margins against `gomboc melnikov` of the same scene file: its largest oscillatory part and
+         * its ν₁A₁* + ν₂A₂* over its μD, and its exact threshold A1 times the margin is the point's A1. */
+        snprintf(args, sizeof args, "melnikov '%s' --json", scene);
+        char *reduced = run(args, out, sizeof out) == 0 ? out : NULL;
+        cJSON *mj = reduced ? cJSON_Parse(reduced) : NULL;
+        const double muD = number_at(mj, "mu_D", NULL), osc = number_at(mj, "oscillatory_max", NULL),
+                     bound = number_at(mj, "nu1_A1_plus_nu2_A2", NULL), threshold = number_at(mj, "threshold_A1", "exact");
+        same_margin += osc / muD == m.melnikov_margin && bound / muD == m.melnikov_margin_eq93;
+        worst_threshold = fmax(worst_threshold, fabs(m.melnikov_margin * threshold / 2.0 - 1.0)); /* A1 = 2 */
+        cJSON_Delete(mj);
         const double T = 2 * M_PI / m.x, h = T / 160;
         double rms, height, rate;
         if (history_metrics(history, transient * T - 0.5 * h, &rms, &height, &rate)) break;
@@ -240,6 +250,108 @@ static void test_point_is_the_run(void)
                    "1e-9 relative: the history prints t with 10 significant digits (t <= 4.8 s over spans >= 2.8 s), "
                    "omega with 12"};
     gb_check_close(&cm, rows == SCAN_POINTS ? worst : NAN, 0.0, 0.0, 1e-9);
+    gb_check cg = {"8.3", "91-93", "scan points whose Melnikov margins equal gomboc melnikov's for the point's scene",
+                   "oscillatory_max / mu_D and (nu1 A1* + nu2 A2*) / mu_D of gomboc melnikov --json", "exact (bit for bit)"};
+    gb_check_true(&cg, rows == SCAN_POINTS && same_margin == SCAN_POINTS, "%d rows, %d equal", rows, same_margin);
+    gb_check ct = {"8.3", "93", "margin x gomboc melnikov's exact threshold A1 (A2/A1 held), over the point's A1 = 2, minus 1",
+                   "0: the margin is the forcing over its threshold",
+                   "1e-15: three roundings (the threshold's quotient, the margin's, their product)"};
+    gb_check_close(&ct, rows == SCAN_POINTS ? worst_threshold : NAN, 0.0, 0.0, 1e-15);
+    remove_scan_dir(&d);
+}
+
+/* ---- the Melnikov margin ------------------------------------------------------------------------ */
+
+static const char margin_scan_text[] = "[scan]\ndescription = margins alone\nbase = base.ini\nperiods = 12\n"
+                                       "transient_periods = 4\nmetrics = melnikov\n"
+                                       "[x]\nkey = forcing.A1\nfrom = 1\nto = 2\ncount = 2\n"
+                                       "[y]\nkey = forcing.A2\nfrom = 0.5\nto = 1\ncount = 2\n";
+
+/* The margins of a scan of (A1, A2) with the margins alone: 1 and 2 threads give the same bytes and run
+ * no dynamics; the margin is linear in the forcing's scale and inverse in the damping, exactly (a factor
+ * of 2 is exact in binary, and the maximisation over t0 sees the same comparisons); eq 93 bounds the
+ * exact condition from above; a point computed alone equals the scan's planned one; the sphere, with no
+ * top to rock over, has no margin. */
+static void test_melnikov_margins(void)
+{
+    scan_dir d;
+    char out[1 << 14];
+    gb_check ct = {"8.3", "91-93", "margins-only scan of 2 x 2 points (A1, A2) on 1 and on 2 threads",
+                   "byte for byte, and no dynamics run (fingerprints 0, run metrics NaN)", "exact"};
+    if (make_scan_dir(&d, &ct)) return;
+    if (spill(d.scan, margin_scan_text)) {
+        gb_check_true(&ct, 0, "cannot write the scan file");
+        remove_scan_dir(&d);
+        return;
+    }
+    const int c1 = scan_run(&d, "--threads 1", out, sizeof out);
+    char *one = slurp(d.csv);
+    const int c2 = scan_run(&d, "--threads 2", out, sizeof out);
+    char *two = slurp(d.csv);
+    gb_scan_metrics m[4];
+    int rows = 0, idle = 0;
+    for (const char *line = one ? strchr(one, '\n') : NULL; line && line[1] && rows < 4; line = strchr(line + 1, '\n')) {
+        size_t index;
+        if (gb_scan_csv_parse(line + 1, &index, &m[rows]) || index != (size_t)rows) break;
+        idle += m[rows].state_fingerprint == 0 && isnan(m[rows].omega_rms) && isnan(m[rows].lambda);
+        rows++;
+    }
+    gb_check_true(&ct, c1 == 0 && c2 == 0 && one && two && !strcmp(one, two) && rows == 4 && idle == 4,
+                  "exits %d, %d; %s; %d rows, %d without dynamics", c1, c2, one && two && !strcmp(one, two) ? "identical" : "different",
+                  rows, idle);
+    free(one);
+    free(two);
+    if (rows != 4) {
+        remove_scan_dir(&d);
+        return;
+    }
+    /* Points 0 = (1, 0.5) and 3 = (2, 1). The eq 93 margin is a sum of the two amplitudes' terms over μD:
+     * doubling both is exact in binary. The exact margin's maximum over t0 is of M(t0) + μD (eq 91 with
+     * its damping term added back): one rounding of μD, μD / osc = 1 / margin relative to the result. */
+    const double round_trip = 4 * DBL_EPSILON * (1.0 + 1.0 / m[0].melnikov_margin);
+    gb_check cl = {"8.3", "93", "eq 93 margin at (A1, A2) = (2, 1) over that at (1, 0.5)", "2",
+                   "exact: doubling is exact in binary"};
+    gb_check_true(&cl, m[3].melnikov_margin_eq93 == 2.0 * m[0].melnikov_margin_eq93, "%.17g / %.17g", m[3].melnikov_margin_eq93,
+                  m[0].melnikov_margin_eq93);
+    gb_check cx = {"8.3", "91", "exact margin at (A1, A2) = (2, 1) over that at (1, 0.5)", "2",
+                   "4 eps (1 + 1/margin) relative: the maximum is of M(t0) + mu D, a rounding of mu D"};
+    gb_check_close(&cx, m[3].melnikov_margin / m[0].melnikov_margin, 2.0, round_trip, 0.0);
+    int bounded = 0;
+    for (int k = 0; k < 4; k++) bounded += m[k].melnikov_margin <= m[k].melnikov_margin_eq93 && m[k].melnikov_margin > 0.0;
+    gb_check cb = {"8.3", "93", "points whose exact margin is positive and at most the eq 93 margin",
+                   "4 of 4: eq 93 bounds the oscillatory maximum from above", "exact"};
+    gb_check_true(&cb, bounded == 4, "%d of 4", bounded);
+
+    gb_scan scan;
+    gb_case scene;
+    gb_scan_metrics alone;
+    double halved[2] = {NAN, NAN}, sphere[2] = {0.0, 0.0};
+    int status = gb_scan_load(d.scan, &scan), status_sphere = -1;
+    if (!status) {
+        status = gb_scan_point_run(&scan, NULL, 3, &alone);
+        if (!status) status = gb_scan_point_case(&scan, 3, &scene);
+        gb_scan_free(&scan);
+    }
+    gb_check ca = {"8.3", "91-93", "point (2, 1) computed alone (no plan) against the scan's planned point", "the scan's CSV row",
+                   "exact (bit for bit)"};
+    gb_check_true(&ca, !status && alone.melnikov_margin == m[3].melnikov_margin &&
+                  alone.melnikov_margin_eq93 == m[3].melnikov_margin_eq93,
+                  "%s: %.17g, %.17g", status ? gb_error_message() : "ran", alone.melnikov_margin, alone.melnikov_margin_eq93);
+    if (!status) {
+        scene.dynamics.damping *= 2.0;
+        status = gb_scan_melnikov_margins(&scene, &halved[0], &halved[1]);
+        gb_surface_init(&scene.body, scene.body.morphology->name, 0.0);
+        status_sphere = gb_scan_melnikov_margins(&scene, &sphere[0], &sphere[1]);
+    }
+    gb_check ch = {"8.3", "93", "eq 93 margin of point (2, 1) with the damping c doubled", "half the scan's",
+                   "exact: mu = c / M(q_u) and mu D double exactly"};
+    gb_check_true(&ch, !status && 2.0 * halved[1] == m[3].melnikov_margin_eq93, "%.17g", halved[1]);
+    gb_check cd = {"8.3", "91", "exact margin of point (2, 1) with the damping c doubled, times 2, over the scan's", "1",
+                   "4 eps (1 + 1/margin) relative: the maximum is of M(t0) + mu D, a rounding of mu D"};
+    gb_check_close(&cd, status ? NAN : 2.0 * halved[0] / m[3].melnikov_margin, 1.0, round_trip, 0.0);
+    gb_check cs = {"8.3", "7", "margins of the sphere (beta = 0): no top to rock over", "NaN, and no failure", "exact"};
+    gb_check_true(&cs, status_sphere == 0 && isnan(sphere[0]) && isnan(sphere[1]), "status %d: %g, %g", status_sphere, sphere[0],
+                  sphere[1]);
     remove_scan_dir(&d);
 }
 
@@ -663,6 +775,8 @@ int verify_register_s8_scan(void)
         {"section 8.3: scan metrics against closed forms", test_accumulators, NULL},
         {"section 8.3: a scan point is the single run of its scene", test_point_is_the_run,
          "every scan point is, bit for bit, the run of the scene it stands for"},
+        {"sections 7, 8.3: the Melnikov margin of a scan point", test_melnikov_margins,
+         "a point's Melnikov margins are those of gomboc melnikov, exact under scaling, with or without a plan"},
         {"section 8.3: threads, kill -9 and --resume give the same bytes", test_threads_and_resume,
          "a scan's CSV does not depend on the thread count or on an interruption"},
         {"section 8.3: a point out of its key's range is refused before any run", test_point_out_of_range, NULL},
