@@ -517,7 +517,7 @@ void gb_melnikov_judge(const gb_melnikov_integrals *I, const gb_melnikov_forcing
     if (s) gsl_min_fminimizer_free(s);
     out->oscillatory_max = best;
     out->t0_max = fmod(fmod(at, T) + T, T);
-    out->eq93 = f->nu1 * I->A1 + f->nu2 * I->A2 > damping_term(I, f);
+    out->eq93 = fabs(f->nu1) * I->A1 + fabs(f->nu2) * I->A2 > damping_term(I, f); /* A* ≥ 0: |ν| bounds a harmonic of either sign */
     out->sign_change = best > damping_term(I, f);
 }
 
@@ -525,7 +525,7 @@ void gb_melnikov_threshold(const gb_melnikov_integrals *I, const gb_melnikov_for
 {
     gb_melnikov_criterion c;
     gb_melnikov_judge(I, f, &c);
-    *by_eq93 = damping_term(I, f) / (f->nu1 * I->A1 + f->nu2 * I->A2);
+    *by_eq93 = damping_term(I, f) / (fabs(f->nu1) * I->A1 + fabs(f->nu2) * I->A2);
     *exact = damping_term(I, f) / c.oscillatory_max;
 }
 

@@ -82,7 +82,7 @@ int gb_melnikov_direct(const gb_melnikov_model *model, const gb_melnikov_orbit *
                        gb_melnikov_weight weight, double t0, double *value);
 
 typedef struct gb_melnikov_criterion {
-    int eq93;                    /* ν₁A₁* + ν₂A₂* > μD */
+    int eq93;                    /* |ν₁|A₁* + |ν₂|A₂* > μD */
     int sign_change;             /* max over t₀ of the oscillatory part > μD */
     double oscillatory_max;      /* that maximum */
     double t0_max;               /* where it is reached, in [0, 2π/ω) */

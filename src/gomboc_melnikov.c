@@ -162,7 +162,7 @@ int command_melnikov(int argc, char **argv)
         cli_json_add(root, "A2_star", I.A2);
         cli_json_add(root, "mu", r.mu);
         cli_json_add(root, "mu_D", r.mu * (damping_exact ? I.D_mass : I.D));
-        cli_json_add(root, "nu1_A1_plus_nu2_A2", F->a1 * I.A1 + F->a2 * I.A2);
+        cli_json_add(root, "nu1_A1_plus_nu2_A2", fabs(F->a1) * I.A1 + fabs(F->a2) * I.A2);
         cli_json_add(root, "oscillatory_max", c.oscillatory_max);
         cJSON_AddBoolToObject(root, "eq93_holds", c.eq93);
         cJSON_AddBoolToObject(root, "sign_change", c.sign_change);
@@ -197,7 +197,7 @@ int command_melnikov(int argc, char **argv)
         printf("  D = %.6g, A1* = %.6g, A2* = %.6g at omega = %g (weight %s, mass %s)\n", I.D, I.A1, I.A2, F->omega,
                paper_weight ? "paper" : "exact", variable_mass ? "variable" : "top");
         printf("  mu D = %.6g; nu1 A1* + nu2 A2* = %.6g (eq 93 %s); largest oscillatory part %.6g (sign change: %s)\n",
-               r.mu * (damping_exact ? I.D_mass : I.D), F->a1 * I.A1 + F->a2 * I.A2, c.eq93 ? "holds" : "does not hold", c.oscillatory_max,
+               r.mu * (damping_exact ? I.D_mass : I.D), fabs(F->a1) * I.A1 + fabs(F->a2) * I.A2, c.eq93 ? "holds" : "does not hold", c.oscillatory_max,
                c.sign_change ? "yes" : "no");
         printf("  threshold A1: %.6g by eq 93, %.6g exact (m/s2, A2/A1 and psi of the scene)\n", t93, tx);
     }

@@ -325,8 +325,8 @@ static void test_melnikov_margins(void)
     gb_scan scan;
     gb_case scene;
     gb_scan_metrics alone;
-    double halved[2] = {NAN, NAN}, sphere[2] = {0.0, 0.0};
-    int status = gb_scan_load(d.scan, &scan), status_sphere = -1;
+    double halved[2] = {NAN, NAN}, sphere[2] = {0.0, 0.0}, negative[2] = {NAN, NAN};
+    int status = gb_scan_load(d.scan, &scan), status_sphere = -1, status_flipped = -1;
     if (!status) {
         status = gb_scan_point_run(&scan, NULL, 3, &alone);
         if (!status) status = gb_scan_point_case(&scan, 3, &scene);
@@ -340,6 +340,10 @@ static void test_melnikov_margins(void)
     if (!status) {
         scene.dynamics.damping *= 2.0;
         status = gb_scan_melnikov_margins(&scene, &halved[0], &halved[1]);
+        gb_case flipped = scene;
+        flipped.dynamics.damping = scene.dynamics.damping / 2.0;
+        flipped.dynamics.forcing.a1 = -scene.dynamics.forcing.a1, flipped.dynamics.forcing.a2 = -scene.dynamics.forcing.a2;
+        status_flipped = gb_scan_melnikov_margins(&flipped, &negative[0], &negative[1]);
         gb_surface_init(&scene.body, scene.body.morphology->name, 0.0);
         status_sphere = gb_scan_melnikov_margins(&scene, &sphere[0], &sphere[1]);
     }
@@ -349,6 +353,11 @@ static void test_melnikov_margins(void)
     gb_check cd = {"8.3", "91", "exact margin of point (2, 1) with the damping c doubled, times 2, over the scan's", "1",
                    "4 eps (1 + 1/margin) relative: the maximum is of M(t0) + mu D, a rounding of mu D"};
     gb_check_close(&cd, status ? NAN : 2.0 * halved[0] / m[3].melnikov_margin, 1.0, round_trip, 0.0);
+    gb_check cn = {"8.3", "93", "margins of point (2, 1) with both amplitudes negated (-2, -1)",
+                   "eq 93's the scan's (|nu| bounds a harmonic of either sign), the exact one positive and at most it",
+                   "exact"};
+    gb_check_true(&cn, status_flipped == 0 && negative[1] == m[3].melnikov_margin_eq93 && negative[0] > 0.0 &&
+                  negative[0] <= negative[1], "%.17g, %.17g", negative[0], negative[1]);
     gb_check cs = {"8.3", "7", "margins of the sphere (beta = 0): no top to rock over", "NaN, and no failure", "exact"};
     gb_check_true(&cs, status_sphere == 0 && isnan(sphere[0]) && isnan(sphere[1]), "status %d: %g, %g", status_sphere, sphere[0],
                   sphere[1]);
