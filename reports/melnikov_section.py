@@ -10,7 +10,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-from common import finish_figure, load_json, section_start  # noqa: E402
+from common import finish_figure, section_start  # noqa: E402
 
 
 def splitting_figure(out, rows):
@@ -134,12 +134,3 @@ def melnikov_section(out, rows):
                          f"{r['quantity'].replace('|', '/')} | {v} |")
         lines.append("")
     return lines
-
-
-def threshold_curves(out):
-    """{body: [(omega, threshold eq 93, threshold exact)]} from melnikov.json, for the (ω, A1) maps."""
-    path = os.path.join(out, "melnikov.json")
-    if not os.path.exists(path):
-        return {}
-    return {b["body"]: [tuple(p) for p in b["threshold_curve"] if all(math.isfinite(x) for x in p)]
-            for b in load_json(path).get("bodies", [])}
