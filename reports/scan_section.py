@@ -143,8 +143,17 @@ def margin_text(grid):
     finite = a[numpy.isfinite(a)]
     if finite.size == 0:
         return ""
-    return (f" Melnikov margin {finite.min():.2f} … {finite.max():.2f} (eq 93: {numpy.nanmin(grid[MARGINS[1]]):.2f} … "
+    text = (f" Melnikov margin {finite.min():.2f} … {finite.max():.2f} (eq 93: {numpy.nanmin(grid[MARGINS[1]]):.2f} … "
             f"{numpy.nanmax(grid[MARGINS[1]]):.2f}); above 1 at {int((finite > 1.0).sum())} of {a.size} points.")
+    # How fast the margin changes between neighbouring columns (x): where it jumps by large factors, the
+    # margin-1 line is not resolved by the map's spacing.
+    left, right = a[:, :-1], a[:, 1:]
+    keep = numpy.isfinite(left) & numpy.isfinite(right) & (left > 0) & (right > 0)
+    if keep.any():
+        ratio = numpy.maximum(left[keep], right[keep]) / numpy.minimum(left[keep], right[keep])
+        text += (f" Between neighbouring columns the margin changes by a factor {numpy.median(ratio):.2f} (median), up to "
+                 f"{ratio.max():.1f}.")
+    return text
 
 
 def verdict(value, holds, fails):
