@@ -225,6 +225,7 @@ typedef struct scan_state {
     unsigned char *done;
     size_t points, finished, run_here;
     double start, last_report;
+    double points_start;          /* when the points began (after the margins' models): the rate's origin */
     int failed, workers_done;
     char failure[1200];
 } scan_state;
@@ -263,7 +264,7 @@ static void accept_point(scan_state *st, size_t k, const gb_scan_metrics *m, con
     st->run_here++;
     const double now = wall_seconds();
     if (now - st->last_report >= 2.0 || st->finished == st->points) {
-        const double rate = (double)st->run_here / (now - st->start);
+        const double rate = (double)st->run_here / (now - st->points_start);
         fprintf(stderr, "gomboc scan: %zu of %zu points, %.2f points/s, %.0f s left\n", st->finished, st->points, rate,
                 rate > 0 ? (double)(st->points - st->finished) / rate : 0.0);
         st->last_report = now;
@@ -335,6 +336,9 @@ static gb_scan_melnikov *prepare_melnikov(scan_state *st, const ranks *r, const 
         fprintf(stderr, "gomboc scan: the Melnikov margins need %zu reduced model(s) and their integrals at %zu frequency(ies)\n",
                 gb_scan_melnikov_bodies(plan), gb_scan_melnikov_frequencies(plan));
     const double start = wall_seconds();
+    double last_report = start;
+    const size_t tasks = status ? 0 : gb_scan_melnikov_bodies(plan) + gb_scan_melnikov_frequencies(plan);
+    size_t finished = 0;
     for (int phase = 0; !status && phase < 2; phase++) {
         const size_t n = phase ? gb_scan_melnikov_frequencies(plan) : gb_scan_melnikov_bodies(plan);
 #ifdef _OPENMP
@@ -342,15 +346,22 @@ static gb_scan_melnikov *prepare_melnikov(scan_state *st, const ranks *r, const 
 #endif
         for (size_t k = 0; k < n; k++) {
             const int s = phase ? gb_scan_melnikov_frequency(plan, k) : gb_scan_melnikov_body(plan, k);
-            if (s) {
 #ifdef _OPENMP
 #pragma omp critical(scan_journal)
 #endif
-                if (!status) {
+            {
+                if (s && !status) {
                     char message[sizeof st->failure];
                     snprintf(message, sizeof message, "the Melnikov margins' reduced model failed: %s", gb_error_message());
                     fail_with(st, message);
                     status = s;
+                }
+                finished++;
+                const double now = wall_seconds();
+                if (r->rank == 0 && now - last_report >= 2.0 && finished < tasks) {
+                    fprintf(stderr, "gomboc scan: the Melnikov margins: %zu of %zu models and frequencies, %.0f s\n", finished,
+                            tasks, now - start);
+                    last_report = now;
                 }
             }
         }
@@ -375,6 +386,7 @@ static void run_points(scan_state *st, const ranks *r)
         if (!st->done[k]) todo[left++] = k;
     const size_t step = (size_t)r->size;
     gb_scan_melnikov *melnikov = todo ? prepare_melnikov(st, r, todo, left) : NULL;
+    st->points_start = st->last_report = wall_seconds();
 #ifdef _OPENMP
 #pragma omp parallel for schedule(dynamic, 1)
 #endif
