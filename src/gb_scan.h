@@ -102,8 +102,8 @@ typedef struct gb_scan_metrics {
  *   margin       = max over t₀ of the oscillatory part of M(t₀) / μD  (> 1: M changes sign, eq 91)
  *   margin_eq93  = (ν₁A₁* + ν₂A₂*) / μD                               (> 1: eq 93 holds; ≥ margin)
  * Both are linear in the forcing's scale: a point at margin m is at m times its threshold A₁ with A₂/A₁
- * and ψ held. +inf without damping, NAN where the reduced model is not defined (GB_EDOM from it: no strict
- * top, no saddle; or g ≤ 0). */
+ * and ψ held. +inf without damping (NAN with neither damping nor forcing), NAN where the reduced model is
+ * not defined (GB_EDOM from it: no strict top, no saddle; or g ≤ 0). */
 int gb_scan_melnikov_margins(const gb_case *scene, double *margin, double *margin_eq93);
 
 /* The reduced model costs a table per body (mass, g) and the integrals (eqs 88–90) once per ω, about a
