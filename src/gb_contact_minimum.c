@@ -89,7 +89,7 @@ static int newton(const gb_surface *surface, const double d[3], double *phi, dou
     height_derivatives(surface, d, *phi, *theta, p, &h, g, H);
     for (int it = 0; it < def->max_iterations; it++) {
         *iterations = it + 1;
-        if (sin(*phi) < def->pole_guard) return 1;
+        if (hypot(p->u[0], p->u[1]) < def->pole_guard) return 1; /* sin φ of the point evaluated */
         /* Eigen-decomposition of the symmetric 2 × 2 Hessian. */
         const double mean = 0.5 * (H[0] + H[2]), half_diff = 0.5 * (H[0] - H[2]);
         const double radius = sqrt(half_diff * half_diff + H[1] * H[1]);

@@ -28,6 +28,36 @@ static void phase_two(double phi, double theta, gb_phase_value *v)
     v->chi_phitheta = v->chi_thetatheta = 0.0;
 }
 
+/* The same with sin χ and cos χ from the sines and cosines of φ and θ, for gb_surface_eval: one
+ * sincos of φ and one of θ serve u, the kernel and (for I) χ, by cos χ = cos θ cos f + sin θ sin f and
+ * sin χ = sin θ cos f − cos θ sin f with χ = θ − f(φ). I: cos 5φ = T₅(cos φ), sin 5φ = sin φ U₄(cos φ)
+ * (no trigonometric call); II: one sincos of f. */
+static void phase_one_eval(double phi, double theta, double sp, double cp, double st, double ct, gb_phase_value *v,
+                           double *sin_chi, double *cos_chi)
+{
+    phase_one(phi, theta, v);
+    const double c2 = cp * cp;
+    const double cf = cp * (5.0 + c2 * (-20.0 + 16.0 * c2)), sf = sp * (1.0 + c2 * (-12.0 + 16.0 * c2));
+    *cos_chi = ct * cf + st * sf;
+    *sin_chi = st * cf - ct * sf;
+}
+
+static void phase_two_eval(double phi, double theta, double sp, double cp, double st, double ct, gb_phase_value *v,
+                           double *sin_chi, double *cos_chi)
+{
+    (void)phi;
+    const double f = 1.5 * M_PI * (cp - cp * cp * cp / 3.0);
+    v->chi = theta - f;
+    v->chi_phi = 1.5 * M_PI * sp * sp * sp;
+    v->chi_theta = 1.0;
+    v->chi_phiphi = 4.5 * M_PI * sp * sp * cp;
+    v->chi_phitheta = v->chi_thetatheta = 0.0;
+    double sf, cf;
+    sincos(f, &sf, &cf);
+    *cos_chi = ct * cf + st * sf;
+    *sin_chi = st * cf - ct * sf;
+}
+
 /* The kernel's angular part sinφ cos χ written through the unit direction s = (s_x, s_y, s_z), for the
  * interval enclosures of gb_surface_enclose (which also work in a chart without the (φ, θ) poles).
  * Both phases are χ = θ − f(φ), so sinφ cos χ = s_x cos f + s_y sin f (sinφ cosθ = s_x, sinφ sinθ = s_y).
@@ -56,8 +86,8 @@ static int kernel_jet_two(const gb_jet s[3], gb_jet *k)
  * of u by π about e_y; for II, (φ,θ) → (π−φ, −θ) keeps χ₂ (its φ-part is odd in cos φ) and rotates
  * u by π about e_x. Both axes pass through the minimum of sinφ cosχ (φ = π/2, χ = π). */
 static const gb_morphology morphologies[] = {
-    {"I", "theta - 5 phi", "3, 4, 8, 18", phase_one, kernel_jet_one, {0.0, -1.0, 0.0}},
-    {"II", "theta - (3 pi / 2)(cos phi - cos^3 phi / 3)", "5, 6, 9, 19", phase_two,
+    {"I", "theta - 5 phi", "3, 4, 8, 18", phase_one, phase_one_eval, kernel_jet_one, {0.0, -1.0, 0.0}},
+    {"II", "theta - (3 pi / 2)(cos phi - cos^3 phi / 3)", "5, 6, 9, 19", phase_two, phase_two_eval,
      kernel_jet_two, {-1.0, 0.0, 0.0}},
 };
 
@@ -106,10 +136,11 @@ void gb_surface_direction(double phi, double theta, double u[3])
 void gb_surface_eval(const gb_surface *surface, double phi, double theta, gb_surface_point *p)
 {
     const double beta4 = 4.0 * surface->beta;
-    const double sp = sin(phi), cp = cos(phi), st = sin(theta), ct = cos(theta);
+    double sp, cp, st, ct, sc, cc;
+    sincos(phi, &sp, &cp);
+    sincos(theta, &st, &ct);
     gb_phase_value *v = &p->phase;
-    surface->morphology->phase(phi, theta, v);
-    const double sc = sin(v->chi), cc = cos(v->chi);
+    surface->morphology->phase_eval(phi, theta, sp, cp, st, ct, v, &sc, &cc);
 
     p->phi = phi;
     p->theta = theta;

@@ -24,6 +24,9 @@ typedef struct gb_morphology {
     const char *chi_formula; /* the paper's χ, for reports */
     const char *equations;   /* where the paper defines it */
     void (*phase)(double phi, double theta, gb_phase_value *out);
+    /* The same and sin χ, cos χ, from sin and cos of φ and θ (gb_surface_eval's fast path). */
+    void (*phase_eval)(double phi, double theta, double sin_phi, double cos_phi, double sin_theta, double cos_theta,
+                       gb_phase_value *out, double *sin_chi, double *cos_chi);
     /* sinφ cos χ as an interval jet of the unit direction s (for gb_surface_enclose); returns 1 when
      * it is C² over the jet's box, 0 when its second derivatives hold the Hessian only where it exists. */
     int (*kernel_jet)(const struct gb_jet *s, struct gb_jet *out); /* s: three jets (gb_interval.h) */
