@@ -262,7 +262,7 @@ references-only:
 # pkg-config file, under $(DESTDIR)$(PREFIX).
 PREFIX  ?= /usr/local
 VERSION := $(shell git describe --always --dirty 2>/dev/null || echo unknown)
-PUBLIC_HEADERS = src/gomboc.h $(filter-out %_internal.h src/gb_interval.h src/gb_arena.h src/gb_vec.h,$(wildcard src/gb_*.h))
+PUBLIC_HEADERS = src/gomboc.h $(filter-out %_internal.h src/gb_interval.h src/gb_arena.h src/gb_vec.h src/gb_hash.h,$(wildcard src/gb_*.h))
 
 install: deps
 	@$(MAKE) --no-print-directory build

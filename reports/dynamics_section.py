@@ -179,6 +179,26 @@ def dynamics_section(out, rows):
                              ["model", "points/s, 1 thread", "points/s, 2 threads", "efficiency"],
                              lambda r: [r["scan_model"], f"{r['points_per_second_1']:.2f}", f"{r['points_per_second_2']:.2f}",
                                         f"{r['parallel_efficiency']:.0%}"])
+        baseline = {r["body"]: r.get("baseline_seconds") or r["plain_seconds"] for r in records if "plain_seconds" in r}
+        lines += bench_table(records, "atlas_cached_seconds",
+                             "Certified continuous contact three ways on the same Table 1 rolling runs (the same `make bench` "
+                             "run, best of 2): per vertical (`gb_certify` at every step), with the atlas of verticals built "
+                             "during the run, and with the atlas loaded from the file an earlier run wrote (its load counted "
+                             "in the set-up column, not the run). The three must end in the same state bits. Cells: certified "
+                             "cells of verticals (two-site: a cell naming two minima); fallbacks: checks of the cached run "
+                             "left to the per-vertical certificate (docs/certificate.md). Speed-ups against the plain loop; "
+                             "target (issue 20): ≥ 20×.",
+                             ["body", "per vertical [s]", "speed-up", "atlas built in the run [s]", "speed-up", "of it, building [s]",
+                              "atlas from its file [s]", "speed-up", "set-up with the load [s]", "cells", "two-site cells",
+                              "memory [MiB]", "fallbacks", "same bits"],
+                             lambda r: [r["body"], f"{r['atlas_per_vertical_seconds']:.3f}",
+                                        f"{baseline[r['body']] / r['atlas_per_vertical_seconds']:.1f}×",
+                                        f"{r['atlas_built_seconds']:.3f}", f"{baseline[r['body']] / r['atlas_built_seconds']:.1f}×",
+                                        f"{r['atlas_build_seconds']:.3f}", f"{r['atlas_cached_seconds']:.3f}",
+                                        f"{baseline[r['body']] / r['atlas_cached_seconds']:.1f}×", f"{r['atlas_load_seconds']:.3f}",
+                                        str(r["atlas_cells"]), str(r["atlas_two_site_cells"]),
+                                        f"{r['atlas_bytes'] / 1048576:.1f}", str(r["atlas_cached_fallbacks"]),
+                                        "yes" if r["atlas_identical"] else "**no**"])
         headroom = [r for r in records if "headroom_total_seconds" in r]
         if headroom:
             lines += ["", "Why the certified run is far from 50× (the same `make bench` run): the run's time inside the "

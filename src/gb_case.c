@@ -82,6 +82,10 @@ static int parse_units(const char *value, gb_case *c)
 }
 static int parse_equation(const char *value, gb_case *c) { return gb_dynamics_variant_parse(value, &c->dynamics.variant); }
 static int parse_contact(const char *value, gb_case *c) { return gb_contact_model_parse(value, &c->dynamics.contact); }
+static int parse_certificate(const char *value, gb_case *c)
+{
+    return gb_dynamics_certificate_parse(value, &c->dynamics.certificate);
+}
 static int parse_nodes(const char *value, gb_case *c) { return gb_contact_nodes_parse(value, &c->dynamics.grid.nodes); }
 static int parse_method(const char *value, gb_case *c) { return gb_integrate_parse(value, &c->integrate.method); }
 static int parse_window(const char *value, gb_case *c) { return gb_window_parse(value, &c->spectrum_window); }
@@ -109,6 +113,7 @@ static const key_def keys[] = {
     {"forcing", "psi", KEY_ANGLE, -1000.0, 1000.0, 0, "[rad]", AT(dynamics.forcing.psi), NULL},
     NAME("model", "equation", parse_equation),
     NAME("model", "contact", parse_contact),
+    NAME("model", "certificate", parse_certificate),
     {"model", "grid", KEY_GRID, 0, 0, 0, NULL, 0, NULL},
     NAME("model", "nodes", parse_nodes),
     REAL("model", "damping", 0.0, 1000.0, 0, "[N m s]", dynamics.damping),
@@ -388,6 +393,11 @@ static int cross_check(const char *path, gb_case *c)
                           "contact (its steps collapse at every node change) (allowed: rk4 with grid or fast-grid; "
                           "any method with contact = continuous)",
                           gb_integrate_name(c->integrate.method), gb_contact_model_name(c->dynamics.contact));
+    if (c->dynamics.certificate != GB_CERTIFICATE_PER_VERTICAL && c->dynamics.contact != GB_CONTACT_MODEL_CONTINUOUS)
+        return cross_fail(path, c, "model", "certificate",
+                          "= %s with [model] contact = %s: only continuous contact is certified (allowed: "
+                          "per-vertical with any contact; atlas with contact = continuous)",
+                          gb_dynamics_certificate_name(c->dynamics.certificate), gb_contact_model_name(c->dynamics.contact));
     if (c->strobe || c->spectrum || c->lyapunov) {
         if (spp % c->integrate.sample_every)
             return cross_fail(path, c, "output", "sample_every",

@@ -2,7 +2,7 @@
 
 #include "gb_arena.h"
 #include "gb_error.h"
-#include "gb_surface_internal.h"
+#include "gb_certify_internal.h"
 #include "gb_vec.h"
 
 #include <math.h>
@@ -10,13 +10,6 @@
 #include <string.h>
 #include <time.h>
 
-/* Rounding allowances of the per-check tests, which use plain double sums of a few products of
- * O(1) numbers (error ~1e-16): a margin must exceed these before a verdict is given. */
-#define SLACK_ROUNDING 1e-13
-#define HESSIAN_ROUNDING 1e-12
-/* A point counts as inside a box only this far from its edges [rad]; Newton's points are within
- * ~1e-14 of the exact critical points, so the exact point is then inside too. */
-#define INSIDE_MARGIN 1e-9
 #define BASIN_SLOTS 8
 #define BASIN_MAX_HALF_WIDTH 0.25
 #define BASIN_MIN_HALF_WIDTH 1e-3
@@ -25,18 +18,6 @@
 /* FAR verdicts are re-anchored when the minimum moves this far from the anchor [body length]. */
 #define ANCHOR_REACH 0.05
 
-enum { REGION_EQUATOR = 0, REGION_NORTH = 1, REGION_SOUTH = 2, REGIONS = 3 };
-enum { ROOTS_A_EQ = 4, ROOTS_B_EQ = 16, ROOTS_CAP = 4 };
-#define ROOT_COUNT (ROOTS_A_EQ * ROOTS_B_EQ + 2 * ROOTS_CAP * ROOTS_CAP)
-
-/* Root-box ranges of the three regions (see gb_certify.h for why they cover the sphere). */
-static const double region_range[REGIONS][4] = {
-    {0.8, M_PI - 0.8, 0.0, 2.0 * M_PI},
-    {0.75, M_PI - 0.75, 0.75, M_PI - 0.75},
-    {0.75, M_PI - 0.75, M_PI + 0.75, 2.0 * M_PI - 0.75},
-};
-
-static gb_surface_chart region_chart(int region) { return region == REGION_EQUATOR ? GB_SURFACE_CHART_POLAR_Z : GB_SURFACE_CHART_POLAR_X; }
 
 typedef enum reason { R_NONE = 0, R_FAR, R_SLOPE, R_NOMIN, R_BASIN, R_SPLIT } reason;
 
@@ -83,8 +64,8 @@ typedef struct basin {
 struct gb_certify {
     gb_surface surface;
     gb_certify_def def;
-    node roots[ROOT_COUNT];
-    gb_surface_enclosure root_enclosures[ROOT_COUNT];
+    node roots[GB_ROOT_COUNT];
+    gb_surface_enclosure root_enclosures[GB_ROOT_COUNT];
     gb_arena quads;  /* every split box's four children */
     size_t nodes;
     unsigned long epoch, next_serial;
@@ -113,12 +94,6 @@ gb_certify_def gb_certify_default_def(void)
 
 /* ---------------------------------------------------------------- boxes */
 
-static double norm_of_mags(const gb_interval v[3])
-{
-    const double a = gb_interval_mag(v[0]), b = gb_interval_mag(v[1]), c = gb_interval_mag(v[2]);
-    return sqrt(a * a + b * b + c * c) * (1.0 + 1e-12);
-}
-
 static void node_fill(const gb_certify *c, node *n, gb_surface_enclosure *e, int region, int depth, double a_lo,
                       double a_hi, double b_lo, double b_hi)
 {
@@ -127,11 +102,11 @@ static void node_fill(const gb_certify *c, node *n, gb_surface_enclosure *e, int
     n->a_lo = a_lo, n->a_hi = a_hi, n->b_lo = b_lo, n->b_hi = b_hi;
     n->region = (unsigned char)region;
     n->depth = (unsigned char)depth;
-    gb_surface_enclose(&c->surface, region_chart(region), a_lo, a_hi, b_lo, b_hi, e);
-    n->xa_mag = norm_of_mags(e->x_a);
-    n->xb_mag = norm_of_mags(e->x_b);
-    n->xaa_mag = norm_of_mags(e->x_aa);
-    n->xbb_mag = norm_of_mags(e->x_bb);
+    gb_surface_enclose(&c->surface, gb_region_chart(region), a_lo, a_hi, b_lo, b_hi, e);
+    n->xa_mag = gb_certify_norm_of_mags(e->x_a);
+    n->xb_mag = gb_certify_norm_of_mags(e->x_b);
+    n->xaa_mag = gb_certify_norm_of_mags(e->x_aa);
+    n->xbb_mag = gb_certify_norm_of_mags(e->x_bb);
 }
 
 static quad *quad_take(gb_certify *c) { return gb_arena_take(&c->quads); }
@@ -139,7 +114,7 @@ static quad *quad_take(gb_certify *c) { return gb_arena_take(&c->quads); }
 /* Release every quad: the roots lose their children. */
 static void quads_release(gb_certify *c)
 {
-    for (int k = 0; k < ROOT_COUNT; k++) c->roots[k].child = NULL;
+    for (int k = 0; k < GB_ROOT_COUNT; k++) c->roots[k].child = NULL;
     gb_arena_release(&c->quads);
 }
 
@@ -159,65 +134,16 @@ static int node_split(gb_certify *c, node *n)
     return GB_OK;
 }
 
-/* Σ d_k v_k over intervals v_k, in plain double arithmetic (see SLACK_ROUNDING). */
-static gb_interval dot_interval(const double d[3], const gb_interval v[3])
-{
-    gb_interval s = {0.0, 0.0};
-    for (int k = 0; k < 3; k++) {
-        const double p = d[k] * v[k].lo, q = d[k] * v[k].hi;
-        s.lo += gb_interval_min(p, q);
-        s.hi += gb_interval_max(p, q);
-    }
-    return s;
-}
-
-/* A lower bound of d·x over the box: the direct enclosure met with the Taylor form about the box
- * centre with d applied first (see gb_surface_enclosure), whose first-order term is the gradient of h
- * at the centre times the offset, not Σ|d_k| |∂x_k| times it. Near a critical point that is the
- * difference between a bound good to O(size²) and one good to O(size). Plain double sums (see
- * SLACK_ROUNDING). */
-static double height_lower_bound(const double d[3], const gb_surface_enclosure *e, gb_interval Haa, gb_interval Hab,
-                                 gb_interval Hbb)
-{
-    const double direct = dot_interval(d, e->x).lo;
-    const gb_interval hc = dot_interval(d, e->x_c), ga = dot_interval(d, e->x_a_c), gb = dot_interval(d, e->x_b_c);
-    const gb_interval second = gb_interval_add(
-        gb_interval_add(gb_interval_mul(Haa, gb_interval_sqr(e->da)), gb_interval_mul(Hbb, gb_interval_sqr(e->db))),
-        gb_interval_scale(2.0, gb_interval_mul(Hab, gb_interval_mul(e->da, e->db))));
-    const double taylor = hc.lo + gb_interval_mul(ga, e->da).lo + gb_interval_mul(gb, e->db).lo + 0.5 * second.lo;
-    return gb_interval_max(direct, taylor);
-}
-
 /* Is the interval Hessian d·x'' positive definite over the whole box? */
 static int hessian_definite(const double d[3], const gb_interval aa[3], const gb_interval ab[3], const gb_interval bb[3])
 {
-    const gb_interval Haa = dot_interval(d, aa), Hab = dot_interval(d, ab), Hbb = dot_interval(d, bb);
-    if (!(Haa.lo > HESSIAN_ROUNDING && Hbb.lo > HESSIAN_ROUNDING)) return 0;
-    const double m = gb_interval_max(fabs(Hab.lo), fabs(Hab.hi));
-    return Haa.lo * Hbb.lo - m * m > HESSIAN_ROUNDING;
-}
-
-/* Is b in [lo, hi] modulo 2π, at least `margin` inside? */
-static int inside_periodic(double b, double lo, double hi, double margin)
-{
-    for (int k = -1; k <= 1; k++) {
-        const double t = b + 2.0 * M_PI * k;
-        if (t >= lo + margin && t <= hi - margin) return 1;
-    }
-    return 0;
-}
-
-static int range_inside_periodic(double lo, double hi, double outer_lo, double outer_hi)
-{
-    for (int k = -1; k <= 1; k++)
-        if (lo + 2.0 * M_PI * k >= outer_lo && hi + 2.0 * M_PI * k <= outer_hi) return 1;
-    return 0;
+    return gb_certify_definite(gb_certify_dot(d, aa), gb_certify_dot(d, ab), gb_certify_dot(d, bb));
 }
 
 static int point_in_node(const node *n, const double ab[2])
 {
-    return ab[0] >= n->a_lo + INSIDE_MARGIN && ab[0] <= n->a_hi - INSIDE_MARGIN &&
-           inside_periodic(ab[1], n->b_lo, n->b_hi, INSIDE_MARGIN);
+    return ab[0] >= n->a_lo + GB_CERTIFY_INSIDE_MARGIN && ab[0] <= n->a_hi - GB_CERTIFY_INSIDE_MARGIN &&
+           gb_certify_inside_periodic(ab[1], n->b_lo, n->b_hi, GB_CERTIFY_INSIDE_MARGIN);
 }
 
 /* ---------------------------------------------------------------- basins */
@@ -229,15 +155,15 @@ static void basin_coordinates(const basin *b, const gb_contact_point *p, double 
 
 static int basin_holds(const basin *b, const double ab[2])
 {
-    return ab[0] >= b->a_lo + INSIDE_MARGIN && ab[0] <= b->a_hi - INSIDE_MARGIN &&
-           inside_periodic(ab[1], b->b_lo, b->b_hi, INSIDE_MARGIN);
+    return ab[0] >= b->a_lo + GB_CERTIFY_INSIDE_MARGIN && ab[0] <= b->a_hi - GB_CERTIFY_INSIDE_MARGIN &&
+           gb_certify_inside_periodic(ab[1], b->b_lo, b->b_hi, GB_CERTIFY_INSIDE_MARGIN);
 }
 
 /* Is the point in the middle half of the basin (so a new one need not be built yet)? */
 static int basin_holds_well(const basin *b, const double ab[2])
 {
     const double qa = 0.25 * (b->a_hi - b->a_lo), qb = 0.25 * (b->b_hi - b->b_lo);
-    return ab[0] >= b->a_lo + qa && ab[0] <= b->a_hi - qa && inside_periodic(ab[1], b->b_lo, b->b_hi, qb);
+    return ab[0] >= b->a_lo + qa && ab[0] <= b->a_hi - qa && gb_certify_inside_periodic(ab[1], b->b_lo, b->b_hi, qb);
 }
 
 /* Build a basin of `point` in `chart`: the widest centred box (halving from the last width that
@@ -249,7 +175,7 @@ static int basin_build(gb_certify *c, basin *b, gb_surface_chart chart, const do
     for (; w >= BASIN_MIN_HALF_WIDTH; w *= 0.5) {
         /* stay clear of the chart's own poles (a = 0, π) */
         const double a_lo = gb_interval_max(ab[0] - w, 0.05), a_hi = gb_interval_min(ab[0] + w, M_PI - 0.05);
-        if (!(ab[0] > a_lo + INSIDE_MARGIN && ab[0] < a_hi - INSIDE_MARGIN)) continue;
+        if (!(ab[0] > a_lo + GB_CERTIFY_INSIDE_MARGIN && ab[0] < a_hi - GB_CERTIFY_INSIDE_MARGIN)) continue;
         gb_surface_enclosure e;
         gb_surface_enclose(&c->surface, chart, a_lo, a_hi, ab[1] - w, ab[1] + w, &e);
         if (!hessian_definite(d, e.x_aa, e.x_ab, e.x_bb)) continue;
@@ -291,11 +217,11 @@ static basin *basin_slot(gb_certify *c)
 /* Is the minimum near enough to a region of `chart` that boxes there may need its basin? */
 static int chart_needs_basin(gb_surface_chart chart, const double ab[2])
 {
-    for (int r = 0; r < REGIONS; r++) {
-        if (region_chart(r) != chart) continue;
-        const double *g = region_range[r];
+    for (int r = 0; r < GB_REGIONS; r++) {
+        if (gb_region_chart(r) != chart) continue;
+        const double *g = gb_region_range[r];
         if (ab[0] >= g[0] - BASIN_REACH && ab[0] <= g[1] + BASIN_REACH &&
-            (r == REGION_EQUATOR || inside_periodic(ab[1], g[2] - BASIN_REACH, g[3] + BASIN_REACH, 0.0)))
+            (r == GB_REGION_EQUATOR || gb_certify_inside_periodic(ab[1], g[2] - BASIN_REACH, g[3] + BASIN_REACH, 0.0)))
             return 1;
     }
     return 0;
@@ -377,7 +303,7 @@ static int basin_verdict(gb_certify *c, pass *p, unsigned long serial)
 static void far_chord(const gb_certify *c, const pass *p, const double s[4], const double d[4], int count,
                       double *far_s, double *far_d, double *due)
 {
-    const double p0 = c->path, level = c->excess - p->eta + SLACK_ROUNDING;
+    const double p0 = c->path, level = c->excess - p->eta + GB_CERTIFY_SLACK_ROUNDING;
     double p1 = INFINITY, steepest = 0.0, f0 = INFINITY;
     for (int k = 0; k < count; k++) {
         f0 = gb_interval_min(f0, s[k] - p0 * d[k]);
@@ -397,7 +323,7 @@ static void far_chord(const gb_certify *c, const pass *p, const double s[4], con
     double f1 = INFINITY;
     for (int k = 0; k < count; k++) f1 = gb_interval_min(f1, s[k] - p1 * d[k]);
     *far_d = (f0 - f1) / (p1 - p0) * (1.0 + 1e-12);
-    *far_s = f0 + p0 * *far_d - SLACK_ROUNDING;
+    *far_s = f0 + p0 * *far_d - GB_CERTIFY_SLACK_ROUNDING;
     *due = gb_interval_min(*due, p1);
 }
 
@@ -437,11 +363,11 @@ static int visit_children(gb_certify *c, node *n, pass *p, int *status)
 /* A basin holding the whole box, whose minimum then bounds the box from below. */
 static const basin *basin_around(const gb_certify *c, const node *n)
 {
-    const gb_surface_chart chart = region_chart(n->region);
+    const gb_surface_chart chart = gb_region_chart(n->region);
     for (int k = 0; k < BASIN_SLOTS; k++) {
         const basin *b = &c->basins[k];
         if (b->valid && b->chart == chart && n->a_lo >= b->a_lo && n->a_hi <= b->a_hi &&
-            range_inside_periodic(n->b_lo, n->b_hi, b->b_lo, b->b_hi))
+            gb_certify_range_inside_periodic(n->b_lo, n->b_hi, b->b_lo, b->b_hi))
             return b;
     }
     return NULL;
@@ -452,7 +378,7 @@ static int visit(gb_certify *c, node *n, pass *p, int *status)
     if (n->epoch == c->epoch) {
         switch ((reason)n->verdict) {
         case R_FAR:
-            if (n->far_s - c->path * n->far_d >= c->excess - p->eta + SLACK_ROUNDING) return SETTLED;
+            if (n->far_s - c->path * n->far_d >= c->excess - p->eta + GB_CERTIFY_SLACK_ROUNDING) return SETTLED;
             break;
         case R_SLOPE:
         case R_NOMIN:
@@ -464,7 +390,7 @@ static int visit(gb_certify *c, node *n, pass *p, int *status)
             break;
         }
         case R_SPLIT:
-            if (c->path <= n->due && n->far_s - c->path * n->far_d >= c->excess - p->eta + SLACK_ROUNDING) {
+            if (c->path <= n->due && n->far_s - c->path * n->far_d >= c->excess - p->eta + GB_CERTIFY_SLACK_ROUNDING) {
                 const int r = n->basin_serial ? basin_verdict(c, p, n->basin_serial) : SETTLED;
                 if (r >= 0) return r;
             }
@@ -479,15 +405,15 @@ static int visit(gb_certify *c, node *n, pass *p, int *status)
     const double *d = p->d;
     /* FAR: nothing in the box lower than H − η. */
     /* h's interval Hessian over the box: the Taylor bound of FAR and the NO-MIN and definiteness tests */
-    const gb_interval Haa = dot_interval(d, n->e->x_aa), Hab = dot_interval(d, n->e->x_ab), Hbb = dot_interval(d, n->e->x_bb);
-    const double h_lo = height_lower_bound(d, n->e, Haa, Hab, Hbb);
-    const double slack = h_lo - (p->H - p->eta) - SLACK_ROUNDING;
+    const gb_interval Haa = gb_certify_dot(d, n->e->x_aa), Hab = gb_certify_dot(d, n->e->x_ab), Hbb = gb_certify_dot(d, n->e->x_bb);
+    const double h_lo = gb_certify_height_lower_bound(d, n->e, Haa, Hab, Hbb);
+    const double slack = h_lo - (p->H - p->eta) - GB_CERTIFY_SLACK_ROUNDING;
     if (slack > 0.0) {
         /* For q in the box and a later vertical d': d'·x(q) − d'·x_A ≥ (lb − d·x_A) − |d' − d|·max|x(q) − x_A|. */
         gb_interval rel[3];
         for (int k = 0; k < 3; k++) rel[k] = (gb_interval){n->e->x[k].lo - c->anchor[k], n->e->x[k].hi - c->anchor[k]};
         n->verdict = R_FAR;
-        n->far_d = norm_of_mags(rel);
+        n->far_d = gb_certify_norm_of_mags(rel);
         n->far_s = (h_lo - gb_vec_dot(d, c->anchor)) + c->path * n->far_d;
         n->due = INFINITY;
         return SETTLED;
@@ -501,8 +427,8 @@ static int visit(gb_certify *c, node *n, pass *p, int *status)
         return b->point.height >= p->H - p->eta ? SETTLED : lower_found(p, &b->point);
     }
     /* SLOPE: no critical point. */
-    const gb_interval ga = dot_interval(d, n->e->x_a), gb = dot_interval(d, n->e->x_b);
-    const double ma = gb_interval_max(ga.lo, -ga.hi) - SLACK_ROUNDING, mb = gb_interval_max(gb.lo, -gb.hi) - SLACK_ROUNDING;
+    const gb_interval ga = gb_certify_dot(d, n->e->x_a), gb = gb_certify_dot(d, n->e->x_b);
+    const double ma = gb_interval_max(ga.lo, -ga.hi) - GB_CERTIFY_SLACK_ROUNDING, mb = gb_interval_max(gb.lo, -gb.hi) - GB_CERTIFY_SLACK_ROUNDING;
     if (ma > 0.0 || mb > 0.0) {
         n->verdict = R_SLOPE;
         n->due = c->path + gb_interval_max(ma > 0.0 ? ma / n->xa_mag : 0.0, mb > 0.0 ? mb / n->xb_mag : 0.0);
@@ -513,21 +439,21 @@ static int visit(gb_certify *c, node *n, pass *p, int *status)
     const double hab_min = Hab.lo * Hab.hi > 0.0 ? gb_interval_min(fabs(Hab.lo), fabs(Hab.hi)) : 0.0;
     const double prod_max = gb_interval_max(gb_interval_max(Haa.lo * Hbb.lo, Haa.lo * Hbb.hi), gb_interval_max(Haa.hi * Hbb.lo, Haa.hi * Hbb.hi));
     if (n->e->smooth) {
-        const double na = -Haa.hi - HESSIAN_ROUNDING, nb = -Hbb.hi - HESSIAN_ROUNDING;
+        const double na = -Haa.hi - GB_CERTIFY_HESSIAN_ROUNDING, nb = -Hbb.hi - GB_CERTIFY_HESSIAN_ROUNDING;
         if (na > 0.0 || nb > 0.0) {
             n->verdict = R_NOMIN;
             n->far_s = INFINITY, n->far_d = 0.0;
             n->due = c->path + gb_interval_max(na > 0.0 ? na / n->xaa_mag : 0.0, nb > 0.0 ? nb / n->xbb_mag : 0.0);
             return SETTLED;
         }
-        if (prod_max + HESSIAN_ROUNDING < hab_min * hab_min) return SETTLED; /* det < 0: saddles only */
+        if (prod_max + GB_CERTIFY_HESSIAN_ROUNDING < hab_min * hab_min) return SETTLED; /* det < 0: saddles only */
     }
     /* A positive-definite interval Hessian: at most one critical point in the box (the gradient map
      * is injective on it, by the mean-value theorem), and h is strictly convex there. */
-    const int definite = Haa.lo > HESSIAN_ROUNDING && Hbb.lo > HESSIAN_ROUNDING &&
-                         Haa.lo * Hbb.lo - hab_max * hab_max > HESSIAN_ROUNDING;
+    const int definite = Haa.lo > GB_CERTIFY_HESSIAN_ROUNDING && Hbb.lo > GB_CERTIFY_HESSIAN_ROUNDING &&
+                         Haa.lo * Hbb.lo - hab_max * hab_max > GB_CERTIFY_HESSIAN_ROUNDING;
     if (definite) {
-        const gb_surface_chart chart = region_chart(n->region);
+        const gb_surface_chart chart = gb_region_chart(n->region);
         if (point_in_node(n, p->ab[chart])) return SETTLED; /* its one critical point is the minimum */
         if (n->depth >= 1) {
             double phi, theta;
@@ -564,7 +490,7 @@ static int visit(gb_certify *c, node *n, pass *p, int *status)
 static void restart_cache(gb_certify *c)
 {
     quads_release(c);
-    c->nodes = ROOT_COUNT;
+    c->nodes = GB_ROOT_COUNT;
     c->epoch++;
     c->stats.cache_restarts++;
 }
@@ -578,9 +504,9 @@ int gb_certify_create(const gb_surface *surface, const gb_certify_def *def, gb_c
         return gb_error_set(GB_EDOM, "certificate max_depth %d is out of range (allowed: 0..40)", def->max_depth);
     if (def->time_checks != 0 && def->time_checks != 1)
         return gb_error_set(GB_EDOM, "certificate time_checks %d is out of range (allowed: 0 or 1)", def->time_checks);
-    if (def->max_nodes < 4 * (size_t)ROOT_COUNT)
+    if (def->max_nodes < 4 * (size_t)GB_ROOT_COUNT)
         return gb_error_set(GB_EDOM, "certificate max_nodes %zu is out of range (allowed: >= %d)", def->max_nodes,
-                            4 * ROOT_COUNT);
+                            4 * GB_ROOT_COUNT);
     gb_certify *c = calloc(1, sizeof *c);
     if (!c) return gb_error_set(GB_ENOMEM, "out of memory for the contact certificate");
     c->surface = *surface;
@@ -588,19 +514,13 @@ int gb_certify_create(const gb_surface *surface, const gb_certify_def *def, gb_c
     gb_arena_init(&c->quads, sizeof(quad));
     c->epoch = 1;
     c->last_half_width = BASIN_MAX_HALF_WIDTH;
-    int k = 0;
-    for (int r = 0; r < REGIONS; r++) {
-        const double *g = region_range[r];
-        const int na = r == REGION_EQUATOR ? ROOTS_A_EQ : ROOTS_CAP, nb = r == REGION_EQUATOR ? ROOTS_B_EQ : ROOTS_CAP;
-        for (int i = 0; i < na; i++)
-            for (int j = 0; j < nb; j++) {
-                const double a_lo = g[0] + (g[1] - g[0]) * i / na, a_hi = i + 1 == na ? g[1] : g[0] + (g[1] - g[0]) * (i + 1) / na;
-                const double b_lo = g[2] + (g[3] - g[2]) * j / nb, b_hi = j + 1 == nb ? g[3] : g[2] + (g[3] - g[2]) * (j + 1) / nb;
-                node_fill(c, &c->roots[k], &c->root_enclosures[k], r, 0, a_lo, a_hi, b_lo, b_hi);
-                k++;
-            }
+    for (int k = 0; k < GB_ROOT_COUNT; k++) {
+        int region;
+        double box[4];
+        gb_root_box(k, &region, box);
+        node_fill(c, &c->roots[k], &c->root_enclosures[k], region, 0, box[0], box[1], box[2], box[3]);
     }
-    c->nodes = ROOT_COUNT;
+    c->nodes = GB_ROOT_COUNT;
     *out = c;
     return GB_OK;
 }
@@ -666,7 +586,7 @@ static int certify_check(gb_certify *c, const double zb[3], const gb_contact_poi
     status = basins_update(c, &p, minimum);
     if (status) return status;
     int verdict = SETTLED;
-    for (int k = 0; k < ROOT_COUNT && verdict != FOUND && !status; k++) {
+    for (int k = 0; k < GB_ROOT_COUNT && verdict != FOUND && !status; k++) {
         const int r = visit(c, &c->roots[k], &p, &status);
         if (r != SETTLED) verdict = r;
     }
@@ -689,10 +609,10 @@ int gb_certify_global_minimum(gb_certify *c, const double zb[3], const gb_contac
     if (status) return status;
     /* start: the lowest root-box centre */
     double best = INFINITY, phi0 = 0.0, theta0 = 0.0;
-    for (int k = 0; k < ROOT_COUNT; k++) {
+    for (int k = 0; k < GB_ROOT_COUNT; k++) {
         const node *n = &c->roots[k];
         double phi, theta, x[3];
-        gb_surface_chart_angles(region_chart(n->region), 0.5 * (n->a_lo + n->a_hi), 0.5 * (n->b_lo + n->b_hi), &phi, &theta);
+        gb_surface_chart_angles(gb_region_chart(n->region), 0.5 * (n->a_lo + n->a_hi), 0.5 * (n->b_lo + n->b_hi), &phi, &theta);
         gb_surface_position(&c->surface, phi, theta, x);
         const double h = gb_vec_dot(d, x);
         if (h < best) best = h, phi0 = phi, theta0 = theta;

@@ -21,6 +21,18 @@ int gb_dynamics_variant_parse(const char *name, gb_dynamics_variant *variant)
 }
 
 
+static const char *const certificate_names[] = {"per-vertical", "atlas"};
+
+const char *gb_dynamics_certificate_name(gb_dynamics_certificate c) { return (unsigned)c < 2 ? certificate_names[c] : NULL; }
+
+int gb_dynamics_certificate_parse(const char *name, gb_dynamics_certificate *certificate)
+{
+    int k = 0;
+    const int status = gb_error_parse_name(name, certificate_names, 2, "contact certificate", &k);
+    if (!status) *certificate = (gb_dynamics_certificate)k;
+    return status;
+}
+
 gb_dynamics_def gb_dynamics_default_def(void)
 {
     gb_dynamics_def def = {
@@ -32,6 +44,7 @@ gb_dynamics_def gb_dynamics_default_def(void)
         .forcing = {.g = 9.81, .a1 = 2.0, .a2 = 1.0, .omega = 18.0, .psi = M_PI / 3.0},
         .grid = gb_contact_grid_default_def(),
         .certify = gb_certify_default_def(),
+        .atlas = gb_atlas_default_def(),
     };
     /* Leaves of 16 nodes were the fastest of 8–32 for the patch tree's searches (make bench); the leaf
      * size changes no result, only the work. */
@@ -47,6 +60,10 @@ struct gb_dynamics {
     gb_contact_grid *grid;
     gb_contact_tracker *tracker; /* exact grid search along the trajectory (fast-grid) */
     gb_certify *certify;         /* the global-minimum certificate (continuous) */
+    gb_atlas *atlas;             /* certificate = atlas */
+    int atlas_borrowed;          /* the atlas belongs to another gb_dynamics (gb_dynamics_share_atlas) */
+    size_t atlas_fallbacks;      /* checks the atlas left to gb_certify */
+    int atlas_loaded;
     gb_contact_refine_def refine;
     /* The contact at the last accepted state. */
     size_t index;
@@ -99,9 +116,19 @@ int gb_dynamics_create(const gb_surface *surface, const gb_dynamics_def *def, gb
             for (int j = 0; j < 3; j++) d->inertia[i][j] = props.inertia[i][j] * l2;
         d->mean_radius = props.L * def->length;
         /* Only what the contact model needs: a grid (and its tracker) or the certificate. */
-        if (def->contact == GB_CONTACT_MODEL_CONTINUOUS)
+        if (def->contact == GB_CONTACT_MODEL_CONTINUOUS) {
             status = gb_certify_create(surface, &def->certify, &d->certify);
-        else
+            if (!status && def->certificate == GB_CERTIFICATE_ATLAS) {
+                gb_atlas_def adef = def->atlas;
+                adef.height_tol = def->certify.height_tol;
+                status = gb_atlas_create(surface, &adef, &d->atlas);
+                /* a file that is missing, stale or damaged is built anew (and replaced when saved) */
+                if (!status && def->atlas_file) {
+                    d->atlas_loaded = gb_atlas_load(d->atlas, def->atlas_file) == GB_OK;
+                    if (!d->atlas_loaded) gb_error_clear();
+                }
+            }
+        } else
             status = gb_contact_grid_create(surface, &def->grid, &d->grid);
     }
     if (!status && def->contact == GB_CONTACT_MODEL_FAST_GRID)
@@ -120,6 +147,7 @@ void gb_dynamics_free(gb_dynamics *d)
     gb_contact_tracker_free(d->tracker);
     gb_contact_grid_free(d->grid);
     gb_certify_free(d->certify);
+    if (!d->atlas_borrowed) gb_atlas_free(d->atlas);
     free(d);
 }
 
@@ -326,6 +354,35 @@ static void vertical_of(const double y[GB_STATE_SIZE], double zb[3])
     zb_of(R, zb);
 }
 
+/* Is `candidate` the global minimum at zb? The atlas answers where it can, gb_certify elsewhere. */
+static int check_global(gb_dynamics *d, const double zb[3], const gb_contact_point *candidate, gb_certify_result *r)
+{
+    if (d->atlas) {
+        const int status = gb_atlas_check(d->atlas, zb, candidate, &d->refine, r);
+        if (status || r->verdict != GB_CERTIFY_UNDECIDED) return status;
+        d->atlas_fallbacks++;
+    }
+    return gb_certify_check(d->certify, zb, candidate, &d->refine, r);
+}
+
+/* A switch target, whichever search found it, polished by Newton from its angles rounded to 2⁻²⁰ rad:
+ * the same minimum then has the same bits whether the atlas or gb_certify found it, from whatever
+ * start (two finds differ by ~1e-15 rad; their rounded angles differ only if a multiple of 2⁻²⁰ lies
+ * between them). Newton converges from 1e-6 rad in a few steps to the same minimum. */
+static int canonical_minimum(gb_dynamics *d, const double zb[3], gb_contact_point *p)
+{
+    const double grid = 1048576.0;
+    gb_contact_point q;
+    const int status = gb_contact_refine(&d->surface, zb, nearbyint(p->phi * grid) / grid,
+                                         nearbyint(p->theta * grid) / grid, &d->refine, &q);
+    if (status) return status;
+    if (!q.is_minimum)
+        return gb_error_set(GB_ENOCONV, "polishing the switch target at (%.17g, %.17g) ended on a point that is "
+                            "not a minimum", p->phi, p->theta);
+    *p = q;
+    return GB_OK;
+}
+
 /* Continuous contact at state y: the continued branch (*continued) and, when the certificate finds a
  * lower local minimum, that minimum (*other, *found = 1). */
 static int competitor(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], gb_contact_point *continued,
@@ -352,13 +409,15 @@ static int competitor(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], g
     gb_contact_point candidate = c.point;
     for (int round = 0; round < 16; round++) {
         gb_certify_result r;
-        status = gb_certify_check(d->certify, zb, &candidate, &d->refine, &r);
+        status = check_global(d, zb, &candidate, &r);
         if (status) return status;
         if (r.verdict != GB_CERTIFY_LOWER_FOUND) break;
         candidate = r.lower;
         *other = r.lower;
         *found = 1;
     }
+    if (*found) status = canonical_minimum(d, zb, other);
+    if (status) return status;
     memcpy(d->memo_key, key, sizeof key);
     d->memo_continued = *continued;
     d->memo_found = *found;
@@ -380,6 +439,29 @@ int gb_dynamics_certify_stats(const gb_dynamics *d, gb_certify_stats *out)
     if (!d->certify) return gb_error_set(GB_EINVAL, "the certificate belongs to continuous contact only");
     gb_certify_get_stats(d->certify, out);
     return GB_OK;
+}
+
+int gb_dynamics_atlas_stats(const gb_dynamics *d, gb_atlas_stats *out, size_t *fallbacks, int *loaded)
+{
+    if (!d->atlas) return gb_error_set(GB_EINVAL, "the atlas belongs to continuous contact with certificate = atlas only");
+    gb_atlas_get_stats(d->atlas, out);
+    *fallbacks = d->atlas_fallbacks;
+    *loaded = d->atlas_loaded;
+    return GB_OK;
+}
+
+void gb_dynamics_share_atlas(gb_dynamics *to, const gb_dynamics *from)
+{
+    if (!to->atlas || !from->atlas) return;
+    if (!to->atlas_borrowed) gb_atlas_free(to->atlas);
+    to->atlas = from->atlas;
+    to->atlas_borrowed = 1;
+}
+
+int gb_dynamics_save_atlas(const gb_dynamics *d)
+{
+    if (!d->atlas || !d->def.atlas_file) return GB_OK;
+    return gb_atlas_save(d->atlas, d->def.atlas_file);
 }
 
 int gb_dynamics_accept(gb_dynamics *d, double t, double y[GB_STATE_SIZE], double *norm_drift)

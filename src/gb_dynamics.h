@@ -20,6 +20,7 @@
 #ifndef GB_DYNAMICS_H
 #define GB_DYNAMICS_H
 
+#include "gb_atlas.h"
 #include "gb_certify.h"
 #include "gb_contact.h"
 #include "gb_forcing.h"
@@ -39,6 +40,18 @@ int gb_dynamics_variant_parse(const char *name, gb_dynamics_variant *variant);
  * index, exactly as gb_contact_grid_brute returns it (the grid's nodes: gb_contact_grid_node). */
 typedef size_t (*gb_dynamics_lowest_node)(void *context, const double d[3]);
 
+/* How continuous contact proves the contact global at every accepted step: by gb_certify at each
+ * vertical, or by a lookup in an atlas of verticals (gb_atlas), with gb_certify where the atlas cannot
+ * decide. Both make the same switches (the switch target is polished the same way, see
+ * gb_dynamics_accept); the atlas is faster once its cells are built. */
+typedef enum gb_dynamics_certificate {
+    GB_CERTIFICATE_PER_VERTICAL = 0,
+    GB_CERTIFICATE_ATLAS = 1
+} gb_dynamics_certificate;
+
+const char *gb_dynamics_certificate_name(gb_dynamics_certificate certificate);
+int gb_dynamics_certificate_parse(const char *name, gb_dynamics_certificate *certificate);
+
 typedef struct gb_dynamics_def {
     gb_dynamics_variant variant;
     gb_contact_model contact;
@@ -48,6 +61,10 @@ typedef struct gb_dynamics_def {
     gb_forcing forcing;            /* eq 25 */
     gb_contact_grid_def grid;      /* the grid of the grid models (Table 1: 90 × 180) */
     gb_certify_def certify;        /* continuous contact: the certificate of the global minimum */
+    gb_dynamics_certificate certificate; /* continuous contact: per vertical (default) or atlas */
+    gb_atlas_def atlas;            /* certificate = atlas: its cells */
+    const char *atlas_file;        /* certificate = atlas: load the atlas from here when the file matches the
+                                    * body (else build it), and gb_dynamics_save_atlas writes it (NULL: none) */
     gb_dynamics_lowest_node grid_lowest; /* contact = grid: this search instead of brute force (NULL) */
     void *grid_lowest_context;
 } gb_dynamics_def;
@@ -78,6 +95,14 @@ void gb_dynamics_contact_work(const gb_dynamics *dynamics, size_t *queries, size
 /* Continuous contact: the certificate's counters (checks, and how many ended global, lower-found or
  * undecided); GB_EINVAL for a grid model. */
 int gb_dynamics_certify_stats(const gb_dynamics *dynamics, gb_certify_stats *out);
+/* certificate = atlas: its counters, how many checks fell back to gb_certify, and whether it was loaded
+ * from def.atlas_file (1) or built (0). */
+int gb_dynamics_atlas_stats(const gb_dynamics *dynamics, gb_atlas_stats *out, size_t *fallbacks, int *loaded);
+/* certificate = atlas: let `to` use the atlas of `from` (same body and definition; both on one thread,
+ * `from` freed last): a Lyapunov pair's two trajectories then build each cell once. */
+void gb_dynamics_share_atlas(gb_dynamics *to, const gb_dynamics *from);
+/* certificate = atlas with an atlas_file: write the atlas's cells there (see gb_atlas_save). */
+int gb_dynamics_save_atlas(const gb_dynamics *dynamics);
 
 /* The initial state: attitude R0 (row-major 3 × 3, orthonormal), ω0; W = 0. Establishes the
  * initial contact (the global minimum) and E(0). */

@@ -43,6 +43,7 @@ int gb_lyapunov_body_create(const gb_surface *surface, const gb_dynamics_def *dy
         status = gb_dynamics_start(surface, dynamics, R0, omega0, &b->dynamics[k], b->y[k]);
         if (!status) status = gb_integrate_begin(b->dynamics[k], integrate, 0.0, &b->session[k]);
     }
+    if (!status) gb_dynamics_share_atlas(b->dynamics[1], b->dynamics[0]);
     if (status) {
         gb_lyapunov_body_free(b);
         return status;
@@ -56,8 +57,8 @@ void gb_lyapunov_body_free(gb_lyapunov_body *body)
     if (!body) return;
     gb_integrate_end(body->session[0]);
     gb_integrate_end(body->session[1]);
+    gb_dynamics_free(body->dynamics[1]); /* first: it may use the atlas of dynamics[0] */
     gb_dynamics_free(body->dynamics[0]);
-    gb_dynamics_free(body->dynamics[1]);
     free(body);
 }
 

@@ -1,5 +1,7 @@
 #include "gb_run.h"
 
+#include "gb_hash.h"
+
 #include "gb_error.h"
 #include "gb_lyapunov_body.h"
 
@@ -8,15 +10,6 @@
 #include <string.h>
 #include <time.h>
 
-/* FNV-1a, 64 bits. */
-static const uint64_t FNV_OFFSET = 14695981039346656037ull;
-
-static uint64_t fingerprint_add(uint64_t hash, const void *bytes, size_t size)
-{
-    const unsigned char *p = bytes;
-    for (size_t k = 0; k < size; k++) hash = (hash ^ p[k]) * 1099511628211ull;
-    return hash;
-}
 
 /* What the observer keeps between samples. */
 typedef struct observer {
@@ -63,7 +56,7 @@ static int observe(void *context, double t, const double y[GB_STATE_SIZE])
     s->last_branch = o.branch_switches;
     if (grid_switch || branch_switch) {
         const uint64_t event[4] = {r->samples, o.index, o.grid_switches, o.branch_switches};
-        r->switch_fingerprint = fingerprint_add(r->switch_fingerprint, event, sizeof event);
+        r->switch_fingerprint = gb_hash_add(r->switch_fingerprint, event, sizeof event);
     }
     /* Switching rate: switches in the trailing forcing period, per second. */
     const size_t oldest = s->window_fill < s->window_size ? (s->window_fill ? s->window[0] : switches)
@@ -129,7 +122,7 @@ int gb_run(const gb_case *scene, const gb_run_sinks *sinks, gb_run_result *out)
     memset(out, 0, sizeof *out);
     if (scene->lyapunov && scene->lyapunov_def.intervals == 0)
         return gb_error_set(GB_EINVAL, "the scene's Lyapunov record is not laid out (read it with gb_case_load)");
-    out->switch_fingerprint = FNV_OFFSET;
+    out->switch_fingerprint = GB_HASH_OFFSET;
     out->has_monitors = scene->monitors;
     out->monitors = (gb_run_monitors){.geff_min = INFINITY, .normal_min = INFINITY};
     observer s = {.scene = scene, .sinks = sinks, .out = out};
@@ -170,9 +163,12 @@ int gb_run(const gb_case *scene, const gb_run_sinks *sinks, gb_run_result *out)
         status = gb_dynamics_observe(dynamics, out->t_end, out->y, &out->final);
     }
     if (!status) {
-        out->state_fingerprint = fingerprint_add(FNV_OFFSET, out->y, sizeof out->y);
+        out->state_fingerprint = gb_hash_add(GB_HASH_OFFSET, out->y, sizeof out->y);
         out->has_certificate = gb_dynamics_certify_stats(dynamics, &out->certificate) == GB_OK;
         gb_error_clear(); /* a grid model has no certificate: not an error of the run */
+        out->has_atlas = gb_dynamics_atlas_stats(dynamics, &out->atlas, &out->atlas_fallbacks, &out->atlas_loaded) == GB_OK;
+        gb_error_clear();
+        status = gb_dynamics_save_atlas(dynamics);
     }
     if (body) gb_lyapunov_body_free(body);
     else gb_dynamics_free(dynamics);

@@ -53,6 +53,10 @@ typedef struct gb_run_result {
     gb_run_monitors monitors;
     int has_certificate;                 /* continuous contact */
     gb_certify_stats certificate;
+    int has_atlas;                       /* certificate = atlas */
+    gb_atlas_stats atlas;
+    size_t atlas_fallbacks;              /* checks the atlas left to the per-vertical certificate */
+    int atlas_loaded;                    /* 1: the atlas came from the scene's atlas_file */
     /* Fingerprints (FNV-1a 64): the bytes of the final state; the (sample, contact index, grid and
      * branch switch counts) of every sample with a switch. Equal runs have equal fingerprints. */
     uint64_t state_fingerprint, switch_fingerprint;

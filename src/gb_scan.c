@@ -1,5 +1,7 @@
 #include "gb_scan.h"
 
+#include "gb_hash.h"
+
 #include "gb_error.h"
 #include "gb_ini.h"
 #include "gb_melnikov_body.h"
@@ -25,13 +27,6 @@ static const struct {
                     {GB_SCAN_MELNIKOV, "melnikov"}};
 enum { METRIC_COUNT = sizeof metric_names / sizeof metric_names[0] };
 #define METRIC_LIST "omega_rms, switch_rate, strobe_sd, mean_height, monitors, lambda, melnikov, or all"
-
-static uint64_t fnv(uint64_t hash, const void *bytes, size_t size)
-{
-    const unsigned char *p = bytes;
-    for (size_t k = 0; k < size; k++) hash = (hash ^ p[k]) * 1099511628211ull;
-    return hash;
-}
 
 /* ---- the scan file ----------------------------------------------------------------------------- */
 
@@ -247,7 +242,7 @@ int gb_scan_load(const char *path, gb_scan *out)
     if (status) return status;
     scan_reader r = {.scan = out};
     status = gb_ini_read(path, text, size, scan_sections, 3, scan_handler, &r);
-    out->fingerprint = fnv(14695981039346656037ull, text, size);
+    out->fingerprint = gb_hash_add(GB_HASH_OFFSET, text, size);
     free(text);
     if (status) return status;
     /* What every scan must say. */
@@ -298,7 +293,7 @@ int gb_scan_load(const char *path, gb_scan *out)
     status = gb_ini_slurp(out->base, GB_CASE_FILE_MAX, "case file", "a scene file, see cases/README.md", &out->base_text,
                           &out->base_size);
     if (status) return status;
-    out->fingerprint = fnv(out->fingerprint, out->base_text, out->base_size);
+    out->fingerprint = gb_hash_add(out->fingerprint, out->base_text, out->base_size);
     /* Every point's scene, before any run. */
     gb_case scene;
     for (size_t k = 0; k < gb_scan_points(out) && !status; k++) status = gb_scan_point_case(out, k, &scene);

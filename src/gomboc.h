@@ -15,6 +15,7 @@
 #include "gb_shape.h"
 #include "gb_contact.h"
 #include "gb_certify.h"
+#include "gb_atlas.h"
 #include "gb_forcing.h"
 #include "gb_dynamics.h"
 #include "gb_integrate.h"

@@ -17,7 +17,7 @@
 #include <unistd.h>
 
 static const char *usage_run =
-    "usage: gomboc run CASE [--out DIR] [--json]\n"
+    "usage: gomboc run CASE [--out DIR] [--atlas FILE] [--json]\n"
     "\n"
     "  CASE       a scene file (INI; see cases/README.md for every key and its allowed values)\n"
     "  --out DIR  where to write the outputs the scene asks for (default: the current directory):\n"
@@ -25,6 +25,8 @@ static const char *usage_run =
     "             g_eff, contact index, switch markers, switching rate, r_c, N, required friction;\n"
     "             NAME-summary.json ([output] summary = yes): the scene as read, the final state,\n"
     "             switch counts, energy residual and validity monitors. NAME is CASE without .ini.\n"
+    "  --atlas FILE  ([model] certificate = atlas) load the atlas of verticals from FILE when it was\n"
+    "             built for this body, beta and certificate (else build it), and write it back after the run\n"
     "  --json     also print the summary on standard output\n";
 
 /* The history file: one row a sample. */
@@ -261,9 +263,9 @@ static cJSON *spectrum_json(const gb_case *scene, const gb_spectrum *spectrum, s
 
 int command_run(int argc, char **argv)
 {
-    const char *case_path = NULL, *dir = ".";
+    const char *case_path = NULL, *dir = ".", *atlas = NULL;
     int json = 0;
-    static const char *const valued[] = {"--out", NULL};
+    static const char *const valued[] = {"--out", "--atlas", NULL};
     for (int i = 0; i < argc; i++) {
         const char *opt = argv[i], *value = NULL;
         const int positional = cli_positional("run", opt, &case_path, "case file", "CASE");
@@ -271,19 +273,24 @@ int command_run(int argc, char **argv)
             if (positional == 1) continue;
             return positional;
         }
-        const int kind = cli_next_option("run", argc, argv, &i, usage_run, valued, " (allowed: --out, --json, --help)",
+        const int kind = cli_next_option("run", argc, argv, &i, usage_run, valued, " (allowed: --out, --atlas, --json, --help)",
                                          NULL, &json, &value);
         if (kind != CLI_VALUE) {
             if (kind == CLI_NEXT) continue;
             return kind == CLI_HELP ? 0 : kind;
         }
-        dir = value;
+        if (strcmp(opt, "--atlas") == 0) atlas = value;
+        else dir = value;
     }
     if (!case_path) return cli_input_error("run", "missing %s%s", "CASE", " (allowed: a scene file, e.g. cases/table1-gomboc-I.ini)");
     if (cli_output_dir_check("run", "--out", dir)) return EXIT_INPUT;
     gb_case scene;
     int status = gb_case_load(case_path, &scene);
     if (status) return cli_failure("run", status);
+    if (atlas && scene.dynamics.certificate != GB_CERTIFICATE_ATLAS)
+        return cli_input_error("run", "--atlas %s: %s has no atlas (allowed: a scene with [model] certificate = atlas)",
+                               atlas, case_path);
+    scene.dynamics.atlas_file = atlas;
     if (cli_parse_only) return 0;
 
     run_outputs files = {.dir = dir, .case_path = case_path};
@@ -356,6 +363,24 @@ int command_run(int argc, char **argv)
             cli_json_add(m, "boxes_kept", (double)cs->boxes_kept);
             cli_json_add(m, "deepest_split", cs->deepest);
             cli_json_add(m, "branches_lost", (double)o->branches_lost);
+        }
+        if (r.has_atlas) {
+            const gb_atlas_stats *as = &r.atlas;
+            cJSON *m = cJSON_AddObjectToObject(root, "atlas");
+            cli_json_add(m, "loaded", r.atlas_loaded);
+            cli_json_add(m, "checks", (double)as->checks);
+            cli_json_add(m, "answered", (double)as->answered);
+            cli_json_add(m, "fallbacks", (double)r.atlas_fallbacks);
+            cli_json_add(m, "lower_found", (double)as->lower_found);
+            cli_json_add(m, "newton_runs", (double)as->newton_runs);
+            cli_json_add(m, "cells", (double)as->cells);
+            cli_json_add(m, "two_site_cells", (double)as->two_site_cells);
+            cli_json_add(m, "cells_failed", (double)as->cells_failed);
+            cli_json_add(m, "deepest_level", as->deepest_level);
+            cli_json_add(m, "boxes", (double)as->boxes);
+            cli_json_add(m, "boxes_tested", (double)as->boxes_tested);
+            cli_json_add(m, "build_seconds", as->build_seconds);
+            cli_json_add(m, "bytes", (double)as->bytes);
         }
         if (r.has_strobe) cJSON_AddItemToObject(root, "strobe", strobe_json(&r.strobe));
         if (r.has_spectrum) cJSON_AddItemToObject(root, "spectrum", spectrum_json(&scene, &r.spectrum, r.spectrum_samples));

@@ -10,6 +10,7 @@ int verify_register_s2_massprops(void);
 int verify_register_s2_shape(void);
 int verify_register_s4_contact(void);
 int verify_register_s4_certify(void);
+int verify_register_s4_atlas(void);
 int verify_register_s5_dynamics(void);
 int verify_register_s6_chaos(void);
 int verify_register_s6_diagnostics(void);

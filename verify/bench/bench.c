@@ -20,6 +20,7 @@
 #include <stdint.h>
 #include <string.h>
 #include <time.h>
+#include <unistd.h>
 
 /* The body (morphology, beta) of a bench run; the names are literals known valid. */
 static const gb_surface *bench_body(const char *morphology, double beta)
@@ -68,6 +69,13 @@ static gb_dynamics_lowest_node run_lowest;
 static void *run_lowest_context;
 static size_t last_queries, last_nodes;
 static double last_setup; /* seconds of gb_dynamics_create and init_state in the fastest repeat */
+/* continuous contact: the certificate of the runs timed, the atlas file (NULL: none), and the atlas's
+ * counters of the fastest repeat */
+static gb_dynamics_certificate run_certificate = GB_CERTIFICATE_PER_VERTICAL;
+static const char *run_atlas_file;
+static gb_atlas_stats last_atlas;
+static size_t last_atlas_fallbacks;
+static int last_atlas_loaded;
 
 /* One Table 1 run (300 periods, RK4 160 steps per period, R0 = I, ω0 = 0) of morphology `m` with
  * `contact`/`variant`; returns the CPU seconds of the integration (best of `repeats`), the final state
@@ -94,6 +102,7 @@ static double time_run_with(const char *m, gb_contact_model contact, gb_dynamics
         def.contact = contact;
         def.variant = variant;
         if (certify) def.certify = *certify;
+        if (contact == GB_CONTACT_MODEL_CONTINUOUS) def.certificate = run_certificate, def.atlas_file = run_atlas_file;
         if (contact == GB_CONTACT_MODEL_GRID) def.grid_lowest = run_lowest, def.grid_lowest_context = run_lowest_context;
         gb_dynamics *d;
         const double R0[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1}, w0[3] = {0, 0, 0};
@@ -115,6 +124,12 @@ static double time_run_with(const char *m, gb_contact_model contact, gb_dynamics
         gb_dynamics_observe(d, 300 * 2 * M_PI / 18.0, y, &o);
         *switches = o.grid_switches + o.branch_switches;
         if (contact == GB_CONTACT_MODEL_CONTINUOUS && t < best) gb_dynamics_certify_stats(d, &last_certificate);
+        if (def.certificate == GB_CERTIFICATE_ATLAS && t < best)
+            gb_dynamics_atlas_stats(d, &last_atlas, &last_atlas_fallbacks, &last_atlas_loaded);
+        if (def.certificate == GB_CERTIFICATE_ATLAS && gb_dynamics_save_atlas(d)) {
+            fprintf(stderr, "bench: %s\n", gb_error_message());
+            exit(1);
+        }
         if (t < best) gb_dynamics_contact_work(d, &last_queries, &last_nodes), last_setup = setup;
         if (t < best) best = t;
         gb_dynamics_free(d);
@@ -313,6 +328,66 @@ static int bench_dynamics(void)
         }
     }
     printf("\ntarget (issue 5): lambda over 300 periods <= 2.2x one run of the same scene\n");
+    return failures;
+}
+
+/* ---------------------------------------------------------------- the atlas of verticals
+ *
+ * Certified continuous contact three ways on the Table 1 rolling runs: per vertical (gb_certify at every
+ * step), with the atlas built during the run (no file), and with the atlas loaded from the file the
+ * previous run wrote. The three must end in the same state bits. */
+static int bench_atlas(void)
+{
+    int failures = 0;
+    printf("\nbench: certified continuous contact (Table 1 rolling, 300 periods, RK4 160/T), best of 2: per vertical,\n"
+           "with the atlas of verticals built in the run, and with the atlas loaded from its file (load in the set-up)\n\n");
+    printf("%-4s %14s %8s %16s %8s %9s %15s %8s %11s %7s %6s %8s %9s\n", "body", "per-vertical [s]", "speed-up",
+           "atlas built [s]", "speed-up", "build [s]", "atlas file [s]", "speed-up", "load [s]", "cells", "2-site",
+           "MiB", "fallback");
+    char path[64];
+    snprintf(path, sizeof path, "/tmp/gomboc-bench-%ld.atlas", (long)getpid());
+    for (int m = 0; m < 2; m++) {
+        const char *name = m ? "II" : "I";
+        double y[3][GB_STATE_SIZE];
+        size_t switches[3];
+        const double base = native_seconds[m] > 0.0 ? native_seconds[m] : plain_seconds[m];
+        run_certificate = GB_CERTIFICATE_PER_VERTICAL, run_atlas_file = NULL;
+        const double per = time_run(name, GB_CONTACT_MODEL_CONTINUOUS, GB_VARIANT_ROLLING, 2, y[0], &switches[0]);
+        run_certificate = GB_CERTIFICATE_ATLAS;
+        const double built = time_run(name, GB_CONTACT_MODEL_CONTINUOUS, GB_VARIANT_ROLLING, 2, y[1], &switches[1]);
+        const gb_atlas_stats as = last_atlas;
+        const size_t fallbacks = last_atlas_fallbacks;
+        remove(path);
+        run_atlas_file = path;
+        size_t ignored;
+        double y_write[GB_STATE_SIZE];
+        time_run(name, GB_CONTACT_MODEL_CONTINUOUS, GB_VARIANT_ROLLING, 1, y_write, &ignored); /* writes the file */
+        const double cached = time_run(name, GB_CONTACT_MODEL_CONTINUOUS, GB_VARIANT_ROLLING, 2, y[2], &switches[2]);
+        const double load = last_setup;
+        const int loaded = last_atlas_loaded;
+        const size_t cached_fallbacks = last_atlas_fallbacks;
+        run_certificate = GB_CERTIFICATE_PER_VERTICAL, run_atlas_file = NULL;
+        remove(path);
+        const int same = memcmp(y[1], y[0], sizeof y[0]) == 0 && memcmp(y[2], y[0], sizeof y[0]) == 0 &&
+                         switches[1] == switches[0] && switches[2] == switches[0] && loaded;
+        failures += !same;
+        printf("%-4s %14.3f %7.1fx %16.3f %7.1fx %9.3f %15.3f %7.1fx %11.3f %7zu %6zu %8.1f %9zu\n", name, per, base / per,
+               built, base / built, as.build_seconds, cached, base / cached, load, as.cells, as.two_site_cells,
+               (double)as.bytes / 1048576.0, cached_fallbacks);
+        printf("     %s; atlas: %zu of %zu checks answered, %zu left to the per-vertical certificate, %zu Newton solves "
+               "for other sites; deepest level %d, %zu cells without a certificate, %zu surface boxes\n",
+               same ? "the three runs end in the same state bits" : "THE RUNS DIFFER", as.answered, as.checks, fallbacks,
+               as.newton_runs, as.deepest_level, as.cells_failed, as.boxes);
+        if (record)
+            fprintf(record, ",\n  {\"body\": \"%s\", \"atlas_per_vertical_seconds\": %.6f, \"atlas_built_seconds\": %.6f, "
+                            "\"atlas_build_seconds\": %.6f, \"atlas_cached_seconds\": %.6f, \"atlas_load_seconds\": %.6f, "
+                            "\"atlas_cells\": %zu, \"atlas_two_site_cells\": %zu, \"atlas_bytes\": %zu, "
+                            "\"atlas_checks\": %zu, \"atlas_answered\": %zu, \"atlas_fallbacks\": %zu, "
+                            "\"atlas_cached_fallbacks\": %zu, \"atlas_identical\": %s}",
+                    name, per, built, as.build_seconds, cached, load, as.cells, as.two_site_cells, as.bytes, as.checks,
+                    as.answered, fallbacks, cached_fallbacks, same ? "true" : "false");
+    }
+    printf("\ntarget (issue 20): certified continuous contact >= 20x the plain loop\n");
     return failures;
 }
 
@@ -597,6 +672,7 @@ int main(int argc, char **argv)
         return 1;
     }
     int failures = bench_dynamics();
+    failures += bench_atlas();
     bench_headroom();
     if (argc > 3) failures += bench_scans(argv[3], record);
     if (record) {

@@ -1,0 +1,101 @@
+/* gb_atlas — an atlas of verticals: where the global contact can be, proved once per cell of
+ * verticals, so that a step of a continuous-contact run is certified by a lookup (paper §4, eq 29).
+ *
+ * gb_certify proves the contact global at one vertical at a time; along a run that proof is most of
+ * the cost (docs/certificate.md). The atlas proves a statement about a whole set of verticals instead.
+ * The sphere of verticals d is cut into cells: the six faces of a cube, each a quadtree of squares,
+ * a square's verticals being the unit vectors through it. A cell C has a centre d₀ and a radius ρ
+ * (every d in C has |d − d₀| ≤ ρ). Its certificate names one or two *sites*: a site is a box in each
+ * chart of the surface's parameters that lies near its minimum, on which the chart Hessian d·x'' is
+ * positive definite for every d in C. Then, for every d in C:
+ *   - each site box holds at most one critical point of h = d·x, a minimum (h is strictly convex on it);
+ *   - every other box of the cover of the sphere of directions (gb_certify's three charts) holds no
+ *     global minimum, because for every d in C it has no critical point (SLOPE: d·x_a or d·x_b keeps
+ *     its sign; the intervals at d₀ widened by ρ|x_a|), or no minimum (NO-MIN: d·x_aa or d·x_bb < 0,
+ *     or a negative determinant), or lies higher than a site's point x_s (FAR: d·(x − x_s) > 0, bounded
+ *     by the Taylor form at d₀ minus ρ max|x − x_s|).
+ * So the global minimum at d is the critical point of one of the named sites. A check at d finds the
+ * cell (a lookup), sees whether the contact lies in every box of a site (it is then that site's
+ * critical point), and finds the critical point of each other site by Newton from where it was last
+ * (inside its boxes: it is then that site's only one). The lowest is the global minimum; a switch is
+ * made, as gb_certify makes it, when it is lower than the contact by more than η.
+ *
+ * Cells are built when a check first needs them (lazily, along the trajectory), from level
+ * first_level; a cell whose certificate cannot be completed (its boxes do not settle by max_depth
+ * splits, or it needs a third site) is split into four, down to max_level; a cell at max_level that
+ * still fails is marked, and checks there say UNDECIDED (the caller then runs gb_certify). A check whose
+ * Newton solve fails, or whose contact lies in only some of its site's boxes, is UNDECIDED too.
+ *
+ * The atlas can be saved to and loaded from a file keyed by morphology, β, η, the build parameters and
+ * the library's atlas format; a file that does not match, or fails its checksum, is refused. */
+#ifndef GB_ATLAS_H
+#define GB_ATLAS_H
+
+#include "gb_certify.h"
+#include "gb_contact.h"
+#include "gb_surface.h"
+
+#include <stddef.h>
+
+typedef struct gb_atlas_def {
+    double height_tol;   /* η, as gb_certify_def (default 1e-12) */
+    int first_level;     /* cells are first built at this quadtree level of a cube face (default 5) */
+    int max_level;       /* a failing cell is split down to this level (default 9) */
+    int max_depth;       /* splits of a root box of the surface cover in a cell's proof (default 14) */
+} gb_atlas_def;
+
+gb_atlas_def gb_atlas_default_def(void);
+
+typedef struct gb_atlas_stats {
+    size_t checks;         /* gb_atlas_check calls */
+    size_t answered;       /* ... answered GLOBAL or LOWER_FOUND (the rest: UNDECIDED) */
+    size_t lower_found;
+    size_t newton_runs;    /* Newton solves for other sites' minima */
+    size_t cells;          /* cells certified */
+    size_t cells_failed;   /* cells at max_level without a certificate */
+    size_t two_site_cells; /* certified cells with two sites */
+    size_t cells_split;    /* cells split because their proof failed */
+    size_t boxes;          /* surface boxes with enclosures held */
+    size_t boxes_tested;   /* box tests in cell proofs */
+    int deepest_level;
+    double build_seconds;  /* wall time spent building cells */
+    size_t bytes;          /* memory held by cells and boxes */
+} gb_atlas_stats;
+
+typedef struct gb_atlas gb_atlas;
+
+int gb_atlas_create(const gb_surface *surface, const gb_atlas_def *def, gb_atlas **out);
+void gb_atlas_free(gb_atlas *atlas);
+
+/* As gb_certify_check: is `minimum` (a local minimum of h at zb, as gb_contact_refine returns it) the
+ * global one (GLOBAL), or is another minimum lower by more than η (LOWER_FOUND, the lowest of them in
+ * out->lower)? UNDECIDED when the cell has no certificate or a Newton solve failed: the caller then
+ * asks gb_certify. Builds the cell if needed. GB_EDOM for a bad vertical, GB_ENOMEM. */
+int gb_atlas_check(gb_atlas *atlas, const double zb[3], const gb_contact_point *minimum,
+                   const gb_contact_refine_def *refine, gb_certify_result *out);
+
+/* The certificate of the cell of zb (built if needed), for the harness: its centre d0, radius rho,
+ * level, site count (0 when the cell has no certificate) and each site's boxes. */
+typedef struct gb_atlas_site_box {
+    gb_surface_chart chart;
+    double a_lo, a_hi, b_lo, b_hi;
+} gb_atlas_site_box;
+
+typedef struct gb_atlas_cell_info {
+    double d0[3], rho;
+    int level, sites;
+    int boxes[2];
+    gb_atlas_site_box box[2][2];
+} gb_atlas_cell_info;
+
+int gb_atlas_cell(gb_atlas *atlas, const double zb[3], gb_atlas_cell_info *out);
+
+/* Save the cells built so far; load a saved atlas (its cells replace the ones held). Load returns
+ * GB_EIO for a file that is not an atlas of this body, β, η and build parameters, or is damaged (its
+ * checksum): the caller then builds anew. */
+int gb_atlas_save(const gb_atlas *atlas, const char *path);
+int gb_atlas_load(gb_atlas *atlas, const char *path);
+
+void gb_atlas_get_stats(const gb_atlas *atlas, gb_atlas_stats *out);
+
+#endif

@@ -1,0 +1,232 @@
+/* Section 4, eq 29: the atlas of verticals (gb_atlas), which certifies the global contact of a whole
+ * cell of verticals at once. Its verdicts are checked against an exhaustive search at random
+ * verticals (and each vertical's cell against the same search: the global minimum must lie in one of
+ * the sites the cell names), its runs against the per-vertical certificate's runs of Table 1, and its
+ * file against damage and staleness. */
+#include "gb_atlas.h"
+#include "gb_check.h"
+#include "gb_dynamics.h"
+#include "gb_error.h"
+#include "gb_integrate.h"
+#include "gb_vec.h"
+#include "verify_sections.h"
+
+#include <gsl/gsl_randist.h>
+#include <gsl/gsl_rng.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+static int in_box(const gb_atlas_site_box *b, double a, double bb)
+{
+    int wrapped = 0;
+    for (int w = -1; w <= 1; w++) wrapped |= bb + 2.0 * M_PI * w >= b->b_lo && bb + 2.0 * M_PI * w <= b->b_hi;
+    return a >= b->a_lo && a <= b->a_hi && wrapped;
+}
+
+/* What a cell's certificate claims about the global minimum (φ, θ): in each region of the cover of the
+ * sphere of directions whose parameter range holds the point, a site box of that region's chart holds it
+ * (boxes of that region outside the site boxes were proved to hold no global minimum). */
+static int cell_holds(const gb_atlas_cell_info *cell, double phi, double theta)
+{
+    static const double range[3][4] = {{0.8, M_PI - 0.8, 0.0, 2.0 * M_PI},
+                                       {0.75, M_PI - 0.75, 0.75, M_PI - 0.75},
+                                       {0.75, M_PI - 0.75, M_PI + 0.75, 2.0 * M_PI - 0.75}};
+    for (int r = 0; r < 3; r++) {
+        const gb_surface_chart chart = r ? GB_SURFACE_CHART_POLAR_X : GB_SURFACE_CHART_POLAR_Z;
+        double a, b;
+        gb_surface_chart_coordinates(chart, phi, theta, &a, &b);
+        const gb_atlas_site_box region = {chart, range[r][0], range[r][1], range[r][2], range[r][3]};
+        if (!in_box(&region, a, b)) continue;
+        int held = 0;
+        for (int s = 0; s < cell->sites; s++)
+            for (int k = 0; k < cell->boxes[s]; k++) held |= cell->box[s][k].chart == chart && in_box(&cell->box[s][k], a, b);
+        if (!held) return 0;
+    }
+    return 1;
+}
+
+/* At random verticals (uniform on the sphere, seeded): the exhaustive search's global minimum (Newton
+ * from every discrete local minimum of a 180 × 360 grid) is GLOBAL for the atlas and lies in a site of
+ * its cell; every other minimum higher by more than η is refused with the global one as the lower. */
+static void test_random_verticals(void)
+{
+    enum { VERTICALS = 5000 };
+    for (int m = 0; m < 2; m++) {
+        gb_surface s;
+        gb_surface_init(&s, m ? "II" : "I", 0.12);
+        gb_contact_grid_def gd = gb_contact_default_branch_grid();
+        gb_contact_grid *grid = NULL;
+        gb_atlas *atlas = NULL;
+        const gb_atlas_def ad = gb_atlas_default_def();
+        const gb_contact_refine_def rd = gb_contact_refine_default_def();
+        int status = gb_contact_grid_create(&s, &gd, &grid);
+        if (!status) status = gb_atlas_create(&s, &ad, &atlas);
+        gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
+        gsl_rng_set(rng, 20261123UL + (unsigned long)m);
+        size_t global = 0, undecided = 0, wrong = 0, in_cell = 0, others = 0, refused = 0, other_undecided = 0;
+        double worst = 0.0;
+        for (int k = 0; !status && k < VERTICALS; k++) {
+            double zb[3];
+            gsl_ran_dir_3d(rng, &zb[0], &zb[1], &zb[2]);
+            gb_contact_branches br;
+            status = gb_contact_branches_find(grid, zb, &rd, &br);
+            gb_certify_result r;
+            if (!status) status = gb_atlas_check(atlas, zb, &br.branch[0], &rd, &r);
+            gb_atlas_cell_info cell;
+            if (!status) status = gb_atlas_cell(atlas, zb, &cell);
+            if (status) break;
+            global += r.verdict == GB_CERTIFY_GLOBAL;
+            undecided += r.verdict == GB_CERTIFY_UNDECIDED;
+            wrong += r.verdict == GB_CERTIFY_LOWER_FOUND;
+            /* a cell without a certificate claims nothing */
+            in_cell += cell.sites == 0 || cell_holds(&cell, br.branch[0].phi, br.branch[0].theta);
+            for (size_t j = 1; j < br.count && !status; j++) {
+                if (br.branch[j].height - br.branch[0].height <= ad.height_tol) continue; /* a tie */
+                others++;
+                status = gb_atlas_check(atlas, zb, &br.branch[j], &rd, &r);
+                other_undecided += !status && r.verdict == GB_CERTIFY_UNDECIDED;
+                if (!status && r.verdict == GB_CERTIFY_LOWER_FOUND) {
+                    const double diff = fabs(r.lower.height - br.branch[0].height);
+                    worst = fmax(worst, diff);
+                    refused += diff <= 1e-12;
+                }
+            }
+        }
+        gb_atlas_stats as = {0};
+        if (atlas) gb_atlas_get_stats(atlas, &as);
+        gsl_rng_free(rng);
+        gb_atlas_free(atlas);
+        gb_contact_grid_free(grid);
+        char q[220];
+        snprintf(q, sizeof q, "Gomboc %s: the atlas at %d random verticals: global minimum certified and inside a site of "
+                 "its cell, every other minimum refused for the global one", m ? "II" : "I", VERTICALS);
+        gb_check c = {"4", "29", q, "exhaustive search: Newton from every discrete local minimum of a 180 x 360 grid",
+                      "exact verdicts (undecided allowed: the run then asks the per-vertical certificate); the lower "
+                      "minimum's height equal to the search's to 1e-12 (eta)"};
+        gb_check_true(&c, !status && wrong == 0 && global + undecided == VERTICALS && in_cell == VERTICALS &&
+                              refused + other_undecided == others && undecided * 20 < VERTICALS,
+                      "%s; %zu of %d certified global, %zu undecided, %zu refused; global minimum in a site of its cell at "
+                      "%zu; %zu of %zu other minima refused for the global one (worst height difference %.3g), %zu "
+                      "undecided; %zu cells (%zu with two sites, %zu without a certificate), deepest level %d, %zu boxes",
+                      status ? gb_error_message() : "ran", global, VERTICALS, undecided, wrong, in_cell, refused, others,
+                      worst, other_undecided, as.cells, as.two_site_cells, as.cells_failed, as.deepest_level, as.boxes);
+    }
+}
+
+/* One Table 1 rolling run (300 periods, RK4 160 steps a period, located switches, R0 = I, ω0 = 0). */
+static int table1_run(const char *body, gb_dynamics_certificate certificate, const char *atlas_file,
+                      double y[GB_STATE_SIZE], size_t *switches, gb_atlas_stats *as, size_t *fallbacks, int *loaded)
+{
+    gb_dynamics_def def = gb_dynamics_default_def();
+    def.contact = GB_CONTACT_MODEL_CONTINUOUS, def.variant = GB_VARIANT_ROLLING;
+    def.certificate = certificate;
+    def.atlas_file = atlas_file;
+    const double R0[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1}, w0[3] = {0, 0, 0};
+    gb_dynamics *d = NULL;
+    int status = gb_dynamics_start(gb_check_body(body, 0.12), &def, R0, w0, &d, y);
+    gb_integrate_def idef = gb_integrate_default_def();
+    idef.locate_switches = 1;
+    gb_integrate_stats stats;
+    if (!status) status = gb_integrate_run(d, &idef, 0.0, y, NULL, NULL, &stats);
+    if (!status) *switches = gb_dynamics_switch_count(d);
+    if (!status && certificate == GB_CERTIFICATE_ATLAS) status = gb_dynamics_atlas_stats(d, as, fallbacks, loaded);
+    if (!status) status = gb_dynamics_save_atlas(d);
+    gb_dynamics_free(d);
+    return status;
+}
+
+static int flip_byte(const char *path, long offset)
+{
+    FILE *f = fopen(path, "r+b");
+    if (!f) return 0;
+    int ok = fseek(f, offset, SEEK_SET) == 0;
+    const int c = ok ? fgetc(f) : EOF;
+    ok = ok && c != EOF && fseek(f, offset, SEEK_SET) == 0 && fputc(c ^ 0x5a, f) != EOF;
+    return fclose(f) == 0 && ok;
+}
+
+/* The atlas run of each Table 1 rolling scene equals the per-vertical certificate's run bit for bit
+ * (same switches, same final state): every step made the same decision, since the motion is chaotic and
+ * one different switch would have moved the state by far more than rounding. The same run with its
+ * atlas saved and loaded again, with that file damaged, and with a file built for another β. */
+static void test_table1_runs(void)
+{
+    char path[64];
+    snprintf(path, sizeof path, "/tmp/gomboc-atlas-check-%ld.atlas", (long)getpid());
+    for (int m = 0; m < 2; m++) {
+        const char *body = m ? "II" : "I";
+        double y[4][GB_STATE_SIZE];
+        size_t switches[4] = {0}, fallbacks[4] = {0};
+        gb_atlas_stats as[4] = {{0}};
+        int loaded[4] = {0};
+        remove(path);
+        int status = table1_run(body, GB_CERTIFICATE_PER_VERTICAL, NULL, y[0], &switches[0], NULL, NULL, NULL);
+        /* 1: built during the run and saved; 2: loaded from the file; 3: from the file with one byte changed */
+        for (int run = 1; run < 4 && !status; run++) {
+            if (run == 3 && !flip_byte(path, 200)) status = gb_error_set(GB_EIO, "cannot change a byte of %s", path);
+            if (!status)
+                status = table1_run(body, GB_CERTIFICATE_ATLAS, path, y[run], &switches[run], &as[run], &fallbacks[run],
+                                    &loaded[run]);
+        }
+        int same = !status;
+        for (int run = 1; run < 4 && same; run++)
+            same = memcmp(y[run], y[0], sizeof y[0]) == 0 && switches[run] == switches[0];
+        char q[220];
+        snprintf(q, sizeof q, "Gomboc %s, Table 1, continuous rolling, located switches, 300 periods: the atlas's run is "
+                 "the per-vertical certificate's run, with the atlas built, loaded, and rebuilt from a damaged file", body);
+        gb_check c = {"4, 8", "29", q, "the run certified per vertical (gb_certify at every step)",
+                      "exact (final state bits, switch count): the same minimum polished from the same rounded start"};
+        gb_check_true(&c, same && loaded[1] == 0 && loaded[2] == 1 && loaded[3] == 0,
+                      "%s; %s; %zu switches per-vertical; atlas built in the run: %zu cells (%zu with two sites) in %.3f s, "
+                      "%zu of %zu checks answered by the atlas (%zu left to the per-vertical certificate); loaded: %d; "
+                      "damaged file refused and rebuilt: %d",
+                      status ? gb_error_message() : "ran", same ? "the four runs agree" : "THE RUNS DIFFER", switches[0], as[1].cells, as[1].two_site_cells,
+                      as[1].build_seconds, as[1].answered, as[1].checks, fallbacks[1], loaded[2], loaded[3] == 0);
+    }
+    /* a file of another body, β or η is refused, naming why */
+    gb_atlas *a = NULL;
+    gb_atlas_def ad = gb_atlas_default_def();
+    int status = gb_atlas_create(gb_check_body("II", 0.11), &ad, &a);
+    const int beta = status ? status : gb_atlas_load(a, path);
+    const int beta_named = strstr(gb_error_message(), "not an atlas of this body") != NULL;
+    gb_atlas_free(a);
+    ad.height_tol = 1e-11;
+    status = gb_atlas_create(gb_check_body("II", 0.12), &ad, &a);
+    const int eta = status ? status : gb_atlas_load(a, path);
+    gb_atlas_free(a);
+    ad = gb_atlas_default_def();
+    status = gb_atlas_create(gb_check_body("II", 0.12), &ad, &a);
+    const int same = status ? status : gb_atlas_load(a, path);
+    gb_atlas_free(a);
+    remove(path);
+    gb_check k = {"4", "29", "an atlas file built for another beta or eta is refused; the file of this body loads",
+                  "error path", "exact"};
+    gb_check_true(&k, beta == GB_EIO && beta_named && eta == GB_EIO && same == GB_OK,
+                  "beta 0.11: status %d; eta 1e-11: status %d; same body: status %d", beta, eta, same);
+}
+
+/* A bad atlas definition is refused with its allowed range. */
+static void test_bad_definition(void)
+{
+    gb_atlas_def def = gb_atlas_default_def();
+    def.max_level = def.first_level - 1;
+    gb_atlas *a = NULL;
+    const int status = gb_atlas_create(gb_check_body("I", 0.12), &def, &a);
+    gb_check k = {"4", "29", "atlas levels out of order are refused, naming the allowed range", "error path", "exact"};
+    gb_check_true(&k, status == GB_EDOM && a == NULL && strstr(gb_error_message(), "allowed") != NULL, "%s",
+                  gb_error_message());
+}
+
+int verify_register_s4_atlas(void)
+{
+    static const verify_test tests[] = {
+        {"eq 29: atlas verdicts and cells against an exhaustive search", test_random_verticals, NULL},
+        {"eq 29: the atlas's Table 1 runs are the per-vertical certificate's runs; its file", test_table1_runs, NULL},
+        {"eq 29: atlas definition out of range", test_bad_definition, NULL},
+        {NULL, NULL, NULL},
+    };
+    return verify_register_suite("Section 4: the atlas of verticals", tests);
+}
