@@ -14,7 +14,7 @@
 
 /* Site boxes are built where the minimum lies within this distance of a chart's root boxes [rad]
  * (as gb_certify's basins). */
-#define SITE_REACH 0.35
+#define SITE_REACH 0.1
 #define SITE_MAX_HALF_WIDTH 0.3
 #define SITE_MIN_HALF_WIDTH 2e-3
 #define SITE_WIDTH_STEP 0.75
@@ -598,7 +598,7 @@ static void put(writer *w, const void *bytes, size_t size)
 
 static void put_cell(writer *w, const cell *c)
 {
-    const unsigned char state = c->state == CELL_FAILED ? CELL_UNBUILT : c->state; /* a failure is not kept */
+    const unsigned char state = c->state;
     put(w, &state, 1);
     if (state == CELL_SPLIT)
         for (int k = 0; k < 4; k++) put_cell(w, &c->child[k]);
@@ -665,6 +665,13 @@ static int take_cell(gb_atlas *A, reader *r, cell *c)
         A->stats.two_site_cells += sites == 2;
         return 1;
     }
+    if (state == CELL_FAILED) {
+        /* a cell whose proof failed at max_level stays without a certificate (its checks go to gb_certify) */
+        if (c->level != A->def.max_level) return 0;
+        c->state = CELL_FAILED;
+        A->stats.cells_failed++;
+        return 1;
+    }
     return state == CELL_UNBUILT;
 }
 
@@ -703,7 +710,7 @@ int gb_atlas_load(gb_atlas *A, const char *path)
     if (ok) {
         const gb_atlas_stats kept = A->stats;
         faces_reset(A);
-        A->stats.cells = A->stats.two_site_cells = 0;
+        A->stats.cells = A->stats.two_site_cells = A->stats.cells_failed = 0;
         reader r = {data + sizeof have, data + size - sizeof(uint64_t)};
         for (int face = 0; face < 6 && ok; face++) ok = take_cell(A, &r, &A->faces[face]);
         ok = ok && r.p == r.end;

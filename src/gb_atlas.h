@@ -90,7 +90,7 @@ typedef struct gb_atlas_cell_info {
 
 int gb_atlas_cell(gb_atlas *atlas, const double zb[3], gb_atlas_cell_info *out);
 
-/* Save the cells built so far; load a saved atlas (its cells replace the ones held). Load returns
+/* Save the cells built so far (with those that have no certificate, so that they are not proved again); load a saved atlas (its cells replace the ones held). Load returns
  * GB_EIO for a file that is not an atlas of this body, β, η and build parameters, or is damaged (its
  * checksum): the caller then builds anew. */
 int gb_atlas_save(const gb_atlas *atlas, const char *path);
