@@ -32,6 +32,22 @@ double gb_forcing_geff_rate(const gb_forcing *f, double t)
     return rate;
 }
 
+void gb_forcing_geff_with_rate(const gb_forcing *f, double t, double *geff, double *rate)
+{
+    double g = f->g, r = 0.0, s, c;
+    if (f->a1 != 0.0) {
+        sincos(f->omega * t, &s, &c);
+        g += f->a1 * c;
+        r -= f->a1 * f->omega * s;
+    }
+    if (f->a2 != 0.0) {
+        sincos(2.0 * f->omega * t + f->psi, &s, &c);
+        g += f->a2 * c;
+        r -= 2.0 * f->a2 * f->omega * s;
+    }
+    *geff = g, *rate = r;
+}
+
 double gb_forcing_period(const gb_forcing *f) { return 2.0 * M_PI / f->omega; }
 
 /* A root of g_eff in [a, b] where the signs differ, by bisection to tolerance tol. */

@@ -20,6 +20,8 @@ int gb_forcing_validate(const gb_forcing *forcing);
 
 double gb_forcing_geff(const gb_forcing *forcing, double t);
 double gb_forcing_geff_rate(const gb_forcing *forcing, double t);
+/* Both at once, with one sincos a harmonic: the same values as the two calls above. */
+void gb_forcing_geff_with_rate(const gb_forcing *forcing, double t, double *geff, double *rate);
 
 /* The forcing period T = 2π/ω. */
 double gb_forcing_period(const gb_forcing *forcing);
