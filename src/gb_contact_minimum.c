@@ -2,6 +2,7 @@
  * conditions with a simplex fallback, every local minimum (branches) seeded on a grid, switch
  * detection between two verticals, and the contact's sensitivity and rate (see gb_contact.h). */
 #include "gb_contact_internal.h"
+#include "gb_surface_internal.h"
 
 #include "gb_error.h"
 
@@ -37,7 +38,7 @@ static void height_derivatives(const gb_surface *surface, const double d[3], dou
                                double theta, gb_surface_point *p, double *h, double g[2],
                                double H[3])
 {
-    gb_surface_eval(surface, phi, theta, p);
+    gb_surface_eval_jet(surface, phi, theta, p); /* the normal only at the point returned */
     *h = gb_vec_dot(d, p->x);
     g[0] = gb_vec_dot(d, p->x_phi);
     g[1] = gb_vec_dot(d, p->x_theta);
@@ -76,8 +77,9 @@ static void fill_point(const gb_surface *surface, const double d[3], double phi,
     fill_point_from(&p, d, out);
 }
 
-/* Safeguarded Newton. Step: −H⁻¹g when H is positive definite, else the "saddle-free" step that
- * divides each eigen-component of g by |λ| (a descent direction); at most 0.5 rad; backtracking on
+/* Safeguarded Newton. Step: −H⁻¹g (Cramer's rule) when H is positive definite with λ_min > 1e-8 λ_max,
+ * else the "saddle-free" step that divides each eigen-component of g by |λ|, floored at 1e-8 λ_max (a
+ * descent direction); at most 0.5 rad; backtracking on
  * h with the Armijo factor 1e-4. Converged when the step is below step_tol, or when it stops
  * shrinking below 1e-8 rad (the rounding floor of the gradient). Returns 0 when converged to a
  * point with positive-definite Hessian, 1 otherwise (including nearing a pole). */
@@ -89,28 +91,39 @@ static int newton(const gb_surface *surface, const double d[3], double *phi, dou
     height_derivatives(surface, d, *phi, *theta, p, &h, g, H);
     for (int it = 0; it < def->max_iterations; it++) {
         *iterations = it + 1;
-        if (hypot(p->u[0], p->u[1]) < def->pole_guard) return 1; /* sin φ of the point evaluated */
-        /* Eigen-decomposition of the symmetric 2 × 2 Hessian. */
-        const double mean = 0.5 * (H[0] + H[2]), half_diff = 0.5 * (H[0] - H[2]);
-        const double radius = sqrt(half_diff * half_diff + H[1] * H[1]);
-        const double lambda[2] = {mean - radius, mean + radius};
-        double v0[2];
-        if (radius > 0.0) {
-            /* eigenvector of lambda[0]: (H01, λ0 − H00) or (λ0 − H11, H01), the better conditioned */
-            double a0 = H[1], a1 = lambda[0] - H[0];
-            if (fabs(H[0] - lambda[0]) < fabs(H[2] - lambda[0])) a0 = lambda[0] - H[2], a1 = H[1];
-            const double n = sqrt(a0 * a0 + a1 * a1);
-            v0[0] = a0 / n, v0[1] = a1 / n;
+        /* sin φ of the point evaluated, squared */
+        if (p->u[0] * p->u[0] + p->u[1] * p->u[1] < def->pole_guard * def->pole_guard) return 1;
+        double s[2];
+        int definite;
+        const double trace = H[0] + H[2], det = H[0] * H[2] - H[1] * H[1];
+        if (H[0] > 0.0 && det > 1e-8 * trace * trace) {
+            /* well-conditioned positive definite (λ_min ≥ det / trace > 1e-8 λ_max): s = −H⁻¹g */
+            definite = 1;
+            s[0] = -(H[2] * g[0] - H[1] * g[1]) / det;
+            s[1] = -(H[0] * g[1] - H[1] * g[0]) / det;
         } else {
-            v0[0] = 1.0, v0[1] = 0.0;
+            /* Eigen-decomposition of the symmetric 2 × 2 Hessian. */
+            const double mean = 0.5 * (H[0] + H[2]), half_diff = 0.5 * (H[0] - H[2]);
+            const double radius = sqrt(half_diff * half_diff + H[1] * H[1]);
+            const double lambda[2] = {mean - radius, mean + radius};
+            double v0[2];
+            if (radius > 0.0) {
+                /* eigenvector of lambda[0]: (H01, λ0 − H00) or (λ0 − H11, H01), the better conditioned */
+                double a0 = H[1], a1 = lambda[0] - H[0];
+                if (fabs(H[0] - lambda[0]) < fabs(H[2] - lambda[0])) a0 = lambda[0] - H[2], a1 = H[1];
+                const double n = sqrt(a0 * a0 + a1 * a1);
+                v0[0] = a0 / n, v0[1] = a1 / n;
+            } else {
+                v0[0] = 1.0, v0[1] = 0.0;
+            }
+            const double v1[2] = {-v0[1], v0[0]};
+            definite = lambda[0] > 0.0;
+            const double scale = fmax(fabs(lambda[1]), 1e-300);
+            const double floor_lambda = 1e-8 * scale;
+            const double c0 = (v0[0] * g[0] + v0[1] * g[1]) / fmax(fabs(lambda[0]), floor_lambda);
+            const double c1 = (v1[0] * g[0] + v1[1] * g[1]) / fmax(fabs(lambda[1]), floor_lambda);
+            s[0] = -(c0 * v0[0] + c1 * v1[0]), s[1] = -(c0 * v0[1] + c1 * v1[1]);
         }
-        const double v1[2] = {-v0[1], v0[0]};
-        const int definite = lambda[0] > 0.0;
-        const double scale = fmax(fabs(lambda[1]), 1e-300);
-        const double floor_lambda = 1e-8 * scale;
-        const double c0 = (v0[0] * g[0] + v0[1] * g[1]) / fmax(fabs(lambda[0]), floor_lambda);
-        const double c1 = (v1[0] * g[0] + v1[1] * g[1]) / fmax(fabs(lambda[1]), floor_lambda);
-        double s[2] = {-(c0 * v0[0] + c1 * v1[0]), -(c0 * v0[1] + c1 * v1[1])};
         double step = sqrt(s[0] * s[0] + s[1] * s[1]);
         if (!isfinite(step)) return 1;
         if (step > 0.5) s[0] *= 0.5 / step, s[1] *= 0.5 / step, step = 0.5;
@@ -262,8 +275,10 @@ int gb_contact_refine(const gb_surface *surface, const double zb[3], double phi0
         }
         iterations += polish_iterations;
     }
-    if (have_point)
+    if (have_point) {
+        gb_surface_normal(&at);
         fill_point_from(&at, d, out);
+    }
     else
         fill_point(surface, d, phi, theta, out);
     out->iterations = iterations;

@@ -135,6 +135,20 @@ void gb_surface_direction(double phi, double theta, double u[3])
 
 void gb_surface_eval(const gb_surface *surface, double phi, double theta, gb_surface_point *p)
 {
+    gb_surface_eval_jet(surface, phi, theta, p);
+    gb_surface_normal(p);
+}
+
+void gb_surface_normal(gb_surface_point *p)
+{
+    /* Normal (eqs 16, 17). */
+    gb_vec_cross(p->x_phi, p->x_theta, p->n);
+    const double norm = sqrt(p->n[0] * p->n[0] + p->n[1] * p->n[1] + p->n[2] * p->n[2]);
+    for (int i = 0; i < 3; i++) p->n_hat[i] = norm > 0.0 ? p->n[i] / norm : 0.0;
+}
+
+void gb_surface_eval_jet(const gb_surface *surface, double phi, double theta, gb_surface_point *p)
+{
     const double beta4 = 4.0 * surface->beta;
     double sp, cp, st, ct, sc, cc;
     sincos(phi, &sp, &cp);
@@ -187,10 +201,6 @@ void gb_surface_eval(const gb_surface *surface, double phi, double theta, gb_sur
         p->x_thetatheta[i] =
             p->r_thetatheta * u[i] + 2.0 * p->r_theta * u_theta[i] + p->r * u_thetatheta[i];
     }
-    /* Normal (eqs 16, 17). */
-    gb_vec_cross(p->x_phi, p->x_theta, p->n);
-    const double norm = sqrt(p->n[0] * p->n[0] + p->n[1] * p->n[1] + p->n[2] * p->n[2]);
-    for (int i = 0; i < 3; i++) p->n_hat[i] = norm > 0.0 ? p->n[i] / norm : 0.0;
 }
 
 double gb_surface_kernel(const gb_surface *surface, double phi, double theta)

@@ -22,6 +22,11 @@ typedef struct gb_surface_enclosure {
     int smooth;
 } gb_surface_enclosure;
 
+/* gb_surface_eval in two parts, for Newton's iterations (which need no normal until the last point):
+ * everything but n and n̂, then n and n̂ from the tangents. */
+void gb_surface_eval_jet(const gb_surface *surface, double phi, double theta, gb_surface_point *point);
+void gb_surface_normal(gb_surface_point *point);
+
 void gb_surface_enclose(const gb_surface *surface, gb_surface_chart chart, double a_lo, double a_hi, double b_lo,
                         double b_hi, gb_surface_enclosure *out);
 
