@@ -69,8 +69,15 @@ struct gb_dynamics {
     size_t index;
     gb_contact_point contact;
     /* Newton's predictor for continuous contact: (φ, θ) ≈ contact + rate (t − contact_time), with the
-     * rate of eq 72 at the accepted state; only the starting point changes, not the converged one. */
+     * rate of eq 72 at the accepted state; the start changes which minimum is reached only across a fold,
+     * and otherwise its last bits at most. */
     double contact_time, contact_rate[2];
+    /* ... or, when valid, from the last contact found (at any evaluation since the accepted state) by its
+     * sensitivity (eq 70): (φ, θ) ≈ last + ∂(φ, θ)/∂z_b (z_b − z_b,last). Between the two middle stages of
+     * RK4 the verticals differ by O(h²) and this start is the minimum to ~1e-12 rad. */
+    int last_valid;
+    double last_zb[3], last_q[2], last_dq[2][3];
+    gb_contact_point last_point; /* that contact: an evaluation at the same vertical takes it as it is */
     double energy0, t0;
     size_t grid_switches, branch_switches;
     size_t contact_queries, nodes_visited; /* grid models: the searches' work */
@@ -153,6 +160,14 @@ void gb_dynamics_free(gb_dynamics *d)
 
 /* ---------------------------------------------------------------- attitude */
 
+/* z_b = Rᵀ e_z, the third row of R (eq 21), alone: the same arithmetic as gb_dynamics_rotation's. */
+static void vertical_of_quaternion(const double q[4], double zb[3])
+{
+    const double n = sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+    const double w = q[0] / n, x = q[1] / n, y = q[2] / n, z = q[3] / n;
+    zb[0] = 2 * (x * z - w * y), zb[1] = 2 * (y * z + w * x), zb[2] = 1 - 2 * (x * x + y * y);
+}
+
 void gb_dynamics_rotation(const double q[4], double R[9])
 {
     const double n = sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
@@ -217,9 +232,22 @@ static int contact_at(gb_dynamics *d, double t, const double zb[3], const double
         c->index = node.index;
         return GB_OK; /* ṙ_c = 0 between grid switches */
     }
-    const double dt = t - d->contact_time;
-    int status = gb_contact_refine(&d->surface, zb, d->contact.phi + d->contact_rate[0] * dt,
-                                   d->contact.theta + d->contact_rate[1] * dt, &d->refine, &c->point);
+    double unit[3], start[2];
+    int status = gb_contact_unit_vertical(zb, unit);
+    if (status) return status;
+    const int same = d->last_valid && memcmp(unit, d->last_zb, sizeof unit) == 0;
+    if (same) {
+        c->point = d->last_point;
+    } else if (d->last_valid) {
+        const double step[3] = {unit[0] - d->last_zb[0], unit[1] - d->last_zb[1], unit[2] - d->last_zb[2]};
+        start[0] = d->last_q[0] + gb_vec_dot(d->last_dq[0], step);
+        start[1] = d->last_q[1] + gb_vec_dot(d->last_dq[1], step);
+    } else {
+        const double dt = t - d->contact_time;
+        start[0] = d->contact.phi + d->contact_rate[0] * dt;
+        start[1] = d->contact.theta + d->contact_rate[1] * dt;
+    }
+    if (!same) status = gb_contact_refine(&d->surface, unit, start[0], start[1], &d->refine, &c->point);
     if ((status == GB_ENOCONV || (!status && !c->point.is_minimum)) && d->certify) {
         /* The continued branch has no minimum here (a fold of h inside the step): the contact is the
          * global minimum at this state, found and certified from scratch. */
@@ -229,8 +257,19 @@ static int contact_at(gb_dynamics *d, double t, const double zb[3], const double
     if (!status && !c->point.is_minimum)
         status = gb_error_set(GB_ENOCONV, "continuous contact lost: Newton from the previous contact ended on a "
                               "point that is not a minimum (eq 35) at z_b = (%g, %g, %g)", zb[0], zb[1], zb[2]);
-    if (!status) status = gb_contact_rate(&d->surface, zb, &c->point, omega, c->rc_dot, NULL);
+    /* ṙ_c (eq 72) = [∂φx ∂θx] ∂(φ, θ)/∂z_b ż_b with ż_b = z_b × ω (eq 24) */
+    if (!status && !same) {
+        status = gb_contact_sensitivity(&d->surface, unit, &c->point, d->last_dq);
+        d->last_valid = !status;
+        memcpy(d->last_zb, unit, sizeof d->last_zb);
+        d->last_q[0] = c->point.phi, d->last_q[1] = c->point.theta;
+        d->last_point = c->point;
+    }
     if (status) return status;
+    double zb_dot[3];
+    gb_vec_cross(unit, omega, zb_dot);
+    const double rates[2] = {gb_vec_dot(d->last_dq[0], zb_dot), gb_vec_dot(d->last_dq[1], zb_dot)};
+    for (int k = 0; k < 3; k++) c->rc_dot[k] = c->point.x_phi[k] * rates[0] + c->point.x_theta[k] * rates[1];
     for (int k = 0; k < 3; k++) c->rc[k] = l * c->point.rc[k], c->rc_dot[k] *= l;
     c->index = 0;
     return GB_OK;
@@ -284,11 +323,11 @@ static int solve3(double A[3][3], const double b[3], double x[3])
     return GB_OK;
 }
 
-/* ω̇ from eq 44 (paper) or the rolling equation, for the contact c at time t. */
-static int angular_acceleration(const gb_dynamics *d, double t, const double zb[3], const double omega[3],
+/* ω̇ from eq 44 (paper) or the rolling equation, for the contact c and g_eff at the time. */
+static int angular_acceleration(const gb_dynamics *d, double geff, const double zb[3], const double omega[3],
                                 const contact_eval *c, double omega_dot[3])
 {
-    const double m = d->def.mass, geff = gb_forcing_geff(&d->def.forcing, t);
+    const double m = d->def.mass;
     double IP[3][3], IPw[3], gyro[3], tau[3], rhs[3], tmp[3], tmp2[3];
     inertia_about_contact(d, c->rc, IP);
     mat_vec(IP, omega, IPw);
@@ -313,13 +352,14 @@ static int angular_acceleration(const gb_dynamics *d, double t, const double zb[
 
 int gb_dynamics_rhs(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], double dydt[GB_STATE_SIZE])
 {
-    double R[9], zb[3];
+    double zb[3];
     const double *q = y + GB_STATE_Q, *omega = y + GB_STATE_OMEGA;
-    gb_dynamics_rotation(q, R);
-    zb_of(R, zb);
+    vertical_of_quaternion(q, zb);
     contact_eval c;
     int status = contact_at(d, t, zb, omega, &c);
-    if (!status) status = angular_acceleration(d, t, zb, omega, &c, dydt + GB_STATE_OMEGA);
+    double geff, geff_rate;
+    gb_forcing_geff_with_rate(&d->def.forcing, t, &geff, &geff_rate);
+    if (!status) status = angular_acceleration(d, geff, zb, omega, &c, dydt + GB_STATE_OMEGA);
     if (status) return status;
     /* q̇ = ½ q ⊗ (0, ω) (eq 23) */
     dydt[0] = -0.5 * (q[1] * omega[0] + q[2] * omega[1] + q[3] * omega[2]);
@@ -329,7 +369,7 @@ int gb_dynamics_rhs(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], dou
     /* Ẇ = P_d + m ġ_eff ζ with ζ = −z_b·r_c (eqs 37, 50) */
     const double zeta = -gb_vec_dot(zb, c.rc);
     dydt[GB_STATE_WORK] = -d->def.damping * gb_vec_dot(omega, omega) +
-                          d->def.mass * gb_forcing_geff_rate(&d->def.forcing, t) * zeta;
+                          d->def.mass * geff_rate * zeta;
     return GB_OK;
 }
 
@@ -347,12 +387,7 @@ static int remember_rate(gb_dynamics *d, double t, const double y[GB_STATE_SIZE]
 }
 
 /* The vertical of state y (q need not be normalised). */
-static void vertical_of(const double y[GB_STATE_SIZE], double zb[3])
-{
-    double R[9];
-    gb_dynamics_rotation(y + GB_STATE_Q, R);
-    zb_of(R, zb);
-}
+static void vertical_of(const double y[GB_STATE_SIZE], double zb[3]) { vertical_of_quaternion(y + GB_STATE_Q, zb); }
 
 /* Is `candidate` the global minimum at zb? The atlas answers where it can, gb_certify elsewhere. */
 static int check_global(gb_dynamics *d, const double zb[3], const gb_contact_point *candidate, gb_certify_result *r)
@@ -390,8 +425,10 @@ static int competitor(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], g
 {
     double zb[3];
     vertical_of(y, zb);
-    /* The answer depends only on z_b, t (Newton's predictor) and ω (eq 72's rate), and on the accepted
-     * contact, which changes only in gb_dynamics_accept and gb_dynamics_switch_to (they clear the memo). */
+    /* For the same z_b, t, ω and accepted contact the answer is the same minimum (its last bits depend
+     * on Newton's start, the last contact found), and a run makes the same calls in the same order, so
+     * the memo changes no result. The accepted contact changes only in gb_dynamics_accept and
+     * gb_dynamics_switch_to (they clear the memo). */
     const double key[8] = {zb[0], zb[1], zb[2], t, y[GB_STATE_OMEGA], y[GB_STATE_OMEGA + 1], y[GB_STATE_OMEGA + 2], 0.0};
     if (d->memo_valid && memcmp(key, d->memo_key, sizeof key) == 0) {
         *continued = d->memo_continued;
@@ -487,6 +524,7 @@ int gb_dynamics_accept(gb_dynamics *d, double t, double y[GB_STATE_SIZE], double
     if (status) return status;
     d->contact = found ? other : continued;
     d->memo_valid = 0; /* the accepted contact changed */
+    if (found) d->last_valid = 0; /* the last contact found is on the branch left */
     d->branch_switches += found;
     if (found) d->last_switch_time = t;
     return remember_rate(d, t, y);
@@ -520,6 +558,7 @@ void gb_dynamics_switch_to(gb_dynamics *d, double t, const gb_contact_point *bra
     d->memo_valid = 0;
     d->contact = *branch;
     d->contact_rate[0] = d->contact_rate[1] = 0.0; /* no predictor until the next accepted step */
+    d->last_valid = 0;
     d->branch_switches++;
 }
 
@@ -530,6 +569,7 @@ double gb_dynamics_last_switch_time(const gb_dynamics *d) { return d->last_switc
 void gb_dynamics_adopt_contact(gb_dynamics *to, const gb_dynamics *from)
 {
     to->memo_valid = 0;
+    to->last_valid = 0;
     to->index = from->index;
     to->contact = from->contact;
     to->contact_time = from->contact_time;
@@ -558,6 +598,7 @@ int gb_dynamics_init_state(gb_dynamics *d, double t0, const double R0[9], const 
     int status = contact_global(d, zb);
     if (status) return status;
     if (d->def.contact == GB_CONTACT_MODEL_CONTINUOUS) remember_rate(d, t0, y);
+    d->last_valid = 0;
     d->grid_switches = d->branch_switches = d->branches_lost = 0;
     d->last_switch_time = NAN;
     d->memo_valid = 0;
@@ -578,7 +619,8 @@ int gb_dynamics_observe(gb_dynamics *d, double t, const double y[GB_STATE_SIZE],
     memcpy(o->omega, y + GB_STATE_OMEGA, sizeof o->omega);
     contact_eval c;
     int status = contact_at(d, t, o->zb, o->omega, &c);
-    if (!status) status = angular_acceleration(d, t, o->zb, o->omega, &c, o->omega_dot);
+    gb_forcing_geff_with_rate(&d->def.forcing, t, &o->geff, &o->geff_rate);
+    if (!status) status = angular_acceleration(d, o->geff, o->zb, o->omega, &c, o->omega_dot);
     if (status) return status;
     const double m = d->def.mass;
     memcpy(o->rc, c.rc, sizeof o->rc);
@@ -586,8 +628,6 @@ int gb_dynamics_observe(gb_dynamics *d, double t, const double y[GB_STATE_SIZE],
     o->index = c.index;
     o->height = gb_vec_dot(o->zb, c.rc);
     o->zeta = -o->height;
-    o->geff = gb_forcing_geff(&d->def.forcing, t);
-    o->geff_rate = gb_forcing_geff_rate(&d->def.forcing, t);
     double IP[3][3], IPw[3], tau_g[3];
     inertia_about_contact(d, c.rc, IP);
     mat_vec(IP, o->omega, IPw);
