@@ -43,6 +43,7 @@ typedef struct box_quad {
 typedef struct site {
     int boxes;
     gb_atlas_site_box box[2];
+    int looked_up[2];            /* 0: a polar-x box whose directions all lie in the (φ, θ) band (below) */
     double x0[3];                /* its minimum at the cell's centre (the FAR reference) */
     double hint_phi, hint_theta; /* where Newton starts: the last minimum found in it */
 } site;
@@ -73,7 +74,7 @@ struct gb_atlas {
 
 gb_atlas_def gb_atlas_default_def(void)
 {
-    return (gb_atlas_def){.height_tol = 1e-12, .first_level = 5, .max_level = 9, .max_depth = 14};
+    return (gb_atlas_def){.height_tol = 1e-12, .first_level = 5, .max_level = 13, .max_depth = 14};
 }
 
 static double wall_seconds(void)
@@ -188,17 +189,31 @@ static int site_box_holds(const gb_atlas_site_box *b, double a, double bb)
            gb_certify_inside_periodic(bb, b->b_lo, b->b_hi, GB_CERTIFY_INSIDE_MARGIN);
 }
 
-/* Does the point (φ, θ) lie inside every box of the site, and inside how many? */
+/* Does the point (φ, θ) lie inside every looked-up box of the site, and inside how many? */
 static int site_holds(const site *s, double phi, double theta, int *count)
 {
-    int inside = 0;
+    int inside = 0, boxes = 0;
     for (int k = 0; k < s->boxes; k++) {
+        if (!s->looked_up[k]) continue;
         double a, b;
         gb_surface_chart_coordinates(s->box[k].chart, phi, theta, &a, &b);
         inside += site_box_holds(&s->box[k], a, b);
+        boxes++;
     }
     if (count) *count = inside;
-    return inside == s->boxes;
+    return inside == boxes;
+}
+
+/* Is every direction of a polar-x box inside the (φ, θ) band 0.8 ≤ φ ≤ π − 0.8, i.e. |u_z| ≤ cos 0.8
+ * with u_z = sin α sin γ? A global minimum there lies in the band, whose boxes the proof settled
+ * against the (φ, θ) site boxes, so it is in one of those: a check need not look in this box. (The
+ * (φ, θ) boxes are always looked in, so the two charts never defer to each other.) */
+static int inside_band(const gb_atlas_site_box *b)
+{
+    if (b->chart != GB_SURFACE_CHART_POLAR_X) return 0;
+    const gb_interval uz = gb_interval_mul(gb_interval_sin((gb_interval){b->a_lo, b->a_hi}),
+                                           gb_interval_sin((gb_interval){b->b_lo, b->b_hi}));
+    return gb_interval_mag(uz) < cos(gb_region_range[GB_REGION_EQUATOR][0]) - 1e-12;
 }
 
 /* Is d·x'' positive definite over the box for every vertical of the cell? Tested on the box's
@@ -251,7 +266,9 @@ static int site_build(gb_atlas *A, const double d0[3], double rho, const gb_cont
             const double a_lo = gb_interval_max(a - w, 0.05), a_hi = gb_interval_min(a + w, M_PI - 0.05);
             if (!(a > a_lo + GB_CERTIFY_INSIDE_MARGIN && a < a_hi - GB_CERTIFY_INSIDE_MARGIN)) continue;
             if (!definite_over_cell(A, (gb_surface_chart)chart, a_lo, a_hi, b - w, b + w, d0, rho, SITE_SPLITS)) continue;
-            s->box[s->boxes++] = (gb_atlas_site_box){(gb_surface_chart)chart, a_lo, a_hi, b - w, b + w};
+            s->box[s->boxes] = (gb_atlas_site_box){(gb_surface_chart)chart, a_lo, a_hi, b - w, b + w};
+            s->looked_up[s->boxes] = !inside_band(&s->box[s->boxes]);
+            s->boxes++;
             A->last_half_width = w;
             built = 1;
         }
@@ -560,7 +577,7 @@ void gb_atlas_get_stats(const gb_atlas *A, gb_atlas_stats *out)
  * of the six faces in preorder (state; for a certified cell its sites), and an FNV-1a 64 checksum of
  * everything before it. Written to NAME.tmp and renamed, so a reader never sees half a file. */
 #define ATLAS_MAGIC "gomboc-atlas"
-#define ATLAS_FORMAT 1u
+#define ATLAS_FORMAT 2u
 
 typedef struct header {
     char magic[16];
@@ -657,8 +674,14 @@ static int take_cell(gb_atlas *A, reader *r, cell *c)
     if (state == CELL_CERTIFIED) {
         unsigned char sites;
         if (!take(r, &sites, 1) || sites < 1 || sites > 2 || !take(r, c->site, sites * sizeof(site))) return 0;
-        for (int s = 0; s < sites; s++)
-            if (c->site[s].boxes < 1 || c->site[s].boxes > 2) return 0;
+        for (int s = 0; s < sites; s++) {
+            site *t = &c->site[s];
+            if (t->boxes < 1 || t->boxes > 2) return 0;
+            for (int k = 0; k < t->boxes; k++) {
+                if (t->box[k].chart != GB_SURFACE_CHART_POLAR_Z && t->box[k].chart != GB_SURFACE_CHART_POLAR_X) return 0;
+                t->looked_up[k] = !inside_band(&t->box[k]); /* recomputed, not read */
+            }
+        }
         c->state = CELL_CERTIFIED;
         c->sites = sites;
         A->stats.cells++;

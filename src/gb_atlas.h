@@ -15,16 +15,18 @@
  *     or a negative determinant), or lies higher than a site's point x_s (FAR: d·(x − x_s) > 0, bounded
  *     by the Taylor form at d₀ minus ρ max|x − x_s|).
  * So the global minimum at d is the critical point of one of the named sites. A check at d finds the
- * cell (a lookup), sees whether the contact lies in every box of a site (it is then that site's
- * critical point), and finds the critical point of each other site by Newton from where it was last
- * (inside its boxes: it is then that site's only one). The lowest is the global minimum; a switch is
+ * cell (a lookup), sees whether the contact lies in every looked-up box of a site (it is then that
+ * site's critical point), and finds the critical point of each other site by Newton from where it was
+ * last (inside its looked-up boxes: it is then that site's only one). A polar-x site box whose
+ * directions all lie in the (φ, θ) band 0.8 ≤ φ ≤ π − 0.8 is not looked up: a global minimum in it lies
+ * in the band, where the proof confined it to the (φ, θ) site boxes. The lowest is the global minimum; a switch is
  * made, as gb_certify makes it, when it is lower than the contact by more than η.
  *
  * Cells are built when a check first needs them (lazily, along the trajectory), from level
  * first_level; a cell whose certificate cannot be completed (its boxes do not settle by max_depth
  * splits, or it needs a third site) is split into four, down to max_level; a cell at max_level that
  * still fails is marked, and checks there say UNDECIDED (the caller then runs gb_certify). A check whose
- * Newton solve fails, or whose contact lies in only some of its site's boxes, is UNDECIDED too.
+ * Newton solve fails, or whose contact lies in only some of its site's looked-up boxes, is UNDECIDED too.
  *
  * The atlas can be saved to and loaded from a file keyed by morphology, β, η, the build parameters and
  * the library's atlas format; a file that does not match, or fails its checksum, is refused. */
@@ -40,7 +42,7 @@
 typedef struct gb_atlas_def {
     double height_tol;   /* η, as gb_certify_def (default 1e-12) */
     int first_level;     /* cells are first built at this quadtree level of a cube face (default 5) */
-    int max_level;       /* a failing cell is split down to this level (default 9) */
+    int max_level;       /* a failing cell is split down to this level (default 13) */
     int max_depth;       /* splits of a root box of the surface cover in a cell's proof (default 14) */
 } gb_atlas_def;
 
