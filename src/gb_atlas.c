@@ -536,6 +536,19 @@ int gb_atlas_check(gb_atlas *A, const double zb[3], const gb_contact_point *mini
     return GB_OK;
 }
 
+static void cell_info(const cell *c, gb_atlas_cell_info *out)
+{
+    memset(out, 0, sizeof *out);
+    cell_geometry(c, out->d0, &out->rho);
+    for (int k = 0; k < 4; k++) face_point(c->face, k & 1 ? c->u_hi : c->u_lo, k & 2 ? c->v_hi : c->v_lo, out->corner[k]);
+    out->level = c->level;
+    out->sites = c->state == CELL_CERTIFIED ? c->sites : 0;
+    for (int s = 0; s < out->sites; s++) {
+        out->boxes[s] = c->site[s].boxes;
+        memcpy(out->box[s], c->site[s].box, sizeof out->box[s]);
+    }
+}
+
 int gb_atlas_cell(gb_atlas *A, const double zb[3], gb_atlas_cell_info *out)
 {
     memset(out, 0, sizeof *out);
@@ -545,14 +558,23 @@ int gb_atlas_cell(gb_atlas *A, const double zb[3], gb_atlas_cell_info *out)
     const gb_contact_refine_def refine = gb_contact_refine_default_def();
     if (!status) status = find_cell(A, d, &refine, &c);
     if (status) return status;
-    cell_geometry(c, out->d0, &out->rho);
-    out->level = c->level;
-    out->sites = c->state == CELL_CERTIFIED ? c->sites : 0;
-    for (int s = 0; s < out->sites; s++) {
-        out->boxes[s] = c->site[s].boxes;
-        memcpy(out->box[s], c->site[s].box, sizeof out->box[s]);
-    }
+    cell_info(c, out);
     return GB_OK;
+}
+
+static void list_cells(const cell *c, gb_atlas_cell_info *out, size_t max, size_t *count)
+{
+    if (c->state == CELL_SPLIT)
+        for (int k = 0; k < 4; k++) list_cells(&c->child[k], out, max, count);
+    if (c->state != CELL_CERTIFIED) return;
+    if (*count < max) cell_info(c, &out[*count]);
+    ++*count;
+}
+
+void gb_atlas_cells(const gb_atlas *A, gb_atlas_cell_info *out, size_t max, size_t *count)
+{
+    *count = 0;
+    for (int f = 0; f < 6; f++) list_cells(&A->faces[f], out, max, count);
 }
 
 static size_t count_cells(const cell *c)

@@ -85,12 +85,16 @@ typedef struct gb_atlas_site_box {
 
 typedef struct gb_atlas_cell_info {
     double d0[3], rho;
+    double corner[4][3];     /* the unit verticals at its corners */
     int level, sites;
     int boxes[2];
     gb_atlas_site_box box[2][2];
 } gb_atlas_cell_info;
 
 int gb_atlas_cell(gb_atlas *atlas, const double zb[3], gb_atlas_cell_info *out);
+/* Every certified cell held (in preorder of the six faces' quadtrees): up to `max` of them into out,
+ * and their number in *count. */
+void gb_atlas_cells(const gb_atlas *atlas, gb_atlas_cell_info *out, size_t max, size_t *count);
 
 /* Save the cells built so far (with those that have no certificate, so that they are not proved again); load a saved atlas (its cells replace the ones held). Load returns
  * GB_EIO for a file that is not an atlas of this body, β, η and build parameters, or is damaged (its
