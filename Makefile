@@ -239,10 +239,13 @@ valgrind-only: $(BIN)
 	$(VALGRIND) $(BIN) shape --morphology II --beta 0.12 --json > /dev/null || { status=1; echo "valgrind: shape FAILED"; }; \
 	$(VALGRIND) $(BIN) contact --morphology I --beta 0.12 --zb 0.6,0.6,-0.5 --method continuous --json \
 	  --landscape $(BUILD)/valgrind/landscape.csv --zoom $(BUILD)/valgrind/zoom.csv > /dev/null || { status=1; echo "valgrind: contact FAILED"; }; \
+	rm -f $(BUILD)/valgrind/atlas.bin; for k in 1 2; do \
+	  $(VALGRIND) $(BIN) run verify/valgrind/rolling-atlas.ini --out $(BUILD)/valgrind --atlas $(BUILD)/valgrind/atlas.bin \
+	    || { status=1; echo "valgrind: atlas file FAILED"; }; done; \
 	$(VALGRIND) $(BIN) run verify/valgrind/missing.ini 2> /dev/null; [ $$? -eq 2 ] || { status=1; echo "valgrind: bad input FAILED"; }; \
 	rm -f $(BUILD)/valgrind/small-scan.*; \
 	$(VALGRIND) $(BIN) scan verify/valgrind/scan/small.ini --out $(BUILD)/valgrind --threads 1 || { status=1; echo "valgrind: scan FAILED"; }; \
-	sh scripts/gate-stamp.sh $(GATES) valgrind $$status "memcheck: $$n scenes (verify/valgrind), shape, contact, a scan and a refused input"; \
+	sh scripts/gate-stamp.sh $(GATES) valgrind $$status "memcheck: $$n scenes (verify/valgrind), an atlas file written and loaded, shape, contact, a scan and a refused input"; \
 	echo "valgrind: $$( [ $$status -eq 0 ] && echo 'no errors, no leaks' || echo FAILED)"; \
 	exit $$status
 
