@@ -179,8 +179,8 @@ fuzz: deps
 	@sh scripts/install-deps.sh fuzz
 	@$(MAKE) --no-print-directory fuzz-only
 
-fuzz-only: $(FUZZ_DIR)/fuzz-case $(FUZZ_DIR)/fuzz-options
-	@mkdir -p $(FUZZ_DIR)/corpus-case $(FUZZ_DIR)/corpus-options
+fuzz-only: $(FUZZ_DIR)/fuzz-case $(FUZZ_DIR)/fuzz-options $(FUZZ_DIR)/fuzz-atlas
+	@mkdir -p $(FUZZ_DIR)/corpus-case $(FUZZ_DIR)/corpus-options $(FUZZ_DIR)/corpus-atlas
 	@n=0; while IFS= read -r line; do n=$$((n+1)); printf '%s' "$$line" | tr ' ' '\000' > $(FUZZ_DIR)/corpus-options/seed-$$n; \
 	  done < verify/fuzz/options.seeds
 	status=0; \
@@ -188,13 +188,19 @@ fuzz-only: $(FUZZ_DIR)/fuzz-case $(FUZZ_DIR)/fuzz-options
 	  -artifact_prefix=$(FUZZ_DIR)/crash-case- $(FUZZ_DIR)/corpus-case cases > $(FUZZ_DIR)/fuzz-case.log 2>&1 || status=1; \
 	$(FUZZ_DIR)/fuzz-options -max_total_time=$(FUZZ_SECONDS) -dict=verify/fuzz/options.dict -close_fd_mask=3 \
 	  -artifact_prefix=$(FUZZ_DIR)/crash-options- $(FUZZ_DIR)/corpus-options > $(FUZZ_DIR)/fuzz-options.log 2>&1 || status=1; \
-	runs="$$(grep -h '^Done' $(FUZZ_DIR)/fuzz-case.log $(FUZZ_DIR)/fuzz-options.log | tr '\n' ';')"; \
-	tail -n 3 $(FUZZ_DIR)/fuzz-case.log $(FUZZ_DIR)/fuzz-options.log; \
-	sh scripts/gate-stamp.sh $(GATES) fuzz $$status "$(FUZZ_SECONDS) s per target (case reader; option parser): $$runs"; \
+	$(FUZZ_DIR)/fuzz-atlas -max_total_time=$(FUZZ_SECONDS) -close_fd_mask=3 \
+	  -artifact_prefix=$(FUZZ_DIR)/crash-atlas- $(FUZZ_DIR)/corpus-atlas > $(FUZZ_DIR)/fuzz-atlas.log 2>&1 || status=1; \
+	runs="$$(grep -h '^Done' $(FUZZ_DIR)/fuzz-case.log $(FUZZ_DIR)/fuzz-options.log $(FUZZ_DIR)/fuzz-atlas.log | tr '\n' ';')"; \
+	tail -n 3 $(FUZZ_DIR)/fuzz-case.log $(FUZZ_DIR)/fuzz-options.log $(FUZZ_DIR)/fuzz-atlas.log; \
+	sh scripts/gate-stamp.sh $(GATES) fuzz $$status "$(FUZZ_SECONDS) s per target (case reader; option parser; atlas file reader): $$runs"; \
 	echo "fuzz: $$( [ $$status -eq 0 ] && echo 'no crash' || echo 'FAILED: see build-fuzz/*.log and build-fuzz/crash-*')"; \
 	exit $$status
 
 $(FUZZ_DIR)/fuzz-case: verify/fuzz/fuzz_case.c $(CORE_SRC) $(wildcard src/*.h)
+	@mkdir -p $(FUZZ_DIR)
+	clang $(FUZZ_CFLAGS) -fsanitize=fuzzer $(shell pkg-config --cflags $(PKGS)) -Isrc -o $@ $< $(CORE_SRC) $(CORE_LIBS)
+
+$(FUZZ_DIR)/fuzz-atlas: verify/fuzz/fuzz_atlas.c $(CORE_SRC) $(wildcard src/*.h)
 	@mkdir -p $(FUZZ_DIR)
 	clang $(FUZZ_CFLAGS) -fsanitize=fuzzer $(shell pkg-config --cflags $(PKGS)) -Isrc -o $@ $< $(CORE_SRC) $(CORE_LIBS)
 

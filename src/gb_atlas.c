@@ -695,13 +695,21 @@ static int take_cell(gb_atlas *A, reader *r, cell *c)
     }
     if (state == CELL_CERTIFIED) {
         unsigned char sites;
-        if (!take(r, &sites, 1) || sites < 1 || sites > 2 || !take(r, c->site, sites * sizeof(site))) return 0;
+        if (c->level < A->def.first_level || !take(r, &sites, 1) || sites < 1 || sites > 2 ||
+            !take(r, c->site, sites * sizeof(site)))
+            return 0;
         for (int s = 0; s < sites; s++) {
             site *t = &c->site[s];
-            if (t->boxes < 1 || t->boxes > 2) return 0;
+            if (t->boxes < 1 || t->boxes > 2 || !isfinite(t->hint_phi) || !isfinite(t->hint_theta)) return 0;
+            for (int k = 0; k < 3; k++)
+                if (!isfinite(t->x0[k])) return 0;
             for (int k = 0; k < t->boxes; k++) {
-                if (t->box[k].chart != GB_SURFACE_CHART_POLAR_Z && t->box[k].chart != GB_SURFACE_CHART_POLAR_X) return 0;
-                t->looked_up[k] = !inside_band(&t->box[k]); /* recomputed, not read */
+                const gb_atlas_site_box *b = &t->box[k];
+                if (b->chart != GB_SURFACE_CHART_POLAR_Z && b->chart != GB_SURFACE_CHART_POLAR_X) return 0;
+                if (!(b->a_lo < b->a_hi && b->b_lo < b->b_hi && b->a_lo >= 0.0 && b->a_hi <= M_PI &&
+                      b->b_hi - b->b_lo <= 2.0 * M_PI && fabs(b->b_lo) <= 4.0 * M_PI))
+                    return 0;
+                t->looked_up[k] = !inside_band(b); /* recomputed, not read */
             }
         }
         c->state = CELL_CERTIFIED;
@@ -742,6 +750,14 @@ int gb_atlas_load(gb_atlas *A, const char *path)
         if (got == 0) break;
     }
     fclose(f);
+    const int status = gb_atlas_load_buffer(A, data, size, path);
+    free(data);
+    return status;
+}
+
+int gb_atlas_load_buffer(gb_atlas *A, const unsigned char *data, size_t size, const char *name)
+{
+    const char *path = name;
     header want, have;
     header_of(A, &want);
     int ok = size >= sizeof have + sizeof(uint64_t);
@@ -765,7 +781,6 @@ int gb_atlas_load(gb_atlas *A, const char *path)
             why = "its cells do not parse";
         }
     }
-    free(data);
     if (!ok) return gb_error_set(GB_EIO, "atlas file %s is refused: %s", path, why);
     return GB_OK;
 }

@@ -101,6 +101,8 @@ void gb_atlas_cells(const gb_atlas *atlas, gb_atlas_cell_info *out, size_t max, 
  * checksum): the caller then builds anew. */
 int gb_atlas_save(const gb_atlas *atlas, const char *path);
 int gb_atlas_load(gb_atlas *atlas, const char *path);
+/* gb_atlas_load on the bytes of a file already read (`name` for messages). */
+int gb_atlas_load_buffer(gb_atlas *atlas, const unsigned char *data, size_t size, const char *name);
 
 void gb_atlas_get_stats(const gb_atlas *atlas, gb_atlas_stats *out);
 
