@@ -465,14 +465,21 @@ int gb_contact_sensitivity(const gb_surface *surface, const double zb[3],
 int gb_contact_rate(const gb_surface *surface, const double zb[3], const gb_contact_point *contact,
                     const double omega[3], double rc_dot[3], double q_dot[2])
 {
-    double d[3], dq[2][3], zb_dot[3];
+    double d[3], dq[2][3];
     int status = gb_contact_unit_vertical(zb, d);
     if (!status) status = gb_contact_sensitivity(surface, d, contact, dq);
     if (status) return status;
+    gb_contact_rate_from(dq, d, contact, omega, rc_dot, q_dot);
+    return GB_OK;
+}
+
+void gb_contact_rate_from(const double dq_dzb[2][3], const double d[3], const gb_contact_point *contact,
+                          const double omega[3], double rc_dot[3], double q_dot[2])
+{
+    double zb_dot[3];
     gb_vec_cross(d, omega, zb_dot); /* ż_b = −ω × z_b = z_b × ω (eq 24) */
-    const double rates[2] = {gb_vec_dot(dq[0], zb_dot), gb_vec_dot(dq[1], zb_dot)};
+    const double rates[2] = {gb_vec_dot(dq_dzb[0], zb_dot), gb_vec_dot(dq_dzb[1], zb_dot)};
     for (int k = 0; k < 3; k++) rc_dot[k] = contact->x_phi[k] * rates[0] + contact->x_theta[k] * rates[1];
     if (q_dot) q_dot[0] = rates[0], q_dot[1] = rates[1];
-    return GB_OK;
 }
 

@@ -1,5 +1,6 @@
 #include "gb_dynamics.h"
 
+#include "gb_contact_internal.h"
 #include "gb_error.h"
 #include "gb_massprops.h"
 #include "gb_vec.h"
@@ -257,7 +258,7 @@ static int contact_at(gb_dynamics *d, double t, const double zb[3], const double
     if (!status && !c->point.is_minimum)
         status = gb_error_set(GB_ENOCONV, "continuous contact lost: Newton from the previous contact ended on a "
                               "point that is not a minimum (eq 35) at z_b = (%g, %g, %g)", zb[0], zb[1], zb[2]);
-    /* ṙ_c (eq 72) = [∂φx ∂θx] ∂(φ, θ)/∂z_b ż_b with ż_b = z_b × ω (eq 24) */
+    /* the sensitivity (eq 70) serves ṙ_c (eq 72) and the next start */
     if (!status && !same) {
         status = gb_contact_sensitivity(&d->surface, unit, &c->point, d->last_dq);
         d->last_valid = !status;
@@ -266,10 +267,7 @@ static int contact_at(gb_dynamics *d, double t, const double zb[3], const double
         d->last_point = c->point;
     }
     if (status) return status;
-    double zb_dot[3];
-    gb_vec_cross(unit, omega, zb_dot);
-    const double rates[2] = {gb_vec_dot(d->last_dq[0], zb_dot), gb_vec_dot(d->last_dq[1], zb_dot)};
-    for (int k = 0; k < 3; k++) c->rc_dot[k] = c->point.x_phi[k] * rates[0] + c->point.x_theta[k] * rates[1];
+    gb_contact_rate_from(d->last_dq, unit, &c->point, omega, c->rc_dot, NULL);
     for (int k = 0; k < 3; k++) c->rc[k] = l * c->point.rc[k], c->rc_dot[k] *= l;
     c->index = 0;
     return GB_OK;

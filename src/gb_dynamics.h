@@ -62,7 +62,7 @@ typedef struct gb_dynamics_def {
     gb_contact_grid_def grid;      /* the grid of the grid models (Table 1: 90 × 180) */
     gb_certify_def certify;        /* continuous contact: the certificate of the global minimum */
     gb_dynamics_certificate certificate; /* continuous contact: per vertical (default) or atlas */
-    gb_atlas_def atlas;            /* certificate = atlas: its cells */
+    gb_atlas_def atlas;            /* certificate = atlas: its cells (its height_tol is certify's) */
     const char *atlas_file;        /* certificate = atlas: load the atlas from here when the file matches the
                                     * body (else build it), and gb_dynamics_save_atlas writes it (NULL: none) */
     gb_dynamics_lowest_node grid_lowest; /* contact = grid: this search instead of brute force (NULL) */

@@ -18,15 +18,16 @@ static void phase_one(double phi, double theta, gb_phase_value *v)
 
 /* Morphology II: χ₂ = θ − (3π/2)(cos φ − cos³φ/3) (eq 9); ∂φχ₂ = (3π/2) sin³φ, which is eq 19's
  * −(3π/2)(cos²φ sin φ − sin φ) simplified; ∂φφχ₂ = (9π/2) sin²φ cos φ. */
-static void phase_two(double phi, double theta, gb_phase_value *v)
+static void phase_two_at(double theta, double s, double c, gb_phase_value *v)
 {
-    const double c = cos(phi), s = sin(phi);
     v->chi = theta - 1.5 * M_PI * (c - c * c * c / 3.0);
     v->chi_phi = 1.5 * M_PI * s * s * s;
     v->chi_theta = 1.0;
     v->chi_phiphi = 4.5 * M_PI * s * s * c;
     v->chi_phitheta = v->chi_thetatheta = 0.0;
 }
+
+static void phase_two(double phi, double theta, gb_phase_value *v) { phase_two_at(theta, sin(phi), cos(phi), v); }
 
 /* The same with sin χ and cos χ from the sines and cosines of φ and θ, for gb_surface_eval: one
  * sincos of φ and one of θ serve u, the kernel and (for I) χ, by cos χ = cos θ cos f + sin θ sin f and
@@ -46,14 +47,9 @@ static void phase_two_eval(double phi, double theta, double sp, double cp, doubl
                            double *sin_chi, double *cos_chi)
 {
     (void)phi;
-    const double f = 1.5 * M_PI * (cp - cp * cp * cp / 3.0);
-    v->chi = theta - f;
-    v->chi_phi = 1.5 * M_PI * sp * sp * sp;
-    v->chi_theta = 1.0;
-    v->chi_phiphi = 4.5 * M_PI * sp * sp * cp;
-    v->chi_phitheta = v->chi_thetatheta = 0.0;
+    phase_two_at(theta, sp, cp, v);
     double sf, cf;
-    sincos(f, &sf, &cf);
+    sincos(1.5 * M_PI * (cp - cp * cp * cp / 3.0), &sf, &cf); /* f, as phase_two_at subtracts it from θ */
     *cos_chi = ct * cf + st * sf;
     *sin_chi = st * cf - ct * sf;
 }
