@@ -1,4 +1,5 @@
 #include "gb_melnikov.h"
+#include "gb_melnikov_internal.h"
 
 #include "gb_error.h"
 
@@ -191,6 +192,8 @@ typedef struct path {
     /* t at checkpoints u_r + k·CHECKPOINT (k < known), so that t(u) is a short quadrature from the last */
     double checkpoint[CHECKPOINTS];
     size_t known;
+    double frequency; /* the highest angular frequency of F in t (0: not oscillating) */
+    int pieces;       /* integrate_oscillating goes to pieces at once (gb_melnikov_internal.h) */
 } path;
 
 static void fail(path *P, int status)
@@ -209,17 +212,58 @@ static double momentum(path *P, double q, gb_melnikov_values *v)
 
 /* QAG (61-point rule); where the integrand has kinks or jumps (contact ties) QAG may stall, and QAGS (with
  * extrapolation) takes over. A result whose error estimate meets the tolerance tenfold relaxed is kept. */
+static int quadrature(path *P, gsl_integration_workspace *w, double (*f)(double, void *), double a, double b, double epsabs,
+                      double epsrel, double *result)
+{
+    gsl_function F = {f, P};
+    double error = 0.0;
+    *result = 0.0;
+    int s = gsl_integration_qag(&F, a, b, epsabs, epsrel, WORK, GSL_INTEG_GAUSS61, w, result, &error);
+    if (s != GSL_SUCCESS && s != GSL_EROUND) s = gsl_integration_qags(&F, a, b, epsabs, epsrel, WORK, w, result, &error);
+    if (s != GSL_SUCCESS && s != GSL_EROUND && !(error <= fmax(10.0 * epsabs, 10.0 * epsrel * fabs(*result))))
+        return gb_error_set(GB_ENUMERIC, "quadrature on [%.6g, %.6g] failed: %s (error estimate %.3g of %.6g)", a, b,
+                            gsl_strerror(s), error, *result);
+    return GB_OK;
+}
+
 static double integrate(path *P, gsl_integration_workspace *w, double (*f)(double, void *), double a, double b, double epsabs,
                         double epsrel)
 {
-    gsl_function F = {f, P};
-    double result = 0.0, error = 0.0;
-    int s = gsl_integration_qag(&F, a, b, epsabs, epsrel, WORK, GSL_INTEG_GAUSS61, w, &result, &error);
-    if (s != GSL_SUCCESS && s != GSL_EROUND) s = gsl_integration_qags(&F, a, b, epsabs, epsrel, WORK, w, &result, &error);
-    if (s != GSL_SUCCESS && s != GSL_EROUND && !(error <= fmax(10.0 * epsabs, 10.0 * epsrel * fabs(result))))
-        fail(P, gb_error_set(GB_ENUMERIC, "quadrature on [%.6g, %.6g] failed: %s (error estimate %.3g of %.6g)", a, b,
-                             gsl_strerror(s), error, result));
+    double result;
+    fail(P, quadrature(P, w, f, a, b, epsabs, epsrel, &result));
     return result;
+}
+
+/* An integrand that oscillates as cos(ω t) over more periods than one adaptive quadrature resolves (ω of
+ * thousands of rad/s): the same integral in pieces of at most OSCILLATIONS periods each, `time(x)` the
+ * time at x, each to the whole's tolerances. Tried only where the integral in one
+ * piece failed, so that lower frequencies keep their values bit for bit. */
+enum { OSCILLATIONS = 4 };
+static double integrate_oscillating(path *P, double (*f)(double, void *), double a, double b, double epsabs, double epsrel,
+                                    double (*time)(path *, double))
+{
+    if (!(P->frequency > 0.0) || !P->pieces) {
+        double whole;
+        const int status = quadrature(P, P->outer, f, a, b, epsabs, epsrel, &whole);
+        if (!status || !(P->frequency > 0.0)) {
+            fail(P, status);
+            return whole;
+        }
+        gb_error_clear();
+    }
+    double total = 0.0;
+    const double step = fmin(CHECKPOINT, b - a); /* pieces of t known at the checkpoints */
+    for (double x = a; x < b && !P->status;) {
+        const double y = fmin(x + step, b), span = fabs(time(P, y) - time(P, x));
+        const double pieces = ceil(P->frequency * span / (2.0 * M_PI * OSCILLATIONS));
+        const size_t n = pieces > 1.0 ? (size_t)fmin(pieces, 1e6) : 1;
+        for (size_t k = 0; k < n && !P->status; k++) {
+            const double lo = x + (y - x) * (double)k / (double)n, hi = k + 1 == n ? y : x + (y - x) * (double)(k + 1) / (double)n;
+            total += integrate(P, P->outer, f, lo, hi, epsabs, epsrel);
+        }
+        x = y;
+    }
+    return total;
 }
 
 /* dt/du on a saddle segment: (M/|p|)(q(u)) e^{−u}. */
@@ -333,7 +377,7 @@ static double saddle_segment(path *P, double s, double r, double t_r, int sign_t
 {
     enter_segment(P, s, r, t_r, sign_t);
     const double u_cut = fmax(P->u_r, -log(CUT_RELATIVE * fmax(1.0, fabs(P->base))));
-    const double body = integrate(P, P->outer, saddle_integrand, P->u_r, u_cut, 1e-13, 1e-10);
+    const double body = integrate_oscillating(P, saddle_integrand, P->u_r, u_cut, 1e-13, 1e-10, segment_time);
     tail T = {.P = P, .q = s + P->sigma * exp(-u_cut), .u = u_cut, .t = segment_time(P, u_cut)};
     T.mom = momentum(P, P->base + P->sigma * exp(-u_cut), &T.v);
     if (P->status) return NAN;
@@ -364,12 +408,15 @@ static void path_close(path *P)
     if (P->table) gsl_integration_qaws_table_free(P->table);
 }
 
-/* ∫ over the whole separatrix (t from −∞ to ∞) of w·F dt, w = q̇ or p, as an integral in q. */
+/* ∫ over the whole separatrix (t from −∞ to ∞) of w·F dt, w = q̇ or p, as an integral in q; F oscillates
+ * in t with angular frequencies up to `frequency` (0: it does not). */
 static int path_integral(const gb_melnikov_model *m, const gb_melnikov_orbit *o, gb_melnikov_weight weight,
-                         double (*F)(void *, double, double, double, const gb_melnikov_values *), void *context, double *out)
+                         double (*F)(void *, double, double, double, const gb_melnikov_values *), void *context,
+                         double frequency, int pieces, double *out)
 {
     path P;
     int status = path_open(&P, m, o);
+    P.frequency = frequency, P.pieces = pieces;
     P.F = F, P.context = context, P.weight = weight;
     double total = 0.0;
     if (!status && m->period > 0.0) {
@@ -379,7 +426,7 @@ static int path_integral(const gb_melnikov_model *m, const gb_melnikov_orbit *o,
     } else if (!status) {
         const double mid = 0.5 * (o->q_u + o->q_end), t_mid = return_time(&P, mid);
         total = saddle_segment(&P, o->q_u, mid, t_mid, +1);
-        total += integrate(&P, P.outer, regular_integrand, fmin(mid, o->q_end), fmax(mid, o->q_end), 1e-13, 1e-10);
+        total += integrate_oscillating(&P, regular_integrand, fmin(mid, o->q_end), fmax(mid, o->q_end), 1e-13, 1e-10, return_time);
     }
     status = status ? status : P.status;
     path_close(&P);
@@ -425,8 +472,8 @@ static double harmonic_F(void *context, double q, double p, double t, const gb_m
     }
 }
 
-int gb_melnikov_integrals_compute(const gb_melnikov_model *m, const gb_melnikov_orbit *o, double omega,
-                                  gb_melnikov_weight weight, gb_melnikov_integrals *out)
+static int integrals(const gb_melnikov_model *m, const gb_melnikov_orbit *o, double omega, gb_melnikov_weight weight,
+                     int pieces, gb_melnikov_integrals *out)
 {
     memset(out, 0, sizeof *out);
     out->omega = omega;
@@ -436,12 +483,25 @@ int gb_melnikov_integrals_compute(const gb_melnikov_model *m, const gb_melnikov_
     for (int k = 0; k < 6; k++) {
         /* A loop's cosine integrals vanish by its time symmetry (q_h even, q̇_h odd in t). */
         if (m->period == 0.0 && h[k].kind == 1) continue;
-        const int status = path_integral(m, o, weight, harmonic_F, &h[k], slot[k]);
+        const int oscillates = h[k].kind == 1 || h[k].kind == 2;
+        const int status = path_integral(m, o, weight, harmonic_F, &h[k], oscillates ? h[k].omega : 0.0, pieces, slot[k]);
         if (status) return status;
     }
     out->A1 = hypot(out->C1, out->S1);
     out->A2 = hypot(out->C2, out->S2);
     return GB_OK;
+}
+
+int gb_melnikov_integrals_compute(const gb_melnikov_model *m, const gb_melnikov_orbit *o, double omega,
+                                  gb_melnikov_weight weight, gb_melnikov_integrals *out)
+{
+    return integrals(m, o, omega, weight, 0, out);
+}
+
+int gb_melnikov_integrals_in_pieces(const gb_melnikov_model *m, const gb_melnikov_orbit *o, double omega,
+                                    gb_melnikov_weight weight, gb_melnikov_integrals *out)
+{
+    return integrals(m, o, omega, weight, 1, out);
 }
 
 double gb_melnikov_function(const gb_melnikov_integrals *I, const gb_melnikov_forcing *f, double t0)
@@ -467,7 +527,7 @@ int gb_melnikov_direct(const gb_melnikov_model *m, const gb_melnikov_orbit *o, c
                        gb_melnikov_weight weight, double t0, double *value)
 {
     direct d = {f, t0};
-    return path_integral(m, o, weight, perturbation, &d, value);
+    return path_integral(m, o, weight, perturbation, &d, 2.0 * f->omega, 0, value);
 }
 
 static double damping_term(const gb_melnikov_integrals *I, const gb_melnikov_forcing *f)
