@@ -167,7 +167,7 @@ mpi-only: $(BIN) $(VERIFY_BIN)
 # --- quality gates on bad input and memory; each writes $(OUT)/gates/GATE.json for the report ----------
 GATES := $(OUT)/gates
 
-# The scene reader and the option parser under libFuzzer (clang, with ASan and UBSan), FUZZ_SECONDS
+# The scene reader, the option parser, the atlas file, scan file and scan journal readers under libFuzzer (clang, with ASan and UBSan), FUZZ_SECONDS
 # each, seeded from cases/ and verify/fuzz/options.seeds, with a dictionary of the keys and options.
 # A crash or a broken invariant stops it and leaves build-fuzz/crash-*; add such an input to
 # verify/bad_input.c's table.
@@ -179,8 +179,9 @@ fuzz: deps
 	@sh scripts/install-deps.sh fuzz
 	@$(MAKE) --no-print-directory fuzz-only
 
-fuzz-only: $(FUZZ_DIR)/fuzz-case $(FUZZ_DIR)/fuzz-options $(FUZZ_DIR)/fuzz-atlas
-	@mkdir -p $(FUZZ_DIR)/corpus-case $(FUZZ_DIR)/corpus-options $(FUZZ_DIR)/corpus-atlas
+FUZZ_TARGETS := case options atlas scan journal
+fuzz-only: $(FUZZ_TARGETS:%=$(FUZZ_DIR)/fuzz-%)
+	@mkdir -p $(FUZZ_TARGETS:%=$(FUZZ_DIR)/corpus-%)
 	@n=0; while IFS= read -r line; do n=$$((n+1)); printf '%s' "$$line" | tr ' ' '\000' > $(FUZZ_DIR)/corpus-options/seed-$$n; \
 	  done < verify/fuzz/options.seeds
 	status=0; \
@@ -190,17 +191,17 @@ fuzz-only: $(FUZZ_DIR)/fuzz-case $(FUZZ_DIR)/fuzz-options $(FUZZ_DIR)/fuzz-atlas
 	  -artifact_prefix=$(FUZZ_DIR)/crash-options- $(FUZZ_DIR)/corpus-options > $(FUZZ_DIR)/fuzz-options.log 2>&1 || status=1; \
 	$(FUZZ_DIR)/fuzz-atlas -max_total_time=$(FUZZ_SECONDS) -close_fd_mask=3 \
 	  -artifact_prefix=$(FUZZ_DIR)/crash-atlas- $(FUZZ_DIR)/corpus-atlas > $(FUZZ_DIR)/fuzz-atlas.log 2>&1 || status=1; \
-	runs="$$(grep -h '^Done' $(FUZZ_DIR)/fuzz-case.log $(FUZZ_DIR)/fuzz-options.log $(FUZZ_DIR)/fuzz-atlas.log | tr '\n' ';')"; \
-	tail -n 3 $(FUZZ_DIR)/fuzz-case.log $(FUZZ_DIR)/fuzz-options.log $(FUZZ_DIR)/fuzz-atlas.log; \
-	sh scripts/gate-stamp.sh $(GATES) fuzz $$status "$(FUZZ_SECONDS) s per target (case reader; option parser; atlas file reader): $$runs"; \
+	$(FUZZ_DIR)/fuzz-scan -max_total_time=$(FUZZ_SECONDS) -dict=verify/fuzz/scan.dict -close_fd_mask=3 \
+	  -artifact_prefix=$(FUZZ_DIR)/crash-scan- $(FUZZ_DIR)/corpus-scan cases/scans > $(FUZZ_DIR)/fuzz-scan.log 2>&1 || status=1; \
+	$(FUZZ_DIR)/fuzz-journal -max_total_time=$(FUZZ_SECONDS) -close_fd_mask=3 \
+	  -artifact_prefix=$(FUZZ_DIR)/crash-journal- $(FUZZ_DIR)/corpus-journal > $(FUZZ_DIR)/fuzz-journal.log 2>&1 || status=1; \
+	runs="$$(grep -h '^Done' $(FUZZ_TARGETS:%=$(FUZZ_DIR)/fuzz-%.log) | tr '\n' ';')"; \
+	tail -n 3 $(FUZZ_TARGETS:%=$(FUZZ_DIR)/fuzz-%.log); \
+	sh scripts/gate-stamp.sh $(GATES) fuzz $$status "$(FUZZ_SECONDS) s per target (case reader; option parser; atlas file reader; scan file reader; scan journal reader): $$runs"; \
 	echo "fuzz: $$( [ $$status -eq 0 ] && echo 'no crash' || echo 'FAILED: see build-fuzz/*.log and build-fuzz/crash-*')"; \
 	exit $$status
 
-$(FUZZ_DIR)/fuzz-case: verify/fuzz/fuzz_case.c $(CORE_SRC) $(wildcard src/*.h)
-	@mkdir -p $(FUZZ_DIR)
-	clang $(FUZZ_CFLAGS) -fsanitize=fuzzer $(shell pkg-config --cflags $(PKGS)) -Isrc -o $@ $< $(CORE_SRC) $(CORE_LIBS)
-
-$(FUZZ_DIR)/fuzz-atlas: verify/fuzz/fuzz_atlas.c $(CORE_SRC) $(wildcard src/*.h)
+$(FUZZ_DIR)/fuzz-case $(FUZZ_DIR)/fuzz-atlas $(FUZZ_DIR)/fuzz-scan $(FUZZ_DIR)/fuzz-journal: $(FUZZ_DIR)/fuzz-%: verify/fuzz/fuzz_%.c $(CORE_SRC) $(wildcard src/*.h)
 	@mkdir -p $(FUZZ_DIR)
 	clang $(FUZZ_CFLAGS) -fsanitize=fuzzer $(shell pkg-config --cflags $(PKGS)) -Isrc -o $@ $< $(CORE_SRC) $(CORE_LIBS)
 

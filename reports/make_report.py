@@ -40,7 +40,8 @@ def load_checks(path):
     return document["rows"], document["tests"]
 
 
-GATES = (("fuzz", "make fuzz", "the scene reader and the option parser under libFuzzer with ASan and UBSan"),
+GATES = (("fuzz", "make fuzz", "the scene reader, the option parser and the atlas, scan file and scan journal readers "
+          "under libFuzzer with ASan and UBSan"),
          ("sanitize", "make sanitize", "every check of the harness built with ASan and UBSan"),
          ("valgrind", "make valgrind", "one short scene of each model, shape and contact under memcheck"),
          ("verify-full", "make verify-full", "every check, the long studies (10000-period records) and the ensembles"),
@@ -109,7 +110,9 @@ def gate_lines(out):
     """When each quality gate last ran in this checkout and what it gave (OUT/gates/GATE.json, written by
     scripts/gate-stamp.sh); a gate never run here says so."""
     lines = ["## Quality gates on bad input and memory", "",
-             "`make verify` runs the table of bad inputs (suite 'Bad input, never misread'). The gates below run "
+             "`make verify` runs the table of bad inputs and the rule for every file written (suite 'Bad input, "
+             "never misread': no output is an input, a device or another output; sets are whole or detectably "
+             "mixed; concurrent writers of one atlas; journals verified line by line). The gates below run "
              "apart, by their own targets; this table reads what they last recorded in this checkout.", "",
              "| gate | what it runs | last run (UTC) | commit | result | detail |", "|---|---|---|---|---|---|"]
     for name, target, what in GATES:

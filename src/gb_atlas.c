@@ -1,11 +1,14 @@
 #include "gb_atlas.h"
 
 #include "gb_arena.h"
+#include "gb_file.h"
 #include "gb_certify_internal.h"
 #include "gb_error.h"
 #include "gb_hash.h"
 #include "gb_vec.h"
 
+#include <errno.h>
+#include <math.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -649,26 +652,18 @@ static void put_cell(writer *w, const cell *c)
 
 int gb_atlas_save(const gb_atlas *A, const char *path)
 {
-    char tmp[4096];
-    if (snprintf(tmp, sizeof tmp, "%s.tmp", path) >= (int)sizeof tmp)
-        return gb_error_set(GB_EIO, "atlas file name is too long: %s", path);
-    writer w = {.f = fopen(tmp, "wb"), .hash = GB_HASH_OFFSET};
-    if (!w.f) return gb_error_set(GB_EIO, "cannot write the atlas file %s", tmp);
+    gb_file_set set = {0};
+    int status = GB_OK;
+    writer w = {.f = gb_file_set_open(&set, path, &status), .hash = GB_HASH_OFFSET};
+    if (!w.f) return gb_error_set(status, "cannot write the atlas file: %s", gb_error_message());
     header h;
     header_of(A, &h);
     put(&w, &h, sizeof h);
     for (int f = 0; f < 6; f++) put_cell(&w, &A->faces[f]);
     const uint64_t sum = w.hash;
     if (fwrite(&sum, sizeof sum, 1, w.f) != 1) w.failed = 1;
-    if (fclose(w.f) || w.failed) {
-        remove(tmp);
-        return gb_error_set(GB_EIO, "cannot write the atlas file %s", tmp);
-    }
-    if (rename(tmp, path)) {
-        remove(tmp);
-        return gb_error_set(GB_EIO, "cannot rename the atlas file %s to %s", tmp, path);
-    }
-    return GB_OK;
+    if (w.failed) status = gb_error_set(GB_EIO, "cannot write the atlas file %s: %s", path, strerror(errno ? errno : EIO));
+    return gb_file_set_commit(&set, status);
 }
 
 typedef struct reader {
@@ -728,31 +723,25 @@ static int take_cell(gb_atlas *A, reader *r, cell *c)
     return state == CELL_UNBUILT;
 }
 
+size_t gb_atlas_file_limit(const gb_atlas *A)
+{
+    /* Every cell of every face split down to max_level, each leaf certified with two sites: no file of
+     * these levels is larger; and none beyond GB_ATLAS_FILE_MAX, whatever its levels declare. */
+    double bytes = (double)sizeof(header) + sizeof(uint64_t);
+    for (int level = 0; level <= A->def.max_level && bytes <= (double)GB_ATLAS_FILE_MAX; level++)
+        bytes += 6.0 * pow(4.0, level) * (level < A->def.max_level ? 1.0 : 2.0 + 2.0 * sizeof(site));
+    return bytes < (double)GB_ATLAS_FILE_MAX ? (size_t)bytes : (size_t)GB_ATLAS_FILE_MAX;
+}
+
 int gb_atlas_load(gb_atlas *A, const char *path)
 {
-    FILE *f = fopen(path, "rb");
-    if (!f) return gb_error_set(GB_EIO, "cannot read the atlas file %s", path);
-    unsigned char *data = NULL;
-    size_t size = 0, cap = 0;
-    for (;;) {
-        if (size == cap) {
-            cap = cap ? 2 * cap : (size_t)1 << 16;
-            unsigned char *grown = realloc(data, cap);
-            if (!grown) {
-                free(data);
-                fclose(f);
-                return gb_error_set(GB_ENOMEM, "out of memory reading the atlas file %s", path);
-            }
-            data = grown;
-        }
-        const size_t got = fread(data + size, 1, cap - size, f);
-        size += got;
-        if (got == 0) break;
-    }
-    fclose(f);
-    const int status = gb_atlas_load_buffer(A, data, size, path);
+    char *data;
+    size_t size;
+    const int status = gb_file_read(path, gb_atlas_file_limit(A), "atlas file", "an atlas file this command wrote", &data, &size);
+    if (status) return gb_error_set(GB_EIO, "atlas file refused: %s", gb_error_message());
+    const int parsed = gb_atlas_load_buffer(A, (const unsigned char *)data, size, path);
     free(data);
-    return status;
+    return parsed;
 }
 
 int gb_atlas_load_buffer(gb_atlas *A, const unsigned char *data, size_t size, const char *name)

@@ -96,11 +96,18 @@ int gb_atlas_cell(gb_atlas *atlas, const double zb[3], gb_atlas_cell_info *out);
  * and their number in *count. */
 void gb_atlas_cells(const gb_atlas *atlas, gb_atlas_cell_info *out, size_t max, size_t *count);
 
-/* Save the cells built so far (with those that have no certificate, so that they are not proved again); load a saved atlas (its cells replace the ones held). Load returns
- * GB_EIO for a file that is not an atlas of this body, β, η and build parameters, or is damaged (its
+/* Save the cells built so far (with those that have no certificate, so that they are not proved
+ * again) as a gb_file set of one: a unique temporary renamed into place, so that concurrent writers of
+ * one file never cost each other their outputs (the last complete one wins). Load a saved atlas (its
+ * cells replace the ones held): GB_EIO for a file that is not a regular file, is larger than
+ * gb_atlas_file_limit, is not an atlas of this body, β, η and build parameters, or is damaged (its
  * checksum): the caller then builds anew. */
 int gb_atlas_save(const gb_atlas *atlas, const char *path);
 int gb_atlas_load(gb_atlas *atlas, const char *path);
+/* The largest file an atlas of these levels can be (every cell split down to max_level, every leaf
+ * certified with two sites), and never more than GB_ATLAS_FILE_MAX: a larger file is refused unread. */
+#define GB_ATLAS_FILE_MAX ((size_t)64 << 20)
+size_t gb_atlas_file_limit(const gb_atlas *atlas);
 /* gb_atlas_load on the bytes of a file already read (`name` for messages). */
 int gb_atlas_load_buffer(gb_atlas *atlas, const unsigned char *data, size_t size, const char *name);
 

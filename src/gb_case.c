@@ -3,6 +3,7 @@
 #include "gb_case.h"
 
 #include "gb_error.h"
+#include "gb_file.h"
 #include "gb_ini.h"
 #include "gb_parse.h"
 
@@ -162,6 +163,14 @@ static void range_text(const key_def *k, char *out, size_t size)
     const char *what = k->kind == KEY_VECTOR ? "each component" : k->name;
     snprintf(out, size, "%.15g %s %s %s %.15g%s%s", k->min, k->open & OPEN_MIN ? "<" : "<=", what,
              k->open & OPEN_MAX ? "<" : "<=", k->max, k->units && k->units[0] ? " " : "", k->units ? k->units : "");
+}
+
+int gb_case_key_numeric(const char *section, const char *name)
+{
+    for (size_t k = 0; k < KEY_TOTAL; k++)
+        if (!strcmp(keys[k].section, section) && !strcmp(keys[k].name, name))
+            return keys[k].kind == KEY_REAL || keys[k].kind == KEY_ANGLE || keys[k].kind == KEY_COUNT;
+    return -1;
 }
 
 int gb_case_key_allowed(size_t index, const char **section, const char **name, char *allowed, size_t size)
@@ -498,7 +507,7 @@ int gb_case_load_with(const char *path, const gb_case_override *overrides, size_
 {
     char *text;
     size_t size;
-    int status = gb_ini_slurp(path, GB_CASE_FILE_MAX, "case file", "a scene file, see cases/README.md", &text, &size);
+    int status = gb_file_read(path, GB_CASE_FILE_MAX, "case file", "a scene file, see cases/README.md", &text, &size);
     if (status) return status;
     status = gb_case_load_text_with(path, text, size, overrides, count, out);
     free(text);

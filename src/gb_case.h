@@ -78,6 +78,8 @@ int gb_case_load_text_with(const char *name, const char *text, size_t size, cons
  * leaves no library message behind (gb_error_message() is cleared). */
 size_t gb_case_key_count(void);
 int gb_case_key_allowed(size_t index, const char **section, const char **name, char *allowed, size_t size);
+/* Does [section] name take one number (a real, an angle, a count)? 1, 0, or -1 for no such key. */
+int gb_case_key_numeric(const char *section, const char *name);
 
 /* The [lyapunov] section against the run (gb_case_load does this when [diagnostics] lyapunov = yes;
  * `gomboc lyapunov` asks for it whatever the flag): sets lyapunov_def.interval [s] and .intervals and

@@ -5,14 +5,17 @@
 #include <stdio.h>
 #include <string.h>
 
-static _Thread_local char error_message[1024];
+static _Thread_local char error_message[GB_ERROR_MAX];
 
 int gb_error_set(int code, const char *fmt, ...)
 {
+    /* Formatted apart first: the arguments may hold the last message itself (a message wrapped in context). */
+    char text[GB_ERROR_MAX];
     va_list args;
     va_start(args, fmt);
-    vsnprintf(error_message, sizeof error_message, fmt, args);
+    vsnprintf(text, sizeof text, fmt, args);
     va_end(args);
+    memcpy(error_message, text, strlen(text) + 1);
     return code;
 }
 

@@ -16,8 +16,12 @@ enum gb_status {
     GB_ENUMERIC = 6  /* a GSL or Qhull routine reported failure */
 };
 
+/* The longest message kept, in bytes: room for two paths of PATH_MAX and the text around them. */
+#define GB_ERROR_MAX 16384
+
 /* Record a message (printf format) for status `code` and return `code`, so a failing function can
- * end with `return gb_error_set(GB_EDOM, "...")`. */
+ * end with `return gb_error_set(GB_EDOM, "...")`. The arguments may include gb_error_message(), to
+ * wrap the last message in its context. */
 int gb_error_set(int code, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 
 /* The message of the most recent failure in this thread ("" if none). */

@@ -24,11 +24,6 @@ typedef int (*gb_ini_handler)(gb_ini_reader *reader, void *user, const char *sec
 int gb_ini_read(const char *name, const char *text, size_t size, const char *const *sections, size_t count,
                 gb_ini_handler handler, void *user);
 
-/* Read the regular file `path` of at most `max_bytes` into *text (malloc'd, NUL-terminated), *size.
- * Messages call it "the NOUN" ("case file") and say what is allowed ("a scene file, see …"). */
-int gb_ini_slurp(const char *path, size_t max_bytes, const char *noun, const char *allowed, char **text,
-                 size_t *size);
-
 /* From a handler: record the error of the current line (printf-formatted, without file and line);
  * returns 0, what the handler returns. Only the first error of a file is kept. */
 int gb_ini_fail(gb_ini_reader *reader, const char *fmt, ...) __attribute__((format(printf, 2, 3)));

@@ -3,6 +3,7 @@
 #include "gb_hash.h"
 
 #include "gb_error.h"
+#include "gb_file.h"
 #include "gb_ini.h"
 #include "gb_melnikov_body.h"
 #include "gb_parse.h"
@@ -27,6 +28,14 @@ static const struct {
                     {GB_SCAN_MELNIKOV, "melnikov"}};
 enum { METRIC_COUNT = sizeof metric_names / sizeof metric_names[0] };
 #define METRIC_LIST "omega_rms, switch_rate, strobe_sd, mean_height, monitors, lambda, melnikov, or all"
+
+size_t gb_scan_metric_names(unsigned metrics, const char **names, size_t max)
+{
+    size_t n = 0;
+    for (int k = 0; k < METRIC_COUNT; k++)
+        if ((metrics & metric_names[k].bit) && n < max) names[n++] = metric_names[k].name;
+    return n;
+}
 
 /* ---- the scan file ----------------------------------------------------------------------------- */
 
@@ -115,6 +124,14 @@ static int axis_key(gb_ini_reader *ini, const char *s, const char *value, gb_sca
                                "[model], [integrator] other than periods, [initial], [strobe] phase, [spectrum] or "
                                "[lyapunov] delta0, warmup_intervals, batches, omega_scale)", s, value);
     }
+    /* A key the scan sets to numbers (or, on a random axis, to attitudes). */
+    const int numeric = gb_case_key_numeric(a->section, a->key);
+    if (numeric < 0)
+        return gb_ini_fail(ini, "[%s] key = %s: not a scene key (allowed: SECTION.KEY of cases/README.md, e.g. forcing.omega)",
+                           s, value);
+    if (!numeric && strcmp(value, "initial.attitude"))
+        return gb_ini_fail(ini, "[%s] key = %s: not a key that takes one number (allowed: a numeric key such as forcing.omega, "
+                           "or initial.attitude with scale = random)", s, value);
     a->line = gb_ini_line(ini);
     return 1;
 }
@@ -227,7 +244,7 @@ void gb_scan_free(gb_scan *scan)
     scan->base_text = NULL;
 }
 
-int gb_scan_load(const char *path, gb_scan *out)
+int gb_scan_parse(const char *path, const char *text, size_t size, gb_scan *out)
 {
     memset(out, 0, sizeof *out);
     if (strlen(path) >= sizeof out->path) return gb_error_set(GB_EINVAL, "%s: the path is too long", path);
@@ -235,15 +252,9 @@ int gb_scan_load(const char *path, gb_scan *out)
     out->periods = 100.0;
     out->transient_periods = 20;
     out->metrics = GB_SCAN_METRICS_DEFAULT;
-    for (int k = 0; k < 2; k++) out->axis[k].count = 0;
-    char *text;
-    size_t size;
-    int status = gb_ini_slurp(path, GB_SCAN_FILE_MAX, "scan file", "a scan file, see cases/README.md", &text, &size);
-    if (status) return status;
     scan_reader r = {.scan = out};
-    status = gb_ini_read(path, text, size, scan_sections, 3, scan_handler, &r);
+    int status = gb_ini_read(path, text, size, scan_sections, 3, scan_handler, &r);
     out->fingerprint = gb_hash_add(GB_HASH_OFFSET, text, size);
-    free(text);
     if (status) return status;
     /* What every scan must say. */
     static const char *const required[3][2] = {{"scan", "base"}, {"x", "key"}, {"y", "key"}};
@@ -275,6 +286,9 @@ int gb_scan_load(const char *path, gb_scan *out)
     if (!strcmp(out->axis[0].section, out->axis[1].section) && !strcmp(out->axis[0].key, out->axis[1].key))
         return gb_error_set(GB_EINVAL, "%s:%d: [y] key = %s.%s: the same key as [x] (allowed: two different keys)", path,
                             out->axis[1].line, out->axis[1].section, out->axis[1].key);
+    if (out->axis[0].count > GB_SCAN_POINTS_MAX / out->axis[1].count)
+        return gb_error_set(GB_EINVAL, "%s:%d: [y] count = %zu: %zu x %zu points (allowed: at most %d points in all)", path,
+                            r.seen[2][3], out->axis[1].count, out->axis[0].count, out->axis[1].count, GB_SCAN_POINTS_MAX);
     if (!((double)out->transient_periods + 1.0 <= out->periods))
         return gb_error_set(GB_EINVAL, "%s:%d: [scan] transient_periods = %zu leaves less than one period (allowed: <= "
                             "periods - 1 = %g)", path, r.seen[0][3], out->transient_periods, out->periods - 1.0);
@@ -290,9 +304,24 @@ int gb_scan_load(const char *path, gb_scan *out)
             return gb_error_set(GB_EINVAL, "%s:%d: [scan] base: the path is too long", path, r.seen[0][1]);
         memcpy(out->base, joined, length + 1);
     }
-    status = gb_ini_slurp(out->base, GB_CASE_FILE_MAX, "case file", "a scene file, see cases/README.md", &out->base_text,
-                          &out->base_size);
+    out->base_line = r.seen[0][1];
+    return GB_OK;
+}
+
+int gb_scan_load(const char *path, gb_scan *out)
+{
+    char *text;
+    size_t size;
+    memset(out, 0, sizeof *out);
+    int status = gb_file_read(path, GB_SCAN_FILE_MAX, "scan file", "a scan file, see cases/README.md", &text, &size);
     if (status) return status;
+    status = gb_scan_parse(path, text, size, out);
+    free(text);
+    if (status) return status;
+    status = gb_file_read(out->base, GB_CASE_FILE_MAX, "case file", "a scene file, see cases/README.md", &out->base_text,
+                          &out->base_size);
+    if (status)
+        return gb_error_set(status, "%s:%d: [scan] base = %s: %s", path, out->base_line, out->base, gb_error_message());
     out->fingerprint = gb_hash_add(out->fingerprint, out->base_text, out->base_size);
     /* Every point's scene, before any run. */
     gb_case scene;
@@ -636,5 +665,113 @@ int gb_scan_csv_parse(const char *line, size_t *index, gb_scan_metrics *out)
     if (end != p + 16 || (*end != '\n' && *end != '\0')) return GB_EINVAL;
     *index = (size_t)i;
     *out = m;
+    return GB_OK;
+}
+
+/* ---- the journal --------------------------------------------------------------------------------- */
+
+void gb_scan_journal_header(const gb_scan *scan, uint64_t binary, char *out, size_t size)
+{
+    snprintf(out, size, "gomboc scan journal 2: scan %016" PRIx64 ", binary %016" PRIx64 ", %zu points\n", scan->fingerprint,
+             binary, gb_scan_points(scan));
+}
+
+/* The checksum of a row: FNV-1a 64 of the header and the row (without its '\n'). */
+static uint64_t row_checksum(const char *header, const char *row, size_t length)
+{
+    return gb_hash_add(gb_hash_add(GB_HASH_OFFSET, header, strlen(header)), row, length);
+}
+
+int gb_scan_journal_line(const char *header, const char *row, char *out, size_t size)
+{
+    const size_t length = strcspn(row, "\n");
+    const int n = snprintf(out, size, "%.*s,%016" PRIx64 "\n", (int)length, row, row_checksum(header, row, length));
+    return n > 0 && (size_t)n < size ? GB_OK : gb_error_set(GB_EINVAL, "a journal line does not fit %zu bytes", size);
+}
+
+/* A journal's first line as it may be quoted: printable ASCII, at most 100 characters. */
+static void quoted(const char *text, size_t length, char *out, size_t size)
+{
+    size_t n = 0;
+    for (size_t k = 0; k < length && n + 4 < size && k < 100; k++)
+        out[n++] = text[k] >= 0x20 && text[k] < 0x7f ? text[k] : '?';
+    if (length > 100 && n + 4 < size) memcpy(out + n, "...", 3), n += 3;
+    out[n] = '\0';
+}
+
+/* One complete line (without its '\n') of the journal: GB_OK with the point in *index and *m, or
+ * GB_EINVAL with the reason. */
+static int journal_row(const gb_scan *scan, const char *header, const char *line, size_t length, size_t *index,
+                       gb_scan_metrics *m)
+{
+    if (memchr(line, '\0', length)) return gb_error_set(GB_EINVAL, "a NUL byte");
+    if (length > GB_SCAN_JOURNAL_LINE_MAX) return gb_error_set(GB_EINVAL, "%zu bytes long", length);
+    char row[GB_SCAN_JOURNAL_LINE_MAX + 2];
+    if (length < 18 || line[length - 17] != ',') return gb_error_set(GB_EINVAL, "no checksum at its end");
+    const size_t row_length = length - 17;
+    char *end;
+    char sum_text[17];
+    memcpy(sum_text, line + row_length + 1, 16);
+    sum_text[16] = '\0';
+    const uint64_t sum = strtoull(sum_text, &end, 16);
+    if (end != sum_text + 16 || sum != row_checksum(header, line, row_length))
+        return gb_error_set(GB_EINVAL, "its checksum does not match its values (edited or damaged)");
+    memcpy(row, line, row_length);
+    row[row_length] = '\n', row[row_length + 1] = '\0';
+    if (gb_scan_csv_parse(row, index, m)) return gb_error_set(GB_EINVAL, "not a row of this command");
+    if (*index >= gb_scan_points(scan))
+        return gb_error_set(GB_EINVAL, "point %zu of a scan of %zu points", *index, gb_scan_points(scan));
+    /* Every value must read back to the same text, and the coordinates must be the point's own. */
+    double x, y;
+    gb_scan_coordinates(scan, *index, &x, &y);
+    m->x = x, m->y = y;
+    char again[GB_SCAN_JOURNAL_LINE_MAX + 2];
+    if (gb_scan_csv_row(m, *index, again, sizeof again) || strcmp(again, row))
+        return gb_error_set(GB_EINVAL, "its values do not read back to the same row (the coordinates of point %zu are x = "
+                            "%.17g, y = %.17g)", *index, x, y);
+    return GB_OK;
+}
+
+int gb_scan_journal_read(const gb_scan *scan, const char *name, const char *header, const char *text, size_t size,
+                         gb_scan_metrics *results, unsigned char *done, size_t *count, size_t *keep)
+{
+    static const char *const allowed = "(allowed: a journal this command wrote for this scan file, base scene and binary; "
+                                       "remove it to start again)";
+    *count = 0, *keep = 0;
+    const char *newline = memchr(text, '\n', size);
+    const size_t header_length = strlen(header);
+    if (!newline) return gb_error_set(GB_EINVAL, "%s: %s %s", name, size ? "an incomplete first line" : "empty", allowed);
+    if ((size_t)(newline - text) + 1 != header_length || memcmp(text, header, header_length)) {
+        char have[128], want[128];
+        quoted(text, (size_t)(newline - text), have, sizeof have);
+        quoted(header, header_length - 1, want, sizeof want);
+        return gb_error_set(GB_EINVAL, "%s:1: not this scan's journal (its header: '%s'; this scan and binary: '%s') %s", name,
+                            have, want, allowed);
+    }
+    size_t at = header_length;
+    int number = 1;
+    while (at < size) {
+        number++;
+        const char *line = text + at, *end = memchr(line, '\n', size - at);
+        if (!end) break; /* a half-written last line: dropped */
+        const size_t length = (size_t)(end - line);
+        size_t index;
+        gb_scan_metrics m;
+        if (journal_row(scan, header, line, length, &index, &m))
+            return gb_error_set(GB_EINVAL, "%s:%d: %s %s", name, number, gb_error_message(), allowed);
+        if (done[index]) {
+            char first[GB_SCAN_JOURNAL_LINE_MAX + 2], again[GB_SCAN_JOURNAL_LINE_MAX + 2];
+            gb_scan_csv_row(&results[index], index, first, sizeof first);
+            gb_scan_csv_row(&m, index, again, sizeof again);
+            if (strcmp(first, again))
+                return gb_error_set(GB_EINVAL, "%s:%d: point %zu a second time, with other values %s", name, number, index,
+                                    allowed);
+        } else {
+            results[index] = m, done[index] = 1;
+            ++*count;
+        }
+        at += length + 1;
+    }
+    *keep = at;
     return GB_OK;
 }

@@ -17,6 +17,7 @@
 
 #define GB_SCAN_FILE_MAX (64 * 1024)
 #define GB_SCAN_AXIS_MAX 10000
+#define GB_SCAN_POINTS_MAX 1000000 /* points in all: a scan's results are held in memory */
 #define GB_SCAN_PATH_MAX 4096
 
 /* linear: from … to; pi: from … to times π; random: `count` attitudes drawn uniformly on the rotations
@@ -46,6 +47,9 @@ enum {
     GB_SCAN_METRICS_DEFAULT = GB_SCAN_METRICS_ALL & ~(GB_SCAN_LAMBDA | GB_SCAN_MELNIKOV)
 };
 
+/* The names of the metrics in `metrics` (as a scan file writes them), in the CSV's order: their number. */
+size_t gb_scan_metric_names(unsigned metrics, const char **names, size_t max);
+
 typedef struct gb_scan {
     char path[GB_SCAN_PATH_MAX];       /* the scan file */
     char description[GB_CASE_TEXT_MAX];
@@ -55,6 +59,7 @@ typedef struct gb_scan {
     size_t transient_periods;          /* metrics from this period on */
     unsigned metrics;                  /* GB_SCAN_* */
     uint64_t fingerprint;              /* FNV-1a of the scan file's and the base scene's bytes */
+    int base_line;                     /* the scan file's line of `base`, for messages */
     char *base_text;                   /* the base scene as read once (every point starts from it) */
     size_t base_size;
 } gb_scan;
@@ -63,6 +68,10 @@ typedef struct gb_scan {
  * found before any run). GB_EINVAL / GB_EDOM with "FILE:LINE: [section] key = value: reason (allowed:
  * ...)". On success the scan holds the base scene's text: gb_scan_free. */
 int gb_scan_load(const char *path, gb_scan *out);
+
+/* The scan file's text alone (`path` for messages; the base scene is neither read nor checked): what
+ * gb_scan_load does before it reads the base scene. For the fuzzer. */
+int gb_scan_parse(const char *path, const char *text, size_t size, gb_scan *out);
 
 void gb_scan_free(gb_scan *scan);
 
@@ -146,5 +155,21 @@ const char *gb_scan_csv_header(void);
 int gb_scan_csv_row(const gb_scan_metrics *m, size_t index, char *out, size_t size);
 /* Parse a row written by gb_scan_csv_row (a journal line): 0, or GB_EINVAL. */
 int gb_scan_csv_parse(const char *line, size_t *index, gb_scan_metrics *out);
+
+/* ---- the journal of an interrupted scan ----
+ * Its first line names the scan (the fingerprint of the scan file and base scene), the binary and the
+ * number of points; each further line is one finished point: its CSV row (gb_scan_csv_row) and the
+ * FNV-1a 64 checksum of the header and the row. A journal is verified, never trusted: every line must
+ * carry its checksum, read back to the same row, hold the point's own coordinates, and name a point of
+ * the scan; a point twice must be the same twice. Only a half-written last line (no '\n') may go. */
+#define GB_SCAN_JOURNAL_LINE_MAX 1200
+void gb_scan_journal_header(const gb_scan *scan, uint64_t binary, char *out, size_t size);
+/* The journal line of a CSV row. */
+int gb_scan_journal_line(const char *header, const char *row, char *out, size_t size);
+/* Read a journal's bytes (`name` for messages) into results/done (each of gb_scan_points entries,
+ * done zeroed by the caller): GB_OK with the points read in *count and in *keep the bytes to keep
+ * (all but a half-written last line), or GB_EINVAL naming the line and what is wrong with it. */
+int gb_scan_journal_read(const gb_scan *scan, const char *name, const char *header, const char *text, size_t size,
+                         gb_scan_metrics *results, unsigned char *done, size_t *count, size_t *keep);
 
 #endif

@@ -31,7 +31,18 @@ static const struct {
     const char *name;
     int (*run)(int argc, char **argv);
 } commands[] = {{"shape", command_shape}, {"contact", command_contact}, {"run", command_run}, {"lyapunov", command_lyapunov},
-                {"scan", command_scan}, {"melnikov", command_melnikov}};
+                {"scan", command_scan}, {"melnikov", command_melnikov}, {"check", command_check}};
+
+/* What was printed must have reached standard output (a full disk, a closed pipe). */
+static int stdout_written(const char *command, int status)
+{
+    if (fflush(stdout) != 0 || ferror(stdout)) {
+        fprintf(stderr, "gomboc%s%s: cannot write standard output: %s\n", command ? " " : "", command ? command : "",
+                strerror(errno ? errno : EIO));
+        if (!status) status = EXIT_COMPUTE;
+    }
+    return status;
+}
 
 /* The command (main without the process): the option fuzzer calls it with cli_parse_only set. */
 int gomboc_main(int argc, char **argv)
@@ -43,18 +54,12 @@ int gomboc_main(int argc, char **argv)
     }
     if (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h")) {
         fputs(usage_main, stdout);
-        return 0;
+        return stdout_written(NULL, 0);
     }
     for (size_t k = 0; k < sizeof commands / sizeof commands[0]; k++)
         if (!strcmp(argv[1], commands[k].name)) {
             cli_install_cleanup();
-            int status = commands[k].run(argc - 2, argv + 2);
-            /* What was printed must have reached standard output (a full disk, a closed pipe). */
-            if (fflush(stdout) != 0 || ferror(stdout)) {
-                fprintf(stderr, "gomboc %s: cannot write standard output: %s\n", argv[1], strerror(errno ? errno : EIO));
-                if (!status) status = EXIT_COMPUTE;
-            }
-            return status;
+            return stdout_written(argv[1], commands[k].run(argc - 2, argv + 2));
         }
     fprintf(stderr, "gomboc: unknown command '%s' (allowed:", argv[1]);
     for (size_t k = 0; k < sizeof commands / sizeof commands[0]; k++) fprintf(stderr, "%s %s", k ? "," : "", commands[k].name);

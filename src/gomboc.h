@@ -9,6 +9,7 @@
 #define GOMBOC_H
 
 #include "gb_error.h"
+#include "gb_file.h"
 #include "gb_parse.h"
 #include "gb_surface.h"
 #include "gb_massprops.h"

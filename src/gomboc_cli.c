@@ -1,10 +1,10 @@
 #include "gomboc_cli.h"
 
 #include "gb_error.h"
+#include "gb_file.h"
 #include "gb_parse.h"
 #include "gb_surface.h"
 
-#include <dirent.h>
 #include <errno.h>
 #include <math.h>
 #include <signal.h>
@@ -91,6 +91,14 @@ int cli_next_option(const char *command, int argc, char **argv, int *i, const ch
     const int is_body = body && (!strcmp(opt, "--morphology") || !strcmp(opt, "--beta"));
     if (!is_body && !listed(opt, valued)) return cli_input_error(command, "unknown option '%s'%s", opt, allowed);
     if (*i + 1 >= argc) return cli_input_error(command, "option '%s' needs a value%s", opt, "");
+    /* Given before? The words before it, read as this parser reads them (a valued option takes the next). */
+    for (int j = 0; j < *i; j++) {
+        const int takes = listed(argv[j], valued) || (body && (!strcmp(argv[j], "--morphology") || !strcmp(argv[j], "--beta")));
+        if (takes && !strcmp(argv[j], opt))
+            return cli_input_error(command, "option '%s' is given twice ('%s', then '%s') (allowed: each option once)", opt,
+                                   argv[j + 1], argv[*i + 1]);
+        j += takes;
+    }
     *value = argv[++*i];
     if (!is_body) return CLI_VALUE;
     return body_option(command, opt, *value, body) == 0 ? CLI_NEXT : EXIT_INPUT;
@@ -105,17 +113,11 @@ int cli_body_required(const char *command, const cli_body *body)
     if (!body->have_beta) return cli_input_error(command, "missing %s%s", "--beta", " (allowed: 0 <= beta < 0.25)");
     return 0;
 }
-/* ---- output files: checked before the work, written all or nothing ------------------------------ */
-
-/* The temporaries of this process, for the signal handler: set before the count grows. */
-enum { TEMP_MAX = 16 };
-static char *volatile temp_paths[TEMP_MAX];
-static volatile sig_atomic_t temp_count;
+/* ---- files: gb_file's rule, with the command's name on its messages ------------------------------ */
 
 static void remove_temporaries(int sig)
 {
-    for (sig_atomic_t k = 0; k < temp_count; k++)
-        if (temp_paths[k]) unlink(temp_paths[k]);
+    gb_file_remove_temporaries();
     signal(sig, SIG_DFL);
     raise(sig);
 }
@@ -126,157 +128,33 @@ void cli_install_cleanup(void)
     for (size_t k = 0; k < sizeof signals / sizeof signals[0]; k++) signal(signals[k], remove_temporaries);
 }
 
-static void temp_forget(const char *path)
+int cli_files_check(const char *command, const gb_file_use *uses, size_t count)
 {
-    for (sig_atomic_t k = 0; k < temp_count; k++)
-        if (temp_paths[k] == path) temp_paths[k] = NULL;
-}
-
-/* The directory part of `path` ("." when it has none), malloc'd. */
-static char *directory_of(const char *path)
-{
-    const char *slash = strrchr(path, '/');
-    if (!slash) return strdup(".");
-    if (slash == path) return strdup("/");
-    return strndup(path, (size_t)(slash - path));
-}
-
-/* Remove the temporaries ".gomboc-PID-XXXXXX" that a process no longer alive left in `dir`. */
-static void sweep_stale_temporaries(const char *dir)
-{
-    DIR *d = opendir(dir);
-    if (!d) return;
-    for (struct dirent *e; (e = readdir(d));) {
-        long pid;
-        char tail[8];
-        int used = 0;
-        if (sscanf(e->d_name, ".gomboc-%ld-%6[A-Za-z0-9]%n", &pid, tail, &used) != 2 || e->d_name[used] != '\0' ||
-            strlen(tail) != 6 || pid <= 0 || pid == (long)getpid())
-            continue;
-        if (kill((pid_t)pid, 0) == 0 || errno != ESRCH) continue; /* alive, or not ours to judge */
-        char *path = malloc(strlen(dir) + strlen(e->d_name) + 2);
-        if (!path) break;
-        sprintf(path, "%s/%s", dir, e->d_name);
-        struct stat st;
-        if (lstat(path, &st) == 0 && S_ISREG(st.st_mode)) unlink(path);
-        free(path);
-    }
-    closedir(d);
+    if (gb_file_check(uses, count)) return cli_input_error(command, "%s", gb_error_message());
+    return 0;
 }
 
 int cli_output_dir_check(const char *command, const char *option, const char *dir)
 {
-    struct stat st;
-    if (stat(dir, &st) != 0)
-        return cli_input_error(command, "%s '%s' does not exist%s", option, dir, " (allowed: an existing, writable directory)");
-    if (!S_ISDIR(st.st_mode))
-        return cli_input_error(command, "%s '%s' is not a directory%s", option, dir, " (allowed: an existing, writable directory)");
-    if (access(dir, W_OK | X_OK) != 0)
-        return cli_input_error(command, "%s '%s' is not writable%s", option, dir, " (allowed: an existing, writable directory)");
+    if (gb_file_check_directory(dir, option)) return cli_input_error(command, "%s", gb_error_message());
     return 0;
 }
 
-int cli_output_check(const char *command, const char *option, const char *path)
+void cli_manifest_add(cJSON *list, const gb_file_member *member)
 {
-    static const char *const allowed = " (allowed: a new or regular file in an existing, writable directory)";
-    if (!path[0]) return cli_input_error(command, "%s '%s' is empty%s", option, path, allowed);
-    char *dir = directory_of(path);
-    if (!dir) return cli_input_error(command, "%s '%s': out of memory", option, path);
-    struct stat st;
-    int status = 0;
-    if (stat(dir, &st) != 0 || !S_ISDIR(st.st_mode))
-        status = cli_input_error(command, "%s '%s': its directory does not exist%s", option, path, allowed);
-    else if (access(dir, W_OK | X_OK) != 0)
-        status = cli_input_error(command, "%s '%s': its directory is not writable%s", option, path, allowed);
-    else if (lstat(path, &st) == 0 && !S_ISREG(st.st_mode))
-        status = cli_input_error(command, "%s '%s' exists and is not a regular file (a directory, link or device)%s",
-                                 option, path, allowed);
-    free(dir);
-    return status;
-}
-
-FILE *cli_outputs_open(cli_outputs *set, const char *path, int *status)
-{
-    if (*status) return NULL;
-    /* A slot for the signal handler: one a committed set has freed, or a new one. */
-    sig_atomic_t slot = 0;
-    while (slot < temp_count && temp_paths[slot]) slot++;
-    if (set->count == CLI_OUTPUTS_MAX || slot == TEMP_MAX) {
-        *status = gb_error_set(GB_ENOMEM, "too many output files at once (at most %d)", CLI_OUTPUTS_MAX);
-        return NULL;
-    }
-    cli_output *o = &set->items[set->count];
-    memset(o, 0, sizeof *o);
-    char *dir = directory_of(path);
-    o->path = strdup(path);
-    o->tmp = dir ? malloc(strlen(dir) + 40) : NULL;
-    if (!dir || !o->path || !o->tmp) {
-        free(dir), free(o->path), free(o->tmp);
-        *status = gb_error_set(GB_ENOMEM, "out of memory for the output '%s'", path);
-        return NULL;
-    }
-    sweep_stale_temporaries(dir);
-    sprintf(o->tmp, "%s/.gomboc-%ld-XXXXXX", dir, (long)getpid());
-    free(dir);
-    const int fd = mkstemp(o->tmp);
-    if (fd >= 0) {
-        temp_paths[slot] = o->tmp;
-        if (slot == temp_count) temp_count = temp_count + 1;
-        const mode_t mask = umask(0);
-        umask(mask);
-        fchmod(fd, 0666 & ~mask); /* what fopen would have made */
-        o->file = fdopen(fd, "w");
-        if (!o->file) close(fd), unlink(o->tmp);
-    }
-    if (!o->file) {
-        *status = gb_error_set(GB_EIO, "cannot write '%s': %s", path, strerror(errno));
-        temp_forget(o->tmp);
-        free(o->path), free(o->tmp);
-        return NULL;
-    }
-    set->count++;
-    return o->file;
-}
-
-int cli_outputs_commit(cli_outputs *set, int status)
-{
-    for (int k = 0; k < set->count; k++) {
-        cli_output *o = &set->items[k];
-        if (o->file && (ferror(o->file) | fclose(o->file)) && !status)
-            status = gb_error_set(GB_EIO, "cannot write '%s': %s", o->path, strerror(errno ? errno : EIO));
-        o->file = NULL;
-    }
-    int renamed = 0; /* items[0 .. renamed) are in place */
-    for (; !status && renamed < set->count; renamed++) {
-        cli_output *o = &set->items[renamed];
-        struct stat st;
-        if (lstat(o->path, &st) == 0 && !S_ISREG(st.st_mode)) /* appeared during the run */
-            status = gb_error_set(GB_EIO, "cannot write '%s': it is no longer a regular file", o->path);
-        else if (rename(o->tmp, o->path) != 0)
-            status = gb_error_set(GB_EIO, "cannot write '%s': %s", o->path, strerror(errno));
-        if (status) break;
-    }
-    for (int k = 0; k < set->count; k++) {
-        cli_output *o = &set->items[k];
-        if (status) {
-            unlink(o->tmp);
-            if (k < renamed) unlink(o->path); /* the set would be mixed */
-        }
-        temp_forget(o->tmp);
-        free(o->path);
-        free(o->tmp);
-    }
-    set->count = 0;
-    return status;
+    const char *slash = strrchr(member->path, '/');
+    char checksum[17];
+    snprintf(checksum, sizeof checksum, "%016llx", (unsigned long long)member->checksum);
+    cJSON *o = cJSON_CreateObject();
+    cJSON_AddStringToObject(o, "name", slash ? slash + 1 : member->path);
+    cli_json_add(o, "bytes", (double)member->bytes);
+    cJSON_AddStringToObject(o, "fnv1a64", checksum);
+    cJSON_AddItemToArray(list, o);
 }
 
 int cli_write_atomically(const char *path, const char *text)
 {
-    cli_outputs set = {0};
-    int status = GB_OK;
-    FILE *f = cli_outputs_open(&set, path, &status);
-    if (f && fputs(text, f) < 0) status = gb_error_set(GB_EIO, "cannot write '%s': %s", path, strerror(errno));
-    return cli_outputs_commit(&set, status);
+    return gb_file_write_atomically(path, text, strlen(text));
 }
 
 int cli_failure(const char *command, int status)

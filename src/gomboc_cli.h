@@ -4,6 +4,7 @@
 #define GOMBOC_CLI_H
 
 #include "gb_case.h"
+#include "gb_file.h"
 #include "gb_lyapunov.h"
 
 #include <cjson/cJSON.h>
@@ -54,36 +55,22 @@ int cli_positional(const char *command, const char *opt, const char **slot, cons
 /* After parsing: both given? Returns 0 or EXIT_INPUT after printing an error. */
 int cli_body_required(const char *command, const cli_body *body);
 
-/* Output files. Before any work, a command checks each target: cli_output_check (its directory exists
- * and is writable; an existing target is a regular file, never a link, a directory or a device) and
- * cli_output_dir_check (--out DIR). Both print the error and return EXIT_INPUT, or 0.
- * The files themselves are written as one set: each to a temporary ".gomboc-PID-XXXXXX" beside it,
- * renamed into place only when the whole set is written (cli_outputs_commit with status GB_OK), and
- * otherwise removed, with any file of the set already renamed. Temporaries are removed on SIGINT,
- * SIGTERM and SIGHUP (cli_install_cleanup); those of a process killed outright are removed by the next
- * command that writes to the same directory. */
-int cli_output_check(const char *command, const char *option, const char *path);
+/* Files. Before any work, a command lists every path it reads and writes (gb_file_use) and checks
+ * them by gb_file's one rule (cli_files_check), and --out DIR by cli_output_dir_check: both print the
+ * error, naming the option, and return EXIT_INPUT, or 0. Outputs are then written as gb_file sets.
+ * cli_install_cleanup removes this process's temporaries on SIGINT, SIGTERM and SIGHUP. */
+int cli_files_check(const char *command, const gb_file_use *uses, size_t count);
+int cli_output_dir_check(const char *command, const char *option, const char *dir);
 /* "DIR/NAME-suffix", NAME the input file's base name without ".ini" (malloc'd; NULL when out of memory). */
 char *cli_output_name(const char *dir, const char *input, const char *suffix);
-int cli_output_dir_check(const char *command, const char *option, const char *dir);
 void cli_install_cleanup(void);
 
-enum { CLI_OUTPUTS_MAX = 8 };
-typedef struct cli_output {
-    char *path, *tmp;
-    FILE *file;
-} cli_output;
-typedef struct cli_outputs {
-    cli_output items[CLI_OUTPUTS_MAX];
-    int count;
-} cli_outputs;
+/* A sealed member of a set as a manifest entry {name (its base name), bytes, fnv1a64 (16 hex digits)},
+ * appended to `list`. The manifest (a run's summary, a scan's JSON) is the set's last member. */
+void cli_manifest_add(cJSON *list, const gb_file_member *member);
 
-/* A new member of the set, open for writing (NULL with *status set on failure; does nothing when
- * *status is already non-zero). */
-FILE *cli_outputs_open(cli_outputs *set, const char *path, int *status);
-/* Close every member; with status GB_OK rename them all into place, otherwise (or when a close or a
- * rename fails) remove them all. Returns the final status. */
-int cli_outputs_commit(cli_outputs *set, int status);
+/* The suffixes of the files `gomboc run` may write beside NAME-summary.json (NULL-terminated). */
+extern const char *const cli_run_suffixes[];
 
 /* Write `text` to `path` as a set of one. gb_ status. */
 int cli_write_atomically(const char *path, const char *text);
@@ -111,5 +98,6 @@ int command_contact(int argc, char **argv);
 int command_run(int argc, char **argv);
 int command_scan(int argc, char **argv);
 int command_melnikov(int argc, char **argv);
+int command_check(int argc, char **argv);
 
 #endif

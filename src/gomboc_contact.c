@@ -163,10 +163,8 @@ int command_contact(int argc, char **argv)
         gb_contact_model_parse(NULL, &method); /* its message lists the models */
         return cli_input_error("contact", "missing --method %s", cli_allowed());
     }
-    if ((landscape && cli_output_check("contact", "--landscape", landscape)) || (zoom && cli_output_check("contact", "--zoom", zoom)))
-        return EXIT_INPUT;
-    if (landscape && zoom && !strcmp(landscape, zoom))
-        return cli_input_error("contact", "--zoom '%s' is also the --landscape file%s", zoom, " (allowed: two different files)");
+    const gb_file_use uses[] = {{landscape, "--landscape", GB_FILE_OUTPUT}, {zoom, "--zoom", GB_FILE_OUTPUT}};
+    if (cli_files_check("contact", uses, 2)) return EXIT_INPUT;
     if (cli_parse_only) return 0;
 
     gb_surface surface;
@@ -196,16 +194,16 @@ int command_contact(int argc, char **argv)
         theta = method == GB_CONTACT_MODEL_CONTINUOUS ? contact->theta : node.theta;
     }
     /* The two files are one set: both are written, or neither. */
-    cli_outputs files = {0};
+    gb_file_set files = {0};
     if (landscape) {
-        FILE *f = cli_outputs_open(&files, landscape, &status);
+        FILE *f = gb_file_set_open(&files, landscape, &status);
         if (f) status = write_landscape(grid ? grid : seeds, unit, f);
     }
     if (zoom) {
-        FILE *f = cli_outputs_open(&files, zoom, &status);
+        FILE *f = gb_file_set_open(&files, zoom, &status);
         if (f) status = write_zoom(&surface, unit, phi, theta, zoom_halfwidth, f);
     }
-    status = cli_outputs_commit(&files, status);
+    status = gb_file_set_commit(&files, status);
     if (status) {
         gb_contact_grid_free(grid);
         gb_contact_grid_free(seeds);

@@ -87,11 +87,16 @@ int command_melnikov(int argc, char **argv)
     }
     if (!case_path) return cli_input_error("melnikov", "missing %s%s", "CASE", " (allowed: a scene file, e.g. cases/table1-gomboc-I.ini)");
     double points = 13;
-    if (points_text && cli_number("melnikov", "--curve-points", points_text, 2, 1000, 0, "an integer from 2 to 1000", &points))
+    if (points_text && !curve)
+        return cli_input_error("melnikov", "--curve-points %s without --curve (allowed: --curve-points with --curve FILE)",
+                               points_text);
+    if (points_text && cli_number("melnikov", "--curve-points", points_text, 2, 1000, 0,
+                                  " (allowed: an integer from 2 to 1000)", &points))
         return EXIT_INPUT;
     if (points != floor(points))
         return cli_input_error("melnikov", "--curve-points %s: not an integer (allowed: an integer from 2 to 1000)", points_text);
-    if (curve && cli_output_check("melnikov", "--curve", curve)) return EXIT_INPUT;
+    const gb_file_use uses[] = {{case_path, "CASE", GB_FILE_INPUT}, {curve, "--curve", GB_FILE_OUTPUT}};
+    if (cli_files_check("melnikov", uses, 2)) return EXIT_INPUT;
     gb_case scene;
     int status = gb_case_load(case_path, &scene);
     if (status) return cli_failure("melnikov", status);
@@ -121,9 +126,9 @@ int command_melnikov(int argc, char **argv)
     }
     cJSON *root = NULL;
     FILE *csv = NULL;
-    cli_outputs set = {0};
+    gb_file_set set = {0};
     if (!status && curve) {
-        csv = cli_outputs_open(&set, curve, &status);
+        csv = gb_file_set_open(&set, curve, &status);
         if (csv && fputs("omega,threshold_A1_eq93,threshold_A1_exact,D,A1_star,A2_star\n", csv) < 0) status = GB_EIO;
         for (int k = 0; !status && k < (int)points; k++) {
             const double omega = F->omega * (2.0 / 3.0 + (2.0 / 3.0) * k / (points - 1.0));
@@ -135,7 +140,7 @@ int command_melnikov(int argc, char **argv)
         }
         if (status == GB_EIO) status = gb_error_set(GB_EIO, "cannot write '%s'", curve);
     }
-    status = cli_outputs_commit(&set, status);
+    status = gb_file_set_commit(&set, status);
     gb_melnikov_body_info info;
     gb_melnikov_body_get_info(body, &info);
     if (!status) {
@@ -186,6 +191,10 @@ int command_melnikov(int argc, char **argv)
     gb_melnikov_body_free(body);
     if (status) {
         cJSON_Delete(root);
+        if (status == GB_ENUMERIC) /* the integrals at the scene's frequency, or at one of the curve's */
+            return cli_failure("melnikov", gb_error_set(status, "%s: [forcing] omega = %.17g%s: the reduced model's integrals: %s",
+                                                        case_path, F->omega, curve ? " (and the curve around it)" : "",
+                                                        gb_error_message()));
         return cli_failure("melnikov", status);
     }
     if (json) cli_print_json(root);

@@ -97,16 +97,17 @@ static cJSON *scene_json(const gb_case *c)
     return o;
 }
 
-/* The files a run may write. They are one set (cli_outputs): renamed into place together when the whole
- * run succeeded, removed otherwise; then the files of this name that this run did not write (left by an
- * earlier run of another scene of the same name) are removed, so that what stands beside the summary is
- * this run's. */
+/* The files a run may write. They are one gb_file set: renamed into place, the summary last, when the
+ * whole run succeeded, removed otherwise; then the files of this name that this run did not write (left
+ * by an earlier run of another scene of the same name) are removed. The summary lists every other file
+ * of the set with its size and checksum, so that a set mixed by a kill between two renames is found
+ * by `gomboc check`. */
 enum { OUT_HISTORY, OUT_STROBE, OUT_SPECTRUM, OUT_LYAPUNOV, OUT_WINDOWS, OUT_SUMMARY, OUT_COUNT };
-static const char *const out_suffix[OUT_COUNT] = {"history.csv", "strobe.csv", "spectrum.csv", "lyapunov.csv",
-                                                  "lyapunov-windows.csv", "summary.json"};
+const char *const cli_run_suffixes[OUT_COUNT + 1] = {"history.csv",  "strobe.csv",           "spectrum.csv",
+                                                     "lyapunov.csv", "lyapunov-windows.csv", "summary.json", NULL};
 
 typedef struct run_outputs {
-    cli_outputs set;
+    gb_file_set set;
     const char *dir, *case_path;
     int written[OUT_COUNT];
 } run_outputs;
@@ -114,13 +115,13 @@ typedef struct run_outputs {
 static FILE *stage_open(run_outputs *out, int which, int *status)
 {
     if (*status) return NULL;
-    char *path = cli_output_name(out->dir, out->case_path, out_suffix[which]);
+    char *path = cli_output_name(out->dir, out->case_path, cli_run_suffixes[which]);
     if (!path) {
         *status = gb_error_set(GB_ENOMEM, "out of memory for an output name");
         return NULL;
     }
-    FILE *file = cli_outputs_open(&out->set, path, status);
-    if (file) out->written[which] = 1;
+    FILE *file = gb_file_set_open(&out->set, path, status);
+    if (file) out->written[which] = out->set.count; /* its place in the set, from 1 */
     free(path);
     return file;
 }
@@ -128,24 +129,55 @@ static FILE *stage_open(run_outputs *out, int which, int *status)
 /* The error of a failed write to member `which`. */
 static int stage_error(const run_outputs *out, int which)
 {
-    char *path = cli_output_name(out->dir, out->case_path, out_suffix[which]);
-    const int status = gb_error_set(GB_EIO, "cannot write '%s': %s", path ? path : out_suffix[which], strerror(errno));
+    char *path = cli_output_name(out->dir, out->case_path, cli_run_suffixes[which]);
+    const int status = gb_error_set(GB_EIO, "cannot write '%s': %s", path ? path : cli_run_suffixes[which], strerror(errno));
     free(path);
     return status;
 }
 
 static int stage_commit(run_outputs *out, int status)
 {
-    status = cli_outputs_commit(&out->set, status);
+    status = gb_file_set_commit(&out->set, status);
     for (int k = 0; !status && k < OUT_COUNT; k++) {
         if (out->written[k]) continue;
-        char *path = cli_output_name(out->dir, out->case_path, out_suffix[k]);
+        char *path = cli_output_name(out->dir, out->case_path, cli_run_suffixes[k]);
         struct stat st;
         if (path && lstat(path, &st) == 0 && S_ISREG(st.st_mode) && unlink(path) != 0)
             status = gb_error_set(GB_EIO, "cannot remove the stale '%s': %s", path, strerror(errno));
         free(path);
     }
     return status;
+}
+
+/* Does the scene ask for output `which`? */
+static int asks_for(const gb_case *scene, int which)
+{
+    switch (which) {
+    case OUT_HISTORY: return scene->write_history;
+    case OUT_STROBE: return scene->strobe;
+    case OUT_SPECTRUM: return scene->spectrum;
+    case OUT_LYAPUNOV: return scene->lyapunov;
+    case OUT_WINDOWS: return scene->lyapunov && scene->lyapunov_window_periods;
+    default: return scene->write_summary;
+    }
+}
+
+/* Every file of the run by the rule of gb_file, before the run: the scene file, the outputs it asks
+ * for, the atlas (read, then written back). */
+static int check_files(const gb_case *scene, const char *case_path, const char *dir, const char *atlas)
+{
+    gb_file_use uses[OUT_COUNT + 2] = {{case_path, "CASE", GB_FILE_INPUT}, {atlas, "--atlas", GB_FILE_INPUT | GB_FILE_OUTPUT}};
+    char *names[OUT_COUNT] = {NULL};
+    int bad = 0;
+    for (int k = 0; k < OUT_COUNT; k++) {
+        if (!asks_for(scene, k)) continue;
+        names[k] = cli_output_name(dir, case_path, cli_run_suffixes[k]);
+        if (!names[k]) bad = cli_input_error("run", "out of memory for an output name");
+        uses[2 + k] = (gb_file_use){names[k], "--out", GB_FILE_OUTPUT};
+    }
+    if (!bad) bad = cli_files_check("run", uses, OUT_COUNT + 2);
+    for (int k = 0; k < OUT_COUNT; k++) free(names[k]);
+    return bad;
 }
 
 static int write_strobe(run_outputs *out, const gb_strobe *strobe, double period)
@@ -291,6 +323,7 @@ int command_run(int argc, char **argv)
         return cli_input_error("run", "--atlas %s: %s has no atlas (allowed: a scene with [model] certificate = atlas)",
                                atlas, case_path);
     scene.dynamics.atlas_file = atlas;
+    if (check_files(&scene, case_path, dir, atlas)) return EXIT_INPUT;
     if (cli_parse_only) return 0;
 
     run_outputs files = {.dir = dir, .case_path = case_path};
@@ -389,13 +422,13 @@ int command_run(int argc, char **argv)
             if (w.mean) cJSON_AddItemToObject(l, "windows", windows_json(&scene, &w));
             cJSON_AddItemToObject(root, "lyapunov", l);
         }
-        /* Exactly the files of this run (any other NAME-* output of an earlier run is removed). */
+        /* Exactly the files of this run (any other NAME-* output of an earlier run is removed), each
+         * with its size and checksum: the summary is the set's manifest. */
         cJSON *list = cJSON_AddArrayToObject(root, "files");
-        for (int k = 0; k < OUT_COUNT; k++)
-            if (files.written[k] || (k == OUT_SUMMARY && scene.write_summary)) {
-                char *path = cli_output_name(dir, case_path, out_suffix[k]);
-                if (path) cJSON_AddItemToArray(list, cJSON_CreateString(strrchr(path, '/') + 1));
-                free(path);
+        for (int k = 0; !status && k < OUT_SUMMARY; k++)
+            if (files.written[k]) {
+                status = gb_file_set_seal(&files.set, files.written[k] - 1);
+                if (!status) cli_manifest_add(list, &files.set.member[files.written[k] - 1]);
             }
     }
     char *text = root ? cJSON_Print(root) : NULL;

@@ -65,58 +65,30 @@ typedef struct journal {
     char header[160];
 } journal;
 
-/* Read an existing journal: its header must be this scan's and this binary's; every complete line is
- * a point; an incomplete last line (a kill during a write) is cut off. Returns 0, EXIT_INPUT or
- * EXIT_COMPUTE after printing the error. */
-static int journal_resume(journal *j, gb_scan_metrics *results, unsigned char *done, size_t points, size_t *count)
+/* Read an existing journal and verify it line by line (gb_scan_journal_read); only then open it to
+ * append, cutting a half-written last line. A journal with any other fault is left as it is. Returns
+ * 0, EXIT_INPUT or EXIT_COMPUTE after printing the error. */
+static int journal_resume(journal *j, const gb_scan *scan, gb_scan_metrics *results, unsigned char *done, size_t *count)
 {
-    FILE *f = fopen(j->path, "r+");
-    if (!f) {
-        fprintf(stderr, "gomboc scan: cannot open the journal '%s': %s\n", j->path, strerror(errno));
+    const size_t points = gb_scan_points(scan), limit = strlen(j->header) + 2 * (points + 1) * (GB_SCAN_JOURNAL_LINE_MAX + 1);
+    char *text = NULL;
+    size_t size = 0, keep;
+    if (gb_file_read(j->path, limit, "journal", "a journal this command wrote", &text, &size) ||
+        gb_scan_journal_read(scan, j->path, j->header, text, size, results, done, count, &keep)) {
+        free(text);
+        fprintf(stderr, "gomboc scan: %s\n", gb_error_message());
+        return EXIT_INPUT;
+    }
+    free(text);
+    const int fd = open(j->path, O_WRONLY | O_APPEND | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC);
+    struct stat st;
+    if (fd < 0 || fstat(fd, &st) != 0 || !S_ISREG(st.st_mode) || (size_t)st.st_size != size ||
+        (keep < size && ftruncate(fd, (off_t)keep) != 0) || !(j->file = fdopen(fd, "a"))) {
+        fprintf(stderr, "gomboc scan: cannot append to the journal '%s': %s\n", j->path,
+                fd >= 0 && (size_t)st.st_size != size ? "it changed while it was read" : strerror(errno));
+        if (fd >= 0) close(fd);
         return EXIT_COMPUTE;
     }
-    char line[1024];
-    long good = 0;
-    int status = 0, number = 0;
-    *count = 0;
-    while (!status && fgets(line, sizeof line, f)) {
-        number++;
-        const size_t len = strlen(line);
-        if (len == 0 || line[len - 1] != '\n') break; /* the incomplete last line */
-        if (number == 1) {
-            if (strcmp(line, j->header)) {
-                fprintf(stderr, "gomboc scan: the journal '%s' is not this scan's (its header: %.*s; this scan and binary: "
-                        "%.*s) (allowed: a journal written by this binary for this scan file and base scene; remove it to "
-                        "start again)\n", j->path, (int)len - 1, line, (int)strlen(j->header) - 1, j->header);
-                status = EXIT_INPUT;
-            }
-        } else {
-            size_t index;
-            gb_scan_metrics m;
-            if (gb_scan_csv_parse(line, &index, &m) || index >= points) {
-                fprintf(stderr, "gomboc scan: the journal '%s' line %d is malformed (allowed: lines this command wrote; "
-                        "remove it to start again)\n", j->path, number);
-                status = EXIT_INPUT;
-            } else {
-                if (!done[index]) ++*count;
-                results[index] = m, done[index] = 1;
-            }
-        }
-        if (!status) good = ftell(f);
-    }
-    if (!status && number == 0) {
-        fprintf(stderr, "gomboc scan: the journal '%s' is empty (allowed: a journal this command wrote)\n", j->path);
-        status = EXIT_INPUT;
-    }
-    if (!status && (fflush(f) != 0 || ftruncate(fileno(f), good) != 0 || fseek(f, good, SEEK_SET) != 0)) {
-        fprintf(stderr, "gomboc scan: cannot cut the incomplete last line of '%s': %s\n", j->path, strerror(errno));
-        status = EXIT_COMPUTE;
-    }
-    if (status) {
-        fclose(f);
-        return status;
-    }
-    j->file = f;
     return 0;
 }
 
@@ -148,28 +120,34 @@ static cJSON *axis_json(const gb_scan_axis *a)
     char key[72];
     snprintf(key, sizeof key, "%s.%s", a->section, a->key);
     cJSON_AddStringToObject(o, "key", key);
-    cli_json_add(o, "from", a->from);
-    cli_json_add(o, "to", a->to);
+    static const char *const scales[] = {"linear", "pi", "random"};
+    cJSON_AddStringToObject(o, "scale", scales[a->scale]);
+    if (a->scale == GB_SCAN_RANDOM) {
+        cli_json_add(o, "seed", (double)a->seed); /* the column holds k, the k-th attitude drawn */
+    } else {
+        cli_json_add(o, "from", a->from);
+        cli_json_add(o, "to", a->to);
+    }
     cli_json_add(o, "count", (double)a->count);
-    cJSON_AddStringToObject(o, "scale", a->scale == GB_SCAN_PI ? "pi" : "linear");
     return o;
 }
 
 static int write_outputs(const char *dir, const char *path, const gb_scan *scan, const gb_scan_metrics *results,
                          int ranks, int threads, double seconds, size_t run_here)
 {
-    cli_outputs set = {0};
+    gb_file_set set = {0};
     int status = GB_OK;
     char *csv_path = cli_output_name(dir, path, "scan.csv"), *json_path = cli_output_name(dir, path, "scan.json");
     if (!csv_path || !json_path) status = gb_error_set(GB_ENOMEM, "out of memory for an output name");
-    FILE *csv = cli_outputs_open(&set, csv_path, &status);
+    FILE *csv = gb_file_set_open(&set, csv_path, &status);
     if (csv && fputs(gb_scan_csv_header(), csv) < 0) status = gb_error_set(GB_EIO, "cannot write '%s': %s", csv_path, strerror(errno));
     char row[1024];
     for (size_t k = 0; !status && k < gb_scan_points(scan); k++) {
         status = gb_scan_csv_row(&results[k], k, row, sizeof row);
         if (!status && fputs(row, csv) < 0) status = gb_error_set(GB_EIO, "cannot write '%s': %s", csv_path, strerror(errno));
     }
-    FILE *json = cli_outputs_open(&set, json_path, &status);
+    if (csv && !status) status = gb_file_set_seal(&set, 0);
+    FILE *json = gb_file_set_open(&set, json_path, &status);
     if (json) {
         cJSON *root = cJSON_CreateObject();
         cJSON_AddStringToObject(root, "scan", scan->path);
@@ -180,6 +158,10 @@ static int write_outputs(const char *dir, const char *path, const gb_scan *scan,
         cli_json_add(root, "periods", scan->periods);
         cli_json_add(root, "transient_periods", (double)scan->transient_periods);
         cli_json_add(root, "points", (double)gb_scan_points(scan));
+        const char *names[16];
+        const size_t metric_count = gb_scan_metric_names(scan->metrics, names, 16);
+        cJSON_AddItemToObject(root, "metrics", cJSON_CreateStringArray(names, (int)metric_count));
+        cli_manifest_add(cJSON_AddArrayToObject(root, "files"), &set.member[0]);
         char fp[17];
         snprintf(fp, sizeof fp, "%016" PRIx64, scan->fingerprint);
         cJSON_AddStringToObject(root, "fingerprint", fp);
@@ -206,7 +188,7 @@ static int write_outputs(const char *dir, const char *path, const gb_scan *scan,
         free(text);
         cJSON_Delete(root);
     }
-    status = cli_outputs_commit(&set, status);
+    status = gb_file_set_commit(&set, status);
     free(csv_path);
     free(json_path);
     return status;
@@ -227,7 +209,7 @@ typedef struct scan_state {
     double start, last_report;
     double points_start;          /* when the points began (after the margins' models): the rate's origin */
     int failed, workers_done;
-    char failure[1200];
+    char failure[GB_ERROR_MAX];
 } scan_state;
 
 /* The first failure is the one reported. */
@@ -252,7 +234,9 @@ static void fail_point(scan_state *st, size_t k)
 static void accept_point(scan_state *st, size_t k, const gb_scan_metrics *m, const char *row)
 {
     if (st->failed) return;
-    if (fputs(row, st->j->file) < 0 || fflush(st->j->file) != 0) {
+    char line[GB_SCAN_JOURNAL_LINE_MAX + 2];
+    if (gb_scan_journal_line(st->j->header, row, line, sizeof line) || fputs(line, st->j->file) < 0 ||
+        fflush(st->j->file) != 0) {
         char message[sizeof st->failure];
         snprintf(message, sizeof message, "cannot append to the journal '%s': %s (the points before are kept: --resume "
                  "continues from them)", st->j->path, strerror(errno));
@@ -283,7 +267,7 @@ static int receive_one(scan_state *st, int wait)
     if (wait) MPI_Probe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &status);
     else MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &flag, &status);
     if (!flag) return 0;
-    char text[1200] = "";
+    char text[GB_ERROR_MAX] = "";
     MPI_Recv(text, (int)sizeof text, MPI_CHAR, status.MPI_SOURCE, status.MPI_TAG, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
     text[sizeof text - 1] = '\0';
     if (status.MPI_TAG == TAG_DONE) st->workers_done++;
@@ -457,27 +441,34 @@ static int scan_command(int argc, char **argv, const ranks *r)
     int threads = 0;
     if (threads_text) {
         double n;
-        if (cli_number("scan", "--threads", threads_text, 1, 256, 0, "an integer from 1 to 256", &n)) return EXIT_INPUT;
+        if (cli_number("scan", "--threads", threads_text, 1, 256, 0, " (allowed: an integer from 1 to 256)", &n)) return EXIT_INPUT;
         if (n != floor(n)) return cli_input_error("scan", "--threads %s: not an integer (allowed: an integer from 1 to 256)", threads_text);
         threads = (int)n;
     }
     /* The outputs are rank 0's: only it checks where they go. */
     journal j = {.path = cli_output_name(dir, scan_path, "scan.journal")};
     int bad = !j.path;
-    if (r->rank == 0 && !bad) {
-        char *csv_path = cli_output_name(dir, scan_path, "scan.csv"), *json_path = cli_output_name(dir, scan_path, "scan.json");
-        bad = cli_output_dir_check("scan", "--out", dir) || !csv_path || !json_path ||
-              cli_output_check("scan", "--out", csv_path) || cli_output_check("scan", "--out", json_path) ||
-              cli_output_check("scan", "--out", j.path);
-        free(csv_path);
-        free(json_path);
-    }
+    if (r->rank == 0 && !bad) bad = cli_output_dir_check("scan", "--out", dir);
     if (shared_status(r, bad ? EXIT_INPUT : 0)) {
         free(j.path);
         return EXIT_INPUT;
     }
     gb_scan scan;
     int status = gb_scan_load(scan_path, &scan);
+    if (!status && r->rank == 0) {
+        char *csv_path = cli_output_name(dir, scan_path, "scan.csv"), *json_path = cli_output_name(dir, scan_path, "scan.json");
+        const gb_file_use uses[] = {{scan_path, "SCAN", GB_FILE_INPUT}, {scan.base, "[scan] base", GB_FILE_INPUT},
+                                    {csv_path, "--out", GB_FILE_OUTPUT}, {json_path, "--out", GB_FILE_OUTPUT},
+                                    {j.path, "--out (the journal)", GB_FILE_INPUT | GB_FILE_OUTPUT}};
+        bad = !csv_path || !json_path || cli_files_check("scan", uses, sizeof uses / sizeof uses[0]);
+        free(csv_path);
+        free(json_path);
+    }
+    if (!status && shared_status(r, bad ? EXIT_INPUT : 0)) {
+        gb_scan_free(&scan);
+        free(j.path);
+        return EXIT_INPUT;
+    }
 #ifdef GOMBOC_MPI
     int anywhere = status != 0;
     if (r->size > 1) MPI_Allreduce(MPI_IN_PLACE, &anywhere, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
@@ -508,8 +499,7 @@ static int scan_command(int argc, char **argv, const ranks *r)
         exit_status = EXIT_COMPUTE;
     }
     if (r->rank == 0) {
-        snprintf(j.header, sizeof j.header, "gomboc scan journal 1: scan %016" PRIx64 ", binary %016" PRIx64 ", %zu points\n",
-                 scan.fingerprint, binary_fingerprint(), points);
+        gb_scan_journal_header(&scan, binary_fingerprint(), j.header, sizeof j.header);
         struct stat st;
         const int exists = lstat(j.path, &st) == 0;
         if (!exit_status && exists && !resume) {
@@ -517,7 +507,7 @@ static int scan_command(int argc, char **argv, const ranks *r)
                     "remove it to start again)\n", j.path);
             exit_status = EXIT_INPUT;
         }
-        if (!exit_status) exit_status = exists ? journal_resume(&j, results, done, points, &already) : journal_create(&j);
+        if (!exit_status) exit_status = exists ? journal_resume(&j, &scan, results, done, &already) : journal_create(&j);
     }
 #ifdef GOMBOC_MPI
     if (r->size > 1) { /* every rank learns what is done (or that nothing will be) */
@@ -552,6 +542,14 @@ static int scan_command(int argc, char **argv, const ranks *r)
     if (j.file && fclose(j.file) != 0 && !exit_status) {
         fprintf(stderr, "gomboc scan: cannot close the journal '%s': %s\n", j.path, strerror(errno));
         exit_status = EXIT_COMPUTE;
+    }
+    /* A failed scan keeps the journal only when it holds finished points: one with none would only
+     * stand in the way of the next run. */
+    if (exit_status == EXIT_COMPUTE && j.file && r->rank == 0) {
+        if (st.finished == 0) unlink(j.path);
+        else
+            fprintf(stderr, "gomboc scan: the %zu finished points are kept in '%s': --resume continues from them while the "
+                    "scan file and its base scene are unchanged; remove it to start again\n", st.finished, j.path);
     }
     if (!exit_status && r->rank == 0) {
         status = write_outputs(dir, scan_path, &scan, results, r->size, used_threads, seconds, st.run_here);

@@ -21,6 +21,7 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <sys/sysmacros.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
@@ -88,7 +89,8 @@ static int run_in(const char *dir, const char *command, char *out, size_t cap)
 {
     size_t size = strlen(dir) + strlen(command) + 64;
     char *shell = malloc(size);
-    snprintf(shell, size, "cd '%s' && { %s ; } 2>&1; echo \"@@exit=$?\"", dir, command);
+    /* A command that hangs (a FIFO opened for reading) is ended after 60 s: exit 124 fails its row. */
+    snprintf(shell, size, "cd '%s' && { timeout 60 %s ; } 2>&1; echo \"@@exit=$?\"", dir, command);
     FILE *p = popen(shell, "r");
     free(shell);
     size_t used = 0;
@@ -115,6 +117,7 @@ typedef struct bad_row {
 } bad_row;
 
 #define RUN "run @CASE@ --out @D@"
+#define ATLAS_SCENE "[model]\nequation = rolling\ncontact = continuous\ncertificate = atlas\n[integrator]\nperiods = 1\n"
 #define BYTES(s) s, sizeof(s) - 1
 
 static const bad_row rows[] = {
@@ -205,7 +208,7 @@ static const bad_row rows[] = {
     {"scan @CASE@ --out @D@", "[scan]\nbase = x.ini\ntransient_periods = 100\n[x]\nkey = forcing.omega\nfrom = 10\nto = 20\ncount = 3\n[y]\nkey = forcing.A1\nfrom = 1\nto = 2\ncount = 2\n", 0, 2, {"case.ini:3: [scan] transient_periods = 100 leaves less than one period", "periods - 1 = 99", ""}},
     {"scan @CASE@ --out @D@", "[scan]\nbase = x.ini\n[x]\nkey = forcing.omega\nscale = random\nseed = 1\ncount = 4\n[y]\nkey = forcing.A1\nfrom = 1\nto = 2\ncount = 2\n", 0, 2, {"[x] key = forcing.omega with scale = random", "initial.attitude with scale = random and a seed", ""}},
     {"scan @CASE@ --out @D@", "[scan]\nbase = x.ini\n[x]\nkey = initial.attitude\nscale = random\nfrom = 0\ncount = 4\nseed = 1\n[y]\nkey = forcing.A1\nfrom = 1\nto = 2\ncount = 2\n", 0, 2, {"[x] a random axis takes count and seed, not from or to", "", ""}},
-    {"scan @CASE@ --out @D@ --threads 0", "[scan]\n", 0, 2, {"--threads", "out of range", "an integer from 1 to 256"}},
+    {"scan @CASE@ --out @D@ --threads 0", "[scan]\n", 0, 2, {"--threads '0' is out of range", "(allowed: an integer from 1 to 256)", ""}},
     {"scan @CASE@ --out @D@ --json", "[scan]\n", 0, 2, {"unknown option '--json'", "--out, --resume, --threads", ""}},
     {"scan --out @D@", NULL, 0, 2, {"missing SCAN", "a scan file", ""}},
     /* gomboc melnikov: the reduced model needs a saddle. */
@@ -214,7 +217,7 @@ static const bad_row rows[] = {
     {"melnikov @CASE@ --mass heavy", "[body]\nbeta = 0.1\n", 0, 2, {"--mass heavy: unknown", "allowed: top, variable", ""}},
     {"melnikov @CASE@ --weight p", "[body]\nbeta = 0.1\n", 0, 2, {"--weight p: unknown", "allowed: exact, paper", ""}},
     {"melnikov @CASE@ --damping viscous", "[body]\nbeta = 0.1\n", 0, 2, {"--damping viscous: unknown", "allowed: paper, exact", ""}},
-    {"melnikov @CASE@ --curve-points 1", "[body]\nbeta = 0.1\n", 0, 2, {"--curve-points", "out of range", "an integer from 2 to 1000"}},
+    {"melnikov @CASE@ --curve @D@/c.csv --curve-points 1", "[body]\nbeta = 0.1\n", 0, 2, {"--curve-points '1' is out of range", "(allowed: an integer from 2 to 1000)", ""}},
     {"melnikov @CASE@ --curve @D@/sub", "[body]\nbeta = 0.1\n", 0, 2, {"--curve", "is not a regular file", ""}},
     /* The case file itself, and the output directory. */
     {"run @D@", NULL, 0, 2, {"not a regular file", "allowed: a scene file", ""}},
@@ -244,10 +247,10 @@ static const bad_row rows[] = {
     {"shape --morphology I --beta 0.1 --mass 1e-300", NULL, 0, 2, {"--mass '1e-300' is out of range", "1e-06 <= mass", ""}},
     {"shape --morphology I --beta 0.02 --radial-map @D@/device", NULL, 0, 2, {"--radial-map", "device' exists and is not a regular file", "allowed: a new or regular file"}},
     {"shape --morphology I --beta 0.02 --radial-map @D@/link.csv", NULL, 0, 2, {"--radial-map", "link.csv' exists and is not a regular file", "allowed: a new or regular file"}},
-    {"shape --morphology I --beta 0.02 --radial-map @D@/sub", NULL, 0, 2, {"--radial-map", "sub' exists and is not a regular file", "a directory, link or device"}},
+    {"shape --morphology I --beta 0.02 --radial-map @D@/sub", NULL, 0, 2, {"--radial-map", "sub' exists and is not a regular file", "a directory, link, device or FIFO"}},
     {"shape --morphology I --beta 0.02 --radial-map @D@/missing/map.csv", NULL, 0, 2, {"--radial-map", "its directory does not exist", "in an existing, writable directory"}},
     {"shape --morphology I --beta 0.02 --radial-map ''", NULL, 0, 2, {"--radial-map '' is empty", "allowed: a new or regular file", ""}},
-    {"shape --morphology I --beta 0.02 --json > /dev/full", NULL, 0, 1, {"gomboc shape: cannot write standard output", "No space left on device", ""}},
+    {"shape --morphology I --beta 0.02 --json > @D@/full", NULL, 0, 1, {"gomboc shape: cannot write standard output", "No space left on device", ""}},
     {"contact --morphology I --beta 0.12 --zb 0,0,0 --method grid", NULL, 0, 2, {"--zb '0,0,0' is the zero vector", "not all zero", ""}},
     {"contact --morphology I --beta 0.12 --zb 0,0 --method grid", NULL, 0, 2, {"--zb '0,0' is not three numbers", "X,Y,Z", ""}},
     {"contact --morphology I --beta 0.12 --zb 1,2,nan --method grid", NULL, 0, 2, {"--zb '1,2,nan' is not three numbers", "X,Y,Z", ""}},
@@ -266,7 +269,29 @@ static const bad_row rows[] = {
     {"contact --morphology I --beta 0.12 --zb 0,0,1 --method grid --landscape @D@/A.csv --zoom @D@/missing/B.csv", NULL, 0, 2,
      {"--zoom", "its directory does not exist", "in an existing, writable directory"}},
     {"contact --morphology I --beta 0.12 --zb 0,0,1 --method grid --landscape @D@/A.csv --zoom @D@/A.csv", NULL, 0, 2,
-     {"--zoom", "is also the --landscape file", "two different files"}},
+     {"--zoom", "is also the --landscape file", "not an input or another output of this run"}},
+    /* Bad input, round 2: no output may destroy an input, a device or another run's work. */
+    {"run @CASE@ --atlas @CASE@", ATLAS_SCENE, 0, 2, {"--atlas '", "is also the CASE file", "not an input or another output of this run"}},
+    {"melnikov @CASE@ --curve @CASE@", "[body]\nbeta = 0.1\n", 0, 2, {"--curve '", "is also the CASE file", "not an input"}},
+    {"run @CASE@ --atlas @D@/device", ATLAS_SCENE, 0, 2, {"--atlas '", "device' exists and is not a regular file", "a new or regular file"}},
+    {"run @CASE@ --atlas @D@/fifo", ATLAS_SCENE, 0, 2, {"--atlas '", "fifo' exists and is not a regular file", "FIFO"}},
+    {"run @CASE@ --atlas @D@/link.csv", ATLAS_SCENE, 0, 2, {"--atlas '", "link.csv' exists and is not a regular file", "link"}},
+    {"run @CASE@ --atlas ''", ATLAS_SCENE, 0, 2, {"--atlas '' is empty", "allowed: a new or regular file", ""}},
+    {"run @CASE@ --atlas @D@/sub", ATLAS_SCENE, 0, 2, {"--atlas '", "sub' exists and is not a regular file", "directory"}},
+    {"run @CASE@ --atlas @D@/missing/a.atlas", ATLAS_SCENE, 0, 2, {"--atlas '", "its directory does not exist", "writable directory"}},
+    {"run @CASE@ --out @D@ --out @D@", "[body]\nbeta = 0.1\n", 0, 2, {"option '--out' is given twice", "allowed: each option once", ""}},
+    {"run @CASE@ --atlas @D@/a --atlas @D@/b", ATLAS_SCENE, 0, 2, {"option '--atlas' is given twice", "each option once", ""}},
+    {"melnikov @CASE@ --curve-points 5", "[body]\nbeta = 0.1\n", 0, 2, {"--curve-points 5 without --curve", "allowed: --curve-points with --curve FILE", ""}},
+    {"melnikov @CASE@ --curve @D@/a.csv --curve @D@/b.csv", "[body]\nbeta = 0.1\n", 0, 2, {"option '--curve' is given twice", "", ""}},
+    {"run @D@/fifo", NULL, 0, 2, {"fifo: not a regular file", "allowed: a scene file", ""}},
+    {"scan @D@/fifo --out @D@", NULL, 0, 2, {"fifo: not a regular file", "allowed: a scan file", ""}},
+    {"scan @CASE@ --out @D@", "[scan]\nbase = fifo\n[x]\nkey = forcing.omega\nfrom = 10\nto = 20\ncount = 2\n[y]\nkey = forcing.A1\nfrom = 1\nto = 2\ncount = 2\n", 0, 2,
+     {"case.ini:2: [scan] base = ", "fifo: not a regular file", "allowed: a scene file"}},
+    {"scan @CASE@ --out @D@", "[scan]\nbase = case.ini\n[x]\nkey = scene.description\nfrom = 1\nto = 2\ncount = 2\n", 0, 2,
+     {"case.ini:4: [x] key = scene.description: not a key that takes one number", "allowed: a numeric key", ""}},
+    {"scan @CASE@ --out @D@", "[scan]\nbase = case.ini\n[x]\nkey = forcing.omega\nfrom = 10\nto = 20\ncount = 10000\n[y]\nkey = forcing.A1\nfrom = 1\nto = 2\ncount = 10000\n", 0, 2,
+     {"case.ini:12: [y] count = 10000: 10000 x 10000 points", "allowed: at most 1000000 points in all", ""}},
+    {"--help > @D@/full", NULL, 0, 1, {"gomboc: cannot write standard output", "No space left on device", ""}},
     {"frobnicate", NULL, 0, 2, {"unknown command 'frobnicate'", "allowed: shape, contact, run, lyapunov", ""}},
     {"", NULL, 0, 2, {"usage: gomboc", "", ""}},
 };
@@ -293,10 +318,10 @@ static void write_bytes(const char *path, const char *text, size_t len)
     fclose(f);
 }
 
-/* A fresh row directory: a file of its own, a symbolic link, a subdirectory and a device (for the rows
- * that name them), and the row's scene file. The device is the row's own (a null character device
- * where mknod is allowed, else a FIFO): a binary that replaced it would change the directory, and never
- * a file of the system such as /dev/null. */
+/* A fresh row directory: a file of its own, a symbolic link, a subdirectory, a device, a FIFO and a
+ * full device (for the rows that name them), and the row's scene file. The devices are the row's own (a
+ * null character device where mknod is allowed, else a FIFO; a full one): a binary that replaced one
+ * would change the directory, and never a file of the system such as /dev/null. */
 static void prepare(char *dir, const bad_row *row)
 {
     strcpy(dir, "/tmp/gomboc-bad-XXXXXX");
@@ -310,6 +335,12 @@ static void prepare(char *dir, const bad_row *row)
     mkdir(path, 0755);
     snprintf(path, sizeof path, "%s/device", dir);
     if (mknod(path, S_IFCHR | 0666, makedev(1, 3)) != 0) mkfifo(path, 0666);
+    snprintf(path, sizeof path, "%s/fifo", dir);
+    mkfifo(path, 0666);
+    /* a device that is always full (as /dev/full): where mknod is not allowed, the rows that write to it
+     * fail, and say so by their exit status */
+    snprintf(path, sizeof path, "%s/full", dir);
+    mknod(path, S_IFCHR | 0666, makedev(1, 7));
     if (!row->text) return;
     snprintf(path, sizeof path, "%s/case.ini", dir);
     if (!strcmp(row->text, "@LONG@")) {
@@ -361,6 +392,16 @@ static void test_bad_input_table(void)
     gb_check_true(&cn, total >= 60 && passed == total, "%zu of %zu rows", passed, total);
 }
 
+/* A directory at least `length` characters deep below `dir` (made), its path in `out`. */
+static void deep_directory(const char *dir, size_t length, char *out, size_t cap)
+{
+    snprintf(out, cap, "%s", dir);
+    while (strlen(out) < length && strlen(out) + 52 < cap) {
+        strcat(out, "/ppppppppppppppppppppppppppppppppppppppppppppppppp");
+        mkdir(out, 0755);
+    }
+}
+
 /* Valid input that a strict reader must still accept, and paths of any length. */
 static void test_strict_but_fair(void)
 {
@@ -394,11 +435,7 @@ static void test_strict_but_fair(void)
     char dir[64] = "/tmp/gomboc-long-XXXXXX";
     if (!mkdtemp(dir)) return;
     char deep[1400];
-    snprintf(deep, sizeof deep, "%s", dir);
-    while (strlen(deep) < 1180) {
-        strcat(deep, "/ppppppppppppppppppppppppppppppppppppppppppppppppp");
-        mkdir(deep, 0755);
-    }
+    deep_directory(dir, 1180, deep, sizeof deep);
     char name[300];
     memset(name, 'n', 236);
     strcpy(name + 236, ".ini");
@@ -479,6 +516,180 @@ static void test_temporaries(void)
     remove_tree(dir);
 }
 
+/* ---- the rule for every file written: inputs by identity, output sets, concurrent writers ---------- */
+
+static char *read_all(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f) return NULL;
+    static char text[1 << 20];
+    const size_t n = fread(text, 1, sizeof text - 1, f);
+    fclose(f);
+    text[n] = '\0';
+    return strdup(text);
+}
+
+static int run_here(const char *dir, const char *args, char *out, size_t cap)
+{
+    char command[8192];
+    snprintf(command, sizeof command, "%s %s", binary(), args);
+    return run_in(dir, command, out, cap);
+}
+
+static void test_outputs(void)
+{
+    char dir[64] = "/tmp/gomboc-out-XXXXXX";
+    if (!mkdtemp(dir)) return;
+    char path[512], out[1 << 14];
+    const char *atlas_scene = "[model]\nequation = rolling\ncontact = continuous\ncertificate = atlas\n[integrator]\nperiods = 1\n";
+    snprintf(path, sizeof path, "%s/a.ini", dir);
+    write_bytes(path, atlas_scene, strlen(atlas_scene));
+
+    /* A hard link to the scene is the scene: compared by device and inode, not by name. */
+    char link_path[512];
+    snprintf(link_path, sizeof link_path, "%s/same.atlas", dir);
+    const int linked = link(path, link_path) == 0;
+    char *before = read_all(path);
+    int code = run_here(dir, "run a.ini --atlas same.atlas", out, sizeof out);
+    char *after = read_all(path);
+    gb_check ch = {"-", "-", "gomboc run a.ini --atlas L, L a hard link to a.ini", "exit 2 naming --atlas and CASE, the scene unchanged",
+                   "exact"};
+    gb_check_true(&ch, linked && code == 2 && strstr(out, "--atlas 'same.atlas' is also the CASE file 'a.ini'") && before && after &&
+                       !strcmp(before, after), "exit %d: %.300s", code, out);
+    free(before), free(after);
+    remove(link_path);
+
+    /* An output that exists as a directory is refused before the run: a scene of 10^5 periods would run
+     * for minutes; the refusal comes at once, and nothing is written. */
+    const char *long_scene = "[integrator]\nperiods = 100000\n[model]\ncontact = fast-grid\n";
+    snprintf(path, sizeof path, "%s/long.ini", dir);
+    write_bytes(path, long_scene, strlen(long_scene));
+    snprintf(path, sizeof path, "%s/long-summary.json", dir);
+    mkdir(path, 0755);
+    char *listing = snapshot(dir);
+    const double start = (double)clock() / CLOCKS_PER_SEC;
+    struct timespec t0, t1;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
+    code = run_here(dir, "run long.ini", out, sizeof out);
+    clock_gettime(CLOCK_MONOTONIC, &t1);
+    (void)start;
+    const double seconds = (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
+    char *listing_after = snapshot(dir);
+    gb_check cd = {"-", "-", "gomboc run with a directory where NAME-summary.json goes (a 10^5-period scene)",
+                   "exit 2 naming the output before the run (under 5 s; the run takes minutes), the directory unchanged", "exact"};
+    gb_check_true(&cd, code == 2 && strstr(out, "long-summary.json' exists and is not a regular file") && seconds < 5.0 &&
+                       !strcmp(listing, listing_after), "exit %d after %.2f s: %.300s", code, seconds, out);
+    free(listing), free(listing_after);
+    rmdir(path);
+
+    /* A link planted where an older version put its temporary (FILE.tmp) is never followed. */
+    char victim[512];
+    snprintf(victim, sizeof victim, "%s/victim.txt", dir);
+    write_bytes(victim, "not an atlas\n", 13);
+    snprintf(path, sizeof path, "%s/shared.atlas.tmp", dir);
+    if (symlink("victim.txt", path) != 0) path[0] = '\0';
+    code = run_here(dir, "run a.ini --atlas shared.atlas", out, sizeof out);
+    char *victim_text = read_all(victim);
+    gb_check cl = {"-", "-", "gomboc run --atlas F with a link F.tmp -> victim planted beside it", "exit 0, the victim unchanged",
+                   "exact"};
+    gb_check_true(&cl, path[0] && code == 0 && victim_text && !strcmp(victim_text, "not an atlas\n"), "exit %d: %.300s", code, out);
+    free(victim_text);
+
+    /* Two runs writing one atlas at once, 12 times: every run ends 0 with all its outputs; the atlas
+     * is whole (a run that loads it says loaded). */
+    int failures = 0;
+    for (int trial = 0; trial < 12; trial++) {
+        snprintf(path, sizeof path, "%s/race.atlas", dir);
+        remove(path);
+        char command[1024];
+        snprintf(command, sizeof command,
+                 "mkdir -p o1 o2 && { %s run a.ini --out o1 --atlas race.atlas & %s run a.ini --out o2 --atlas race.atlas & "
+                 "wait %%1; e1=$?; wait %%2; e2=$?; test $e1 -eq 0 -a $e2 -eq 0 -a -f o1/a-summary.json -a -f o2/a-summary.json; }",
+                 binary(), binary());
+        failures += run_in(dir, command, out, sizeof out) != 0;
+    }
+    code = run_here(dir, "run a.ini --atlas race.atlas --json", out, sizeof out);
+    gb_check cr = {"-", "-", "two gomboc run writing one atlas file at once, 12 trials",
+                   "every run exit 0 with its outputs; the atlas left is whole and loads", "exact"};
+    gb_check_true(&cr, failures == 0 && code == 0 && strstr(out, "\"loaded\":\t1"), "%d of 12 trials failed; the reload: exit %d",
+                  failures, code);
+
+    /* An atlas file of 1 GiB (sparse: no disk) is larger than any atlas of the scene's levels: refused
+     * unread, the atlas built anew (the run's memory stays far below the file's size) and written back. */
+    snprintf(path, sizeof path, "%s/huge.atlas", dir);
+    FILE *huge = fopen(path, "wb");
+    const int made = huge && fseek(huge, (1L << 30) - 1, SEEK_SET) == 0 && fputc(0, huge) != EOF;
+    if (huge) fclose(huge);
+    char summary_path[512];
+    snprintf(summary_path, sizeof summary_path, "%s/a-summary.json", dir);
+    remove(summary_path);
+    const pid_t child = fork();
+    if (child == 0) {
+        if (chdir(dir) != 0 || !freopen("/dev/null", "w", stderr)) _exit(127);
+        execl(binary(), "gomboc", "run", "a.ini", "--atlas", "huge.atlas", (char *)NULL);
+        _exit(127);
+    }
+    int wstatus = 0;
+    struct rusage usage;
+    memset(&usage, 0, sizeof usage);
+    code = wait4(child, &wstatus, 0, &usage) == child && WIFEXITED(wstatus) ? WEXITSTATUS(wstatus) : -1;
+    const long kib = usage.ru_maxrss; /* KiB on Linux */
+    char *summary = read_all(summary_path);
+    snprintf(out, sizeof out, "%s", summary ? summary : "");
+    free(summary);
+    struct stat st;
+    gb_check ca = {"-", "-", "gomboc run --atlas F, F a sparse file of 1 GiB", "exit 0, not loaded, the run under 512 MiB, F replaced "
+                   "by the atlas built (under the 64 MiB limit)", "exact"};
+    gb_check_true(&ca, made && code == 0 && strstr(out, "\"loaded\":\t0") && kib > 0 && kib < 512 * 1024 && stat(path, &st) == 0 &&
+                       st.st_size < (64L << 20), "exit %d, max resident %ld KiB, file now %lld bytes", code, kib,
+                  stat(path, &st) == 0 ? (long long)st.st_size : -1LL);
+
+    /* Output sets: the summary lists the others with size and checksum; a set mixed by a kill between
+     * two renames (an older history beside the newer summary) and a stale output are found. */
+    const char *set_scene = "[integrator]\nperiods = 2\nsteps_per_period = 40\n[model]\ncontact = fast-grid\n"
+                            "[diagnostics]\nstrobe = yes\n[strobe]\ntransient_periods = 0\n";
+    snprintf(path, sizeof path, "%s/set.ini", dir);
+    write_bytes(path, set_scene, strlen(set_scene));
+    const int first = run_here(dir, "run set.ini", out, sizeof out);
+    char older[512];
+    snprintf(older, sizeof older, "%s/set-history.csv", dir);
+    char *old_history = read_all(older);
+    const char *longer = "[integrator]\nperiods = 3\nsteps_per_period = 40\n[model]\ncontact = fast-grid\n"
+                         "[diagnostics]\nstrobe = yes\n[strobe]\ntransient_periods = 0\n";
+    write_bytes(path, longer, strlen(longer));
+    const int second = run_here(dir, "run set.ini", out, sizeof out);
+    const int whole = run_here(dir, "check set-summary.json", out, sizeof out);
+    char whole_text[512];
+    snprintf(whole_text, sizeof whole_text, "%.500s", out);
+    if (old_history) write_bytes(older, old_history, strlen(old_history));
+    const int mixed = run_here(dir, "check set-summary.json", out, sizeof out);
+    const int named = strstr(out, "CHANGED set-history.csv") && strstr(out, "ok set-strobe.csv") && strstr(out, "MIXED");
+    snprintf(path, sizeof path, "%s/set-spectrum.csv", dir);
+    write_bytes(path, "stale\n", 6);
+    const int stale = run_here(dir, "check set-summary.json", out, sizeof out);
+    gb_check cs = {"-", "-", "gomboc check on a run's summary: the set whole; an older history put back; a stale output added",
+                   "exit 0; exit 1 naming the history; exit 1 naming the stale file", "exact"};
+    gb_check_true(&cs, first == 0 && second == 0 && whole == 0 && mixed == 1 && named && stale == 1 &&
+                       strstr(out, "NOT IN THE SET set-spectrum.csv"),
+                  "runs %d %d; check: whole %d (%s), mixed %d (named %d), stale %d: %.300s", first, second, whole, whole_text,
+                  mixed, named, stale, out);
+    free(old_history);
+
+    /* An error about a path of 3000 characters quotes it whole. */
+    char deep[4096];
+    deep_directory(dir, 2950, deep, sizeof deep);
+    char args[4600];
+    snprintf(args, sizeof args, "run '%s/missing-scene.ini'", deep);
+    code = run_here(dir, args, out, sizeof out);
+    char whole_path[4200];
+    snprintf(whole_path, sizeof whole_path, "%s/missing-scene.ini: cannot open the case file", deep);
+    gb_check cp = {"-", "-", "gomboc run of a missing scene at a path of about 3000 characters", "exit 2, the path quoted whole",
+                   "exact"};
+    gb_check_true(&cp, code == 2 && strstr(out, whole_path), "exit %d, %zu-character path, message of %zu characters", code,
+                  strlen(deep) + 18, strlen(out));
+    remove_tree(dir);
+}
+
 /* cases/README.md states, for every key, the allowed values the reader enforces, in the same words. */
 static void test_documented_ranges(void)
 {
@@ -509,6 +720,7 @@ int verify_register_bad_input(void)
         {"bad input: every row refused with exit status, key or option, range, and nothing written", test_bad_input_table, NULL},
         {"bad input: strict but fair (valid values accepted, long paths whole)", test_strict_but_fair, NULL},
         {"bad input: temporaries removed after SIGTERM and after a kill -9", test_temporaries, NULL},
+        {"bad input: outputs never an input, checked before the run, written as sets, safe to race", test_outputs, NULL},
         {"bad input: the documented ranges are the enforced ranges", test_documented_ranges, NULL},
         {NULL, NULL, NULL},
     };

@@ -427,7 +427,7 @@ static void test_threads_and_resume(void)
     spill(d.journal, "gomboc scan journal 1: scan 0000000000000000, binary 0000000000000000, 9 points\n");
     const int cm = scan_run(&d, "--resume", out, sizeof out);
     gb_check cj = {"8.3", "-", "--resume with the journal of another scan", "refused (exit 2), the journal kept", "exact"};
-    gb_check_true(&cj, cm == 2 && strstr(out, "is not this scan's") && access(d.journal, F_OK) == 0, "exit %d: %.200s", cm, out);
+    gb_check_true(&cj, cm == 2 && strstr(out, "not this scan's journal") && access(d.journal, F_OK) == 0, "exit %d: %.200s", cm, out);
     remove(d.journal);
     const int first = scan_run(&d, "--threads 1", out, sizeof out); /* a complete run: no journal left */
     /* The header this binary writes, from a run killed at once (the header is written first). */
@@ -441,9 +441,207 @@ static void test_threads_and_resume(void)
     spill(d.journal, bad);
     const int cb = scan_run(&d, "--resume", out, sizeof out);
     gb_check cb2 = {"8.3", "-", "--resume with a malformed journal line", "refused (exit 2) naming the line, the journal kept", "exact"};
-    gb_check_true(&cb2, first == 0 && header[0] && cb == 2 && strstr(out, "line 2 is malformed") && access(d.journal, F_OK) == 0,
+    gb_check_true(&cb2, first == 0 && header[0] && cb == 2 && strstr(out, "map-scan.journal:2: no checksum at its end") &&
+                       access(d.journal, F_OK) == 0,
                   "exit %d: %.200s", cb, out);
     free(one);
+    remove_scan_dir(&d);
+}
+
+/* ---- a journal is verified, never trusted ----------------------------------------------------------- */
+
+/* The journal's lines (the header first) as a NULL-terminated array of malloc'd strings, each with its
+ * '\n'; NULL when there is none. */
+static char **journal_lines(const char *path, size_t *count)
+{
+    char *text = slurp(path);
+    *count = 0;
+    if (!text) return NULL;
+    char **lines = calloc(strlen(text) + 2, sizeof *lines);
+    for (char *p = text; lines && *p;) {
+        char *end = strchr(p, '\n');
+        const size_t n = end ? (size_t)(end - p) + 1 : strlen(p);
+        lines[(*count)++] = strndup(p, n);
+        p += n;
+    }
+    free(text);
+    return lines;
+}
+
+static void free_lines(char **lines)
+{
+    for (size_t k = 0; lines && lines[k]; k++) free(lines[k]);
+    free(lines);
+}
+
+/* A journal made of `lines` with line `which` replaced by `replacement` (or the lines as they are). */
+static int spill_lines(const char *path, char *const *lines, size_t count, size_t which, const char *replacement,
+                       size_t replacement_size)
+{
+    FILE *f = fopen(path, "wb");
+    if (!f) return 1;
+    for (size_t k = 0; k < count; k++) {
+        if (k == which) fwrite(replacement, 1, replacement_size, f);
+        else fputs(lines[k], f);
+    }
+    return fclose(f) != 0;
+}
+
+/* Line `line` (a point's) with its `field`-th comma-separated field replaced by `value`; the checksum
+ * recomputed (as a careful forger would) when `sign`. */
+static void edited_line(const char *header, const char *line, int field, const char *value, int sign, char *out, size_t cap)
+{
+    char row[2048];
+    size_t n = 0;
+    int at = 0;
+    const char *p = line;
+    const size_t body = strlen(line) - 18; /* without ",<16 hex>\n" */
+    while ((size_t)(p - line) < body) {
+        const char *comma = memchr(p, ',', body - (size_t)(p - line));
+        const size_t len = comma ? (size_t)(comma - p) : body - (size_t)(p - line);
+        n += (size_t)snprintf(row + n, sizeof row - n, "%s%.*s", at ? "," : "", (int)(at == field ? strlen(value) : len),
+                              at == field ? value : p);
+        at++;
+        p += len + (comma != NULL);
+        if (!comma) break;
+    }
+    snprintf(row + n, sizeof row - n, "\n");
+    if (sign) gb_scan_journal_line(header, row, out, cap);
+    else snprintf(out, cap, "%.*s%s", (int)(strlen(row) - 1), row, line + body);
+}
+
+static void test_journal_verified(void)
+{
+    scan_dir d;
+    char out[1 << 14];
+    gb_check c = {"8.3", "-", "--resume with a journal edited or damaged in its middle, one way a row",
+                  "refused with exit 2 naming the line and the fault, the journal byte for byte as it was", "exact"};
+    if (make_scan_dir(&d, &c)) return;
+    const int wstatus = killed_scan(&d, 5); /* the header and at least 4 points */
+    size_t count = 0;
+    char **lines = journal_lines(d.journal, &count);
+    if (!WIFSIGNALED(wstatus) || !lines || count < 5 || count >= 1 + SCAN_POINTS) {
+        gb_check_true(&c, 0, "the killed scan left %zu journal lines", count);
+        free_lines(lines);
+        remove_scan_dir(&d);
+        return;
+    }
+    const char *header = lines[0];
+    char nan_line[2048], metric[2048], fingerprint[2048], coordinate[2048], duplicate[2048], too_long[2048];
+    edited_line(header, lines[2], 1, "17", 1, coordinate, sizeof coordinate);       /* x of another point, re-signed */
+    edited_line(header, lines[2], 3, "0.25", 0, metric, sizeof metric);             /* omega_rms edited */
+    edited_line(header, lines[2], 17, "0123456789abcdef", 0, fingerprint, sizeof fingerprint);
+    const char *nan_at = strstr(lines[2], ",nan,");
+    snprintf(nan_line, sizeof nan_line, "%s", lines[2]);
+    if (nan_at) memcpy(nan_line + (nan_at - lines[2]) + 1, "0.5", 3); /* a NaN made a number (none: the row stays, and fails) */
+    edited_line(header, lines[2], 3, "0.25", 1, duplicate, sizeof duplicate); /* line 2's point again, another value, re-signed */
+    memset(too_long, '7', 1500);
+    snprintf(too_long + 1500, sizeof too_long - 1500, "\n");
+    char with_nul[2048];
+    const size_t nul_size = strlen(lines[2]);
+    memcpy(with_nul, lines[2], nul_size);
+    with_nul[5] = '\0';
+    char garbage[256];
+    snprintf(garbage, sizeof garbage, "gomboc scan journal 2: \x1b[31mred\x07 %0180d\n", 7);
+    const struct {
+        const char *what;
+        size_t line;
+        const char *text;
+        size_t size;
+        const char *must;
+    } faults[] = {
+        {"a coordinate edited (x = 17), the checksum recomputed", 2, coordinate, strlen(coordinate), "do not read back to the same row"},
+        {"a metric edited", 2, metric, strlen(metric), "checksum does not match"},
+        {"a NaN made a number", 2, nan_line, strlen(nan_line), "checksum does not match"},
+        {"a fingerprint edited", 2, fingerprint, strlen(fingerprint), "checksum does not match"},
+        {"line 2's point again with another value, re-signed", 3, duplicate, strlen(duplicate), "a second time, with other values"},
+        {"a NUL byte", 2, with_nul, nul_size, "a NUL byte"},
+        {"a line of 1500 bytes", 2, too_long, strlen(too_long), "1500 bytes long"},
+        {"a header with escape and bell characters", 0, garbage, strlen(garbage), "its header: 'gomboc scan journal 2: ?[31mred? 000"},
+    };
+    size_t refused = 0;
+    const size_t total = sizeof faults / sizeof faults[0];
+    char report[4096] = "";
+    for (size_t k = 0; k < total; k++) {
+        spill_lines(d.journal, lines, count, faults[k].line, faults[k].text, faults[k].size);
+        char *before = slurp(d.journal);
+        const int code = scan_run(&d, "--resume --threads 1", out, sizeof out);
+        char *after = slurp(d.journal);
+        char where[64];
+        snprintf(where, sizeof where, "map-scan.journal:%zu: ", faults[k].line + 1);
+        const int ok = code == 2 && strstr(out, faults[k].must) && (faults[k].line == 0 || strstr(out, where)) &&
+                       strstr(out, "remove it to start again") && before && after && !memcmp(before, after, strlen(before)) &&
+                       access(d.csv, F_OK) != 0 && !strchr(out, '\x1b');
+        refused += ok;
+        if (!ok && strlen(report) < 3000)
+            snprintf(report + strlen(report), sizeof report - strlen(report), "[%s: exit %d: %.300s] ", faults[k].what, code, out);
+        free(before), free(after);
+    }
+    gb_check_true(&c, refused == total, "%zu of %zu faults refused as stated%s%s", refused, total, report[0] ? ": " : "", report);
+
+    /* The same point twice with the same values is no fault; a half-written last line is dropped. */
+    FILE *f = fopen(d.journal, "wb");
+    for (size_t k = 0; f && k < count; k++) fputs(lines[k], f);
+    if (f) fputs(lines[2], f), fputs("5,18,", f), fclose(f);
+    const int resumed = scan_run(&d, "--resume --threads 1", out, sizeof out);
+    char *csv = slurp(d.csv);
+    const int whole = scan_run(&d, "--threads 1", out, sizeof out); /* the uninterrupted CSV */
+    char *reference = slurp(d.csv);
+    gb_check ci = {"8.3", "-", "--resume with a point twice, identical, and a half-written last line",
+                   "accepted; the CSV of an uninterrupted run, byte for byte", "exact"};
+    gb_check_true(&ci, resumed == 0 && whole == 0 && csv && reference && !strcmp(csv, reference), "resume exit %d, run exit %d, %s",
+                  resumed, whole, csv && reference && !strcmp(csv, reference) ? "identical" : "different");
+    free(csv), free(reference);
+
+    /* The scan's JSON is the set's manifest and records what the scan was: gomboc check finds it whole. */
+    char json_path[200], args[512];
+    snprintf(json_path, sizeof json_path, "%s/map-scan.json", d.path);
+    snprintf(args, sizeof args, "check '%s'", json_path);
+    const int checked = run(args, out, sizeof out);
+    char *json_text = slurp(json_path);
+    cJSON *root = json_text ? cJSON_Parse(json_text) : NULL;
+    const cJSON *metrics = cJSON_GetObjectItem(root, "metrics");
+    gb_check cm = {"8.3", "-", "a scan's JSON lists its CSV with size and checksum, and the metrics it computed",
+                   "gomboc check exit 0; 7 metrics, omega_rms first, melnikov last", "exact"};
+    gb_check_true(&cm, checked == 0 && cJSON_GetArraySize(metrics) == 7 &&
+                       !strcmp(cJSON_GetArrayItem(metrics, 0)->valuestring, "omega_rms") &&
+                       !strcmp(cJSON_GetArrayItem(metrics, 6)->valuestring, "melnikov"),
+                  "check exit %d: %.200s", checked, out);
+    cJSON_Delete(root);
+    free(json_text);
+    free_lines(lines);
+
+    /* A scan that fails before any point is finished leaves no journal to stand in the way of the next
+     * run (the sphere under continuous contact fails at its chart's pole). */
+    char path[200];
+    snprintf(path, sizeof path, "%s/base.ini", d.path);
+    spill(path, "[body]\nbeta = 0\n[model]\nequation = rolling\ncontact = continuous\n[integrator]\nperiods = 1\n");
+    spill(d.scan, "[scan]\nbase = base.ini\nperiods = 2\ntransient_periods = 1\n[x]\nkey = body.mass\nfrom = 1\nto = 2\n"
+                  "count = 2\n[y]\nkey = forcing.A1\nfrom = 1\nto = 1\ncount = 1\n");
+    const int failed = scan_run(&d, "--threads 1", out, sizeof out);
+    const int again = scan_run(&d, "--threads 1", out, sizeof out);
+    gb_check cf = {"8.3", "-", "a scan whose every point fails, run twice", "exit 1 both times (never 2 for a journal left behind), "
+                   "no journal", "exact"};
+    gb_check_true(&cf, failed == 1 && again == 1 && access(d.journal, F_OK) != 0, "exits %d, %d; journal %s: %.200s", failed, again,
+                  access(d.journal, F_OK) ? "none" : "LEFT", out);
+
+    /* A random axis is recorded as such: its seed and count, no range. */
+    spill(path, "[integrator]\nperiods = 2\n[model]\ncontact = fast-grid\n");
+    spill(d.scan, "[scan]\nbase = base.ini\nperiods = 2\ntransient_periods = 1\nmetrics = omega_rms\n[x]\nkey = initial.attitude\n"
+                  "scale = random\ncount = 2\nseed = 5\n[y]\nkey = forcing.A1\nfrom = 1\nto = 1\ncount = 1\n");
+    const int random_run = scan_run(&d, "--threads 1", out, sizeof out);
+    json_text = slurp(json_path);
+    root = json_text ? cJSON_Parse(json_text) : NULL;
+    const cJSON *x = cJSON_GetObjectItem(root, "x");
+    const cJSON *scale = cJSON_GetObjectItem(x, "scale"), *seed = cJSON_GetObjectItem(x, "seed");
+    gb_check cr = {"8.3", "-", "the JSON of a scan over random attitudes (seed 5, 2 points)",
+                   "x.scale = random, x.seed = 5, x.count = 2, no from or to; metrics = [omega_rms]", "exact"};
+    gb_check_true(&cr, random_run == 0 && cJSON_IsString(scale) && !strcmp(scale->valuestring, "random") && cJSON_IsNumber(seed) &&
+                       seed->valuedouble == 5 && number_at(x, "count", NULL) == 2 && !cJSON_GetObjectItem(x, "from") &&
+                       !cJSON_GetObjectItem(x, "to") && cJSON_GetArraySize(cJSON_GetObjectItem(root, "metrics")) == 1,
+                  "exit %d: %.300s", random_run, json_text ? json_text : out);
+    cJSON_Delete(root);
+    free(json_text);
     remove_scan_dir(&d);
 }
 
@@ -788,6 +986,8 @@ int verify_register_s8_scan(void)
          "a point's Melnikov margins are those of gomboc melnikov, exact under scaling, with or without a plan"},
         {"section 8.3: threads, kill -9 and --resume give the same bytes", test_threads_and_resume,
          "a scan's CSV does not depend on the thread count or on an interruption"},
+        {"section 8.3: a journal is verified line by line, never trusted", test_journal_verified,
+         "a resumed scan takes from its journal only rows it can verify"},
         {"section 8.3: a point out of its key's range is refused before any run", test_point_out_of_range, NULL},
         {"section 8.3: a disk that fills stops the scan, and --resume finishes it", test_disk_full,
          "a scan that cannot write its journal stops, names it, and loses none of the points it wrote"},
