@@ -19,6 +19,7 @@
 #include "gb_atlas.h"
 #include "gb_forcing.h"
 #include "gb_dynamics.h"
+#include "gb_impact.h"
 #include "gb_integrate.h"
 #include "gb_nondim.h"
 #include "gb_strobe.h"

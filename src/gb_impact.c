@@ -1,0 +1,194 @@
+/* gb_impact — Moreau's impact law for a rigid body on a rough plane (gb_impact.h). */
+#include "gb_impact.h"
+
+#include "gb_error.h"
+#include "gb_vec.h"
+
+#include <gsl/gsl_linalg.h>
+#include <math.h>
+#include <string.h>
+
+/* Relative tolerances: a Delassus system solved by SVD keeps about 1e-13 of its scale; the signs of the
+ * law are judged 1e-10 of the impact's own scale beyond that, so that a contact exactly at the edge of
+ * holding (a normal impulse or velocity of rounding size) is not refused. */
+#define SINGULAR_CUT 1e-12
+#define SIGN_TOL 1e-10
+#define RESIDUAL_TOL 1e-9
+
+double gb_impact_energy(const gb_impact_body *body, const double v[3], const double omega[3])
+{
+    double spin = 0.0;
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) spin += omega[i] * body->inertia[i][j] * omega[j];
+    return 0.5 * body->mass * gb_vec_dot(v, v) + 0.5 * spin;
+}
+
+/* The inverse of a symmetric positive definite 3×3 matrix (adjugate over determinant): 0, or 1 when it
+ * is not positive definite. */
+static int invert(const double a[3][3], double out[3][3])
+{
+    const double c00 = a[1][1] * a[2][2] - a[1][2] * a[2][1], c01 = a[1][2] * a[2][0] - a[1][0] * a[2][2],
+                 c02 = a[1][0] * a[2][1] - a[1][1] * a[2][0];
+    const double det = a[0][0] * c00 + a[0][1] * c01 + a[0][2] * c02;
+    if (!(det > 0.0 && a[0][0] > 0.0 && a[0][0] * a[1][1] - a[0][1] * a[1][0] > 0.0)) return 1;
+    out[0][0] = c00 / det, out[1][0] = c01 / det, out[2][0] = c02 / det;
+    out[0][1] = (a[0][2] * a[2][1] - a[0][1] * a[2][2]) / det;
+    out[1][1] = (a[0][0] * a[2][2] - a[0][2] * a[2][0]) / det;
+    out[2][1] = (a[0][1] * a[2][0] - a[0][0] * a[2][1]) / det;
+    out[0][2] = (a[0][1] * a[1][2] - a[0][2] * a[1][1]) / det;
+    out[1][2] = (a[0][2] * a[1][0] - a[0][0] * a[1][2]) / det;
+    out[2][2] = (a[0][0] * a[1][1] - a[0][1] * a[1][0]) / det;
+    return 0;
+}
+
+static void cross_matrix(const double r[3], double out[3][3])
+{
+    const double m[3][3] = {{0.0, -r[2], r[1]}, {r[2], 0.0, -r[0]}, {-r[1], r[0], 0.0}};
+    memcpy(out, m, sizeof m);
+}
+
+/* The velocities after impulses P[k] at the points: v⁺ = v⁻ + ΣP/m, ω⁺ = ω⁻ + I⁻¹ Σ r × P. */
+static void apply(const gb_impact_body *body, const double inv[3][3], const double (*points)[3], int count,
+                  const double (*P)[3], const double v[3], const double omega[3], double v_out[3], double omega_out[3])
+{
+    double total[3] = {0, 0, 0}, moment[3] = {0, 0, 0};
+    for (int k = 0; k < count; k++) {
+        double m[3];
+        gb_vec_cross(points[k], P[k], m);
+        for (int i = 0; i < 3; i++) total[i] += P[k][i], moment[i] += m[i];
+    }
+    for (int i = 0; i < 3; i++) {
+        v_out[i] = v[i] + total[i] / body->mass;
+        omega_out[i] = omega[i] + inv[i][0] * moment[0] + inv[i][1] * moment[1] + inv[i][2] * moment[2];
+    }
+}
+
+static void point_velocity(const double v[3], const double omega[3], const double r[3], double u[3])
+{
+    double w[3];
+    gb_vec_cross(omega, r, w);
+    for (int i = 0; i < 3; i++) u[i] = v[i] + w[i];
+}
+
+/* The impulses at the held contacts (mask) that give them the velocity target[k]: the Delassus system
+ * W P = target − u⁻, W_kj = I/m − [r_k]× I⁻¹ [r_j]×, by SVD (minimum norm where W is singular). 0, or 1
+ * when the system has no solution (its residual exceeds RESIDUAL_TOL of its scale). */
+static int held_impulses(const gb_impact_body *body, const double inv[3][3], const double (*points)[3], int count,
+                         unsigned mask, const double (*rhs)[3], double (*P)[3])
+{
+    int held[GB_IMPACT_CONTACTS_MAX], n = 0;
+    for (int k = 0; k < count; k++)
+        if (mask & (1u << k)) held[n++] = k;
+    const size_t size = (size_t)(3 * n);
+    double a[9 * GB_IMPACT_CONTACTS_MAX * GB_IMPACT_CONTACTS_MAX], w_copy[9 * GB_IMPACT_CONTACTS_MAX * GB_IMPACT_CONTACTS_MAX];
+    double v_data[9 * GB_IMPACT_CONTACTS_MAX * GB_IMPACT_CONTACTS_MAX], s_data[3 * GB_IMPACT_CONTACTS_MAX],
+        work_data[3 * GB_IMPACT_CONTACTS_MAX], b[3 * GB_IMPACT_CONTACTS_MAX];
+    for (int p = 0; p < n; p++) {
+        double rk[3][3];
+        cross_matrix(points[held[p]], rk);
+        for (int q = 0; q < n; q++) {
+            double rj[3][3], left[3][3] = {{0}};
+            cross_matrix(points[held[q]], rj);
+            for (int i = 0; i < 3; i++) /* [r_k]× I⁻¹ */
+                for (int j = 0; j < 3; j++)
+                    for (int l = 0; l < 3; l++) left[i][j] += rk[i][l] * inv[l][j];
+            for (int i = 0; i < 3; i++)
+                for (int j = 0; j < 3; j++) {
+                    double term = 0.0;
+                    for (int l = 0; l < 3; l++) term += left[i][l] * rj[l][j];
+                    a[(3 * p + i) * size + 3 * q + j] = (i == j ? 1.0 / body->mass : 0.0) - term;
+                }
+        }
+        for (int i = 0; i < 3; i++) b[3 * p + i] = rhs[held[p]][i];
+    }
+    memcpy(w_copy, a, size * size * sizeof a[0]);
+    gsl_matrix_view A = gsl_matrix_view_array(a, size, size), V = gsl_matrix_view_array(v_data, size, size);
+    gsl_vector_view S = gsl_vector_view_array(s_data, size), work = gsl_vector_view_array(work_data, size);
+    if (gsl_linalg_SV_decomp(&A.matrix, &V.matrix, &S.vector, &work.vector)) return 1;
+    double x[3 * GB_IMPACT_CONTACTS_MAX] = {0}, y[3 * GB_IMPACT_CONTACTS_MAX];
+    const double cut = SINGULAR_CUT * s_data[0];
+    for (size_t i = 0; i < size; i++) { /* y = S⁺ Uᵀ b */
+        double dot = 0.0;
+        for (size_t r = 0; r < size; r++) dot += a[r * size + i] * b[r];
+        y[i] = s_data[i] > cut ? dot / s_data[i] : 0.0;
+    }
+    for (size_t r = 0; r < size; r++)
+        for (size_t i = 0; i < size; i++) x[r] += v_data[r * size + i] * y[i];
+    double residual = 0.0, scale = 0.0;
+    for (size_t r = 0; r < size; r++) {
+        double row = 0.0;
+        for (size_t c = 0; c < size; c++) row += w_copy[r * size + c] * x[c];
+        residual = fmax(residual, fabs(row - b[r]));
+        scale = fmax(scale, fabs(b[r]));
+    }
+    if (residual > RESIDUAL_TOL * scale + 1e-300) return 1;
+    for (int k = 0; k < count; k++) memset(P[k], 0, sizeof P[k]);
+    for (int p = 0; p < n; p++)
+        for (int i = 0; i < 3; i++) P[held[p]][i] = x[3 * p + i];
+    return 0;
+}
+
+int gb_impact_solve(const gb_impact_body *body, const double normal[3], double e, const double (*points)[3], int count,
+                    const double v[3], const double omega[3], gb_impact_result *out)
+{
+    memset(out, 0, sizeof *out);
+    double inv[3][3];
+    if (!(body->mass > 0.0) || invert(body->inertia, inv))
+        return gb_error_set(GB_EDOM, "impact: mass %g, inertia not positive definite (allowed: mass > 0, a positive definite "
+                            "inertia about the centroid)", body->mass);
+    if (count < 1 || count > GB_IMPACT_CONTACTS_MAX)
+        return gb_error_set(GB_EDOM, "impact: %d contact points (allowed: 1 to %d)", count, GB_IMPACT_CONTACTS_MAX);
+    if (!(e >= 0.0 && e <= 1.0)) return gb_error_set(GB_EDOM, "impact: restitution %g (allowed: 0 <= e <= 1)", e);
+    /* What each held contact's velocity must become, less what it is: −e u⁻·n n − u⁻. */
+    double before[GB_IMPACT_CONTACTS_MAX][3], rhs[GB_IMPACT_CONTACTS_MAX][3];
+    double speed = 0.0;
+    for (int k = 0; k < count; k++) {
+        point_velocity(v, omega, points[k], before[k]);
+        const double approach = gb_vec_dot(before[k], normal);
+        for (int i = 0; i < 3; i++) rhs[k][i] = -e * fmin(approach, 0.0) * normal[i] - before[k][i];
+        speed = fmax(speed, gb_vec_norm(before[k]));
+    }
+    /* The impact's own scales: a velocity, and the impulse that would stop the mass at that speed. */
+    const double velocity_tol = SIGN_TOL * (speed + 1e-300), impulse_tol = SIGN_TOL * body->mass * (speed + 1e-300);
+    out->energy_before = gb_impact_energy(body, v, omega);
+    int chosen = -1, best_size = GB_IMPACT_CONTACTS_MAX + 1;
+    double chosen_P[GB_IMPACT_CONTACTS_MAX][3];
+    for (unsigned mask = 0; mask < (1u << count); mask++) {
+        double P[GB_IMPACT_CONTACTS_MAX][3] = {{0}};
+        if (mask && held_impulses(body, inv, points, count, mask, (const double(*)[3])rhs, P)) continue;
+        double v_after[3], omega_after[3];
+        apply(body, inv, points, count, (const double(*)[3])P, v, omega, v_after, omega_after);
+        int feasible = 1, size = 0;
+        for (int k = 0; k < count && feasible; k++) {
+            if (mask & (1u << k)) {
+                size++;
+                feasible = gb_vec_dot(P[k], normal) >= -impulse_tol;
+            } else {
+                double u[3];
+                point_velocity(v_after, omega_after, points[k], u);
+                feasible = gb_vec_dot(u, normal) >= -velocity_tol;
+            }
+        }
+        if (!feasible) continue;
+        out->feasible_sets++;
+        if (size < best_size) {
+            best_size = size, chosen = (int)mask;
+            memcpy(chosen_P, P, sizeof P);
+            memcpy(out->v, v_after, sizeof out->v);
+            memcpy(out->omega, omega_after, sizeof out->omega);
+        }
+    }
+    if (chosen < 0) return gb_error_set(GB_ENUMERIC, "impact: no set of held contacts satisfies Moreau's law (%d points)", count);
+    for (int k = 0; k < count; k++) {
+        out->holds[k] = (chosen >> k) & 1;
+        memcpy(out->impulse[k], chosen_P[k], sizeof out->impulse[k]);
+        out->normal_impulse[k] = gb_vec_dot(chosen_P[k], normal);
+        double tangential[3];
+        for (int i = 0; i < 3; i++) tangential[i] = chosen_P[k][i] - out->normal_impulse[k] * normal[i];
+        out->tangential_impulse[k] = gb_vec_norm(tangential);
+        if (out->holds[k] && out->normal_impulse[k] > impulse_tol)
+            out->friction_needed = fmax(out->friction_needed, out->tangential_impulse[k] / out->normal_impulse[k]);
+    }
+    out->energy_after = gb_impact_energy(body, out->v, out->omega);
+    return GB_OK;
+}

@@ -1,0 +1,50 @@
+/* gb_impact — the impact of a rigid body on a plane that can only push (Moreau's impact law).
+ *
+ * A pure function of a generic rigid body: its mass, its inertia about the centroid, the points that
+ * may touch the plane (relative to the centroid) and the velocities just before (the centroid's,
+ * relative to the plane, and the angular velocity), all in one frame. It knows nothing of Gömböcs: a
+ * cuboid, a sphere or a Gömböc at a contact switch are the same problem.
+ *
+ * The plane is rough (no slip at a contact that holds) and restitutive in the normal direction by
+ * Newton's law with coefficient e (0: plastic). Moreau's law over the contacts: after the impact each
+ * contact either holds, its velocity (-e times its normal approach speed) n and its normal impulse
+ * >= 0, or separates, its impulse 0 and its normal velocity >= 0. This is a small linear
+ * complementarity problem, solved exactly by enumerating which contacts hold: for each set, the
+ * impulses that give the held contacts their velocities (the Delassus system, by SVD: two or three
+ * held points leave internal impulses undetermined, which change no velocity), then the signs are
+ * checked. A well-posed impact has one feasible set; the smallest is taken when several are.
+ *
+ * With e = 0 the kinetic energy lost is the kinetic energy of the velocity jump (Kelvin's theorem);
+ * when the new point alone holds, the angular momentum about it is conserved. verify/s5_impact.c checks
+ * both, and Housner's rocking block (1963), in closed form. */
+#ifndef GB_IMPACT_H
+#define GB_IMPACT_H
+
+enum { GB_IMPACT_CONTACTS_MAX = 4 };
+
+typedef struct gb_impact_body {
+    double mass;          /* > 0 */
+    double inertia[3][3]; /* about the centroid, symmetric positive definite */
+} gb_impact_body;
+
+typedef struct gb_impact_result {
+    double v[3], omega[3];                        /* after the impact */
+    int holds[GB_IMPACT_CONTACTS_MAX];            /* 1: the contact holds after the impact; 0: it separates */
+    double impulse[GB_IMPACT_CONTACTS_MAX][3];    /* the plane's impulse at each contact */
+    double normal_impulse[GB_IMPACT_CONTACTS_MAX], tangential_impulse[GB_IMPACT_CONTACTS_MAX];
+    double friction_needed;                       /* max |P_t| / P_n over the contacts that hold (0: none) */
+    double energy_before, energy_after;           /* kinetic energy [J] */
+    int feasible_sets;                            /* contact sets that satisfy the law (1 when well posed) */
+} gb_impact_result;
+
+/* The impact of `body` moving with centroid velocity v and angular velocity omega, at the `count`
+ * points (relative to the centroid) that may touch the plane of unit normal `normal`, with
+ * restitution e. GB_OK; GB_EDOM for a bad body, count or e (the message says the allowed range);
+ * GB_ENUMERIC when no contact set satisfies the law (not seen for a body with positive mass). */
+int gb_impact_solve(const gb_impact_body *body, const double normal[3], double e, const double (*points)[3], int count,
+                    const double v[3], const double omega[3], gb_impact_result *out);
+
+/* The kinetic energy ½ m |v|² + ½ ω·Iω. */
+double gb_impact_energy(const gb_impact_body *body, const double v[3], const double omega[3]);
+
+#endif
