@@ -167,8 +167,9 @@ mpi-only: $(BIN) $(VERIFY_BIN)
 # --- quality gates on bad input and memory; each writes $(OUT)/gates/GATE.json for the report ----------
 GATES := $(OUT)/gates
 
-# The scene reader, the option parser, the atlas file, scan file and scan journal readers under libFuzzer (clang, with ASan and UBSan), FUZZ_SECONDS
-# each, seeded from cases/ and verify/fuzz/options.seeds, with a dictionary of the keys and options.
+# The scene reader, the option parser, and the atlas file, scan file and scan journal readers under
+# libFuzzer (clang, with ASan and UBSan), FUZZ_SECONDS each, seeded from cases/, cases/scans and
+# verify/fuzz/options.seeds, with dictionaries of the keys and options.
 # A crash or a broken invariant stops it and leaves build-fuzz/crash-*; add such an input to
 # verify/bad_input.c's table.
 FUZZ_SECONDS ?= 300
