@@ -251,9 +251,10 @@ valgrind-only: $(BIN)
 	  $(VALGRIND) $(BIN) run verify/valgrind/rolling-atlas.ini --out $(BUILD)/valgrind --atlas $(BUILD)/valgrind/atlas.bin \
 	    || { status=1; echo "valgrind: atlas file FAILED"; }; done; \
 	$(VALGRIND) $(BIN) run verify/valgrind/missing.ini 2> /dev/null; [ $$? -eq 2 ] || { status=1; echo "valgrind: bad input FAILED"; }; \
+	$(VALGRIND) $(BIN) check $(BUILD)/valgrind/paper-grid-summary.json > /dev/null || { status=1; echo "valgrind: check FAILED"; }; \
 	rm -f $(BUILD)/valgrind/small-scan.*; \
 	$(VALGRIND) $(BIN) scan verify/valgrind/scan/small.ini --out $(BUILD)/valgrind --threads 1 || { status=1; echo "valgrind: scan FAILED"; }; \
-	sh scripts/gate-stamp.sh $(GATES) valgrind $$status "memcheck: $$n scenes (verify/valgrind), an atlas file written and loaded, shape, contact, a scan and a refused input"; \
+	sh scripts/gate-stamp.sh $(GATES) valgrind $$status "memcheck: $$n scenes (verify/valgrind), an atlas file written and loaded, shape, contact, a scan, a set checked and a refused input"; \
 	echo "valgrind: $$( [ $$status -eq 0 ] && echo 'no errors, no leaks' || echo FAILED)"; \
 	exit $$status
 
