@@ -87,6 +87,10 @@ static int parse_certificate(const char *value, gb_case *c)
 {
     return gb_dynamics_certificate_parse(value, &c->dynamics.certificate);
 }
+static int parse_contact_law(const char *value, gb_case *c)
+{
+    return gb_dynamics_contact_law_parse(value, &c->dynamics.contact_law);
+}
 static int parse_nodes(const char *value, gb_case *c) { return gb_contact_nodes_parse(value, &c->dynamics.grid.nodes); }
 static int parse_method(const char *value, gb_case *c) { return gb_integrate_parse(value, &c->integrate.method); }
 static int parse_window(const char *value, gb_case *c) { return gb_window_parse(value, &c->spectrum_window); }
@@ -115,6 +119,7 @@ static const key_def keys[] = {
     NAME("model", "equation", parse_equation),
     NAME("model", "contact", parse_contact),
     NAME("model", "certificate", parse_certificate),
+    NAME("model", "contact_law", parse_contact_law),
     {"model", "grid", KEY_GRID, 0, 0, 0, NULL, 0, NULL},
     NAME("model", "nodes", parse_nodes),
     REAL("model", "damping", 0.0, 1000.0, 0, "[N m s]", dynamics.damping),
@@ -128,6 +133,7 @@ static const key_def keys[] = {
     {"initial", "omega", KEY_VECTOR, -1000.0, 1000.0, 0, "[rad/s]", AT(omega0), NULL},
     FLAG("output", "history", write_history),
     FLAG("output", "summary", write_summary),
+    FLAG("output", "impacts", write_impacts),
     COUNT("output", "sample_every", 1, 100000000, integrate.sample_every),
     FLAG("diagnostics", "monitors", monitors),
     FLAG("diagnostics", "strobe", strobe),
@@ -407,6 +413,21 @@ static int cross_check(const char *path, gb_case *c)
                           "= %s with [model] contact = %s: only continuous contact is certified (allowed: "
                           "per-vertical with any contact; atlas with contact = continuous)",
                           gb_dynamics_certificate_name(c->dynamics.certificate), gb_contact_model_name(c->dynamics.contact));
+    if (c->dynamics.contact_law == GB_CONTACT_LAW_UNILATERAL &&
+        (c->dynamics.contact != GB_CONTACT_MODEL_CONTINUOUS || c->dynamics.variant != GB_VARIANT_ROLLING))
+        return cross_fail(path, c, "model", "contact_law",
+                          "= unilateral with [model] contact = %s, equation = %s: the impacts are built for continuous "
+                          "contact and the rolling equation (allowed: held with any model; unilateral with contact = "
+                          "continuous and equation = rolling)",
+                          gb_contact_model_name(c->dynamics.contact), gb_dynamics_variant_name(c->dynamics.variant));
+    if (c->dynamics.contact_law == GB_CONTACT_LAW_UNILATERAL && !c->integrate.locate_switches)
+        return cross_fail(path, c, "integrator", "locate_switches",
+                          "= no with [model] contact_law = unilateral: every impact is located inside its step (allowed: "
+                          "yes with contact_law = unilateral)");
+    if (c->write_impacts && c->dynamics.contact_law != GB_CONTACT_LAW_UNILATERAL)
+        return cross_fail(path, c, "output", "impacts",
+                          "= yes with [model] contact_law = held: a held contact has no impacts (allowed: yes with "
+                          "contact_law = unilateral)");
     if (c->strobe || c->spectrum || c->lyapunov) {
         if (spp % c->integrate.sample_every)
             return cross_fail(path, c, "output", "sample_every",

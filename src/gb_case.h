@@ -39,6 +39,7 @@ typedef struct gb_case {
     char attitude_text[GB_CASE_TEXT_MAX];
     double omega0[3];
     int write_history, write_summary;
+    int write_impacts;            /* [output] impacts: NAME-impacts.csv (the unilateral law) */
     int monitors;
     int strobe, spectrum, lyapunov;  /* [diagnostics] */
     gb_strobe_def strobe_def;

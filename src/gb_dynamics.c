@@ -1,5 +1,7 @@
 #include "gb_dynamics.h"
 
+#include "gb_impact.h"
+
 #include "gb_contact_internal.h"
 #include "gb_error.h"
 #include "gb_massprops.h"
@@ -31,6 +33,18 @@ int gb_dynamics_certificate_parse(const char *name, gb_dynamics_certificate *cer
     int k = 0;
     const int status = gb_error_parse_name(name, certificate_names, 2, "contact certificate", &k);
     if (!status) *certificate = (gb_dynamics_certificate)k;
+    return status;
+}
+
+static const char *const contact_law_names[] = {"held", "unilateral"};
+
+const char *gb_dynamics_contact_law_name(gb_contact_law l) { return (unsigned)l < 2 ? contact_law_names[l] : NULL; }
+
+int gb_dynamics_contact_law_parse(const char *name, gb_contact_law *law)
+{
+    int k = 0;
+    const int status = gb_error_parse_name(name, contact_law_names, 2, "contact law", &k);
+    if (!status) *law = (gb_contact_law)k;
     return status;
 }
 
@@ -84,6 +98,11 @@ struct gb_dynamics {
     size_t contact_queries, nodes_visited; /* grid models: the searches' work */
     double last_switch_time; /* of the latest grid or branch switch (NAN before the first) */
     size_t branches_lost; /* continuous: evaluations where the continued branch had no minimum */
+    /* The unilateral law: impacts, the kinetic energy they took (L), the largest friction needed. */
+    size_t impacts;
+    double impact_loss, impact_friction_max;
+    gb_dynamics_impact_sink impact_sink;
+    void *impact_context;
     /* The last competitor() answer and the state it was for: with switch location, the step's end is
      * checked by gb_dynamics_switch_pending and then again by gb_dynamics_accept at the same state. */
     int memo_valid, memo_found;
@@ -107,6 +126,12 @@ int gb_dynamics_create(const gb_surface *surface, const gb_dynamics_def *def, gb
         return gb_error_set(GB_EDOM, "length = %g is out of range (allowed: finite, > 0)", def->length);
     if (!(isfinite(def->damping) && def->damping >= 0.0))
         return gb_error_set(GB_EDOM, "damping c = %g is out of range (allowed: finite, >= 0)", def->damping);
+    if (!gb_dynamics_contact_law_name(def->contact_law) ||
+        (def->contact_law == GB_CONTACT_LAW_UNILATERAL &&
+         (def->contact != GB_CONTACT_MODEL_CONTINUOUS || def->variant != GB_VARIANT_ROLLING)))
+        return gb_error_set(GB_EINVAL, "contact law %d with contact model %s and equation %s (allowed: held with any; "
+                            "unilateral with continuous contact and the rolling equation)", (int)def->contact_law,
+                            gb_contact_model_name(def->contact), gb_dynamics_variant_name(def->variant));
     int status = gb_forcing_validate(&def->forcing);
     if (status) return status;
     gb_dynamics *d = calloc(1, sizeof *d);
@@ -499,6 +524,47 @@ int gb_dynamics_save_atlas(const gb_dynamics *d)
     return gb_atlas_save(d->atlas, d->def.atlas_file);
 }
 
+/* The unilateral law at a change of contact from P (`from`, at state y) to Q (`to`): the plastic impact
+ * of the body rolling about P on the plane at Q (gb_impact, body axes, the plane's normal z_b); ω in y
+ * takes its value after. Only "P lifts, Q holds" is followed; the rest stops the run, saying why. */
+static int impact(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const gb_contact_point *from, const gb_contact_point *to,
+                  int located)
+{
+    const double L = d->def.length;
+    gb_dynamics_impact e = {.t = t, .located = located};
+    double zb[3];
+    vertical_of(y, zb);
+    double *omega = y + GB_STATE_OMEGA;
+    for (int k = 0; k < 3; k++) e.old_point[k] = L * from->rc[k], e.new_point[k] = L * to->rc[k];
+    memcpy(e.omega_before, omega, sizeof e.omega_before);
+    const double arm[3] = {-e.old_point[0], -e.old_point[1], -e.old_point[2]}; /* G − P */
+    gb_vec_cross(omega, arm, e.v_before);                                        /* P at rest */
+    gb_impact_body body = {d->def.mass, {{0}}};
+    memcpy(body.inertia, d->inertia, sizeof body.inertia);
+    const double points[2][3] = {{e.old_point[0], e.old_point[1], e.old_point[2]}, {e.new_point[0], e.new_point[1], e.new_point[2]}};
+    gb_impact_result r;
+    int status = gb_impact_solve(&body, zb, 0.0, points, 2, e.v_before, omega, &r);
+    if (status)
+        return gb_error_set(GB_ENUMERIC, "unilateral contact at t = %.9g: %s; a finite friction coefficient is not built yet",
+                            t, gb_error_message());
+    if (r.holds[0] || !r.holds[1])
+        return gb_error_set(GB_ENUMERIC, "unilateral contact at t = %.9g: after the impact at the new contact %s (the two-point "
+                            "mode, rocking on the axis of both points, is not built yet)", t,
+                            r.holds[0] && r.holds[1] ? "both points hold" : "the new point does not hold");
+    memcpy(omega, r.omega, sizeof r.omega);
+    memcpy(e.omega_after, r.omega, sizeof e.omega_after);
+    memcpy(e.v_after, r.v, sizeof e.v_after);
+    e.normal_impulse = r.normal_impulse[1], e.tangential_impulse = r.tangential_impulse[1];
+    e.friction_needed = r.friction_needed;
+    e.kinetic_before = r.energy_before, e.kinetic_after = r.energy_after;
+    d->impacts++;
+    d->impact_loss += r.energy_before - r.energy_after;
+    d->impact_friction_max = fmax(d->impact_friction_max, r.friction_needed);
+    d->memo_valid = 0; /* ω changed */
+    if (d->impact_sink) status = d->impact_sink(d->impact_context, &e);
+    return status;
+}
+
 int gb_dynamics_accept(gb_dynamics *d, double t, double y[GB_STATE_SIZE], double *norm_drift)
 {
     (void)t;
@@ -519,6 +585,12 @@ int gb_dynamics_accept(gb_dynamics *d, double t, double y[GB_STATE_SIZE], double
     gb_contact_point continued, other;
     int found;
     int status = competitor(d, t, y, &continued, &other, &found);
+    /* Under the unilateral law every contact change is located inside its step; one found here is a second
+     * change inside one step: the body chatters between two points, coming to rest on both. */
+    if (!status && found && d->def.contact_law == GB_CONTACT_LAW_UNILATERAL)
+        status = gb_error_set(GB_ENUMERIC, "unilateral contact at t = %.9g: a second change of contact inside one step (the "
+                              "body chatters between two points, coming to rest on both; %zu impacts so far): the two-point "
+                              "mode is not built yet", t, d->impacts);
     if (status) return status;
     d->contact = found ? other : continued;
     d->memo_valid = 0; /* the accepted contact changed */
@@ -550,14 +622,36 @@ int gb_dynamics_branch_gap(gb_dynamics *d, const double y[GB_STATE_SIZE], const 
     return GB_OK;
 }
 
-void gb_dynamics_switch_to(gb_dynamics *d, double t, const gb_contact_point *branch)
+int gb_dynamics_switch_to(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const gb_contact_point *branch)
 {
+    if (d->def.contact_law == GB_CONTACT_LAW_UNILATERAL) {
+        /* the old contact continued to this state: the point P that the body rolls about */
+        double zb[3];
+        vertical_of(y, zb);
+        gb_contact_point here;
+        int status = gb_contact_refine(&d->surface, zb, d->contact.phi, d->contact.theta, &d->refine, &here);
+        if (!status) status = impact(d, t, y, &here, branch, 1);
+        if (status) return status;
+    }
     d->last_switch_time = t;
     d->memo_valid = 0;
     d->contact = *branch;
     d->contact_rate[0] = d->contact_rate[1] = 0.0; /* no predictor until the next accepted step */
     d->last_valid = 0;
     d->branch_switches++;
+    return GB_OK;
+}
+
+void gb_dynamics_set_impact_sink(gb_dynamics *d, gb_dynamics_impact_sink sink, void *context)
+{
+    d->impact_sink = sink, d->impact_context = context;
+}
+
+void gb_dynamics_impact_stats(const gb_dynamics *d, size_t *impacts, double *energy_lost, double *friction_max)
+{
+    if (impacts) *impacts = d->impacts;
+    if (energy_lost) *energy_lost = d->impact_loss;
+    if (friction_max) *friction_max = d->impact_friction_max;
 }
 
 size_t gb_dynamics_switch_count(const gb_dynamics *d) { return d->grid_switches + d->branch_switches; }
@@ -598,6 +692,7 @@ int gb_dynamics_init_state(gb_dynamics *d, double t0, const double R0[9], const 
     if (d->def.contact == GB_CONTACT_MODEL_CONTINUOUS) remember_rate(d, t0, y);
     d->last_valid = 0;
     d->grid_switches = d->branch_switches = d->branches_lost = 0;
+    d->impacts = 0, d->impact_loss = d->impact_friction_max = 0.0;
     d->last_switch_time = NAN;
     d->memo_valid = 0;
     d->t0 = t0;
@@ -637,6 +732,7 @@ int gb_dynamics_observe(gb_dynamics *d, double t, const double y[GB_STATE_SIZE],
     o->power_damping = -d->def.damping * gb_vec_dot(o->omega, o->omega);
     o->work = y[GB_STATE_WORK];
     o->residual = o->energy - d->energy0 - o->work;
+    if (d->def.contact_law == GB_CONTACT_LAW_UNILATERAL) o->residual += d->impact_loss; /* the ledger */
     /* Centroid acceleration relative to the support under rolling kinematics (body frame):
      * a_G = ω × (r_c × ω) + ṙ_c × ω + r_c × ω̇; N = m (g_eff + z_b·a_G). */
     double a[3], b[3], e[3], f[3];

@@ -52,6 +52,35 @@ typedef enum gb_dynamics_certificate {
 const char *gb_dynamics_certificate_name(gb_dynamics_certificate certificate);
 int gb_dynamics_certificate_parse(const char *name, gb_dynamics_certificate *certificate);
 
+/* What happens when the contact point changes. HELD: the paper's rule, one contact at all times and ω
+ * kept (the kinetic energy about the new point is what it is). UNILATERAL: the plane can only push, and
+ * a change of contact is an impact (gb_impact: Moreau's law, rough, plastic): the body rolling about
+ * the old point P meets the plane at Q, Q holds after and P lifts, ω jumps, and the kinetic energy the
+ * impact takes is booked (L of the ledger E − E0 − W + L). Built for continuous contact with the
+ * rolling equation. An impact after which both points hold (the body would rock on the axis PQ) or that
+ * a rough plane cannot absorb (gb_impact: stopping Q's slip would need a pulling impulse) stops the run
+ * with GB_ENUMERIC saying so, and so does a second change of contact inside one step (the body chattering
+ * between two points as it comes to rest on both): the two-point mode and a finite friction coefficient
+ * are not built yet. Every change is located (gb_case requires locate_switches = yes). */
+typedef enum gb_contact_law { GB_CONTACT_LAW_HELD = 0, GB_CONTACT_LAW_UNILATERAL = 1 } gb_contact_law;
+
+const char *gb_dynamics_contact_law_name(gb_contact_law law);
+int gb_dynamics_contact_law_parse(const char *name, gb_contact_law *law);
+
+/* One impact of the unilateral law, in body axes with the centroid at the origin. */
+typedef struct gb_dynamics_impact {
+    double t;
+    int located;                          /* 1: at a located switch; 0: a lower branch found at an accepted step */
+    double old_point[3], new_point[3];    /* P and Q [m] */
+    double omega_before[3], omega_after[3];
+    double v_before[3], v_after[3];       /* the centroid's velocity relative to the plane */
+    double normal_impulse, tangential_impulse, friction_needed; /* at Q; friction needed = |P_t| / P_n */
+    double kinetic_before, kinetic_after; /* [J] */
+} gb_dynamics_impact;
+
+/* Called with every impact (the run's impacts file); a non-zero return stops the run with that status. */
+typedef int (*gb_dynamics_impact_sink)(void *context, const gb_dynamics_impact *impact);
+
 typedef struct gb_dynamics_def {
     gb_dynamics_variant variant;
     gb_contact_model contact;
@@ -62,6 +91,7 @@ typedef struct gb_dynamics_def {
     gb_contact_grid_def grid;      /* the grid of the grid models (Table 1: 90 × 180) */
     gb_certify_def certify;        /* continuous contact: the certificate of the global minimum */
     gb_dynamics_certificate certificate; /* continuous contact: per vertical (default) or atlas */
+    gb_contact_law contact_law;    /* held (the paper's, default) or unilateral */
     gb_atlas_def atlas;            /* certificate = atlas: its cells (its height_tol is certify's) */
     const char *atlas_file;        /* certificate = atlas: load the atlas from here when the file matches the
                                     * body (else build it), and gb_dynamics_save_atlas writes it (NULL: none) */
@@ -130,8 +160,14 @@ int gb_dynamics_switch_pending(gb_dynamics *dynamics, double t, const double y[G
  * *other_here is the other branch at y. */
 int gb_dynamics_branch_gap(gb_dynamics *dynamics, const double y[GB_STATE_SIZE], const gb_contact_point *other,
                            double *gap, gb_contact_point *other_here);
-/* Make `branch` the contact from time t on (a located switch). */
-void gb_dynamics_switch_to(gb_dynamics *dynamics, double t, const gb_contact_point *branch);
+/* Make `branch` the contact from time t on (a located switch at state y). Under the unilateral law this
+ * is an impact: ω in y jumps. GB_ENUMERIC for an impact the law cannot take (see gb_contact_law). */
+int gb_dynamics_switch_to(gb_dynamics *dynamics, double t, double y[GB_STATE_SIZE], const gb_contact_point *branch);
+
+/* The unilateral law: a sink for every impact (NULL: none), and the impacts so far, the kinetic
+ * energy they took (L) and the largest friction they needed. */
+void gb_dynamics_set_impact_sink(gb_dynamics *dynamics, gb_dynamics_impact_sink sink, void *context);
+void gb_dynamics_impact_stats(const gb_dynamics *dynamics, size_t *impacts, double *energy_lost, double *friction_max);
 
 /* Take over the accepted contact of `from` (same body and model): for a trajectory placed next to
  * another one (a Lyapunov perturbation), whose contact is then continued from there. The next accepted
@@ -154,7 +190,7 @@ typedef struct gb_dynamics_observables {
     double kinetic, potential, energy; /* eqs 46–48 */
     double power_damping, power_gravity; /* eqs 50–51 */
     double work;             /* W(t) = ∫(P_d + m ġ_eff ζ) dt */
-    double residual;         /* E(t) − E(0) − W(t) */
+    double residual;         /* E(t) − E(0) − W(t), + L(t) under the unilateral law (the ledger) */
     double normal_force;     /* N = m (g_eff + ζ̈), rolling kinematics */
     double friction_needed;  /* |horizontal contact force| / N */
     double orthonormality;   /* max |RᵀR − I| */

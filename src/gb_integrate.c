@@ -157,7 +157,8 @@ static int located_step(gb_dynamics *d, double t, double h, const double y[], co
     gb_integrate_switch at;
     const int status = locate(d, t, h, y, other, substep, context, &at, stats);
     if (status) return status;
-    gb_dynamics_switch_to(d, t + at.fraction * h, &at.other);
+    const int switched = gb_dynamics_switch_to(d, t + at.fraction * h, at.y, &at.other); /* an impact may change ω */
+    if (switched) return switched;
     if (at.fraction == 1.0) return memcpy(out, at.y, sizeof at.y), GB_OK;
     return substep(context, d, t + at.fraction * h, (1.0 - at.fraction) * h, at.y, out, stats);
 }

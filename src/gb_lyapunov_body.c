@@ -236,8 +236,8 @@ static int tangent_switch_step(gb_lyapunov_body *b, double t, double h, double y
     double g_dir[GB_LYAPUNOV_MAX_EXPONENTS];
     for (size_t j = 0; j < k && !status; j++) status = gap_along(d, y, &there, Y + j * GB_STATE_SIZE, &g_dir[j]);
     if (status) return status;
-    gb_dynamics_switch_to(d, t + a * h, &there);
-    status = gb_dynamics_rhs(d, t + a * h, y, f_new);
+    status = gb_dynamics_switch_to(d, t + a * h, y, &there); /* held: the tangent estimator refuses unilateral */
+    if (!status) status = gb_dynamics_rhs(d, t + a * h, y, f_new);
     if (status) return status;
     if (g_flow != 0.0 && isfinite(g_flow)) {
         for (size_t j = 0; j < k; j++)
@@ -307,6 +307,9 @@ int gb_lyapunov_body_tangent_ready(const gb_lyapunov_body *body)
                             "the variational estimator needs continuous contact and RK4 (got %s, %s): a grid contact "
                             "makes the vector field jump at every node change, where no variational equation holds",
                             gb_contact_model_name(def->contact), gb_integrate_name(body->method));
+    if (def->contact_law != GB_CONTACT_LAW_HELD)
+        return gb_error_set(GB_EINVAL, "the variational estimator has no saltation matrix for an impact yet (contact law %s): "
+                            "use the pair estimator", gb_dynamics_contact_law_name(def->contact_law));
     if (body->tangent_steps == 0 && gb_integrate_time(body->session[0]) != 0.0)
         return gb_error_set(GB_EINVAL, "the body's reference has already been advanced by the pair estimator");
     return GB_OK;

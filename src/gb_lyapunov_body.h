@@ -37,8 +37,8 @@ void gb_lyapunov_body_observe(gb_lyapunov_body *body, gb_integrate_sample sample
  * separation, e = (δθ, δω/Ω). Per step, the vectors obey the RK4 discretisation of Ẏ = A(t) Y, with A·Y by
  * central differences of the vector field (the contact re-solved at both points) and the radial part
  * of δq projected out. A branch switch is located inside its step (Δh = 0, eq 39), and the vectors
- * cross it with the saltation matrix S = I + (f⁺ − f⁻)∇gᵀ/(∇g·f⁻), g = Δh. Continuous contact and RK4
- * only (gb_lyapunov_body_tangent_ready says why not); a body serves one estimator, not both. */
+ * cross it with the saltation matrix S = I + (f⁺ − f⁻)∇gᵀ/(∇g·f⁻), g = Δh. Continuous contact, RK4 and
+ * the held contact law only (gb_lyapunov_body_tangent_ready says why not); a body serves one estimator, not both. */
 gb_lyapunov_tangent_system gb_lyapunov_body_tangent(void);
 int gb_lyapunov_body_tangent_ready(const gb_lyapunov_body *body);
 /* Switches crossed with a saltation; switches the accepted step's global check found that were not

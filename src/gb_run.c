@@ -104,6 +104,7 @@ static int run_with_lyapunov(const gb_case *scene, observer *s, gb_dynamics **dy
                                          scene->omega0, scene->omega_scale, body);
     if (status) return status;
     *dynamics = s->dynamics = gb_lyapunov_body_dynamics(*body);
+    if (s->sinks && s->sinks->impact) gb_dynamics_set_impact_sink(*dynamics, s->sinks->impact, s->sinks->context);
     /* The sample at t = 0 is ours; the reference delivers the rest as a plain run would. */
     if (observe(s, 0.0, gb_lyapunov_body_state(*body)))
         return s->status ? s->status : gb_error_set(GB_EINVAL, "the sampler stopped the run at t = 0");
@@ -146,6 +147,7 @@ int gb_run(const gb_case *scene, const gb_run_sinks *sinks, gb_run_result *out)
     } else if (!status) {
         status = gb_dynamics_start(&scene->body, &scene->dynamics, scene->attitude, scene->omega0, &dynamics, out->y);
         s.dynamics = dynamics;
+        if (!status && sinks && sinks->impact) gb_dynamics_set_impact_sink(dynamics, sinks->impact, sinks->context);
         if (!status) status = gb_integrate_run(dynamics, &scene->integrate, 0.0, out->y, observe, &s, &out->stats);
         if (!status) status = s.status;
     }
@@ -164,6 +166,7 @@ int gb_run(const gb_case *scene, const gb_run_sinks *sinks, gb_run_result *out)
     }
     if (!status) {
         out->state_fingerprint = gb_hash_add(GB_HASH_OFFSET, out->y, sizeof out->y);
+        gb_dynamics_impact_stats(dynamics, &out->impacts, &out->impact_energy_lost, &out->impact_friction_max);
         out->has_certificate = gb_dynamics_certify_stats(dynamics, &out->certificate) == GB_OK;
         gb_error_clear(); /* a grid model has no certificate: not an error of the run */
         out->has_atlas = gb_dynamics_atlas_stats(dynamics, &out->atlas, &out->atlas_fallbacks, &out->atlas_loaded) == GB_OK;

@@ -34,6 +34,9 @@ typedef struct gb_run_sinks {
     /* Every sample, t = 0 included (may be NULL). Non-zero stops the run with that gb_ status. */
     int (*sample)(void *context, const gb_run_sample *sample);
     void *context;
+    /* Every impact of the unilateral contact law on the reference trajectory, with the same context
+     * (may be NULL). */
+    gb_dynamics_impact_sink impact;
 } gb_run_sinks;
 
 /* The validity monitors of the single-contact model (computed when the scene asks for them). */
@@ -57,6 +60,9 @@ typedef struct gb_run_result {
     gb_atlas_stats atlas;
     size_t atlas_fallbacks;              /* checks the atlas left to the per-vertical certificate */
     int atlas_loaded;                    /* 1: the atlas came from the scene's atlas_file */
+    size_t impacts;                      /* the unilateral law: impacts, the kinetic energy they took (L of */
+    double impact_energy_lost;           /* the ledger; energy_residual is E − E0 − W + L) and the largest */
+    double impact_friction_max;          /* friction coefficient an impact needed */
     /* Fingerprints (FNV-1a 64): the bytes of the final state; the (sample, contact index, grid and
      * branch switch counts) of every sample with a switch. Equal runs have equal fingerprints. */
     uint64_t state_fingerprint, switch_fingerprint;

@@ -568,7 +568,7 @@ int gb_scan_point_run(const gb_scan *scan, const gb_scan_melnikov *melnikov, siz
     const double step = T / (double)scene.integrate.steps_per_period;
     /* Samples from the first one at the end of the transient (half a step of slack for rounding). */
     gb_scan_accumulator acc = {.first_t = (double)scan->transient_periods * T - 0.5 * step};
-    const gb_run_sinks sinks = {accumulate_sample, &acc};
+    const gb_run_sinks sinks = {accumulate_sample, &acc, NULL};
     gb_run_result r;
     status = gb_run(&scene, &sinks, &r);
     if (status) return status;

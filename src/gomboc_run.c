@@ -33,15 +33,40 @@ static const char *usage_run =
 static const char history_header[] = "t,omega_x,omega_y,omega_z,h,E,residual,geff,index,grid_switch,branch_switch,"
                                      "switch_rate,rc_x,rc_y,rc_z,normal_force,friction_needed\n";
 
+/* Where the run's streams go: the history (a sample a row) and the impacts (an impact a row). */
+typedef struct streams {
+    FILE *history, *impacts;
+} streams;
+
 static int history_row(void *context, const gb_run_sample *s)
 {
     const gb_dynamics_observables *o = s->o;
-    if (fprintf((FILE *)context, "%.10g,%.12g,%.12g,%.12g,%.15g,%.15g,%.6e,%.12g,%zu,%d,%d,%.6g,%.12g,%.12g,%.12g,%.10g,%.6g\n",
+    FILE *history = ((streams *)context)->history;
+    if (!history) return GB_OK;
+    if (fprintf(history, "%.10g,%.12g,%.12g,%.12g,%.15g,%.15g,%.6e,%.12g,%zu,%d,%d,%.6g,%.12g,%.12g,%.12g,%.10g,%.6g\n",
                 s->t, o->omega[0], o->omega[1], o->omega[2], o->height, o->energy, o->residual, o->geff, o->index,
                 s->grid_switch, s->branch_switch, s->switch_rate, o->rc[0], o->rc[1], o->rc[2], o->normal_force,
                 o->friction_needed) < 0)
         return gb_error_set(GB_EIO, "cannot write the history: %s", strerror(errno));
     return GB_OK;
+}
+
+/* The impacts file: one row an impact, body axes with the centroid at the origin. */
+static const char impacts_header[] = "t,located,old_x,old_y,old_z,new_x,new_y,new_z,omega_before_x,omega_before_y,"
+                                     "omega_before_z,omega_after_x,omega_after_y,omega_after_z,v_before_x,v_before_y,"
+                                     "v_before_z,v_after_x,v_after_y,v_after_z,normal_impulse,tangential_impulse,"
+                                     "friction_needed,kinetic_before,kinetic_after\n";
+
+static int impact_row(void *context, const gb_dynamics_impact *e)
+{
+    FILE *impacts = ((streams *)context)->impacts;
+    if (!impacts) return GB_OK;
+    int bad = fprintf(impacts, "%.17g,%d", e->t, e->located) < 0;
+    const double *vectors[] = {e->old_point, e->new_point, e->omega_before, e->omega_after, e->v_before, e->v_after};
+    for (int k = 0; k < 6; k++) bad |= fprintf(impacts, ",%.17g,%.17g,%.17g", vectors[k][0], vectors[k][1], vectors[k][2]) < 0;
+    bad |= fprintf(impacts, ",%.17g,%.17g,%.17g,%.17g,%.17g\n", e->normal_impulse, e->tangential_impulse, e->friction_needed,
+                   e->kinetic_before, e->kinetic_after) < 0;
+    return bad ? gb_error_set(GB_EIO, "cannot write the impacts: %s", strerror(errno)) : GB_OK;
 }
 
 static cJSON *scene_json(const gb_case *c)
@@ -62,6 +87,7 @@ static cJSON *scene_json(const gb_case *c)
     cli_json_add(o, "psi", d->forcing.psi);
     cJSON_AddStringToObject(o, "equation", gb_dynamics_variant_name(d->variant));
     cJSON_AddStringToObject(o, "contact", gb_contact_model_name(d->contact));
+    cJSON_AddStringToObject(o, "contact_law", gb_dynamics_contact_law_name(d->contact_law));
     if (d->contact == GB_CONTACT_MODEL_CONTINUOUS) {
         cli_json_add(o, "certificate_height_tol", d->certify.height_tol);
         cli_json_add(o, "certificate_max_depth", d->certify.max_depth);
@@ -102,9 +128,9 @@ static cJSON *scene_json(const gb_case *c)
  * by an earlier run of another scene of the same name) are removed. The summary lists every other file
  * of the set with its size and checksum, so that a set mixed by a kill between two renames is found
  * by `gomboc check`. */
-enum { OUT_HISTORY, OUT_STROBE, OUT_SPECTRUM, OUT_LYAPUNOV, OUT_WINDOWS, OUT_SUMMARY, OUT_COUNT };
-const char *const cli_run_suffixes[OUT_COUNT + 1] = {"history.csv",  "strobe.csv",           "spectrum.csv",
-                                                     "lyapunov.csv", "lyapunov-windows.csv", "summary.json", NULL};
+enum { OUT_HISTORY, OUT_STROBE, OUT_SPECTRUM, OUT_LYAPUNOV, OUT_WINDOWS, OUT_IMPACTS, OUT_SUMMARY, OUT_COUNT };
+const char *const cli_run_suffixes[OUT_COUNT + 1] = {"history.csv",  "strobe.csv",           "spectrum.csv", "lyapunov.csv",
+                                                     "lyapunov-windows.csv", "impacts.csv", "summary.json", NULL};
 
 typedef struct run_outputs {
     gb_file_set set;
@@ -158,6 +184,7 @@ static int asks_for(const gb_case *scene, int which)
     case OUT_SPECTRUM: return scene->spectrum;
     case OUT_LYAPUNOV: return scene->lyapunov;
     case OUT_WINDOWS: return scene->lyapunov && scene->lyapunov_window_periods;
+    case OUT_IMPACTS: return scene->write_impacts;
     default: return scene->write_summary;
     }
 }
@@ -327,16 +354,21 @@ int command_run(int argc, char **argv)
     if (cli_parse_only) return 0;
 
     run_outputs files = {.dir = dir, .case_path = case_path};
-    FILE *history = NULL;
+    streams out = {NULL, NULL};
     if (scene.write_history) {
-        history = stage_open(&files, OUT_HISTORY, &status);
-        if (history && fputs(history_header, history) < 0) status = stage_error(&files, OUT_HISTORY);
+        out.history = stage_open(&files, OUT_HISTORY, &status);
+        if (out.history && fputs(history_header, out.history) < 0) status = stage_error(&files, OUT_HISTORY);
     }
-    const gb_run_sinks sinks = {history_row, history};
+    if (scene.write_impacts) {
+        out.impacts = stage_open(&files, OUT_IMPACTS, &status);
+        if (out.impacts && fputs(impacts_header, out.impacts) < 0) status = stage_error(&files, OUT_IMPACTS);
+    }
+    const gb_run_sinks sinks = {history_row, &out, impact_row};
     gb_run_result r;
-    if (!status) status = gb_run(&scene, history ? &sinks : NULL, &r);
+    if (!status) status = gb_run(&scene, out.history || out.impacts ? &sinks : NULL, &r);
     else memset(&r, 0, sizeof r);
-    if (history && ferror(history) && !status) status = stage_error(&files, OUT_HISTORY);
+    if (out.history && ferror(out.history) && !status) status = stage_error(&files, OUT_HISTORY);
+    if (out.impacts && ferror(out.impacts) && !status) status = stage_error(&files, OUT_IMPACTS);
     const double period = gb_forcing_period(&scene.dynamics.forcing);
     if (!status && scene.strobe) status = write_strobe(&files, &r.strobe, period);
     if (!status && scene.spectrum) status = write_spectrum(&files, &r.spectrum);
@@ -415,6 +447,13 @@ int command_run(int argc, char **argv)
             cli_json_add(m, "build_seconds", as->build_seconds);
             cli_json_add(m, "bytes", (double)as->bytes);
         }
+        if (scene.dynamics.contact_law == GB_CONTACT_LAW_UNILATERAL) {
+            /* energy_residual_* above is the ledger E − E0 − W + L, L the energy the impacts took */
+            cJSON *m = cJSON_AddObjectToObject(root, "impacts");
+            cli_json_add(m, "count", (double)r.impacts);
+            cli_json_add(m, "energy_lost", r.impact_energy_lost);
+            cli_json_add(m, "friction_needed_max", r.impact_friction_max);
+        }
         if (r.has_strobe) cJSON_AddItemToObject(root, "strobe", strobe_json(&r.strobe));
         if (r.has_spectrum) cJSON_AddItemToObject(root, "spectrum", spectrum_json(&scene, &r.spectrum, r.spectrum_samples));
         if (r.has_lyapunov) {
@@ -443,7 +482,7 @@ int command_run(int argc, char **argv)
     free(w.mean);
     gb_run_result_free(&r);
     if (status) return cli_failure("run", status);
-    fprintf(stderr, "gomboc run: %s: %zu steps in %.2f s CPU; fingerprint %s/%s\n", case_path, r.stats.steps, r.seconds,
-            state_print, switch_print);
+    fprintf(stderr, "gomboc run: %s: contact law %s; %zu steps in %.2f s CPU; fingerprint %s/%s\n", case_path,
+            gb_dynamics_contact_law_name(scene.dynamics.contact_law), r.stats.steps, r.seconds, state_print, switch_print);
     return 0;
 }

@@ -287,6 +287,10 @@ static const bad_row rows[] = {
     {"run @CASE@ --atlas @D@/sub", ATLAS_SCENE, 0, 2, {"--atlas '", "sub' exists and is not a regular file", "directory"}},
     {"run @CASE@ --atlas @D@/missing/a.atlas", ATLAS_SCENE, 0, 2, {"--atlas '", "its directory does not exist", "writable directory"}},
     /* smaller: options given twice, --curve-points alone */
+    {RUN, "[model]\ncontact_law = bouncy\n", 0, 2, {"case.ini:2: [model] contact_law = bouncy", "unknown", "allowed: held, unilateral"}},
+    {RUN, "[model]\ncontact_law = unilateral\n", 0, 2, {"case.ini:2: [model] contact_law: = unilateral with [model] contact = grid", "built for continuous contact and the rolling equation", "allowed: held with any model"}},
+    {RUN, "[model]\ncontact = continuous\nequation = rolling\ncontact_law = unilateral\n[integrator]\nlocate_switches = no\n", 0, 2, {"case.ini:6: [integrator] locate_switches: = no with [model] contact_law = unilateral", "allowed: yes with contact_law = unilateral", ""}},
+    {RUN, "[output]\nimpacts = yes\n", 0, 2, {"case.ini:2: [output] impacts: = yes with [model] contact_law = held", "a held contact has no impacts", "allowed: yes with contact_law = unilateral"}},
     {"run @CASE@ --out @D@ --out @D@", "[body]\nbeta = 0.1\n", 0, 2, {"option '--out' is given twice", "allowed: each option once", ""}},
     {"run @CASE@ --atlas @D@/a --atlas @D@/b", ATLAS_SCENE, 0, 2, {"option '--atlas' is given twice", "each option once", ""}},
     {"melnikov @CASE@ --curve-points 5", "[body]\nbeta = 0.1\n", 0, 2, {"--curve-points 5 without --curve", "allowed: --curve-points with --curve FILE", ""}},

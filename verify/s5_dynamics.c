@@ -802,8 +802,8 @@ static void test_fold_fallback(void)
         if (!status) status = gb_dynamics_observe(forced, 0.0, y, &before);
         /* the observation evaluates the contact (from the top: one branch lost) before it reads the counter */
         if (!status) {
-            gb_dynamics_switch_to(forced, 0.0, &top);
-            status = gb_dynamics_observe(forced, 0.0, y, &after);
+            status = gb_dynamics_switch_to(forced, 0.0, y, &top); /* held: y unchanged */
+            if (!status) status = gb_dynamics_observe(forced, 0.0, y, &after);
         }
         if (!status) status = gb_dynamics_rhs(forced, 0.0, y, f);
         if (!status) status = gb_dynamics_rhs(plain, 0.0, y_plain, f_plain);
