@@ -60,7 +60,7 @@ run: deps
 # and the harmonic benchmark, eq 94).
 RUN_SCENES    := table1-gomboc-I table1-gomboc-II
 VERIFY_SCENES := $(RUN_SCENES) table1-gomboc-I-g-units table1-gomboc-II-g-units harmonic-gomboc-I harmonic-gomboc-II \
-                 table1-gomboc-I-rolling table1-gomboc-II-rolling
+                 table1-gomboc-I-rolling table1-gomboc-II-rolling table1-gomboc-I-unilateral table1-gomboc-II-unilateral
 
 run-only: $(BIN)
 	@mkdir -p $(OUT)

@@ -201,6 +201,13 @@ def dynamics_section(out, rows):
                                         str(r["atlas_cells"]), str(r["atlas_two_site_cells"]),
                                         f"{r['atlas_bytes'] / 1048576:.1f}", str(r["atlas_cached_fallbacks"]),
                                         "yes" if r["atlas_identical"] else "**no**"])
+        lines += bench_table(records, "law_certificate",
+                             "The unilateral contact law against the held one on the same Table 1 rolling runs (300 periods, "
+                             "the same `make bench` run, best of 2), with each certificate (the atlas built in the run); "
+                             "target (issue 28): a unilateral run ≤ 1.3× the held run of the same scene.",
+                             ["body", "certificate", "held [s]", "unilateral [s]", "ratio"],
+                             lambda r: [r["body"], r["law_certificate"], f"{r['held_seconds']:.3f}",
+                                        f"{r['unilateral_seconds']:.3f}", f"{r['unilateral_over_held']:.2f}×"])
         headroom = [r for r in records if "headroom_total_seconds" in r]
         if headroom:
             lines += ["", "Why the certified run is far from 50× (the same `make bench` run): the run's time inside the "

@@ -222,8 +222,9 @@ def main():
             if where.startswith(f"Gomboc {body}, {variation}:") and reading != "consistent":
                 detail += f" — {reading} (see 'Convergence')"
         # The one-trajectory, 300-period chaos verdict of the rolling model against the ensemble of `make study`.
-        for body, reading in ensembles.items():
-            if where.startswith(f"Gomboc {body}, continuous contact, rolling equation: lambda_max - 4 sigma"):
+        for (body, law), reading in ensembles.items():
+            model = "continuous contact, rolling equation" + (", unilateral contact" if law == "unilateral" else "")
+            if where.startswith(f"Gomboc {body}, {model}: lambda_max - 4 sigma"):
                 agrees = (reading == "sustained") == (r["verdict"] == "holds")
                 if not agrees or reading == "undecided":
                     detail += (f" — **preliminary: the ensemble of `make study` (32 initial attitudes, 3000 periods) "

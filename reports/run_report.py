@@ -147,8 +147,15 @@ def summary_lines(name, summary):
                  f"({summary['omega'][0]:.6f}, {summary['omega'][1]:.6f}, {summary['omega'][2]:.6f}) rad/s")
     lines.append(f"- contact: {summary['grid_switches']:.0f} changes of the grid index, "
                  f"{summary['branch_switches']:.0f} branch switches")
-    lines.append(f"- energy-balance residual E − E(0) − ∫(P_d + m ġ ζ) dt: final {summary['energy_residual_final']:.3g} J, "
+    impacts, two_point = summary.get("impacts"), summary.get("two_point")
+    ledger = " + L (the energy the impacts took)" if impacts else ""
+    lines.append(f"- energy-balance residual E − E(0) − ∫(P_d + m ġ ζ) dt{ledger}: final {summary['energy_residual_final']:.3g} J, "
                  f"largest {summary['energy_residual_max']:.3g} J")
+    if impacts and two_point:
+        lines.append(f"- unilateral contact: {impacts['count']:.0f} impacts took {impacts['energy_lost']:.4g} J; rolling on two "
+                     f"points for {100 * two_point['time_fraction']:.1f} % of the run ({two_point['entries']:.0f} entries, "
+                     f"{impacts['settled']:.0f} by the settle rule; {two_point['lifts']:.0f} lifts, "
+                     f"{two_point['third_points']:.0f} third points)")
     lines.append(f"- attitude: max |RᵀR − I| = {summary['orthonormality_max']:.2g}; largest quaternion-norm "
                  f"correction {summary['quaternion_drift_max']:.2g}")
     monitors = summary.get("monitors")

@@ -47,15 +47,17 @@ def classify(rows):
 
 
 def ensemble_readings(out):
-    """{body: reading} of the ensembles `make study` last ran (sustained, transient, regular, undecided)."""
+    """{(body, law): reading} of the ensembles `make study` last ran (sustained, transient, regular, undecided);
+    law is "held" (ensemble-gomboc-BODY-rolling) or "unilateral" (ensemble-gomboc-BODY-unilateral)."""
     folder = os.path.join(out, "study")
     readings = {}
     if not os.path.isdir(folder):
         return readings
     for name in sorted(os.listdir(folder)):
-        if name.startswith("ensemble-gomboc-") and name.endswith("-rolling-scan.csv"):
-            body = name[len("ensemble-gomboc-"):-len("-rolling-scan.csv")]
-            readings[body] = classify(list(csv.DictReader(open(os.path.join(folder, name)))))[-1]
+        for suffix, law in (("-rolling-scan.csv", "held"), ("-unilateral-scan.csv", "unilateral")):
+            if name.startswith("ensemble-gomboc-") and name.endswith(suffix):
+                body = name[len("ensemble-gomboc-"):-len(suffix)]
+                readings[(body, law)] = classify(list(csv.DictReader(open(os.path.join(folder, name)))))[-1]
     return readings
 
 
@@ -65,7 +67,7 @@ def study_section(out):
     files = sorted(f for f in os.listdir(folder) if f.endswith("-scan.csv")) if os.path.isdir(folder) else []
     if not files:
         return lines + ["No ensembles in this checkout: `make study` runs those of `cases/studies` (32 random initial "
-                        "attitudes per body, 3000 periods each, about 16 minutes on 2 cores) and writes them here.", ""]
+                        "attitudes per body and contact law, 3000 periods each) and writes them here.", ""]
     stamp = os.path.join(out, "gates", "study.json")
     when = ""
     if os.path.exists(stamp):

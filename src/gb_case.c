@@ -515,6 +515,9 @@ int gb_case_load_text_with(const char *name, const char *text, size_t size, cons
     const double unit = scene.amplitudes_in_g ? scene.dynamics.forcing.g : 1.0;
     scene.dynamics.forcing.a1 = scene.A1 * unit;
     scene.dynamics.forcing.a2 = scene.A2 * unit;
+    /* The unilateral law's end to chatter: a return shorter than one step (gb_dynamics_def.settle_time). */
+    if (scene.dynamics.contact_law == GB_CONTACT_LAW_UNILATERAL)
+        scene.dynamics.settle_time = gb_forcing_period(&scene.dynamics.forcing) / (double)scene.integrate.steps_per_period;
     *out = scene;
     return GB_OK;
 }

@@ -103,9 +103,16 @@ struct gb_dynamics {
     double impact_loss, impact_friction_max;
     gb_dynamics_impact_sink impact_sink;
     void *impact_context;
+    /* The two-point mode: the body rolls on `contact` (P) and `contact2` (Q) at once, since two_point_since;
+     * the time spent in it before, and how often it was entered. `pending`: the event that
+     * gb_dynamics_switch_pending found in this mode, for gb_dynamics_branch_gap and gb_dynamics_switch_to. */
+    int two_point, pending;
+    gb_contact_point contact2;
+    double two_point_since, two_point_time;
+    size_t two_point_entries, settled, lifts, third_points;
     /* The last competitor() answer and the state it was for: with switch location, the step's end is
      * checked by gb_dynamics_switch_pending and then again by gb_dynamics_accept at the same state. */
-    int memo_valid, memo_found;
+    int memo_valid, memo_found, memo_pending;
     double memo_key[8];
     gb_contact_point memo_continued, memo_other;
 };
@@ -373,17 +380,116 @@ static int angular_acceleration(const gb_dynamics *d, double geff, const double 
     return solve3(IP, rhs, omega_dot);
 }
 
+/* ---------------------------------------------------------------- the two-point mode (unilateral law) */
+
+/* The body rolling on P (the accepted contact, continued) and Q (contact2, continued) at state y. */
+typedef struct two_point_eval {
+    contact_eval p;           /* P, continued as the one-point contact is */
+    gb_contact_point q;       /* Q, continued by Newton from the accepted Q */
+    double rp[3], rq[3];      /* [m], from the centroid */
+    double u[3], dist;        /* (r_P − r_Q) / |r_P − r_Q|, |r_P − r_Q| */
+    double sigma, omega_dot[3];
+    double normal[2];         /* N_P, N_Q */
+    double friction_needed, balance;
+} two_point_eval;
+
+static void vertical_of(const double y[GB_STATE_SIZE], double zb[3]);
+
+static int two_point_at(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], two_point_eval *tp)
+{
+    const double L = d->def.length, m = d->def.mass, c = d->def.damping;
+    const double *omega = y + GB_STATE_OMEGA;
+    double zb[3];
+    vertical_of(y, zb);
+    const size_t lost = d->branches_lost;
+    int status = contact_at(d, t, zb, omega, &tp->p);
+    if (!status && d->branches_lost != lost)
+        status = gb_error_set(GB_ENUMERIC, "two-point contact at t = %.9g: P has no minimum of height left (a fold)", t);
+    if (!status) status = gb_contact_refine(&d->surface, zb, d->contact2.phi, d->contact2.theta, &d->refine, &tp->q);
+    if (!status && !tp->q.is_minimum)
+        status = gb_error_set(GB_ENUMERIC, "two-point contact at t = %.9g: Q has no minimum of height left (a fold)", t);
+    if (status) return status;
+    double dvec[3];
+    for (int k = 0; k < 3; k++) tp->rp[k] = L * tp->p.point.rc[k], tp->rq[k] = L * tp->q.rc[k], dvec[k] = tp->rp[k] - tp->rq[k];
+    tp->dist = gb_vec_norm(dvec);
+    if (!(tp->dist > 1e-9 * L))
+        return gb_error_set(GB_ENUMERIC, "two-point contact at t = %.9g: P and Q merge (|PQ| = %.3g m, the end of a crease)",
+                            t, tp->dist);
+    for (int k = 0; k < 3; k++) tp->u[k] = dvec[k] / tp->dist;
+    const double *u = tp->u;
+    tp->sigma = gb_vec_dot(omega, u);
+    /* ṙ_P, ṙ_Q per unit σ (eq 72 with ω = u: the rates are linear in ω), and u̇ per unit σ */
+    double vp[3], vq[3], du[3];
+    status = gb_contact_rate(&d->surface, zb, &tp->p.point, u, vp, NULL);
+    if (!status) status = gb_contact_rate(&d->surface, zb, &tp->q, u, vq, NULL);
+    if (status) return status;
+    for (int k = 0; k < 3; k++) vp[k] *= L, vq[k] *= L;
+    const double rel[3] = {vp[0] - vq[0], vp[1] - vq[1], vp[2] - vq[2]}, along = gb_vec_dot(u, rel);
+    for (int k = 0; k < 3; k++) du[k] = (rel[k] - along * u[k]) / tp->dist;
+    /* I_u = uᵀ I_P u and its rate per unit σ, K = 2 uᵀ I_P u̇ + uᵀ İ_P u, İ_P = m (2 r·ṙ I − ṙ rᵀ − r ṙᵀ) */
+    double IP[3][3], IPu[3];
+    inertia_about_contact(d, tp->rp, IP);
+    mat_vec(IP, u, IPu);
+    const double Iu = gb_vec_dot(u, IPu);
+    const double K = 2.0 * gb_vec_dot(IPu, du) + 2.0 * m * (gb_vec_dot(tp->rp, vp) - gb_vec_dot(u, vp) * gb_vec_dot(u, tp->rp));
+    double geff, geff_rate, zxu[3];
+    gb_forcing_geff_with_rate(&d->def.forcing, t, &geff, &geff_rate);
+    gb_vec_cross(zb, u, zxu);
+    /* d/dt(½ I_u σ²) = σ (I_u σ̇ + ½ K σ²) = −m g_eff ζ̇ − c σ², ζ̇ = −σ (z_b × u)·r_P */
+    const double s = tp->sigma;
+    const double sigma_dot = (m * geff * gb_vec_dot(zxu, tp->rp) - c * s - 0.5 * K * s * s) / Iu;
+    for (int k = 0; k < 3; k++) tp->omega_dot[k] = sigma_dot * u[k] + s * s * du[k];
+    /* Newton–Euler with these accelerations: the contact forces F = m a_G + m g_eff z_b, their moment
+     * about G, M = I_G ω̇ + ω × I_G ω + c ω = r_P × F_P + r_Q × F_Q, so (r_P − r_Q) × F_P = M − r_Q × F
+     * fixes F_P across PQ; its part along PQ (and Q's) is the internal force statics leaves open. */
+    double a[3], b[3], e[3], f[3], F[3], Iw[3], gyro[3], Iwd[3], M[3], rqF[3], X[3], FP[3];
+    gb_vec_cross(tp->rp, omega, a);
+    gb_vec_cross(omega, a, b);
+    const double vP[3] = {s * vp[0], s * vp[1], s * vp[2]};
+    gb_vec_cross(vP, omega, e);
+    gb_vec_cross(tp->rp, tp->omega_dot, f);
+    for (int k = 0; k < 3; k++) F[k] = m * (b[k] + e[k] + f[k] + geff * zb[k]);
+    mat_vec(d->inertia, omega, Iw);
+    gb_vec_cross(omega, Iw, gyro);
+    mat_vec(d->inertia, tp->omega_dot, Iwd);
+    gb_vec_cross(tp->rq, F, rqF);
+    for (int k = 0; k < 3; k++) M[k] = Iwd[k] + gyro[k] + c * omega[k], X[k] = (M[k] - rqF[k]) / tp->dist;
+    tp->balance = fabs(gb_vec_dot(X, u)) * tp->dist / fmax(gb_vec_norm(M) + gb_vec_norm(rqF), 1e-300);
+    gb_vec_cross(X, u, FP);
+    tp->normal[0] = gb_vec_dot(zb, FP);
+    tp->normal[1] = gb_vec_dot(zb, F) - tp->normal[0];
+    const double n = tp->normal[0] + tp->normal[1], share = n > 0.0 ? tp->normal[0] / n : 0.5, fu = gb_vec_dot(F, u);
+    double tan_p[3], tan_q[3];
+    for (int k = 0; k < 3; k++) {
+        tan_p[k] = FP[k] - tp->normal[0] * zb[k] + share * fu * u[k];
+        tan_q[k] = F[k] - FP[k] - tp->normal[1] * zb[k] - share * fu * u[k];
+    }
+    tp->friction_needed = tp->normal[0] > 0.0 && tp->normal[1] > 0.0
+                              ? fmax(gb_vec_norm(tan_p) / tp->normal[0], gb_vec_norm(tan_q) / tp->normal[1])
+                              : INFINITY;
+    return GB_OK;
+}
+
 int gb_dynamics_rhs(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], double dydt[GB_STATE_SIZE])
 {
     double zb[3];
     const double *q = y + GB_STATE_Q, *omega = y + GB_STATE_OMEGA;
     vertical_of_quaternion(q, zb);
     contact_eval c;
-    int status = contact_at(d, t, zb, omega, &c);
+    int status = GB_OK;
     double geff, geff_rate;
     gb_forcing_geff_with_rate(&d->def.forcing, t, &geff, &geff_rate);
-    if (!status) status = angular_acceleration(d, geff, zb, omega, &c, dydt + GB_STATE_OMEGA);
-    if (status) return status;
+    if (d->two_point) {
+        two_point_eval tp;
+        status = two_point_at(d, t, y, &tp);
+        if (status) return status;
+        c = tp.p;
+        memcpy(dydt + GB_STATE_OMEGA, tp.omega_dot, sizeof tp.omega_dot);
+    } else {
+        status = contact_at(d, t, zb, omega, &c);
+        if (!status) status = angular_acceleration(d, geff, zb, omega, &c, dydt + GB_STATE_OMEGA);
+        if (status) return status;
+    }
     /* q̇ = ½ q ⊗ (0, ω) (eq 23) */
     dydt[0] = -0.5 * (q[1] * omega[0] + q[2] * omega[1] + q[3] * omega[2]);
     dydt[1] = 0.5 * (q[0] * omega[0] + q[2] * omega[2] - q[3] * omega[1]);
@@ -395,8 +501,6 @@ int gb_dynamics_rhs(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], dou
                           d->def.mass * geff_rate * zeta;
     return GB_OK;
 }
-
-static void vertical_of(const double y[GB_STATE_SIZE], double zb[3]);
 
 /* Store the accepted contact's time and its (φ̇, θ̇) (eq 72) for the next Newton starts. */
 static int remember_rate(gb_dynamics *d, double t, const double y[GB_STATE_SIZE])
@@ -524,45 +628,284 @@ int gb_dynamics_save_atlas(const gb_dynamics *d)
     return gb_atlas_save(d->atlas, d->def.atlas_file);
 }
 
-/* The unilateral law at a change of contact from P (`from`, at state y) to Q (`to`): the plastic impact
- * of the body rolling about P on the plane at Q (gb_impact, body axes, the plane's normal z_b); ω in y
- * takes its value after. Only "P lifts, Q holds" is followed; the rest stops the run, saying why. */
-static int impact(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const gb_contact_point *from, const gb_contact_point *to,
-                  int located)
+static const char *const impact_kind_names[] = {"switch", "two-point", "lift", "third-point"};
+
+const char *gb_dynamics_impact_kind_name(gb_dynamics_impact_kind k) { return (unsigned)k < 4 ? impact_kind_names[k] : NULL; }
+
+/* The plastic impact (gb_impact, body axes, the plane's normal z_b) of the body turning with the ω of y
+ * about the point `rest` (at rest on the plane before), on the plane at `count` points [m]. */
+static int impact_solve(const gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const double rest[3],
+                        const double (*points)[3], int count, double v_before[3], gb_impact_result *r)
 {
-    const double L = d->def.length;
-    gb_dynamics_impact e = {.t = t, .located = located};
     double zb[3];
     vertical_of(y, zb);
-    double *omega = y + GB_STATE_OMEGA;
-    for (int k = 0; k < 3; k++) e.old_point[k] = L * from->rc[k], e.new_point[k] = L * to->rc[k];
-    memcpy(e.omega_before, omega, sizeof e.omega_before);
-    const double arm[3] = {-e.old_point[0], -e.old_point[1], -e.old_point[2]}; /* G − P */
-    gb_vec_cross(omega, arm, e.v_before);                                        /* P at rest */
+    const double arm[3] = {-rest[0], -rest[1], -rest[2]}; /* G − P */
+    gb_vec_cross(y + GB_STATE_OMEGA, arm, v_before);
     gb_impact_body body = {d->def.mass, {{0}}};
     memcpy(body.inertia, d->inertia, sizeof body.inertia);
-    const double points[2][3] = {{e.old_point[0], e.old_point[1], e.old_point[2]}, {e.new_point[0], e.new_point[1], e.new_point[2]}};
-    gb_impact_result r;
-    int status = gb_impact_solve(&body, zb, 0.0, points, 2, e.v_before, omega, &r);
-    if (status)
+    if (gb_impact_solve(&body, zb, 0.0, points, count, v_before, y + GB_STATE_OMEGA, r))
         return gb_error_set(GB_ENUMERIC, "unilateral contact at t = %.9g: %s; a finite friction coefficient is not built yet",
                             t, gb_error_message());
-    if (r.holds[0] || !r.holds[1])
-        return gb_error_set(GB_ENUMERIC, "unilateral contact at t = %.9g: after the impact at the new contact %s (the two-point "
-                            "mode, rocking on the axis of both points, is not built yet)", t,
-                            r.holds[0] && r.holds[1] ? "both points hold" : "the new point does not hold");
-    memcpy(omega, r.omega, sizeof r.omega);
-    memcpy(e.omega_after, r.omega, sizeof e.omega_after);
-    memcpy(e.v_after, r.v, sizeof e.v_after);
-    e.normal_impulse = r.normal_impulse[1], e.tangential_impulse = r.tangential_impulse[1];
-    e.friction_needed = r.friction_needed;
-    e.kinetic_before = r.energy_before, e.kinetic_after = r.energy_after;
-    d->impacts++;
-    d->impact_loss += r.energy_before - r.energy_after;
-    d->impact_friction_max = fmax(d->impact_friction_max, r.friction_needed);
-    d->memo_valid = 0; /* ω changed */
-    if (d->impact_sink) status = d->impact_sink(d->impact_context, &e);
+    return GB_OK;
+}
+
+/* Book a change of contact: an impact's loss (a lift has none) and the sink. */
+static int book(gb_dynamics *d, const gb_dynamics_impact *e)
+{
+    d->settled += (size_t)e->settled;
+    d->lifts += e->kind == GB_IMPACT_LIFT;
+    d->third_points += e->kind == GB_IMPACT_THIRD;
+    if (e->kind != GB_IMPACT_LIFT) {
+        d->impacts++;
+        d->impact_loss += e->kinetic_before - e->kinetic_after;
+        d->impact_friction_max = fmax(d->impact_friction_max, e->friction_needed);
+    }
+    d->memo_valid = 0; /* ω may have changed */
+    return d->impact_sink ? d->impact_sink(d->impact_context, e) : GB_OK;
+}
+
+/* Fill an impact record from its points and the solver's answer at point `k`; ω in y takes its value after. */
+static void record(gb_dynamics_impact *e, double y[GB_STATE_SIZE], const double old_point[3], const double new_point[3],
+                   const double v_before[3], const gb_impact_result *r, int k)
+{
+    double *omega = y + GB_STATE_OMEGA;
+    memcpy(e->old_point, old_point, sizeof e->old_point);
+    memcpy(e->new_point, new_point, sizeof e->new_point);
+    memcpy(e->omega_before, omega, sizeof e->omega_before);
+    memcpy(e->v_before, v_before, sizeof e->v_before);
+    memcpy(omega, r->omega, sizeof r->omega);
+    memcpy(e->omega_after, r->omega, sizeof e->omega_after);
+    memcpy(e->v_after, r->v, sizeof e->v_after);
+    e->normal_impulse = r->normal_impulse[k], e->tangential_impulse = r->tangential_impulse[k];
+    e->old_normal_impulse = k ? r->normal_impulse[0] : 0.0;
+    e->friction_needed = r->friction_needed;
+    e->kinetic_before = r->energy_before, e->kinetic_after = r->energy_after;
+}
+
+/* The plastic impact that stops both P and Q (r_P, r_Q [m]), from the state y turning about P: ω⁺ = σ u
+ * along PQ with u·H_P kept (the impulses at P and Q have no moment about the line PQ), H_P = I_G ω + m
+ * (G − P) × v_G; the impulses from the momentum and moment jumps, the part along PQ split as the normal
+ * impulses (as for the two-point mode's forces). */
+static void hold_both(const gb_dynamics *d, const double y[GB_STATE_SIZE], const double rp[3], const double rq[3],
+                      const double v_before[3], gb_impact_result *r)
+{
+    const double m = d->def.mass, *omega = y + GB_STATE_OMEGA;
+    double zb[3], dvec[3], u[3], IP[3][3], IPu[3], Iw[3], gp[3], HP[3];
+    vertical_of(y, zb);
+    for (int k = 0; k < 3; k++) dvec[k] = rp[k] - rq[k];
+    const double dist = gb_vec_norm(dvec);
+    for (int k = 0; k < 3; k++) u[k] = dvec[k] / dist;
+    mat_vec((double (*)[3])d->inertia, omega, Iw);
+    gb_vec_cross((const double[3]){-rp[0], -rp[1], -rp[2]}, v_before, gp);
+    for (int k = 0; k < 3; k++) HP[k] = Iw[k] + m * gp[k];
+    inertia_about_contact(d, rp, IP);
+    mat_vec(IP, u, IPu);
+    const double sigma = gb_vec_dot(u, HP) / gb_vec_dot(u, IPu);
+    memset(r, 0, sizeof *r);
+    for (int k = 0; k < 3; k++) r->omega[k] = sigma * u[k];
+    gb_vec_cross(r->omega, (const double[3]){-rp[0], -rp[1], -rp[2]}, r->v);
+    gb_impact_body body = {m, {{0}}};
+    memcpy(body.inertia, d->inertia, sizeof body.inertia);
+    r->energy_before = gb_impact_energy(&body, v_before, omega);
+    r->energy_after = gb_impact_energy(&body, r->v, r->omega);
+    double Pi[3], dH[3], dw[3], rqPi[3], X[3], PP[3];
+    for (int k = 0; k < 3; k++) Pi[k] = m * (r->v[k] - v_before[k]), dw[k] = r->omega[k] - omega[k];
+    mat_vec((double (*)[3])d->inertia, dw, dH);
+    gb_vec_cross(rq, Pi, rqPi);
+    for (int k = 0; k < 3; k++) X[k] = (dH[k] - rqPi[k]) / dist;
+    gb_vec_cross(X, u, PP);
+    r->normal_impulse[0] = gb_vec_dot(zb, PP);
+    r->normal_impulse[1] = gb_vec_dot(zb, Pi) - r->normal_impulse[0];
+    const double n = r->normal_impulse[0] + r->normal_impulse[1], share = n > 0.0 ? r->normal_impulse[0] / n : 0.5;
+    const double pu = gb_vec_dot(Pi, u);
+    double tp[3], tq[3];
+    for (int k = 0; k < 3; k++) {
+        tp[k] = PP[k] - r->normal_impulse[0] * zb[k] + share * pu * u[k];
+        tq[k] = Pi[k] - PP[k] - r->normal_impulse[1] * zb[k] - share * pu * u[k];
+    }
+    r->tangential_impulse[0] = gb_vec_norm(tp), r->tangential_impulse[1] = gb_vec_norm(tq);
+    /* at Q, which lands; P's normal impulse may be a small pull (see gb_dynamics_impact.old_normal_impulse) */
+    r->friction_needed = r->normal_impulse[1] > 0.0 ? r->tangential_impulse[1] / r->normal_impulse[1] : INFINITY;
+    r->holds[0] = r->holds[1] = 1;
+    r->feasible_sets = 1;
+}
+
+/* After an impact at which P lifts and the body rolls on Q with ω (y): how soon P falls back, 2 v_n/|a_n|
+ * from P's normal velocity and acceleration under the rolling equation about Q (INFINITY when a_n >= 0). */
+static double return_time(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const gb_contact_point *q,
+                          const double v[3], const double rp[3])
+{
+    const double L = d->def.length, *omega = y + GB_STATE_OMEGA;
+    double zb[3], geff, geff_rate, w_dot[3];
+    vertical_of(y, zb);
+    gb_forcing_geff_with_rate(&d->def.forcing, t, &geff, &geff_rate);
+    contact_eval c;
+    memset(&c, 0, sizeof c);
+    if (gb_contact_rate(&d->surface, zb, q, omega, c.rc_dot, NULL)) return INFINITY;
+    for (int k = 0; k < 3; k++) c.rc[k] = L * q->rc[k], c.rc_dot[k] *= L;
+    if (angular_acceleration(d, geff, zb, omega, &c, w_dot)) {
+        gb_error_clear();
+        return INFINITY;
+    }
+    /* a_G rolling about Q (as in gb_dynamics_observe), then P's material point: a_P = a_G + ω̇ × r_P + ω × (ω × r_P) */
+    double a[3], b[3], e[3], f[3], g[3], h[3], wr[3];
+    gb_vec_cross(c.rc, omega, a);
+    gb_vec_cross(omega, a, b);
+    gb_vec_cross(c.rc_dot, omega, e);
+    gb_vec_cross(c.rc, w_dot, f);
+    gb_vec_cross(w_dot, rp, g);
+    gb_vec_cross(omega, rp, wr);
+    gb_vec_cross(omega, wr, h);
+    double an = 0.0, vn = gb_vec_dot(zb, v) + gb_vec_dot(zb, wr);
+    for (int k = 0; k < 3; k++) an += zb[k] * (b[k] + e[k] + f[k] + g[k] + h[k]);
+    return an < 0.0 ? 2.0 * fmax(vn, 0.0) / -an : INFINITY;
+}
+
+/* The unilateral law at a change of contact from P (`from`, at state y) to Q (`to`) while rolling on one
+ * point: the plastic impact of the body rolling about P on the plane at Q. *both: both points hold after
+ * (the two-point mode begins), else P lifts. A lift whose fall back would come within def.settle_time is
+ * taken as both held (the settle rule). */
+static int impact(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const gb_contact_point *from, const gb_contact_point *to,
+                  int located, int *both)
+{
+    const double L = d->def.length;
+    const double points[2][3] = {{L * from->rc[0], L * from->rc[1], L * from->rc[2]}, {L * to->rc[0], L * to->rc[1], L * to->rc[2]}};
+    double v[3];
+    gb_impact_result r;
+    int status = impact_solve(d, t, y, points[0], points, 2, v, &r);
+    if (status) return status;
+    if (!r.holds[1])
+        return gb_error_set(GB_ENUMERIC, "unilateral contact at t = %.9g: after the impact the new contact does not hold", t);
+    *both = r.holds[0];
+    double back = INFINITY;
+    if (!*both) {
+        double yafter[GB_STATE_SIZE];
+        memcpy(yafter, y, sizeof yafter);
+        memcpy(yafter + GB_STATE_OMEGA, r.omega, sizeof r.omega);
+        back = return_time(d, t, yafter, to, r.v, points[0]);
+        if (back < d->def.settle_time) {
+            hold_both(d, y, points[0], points[1], v, &r);
+            *both = 1;
+        }
+    }
+    gb_dynamics_impact e = {.t = t, .located = located, .kind = *both ? GB_IMPACT_TWO_POINT : GB_IMPACT_SWITCH,
+                            .contacts_after = 1 + *both, .settled = *both && isfinite(back), .return_time = back};
+    record(&e, y, points[0], points[1], v, &r, 1);
+    return book(d, &e);
+}
+
+static int check_global(gb_dynamics *d, const double zb[3], const gb_contact_point *candidate, gb_certify_result *r);
+static int canonical_minimum(gb_dynamics *d, const double zb[3], gb_contact_point *p);
+
+enum { PENDING_THIRD = 0, PENDING_LIFT = 1 };
+
+static int same_point(const gb_contact_point *a, const gb_contact_point *b)
+{
+    const double dx[3] = {a->rc[0] - b->rc[0], a->rc[1] - b->rc[1], a->rc[2] - b->rc[2]};
+    return gb_vec_norm(dx) < 1e-7;
+}
+
+static int two_point_search(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], gb_contact_point *other, int *found);
+
+/* Two-point mode at state y: is an event due? A normal force below 0 (PENDING_LIFT), or a third minimum
+ * lower than both points, proved by the certificate (PENDING_THIRD, *other). */
+static int two_point_pending(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], gb_contact_point *other, int *found)
+{
+    /* The step's end is checked by gb_dynamics_switch_pending and again by gb_dynamics_accept at the same
+     * state: the memo (as competitor()'s, its last key 1 for this mode) answers the second. */
+    double zkey[3];
+    vertical_of(y, zkey);
+    const double key[8] = {zkey[0], zkey[1], zkey[2], t, y[GB_STATE_OMEGA], y[GB_STATE_OMEGA + 1], y[GB_STATE_OMEGA + 2], 1.0};
+    if (d->memo_valid && memcmp(key, d->memo_key, sizeof key) == 0) {
+        *found = d->memo_found;
+        if (*found) *other = d->memo_other, d->pending = d->memo_pending;
+        return GB_OK;
+    }
+    int status = two_point_search(d, t, y, other, found);
+    if (status) return status;
+    memcpy(d->memo_key, key, sizeof key);
+    d->memo_found = *found;
+    if (*found) d->memo_other = *other, d->memo_pending = d->pending;
+    d->memo_valid = 1;
+    return GB_OK;
+}
+
+static int two_point_search(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], gb_contact_point *other, int *found)
+{
+    two_point_eval tp;
+    *found = 0;
+    int status = two_point_at(d, t, y, &tp);
+    if (status) return status;
+    if (fmin(tp.normal[0], tp.normal[1]) < 0.0) {
+        d->pending = PENDING_LIFT;
+        *other = tp.q;
+        *found = 1;
+        return GB_OK;
+    }
+    double zb[3];
+    vertical_of(y, zb);
+    gb_contact_point candidate = tp.p.point.height <= tp.q.height ? tp.p.point : tp.q;
+    for (int round = 0; round < 16; round++) {
+        gb_certify_result r;
+        status = check_global(d, zb, &candidate, &r);
+        if (status) return status;
+        if (r.verdict != GB_CERTIFY_LOWER_FOUND) break;
+        candidate = *other = r.lower;
+        *found = 1;
+    }
+    if (*found) status = canonical_minimum(d, zb, other);
+    if (!status && *found && (same_point(other, &tp.p.point) || same_point(other, &tp.q))) *found = 0; /* P and Q tie */
+    d->pending = PENDING_THIRD;
     return status;
+}
+
+/* Two-point mode: the located event at state y (its `other` from two_point_pending, continued). */
+static int two_point_event(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const gb_contact_point *third)
+{
+    two_point_eval tp;
+    int status = two_point_at(d, t, y, &tp);
+    if (status) return status;
+    if (d->pending == PENDING_LIFT) {
+        const int lifts = tp.normal[0] < tp.normal[1] ? 0 : 1; /* the point whose force reached 0 */
+        const double *up = lifts ? tp.rq : tp.rp, *stays = lifts ? tp.rp : tp.rq;
+        gb_dynamics_impact e = {.t = t, .located = 1, .kind = GB_IMPACT_LIFT, .contacts_after = 1};
+        gb_impact_result r;
+        memset(&r, 0, sizeof r);
+        double v[3];
+        memcpy(r.omega, y + GB_STATE_OMEGA, sizeof r.omega);
+        gb_vec_cross(y + GB_STATE_OMEGA, (const double[3]){-stays[0], -stays[1], -stays[2]}, v);
+        memcpy(r.v, v, sizeof v);
+        gb_impact_body body = {d->def.mass, {{0}}};
+        memcpy(body.inertia, d->inertia, sizeof body.inertia);
+        r.energy_before = r.energy_after = gb_impact_energy(&body, v, r.omega);
+        record(&e, y, up, stays, v, &r, 0);
+        d->two_point = 0;
+        d->two_point_time += t - d->two_point_since;
+        d->contact = lifts ? tp.p.point : tp.q;
+        return book(d, &e);
+    }
+    const double L = d->def.length;
+    const double points[3][3] = {{tp.rp[0], tp.rp[1], tp.rp[2]}, {tp.rq[0], tp.rq[1], tp.rq[2]},
+                                 {L * third->rc[0], L * third->rc[1], L * third->rc[2]}};
+    double v[3];
+    gb_impact_result r;
+    status = impact_solve(d, t, y, tp.rp, points, 3, v, &r);
+    if (status) return status;
+    const int held = r.holds[0] + r.holds[1] + r.holds[2];
+    if (!r.holds[2] || held == 3)
+        return gb_error_set(GB_ENUMERIC, "unilateral contact at t = %.9g: a third point reaches the plane and %s", t,
+                            held == 3 ? "the body comes to rest on three points (not built yet)"
+                                      : "does not hold after the impact");
+    gb_dynamics_impact e = {.t = t, .located = 1, .kind = GB_IMPACT_THIRD, .contacts_after = held};
+    record(&e, y, r.holds[0] ? points[1] : points[0], points[2], v, &r, 2);
+    if (held == 2) {
+        d->contact2 = r.holds[0] ? tp.p.point : tp.q;
+    } else {
+        d->two_point = 0;
+        d->two_point_time += t - d->two_point_since;
+    }
+    d->contact = *third;
+    return book(d, &e);
 }
 
 int gb_dynamics_accept(gb_dynamics *d, double t, double y[GB_STATE_SIZE], double *norm_drift)
@@ -584,13 +927,28 @@ int gb_dynamics_accept(gb_dynamics *d, double t, double y[GB_STATE_SIZE], double
     }
     gb_contact_point continued, other;
     int found;
+    if (d->two_point) {
+        /* Every event of the mode is located inside its step; one found here is a second inside one step. */
+        int status = two_point_pending(d, t, y, &other, &found);
+        if (!status && found)
+            status = gb_error_set(GB_ENUMERIC, "unilateral contact at t = %.9g: a second change of contact inside one "
+                                  "step of the two-point mode (%s)", t, d->pending == PENDING_LIFT ? "a normal force below 0"
+                                  : "a third point lower than both");
+        two_point_eval tp;
+        if (!status) status = two_point_at(d, t, y, &tp);
+        if (status) return status;
+        d->contact = tp.p.point;
+        d->contact2 = tp.q;
+        d->memo_valid = 0;
+        return remember_rate(d, t, y);
+    }
     int status = competitor(d, t, y, &continued, &other, &found);
     /* Under the unilateral law every contact change is located inside its step; one found here is a second
      * change inside one step: the body chatters between two points, coming to rest on both. */
     if (!status && found && d->def.contact_law == GB_CONTACT_LAW_UNILATERAL)
         status = gb_error_set(GB_ENUMERIC, "unilateral contact at t = %.9g: a second change of contact inside one step (the "
-                              "body chatters between two points, coming to rest on both; %zu impacts so far): the two-point "
-                              "mode is not built yet", t, d->impacts);
+                              "body chatters between two points, impacts accumulating as a bouncing ball's; %zu impacts so far): "
+                              "no rule ends such a sequence yet", t, d->impacts);
     if (status) return status;
     d->contact = found ? other : continued;
     d->memo_valid = 0; /* the accepted contact changed */
@@ -605,17 +963,32 @@ int gb_dynamics_switch_pending(gb_dynamics *d, double t, const double y[GB_STATE
 {
     *found = 0;
     if (d->def.contact != GB_CONTACT_MODEL_CONTINUOUS) return GB_OK;
+    if (d->two_point) return two_point_pending(d, t, y, other, found);
     gb_contact_point continued;
     return competitor(d, t, y, &continued, other, found);
 }
 
-int gb_dynamics_branch_gap(gb_dynamics *d, const double y[GB_STATE_SIZE], const gb_contact_point *other, double *gap,
-                           gb_contact_point *other_here)
+int gb_dynamics_branch_gap(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const gb_contact_point *other,
+                           double *gap, gb_contact_point *other_here)
 {
     double zb[3];
     vertical_of(y, zb);
     gb_contact_point here;
+    if (d->two_point && d->pending == PENDING_LIFT) {
+        two_point_eval tp;
+        const int status = two_point_at(d, t, y, &tp);
+        if (status) return status;
+        *gap = -fmin(tp.normal[0], tp.normal[1]);
+        *other_here = *other;
+        return GB_OK;
+    }
     int status = gb_contact_refine(&d->surface, zb, d->contact.phi, d->contact.theta, &d->refine, &here);
+    if (!status && d->two_point) {
+        /* a third point against the lower of P and Q */
+        gb_contact_point q;
+        status = gb_contact_refine(&d->surface, zb, d->contact2.phi, d->contact2.theta, &d->refine, &q);
+        if (!status && q.height < here.height) here = q;
+    }
     if (!status) status = gb_contact_refine(&d->surface, zb, other->phi, other->theta, &d->refine, other_here);
     if (status) return status;
     *gap = here.height - other_here->height; /* > 0: the other branch is lower (eq 39) */
@@ -624,18 +997,30 @@ int gb_dynamics_branch_gap(gb_dynamics *d, const double y[GB_STATE_SIZE], const 
 
 int gb_dynamics_switch_to(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const gb_contact_point *branch)
 {
-    if (d->def.contact_law == GB_CONTACT_LAW_UNILATERAL) {
+    if (d->two_point) {
+        const int status = two_point_event(d, t, y, branch);
+        if (status) return status;
+    } else if (d->def.contact_law == GB_CONTACT_LAW_UNILATERAL) {
         /* the old contact continued to this state: the point P that the body rolls about */
         double zb[3];
         vertical_of(y, zb);
         gb_contact_point here;
+        int both = 0;
         int status = gb_contact_refine(&d->surface, zb, d->contact.phi, d->contact.theta, &d->refine, &here);
-        if (!status) status = impact(d, t, y, &here, branch, 1);
+        if (!status) status = impact(d, t, y, &here, branch, 1, &both);
         if (status) return status;
+        d->contact = *branch;
+        if (both) {
+            d->two_point = 1;
+            d->contact2 = here;
+            d->two_point_since = t;
+            d->two_point_entries++;
+        }
+    } else {
+        d->contact = *branch;
     }
     d->last_switch_time = t;
     d->memo_valid = 0;
-    d->contact = *branch;
     d->contact_rate[0] = d->contact_rate[1] = 0.0; /* no predictor until the next accepted step */
     d->last_valid = 0;
     d->branch_switches++;
@@ -654,6 +1039,15 @@ void gb_dynamics_impact_stats(const gb_dynamics *d, size_t *impacts, double *ene
     if (friction_max) *friction_max = d->impact_friction_max;
 }
 
+void gb_dynamics_two_point_stats(const gb_dynamics *d, double t, gb_dynamics_two_point_summary *out)
+{
+    out->time = d->two_point_time + (d->two_point ? t - d->two_point_since : 0.0);
+    out->entries = d->two_point_entries;
+    out->settled = d->settled;
+    out->lifts = d->lifts;
+    out->third_points = d->third_points;
+}
+
 size_t gb_dynamics_switch_count(const gb_dynamics *d) { return d->grid_switches + d->branch_switches; }
 
 double gb_dynamics_last_switch_time(const gb_dynamics *d) { return d->last_switch_time; }
@@ -664,6 +1058,9 @@ void gb_dynamics_adopt_contact(gb_dynamics *to, const gb_dynamics *from)
     to->last_valid = 0;
     to->index = from->index;
     to->contact = from->contact;
+    to->two_point = from->two_point;
+    to->contact2 = from->contact2;
+    to->two_point_since = from->two_point_since;
     to->contact_time = from->contact_time;
     memcpy(to->contact_rate, from->contact_rate, sizeof to->contact_rate);
 }
@@ -693,6 +1090,8 @@ int gb_dynamics_init_state(gb_dynamics *d, double t0, const double R0[9], const 
     d->last_valid = 0;
     d->grid_switches = d->branch_switches = d->branches_lost = 0;
     d->impacts = 0, d->impact_loss = d->impact_friction_max = 0.0;
+    d->two_point = d->pending = 0, d->two_point_time = 0.0;
+    d->two_point_entries = d->settled = d->lifts = d->third_points = 0;
     d->last_switch_time = NAN;
     d->memo_valid = 0;
     d->t0 = t0;
@@ -711,10 +1110,19 @@ int gb_dynamics_observe(gb_dynamics *d, double t, const double y[GB_STATE_SIZE],
     zb_of(o->R, o->zb);
     memcpy(o->omega, y + GB_STATE_OMEGA, sizeof o->omega);
     contact_eval c;
-    int status = contact_at(d, t, o->zb, o->omega, &c);
+    two_point_eval tp;
+    int status;
     gb_forcing_geff_with_rate(&d->def.forcing, t, &o->geff, &o->geff_rate);
-    if (!status) status = angular_acceleration(d, o->geff, o->zb, o->omega, &c, o->omega_dot);
-    if (status) return status;
+    if (d->two_point) {
+        status = two_point_at(d, t, y, &tp);
+        if (status) return status;
+        c = tp.p;
+        memcpy(o->omega_dot, tp.omega_dot, sizeof tp.omega_dot);
+    } else {
+        status = contact_at(d, t, o->zb, o->omega, &c);
+        if (!status) status = angular_acceleration(d, o->geff, o->zb, o->omega, &c, o->omega_dot);
+        if (status) return status;
+    }
     const double m = d->def.mass;
     memcpy(o->rc, c.rc, sizeof o->rc);
     memcpy(o->rc_dot, c.rc_dot, sizeof o->rc_dot);
@@ -747,6 +1155,15 @@ int gb_dynamics_observe(gb_dynamics *d, double t, const double y[GB_STATE_SIZE],
     double horizontal[3];
     for (int k = 0; k < 3; k++) horizontal[k] = acc[k] - vertical * o->zb[k];
     o->friction_needed = o->normal_force > 0.0 ? m * gb_vec_norm(horizontal) / o->normal_force : INFINITY;
+    o->contacts = 1 + d->two_point;
+    o->normal_forces[0] = o->normal_force;
+    if (d->two_point) {
+        memcpy(o->rc_other, tp.rq, sizeof o->rc_other);
+        memcpy(o->normal_forces, tp.normal, sizeof tp.normal);
+        o->friction_needed = tp.friction_needed;
+        o->balance = tp.balance;
+        o->tie = d->def.length * (tp.p.point.height - tp.q.height);
+    }
     double worst = 0.0;
     for (int i = 0; i < 3; i++)
         for (int j = 0; j < 3; j++) {

@@ -54,28 +54,54 @@ int gb_dynamics_certificate_parse(const char *name, gb_dynamics_certificate *cer
 
 /* What happens when the contact point changes. HELD: the paper's rule, one contact at all times and ω
  * kept (the kinetic energy about the new point is what it is). UNILATERAL: the plane can only push, and
- * a change of contact is an impact (gb_impact: Moreau's law, rough, plastic): the body rolling about
- * the old point P meets the plane at Q, Q holds after and P lifts, ω jumps, and the kinetic energy the
- * impact takes is booked (L of the ledger E − E0 − W + L). Built for continuous contact with the
- * rolling equation. An impact after which both points hold (the body would rock on the axis PQ) or that
- * a rough plane cannot absorb (gb_impact: stopping Q's slip would need a pulling impulse) stops the run
- * with GB_ENUMERIC saying so, and so does a second change of contact inside one step (the body chattering
- * between two points as it comes to rest on both): the two-point mode and a finite friction coefficient
- * are not built yet. Every change is located (gb_case requires locate_switches = yes). */
+ * a change of contact is an impact (gb_impact: Moreau's law, rough, plastic). Built for continuous
+ * contact with the rolling equation; every change is located (gb_case requires locate_switches = yes).
+ *  - Rolling on one point P, the body meets the plane at Q: if P lifts, rolling goes on about Q with
+ *    the ω after the impact; if both hold, the body rolls on two points.
+ *  - Rolling on two points P and Q (the two-point mode, docs/impact.md): the plane is tangent to the
+ *    body at both, so ω lies along PQ and the vertical moves along the crease of the support function
+ *    where two minima of height tie. One degree of freedom, σ = ω·u (u along PQ), whose equation is the
+ *    power balance d/dt(½ I_u σ²) = −m g_eff ζ̇ − c|ω|² (the rolling contacts do no work). Both normal
+ *    forces come from Newton–Euler. It ends at a located event: a normal force reaching 0 (the body rolls
+ *    on the other point, ω unchanged) or a third point reaching the plane (an impact over all three).
+ * Stops the run with GB_ENUMERIC, saying which: an impact a rough plane cannot absorb (stopping the slip
+ * needs a pulling impulse; a finite friction coefficient is not built), a body coming to rest on three
+ * points, the two points of the mode merging (the end of a crease), and a second change of contact
+ * inside one step. A chatter of impacts between P and Q (the lifted point falling back ever sooner, as a
+ * bouncing ball's) is ended by def.settle_time. */
 typedef enum gb_contact_law { GB_CONTACT_LAW_HELD = 0, GB_CONTACT_LAW_UNILATERAL = 1 } gb_contact_law;
 
 const char *gb_dynamics_contact_law_name(gb_contact_law law);
 int gb_dynamics_contact_law_parse(const char *name, gb_contact_law *law);
 
-/* One impact of the unilateral law, in body axes with the centroid at the origin. */
+/* What happened at a change of contact of the unilateral law. */
+typedef enum gb_dynamics_impact_kind {
+    GB_IMPACT_SWITCH = 0,    /* rolling on P, the body meets the plane at Q; P lifts */
+    GB_IMPACT_TWO_POINT = 1, /* rolling on P, the body meets the plane at Q; both hold (the two-point mode) */
+    GB_IMPACT_LIFT = 2,      /* two-point mode: a normal force reaches 0, that point lifts (no impulse) */
+    GB_IMPACT_THIRD = 3      /* two-point mode: a third point reaches the plane (an impact over all three) */
+} gb_dynamics_impact_kind;
+
+const char *gb_dynamics_impact_kind_name(gb_dynamics_impact_kind kind);
+
+/* One change of contact of the unilateral law, in body axes with the centroid at the origin. */
 typedef struct gb_dynamics_impact {
     double t;
-    int located;                          /* 1: at a located switch; 0: a lower branch found at an accepted step */
-    double old_point[3], new_point[3];    /* P and Q [m] */
+    gb_dynamics_impact_kind kind;
+    int located;                          /* 1: at a located event; 0: a lower branch found at an accepted step */
+    double old_point[3], new_point[3];    /* P and Q [m]: the point that lifts or holds before, the one that
+                                           * touches (a lift: the point that lifts, the one that stays) */
     double omega_before[3], omega_after[3];
     double v_before[3], v_after[3];       /* the centroid's velocity relative to the plane */
-    double normal_impulse, tangential_impulse, friction_needed; /* at Q; friction needed = |P_t| / P_n */
+    double normal_impulse, tangential_impulse, friction_needed; /* at the new point; friction = |P_t| / P_n */
+    double old_normal_impulse;            /* at the old point: 0 but for the settle rule, where it is the pull
+                                           * that stands for the weight's impulse over the return it removes */
     double kinetic_before, kinetic_after; /* [J] */
+    int contacts_after;                   /* points on the plane after: 1 or 2 */
+    int settled;                          /* kind two-point by the settle rule (def.settle_time): P would have
+                                           * lifted and fallen back within the settle time */
+    double return_time;                   /* kind switch or settled: 2 v_n / |a_n| of P after Moreau's impact
+                                           * (INFINITY when P does not fall back) */
 } gb_dynamics_impact;
 
 /* Called with every impact (the run's impacts file); a non-zero return stops the run with that status. */
@@ -92,6 +118,12 @@ typedef struct gb_dynamics_def {
     gb_certify_def certify;        /* continuous contact: the certificate of the global minimum */
     gb_dynamics_certificate certificate; /* continuous contact: per vertical (default) or atlas */
     gb_contact_law contact_law;    /* held (the paper's, default) or unilateral */
+    double settle_time;            /* unilateral: the end to chatter [s] (0: none). At an impact after which P
+                                    * lifts, if P would fall back onto the plane within this time (its normal
+                                    * separation speed v_n and acceleration a_n < 0 after: 2 v_n / |a_n|), both
+                                    * points are taken as held instead: the impact that stops P and Q at once.
+                                    * gb_case sets it to the integrator's step T / steps_per_period, so that the
+                                    * return the rule removes would fall inside one step. */
     gb_atlas_def atlas;            /* certificate = atlas: its cells (its height_tol is certify's) */
     const char *atlas_file;        /* certificate = atlas: load the atlas from here when the file matches the
                                     * body (else build it), and gb_dynamics_save_atlas writes it (NULL: none) */
@@ -157,9 +189,10 @@ int gb_dynamics_accept(gb_dynamics *dynamics, double t, double y[GB_STATE_SIZE],
 int gb_dynamics_switch_pending(gb_dynamics *dynamics, double t, const double y[GB_STATE_SIZE], gb_contact_point *other,
                                int *found);
 /* Δh = h(current branch) − h(the branch of `other`) at state y, both continued by Newton (eq 39);
- * *other_here is the other branch at y. */
-int gb_dynamics_branch_gap(gb_dynamics *dynamics, const double y[GB_STATE_SIZE], const gb_contact_point *other,
-                           double *gap, gb_contact_point *other_here);
+ * *other_here is the other branch at y. In the two-point mode the event's own function, < 0 before it
+ * and > 0 after: a third point's Δh against the lower of the two, or −min(N_P, N_Q). */
+int gb_dynamics_branch_gap(gb_dynamics *dynamics, double t, const double y[GB_STATE_SIZE],
+                           const gb_contact_point *other, double *gap, gb_contact_point *other_here);
 /* Make `branch` the contact from time t on (a located switch at state y). Under the unilateral law this
  * is an impact: ω in y jumps. GB_ENUMERIC for an impact the law cannot take (see gb_contact_law). */
 int gb_dynamics_switch_to(gb_dynamics *dynamics, double t, double y[GB_STATE_SIZE], const gb_contact_point *branch);
@@ -168,6 +201,14 @@ int gb_dynamics_switch_to(gb_dynamics *dynamics, double t, double y[GB_STATE_SIZ
  * energy they took (L) and the largest friction they needed. */
 void gb_dynamics_set_impact_sink(gb_dynamics *dynamics, gb_dynamics_impact_sink sink, void *context);
 void gb_dynamics_impact_stats(const gb_dynamics *dynamics, size_t *impacts, double *energy_lost, double *friction_max);
+/* The two-point mode up to time t: the time spent in it, how often it was entered (by the settle rule:
+ * `settled` of them), left by a lift, and met a third point. */
+typedef struct gb_dynamics_two_point_summary {
+    double time;
+    size_t entries, settled, lifts, third_points;
+} gb_dynamics_two_point_summary;
+
+void gb_dynamics_two_point_stats(const gb_dynamics *dynamics, double t, gb_dynamics_two_point_summary *out);
 
 /* Take over the accepted contact of `from` (same body and model): for a trajectory placed next to
  * another one (a Lyapunov perturbation), whose contact is then continued from there. The next accepted
@@ -191,8 +232,15 @@ typedef struct gb_dynamics_observables {
     double power_damping, power_gravity; /* eqs 50–51 */
     double work;             /* W(t) = ∫(P_d + m ġ_eff ζ) dt */
     double residual;         /* E(t) − E(0) − W(t), + L(t) under the unilateral law (the ledger) */
-    double normal_force;     /* N = m (g_eff + ζ̈), rolling kinematics */
-    double friction_needed;  /* |horizontal contact force| / N */
+    double normal_force;     /* N = m (g_eff + ζ̈), rolling kinematics (the sum of both in the two-point mode) */
+    double friction_needed;  /* |horizontal contact force| / N (two-point mode: the larger of the two points',
+                              * the force along PQ, which statics leaves open, split as the normal forces) */
+    int contacts;            /* points on the plane: 1, or 2 in the two-point mode */
+    double rc_other[3];      /* two-point mode: the second contact Q [m] (else 0) */
+    double normal_forces[2]; /* two-point mode: N_P, N_Q from Newton–Euler (else N, 0) */
+    double balance;          /* two-point mode: Newton–Euler's moment about PQ left by the power balance's
+                              * σ̇, relative (0 to rounding when the mode's equation is right; else 0) */
+    double tie;              /* two-point mode: h_P − h_Q [m], 0 on the crease (the integration's drift off it) */
     double orthonormality;   /* max |RᵀR − I| */
     size_t index;            /* grid node of the contact (grid models), else 0 */
     size_t grid_switches, branch_switches;

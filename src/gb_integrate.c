@@ -95,16 +95,30 @@ static int rk4_substep(void *context, gb_dynamics *d, double t, double h, const 
     return rk4_step(d, t, h, y, out, stats);
 }
 
-/* The locator on the step fraction, for any one-step method. */
+/* The fraction of a step just after an event at its start where the gap is looked at again (see locate). */
+#define AFTER_EVENT 1e-6
+
+/* The locator on the step fraction, for any one-step method. after_event: the step starts at a change of
+ * contact, where the point just left ties with the new one (Δh = 0 to rounding); a gap ≥ 0 there is
+ * that tie, so the gap is taken at AFTER_EVENT of the step instead, and a crossing after it is located. */
 static int locate(gb_dynamics *d, double t, double h, const double y[GB_STATE_SIZE], const gb_contact_point *other,
-                  substep_fn substep, void *context, gb_integrate_switch *out, gb_integrate_stats *stats)
+                  substep_fn substep, void *context, int after_event, gb_integrate_switch *out, gb_integrate_stats *stats)
 {
     double a = 0.0, b = 1.0, ga, gb, yb[GB_STATE_SIZE], ymid[GB_STATE_SIZE];
     gb_contact_point other_a, other_b, other_mid;
-    int status = gb_dynamics_branch_gap(d, y, other, &ga, &other_a);
+    int status = gb_dynamics_branch_gap(d, t, y, other, &ga, &other_a);
     if (!status) status = substep(context, d, t, h, y, yb, stats);
-    if (!status) status = gb_dynamics_branch_gap(d, yb, other, &gb, &other_b);
+    if (!status) status = gb_dynamics_branch_gap(d, t + h, yb, other, &gb, &other_b);
     if (status) return status;
+    double ystart[GB_STATE_SIZE];
+    memcpy(ystart, y, sizeof ystart);
+    if (after_event && ga >= 0.0) {
+        double g0;
+        status = substep(context, d, t, AFTER_EVENT * h, y, ymid, stats);
+        if (!status) status = gb_dynamics_branch_gap(d, t + AFTER_EVENT * h, ymid, other, &g0, &other_mid);
+        if (status) return status;
+        if (g0 < 0.0) a = AFTER_EVENT, ga = g0, memcpy(ystart, ymid, sizeof ystart);
+    }
     out->crossed = ga < 0.0 && gb > 0.0;
     if (!out->crossed) {
         /* Already lower at the start, or lower only at the end (a branch born or lost in a fold). */
@@ -113,13 +127,13 @@ static int locate(gb_dynamics *d, double t, double h, const double y[GB_STATE_SI
         out->other = ga >= 0.0 ? other_a : other_b;
         return GB_OK;
     }
-    memcpy(out->y, y, sizeof out->y);
+    memcpy(out->y, ystart, sizeof out->y);
     int side = 0;
     for (int it = 0; it < 60 && b - a > 1e-13; it++) {
         const double m = (a * gb - b * ga) / (gb - ga); /* regula falsi, Illinois-modified */
         double gm;
         status = substep(context, d, t, m * h, y, ymid, stats);
-        if (!status) status = gb_dynamics_branch_gap(d, ymid, other, &gm, &other_mid);
+        if (!status) status = gb_dynamics_branch_gap(d, t + m * h, ymid, other, &gm, &other_mid);
         if (status) return status;
         if (gm == 0.0) {
             a = b = m;
@@ -140,27 +154,48 @@ static int locate(gb_dynamics *d, double t, double h, const double y[GB_STATE_SI
     /* θ = a: the current branch is still the lower there; `other` continued to that state. */
     double gap;
     out->fraction = a;
-    return gb_dynamics_branch_gap(d, out->y, other, &gap, &out->other);
+    return gb_dynamics_branch_gap(d, t + a * h, out->y, other, &gap, &out->other);
 }
 
 int gb_integrate_locate_switch(gb_dynamics *d, double t, double h, const double y[GB_STATE_SIZE],
                                const gb_contact_point *other, gb_integrate_switch *out, gb_integrate_stats *stats)
 {
-    return locate(d, t, h, y, other, rk4_substep, NULL, out, stats);
+    return locate(d, t, h, y, other, rk4_substep, NULL, 0, out, stats);
 }
 
+/* The most changes of contact one step may hold under the unilateral law (a chatter the settle rule has
+ * not yet ended); more stop the run. */
+enum { EVENTS_PER_STEP_MAX = 64 };
+
 /* A switch was found at the end of the step (t, y) → t + h: locate it, switch there, and finish the
- * step on the new branch into out. */
+ * step on the new branch into out. Under the unilateral law the rest of the step is checked again and
+ * each further change located in turn (impacts can follow each other within a step, as a chatter
+ * ends); the held law takes one, as it always has, and leaves a second to gb_dynamics_accept. */
 static int located_step(gb_dynamics *d, double t, double h, const double y[], const gb_contact_point *other,
                         substep_fn substep, void *context, double out[], gb_integrate_stats *stats)
 {
-    gb_integrate_switch at;
-    const int status = locate(d, t, h, y, other, substep, context, &at, stats);
-    if (status) return status;
-    const int switched = gb_dynamics_switch_to(d, t + at.fraction * h, at.y, &at.other); /* an impact may change ω */
-    if (switched) return switched;
-    if (at.fraction == 1.0) return memcpy(out, at.y, sizeof at.y), GB_OK;
-    return substep(context, d, t + at.fraction * h, (1.0 - at.fraction) * h, at.y, out, stats);
+    const int again = gb_dynamics_get_def(d)->contact_law == GB_CONTACT_LAW_UNILATERAL;
+    double tc = t, hc = h, yc[GB_STATE_SIZE];
+    gb_contact_point next = *other;
+    memcpy(yc, y, sizeof yc);
+    for (int events = 0;; events++) {
+        if (events == EVENTS_PER_STEP_MAX)
+            return gb_error_set(GB_ENUMERIC, "more than %d changes of contact inside the step from t = %.9g", EVENTS_PER_STEP_MAX, t);
+        gb_integrate_switch at;
+        int status = locate(d, tc, hc, yc, &next, substep, context, events > 0, &at, stats);
+        if (status) return status;
+        const double t_event = tc + at.fraction * hc, rest = (1.0 - at.fraction) * hc;
+        status = gb_dynamics_switch_to(d, t_event, at.y, &at.other); /* an impact may change ω */
+        if (status) return status;
+        if (at.fraction == 1.0) return memcpy(out, at.y, sizeof at.y), GB_OK;
+        status = substep(context, d, t_event, rest, at.y, out, stats);
+        if (status || !again) return status;
+        int found = 0;
+        status = gb_dynamics_switch_pending(d, t + h, out, &next, &found);
+        if (status || !found) return status;
+        tc = t_event, hc = rest;
+        memcpy(yc, at.y, sizeof yc);
+    }
 }
 
 /* A run that can be continued: the nominal time grid t_n = t0 + n·h is global (n counts steps from

@@ -195,7 +195,7 @@ static int tangent_rk4(gb_dynamics *d, double t, double h, double y[GB_STATE_SIZ
 }
 
 /* The gap g(y) = Δh between the current branch and `other` (eq 39), differentiated along dy. */
-static int gap_along(gb_dynamics *d, const double y[GB_STATE_SIZE], const gb_contact_point *other,
+static int gap_along(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const gb_contact_point *other,
                      const double dy[GB_STATE_SIZE], double *derivative)
 {
     double size = 0.0, yp[GB_STATE_SIZE], ym[GB_STATE_SIZE], gp, gm;
@@ -204,8 +204,8 @@ static int gap_along(gb_dynamics *d, const double y[GB_STATE_SIZE], const gb_con
     const double eps = 1e-6 / size;
     for (int i = 0; i < GB_STATE_SIZE; i++) yp[i] = y[i] + eps * dy[i], ym[i] = y[i] - eps * dy[i];
     gb_contact_point here;
-    int status = gb_dynamics_branch_gap(d, yp, other, &gp, &here);
-    if (!status) status = gb_dynamics_branch_gap(d, ym, other, &gm, &here);
+    int status = gb_dynamics_branch_gap(d, t, yp, other, &gp, &here);
+    if (!status) status = gb_dynamics_branch_gap(d, t, ym, other, &gm, &here);
     if (!status) *derivative = (gp - gm) / (2.0 * eps);
     return status;
 }
@@ -230,11 +230,11 @@ static int tangent_switch_step(gb_lyapunov_body *b, double t, double h, double y
     if (a > 0.0) status = tangent_rk4(d, t, a * h, y, k, Y);
     if (status) return status;
     double gap, f_old[GB_STATE_SIZE], f_new[GB_STATE_SIZE], g_flow;
-    status = gb_dynamics_branch_gap(d, y, other, &gap, &there);
+    status = gb_dynamics_branch_gap(d, t + a * h, y, other, &gap, &there);
     if (!status) status = gb_dynamics_rhs(d, t + a * h, y, f_old);
-    if (!status) status = gap_along(d, y, &there, f_old, &g_flow);
+    if (!status) status = gap_along(d, t + a * h, y, &there, f_old, &g_flow);
     double g_dir[GB_LYAPUNOV_MAX_EXPONENTS];
-    for (size_t j = 0; j < k && !status; j++) status = gap_along(d, y, &there, Y + j * GB_STATE_SIZE, &g_dir[j]);
+    for (size_t j = 0; j < k && !status; j++) status = gap_along(d, t + a * h, y, &there, Y + j * GB_STATE_SIZE, &g_dir[j]);
     if (status) return status;
     status = gb_dynamics_switch_to(d, t + a * h, y, &there); /* held: the tangent estimator refuses unilateral */
     if (!status) status = gb_dynamics_rhs(d, t + a * h, y, f_new);

@@ -167,6 +167,7 @@ int gb_run(const gb_case *scene, const gb_run_sinks *sinks, gb_run_result *out)
     if (!status) {
         out->state_fingerprint = gb_hash_add(GB_HASH_OFFSET, out->y, sizeof out->y);
         gb_dynamics_impact_stats(dynamics, &out->impacts, &out->impact_energy_lost, &out->impact_friction_max);
+        gb_dynamics_two_point_stats(dynamics, out->t_end, &out->two_point);
         out->has_certificate = gb_dynamics_certify_stats(dynamics, &out->certificate) == GB_OK;
         gb_error_clear(); /* a grid model has no certificate: not an error of the run */
         out->has_atlas = gb_dynamics_atlas_stats(dynamics, &out->atlas, &out->atlas_fallbacks, &out->atlas_loaded) == GB_OK;

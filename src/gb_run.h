@@ -63,6 +63,7 @@ typedef struct gb_run_result {
     size_t impacts;                      /* the unilateral law: impacts, the kinetic energy they took (L of */
     double impact_energy_lost;           /* the ledger; energy_residual is E − E0 − W + L) and the largest */
     double impact_friction_max;          /* friction coefficient an impact needed */
+    gb_dynamics_two_point_summary two_point; /* the unilateral law's two-point mode over the run */
     /* Fingerprints (FNV-1a 64): the bytes of the final state; the (sample, contact index, grid and
      * branch switch counts) of every sample with a switch. Equal runs have equal fingerprints. */
     uint64_t state_fingerprint, switch_fingerprint;

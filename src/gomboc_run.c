@@ -52,20 +52,21 @@ static int history_row(void *context, const gb_run_sample *s)
 }
 
 /* The impacts file: one row an impact, body axes with the centroid at the origin. */
-static const char impacts_header[] = "t,located,old_x,old_y,old_z,new_x,new_y,new_z,omega_before_x,omega_before_y,"
+static const char impacts_header[] = "t,kind,settled,contacts_after,located,old_x,old_y,old_z,new_x,new_y,new_z,omega_before_x,omega_before_y,"
                                      "omega_before_z,omega_after_x,omega_after_y,omega_after_z,v_before_x,v_before_y,"
                                      "v_before_z,v_after_x,v_after_y,v_after_z,normal_impulse,tangential_impulse,"
-                                     "friction_needed,kinetic_before,kinetic_after\n";
+                                     "friction_needed,old_normal_impulse,return_time,kinetic_before,kinetic_after\n";
 
 static int impact_row(void *context, const gb_dynamics_impact *e)
 {
     FILE *impacts = ((streams *)context)->impacts;
     if (!impacts) return GB_OK;
-    int bad = fprintf(impacts, "%.17g,%d", e->t, e->located) < 0;
+    int bad = fprintf(impacts, "%.17g,%s,%d,%d,%d", e->t, gb_dynamics_impact_kind_name(e->kind), e->settled,
+                      e->contacts_after, e->located) < 0;
     const double *vectors[] = {e->old_point, e->new_point, e->omega_before, e->omega_after, e->v_before, e->v_after};
     for (int k = 0; k < 6; k++) bad |= fprintf(impacts, ",%.17g,%.17g,%.17g", vectors[k][0], vectors[k][1], vectors[k][2]) < 0;
-    bad |= fprintf(impacts, ",%.17g,%.17g,%.17g,%.17g,%.17g\n", e->normal_impulse, e->tangential_impulse, e->friction_needed,
-                   e->kinetic_before, e->kinetic_after) < 0;
+    bad |= fprintf(impacts, ",%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", e->normal_impulse, e->tangential_impulse,
+                   e->friction_needed, e->old_normal_impulse, e->return_time, e->kinetic_before, e->kinetic_after) < 0;
     return bad ? gb_error_set(GB_EIO, "cannot write the impacts: %s", strerror(errno)) : GB_OK;
 }
 
@@ -453,6 +454,12 @@ int command_run(int argc, char **argv)
             cli_json_add(m, "count", (double)r.impacts);
             cli_json_add(m, "energy_lost", r.impact_energy_lost);
             cli_json_add(m, "friction_needed_max", r.impact_friction_max);
+            cli_json_add(m, "settled", (double)r.two_point.settled);
+            cJSON *tp = cJSON_AddObjectToObject(root, "two_point");
+            cli_json_add(tp, "time_fraction", r.two_point.time / r.t_end);
+            cli_json_add(tp, "entries", (double)r.two_point.entries);
+            cli_json_add(tp, "lifts", (double)r.two_point.lifts);
+            cli_json_add(tp, "third_points", (double)r.two_point.third_points);
         }
         if (r.has_strobe) cJSON_AddItemToObject(root, "strobe", strobe_json(&r.strobe));
         if (r.has_spectrum) cJSON_AddItemToObject(root, "spectrum", spectrum_json(&scene, &r.spectrum, r.spectrum_samples));

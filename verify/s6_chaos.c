@@ -270,6 +270,7 @@ typedef struct variation {
     double delta0;
     double norm_scale;      /* Ω of the separation's Δω/Ω, in units of the forcing ω (0: 1) */
     int locate;             /* continuous contact: locate each branch switch inside its step */
+    gb_contact_law law;     /* held (the paper's, unless named) or unilateral */
 } variation;
 
 /* Branch switches of the reference trajectory per period, over the first and the last tenth of a
@@ -318,6 +319,9 @@ static int lyapunov_run_counted(const char *morphology, const variation *v, size
     gb_integrate_def idef = gb_integrate_default_def();
     idef.steps_per_period = v->steps_per_period;
     idef.locate_switches = v->locate;
+    def.contact_law = v->law;
+    if (v->law == GB_CONTACT_LAW_UNILATERAL) /* the settle time a scene gets (gb_case): one step */
+        def.settle_time = gb_forcing_period(&def.forcing) / (double)idef.steps_per_period;
     const double R0[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1}, w0[3] = {0, 0, 0};
     gb_lyapunov_body *body;
     const double norm = (v->norm_scale > 0.0 ? v->norm_scale : 1.0) * def.forcing.omega;
@@ -355,27 +359,34 @@ static int lyapunov_run_counted(const char *morphology, const variation *v, size
  * variation takes them at step ends instead, to show what that does to λ. */
 #define BASE GB_CONTACT_MODEL_FAST_GRID, GB_VARIANT_PAPER
 static const variation VARIATIONS[] = {
-    {"baseline (paper model, grid 90x180, A in m/s^2)", BASE, 90, 180, 1.0, 1.0, 0.12, 160, 1e-7, 1.0, 0},
-    {"A1, A2 in units of g", BASE, 90, 180, 1.0, 9.81, 0.12, 160, 1e-7, 1.0, 0},
-    {"delta0 = 1e-5", BASE, 90, 180, 1.0, 1.0, 0.12, 160, 1e-5, 1.0, 0},
-    {"delta0 = 1e-9", BASE, 90, 180, 1.0, 1.0, 0.12, 160, 1e-9, 1.0, 0},
-    {"delta0 = 1e-11", BASE, 90, 180, 1.0, 1.0, 0.12, 160, 1e-11, 1.0, 0},
-    {"separation norm: omega part / (omega/10)", BASE, 90, 180, 1.0, 1.0, 0.12, 160, 1e-7, 0.1, 0},
-    {"separation norm: omega part / (10 omega)", BASE, 90, 180, 1.0, 1.0, 0.12, 160, 1e-7, 10.0, 0},
-    {"grid 180x360", BASE, 180, 360, 1.0, 1.0, 0.12, 160, 1e-7, 1.0, 0},
-    {"grid 360x720", BASE, 360, 720, 1.0, 1.0, 0.12, 160, 1e-7, 1.0, 0},
-    {"grid 720x1440", BASE, 720, 1440, 1.0, 1.0, 0.12, 160, 1e-7, 1.0, 0},
-    {"80 steps per period", BASE, 90, 180, 1.0, 1.0, 0.12, 80, 1e-7, 1.0, 0},
-    {"320 steps per period", BASE, 90, 180, 1.0, 1.0, 0.12, 320, 1e-7, 1.0, 0},
-    {"continuous contact, eq 44 as written", GB_CONTACT_MODEL_CONTINUOUS, GB_VARIANT_PAPER, 90, 180, 1.0, 1.0, 0.12, 160, 1e-7, 1.0, 1},
-    {"continuous contact, rolling equation", GB_CONTACT_MODEL_CONTINUOUS, GB_VARIANT_ROLLING, 90, 180, 1.0, 1.0, 0.12, 160, 1e-7, 1.0, 1},
-    {"continuous rolling, switches not located (taken at step ends)", GB_CONTACT_MODEL_CONTINUOUS, GB_VARIANT_ROLLING, 90, 180, 1.0, 1.0, 0.12, 160, 1e-7, 1.0, 0},
-    {"continuous rolling, delta0 = 1e-11", GB_CONTACT_MODEL_CONTINUOUS, GB_VARIANT_ROLLING, 90, 180, 1.0, 1.0, 0.12, 160, 1e-11, 1.0, 1},
-    {"continuous rolling, A in units of g", GB_CONTACT_MODEL_CONTINUOUS, GB_VARIANT_ROLLING, 90, 180, 1.0, 9.81, 0.12, 160, 1e-7, 1.0, 1},
-    {"unforced (A1 = A2 = 0)", BASE, 90, 180, 0.0, 1.0, 0.12, 160, 1e-7, 1.0, 0},
-    {"continuous rolling, unforced", GB_CONTACT_MODEL_CONTINUOUS, GB_VARIANT_ROLLING, 90, 180, 0.0, 1.0, 0.12, 160, 1e-7, 1.0, 1},
-    {"beta = 0.02 (strictly convex)", BASE, 90, 180, 1.0, 1.0, 0.02, 160, 1e-7, 1.0, 0},
-    {"continuous rolling, beta = 0.02", GB_CONTACT_MODEL_CONTINUOUS, GB_VARIANT_ROLLING, 90, 180, 1.0, 1.0, 0.02, 160, 1e-7, 1.0, 1},
+    {"baseline (paper model, grid 90x180, A in m/s^2)", BASE, 90, 180, 1.0, 1.0, 0.12, 160, 1e-7, 1.0, 0, GB_CONTACT_LAW_HELD},
+    {"A1, A2 in units of g", BASE, 90, 180, 1.0, 9.81, 0.12, 160, 1e-7, 1.0, 0, GB_CONTACT_LAW_HELD},
+    {"delta0 = 1e-5", BASE, 90, 180, 1.0, 1.0, 0.12, 160, 1e-5, 1.0, 0, GB_CONTACT_LAW_HELD},
+    {"delta0 = 1e-9", BASE, 90, 180, 1.0, 1.0, 0.12, 160, 1e-9, 1.0, 0, GB_CONTACT_LAW_HELD},
+    {"delta0 = 1e-11", BASE, 90, 180, 1.0, 1.0, 0.12, 160, 1e-11, 1.0, 0, GB_CONTACT_LAW_HELD},
+    {"separation norm: omega part / (omega/10)", BASE, 90, 180, 1.0, 1.0, 0.12, 160, 1e-7, 0.1, 0, GB_CONTACT_LAW_HELD},
+    {"separation norm: omega part / (10 omega)", BASE, 90, 180, 1.0, 1.0, 0.12, 160, 1e-7, 10.0, 0, GB_CONTACT_LAW_HELD},
+    {"grid 180x360", BASE, 180, 360, 1.0, 1.0, 0.12, 160, 1e-7, 1.0, 0, GB_CONTACT_LAW_HELD},
+    {"grid 360x720", BASE, 360, 720, 1.0, 1.0, 0.12, 160, 1e-7, 1.0, 0, GB_CONTACT_LAW_HELD},
+    {"grid 720x1440", BASE, 720, 1440, 1.0, 1.0, 0.12, 160, 1e-7, 1.0, 0, GB_CONTACT_LAW_HELD},
+    {"80 steps per period", BASE, 90, 180, 1.0, 1.0, 0.12, 80, 1e-7, 1.0, 0, GB_CONTACT_LAW_HELD},
+    {"320 steps per period", BASE, 90, 180, 1.0, 1.0, 0.12, 320, 1e-7, 1.0, 0, GB_CONTACT_LAW_HELD},
+    {"continuous contact, eq 44 as written", GB_CONTACT_MODEL_CONTINUOUS, GB_VARIANT_PAPER, 90, 180, 1.0, 1.0, 0.12, 160, 1e-7, 1.0, 1, GB_CONTACT_LAW_HELD},
+    {"continuous contact, rolling equation", GB_CONTACT_MODEL_CONTINUOUS, GB_VARIANT_ROLLING, 90, 180, 1.0, 1.0, 0.12, 160, 1e-7, 1.0, 1, GB_CONTACT_LAW_HELD},
+    {"continuous rolling, switches not located (taken at step ends)", GB_CONTACT_MODEL_CONTINUOUS, GB_VARIANT_ROLLING, 90, 180, 1.0, 1.0, 0.12, 160, 1e-7, 1.0, 0, GB_CONTACT_LAW_HELD},
+    {"continuous rolling, delta0 = 1e-11", GB_CONTACT_MODEL_CONTINUOUS, GB_VARIANT_ROLLING, 90, 180, 1.0, 1.0, 0.12, 160, 1e-11, 1.0, 1, GB_CONTACT_LAW_HELD},
+    {"continuous rolling, A in units of g", GB_CONTACT_MODEL_CONTINUOUS, GB_VARIANT_ROLLING, 90, 180, 1.0, 9.81, 0.12, 160, 1e-7, 1.0, 1, GB_CONTACT_LAW_HELD},
+    {"unforced (A1 = A2 = 0)", BASE, 90, 180, 0.0, 1.0, 0.12, 160, 1e-7, 1.0, 0, GB_CONTACT_LAW_HELD},
+    {"continuous rolling, unforced", GB_CONTACT_MODEL_CONTINUOUS, GB_VARIANT_ROLLING, 90, 180, 0.0, 1.0, 0.12, 160, 1e-7, 1.0, 1, GB_CONTACT_LAW_HELD},
+    {"beta = 0.02 (strictly convex)", BASE, 90, 180, 1.0, 1.0, 0.02, 160, 1e-7, 1.0, 0, GB_CONTACT_LAW_HELD},
+    {"continuous rolling, beta = 0.02", GB_CONTACT_MODEL_CONTINUOUS, GB_VARIANT_ROLLING, 90, 180, 1.0, 1.0, 0.02, 160, 1e-7, 1.0, 1, GB_CONTACT_LAW_HELD},
+    /* a plane that can only push (docs/impact.md): the rolling model's own variations under that law */
+    {"continuous rolling, unilateral contact", GB_CONTACT_MODEL_CONTINUOUS, GB_VARIANT_ROLLING, 90, 180, 1.0, 1.0, 0.12, 160, 1e-7, 1.0, 1,
+     GB_CONTACT_LAW_UNILATERAL},
+    {"continuous rolling, unilateral, unforced", GB_CONTACT_MODEL_CONTINUOUS, GB_VARIANT_ROLLING, 90, 180, 0.0, 1.0, 0.12, 160, 1e-7, 1.0, 1,
+     GB_CONTACT_LAW_UNILATERAL},
+    {"continuous rolling, unilateral, beta = 0.02", GB_CONTACT_MODEL_CONTINUOUS, GB_VARIANT_ROLLING, 90, 180, 1.0, 1.0, 0.02, 160, 1e-7, 1.0, 1,
+     GB_CONTACT_LAW_UNILATERAL},
 };
 enum { VARIATION_COUNT = sizeof VARIATIONS / sizeof VARIATIONS[0] };
 
@@ -604,8 +615,10 @@ static void test_chaos_real(void)
     for (int b = 0; b < 2; b++) {
         static const char *const readings[][2] = {{"baseline (paper model, grid 90x180, A in m/s^2)", "paper model, A in m/s^2"},
                                                   {"A1, A2 in units of g", "paper model, A in units of g"},
-                                                  {"continuous contact, rolling equation", "continuous contact, rolling equation"}};
-        for (int k = 0; k < 3; k++) {
+                                                  {"continuous contact, rolling equation", "continuous contact, rolling equation"},
+                                                  {"continuous rolling, unilateral contact",
+                                                   "continuous contact, rolling equation, unilateral contact"}};
+        for (int k = 0; k < 4; k++) {
             const estimate e = find(table, b, readings[k][0]);
             char q[160];
             snprintf(q, sizeof q, "Gomboc %s, %s: lambda_max - 4 sigma", bodies[b], readings[k][1]);
@@ -624,8 +637,9 @@ static void test_chaos_real(void)
         }
     }
     /* Similar long-time rates for the two shapes. */
-    static const char *const compared[2] = {"baseline (paper model, grid 90x180, A in m/s^2)", "continuous contact, rolling equation"};
-    for (int k = 0; k < 2; k++) {
+    static const char *const compared[3] = {"baseline (paper model, grid 90x180, A in m/s^2)", "continuous contact, rolling equation",
+                                            "continuous rolling, unilateral contact"};
+    for (int k = 0; k < 3; k++) {
         const estimate a = find(table, 0, compared[k]), b = find(table, 1, compared[k]);
         const double combined = hypot(a.error, b.error);
         char q[160];
@@ -649,6 +663,10 @@ static void test_chaos_real(void)
         {"continuous rolling, unforced", "continuous rolling", "positive lambda_max needs the biharmonic forcing (sections 1, 7, 8.2)"},
         {"beta = 0.02 (strictly convex)", "paper model", "chaos comes from contact-branch competition (absent for a strictly convex body)"},
         {"continuous rolling, beta = 0.02", "continuous rolling", "chaos comes from contact-branch competition (absent for a strictly convex body)"},
+        {"continuous rolling, unilateral, unforced", "continuous rolling, unilateral contact",
+         "positive lambda_max needs the biharmonic forcing (sections 1, 7, 8.2)"},
+        {"continuous rolling, unilateral, beta = 0.02", "continuous rolling, unilateral contact",
+         "chaos comes from contact-branch competition (absent for a strictly convex body)"},
     };
     /* Continuous rolling (n odd): 300 periods do not decide; its rows are judged by `make verify-full` on
      * 10000 periods (test_chaos_real_long). */
@@ -658,6 +676,12 @@ static void test_chaos_real(void)
             judge_need(bodies[b], needs[n][1], needs[n][0], needs[n][2], e,
                        find(table, b, "baseline (paper model, grid 90x180, A in m/s^2)"), 300);
         }
+    /* Under the unilateral law, against that law's own baseline, on the same 300 periods. */
+    static const char *const unilateral_labels[2] = {"unforced (A1 = A2 = 0)", "beta = 0.02 (strictly convex)"};
+    for (int n = 4; n < 6; n++)
+        for (int b = 0; b < 2; b++)
+            judge_need(bodies[b], needs[n][1], unilateral_labels[n - 4], needs[n][2], find(table, b, needs[n][0]),
+                       find(table, b, "continuous rolling, unilateral contact"), 300);
     /* The exponent of the paper's model against its own numerical parameters. */
     /* Each family's parameter on an axis where a trend would be linear (log of the grid size, delta0, step
      * and norm scale; 0/1 for located or not), in the order of the names. */
@@ -742,8 +766,12 @@ static void test_chaos_real_long(void)
 {
     if (!gb_check_full) return;
     static const char *const bodies[2] = {"I", "II"};
-    const variation *rolling = NULL, *unforced = NULL, *convex = NULL, *paper_unforced = NULL;
+    const variation *rolling = NULL, *unforced = NULL, *convex = NULL, *paper_unforced = NULL, *unilateral = NULL,
+                    *unilateral_unforced = NULL, *unilateral_convex = NULL;
     for (int k = 0; k < VARIATION_COUNT; k++) {
+        if (!strcmp(VARIATIONS[k].name, "continuous rolling, unilateral contact")) unilateral = &VARIATIONS[k];
+        if (!strcmp(VARIATIONS[k].name, "continuous rolling, unilateral, unforced")) unilateral_unforced = &VARIATIONS[k];
+        if (!strcmp(VARIATIONS[k].name, "continuous rolling, unilateral, beta = 0.02")) unilateral_convex = &VARIATIONS[k];
         if (!strcmp(VARIATIONS[k].name, "continuous contact, rolling equation")) rolling = &VARIATIONS[k];
         if (!strcmp(VARIATIONS[k].name, "continuous rolling, unforced")) unforced = &VARIATIONS[k];
         if (!strcmp(VARIATIONS[k].name, "continuous rolling, beta = 0.02")) convex = &VARIATIONS[k];
@@ -751,11 +779,16 @@ static void test_chaos_real_long(void)
     }
     cJSON *doc = cJSON_CreateArray();
     for (int b = 0; b < 2; b++) {
-        const variation *runs[5] = {rolling, unforced, convex, paper_unforced, unforced};
-        static const size_t periods[5] = {10000, 10000, 10000, 5000, 5000}, transient[5] = {0, 0, 0, 2000, 2000};
-        estimate e[5];
-        switch_rates rate[5];
-        for (int k = 0; k < 5; k++) {
+        /* the held law's rolling runs over 10000 periods, and the unilateral law's over 3000 (each impact
+         * and the two-point mode cost more a step; the record's own warm-up rule drops the settling) */
+        enum { LONG_RUNS = 8 };
+        const variation *runs[LONG_RUNS] = {rolling, unforced, convex, paper_unforced, unforced, unilateral, unilateral_unforced,
+                                            unilateral_convex};
+        static const size_t periods[LONG_RUNS] = {10000, 10000, 10000, 5000, 5000, 3000, 3000, 3000},
+                            transient[LONG_RUNS] = {0, 0, 0, 2000, 2000, 0, 0, 0};
+        estimate e[LONG_RUNS];
+        switch_rates rate[LONG_RUNS];
+        for (int k = 0; k < LONG_RUNS; k++) {
             gb_lyapunov_result r;
             switch_rates rates;
             const int status = lyapunov_run_counted(bodies[b], runs[k], periods[k], transient[k], &r, &rates);
@@ -805,6 +838,18 @@ static void test_chaos_real_long(void)
         judge_unless_chattering(bodies[b], "continuous rolling", "unforced, after a 2000-period transient",
                                 "positive lambda_max needs the biharmonic forcing (sections 1, 7, 8.2)", e[4], e[0], periods[4],
                                 rate[4], rate[0]);
+        /* A plane that can only push: the same claims on the unilateral law's longest records. */
+        char q[200];
+        snprintf(q, sizeof q, "Gomboc %s, continuous contact, rolling equation, unilateral contact: lambda_max - 4 sigma (%zu "
+                 "periods)", bodies[b], periods[5]);
+        gb_check cu = {"8.2", "77", q, "the no-chaos margin 0.01 1/s", "4 batch-means errors (10 or more batches, chosen from the record)"};
+        gb_check_verdict(&cu, "lambda_max > 0 after convergence at baseline, for both bodies (section 8.2, Fig 9)", e[5].ok,
+                         lambda_verdict(e[5]), RULE_POSITIVE, "lambda_max = %.4f +- %.4f 1/s over %zu periods from R0 = I",
+                         e[5].lambda, e[5].error, periods[5]);
+        judge_need_at(bodies[b], "continuous rolling, unilateral contact", "unforced (A1 = A2 = 0)",
+                      "positive lambda_max needs the biharmonic forcing (sections 1, 7, 8.2)", e[6], e[5], periods[6], 1);
+        judge_need_at(bodies[b], "continuous rolling, unilateral contact", "beta = 0.02 (strictly convex)",
+                      "chaos comes from contact-branch competition (absent for a strictly convex body)", e[7], e[5], periods[7], 1);
     }
     gb_check cw = {"8.2", "77", "long chaos study written for the report", "-", "exact"};
     const int written = gb_check_write_data("chaos-long.json", doc) == 0;

@@ -72,6 +72,7 @@ static double last_setup; /* seconds of gb_dynamics_create and init_state in the
 /* continuous contact: the certificate of the runs timed, the atlas file (NULL: none), and the atlas's
  * counters of the fastest repeat */
 static gb_dynamics_certificate run_certificate = GB_CERTIFICATE_PER_VERTICAL;
+static gb_contact_law run_law = GB_CONTACT_LAW_HELD;
 static const char *run_atlas_file;
 static gb_atlas_stats last_atlas;
 static size_t last_atlas_fallbacks;
@@ -102,6 +103,9 @@ static double time_run_with(const char *m, gb_contact_model contact, gb_dynamics
         def.contact = contact;
         def.variant = variant;
         if (certify) def.certify = *certify;
+        def.contact_law = run_law;
+        if (run_law == GB_CONTACT_LAW_UNILATERAL) /* one step, as a scene's (gb_case) */
+            def.settle_time = gb_forcing_period(&def.forcing) / (double)gb_integrate_default_def().steps_per_period;
         if (contact == GB_CONTACT_MODEL_CONTINUOUS) def.certificate = run_certificate, def.atlas_file = run_atlas_file;
         if (contact == GB_CONTACT_MODEL_GRID) def.grid_lowest = run_lowest, def.grid_lowest_context = run_lowest_context;
         gb_dynamics *d;
@@ -405,6 +409,34 @@ static int bench_atlas(void)
     return failures;
 }
 
+/* The unilateral contact law against the held one on the same Table 1 rolling run (300 periods), with
+ * each certificate: per vertical, and the atlas built in the run. Target (issue 28): <= 1.3x. */
+static void bench_unilateral(void)
+{
+    printf("\nbench: the unilateral contact law against the held one (Table 1 rolling, 300 periods, RK4 160/T), best of 2\n\n");
+    printf("%-4s %-13s %10s %16s %8s %10s\n", "body", "certificate", "held [s]", "unilateral [s]", "ratio", "impacts");
+    static const gb_dynamics_certificate certificates[2] = {GB_CERTIFICATE_PER_VERTICAL, GB_CERTIFICATE_ATLAS};
+    for (int m = 0; m < 2; m++)
+        for (int c = 0; c < 2; c++) {
+            const char *name = m ? "II" : "I";
+            double y[GB_STATE_SIZE];
+            size_t held_switches, switches;
+            run_certificate = certificates[c], run_atlas_file = NULL;
+            run_law = GB_CONTACT_LAW_HELD;
+            const double held = time_run(name, GB_CONTACT_MODEL_CONTINUOUS, GB_VARIANT_ROLLING, 2, y, &held_switches);
+            run_law = GB_CONTACT_LAW_UNILATERAL;
+            const double unilateral = time_run(name, GB_CONTACT_MODEL_CONTINUOUS, GB_VARIANT_ROLLING, 2, y, &switches);
+            run_law = GB_CONTACT_LAW_HELD, run_certificate = GB_CERTIFICATE_PER_VERTICAL;
+            printf("%-4s %-13s %10.3f %16.3f %7.2fx %10zu\n", name, gb_dynamics_certificate_name(certificates[c]), held,
+                   unilateral, unilateral / held, switches);
+            if (record)
+                fprintf(record, ",\n  {\"body\": \"%s\", \"law_certificate\": \"%s\", \"held_seconds\": %.6f, "
+                                "\"unilateral_seconds\": %.6f, \"unilateral_over_held\": %.4f}",
+                        name, gb_dynamics_certificate_name(certificates[c]), held, unilateral, unilateral / held);
+        }
+    printf("\ntarget (issue 28): a unilateral run <= 1.3x the held run of the same scene\n");
+}
+
 /* ---------------------------------------------------------------- headroom of the certified run
  *
  * Why the certified continuous run is far from 50x, measured: (1) its time inside the certificate's
@@ -687,6 +719,7 @@ int main(int argc, char **argv)
     }
     int failures = bench_dynamics();
     failures += bench_atlas();
+    bench_unilateral();
     bench_headroom();
     if (argc > 3) failures += bench_scans(argv[3], record);
     if (record) {
