@@ -380,6 +380,20 @@ static int angular_acceleration(const gb_dynamics *d, double geff, const double 
     return solve3(IP, rhs, omega_dot);
 }
 
+/* The centroid's acceleration relative to the support under rolling kinematics (body frame), a_G = ω ×
+ * (r_c × ω) + ṙ_c × ω + r_c × ω̇, into acc, and the normal force N = m (g_eff + z_b·a_G). */
+static double normal_force_of(const gb_dynamics *d, double geff, const double zb[3], const double omega[3],
+                              const double omega_dot[3], const contact_eval *c, double acc[3])
+{
+    double a[3], b[3], e[3], f[3];
+    gb_vec_cross(c->rc, omega, a);
+    gb_vec_cross(omega, a, b);
+    gb_vec_cross(c->rc_dot, omega, e);
+    gb_vec_cross(c->rc, omega_dot, f);
+    for (int k = 0; k < 3; k++) acc[k] = b[k] + e[k] + f[k];
+    return d->def.mass * (geff + gb_vec_dot(acc, zb));
+}
+
 /* ---------------------------------------------------------------- the two-point mode (unilateral law) */
 
 /* The body rolling on P (the accepted contact, continued) and Q (contact2, continued) at state y. */
@@ -946,9 +960,21 @@ int gb_dynamics_accept(gb_dynamics *d, double t, double y[GB_STATE_SIZE], double
     /* Under the unilateral law every contact change is located inside its step; one found here is a second
      * change inside one step: the body chatters between two points, coming to rest on both. */
     if (!status && found && d->def.contact_law == GB_CONTACT_LAW_UNILATERAL)
-        status = gb_error_set(GB_ENUMERIC, "unilateral contact at t = %.9g: a second change of contact inside one step (the "
-                              "body chatters between two points, impacts accumulating as a bouncing ball's; %zu impacts so far): "
-                              "no rule ends such a sequence yet", t, d->impacts);
+        status = gb_error_set(GB_ENUMERIC, "unilateral contact at t = %.9g: a change of contact at the step's end that the "
+                              "step's event location did not find (%zu impacts so far)", t, d->impacts);
+    if (!status && d->def.contact_law == GB_CONTACT_LAW_UNILATERAL) {
+        /* A plane that can only push cannot hold the body down: where N < 0 it would leave the plane. */
+        double zb[3], geff, geff_rate, w_dot[3], acc[3];
+        contact_eval c;
+        vertical_of(y, zb);
+        gb_forcing_geff_with_rate(&d->def.forcing, t, &geff, &geff_rate);
+        status = contact_at(d, t, zb, y + GB_STATE_OMEGA, &c);
+        if (!status) status = angular_acceleration(d, geff, zb, y + GB_STATE_OMEGA, &c, w_dot);
+        const double n = status ? 0.0 : normal_force_of(d, geff, zb, y + GB_STATE_OMEGA, w_dot, &c, acc);
+        if (!status && n < 0.0)
+            status = gb_error_set(GB_ENUMERIC, "unilateral contact at t = %.9g: the normal force is %.6g N < 0, so the body would "
+                                  "leave the plane (g_eff = %.6g m/s^2); lift-off and flight are not built yet", t, n, geff);
+    }
     if (status) return status;
     d->contact = found ? other : continued;
     d->memo_valid = 0; /* the accepted contact changed */
@@ -1141,17 +1167,9 @@ int gb_dynamics_observe(gb_dynamics *d, double t, const double y[GB_STATE_SIZE],
     o->work = y[GB_STATE_WORK];
     o->residual = o->energy - d->energy0 - o->work;
     if (d->def.contact_law == GB_CONTACT_LAW_UNILATERAL) o->residual += d->impact_loss; /* the ledger */
-    /* Centroid acceleration relative to the support under rolling kinematics (body frame):
-     * a_G = ω × (r_c × ω) + ṙ_c × ω + r_c × ω̇; N = m (g_eff + z_b·a_G). */
-    double a[3], b[3], e[3], f[3];
-    gb_vec_cross(c.rc, o->omega, a);
-    gb_vec_cross(o->omega, a, b);
-    gb_vec_cross(c.rc_dot, o->omega, e);
-    gb_vec_cross(c.rc, o->omega_dot, f);
     double acc[3];
-    for (int k = 0; k < 3; k++) acc[k] = b[k] + e[k] + f[k];
+    o->normal_force = normal_force_of(d, o->geff, o->zb, o->omega, o->omega_dot, &c, acc);
     const double vertical = gb_vec_dot(acc, o->zb);
-    o->normal_force = m * (o->geff + vertical);
     double horizontal[3];
     for (int k = 0; k < 3; k++) horizontal[k] = acc[k] - vertical * o->zb[k];
     o->friction_needed = o->normal_force > 0.0 ? m * gb_vec_norm(horizontal) / o->normal_force : INFINITY;

@@ -66,8 +66,9 @@ int gb_dynamics_certificate_parse(const char *name, gb_dynamics_certificate *cer
  *    on the other point, ω unchanged) or a third point reaching the plane (an impact over all three).
  * Stops the run with GB_ENUMERIC, saying which: an impact a rough plane cannot absorb (stopping the slip
  * needs a pulling impulse; a finite friction coefficient is not built), a body coming to rest on three
- * points, the two points of the mode merging (the end of a crease), and a second change of contact
- * inside one step. A chatter of impacts between P and Q (the lifted point falling back ever sooner, as a
+ * points, the two points of the mode merging (the end of a crease), a normal force below 0 while rolling
+ * on one point (at an accepted step: lift-off and flight are not built), and a change of contact the
+ * step's event location missed. A chatter of impacts between P and Q (the lifted point falling back ever sooner, as a
  * bouncing ball's) is ended by def.settle_time. */
 typedef enum gb_contact_law { GB_CONTACT_LAW_HELD = 0, GB_CONTACT_LAW_UNILATERAL = 1 } gb_contact_law;
 

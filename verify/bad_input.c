@@ -291,6 +291,9 @@ static const bad_row rows[] = {
     {RUN, "[model]\ncontact_law = unilateral\n", 0, 2, {"case.ini:2: [model] contact_law: = unilateral with [model] contact = grid", "built for continuous contact and the rolling equation", "allowed: held with any model"}},
     {RUN, "[model]\ncontact = continuous\nequation = rolling\ncontact_law = unilateral\n[integrator]\nlocate_switches = no\n", 0, 2, {"case.ini:6: [integrator] locate_switches: = no with [model] contact_law = unilateral", "allowed: yes with contact_law = unilateral", ""}},
     {RUN, "[output]\nimpacts = yes\n", 0, 2, {"case.ini:2: [output] impacts: = yes with [model] contact_law = held", "a held contact has no impacts", "allowed: yes with contact_law = unilateral"}},
+    /* a computation the unilateral law cannot follow (exit 1): Table 1 read in units of g pulls the body off the plane */
+    {RUN, "[forcing]\namplitude_units = g\n[model]\ncontact = continuous\nequation = rolling\ncontact_law = unilateral\n"
+          "[integrator]\nperiods = 2\nlocate_switches = yes\n", 0, 1, {"the normal force is", "so the body would leave the plane", "lift-off and flight are not built yet"}},
     {"run @CASE@ --out @D@ --out @D@", "[body]\nbeta = 0.1\n", 0, 2, {"option '--out' is given twice", "allowed: each option once", ""}},
     {"run @CASE@ --atlas @D@/a --atlas @D@/b", ATLAS_SCENE, 0, 2, {"option '--atlas' is given twice", "each option once", ""}},
     {"melnikov @CASE@ --curve-points 5", "[body]\nbeta = 0.1\n", 0, 2, {"--curve-points 5 without --curve", "allowed: --curve-points with --curve FILE", ""}},
