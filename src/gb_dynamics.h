@@ -68,8 +68,8 @@ int gb_dynamics_certificate_parse(const char *name, gb_dynamics_certificate *cer
  * needs a pulling impulse; a finite friction coefficient is not built), a body coming to rest on three
  * points, the two points of the mode merging (the end of a crease), a normal force below 0 while rolling
  * on one point (at an accepted step: lift-off and flight are not built), and a change of contact the
- * step's event location missed. A chatter of impacts between P and Q (the lifted point falling back ever sooner, as a
- * bouncing ball's) is ended by def.settle_time. */
+ * step's event location missed. A chatter of impacts between P and Q (the lifted point falling back
+ * ever sooner, as a bouncing ball's) is ended by def.settle_time. */
 typedef enum gb_contact_law { GB_CONTACT_LAW_HELD = 0, GB_CONTACT_LAW_UNILATERAL = 1 } gb_contact_law;
 
 const char *gb_dynamics_contact_law_name(gb_contact_law law);
