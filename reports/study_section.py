@@ -25,10 +25,22 @@ from common import finish_figure, load_json  # noqa: E402
 #              fewer than half the members are chaotic late (chaos that dies out, with state-dependent lifetimes),
 #   undecided  otherwise.
 # The claim "the forced motion is chaotic" (section 8.2) holds when sustained, fails when transient or regular.
-MARGIN, LATE = 0.01, 0.05
+# A member whose run failed (an ensemble with failed_points = record: every metric NaN, for example an impact
+# a rough plane cannot absorb) is left out and counted; when more than FAILED = 25 % of the members failed, the
+# ensemble is undecided whatever the rest says (the model does not follow enough of them).
+MARGIN, LATE, FAILED = 0.01, 0.05, 0.25
+
+
+def failed_members(rows):
+    return sum(1 for r in rows if math.isnan(float(r["lambda_max"])))
 
 
 def classify(rows):
+    all_rows = rows
+    rows = [r for r in rows if not math.isnan(float(r["lambda_max"]))]
+    if not rows:
+        nan = float("nan")
+        return numpy.array([nan]), numpy.array([nan]), numpy.array([nan]), numpy.array([nan]), nan, nan, "undecided"
     lam = numpy.array([float(r["lambda_max"]) for r in rows])
     err = numpy.array([float(r["lambda_error"]) for r in rows])
     early = numpy.array([float(r["lambda_first_half"]) for r in rows])
@@ -42,6 +54,8 @@ def classify(rows):
     elif numpy.median(early) - numpy.median(late) >= LATE and chaotic_late < 0.5:
         kind = "transient"
     else:
+        kind = "undecided"
+    if failed_members(all_rows) > FAILED * len(all_rows):
         kind = "undecided"
     return lam, err, early, late, chaotic, chaotic_late, kind
 
@@ -81,8 +95,10 @@ def study_section(out):
               f"{LATE} 1/s or more and fewer than half the members stay chaotic; *undecided* otherwise. The claim that "
               "the forced motion is chaotic holds when sustained and fails when transient or regular. A member's chaos "
               "has ended when the last of 12 windows of its record with a mean exponent above 0.05 1/s is not the last "
-              "window; its lifetime is that window's end (members still chaotic at the end are not counted: censored).", "",
-              "| ensemble | members | λ median [quartiles] | λ − 2σ > 0.01 | first half, median | second half, median | "
+              "window; its lifetime is that window's end (members still chaotic at the end are not counted: censored). "
+              "A member whose run failed (failed_points = record: the model could not follow it) is left out and "
+              f"counted; with more than {FAILED:.0%} of the members failed the ensemble is undecided.", "",
+              "| ensemble | members (failed) | λ median [quartiles] | λ − 2σ > 0.01 | first half, median | second half, median | "
               "chaotic in the second half | chaos ended (lifetime, periods: median [range]) | reading | the paper's claim |",
               "|---|---|---|---|---|---|---|---|---|---|"]
     fig, ax = plt.subplots(figsize=(8, 4))
@@ -98,7 +114,7 @@ def study_section(out):
                       if len(ended) else f"0 of {len(rows)}")
         if not numpy.any(~numpy.isnan(lifetimes)):
             ended_text = "—"
-        lines.append(f"| {label} | {len(rows)} | {med:.3f} [{q1:.3f}, {q3:.3f}] | {chaotic:.0%} | {numpy.median(early):.3f} | "
+        lines.append(f"| {label} | {len(rows)} ({failed_members(rows)}) | {med:.3f} [{q1:.3f}, {q3:.3f}] | {chaotic:.0%} | {numpy.median(early):.3f} | "
                      f"{numpy.median(late):.3f} | {chaotic_late:.0%} | {ended_text} | {kind} | {verdict} |")
         ax.plot([k - 0.1] * len(early), early, "o", ms=3, color="C0", label="first half" if k == 0 else None)
         ax.plot([k + 0.1] * len(late), late, "o", ms=3, color="C3", label="second half" if k == 0 else None)

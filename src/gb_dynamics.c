@@ -779,29 +779,40 @@ static double return_time(gb_dynamics *d, double t, const double y[GB_STATE_SIZE
  * point: the plastic impact of the body rolling about P on the plane at Q. *both: both points hold after
  * (the two-point mode begins), else P lifts. A lift whose fall back would come within def.settle_time is
  * taken as both held (the settle rule). */
-static int impact(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const gb_contact_point *from, const gb_contact_point *to,
-                  int located, int *both)
+/* The outcome of that impact at state y, nothing booked: the points [m], the centroid's velocity before,
+ * the solver's answer (the settle rule applied), P's return time and whether both points hold. */
+static int impact_outcome(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const gb_contact_point *from,
+                          const gb_contact_point *to, double points[2][3], double v[3], gb_impact_result *r, double *back,
+                          int *both)
 {
     const double L = d->def.length;
-    const double points[2][3] = {{L * from->rc[0], L * from->rc[1], L * from->rc[2]}, {L * to->rc[0], L * to->rc[1], L * to->rc[2]}};
-    double v[3];
-    gb_impact_result r;
-    int status = impact_solve(d, t, y, points[0], points, 2, v, &r);
+    for (int k = 0; k < 3; k++) points[0][k] = L * from->rc[k], points[1][k] = L * to->rc[k];
+    int status = impact_solve(d, t, y, points[0], (const double (*)[3])points, 2, v, r);
     if (status) return status;
-    if (!r.holds[1])
+    if (!r->holds[1])
         return gb_error_set(GB_ENUMERIC, "unilateral contact at t = %.9g: after the impact the new contact does not hold", t);
-    *both = r.holds[0];
-    double back = INFINITY;
+    *both = r->holds[0];
+    *back = INFINITY;
     if (!*both) {
         double yafter[GB_STATE_SIZE];
         memcpy(yafter, y, sizeof yafter);
-        memcpy(yafter + GB_STATE_OMEGA, r.omega, sizeof r.omega);
-        back = return_time(d, t, yafter, to, r.v, points[0]);
-        if (back < d->def.settle_time) {
-            hold_both(d, y, points[0], points[1], v, &r);
+        memcpy(yafter + GB_STATE_OMEGA, r->omega, sizeof r->omega);
+        *back = return_time(d, t, yafter, to, r->v, points[0]);
+        if (*back < d->def.settle_time) {
+            hold_both(d, y, points[0], points[1], v, r);
             *both = 1;
         }
     }
+    return GB_OK;
+}
+
+static int impact(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const gb_contact_point *from, const gb_contact_point *to,
+                  int located, int *both)
+{
+    double points[2][3], v[3], back;
+    gb_impact_result r;
+    const int status = impact_outcome(d, t, y, from, to, points, v, &r, &back, both);
+    if (status) return status;
     gb_dynamics_impact e = {.t = t, .located = located, .kind = *both ? GB_IMPACT_TWO_POINT : GB_IMPACT_SWITCH,
                             .contacts_after = 1 + *both, .settled = *both && isfinite(back), .return_time = back};
     record(&e, y, points[0], points[1], v, &r, 1);
@@ -1051,6 +1062,33 @@ int gb_dynamics_switch_to(gb_dynamics *d, double t, double y[GB_STATE_SIZE], con
     d->last_valid = 0;
     d->branch_switches++;
     return GB_OK;
+}
+
+int gb_dynamics_jump(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const gb_contact_point *branch,
+                     double out[GB_STATE_SIZE])
+{
+    memcpy(out, y, GB_STATE_SIZE * sizeof *out);
+    if (d->def.contact_law != GB_CONTACT_LAW_UNILATERAL || (d->two_point && d->pending == PENDING_LIFT)) return GB_OK;
+    const double L = d->def.length;
+    double zb[3], v[3];
+    vertical_of(y, zb);
+    gb_contact_point p, q, r;
+    gb_impact_result res;
+    int status = gb_contact_refine(&d->surface, zb, d->contact.phi, d->contact.theta, &d->refine, &p);
+    if (!status && d->two_point) {
+        status = gb_contact_refine(&d->surface, zb, d->contact2.phi, d->contact2.theta, &d->refine, &q);
+        if (!status) status = gb_contact_refine(&d->surface, zb, branch->phi, branch->theta, &d->refine, &r);
+        const double points[3][3] = {{L * p.rc[0], L * p.rc[1], L * p.rc[2]}, {L * q.rc[0], L * q.rc[1], L * q.rc[2]},
+                                     {L * r.rc[0], L * r.rc[1], L * r.rc[2]}};
+        if (!status) status = impact_solve(d, t, y, points[0], points, 3, v, &res);
+    } else if (!status) {
+        double points[2][3], back;
+        int both;
+        status = gb_contact_refine(&d->surface, zb, branch->phi, branch->theta, &d->refine, &q);
+        if (!status) status = impact_outcome(d, t, y, &p, &q, points, v, &res, &back, &both);
+    }
+    if (!status) memcpy(out + GB_STATE_OMEGA, res.omega, sizeof res.omega);
+    return status;
 }
 
 void gb_dynamics_set_impact_sink(gb_dynamics *d, gb_dynamics_impact_sink sink, void *context)

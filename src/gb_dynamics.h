@@ -198,6 +198,13 @@ int gb_dynamics_branch_gap(gb_dynamics *dynamics, double t, const double y[GB_ST
  * is an impact: ω in y jumps. GB_ENUMERIC for an impact the law cannot take (see gb_contact_law). */
 int gb_dynamics_switch_to(gb_dynamics *dynamics, double t, double y[GB_STATE_SIZE], const gb_contact_point *branch);
 
+/* What gb_dynamics_switch_to would make of the state y at time t (the impact's ω after, under the
+ * unilateral law; y itself under the held law and at a lift), into out, changing nothing: the jump map
+ * whose derivative the variational estimator's saltation needs. The contacts are continued to y from
+ * the accepted ones and from `branch`. */
+int gb_dynamics_jump(gb_dynamics *dynamics, double t, const double y[GB_STATE_SIZE], const gb_contact_point *branch,
+                     double out[GB_STATE_SIZE]);
+
 /* The unilateral law: a sink for every impact (NULL: none), and the impacts so far, the kinetic
  * energy they took (L) and the largest friction they needed. */
 void gb_dynamics_set_impact_sink(gb_dynamics *dynamics, gb_dynamics_impact_sink sink, void *context);

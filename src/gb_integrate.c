@@ -163,6 +163,12 @@ int gb_integrate_locate_switch(gb_dynamics *d, double t, double h, const double 
     return locate(d, t, h, y, other, rk4_substep, NULL, 0, out, stats);
 }
 
+int gb_integrate_locate_next(gb_dynamics *d, double t, double h, const double y[GB_STATE_SIZE],
+                             const gb_contact_point *other, gb_integrate_switch *out, gb_integrate_stats *stats)
+{
+    return locate(d, t, h, y, other, rk4_substep, NULL, 1, out, stats);
+}
+
 /* The most changes of contact one step may hold under the unilateral law (a chatter the settle rule has
  * not yet ended); more stop the run. */
 enum { EVENTS_PER_STEP_MAX = 64 };

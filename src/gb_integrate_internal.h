@@ -34,4 +34,9 @@ typedef struct gb_integrate_switch {
 int gb_integrate_locate_switch(gb_dynamics *dynamics, double t, double h, const double y[GB_STATE_SIZE],
                                const gb_contact_point *other, gb_integrate_switch *out, gb_integrate_stats *stats);
 
+/* The same for a step that starts at a change of contact (the unilateral law's next event inside a step):
+ * a gap ≥ 0 at the start is the tie the change left, and the crossing after it is located. */
+int gb_integrate_locate_next(gb_dynamics *dynamics, double t, double h, const double y[GB_STATE_SIZE],
+                             const gb_contact_point *other, gb_integrate_switch *out, gb_integrate_stats *stats);
+
 #endif

@@ -236,7 +236,7 @@ static int tangent_switch_step(gb_lyapunov_body *b, double t, double h, double y
     double g_dir[GB_LYAPUNOV_MAX_EXPONENTS];
     for (size_t j = 0; j < k && !status; j++) status = gap_along(d, t + a * h, y, &there, Y + j * GB_STATE_SIZE, &g_dir[j]);
     if (status) return status;
-    status = gb_dynamics_switch_to(d, t + a * h, y, &there); /* held: the tangent estimator refuses unilateral */
+    status = gb_dynamics_switch_to(d, t + a * h, y, &there); /* held: y unchanged (unilateral: tangent_impact_step) */
     if (!status) status = gb_dynamics_rhs(d, t + a * h, y, f_new);
     if (status) return status;
     if (g_flow != 0.0 && isfinite(g_flow)) {
@@ -247,6 +247,91 @@ static int tangent_switch_step(gb_lyapunov_body *b, double t, double h, double y
         b->grazing++;
     }
     return a < 1.0 ? tangent_rk4(d, t + a * h, (1.0 - a) * h, y, k, Y) : GB_OK;
+}
+
+/* The event function g(t, y) (gb_dynamics_branch_gap) differentiated along time at fixed y: zero for a
+ * branch gap, not for the two-point mode's normal forces, which move with g_eff(t). */
+static int gap_rate(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const gb_contact_point *other, double *rate)
+{
+    const double dt = 1e-7 * (2.0 * M_PI / gb_dynamics_get_def(d)->forcing.omega);
+    double gp, gm;
+    gb_contact_point here;
+    int status = gb_dynamics_branch_gap(d, t + dt, y, other, &gp, &here);
+    if (!status) status = gb_dynamics_branch_gap(d, t - dt, y, other, &gm, &here);
+    if (!status) *rate = (gp - gm) / (2.0 * dt);
+    return status;
+}
+
+/* The jump map G (gb_dynamics_jump) differentiated along dy at y: DG·dy by central differences. */
+static int jump_along(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const gb_contact_point *other,
+                      const double dy[GB_STATE_SIZE], double out[GB_STATE_SIZE])
+{
+    double size = 0.0, yp[GB_STATE_SIZE], ym[GB_STATE_SIZE], gp[GB_STATE_SIZE], gm[GB_STATE_SIZE];
+    for (int i = 0; i < GB_STATE_SIZE; i++) size = fmax(size, fabs(dy[i]));
+    if (size == 0.0) return memset(out, 0, GB_STATE_SIZE * sizeof *out), GB_OK;
+    const double eps = 1e-6 / size;
+    for (int i = 0; i < GB_STATE_SIZE; i++) yp[i] = y[i] + eps * dy[i], ym[i] = y[i] - eps * dy[i];
+    int status = gb_dynamics_jump(d, t, yp, other, gp);
+    if (!status) status = gb_dynamics_jump(d, t, ym, other, gm);
+    for (int i = 0; !status && i < GB_STATE_SIZE; i++) out[i] = (gp[i] - gm[i]) / (2.0 * eps);
+    return status;
+}
+
+/* Under the unilateral law, a change of contact inside the step (t, y) → t + h onto `other`, and every one
+ * after it inside the same step (as gb_integrate locates them): at each, the state jumps by the impact
+ * map G (ω changes; a lift leaves it), and the tangent vectors by the saltation of a jump,
+ *   Y ← DG·Y + (f⁺ − DG·f⁻)(∇g·Y)/(∇g·f⁻ + ∂g/∂t),
+ * with DG by central differences of gb_dynamics_jump and g the event's own function. */
+static int tangent_impact_step(gb_lyapunov_body *b, double t, double h, double y[GB_STATE_SIZE], size_t k, double *Y,
+                               const gb_contact_point *other)
+{
+    enum { S = GB_STATE_SIZE };
+    gb_dynamics *d = b->dynamics[0];
+    double tc = t, hc = h;
+    gb_contact_point next = *other;
+    for (int events = 0; events < 64; events++) {
+        gb_integrate_switch at;
+        int status = events ? gb_integrate_locate_next(d, tc, hc, y, &next, &at, NULL)
+                            : gb_integrate_locate_switch(d, tc, hc, y, &next, &at, NULL);
+        if (status) return status;
+        const double a = at.fraction, te = tc + a * hc;
+        if (!at.crossed) b->jumps++;
+        if (a > 0.0) status = tangent_rk4(d, tc, a * hc, y, k, Y);
+        gb_contact_point there;
+        double gap, f_old[S], f_new[S], g_flow = 0.0, g_time = 0.0, g_dir[GB_LYAPUNOV_MAX_EXPONENTS];
+        double Gf[S], GY[GB_LYAPUNOV_MAX_EXPONENTS][S];
+        if (!status) status = gb_dynamics_branch_gap(d, te, y, &next, &gap, &there);
+        if (!status) status = gb_dynamics_rhs(d, te, y, f_old);
+        if (!status) status = gap_along(d, te, y, &there, f_old, &g_flow);
+        if (!status) status = gap_rate(d, te, y, &there, &g_time);
+        for (size_t j = 0; j < k && !status; j++) status = gap_along(d, te, y, &there, Y + j * S, &g_dir[j]);
+        if (!status) status = jump_along(d, te, y, &there, f_old, Gf);
+        for (size_t j = 0; j < k && !status; j++) status = jump_along(d, te, y, &there, Y + j * S, GY[j]);
+        if (!status) status = gb_dynamics_switch_to(d, te, y, &there); /* the impact: ω in y jumps */
+        if (!status) status = gb_dynamics_rhs(d, te, y, f_new);
+        if (status) return status;
+        const double rate = g_flow + g_time;
+        if (rate != 0.0 && isfinite(rate)) {
+            for (size_t j = 0; j < k; j++)
+                for (int i = 0; i < S; i++) Y[j * S + i] = GY[j][i] + (f_new[i] - Gf[i]) * g_dir[j] / rate;
+            b->saltations++;
+        } else {
+            b->grazing++;
+        }
+        if (a >= 1.0) return GB_OK;
+        /* the rest of the step, and the next change inside it, if any */
+        double ye[S], Ye[GB_LYAPUNOV_MAX_EXPONENTS * S];
+        memcpy(ye, y, sizeof ye);
+        memcpy(Ye, Y, k * S * sizeof *Y);
+        status = tangent_rk4(d, te, (1.0 - a) * hc, y, k, Y);
+        int found = 0;
+        if (!status) status = gb_dynamics_switch_pending(d, t + h, y, &next, &found);
+        if (status || !found) return status;
+        memcpy(y, ye, sizeof ye);
+        memcpy(Y, Ye, k * S * sizeof *Y);
+        tc = te, hc = (1.0 - a) * hc;
+    }
+    return gb_error_set(GB_ENUMERIC, "more than 64 changes of contact inside the step from t = %.9g", t);
 }
 
 static int tangent_steps(gb_lyapunov_body *b, double t, double interval, size_t k, double *vectors)
@@ -272,7 +357,9 @@ static int tangent_steps(gb_lyapunov_body *b, double t, double interval, size_t 
         if (!status && found) {
             memcpy(y, start, sizeof start);
             memcpy(Y, Ystart, k * GB_STATE_SIZE * sizeof *Y);
-            status = tangent_switch_step(b, tn, h, y, k, Y, &other);
+            status = gb_dynamics_get_def(d)->contact_law == GB_CONTACT_LAW_UNILATERAL
+                         ? tangent_impact_step(b, tn, h, y, k, Y, &other)
+                         : tangent_switch_step(b, tn, h, y, k, Y, &other);
         }
         const size_t before = gb_dynamics_switch_count(d);
         double drift;
@@ -307,9 +394,6 @@ int gb_lyapunov_body_tangent_ready(const gb_lyapunov_body *body)
                             "the variational estimator needs continuous contact and RK4 (got %s, %s): a grid contact "
                             "makes the vector field jump at every node change, where no variational equation holds",
                             gb_contact_model_name(def->contact), gb_integrate_name(body->method));
-    if (def->contact_law != GB_CONTACT_LAW_HELD)
-        return gb_error_set(GB_EINVAL, "the variational estimator has no saltation matrix for an impact yet (contact law %s): "
-                            "use the pair estimator", gb_dynamics_contact_law_name(def->contact_law));
     if (body->tangent_steps == 0 && gb_integrate_time(body->session[0]) != 0.0)
         return gb_error_set(GB_EINVAL, "the body's reference has already been advanced by the pair estimator");
     return GB_OK;

@@ -141,8 +141,8 @@ static int scan_handler(gb_ini_reader *ini, void *user, const char *section, con
     scan_reader *r = user;
     gb_scan *scan = r->scan;
     if (!strcmp(section, "scan")) {
-        static const char *const names[] = {"description", "base", "periods", "transient_periods", "metrics"};
-        for (int k = 0; k < 5; k++) {
+        static const char *const names[] = {"description", "base", "periods", "transient_periods", "metrics", "failed_points"};
+        for (int k = 0; k < 6; k++) {
             if (strcmp(key, names[k])) continue;
             if (!once(ini, r, 0, k, section, key, value)) return 0;
             switch (k) {
@@ -154,11 +154,16 @@ static int scan_handler(gb_ini_reader *ini, void *user, const char *section, con
                 return 1;
             case 2: return number(ini, section, key, value, 1.0, 1e7, &scan->periods);
             case 3: return count(ini, section, key, value, 0, 10000000, &scan->transient_periods);
-            default: return parse_metrics(ini, value, &scan->metrics);
+            case 4: return parse_metrics(ini, value, &scan->metrics);
+            default:
+                if (strcmp(value, "stop") && strcmp(value, "record"))
+                    return gb_ini_fail(ini, "[scan] failed_points = %s: unknown (allowed: stop, record)", value);
+                scan->record_failures = !strcmp(value, "record");
+                return 1;
             }
         }
         return gb_ini_fail(ini, "[scan] %s = %s: unknown key (allowed in [scan]: description, base, periods, "
-                           "transient_periods, metrics)", key, value);
+                           "transient_periods, metrics, failed_points)", key, value);
     }
     const int s = !strcmp(section, "x") ? 1 : 2;
     gb_scan_axis *a = &scan->axis[s - 1];
@@ -626,6 +631,16 @@ const char *gb_scan_csv_header(void)
            "melnikov_margin_eq93,certificate_undecided,"
            "state_fingerprint,"
            "switch_fingerprint\n";
+}
+
+void gb_scan_failed_metrics(const gb_scan *scan, size_t index, gb_scan_metrics *out)
+{
+    memset(out, 0, sizeof *out);
+    gb_scan_coordinates(scan, index, &out->x, &out->y);
+    double *nan_fields[] = {&out->omega_rms, &out->switch_rate, &out->strobe_sd, &out->mean_height, &out->geff_nonpositive,
+                            &out->lift_off, &out->lambda, &out->lambda_error, &out->lambda_early, &out->lambda_late,
+                            &out->chaos_lifetime, &out->melnikov_margin, &out->melnikov_margin_eq93};
+    for (size_t k = 0; k < sizeof nan_fields / sizeof nan_fields[0]; k++) *nan_fields[k] = NAN;
 }
 
 int gb_scan_csv_row(const gb_scan_metrics *m, size_t index, char *out, size_t size)

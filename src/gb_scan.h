@@ -58,6 +58,10 @@ typedef struct gb_scan {
     double periods;                    /* per point */
     size_t transient_periods;          /* metrics from this period on */
     unsigned metrics;                  /* GB_SCAN_* */
+    int record_failures;               /* [scan] failed_points = record: a point whose computation fails (exit
+                                        * status 1 of its run: a contact lost, an impact the model cannot take)
+                                        * is a row of NaN metrics and zero fingerprints, and the scan goes on;
+                                        * stop (0, the default): the scan stops there */
     uint64_t fingerprint;              /* FNV-1a of the scan file's and the base scene's bytes */
     int base_line;                     /* the scan file's line of `base`, for messages */
     char *base_text;                   /* the base scene as read once (every point starts from it) */
@@ -153,6 +157,10 @@ double gb_scan_chaos_lifetime(const double *lambda, size_t n, double periods_per
 /* The CSV header and one row (every metric %.17g, fingerprints in hex); the row ends with '\n'. */
 const char *gb_scan_csv_header(void);
 int gb_scan_csv_row(const gb_scan_metrics *m, size_t index, char *out, size_t size);
+
+/* The metrics of a point that failed under failed_points = record: its coordinates, every metric NaN,
+ * no certificate counts, zero fingerprints. */
+void gb_scan_failed_metrics(const gb_scan *scan, size_t index, gb_scan_metrics *out);
 /* Parse a row written by gb_scan_csv_row (a journal line): 0, or GB_EINVAL. */
 int gb_scan_csv_parse(const char *line, size_t *index, gb_scan_metrics *out);
 

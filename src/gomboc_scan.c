@@ -157,6 +157,7 @@ static int write_outputs(const char *dir, const char *path, const gb_scan *scan,
         cJSON_AddItemToObject(root, "y", axis_json(&scan->axis[1]));
         cli_json_add(root, "periods", scan->periods);
         cli_json_add(root, "transient_periods", (double)scan->transient_periods);
+        cJSON_AddStringToObject(root, "failed_points", scan->record_failures ? "record" : "stop");
         cli_json_add(root, "points", (double)gb_scan_points(scan));
         const char *names[16];
         const size_t metric_count = gb_scan_metric_names(scan->metrics, names, 16);
@@ -383,7 +384,18 @@ static void run_points(scan_state *st, const ranks *r)
         if (skip) continue;
         const size_t k = todo[i];
         gb_scan_metrics m;
-        const int s = gb_scan_point_run(st->scan, melnikov, k, &m);
+        int s = gb_scan_point_run(st->scan, melnikov, k, &m);
+        if (s && st->scan->record_failures && s != GB_ENOMEM && s != GB_EIO && s != GB_EINVAL && s != GB_EDOM) {
+            /* failed_points = record: the computation failed (the model cannot follow this point); a row of NaN */
+            double x, y;
+            gb_scan_coordinates(st->scan, k, &x, &y);
+            fprintf(stderr, "gomboc scan: point %zu (%s.%s = %.17g, %s.%s = %.17g) failed, recorded with NaN metrics: %s\n", k,
+                    st->scan->axis[0].section, st->scan->axis[0].key, x, st->scan->axis[1].section, st->scan->axis[1].key, y,
+                    gb_error_message());
+            gb_scan_failed_metrics(st->scan, k, &m);
+            gb_error_clear();
+            s = GB_OK;
+        }
         char row[1024];
         const int failure = s ? s : gb_scan_csv_row(&m, k, row, sizeof row);
 #ifdef _OPENMP

@@ -625,6 +625,32 @@ static void test_journal_verified(void)
     gb_check_true(&cf, failed == 1 && again == 1 && access(d.journal, F_OK) != 0, "exits %d, %d; journal %s: %.200s", failed, again,
                   access(d.journal, F_OK) ? "none" : "LEFT", out);
 
+    /* The same scan with failed_points = record: it finishes, each failed point a row of NaN metrics. */
+    spill(d.scan, "[scan]\nbase = base.ini\nperiods = 2\ntransient_periods = 1\nfailed_points = record\n[x]\nkey = body.mass\n"
+                  "from = 1\nto = 2\ncount = 2\n[y]\nkey = forcing.A1\nfrom = 1\nto = 1\ncount = 1\n");
+    const int recorded = scan_run(&d, "--threads 1", out, sizeof out);
+    char *csv_text = slurp(d.csv);
+    json_text = slurp(json_path);
+    root = json_text ? cJSON_Parse(json_text) : NULL;
+    const cJSON *mode = cJSON_GetObjectItem(root, "failed_points");
+    size_t nan_rows = 0;
+    /* the rows after the header: each must hold ",nan," and end in two zero fingerprints */
+    for (char *line = csv_text ? strchr(csv_text, '\n') : NULL; line && line[1]; line = strchr(line + 1, '\n')) {
+        char *end = strchr(line + 1, '\n');
+        if (end) *end = '\0';
+        const size_t n = strlen(line + 1);
+        nan_rows += strstr(line + 1, ",nan,") && n > 34 && !strcmp(line + 1 + n - 34, ",0000000000000000,0000000000000000");
+        if (end) *end = '\n';
+    }
+    gb_check cg = {"8.3", "-", "that scan with failed_points = record", "exit 0; 2 rows of NaN metrics with zero fingerprints; "
+                   "the JSON says record; the message names each failed point", "exact"};
+    gb_check_true(&cg, recorded == 0 && nan_rows == 2 && cJSON_IsString(mode) && !strcmp(mode->valuestring, "record") &&
+                       strstr(out, "recorded with NaN metrics"),
+                  "exit %d, %zu NaN rows: %.300s", recorded, nan_rows, csv_text ? csv_text : out);
+    cJSON_Delete(root);
+    free(json_text);
+    free(csv_text);
+
     /* A random axis is recorded as such: its seed and count, no range. */
     spill(path, "[integrator]\nperiods = 2\n[model]\ncontact = fast-grid\n");
     spill(d.scan, "[scan]\nbase = base.ini\nperiods = 2\ntransient_periods = 1\nmetrics = omega_rms\n[x]\nkey = initial.attitude\n"
