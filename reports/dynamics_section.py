@@ -202,7 +202,7 @@ def dynamics_section(out, rows):
                                         f"{r['atlas_bytes'] / 1048576:.1f}", str(r["atlas_cached_fallbacks"]),
                                         "yes" if r["atlas_identical"] else "**no**"])
         lines += bench_table(records, "law_certificate",
-                             "The unilateral contact law against the held one on the same Table 1 rolling runs (300 periods, "
+                             "The unilateral contact law against the held one on the same Table 1 rolling runs (300 periods, every change of contact located, "
                              "the same `make bench` run, best of 2), with each certificate (the atlas built in the run); "
                              "target (issue 28): a unilateral run ≤ 1.3× the held run of the same scene.",
                              ["body", "certificate", "held [s]", "unilateral [s]", "ratio"],
