@@ -632,33 +632,44 @@ static void test_outputs(void)
                   failures, code);
 
     /* An atlas file of 1 GiB (sparse: no disk) is larger than any atlas of the scene's levels: refused
-     * unread, the atlas built anew (the run's memory stays far below the file's size) and written back. */
+     * unread, the atlas built anew and written back. Its memory is measured against the same run with no
+     * atlas file at all (a sanitizer's shadow memory or a different allocator moves both alike): it may
+     * exceed that by no more than the atlas limit, 64 MiB, where reading the file would take 1 GiB. */
     snprintf(path, sizeof path, "%s/huge.atlas", dir);
     FILE *huge = fopen(path, "wb");
     const int made = huge && fseek(huge, (1L << 30) - 1, SEEK_SET) == 0 && fputc(0, huge) != EOF;
     if (huge) fclose(huge);
     char summary_path[512];
     snprintf(summary_path, sizeof summary_path, "%s/a-summary.json", dir);
-    remove(summary_path);
-    const pid_t child = fork();
-    if (child == 0) {
-        if (chdir(dir) != 0 || !freopen("/dev/null", "w", stderr)) _exit(127);
-        execl(binary(), "gomboc", "run", "a.ini", "--atlas", "huge.atlas", (char *)NULL);
-        _exit(127);
+    long kib_of[2] = {0, 0};
+    int code_of[2] = {-1, -1};
+    static const char *const atlas_of[2] = {"fresh.atlas", "huge.atlas"};
+    for (int run = 0; run < 2; run++) {
+        remove(summary_path);
+        const pid_t child = fork();
+        if (child == 0) {
+            if (chdir(dir) != 0 || !freopen("/dev/null", "w", stderr)) _exit(127);
+            execl(binary(), "gomboc", "run", "a.ini", "--atlas", atlas_of[run], (char *)NULL);
+            _exit(127);
+        }
+        int wstatus = 0;
+        struct rusage usage;
+        memset(&usage, 0, sizeof usage);
+        code_of[run] = wait4(child, &wstatus, 0, &usage) == child && WIFEXITED(wstatus) ? WEXITSTATUS(wstatus) : -1;
+        kib_of[run] = usage.ru_maxrss; /* KiB on Linux */
     }
-    int wstatus = 0;
-    struct rusage usage;
-    memset(&usage, 0, sizeof usage);
-    code = wait4(child, &wstatus, 0, &usage) == child && WIFEXITED(wstatus) ? WEXITSTATUS(wstatus) : -1;
-    const long kib = usage.ru_maxrss; /* KiB on Linux */
+    code = code_of[1] ? code_of[1] : code_of[0];
+    const long kib = kib_of[1];
     char *summary = read_all(summary_path);
     snprintf(out, sizeof out, "%s", summary ? summary : "");
     free(summary);
     struct stat st;
-    gb_check ca = {"-", "-", "gomboc run --atlas F, F a sparse file of 1 GiB", "exit 0, not loaded, the run under 512 MiB, F replaced "
-                   "by the atlas built (under the 64 MiB limit)", "exact"};
-    gb_check_true(&ca, made && code == 0 && strstr(out, "\"loaded\":\t0") && kib > 0 && kib < 512 * 1024 && stat(path, &st) == 0 &&
-                       st.st_size < (64L << 20), "exit %d, max resident %ld KiB, file now %lld bytes", code, kib,
+    gb_check ca = {"-", "-", "gomboc run --atlas F, F a sparse file of 1 GiB", "exit 0, not loaded, the run's peak memory within "
+                   "64 MiB (the atlas limit) of the same run with no atlas file, F replaced by the atlas built (under the "
+                   "64 MiB limit)", "exact"};
+    gb_check_true(&ca, made && code == 0 && strstr(out, "\"loaded\":\t0") && kib > 0 && kib_of[0] > 0 &&
+                       kib < kib_of[0] + 64 * 1024 && stat(path, &st) == 0 && st.st_size < (64L << 20),
+                  "exit %d, max resident %ld KiB (%ld KiB with no atlas file), file now %lld bytes", code, kib, kib_of[0],
                   stat(path, &st) == 0 ? (long long)st.st_size : -1LL);
 
     /* Output sets: the summary lists the others with size and checksum; a set mixed by a kill between
