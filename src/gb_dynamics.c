@@ -456,13 +456,11 @@ static int two_point_at(gb_dynamics *d, double t, const double y[GB_STATE_SIZE],
     /* Newton–Euler with these accelerations: the contact forces F = m a_G + m g_eff z_b, their moment
      * about G, M = I_G ω̇ + ω × I_G ω + c ω = r_P × F_P + r_Q × F_Q, so (r_P − r_Q) × F_P = M − r_Q × F
      * fixes F_P across PQ; its part along PQ (and Q's) is the internal force statics leaves open. */
-    double a[3], b[3], e[3], f[3], F[3], Iw[3], gyro[3], Iwd[3], M[3], rqF[3], X[3], FP[3];
-    gb_vec_cross(tp->rp, omega, a);
-    gb_vec_cross(omega, a, b);
-    const double vP[3] = {s * vp[0], s * vp[1], s * vp[2]};
-    gb_vec_cross(vP, omega, e);
-    gb_vec_cross(tp->rp, tp->omega_dot, f);
-    for (int k = 0; k < 3; k++) F[k] = m * (b[k] + e[k] + f[k] + geff * zb[k]);
+    double acc[3], F[3], Iw[3], gyro[3], Iwd[3], M[3], rqF[3], X[3], FP[3];
+    contact_eval at_p = {.rc_dot = {s * vp[0], s * vp[1], s * vp[2]}}; /* r_P moving at σ ṙ_P₁ */
+    memcpy(at_p.rc, tp->rp, sizeof at_p.rc);
+    normal_force_of(d, geff, zb, omega, tp->omega_dot, &at_p, acc);
+    for (int k = 0; k < 3; k++) F[k] = m * (acc[k] + geff * zb[k]);
     mat_vec(d->inertia, omega, Iw);
     gb_vec_cross(omega, Iw, gyro);
     mat_vec(d->inertia, tp->omega_dot, Iwd);
@@ -761,25 +759,21 @@ static double return_time(gb_dynamics *d, double t, const double y[GB_STATE_SIZE
         gb_error_clear();
         return INFINITY;
     }
-    /* a_G rolling about Q (as in gb_dynamics_observe), then P's material point: a_P = a_G + ω̇ × r_P + ω × (ω × r_P) */
-    double a[3], b[3], e[3], f[3], g[3], h[3], wr[3];
-    gb_vec_cross(c.rc, omega, a);
-    gb_vec_cross(omega, a, b);
-    gb_vec_cross(c.rc_dot, omega, e);
-    gb_vec_cross(c.rc, w_dot, f);
+    /* a_G rolling about Q, then P's material point: a_P = a_G + ω̇ × r_P + ω × (ω × r_P) */
+    double acc[3], g[3], h[3], wr[3];
+    normal_force_of(d, geff, zb, omega, w_dot, &c, acc);
     gb_vec_cross(w_dot, rp, g);
     gb_vec_cross(omega, rp, wr);
     gb_vec_cross(omega, wr, h);
     double an = 0.0, vn = gb_vec_dot(zb, v) + gb_vec_dot(zb, wr);
-    for (int k = 0; k < 3; k++) an += zb[k] * (b[k] + e[k] + f[k] + g[k] + h[k]);
+    for (int k = 0; k < 3; k++) an += zb[k] * (acc[k] + g[k] + h[k]);
     return an < 0.0 ? 2.0 * fmax(vn, 0.0) / -an : INFINITY;
 }
 
-/* The unilateral law at a change of contact from P (`from`, at state y) to Q (`to`) while rolling on one
- * point: the plastic impact of the body rolling about P on the plane at Q. *both: both points hold after
- * (the two-point mode begins), else P lifts. A lift whose fall back would come within def.settle_time is
- * taken as both held (the settle rule). */
-/* The outcome of that impact at state y, nothing booked: the points [m], the centroid's velocity before,
+/* The outcome of the impact at a change of contact from P (`from`) to Q (`to`) at state y while rolling on
+ * one point, nothing booked: the body rolling about P meets the plane at Q; *both: both points hold after
+ * (the two-point mode begins), else P lifts; a lift whose fall back would come within def.settle_time is
+ * taken as both held (the settle rule). Also: the points [m], the centroid's velocity before,
  * the solver's answer (the settle rule applied), P's return time and whether both points hold. */
 static int impact_outcome(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const gb_contact_point *from,
                           const gb_contact_point *to, double points[2][3], double v[3], gb_impact_result *r, double *back,
@@ -806,6 +800,7 @@ static int impact_outcome(gb_dynamics *d, double t, const double y[GB_STATE_SIZE
     return GB_OK;
 }
 
+/* That impact, booked: ω in y takes its value after. */
 static int impact(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const gb_contact_point *from, const gb_contact_point *to,
                   int located, int *both)
 {
