@@ -15,8 +15,13 @@
 #define BASIN_MIN_HALF_WIDTH 1e-3
 /* Basins are built where the minimum lies within this distance of a chart's root boxes [rad]. */
 #define BASIN_REACH 0.35
-/* FAR verdicts are re-anchored when the minimum moves this far from the anchor [body length]. */
+/* A FAR verdict is measured from the nearest of a few anchors (points of the surface, fixed while
+ * they live): the checked minimum's, and one at each other minimum with a basin. A minimum farther than
+ * this from every anchor gets an anchor of its own [body length]. */
 #define ANCHOR_REACH 0.05
+#define ANCHOR_SLOTS 4
+/* |x| on the surface, bounded for every β < 1/4: r⁴ ≤ 1 + 4β < 2 */
+#define SURFACE_RADIUS_BOUND 1.19
 
 
 typedef enum reason { R_NONE = 0, R_FAR, R_SLOPE, R_NOMIN, R_BASIN, R_SPLIT } reason;
@@ -31,11 +36,13 @@ typedef struct node {
     double far_s, far_d;                           /* FAR: holds while far_s − path·far_d ≥ e_A − η (below) */
     unsigned long basin_serial;
     unsigned char region, depth, verdict, has_hint;
+    unsigned int anchor;                           /* the serial of the anchor A of far_s, far_d */
     /* read when the box is tested */
     gb_surface_enclosure *e;
     double a_lo, a_hi, b_lo, b_hi;
     double xa_mag, xb_mag, xaa_mag, xbb_mag;       /* Lipschitz constants in the vertical (SLOPE, NO-MIN) */
     double hint_phi, hint_theta;                   /* last critical point found inside */
+    double retest;                                 /* a split box is tested again as a whole from this path on */
 } node;
 
 /* Four children and their enclosures, taken together from a block (below). */
@@ -74,8 +81,15 @@ struct gb_certify {
     /* the trajectory of checked verticals */
     int has_previous;
     double previous[3], path;
-    double anchor[3];    /* x_A: the minimum where this epoch's FAR verdicts are anchored */
-    double excess;       /* e_A = H − d·x_A at the current check */
+    /* FAR verdicts' anchors: x_A, a serial (0: a free slot; a verdict whose serial is gone no longer
+     * holds), e_A = H − d·x_A at the current check, and the last check that claimed it */
+    struct anchor {
+        double x[3], excess;
+        unsigned int serial;
+        size_t claimed;
+    } anchors[ANCHOR_SLOTS];
+    unsigned int next_anchor;
+    int current_anchor;  /* the checked minimum's */
     gb_certify_stats stats;
 };
 
@@ -169,9 +183,9 @@ static int basin_holds_well(const basin *b, const double ab[2])
 /* Build a basin of `point` in `chart`: the widest centred box (halving from the last width that
  * worked, doubled) on which d·x'' is positive definite. 0 when none down to BASIN_MIN_HALF_WIDTH. */
 static int basin_build(gb_certify *c, basin *b, gb_surface_chart chart, const double ab[2], const double d[3],
-                       const gb_contact_point *point, owner who)
+                       const gb_contact_point *point, owner who, double last_half_width)
 {
-    double w = gb_interval_min(BASIN_MAX_HALF_WIDTH, 2.0 * c->last_half_width);
+    double w = gb_interval_min(BASIN_MAX_HALF_WIDTH, 2.0 * last_half_width);
     for (; w >= BASIN_MIN_HALF_WIDTH; w *= 0.5) {
         /* stay clear of the chart's own poles (a = 0, π) */
         const double a_lo = gb_interval_max(ab[0] - w, 0.05), a_hi = gb_interval_min(ab[0] + w, M_PI - 0.05);
@@ -189,9 +203,9 @@ static int basin_build(gb_certify *c, basin *b, gb_surface_chart chart, const do
         b->valid = 1;
         b->used = 1;
         b->point = *point;
-        c->last_half_width = w;
         c->stats.basins_built++;
         if (who == OWNER_MINIMUM) {
+            c->last_half_width = w;
             c->stats.minimum_basins++;
             c->stats.basin_log_width_sum += log(w);
         }
@@ -236,26 +250,37 @@ static int basins_update(gb_certify *c, pass *p, const gb_contact_point *minimum
         basin *b = &c->basins[k];
         if (b->owner == OWNER_FREE) continue;
         b->valid = 0;
-        if (b->owner == OWNER_OTHER) {
-            if (!b->used) {
-                b->owner = OWNER_FREE;
-                continue;
-            }
+        double ab[2];
+        basin_coordinates(b, minimum, ab);
+        if (basin_holds(b, ab)) {
+            /* it holds the checked minimum (where the basin is definite, its one critical point) */
+            b->owner = OWNER_MINIMUM;
+            b->point = *minimum;
+        } else if (b->owner == OWNER_MINIMUM || b->used) {
+            /* another minimum's, or the one checked before (two minima near a tie take turns as the lower):
+             * its minimum continued by Newton */
             gb_contact_point q;
             if (gb_contact_refine(&c->surface, p->d, b->point.phi, b->point.theta, p->refine, &q) || !q.is_minimum) {
                 b->owner = OWNER_FREE;
                 continue;
             }
             p->out->newton_runs++;
+            b->owner = OWNER_OTHER;
             b->point = q;
+            basin_coordinates(b, &b->point, ab);
         } else {
-            b->point = *minimum;
+            b->owner = OWNER_FREE; /* an other minimum's basin no box used */
+            continue;
         }
-        double ab[2];
-        basin_coordinates(b, &b->point, ab);
         b->valid = basin_holds(b, ab) && hessian_definite(p->d, b->x_aa, b->x_ab, b->x_bb);
         if (!b->valid && b->owner == OWNER_OTHER) b->owner = OWNER_FREE;
         b->used = 0;
+        /* an other minimum that drifted out of its basin's middle half: centred again, as the checked
+         * minimum's are below (a tied second minimum moves as far as the checked one) */
+        if (b->valid && b->owner == OWNER_OTHER && !basin_holds_well(b, ab)) {
+            const basin old = *b;
+            if (!basin_build(c, b, b->chart, ab, p->d, &old.point, OWNER_OTHER, 0.5 * (old.b_hi - old.b_lo))) *b = old;
+        }
     }
     for (int chart = 0; chart < 2; chart++) {
         const double *ab = p->ab[chart];
@@ -265,7 +290,7 @@ static int basins_update(gb_certify *c, pass *p, const gb_contact_point *minimum
             const basin *b = &c->basins[k];
             have = b->valid && b->owner == OWNER_MINIMUM && b->chart == (gb_surface_chart)chart && basin_holds_well(b, ab);
         }
-        if (!have) basin_build(c, basin_slot(c), (gb_surface_chart)chart, ab, p->d, minimum, OWNER_MINIMUM);
+        if (!have) basin_build(c, basin_slot(c), (gb_surface_chart)chart, ab, p->d, minimum, OWNER_MINIMUM, c->last_half_width);
     }
     return GB_OK;
 }
@@ -295,15 +320,60 @@ static int basin_verdict(gb_certify *c, pass *p, unsigned long serial)
     return -1;
 }
 
+/* ---------------------------------------------------------------- anchors */
+
+/* The anchor with this serial, or NULL when its slot was taken by another (its verdicts then lapse). */
+static const struct anchor *anchor_of(const gb_certify *c, unsigned int serial)
+{
+    for (int k = 0; serial && k < ANCHOR_SLOTS; k++)
+        if (c->anchors[k].serial == serial) return &c->anchors[k];
+    return NULL;
+}
+
+/* Does the FAR relation (s, d) from anchor `serial` hold at the current path? */
+static int far_holds(const gb_certify *c, const pass *p, unsigned int serial, double s, double d)
+{
+    const struct anchor *a = anchor_of(c, serial);
+    return a && s - c->path * d >= a->excess - p->eta + GB_CERTIFY_SLACK_ROUNDING;
+}
+
+/* The anchor nearest x within ANCHOR_REACH, else a new one at x in a free slot or the one claimed longest
+ * ago (never slot `keep`); claimed by this check. Its slot. */
+static int anchor_claim(gb_certify *c, const double x[3], int keep)
+{
+    int best = -1;
+    double nearest = ANCHOR_REACH;
+    for (int k = 0; k < ANCHOR_SLOTS; k++) {
+        const double *a = c->anchors[k].x, dx[3] = {x[0] - a[0], x[1] - a[1], x[2] - a[2]};
+        if (c->anchors[k].serial && gb_vec_norm(dx) <= nearest) best = k, nearest = gb_vec_norm(dx);
+    }
+    if (best < 0) {
+        for (int k = 0; k < ANCHOR_SLOTS; k++) {
+            if (k == keep) continue;
+            if (best < 0 || !c->anchors[k].serial ||
+                (c->anchors[best].serial && c->anchors[k].claimed < c->anchors[best].claimed))
+                best = k;
+        }
+        if (++c->next_anchor == 0) { /* the serials wrapped: no kept verdict may name a reused one */
+            c->epoch++;
+            c->next_anchor = 1;
+        }
+        memcpy(c->anchors[best].x, x, sizeof c->anchors[best].x);
+        c->anchors[best].serial = c->next_anchor;
+    }
+    c->anchors[best].claimed = c->stats.checks + 1;
+    return best;
+}
+
 /* The FAR verdicts of a split box's children, (s_i, d_i), hold while s_i − path·d_i ≥ e_A − η. Their
  * minimum f(path) = min_i (s_i − path·d_i) is concave, so on [p0, p1] it lies above its chord: the box
  * keeps that chord as (far_s, far_d), valid up to p1 (a due). p0 is the current path and p1 the path at
  * which the first child would expire at the current e_A; beyond p1 the box is walked again. Taking
  * min s_i with max d_i instead, one near child and one far child together would expire at once. */
-static void far_chord(const gb_certify *c, const pass *p, const double s[4], const double d[4], int count,
+static void far_chord(const gb_certify *c, const pass *p, double excess, const double s[4], const double d[4], int count,
                       double *far_s, double *far_d, double *due)
 {
-    const double p0 = c->path, level = c->excess - p->eta + GB_CERTIFY_SLACK_ROUNDING;
+    const double p0 = c->path, level = excess - p->eta + GB_CERTIFY_SLACK_ROUNDING;
     double p1 = INFINITY, steepest = 0.0, f0 = INFINITY;
     for (int k = 0; k < count; k++) {
         f0 = gb_interval_min(f0, s[k] - p0 * d[k]);
@@ -336,6 +406,7 @@ static int visit_children(gb_certify *c, node *n, pass *p, int *status)
     int undecided = 0, fars = 0;
     double due = INFINITY, far_s = INFINITY, far_d = 0.0, child_s[4], child_d[4];
     unsigned long serial = 0;
+    const struct anchor *to = NULL; /* the box's anchor: its first FAR child's; the others' relations moved to it */
     for (int k = 0; k < 4; k++) {
         const node *child = &n->child[k];
         const int r = visit(c, &n->child[k], p, status);
@@ -347,16 +418,26 @@ static int visit_children(gb_certify *c, node *n, pass *p, int *status)
         const reason v = child->epoch == c->epoch && r == SETTLED ? (reason)child->verdict : R_NONE;
         if (v == R_SLOPE || v == R_NOMIN || v == R_SPLIT) due = gb_interval_min(due, child->due);
         if ((v == R_FAR || v == R_SPLIT) && isfinite(child->far_s)) {
-            child_s[fars] = child->far_s;
-            child_d[fars++] = child->far_d;
+            /* from anchor B to A: d'·x − d'·x_A = (d'·x − d'·x_B) + d'·(x_B − x_A), and d'·(x_B − x_A) ≥
+             * d·(x_B − x_A) − (path' − path) |x_B − x_A| */
+            const struct anchor *from = anchor_of(c, child->anchor);
+            if (!to) to = from;
+            if (!from) {
+                due = -INFINITY;
+                continue;
+            }
+            const double gap[3] = {from->x[0] - to->x[0], from->x[1] - to->x[1], from->x[2] - to->x[2]};
+            const double D = gb_vec_norm(gap) * (1.0 + 1e-12);
+            child_s[fars] = from == to ? child->far_s : child->far_s + gb_vec_dot(p->d, gap) + c->path * D - GB_CERTIFY_SLACK_ROUNDING;
+            child_d[fars++] = child->far_d + D;
         }
         const unsigned long child_serial = v == R_BASIN || v == R_SPLIT ? child->basin_serial : 0;
         if (child_serial && serial && child_serial != serial) due = -INFINITY;
         if (child_serial) serial = child_serial;
         if (v == R_NONE) due = -INFINITY;
     }
-    far_chord(c, p, child_s, child_d, fars, &far_s, &far_d, &due);
-    n->due = due, n->far_s = far_s, n->far_d = far_d, n->basin_serial = serial;
+    far_chord(c, p, to ? to->excess : 0.0, child_s, child_d, fars, &far_s, &far_d, &due);
+    n->due = due, n->far_s = far_s, n->far_d = far_d, n->basin_serial = serial, n->anchor = to ? to->serial : 0;
     return undecided ? UNDECIDED : SETTLED;
 }
 
@@ -378,7 +459,7 @@ static int visit(gb_certify *c, node *n, pass *p, int *status)
     if (n->epoch == c->epoch) {
         switch ((reason)n->verdict) {
         case R_FAR:
-            if (n->far_s - c->path * n->far_d >= c->excess - p->eta + GB_CERTIFY_SLACK_ROUNDING) return SETTLED;
+            if (far_holds(c, p, n->anchor, n->far_s, n->far_d)) return SETTLED;
             break;
         case R_SLOPE:
         case R_NOMIN:
@@ -390,11 +471,14 @@ static int visit(gb_certify *c, node *n, pass *p, int *status)
             break;
         }
         case R_SPLIT:
-            if (c->path <= n->due && n->far_s - c->path * n->far_d >= c->excess - p->eta + GB_CERTIFY_SLACK_ROUNDING) {
+            if (c->path <= n->due && (!isfinite(n->far_s) || far_holds(c, p, n->anchor, n->far_s, n->far_d))) {
                 const int r = n->basin_serial ? basin_verdict(c, p, n->basin_serial) : SETTLED;
                 if (r >= 0) return r;
             }
-            return visit_children(c, n, p, status);
+            /* tested again as a whole first (a coarse verdict may hold where its children lapsed), unless its
+             * last such test missed by more than the vertical can have moved its bound since */
+            if (c->path < n->retest) return visit_children(c, n, p, status);
+            break;
         case R_NONE:
             break;
         }
@@ -409,12 +493,21 @@ static int visit(gb_certify *c, node *n, pass *p, int *status)
     const double h_lo = gb_certify_height_lower_bound(d, n->e, Haa, Hab, Hbb);
     const double slack = h_lo - (p->H - p->eta) - GB_CERTIFY_SLACK_ROUNDING;
     if (slack > 0.0) {
-        /* For q in the box and a later vertical d': d'·x(q) − d'·x_A ≥ (lb − d·x_A) − |d' − d|·max|x(q) − x_A|. */
-        gb_interval rel[3];
-        for (int k = 0; k < 3; k++) rel[k] = (gb_interval){n->e->x[k].lo - c->anchor[k], n->e->x[k].hi - c->anchor[k]};
+        /* For q in the box and a later vertical d': d'·x(q) − d'·x_A ≥ (lb − d·x_A) − |d' − d|·max|x(q) − x_A|,
+         * from the anchor that makes max|x(q) − x_A| the smallest. */
+        const struct anchor *a = NULL;
+        n->far_d = INFINITY;
+        for (int j = 0; j < ANCHOR_SLOTS; j++) {
+            const struct anchor *b = &c->anchors[j];
+            if (!b->serial) continue;
+            gb_interval rel[3];
+            for (int k = 0; k < 3; k++) rel[k] = (gb_interval){n->e->x[k].lo - b->x[k], n->e->x[k].hi - b->x[k]};
+            const double reach = gb_certify_norm_of_mags(rel);
+            if (reach < n->far_d) n->far_d = reach, a = b;
+        }
         n->verdict = R_FAR;
-        n->far_d = gb_certify_norm_of_mags(rel);
-        n->far_s = (h_lo - gb_vec_dot(d, c->anchor)) + c->path * n->far_d;
+        n->anchor = a->serial;
+        n->far_s = (h_lo - gb_vec_dot(d, a->x)) + c->path * n->far_d;
         n->due = INFINITY;
         return SETTLED;
     }
@@ -455,7 +548,17 @@ static int visit(gb_certify *c, node *n, pass *p, int *status)
     if (definite) {
         const gb_surface_chart chart = gb_region_chart(n->region);
         if (point_in_node(n, p->ab[chart])) return SETTLED; /* its one critical point is the minimum */
-        if (n->depth >= 1) {
+        for (int k = 0; k < BASIN_SLOTS; k++) {
+            /* ... or another minimum already known (with a basin, continued to this vertical) */
+            basin *o = &c->basins[k];
+            double qab[2];
+            if (!o->valid || o->owner != OWNER_OTHER || o->chart != chart) continue;
+            basin_coordinates(o, &o->point, qab);
+            if (!point_in_node(n, qab)) continue;
+            o->used = 1;
+            return o->point.height >= p->H - p->eta ? SETTLED : lower_found(p, &o->point);
+        }
+        if (n->depth >= 1 && !(n->child && !n->has_hint)) { /* a box split before without a point found: its children */
             double phi, theta;
             if (n->has_hint) {
                 phi = n->hint_phi, theta = n->hint_theta;
@@ -472,13 +575,15 @@ static int visit(gb_certify *c, node *n, pass *p, int *status)
                     n->hint_phi = q.phi, n->hint_theta = q.theta;
                     if (q.height < p->H - p->eta) return lower_found(p, &q);
                     /* keep a basin for it, so the next checks settle the box without Newton */
-                    basin_build(c, basin_slot(c), chart, qab, d, &q, OWNER_OTHER);
+                    basin_build(c, basin_slot(c), chart, qab, d, &q, OWNER_OTHER, c->last_half_width);
                     return SETTLED;
                 }
             }
         }
     }
     if (n->depth >= c->def.max_depth) return UNDECIDED;
+    /* FAR missed by −slack; d·x moves by at most |x| ≤ SURFACE_RADIUS_BOUND per unit of path, and so does H */
+    if (n->child) n->retest = c->path + -slack / (2.0 * SURFACE_RADIUS_BOUND);
     *status = node_split(c, n);
     if (*status) return UNDECIDED;
     n->verdict = R_SPLIT;
@@ -571,20 +676,20 @@ static int certify_check(gb_certify *c, const double zb[3], const gb_contact_poi
         c->path += gb_vec_norm(step) * (1.0 + 1e-12);
     }
     p.H = gb_vec_dot(p.d, minimum->rc);
-    /* FAR verdicts are anchored at x_A, the minimum when the epoch began: H = d·x_A + e_A. A new
-     * anchor (a new epoch) is taken when the minimum has moved ANCHOR_REACH away from it. */
-    const double moved[3] = {minimum->rc[0] - c->anchor[0], minimum->rc[1] - c->anchor[1], minimum->rc[2] - c->anchor[2]};
-    if (!c->has_previous || gb_vec_norm(moved) > ANCHOR_REACH) {
-        c->epoch++;
-        memcpy(c->anchor, minimum->rc, sizeof c->anchor);
-    }
-    c->excess = p.H - gb_vec_dot(p.d, c->anchor);
+    /* FAR verdicts are anchored at points x_A with H = d·x_A + e_A: the minimum's anchor first */
+    c->current_anchor = anchor_claim(c, minimum->rc, -1);
     memcpy(c->previous, p.d, sizeof c->previous);
     c->has_previous = 1;
     for (int chart = 0; chart < 2; chart++)
         gb_surface_chart_coordinates((gb_surface_chart)chart, minimum->phi, minimum->theta, &p.ab[chart][0], &p.ab[chart][1]);
     status = basins_update(c, &p, minimum);
     if (status) return status;
+    /* ... then one at each other minimum with a basin (boxes near it have small margins, which an
+     * anchor far away would spend at once), and every anchor's e_A at this vertical */
+    for (int k = 0; k < BASIN_SLOTS; k++)
+        if (c->basins[k].valid && c->basins[k].owner == OWNER_OTHER) anchor_claim(c, c->basins[k].point.rc, c->current_anchor);
+    for (int k = 0; k < ANCHOR_SLOTS; k++)
+        if (c->anchors[k].serial) c->anchors[k].excess = p.H - gb_vec_dot(p.d, c->anchors[k].x);
     int verdict = SETTLED;
     for (int k = 0; k < GB_ROOT_COUNT && verdict != FOUND && !status; k++) {
         const int r = visit(c, &c->roots[k], &p, &status);

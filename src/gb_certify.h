@@ -22,13 +22,19 @@
  * critical point; lower than H − η makes it a lower minimum.
  *
  * Along a trajectory the verdicts are kept: a FAR, SLOPE or NO-MIN verdict at vertical d₀ holds at d
- * while its margin exceeds its Lipschitz bound times |d − d₀|. FAR is measured from an anchor x_A (the
- * minimum when the current epoch began): d·x(q) − d·x_A moves by at most |d − d₀|·max|x(q) − x_A| over
- * the box, and the verdict holds while that bound stays above H − d·x_A − η. |d − d₀| is bounded by the
- * path length of the verticals checked since. A BASIN verdict holds while that basin is positive definite at d and
- * still holds the current minimum. A split box keeps a summary of its children's verdicts (the earliest
- * due, the chord of their FAR margins, their common basin), so a settled subtree is not walked. A check
- * therefore re-tests only the boxes whose margin ran out. */
+ * while its margin exceeds its Lipschitz bound times |d − d₀|. FAR is measured from an anchor x_A, a
+ * point fixed while it lives: d·x(q) − d·x_A moves by at most |d − d₀|·max|x(q) − x_A| over the box, and
+ * the verdict holds while that bound stays above H − d·x_A − η. Any fixed x_A is valid; a near one
+ * makes the bound last. A few anchors live at once: one near the checked minimum and one near each
+ * other minimum with a basin, and each box takes the nearest (two minima at a tie, a body on two
+ * points, both have boxes with small margins around them). |d − d₀| is bounded by the path length of
+ * the verticals checked since. A BASIN verdict holds while that basin is positive definite at d and
+ * still holds its minimum: the checked one, or another continued by Newton (a basin changes owner when
+ * the checked minimum moves into or out of it, as two tied minima take turns as the lower). A split
+ * box keeps a summary of its children's verdicts (the earliest due, the chord of their FAR margins,
+ * moved to one anchor, their common basin), so a settled subtree is not walked; when the summary
+ * lapses the box is tested again as a whole before its children, so that verdicts do not pile up at
+ * the deepest level. A check therefore re-tests only the boxes whose margin ran out. */
 #ifndef GB_CERTIFY_H
 #define GB_CERTIFY_H
 
