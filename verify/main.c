@@ -10,15 +10,17 @@
 
 int main(int argc, char **argv)
 {
-    const char *results = "checks.json", *only = NULL;
+    const char *results = "checks.json", *only = NULL, *test = NULL;
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--results") && i + 1 < argc) results = argv[++i];
         else if (!strcmp(argv[i], "--data") && i + 1 < argc) gb_check_data_dir = argv[++i];
         else if (!strcmp(argv[i], "--full")) gb_check_full = 1;
         else if (!strcmp(argv[i], "--only") && i + 1 < argc) only = argv[++i];
+        else if (!strcmp(argv[i], "--test") && i + 1 < argc) test = argv[++i];
         else {
-            fprintf(stderr, "usage: %s [--results FILE] [--data DIR] [--full] [--only TEXT]\n"
-                            "  --only TEXT  run only the suites whose name contains TEXT (for development)\n", argv[0]);
+            fprintf(stderr, "usage: %s [--results FILE] [--data DIR] [--full] [--only TEXT] [--test TEXT]\n"
+                            "  --only TEXT  run only the suites whose name contains TEXT (for development)\n"
+                            "  --test TEXT  run only the tests whose name contains TEXT (for development)\n", argv[0]);
             return 2;
         }
     }
@@ -34,9 +36,14 @@ int main(int argc, char **argv)
         return 1;
     }
     CU_basic_set_mode(CU_BRM_VERBOSE);
-    if (only) {
-        for (CU_pSuite suite = CU_get_registry()->pSuite; suite; suite = suite->pNext)
-            if (strstr(suite->pName, only)) CU_basic_run_suite(suite);
+    if (only || test) {
+        for (CU_pSuite suite = CU_get_registry()->pSuite; suite; suite = suite->pNext) {
+            if (only && !strstr(suite->pName, only)) continue;
+            if (!test) CU_basic_run_suite(suite);
+            else
+                for (CU_pTest t = suite->pTest; t; t = t->pNext)
+                    if (strstr(t->pName, test)) CU_basic_run_test(suite, t);
+        }
     } else {
         CU_basic_run_tests();
     }
