@@ -85,6 +85,11 @@ typedef struct gb_contact_node {
 int gb_contact_grid_brute(const gb_contact_grid *grid, const double zb[3], gb_contact_node *out);
 /* The same node, by branch and bound over the patch tree (see gb_contact.c for the bound). */
 int gb_contact_grid_fast(const gb_contact_grid *grid, const double zb[3], gb_contact_node *out);
+/* The lowest node but the `n_except` (0 to 2) nodes listed, exactly (ties to the lower index): the node a
+ * grid body pivoting about one node, or rocking on an edge of two, meets the plane with next. `hint` (a
+ * node index, or SIZE_MAX) seeds the search, as for the fast search; it changes no answer. */
+int gb_contact_grid_lowest_except(const gb_contact_grid *grid, const double zb[3], size_t hint, const size_t *except,
+                                  int n_except, gb_contact_node *out);
 
 /* Exact grid search along a trajectory: a descent over the vertices of the nodes' convex hull from
  * the previous answer (the lowest node is a hull vertex, and on a convex polytope a vertex no higher
@@ -113,6 +118,7 @@ typedef struct gb_contact_point {
     int is_minimum;         /* eq 35: H_φφ > 0 and H_φφ H_θθ − H_φθ² > 0 */
     int iterations;         /* Newton iterations */
     int used_fallback;      /* 1 when GSL multimin had to take over */
+    size_t node;            /* grid contact models: the grid node this point is (0 for continuous contact) */
 } gb_contact_point;
 
 typedef struct gb_contact_refine_def {

@@ -228,7 +228,8 @@ int gb_contact_grid_brute(const gb_contact_grid *grid, const double zb[3], gb_co
 
 /* Branch and bound; `hint` (a node index, or SIZE_MAX) seeds the best height with a real node, so
  * a good guess prunes most of the tree at once without changing the answer. */
-int gb_contact_grid_search(const gb_contact_grid *grid, const double zb[3], size_t hint, gb_contact_node *out)
+static int search(const gb_contact_grid *grid, const double zb[3], size_t hint, const size_t *except, int n_except,
+                  gb_contact_node *out)
 {
     double d[3];
     int status = gb_contact_unit_vertical(zb, d);
@@ -251,7 +252,7 @@ int gb_contact_grid_search(const gb_contact_grid *grid, const double zb[3], size
         if (stack_bound[top] > best) continue;
         const patch *p = &grid->patches[stack[top]];
         if (p->child[0] < 0) {
-            visited += scan_leaf(grid, p, d, &best, &best_index);
+            visited += scan_leaf_except(grid, p, d, except, n_except, &best, &best_index);
             continue;
         }
         const double b0 = patch_bound(&grid->patches[p->child[0]], d);
@@ -269,7 +270,23 @@ int gb_contact_grid_search(const gb_contact_grid *grid, const double zb[3], size
     return GB_OK;
 }
 
+int gb_contact_grid_search(const gb_contact_grid *grid, const double zb[3], size_t hint, gb_contact_node *out)
+{
+    return search(grid, zb, hint, NULL, 0, out);
+}
+
 int gb_contact_grid_fast(const gb_contact_grid *grid, const double zb[3], gb_contact_node *out)
 {
-    return gb_contact_grid_search(grid, zb, SIZE_MAX, out);
+    return search(grid, zb, SIZE_MAX, NULL, 0, out);
+}
+
+int gb_contact_grid_lowest_except(const gb_contact_grid *grid, const double zb[3], size_t hint, const size_t *except,
+                                  int n_except, gb_contact_node *out)
+{
+    if (n_except < 0 || n_except > 2 || (size_t)n_except >= grid->size)
+        return gb_error_set(GB_EINVAL, "%d nodes left out of a grid of %zu (allowed: 0 to 2, fewer than the grid)", n_except,
+                            grid->size);
+    for (int e = 0; e < n_except; e++)
+        if (hint == except[e]) hint = SIZE_MAX;
+    return search(grid, zb, hint, except, n_except, out);
 }

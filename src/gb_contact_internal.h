@@ -75,14 +75,19 @@ static inline double patch_bound(const patch *p, const double d[3])
     return (m < 0.0 ? p->r_hi * m : p->r_lo * m) - BOUND_MARGIN;
 }
 
-/* Scan every node of leaf p, keeping the lowest (ties to the lower index) in *best, *best_index;
- * returns the number of nodes scanned. Brute force, the search and the tracker share node_height. */
-static inline size_t scan_leaf(const gb_contact_grid *grid, const patch *p, const double d[3], double *best, size_t *best_index)
+/* Scan every node of leaf p but the `n_except` nodes listed, keeping the lowest (ties to the lower index)
+ * in *best, *best_index; returns the number of nodes scanned. Brute force, the search and the tracker
+ * share node_height. */
+static inline size_t scan_leaf_except(const gb_contact_grid *grid, const patch *p, const double d[3], const size_t *except,
+                                      int n_except, double *best, size_t *best_index)
 {
     const size_t nt = grid->def.n_theta;
     for (uint32_t i = p->i0; i < p->i1; i++)
         for (uint32_t j = p->j0; j < p->j1; j++) {
             const size_t k = i * nt + j;
+            int skip = 0;
+            for (int e = 0; e < n_except; e++) skip |= k == except[e];
+            if (skip) continue;
             const double h = node_height(d, grid->x + 3 * k);
             if (h < *best || (h == *best && k < *best_index)) {
                 *best = h;
@@ -90,6 +95,11 @@ static inline size_t scan_leaf(const gb_contact_grid *grid, const patch *p, cons
             }
         }
     return (size_t)(p->i1 - p->i0) * (p->j1 - p->j0);
+}
+
+static inline size_t scan_leaf(const gb_contact_grid *grid, const patch *p, const double d[3], double *best, size_t *best_index)
+{
+    return scan_leaf_except(grid, p, d, NULL, 0, best, best_index);
 }
 
 /* Fill *out with node `index` (its angles and position), its height and the count of nodes visited. */

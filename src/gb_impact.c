@@ -128,16 +128,64 @@ static int held_impulses(const gb_impact_body *body, const double inv[3][3], con
     return 0;
 }
 
-int gb_impact_solve(const gb_impact_body *body, const double normal[3], double e, const double (*points)[3], int count,
-                    const double v[3], const double omega[3], gb_impact_result *out)
+/* The body's inverse inertia, and the count of points, checked. */
+static int check_body(const gb_impact_body *body, int count, double inv[3][3])
 {
-    memset(out, 0, sizeof *out);
-    double inv[3][3];
     if (!(body->mass > 0.0) || invert(body->inertia, inv))
         return gb_error_set(GB_EDOM, "impact: mass %g, inertia not positive definite (allowed: mass > 0, a positive definite "
                             "inertia about the centroid)", body->mass);
     if (count < 1 || count > GB_IMPACT_CONTACTS_MAX)
         return gb_error_set(GB_EDOM, "impact: %d contact points (allowed: 1 to %d)", count, GB_IMPACT_CONTACTS_MAX);
+    return GB_OK;
+}
+
+/* The result's impulses, their normal and tangential parts and the friction they need, from P. */
+static void fill_impulses(const double normal[3], int count, unsigned mask, const double (*P)[3], double impulse_tol,
+                          gb_impact_result *out)
+{
+    for (int k = 0; k < count; k++) {
+        out->holds[k] = (mask >> k) & 1;
+        memcpy(out->impulse[k], P[k], sizeof out->impulse[k]);
+        out->normal_impulse[k] = gb_vec_dot(P[k], normal);
+        double tangential[3];
+        for (int i = 0; i < 3; i++) tangential[i] = P[k][i] - out->normal_impulse[k] * normal[i];
+        out->tangential_impulse[k] = gb_vec_norm(tangential);
+        if (out->holds[k] && out->normal_impulse[k] > impulse_tol)
+            out->friction_needed = fmax(out->friction_needed, out->tangential_impulse[k] / out->normal_impulse[k]);
+    }
+}
+
+int gb_impact_hold_all(const gb_impact_body *body, const double normal[3], const double (*points)[3], int count,
+                       const double v[3], const double omega[3], gb_impact_result *out)
+{
+    memset(out, 0, sizeof *out);
+    double inv[3][3], rhs[GB_IMPACT_CONTACTS_MAX][3], speed = 0.0;
+    int status = check_body(body, count, inv);
+    if (status) return status;
+    for (int k = 0; k < count; k++) {
+        point_velocity(v, omega, points[k], rhs[k]);
+        speed = fmax(speed, gb_vec_norm(rhs[k]));
+        for (int i = 0; i < 3; i++) rhs[k][i] = -rhs[k][i];
+    }
+    double P[GB_IMPACT_CONTACTS_MAX][3] = {{0}};
+    const unsigned all = (1u << count) - 1u;
+    if (held_impulses(body, inv, points, count, all, (const double(*)[3])rhs, P))
+        return gb_error_set(GB_ENUMERIC, "impact: no impulses hold all %d points at rest", count);
+    apply(body, inv, points, count, (const double(*)[3])P, v, omega, out->v, out->omega);
+    out->energy_before = gb_impact_energy(body, v, omega);
+    out->energy_after = gb_impact_energy(body, out->v, out->omega);
+    fill_impulses(normal, count, all, (const double(*)[3])P, SIGN_TOL * body->mass * (speed + 1e-300), out);
+    out->feasible_sets = 1;
+    return GB_OK;
+}
+
+int gb_impact_solve(const gb_impact_body *body, const double normal[3], double e, const double (*points)[3], int count,
+                    const double v[3], const double omega[3], gb_impact_result *out)
+{
+    memset(out, 0, sizeof *out);
+    double inv[3][3];
+    int status = check_body(body, count, inv);
+    if (status) return status;
     if (!(e >= 0.0 && e <= 1.0)) return gb_error_set(GB_EDOM, "impact: restitution %g (allowed: 0 <= e <= 1)", e);
     /* What each held contact's velocity must become, less what it is: −e u⁻·n n − u⁻. */
     double before[GB_IMPACT_CONTACTS_MAX][3], rhs[GB_IMPACT_CONTACTS_MAX][3];
@@ -179,16 +227,7 @@ int gb_impact_solve(const gb_impact_body *body, const double normal[3], double e
         }
     }
     if (chosen < 0) return gb_error_set(GB_ENUMERIC, "impact: no set of held contacts satisfies Moreau's law (%d points)", count);
-    for (int k = 0; k < count; k++) {
-        out->holds[k] = (chosen >> k) & 1;
-        memcpy(out->impulse[k], chosen_P[k], sizeof out->impulse[k]);
-        out->normal_impulse[k] = gb_vec_dot(chosen_P[k], normal);
-        double tangential[3];
-        for (int i = 0; i < 3; i++) tangential[i] = chosen_P[k][i] - out->normal_impulse[k] * normal[i];
-        out->tangential_impulse[k] = gb_vec_norm(tangential);
-        if (out->holds[k] && out->normal_impulse[k] > impulse_tol)
-            out->friction_needed = fmax(out->friction_needed, out->tangential_impulse[k] / out->normal_impulse[k]);
-    }
+    fill_impulses(normal, count, (unsigned)chosen, (const double(*)[3])chosen_P, impulse_tol, out);
     out->energy_after = gb_impact_energy(body, out->v, out->omega);
     return GB_OK;
 }

@@ -44,6 +44,12 @@ typedef struct gb_impact_result {
 int gb_impact_solve(const gb_impact_body *body, const double normal[3], double e, const double (*points)[3], int count,
                     const double v[3], const double omega[3], gb_impact_result *out);
 
+/* The plastic impact that holds all `count` points at rest after, whatever the signs of its impulses: a
+ * chatter of impacts lumped into one (the dynamics' settle rule). Where the impulses are indeterminate
+ * (three points), the minimum-norm ones. GB_EDOM as gb_impact_solve; GB_ENUMERIC when no impulses hold
+ * them (points that do not fix the body, as two coincident ones). */
+int gb_impact_hold_all(const gb_impact_body *body, const double normal[3], const double (*points)[3], int count,
+                       const double v[3], const double omega[3], gb_impact_result *out);
 /* The kinetic energy ½ m |v|² + ½ ω·Iω. */
 double gb_impact_energy(const gb_impact_body *body, const double v[3], const double omega[3]);
 

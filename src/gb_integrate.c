@@ -169,9 +169,6 @@ int gb_integrate_locate_next(gb_dynamics *d, double t, double h, const double y[
     return locate(d, t, h, y, other, rk4_substep, NULL, 1, out, stats);
 }
 
-/* The most changes of contact one step may hold under the unilateral law (a chatter the settle rule has
- * not yet ended); more stop the run. */
-enum { EVENTS_PER_STEP_MAX = 64 };
 
 /* A switch was found at the end of the step (t, y) → t + h: locate it, switch there, and finish the
  * step on the new branch into out. Under the unilateral law the rest of the step is checked again and
@@ -185,8 +182,8 @@ static int located_step(gb_dynamics *d, double t, double h, const double y[], co
     gb_contact_point next = *other;
     memcpy(yc, y, sizeof yc);
     for (int events = 0;; events++) {
-        if (events == EVENTS_PER_STEP_MAX)
-            return gb_error_set(GB_ENUMERIC, "more than %d changes of contact inside the step from t = %.9g", EVENTS_PER_STEP_MAX, t);
+        if (events == GB_INTEGRATE_EVENTS_PER_STEP_MAX)
+            return gb_error_set(GB_ENUMERIC, "more than %d changes of contact inside the step from t = %.9g", GB_INTEGRATE_EVENTS_PER_STEP_MAX, t);
         gb_integrate_switch at;
         int status = locate(d, tc, hc, yc, &next, substep, context, events > 0, &at, stats);
         if (status) return status;

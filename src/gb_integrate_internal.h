@@ -5,6 +5,12 @@
 
 #include "gb_integrate.h"
 
+/* The most changes of contact one step may hold under the unilateral law; more stop the run. A chatter
+ * the settle rule has not yet ended is one source; a grid body is another: near a chart pole the grid's
+ * nodes close up into rings of tiny facets, and a body rolling across one meets hundreds of them in a
+ * step. */
+#define GB_INTEGRATE_EVENTS_PER_STEP_MAX 4096
+
 /* The most tangent vectors one step carries (gb_lyapunov's GB_LYAPUNOV_MAX_EXPONENTS). */
 #define GB_INTEGRATE_TANGENT_MAX 8
 
