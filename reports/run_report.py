@@ -152,10 +152,13 @@ def summary_lines(name, summary):
     lines.append(f"- energy-balance residual E − E(0) − ∫(P_d + m ġ ζ) dt{ledger}: final {summary['energy_residual_final']:.3g} J, "
                  f"largest {summary['energy_residual_max']:.3g} J")
     if impacts and two_point:
-        lines.append(f"- unilateral contact: {impacts['count']:.0f} impacts took {impacts['energy_lost']:.4g} J; rolling on two "
-                     f"points for {100 * two_point['time_fraction']:.1f} % of the run ({two_point['entries']:.0f} entries, "
-                     f"{impacts['settled']:.0f} by the settle rule; {two_point['lifts']:.0f} lifts, "
-                     f"{two_point['third_points']:.0f} third points)")
+        rest = two_point.get("rest_since")
+        lines.append(f"- unilateral contact: {impacts['count']:.0f} impacts took {impacts['energy_lost']:.4g} J (the largest "
+                     f"friction one needed: {impacts['friction_needed_max'] if impacts['friction_needed_max'] is not None else 'unbounded'}); "
+                     f"on two points for {100 * two_point['time_fraction']:.1f} % of the run ({two_point['entries']:.0f} entries; "
+                     f"{impacts['settled']:.0f} impacts ended by the settle rule; {two_point['lifts']:.0f} lifts, "
+                     f"{two_point['third_points']:.0f} third points"
+                     + (f"; at rest on three points from t = {rest:.4f} s" if rest is not None else "") + ")")
     lines.append(f"- attitude: max |RᵀR − I| = {summary['orthonormality_max']:.2g}; largest quaternion-norm "
                  f"correction {summary['quaternion_drift_max']:.2g}")
     monitors = summary.get("monitors")

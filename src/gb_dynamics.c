@@ -101,12 +101,15 @@ struct gb_dynamics {
     /* The unilateral law: impacts, the kinetic energy they took (L), the largest friction needed. */
     size_t impacts;
     double impact_loss, impact_friction_max;
+    size_t next_hint; /* a grid body: the last next node found (next_node) */
     gb_dynamics_impact_sink impact_sink;
     void *impact_context;
     /* The two-point mode: the body rolls on `contact` (P) and `contact2` (Q) at once, since two_point_since;
      * the time spent in it before, and how often it was entered. `pending`: the event that
      * gb_dynamics_switch_pending found in this mode, for gb_dynamics_branch_gap and gb_dynamics_switch_to. */
     int two_point, pending;
+    int resting;       /* on three points at rest (ω = 0) since rest_since */
+    double rest_since;
     gb_contact_point contact2;
     double two_point_since, two_point_time;
     size_t two_point_entries, settled, lifts, third_points;
@@ -133,12 +136,16 @@ int gb_dynamics_create(const gb_surface *surface, const gb_dynamics_def *def, gb
         return gb_error_set(GB_EDOM, "length = %g is out of range (allowed: finite, > 0)", def->length);
     if (!(isfinite(def->damping) && def->damping >= 0.0))
         return gb_error_set(GB_EDOM, "damping c = %g is out of range (allowed: finite, >= 0)", def->damping);
+    /* Under the unilateral law a grid body is a polyhedron pivoting about a vertex between impacts: ṙ_c = 0,
+     * where eq 44 and the rolling equation are the same equation. Continuous contact moves the contact along
+     * the surface, where only the rolling equation conserves energy (docs/rolling.md). */
     if (!gb_dynamics_contact_law_name(def->contact_law) ||
-        (def->contact_law == GB_CONTACT_LAW_UNILATERAL &&
-         (def->contact != GB_CONTACT_MODEL_CONTINUOUS || def->variant != GB_VARIANT_ROLLING)))
+        (def->contact_law == GB_CONTACT_LAW_UNILATERAL && def->contact == GB_CONTACT_MODEL_CONTINUOUS &&
+         def->variant != GB_VARIANT_ROLLING))
         return gb_error_set(GB_EINVAL, "contact law %d with contact model %s and equation %s (allowed: held with any; "
-                            "unilateral with continuous contact and the rolling equation)", (int)def->contact_law,
-                            gb_contact_model_name(def->contact), gb_dynamics_variant_name(def->variant));
+                            "unilateral with a grid model and either equation, or with continuous contact and the "
+                            "rolling equation)", (int)def->contact_law, gb_contact_model_name(def->contact),
+                            gb_dynamics_variant_name(def->variant));
     int status = gb_forcing_validate(&def->forcing);
     if (status) return status;
     gb_dynamics *d = calloc(1, sizeof *d);
@@ -234,33 +241,107 @@ void gb_dynamics_quaternion(const double R[9], double q[4])
 typedef struct contact_eval {
     double rc[3], rc_dot[3];
     size_t index;
-    gb_contact_point point; /* continuous model */
+    gb_contact_point point; /* continuous model; grid models under the unilateral law */
 } contact_eval;
+
+static int grid_unilateral(const gb_dynamics *d)
+{
+    return d->def.contact != GB_CONTACT_MODEL_CONTINUOUS && d->def.contact_law == GB_CONTACT_LAW_UNILATERAL;
+}
+
+/* Grid node `index` as a contact point at vertical zb: fixed in the body, its height ẑ_b·x. */
+static void grid_point(const gb_dynamics *d, size_t index, const double zb[3], gb_contact_point *p)
+{
+    double unit[3];
+    const double n = gb_vec_norm(zb);
+    for (int k = 0; k < 3; k++) unit[k] = zb[k] / n;
+    memset(p, 0, sizeof *p);
+    gb_contact_grid_node(d->grid, index, &p->phi, &p->theta, p->rc);
+    p->height = gb_vec_dot(unit, p->rc);
+    p->is_minimum = 1;
+    p->node = index;
+}
+
+/* The lowest grid node at zb, by the model's search (the paper's brute force, the tracker, or the
+ * scene's lowest-node function). */
+static int lowest_node(gb_dynamics *d, const double zb[3], gb_contact_node *node)
+{
+    int status;
+    if (d->def.contact == GB_CONTACT_MODEL_GRID && d->def.grid_lowest) {
+        double unit[3];
+        status = gb_contact_unit_vertical(zb, unit);
+        if (!status) {
+            node->index = d->def.grid_lowest(d->def.grid_lowest_context, unit);
+            node->visited = 0;
+            if (node->index < gb_contact_grid_size(d->grid)) gb_contact_grid_node(d->grid, node->index, NULL, NULL, node->x);
+            else status = gb_error_set(GB_EINVAL, "the lowest-node search returned node %zu of a grid of %zu",
+                                       node->index, gb_contact_grid_size(d->grid));
+        }
+    } else {
+        status = d->def.contact == GB_CONTACT_MODEL_GRID ? gb_contact_grid_brute(d->grid, zb, node)
+                                                         : gb_contact_tracker_find(d->tracker, zb, node);
+    }
+    if (!status) d->contact_queries++, d->nodes_visited += node->visited;
+    return status;
+}
+
+/* Two grid nodes whose heights differ by less than this [body length] are tied, not one below the other:
+ * a few units of the last place of h (|x| < 1.19). Nodes of a ring around a chart pole tie exactly at
+ * some attitudes; a tie is not a crossing, and the event is located where the new node is lower by this. */
+#define GRID_TIE 4e-15
+
+/* A grid body under the unilateral law: the lowest node at zb but the node(s) it stands on (P; and Q on
+ * two points), the one it meets the plane with next. Its gap to them is continuous in time (a minimum
+ * of continuous heights), so an event located on it is the first node to reach the plane. */
+static int next_node(gb_dynamics *d, const double zb[3], gb_contact_point *other)
+{
+    const size_t stands[2] = {d->index, d->contact2.node};
+    gb_contact_node node;
+    const int status = gb_contact_grid_lowest_except(d->grid, zb, d->next_hint, stands, 1 + d->two_point, &node);
+    if (status) return status;
+    grid_point(d, node.index, zb, other);
+    d->next_hint = node.index; /* the search's seed next time (it changes no answer) */
+    d->contact_queries++, d->nodes_visited += node.visited;
+    return GB_OK;
+}
+
+/* The contact point `from` continued to vertical zb: Newton from its angles (continuous), or the same
+ * node (grid). */
+static int point_at(gb_dynamics *d, const double zb[3], const gb_contact_point *from, gb_contact_point *out)
+{
+    if (d->def.contact != GB_CONTACT_MODEL_CONTINUOUS) {
+        grid_point(d, from->node, zb, out);
+        return GB_OK;
+    }
+    return gb_contact_refine(&d->surface, zb, from->phi, from->theta, &d->refine, out);
+}
+
+/* ṙ of contact point p per the angular velocity w (eq 72; a grid node is fixed in the body: 0). */
+static int point_rate(const gb_dynamics *d, const double zb[3], const gb_contact_point *p, const double w[3], double v[3])
+{
+    if (d->def.contact != GB_CONTACT_MODEL_CONTINUOUS) {
+        memset(v, 0, 3 * sizeof *v);
+        return GB_OK;
+    }
+    return gb_contact_rate(&d->surface, zb, p, w, v, NULL);
+}
 
 /* The contact for vertical zb (unit) and angular velocity ω, warm-started from the accepted one. */
 static int contact_at(gb_dynamics *d, double t, const double zb[3], const double omega[3], contact_eval *c)
 {
     const double l = d->def.length;
     memset(c->rc_dot, 0, sizeof c->rc_dot);
+    if (grid_unilateral(d)) {
+        /* the node the body pivots about: a change of node is an impact, located as an event */
+        grid_point(d, d->index, zb, &c->point);
+        for (int k = 0; k < 3; k++) c->rc[k] = l * c->point.rc[k];
+        c->index = d->index;
+        return GB_OK;
+    }
     if (d->def.contact != GB_CONTACT_MODEL_CONTINUOUS) {
         gb_contact_node node;
-        int status;
-        if (d->def.contact == GB_CONTACT_MODEL_GRID && d->def.grid_lowest) {
-            double unit[3];
-            status = gb_contact_unit_vertical(zb, unit);
-            if (!status) {
-                node.index = d->def.grid_lowest(d->def.grid_lowest_context, unit);
-                node.visited = 0;
-                if (node.index < gb_contact_grid_size(d->grid)) gb_contact_grid_node(d->grid, node.index, NULL, NULL, node.x);
-                else status = gb_error_set(GB_EINVAL, "the lowest-node search returned node %zu of a grid of %zu",
-                                           node.index, gb_contact_grid_size(d->grid));
-            }
-        } else {
-            status = d->def.contact == GB_CONTACT_MODEL_GRID ? gb_contact_grid_brute(d->grid, zb, &node)
-                                                             : gb_contact_tracker_find(d->tracker, zb, &node);
-        }
+        const int status = lowest_node(d, zb, &node);
         if (status) return status;
-        d->contact_queries++, d->nodes_visited += node.visited;
         for (int k = 0; k < 3; k++) c->rc[k] = l * node.x[k];
         c->index = node.index;
         return GB_OK; /* ṙ_c = 0 between grid switches */
@@ -311,7 +392,7 @@ static int contact_global(gb_dynamics *d, const double zb[3])
     if (d->def.contact != GB_CONTACT_MODEL_CONTINUOUS) {
         gb_contact_node node;
         const int status = gb_contact_grid_brute(d->grid, zb, &node);
-        if (!status) d->index = node.index;
+        if (!status) d->index = node.index, grid_point(d, node.index, zb, &d->contact);
         return status;
     }
     gb_certify_forget(d->certify);
@@ -419,7 +500,7 @@ static int two_point_at(gb_dynamics *d, double t, const double y[GB_STATE_SIZE],
     int status = contact_at(d, t, zb, omega, &tp->p);
     if (!status && d->branches_lost != lost)
         status = gb_error_set(GB_ENUMERIC, "two-point contact at t = %.9g: P has no minimum of height left (a fold)", t);
-    if (!status) status = gb_contact_refine(&d->surface, zb, d->contact2.phi, d->contact2.theta, &d->refine, &tp->q);
+    if (!status) status = point_at(d, zb, &d->contact2, &tp->q);
     if (!status && !tp->q.is_minimum)
         status = gb_error_set(GB_ENUMERIC, "two-point contact at t = %.9g: Q has no minimum of height left (a fold)", t);
     if (status) return status;
@@ -434,8 +515,8 @@ static int two_point_at(gb_dynamics *d, double t, const double y[GB_STATE_SIZE],
     tp->sigma = gb_vec_dot(omega, u);
     /* ṙ_P, ṙ_Q per unit σ (eq 72 with ω = u: the rates are linear in ω), and u̇ per unit σ */
     double vp[3], vq[3], du[3];
-    status = gb_contact_rate(&d->surface, zb, &tp->p.point, u, vp, NULL);
-    if (!status) status = gb_contact_rate(&d->surface, zb, &tp->q, u, vq, NULL);
+    status = point_rate(d, zb, &tp->p.point, u, vp);
+    if (!status) status = point_rate(d, zb, &tp->q, u, vq);
     if (status) return status;
     for (int k = 0; k < 3; k++) vp[k] *= L, vq[k] *= L;
     const double rel[3] = {vp[0] - vq[0], vp[1] - vq[1], vp[2] - vq[2]}, along = gb_vec_dot(u, rel);
@@ -491,6 +572,14 @@ int gb_dynamics_rhs(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], dou
     int status = GB_OK;
     double geff, geff_rate;
     gb_forcing_geff_with_rate(&d->def.forcing, t, &geff, &geff_rate);
+    if (d->resting) {
+        /* at rest on three points: nothing turns; the weight's work moves with g_eff (Ẇ = m ġ_eff ζ) */
+        status = contact_at(d, t, zb, omega, &c);
+        if (status) return status;
+        memset(dydt, 0, GB_STATE_SIZE * sizeof *dydt);
+        dydt[GB_STATE_WORK] = d->def.mass * geff_rate * -gb_vec_dot(zb, c.rc);
+        return GB_OK;
+    }
     if (d->two_point) {
         two_point_eval tp;
         status = two_point_at(d, t, y, &tp);
@@ -520,6 +609,7 @@ static int remember_rate(gb_dynamics *d, double t, const double y[GB_STATE_SIZE]
     double zb[3], rc_dot[3];
     vertical_of(y, zb);
     d->contact_time = t;
+    if (d->def.contact != GB_CONTACT_MODEL_CONTINUOUS) return GB_OK; /* a node does not move on the body */
     if (gb_contact_rate(&d->surface, zb, &d->contact, y + GB_STATE_OMEGA, rc_dot, d->contact_rate) != GB_OK)
         d->contact_rate[0] = d->contact_rate[1] = 0.0; /* a singular Hessian: start from the point itself */
     return GB_OK;
@@ -580,6 +670,15 @@ static int competitor(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], g
     if (status) return status;
     *continued = c.point;
     *found = 0;
+    if (d->def.contact != GB_CONTACT_MODEL_CONTINUOUS) {
+        /* a grid body: the next node, when it is strictly lower than the one the body pivots about */
+        status = next_node(d, zb, other);
+        if (status) return status;
+        *found = other->height < continued->height - GRID_TIE;
+        memcpy(d->memo_key, key, sizeof key);
+        d->memo_continued = *continued, d->memo_found = *found, d->memo_other = *other, d->memo_valid = 1;
+        return GB_OK;
+    }
     /* A lower minimum found is checked in turn, until the lowest is proved global: with several
      * lower minima the switch goes to the global one, whichever the search met first. */
     gb_contact_point candidate = c.point;
@@ -676,9 +775,10 @@ static int book(gb_dynamics *d, const gb_dynamics_impact *e)
     return d->impact_sink ? d->impact_sink(d->impact_context, e) : GB_OK;
 }
 
-/* Fill an impact record from its points and the solver's answer at point `k`; ω in y takes its value after. */
+/* Fill an impact record from its points and the solver's answer at the new point `k` and the old one
+ * `k_old` (−1: none); ω in y takes its value after. */
 static void record(gb_dynamics_impact *e, double y[GB_STATE_SIZE], const double old_point[3], const double new_point[3],
-                   const double v_before[3], const gb_impact_result *r, int k)
+                   const double v_before[3], const gb_impact_result *r, int k, int k_old)
 {
     double *omega = y + GB_STATE_OMEGA;
     memcpy(e->old_point, old_point, sizeof e->old_point);
@@ -689,7 +789,7 @@ static void record(gb_dynamics_impact *e, double y[GB_STATE_SIZE], const double 
     memcpy(e->omega_after, r->omega, sizeof e->omega_after);
     memcpy(e->v_after, r->v, sizeof e->v_after);
     e->normal_impulse = r->normal_impulse[k], e->tangential_impulse = r->tangential_impulse[k];
-    e->old_normal_impulse = k ? r->normal_impulse[0] : 0.0;
+    e->old_normal_impulse = k_old >= 0 ? r->normal_impulse[k_old] : 0.0;
     e->friction_needed = r->friction_needed;
     e->kinetic_before = r->energy_before, e->kinetic_after = r->energy_after;
 }
@@ -737,7 +837,9 @@ static void hold_both(const gb_dynamics *d, const double y[GB_STATE_SIZE], const
     }
     r->tangential_impulse[0] = gb_vec_norm(tp), r->tangential_impulse[1] = gb_vec_norm(tq);
     /* at Q, which lands; P's normal impulse may be a small pull (see gb_dynamics_impact.old_normal_impulse) */
-    r->friction_needed = r->normal_impulse[1] > 0.0 ? r->tangential_impulse[1] / r->normal_impulse[1] : INFINITY;
+    r->friction_needed = r->normal_impulse[1] > 0.0   ? r->tangential_impulse[1] / r->normal_impulse[1]
+                         : r->tangential_impulse[1] > 0.0 ? INFINITY
+                                                          : 0.0; /* no impulse at all (a point arriving at rest) */
     r->holds[0] = r->holds[1] = 1;
     r->feasible_sets = 1;
 }
@@ -753,7 +855,7 @@ static double return_time(gb_dynamics *d, double t, const double y[GB_STATE_SIZE
     gb_forcing_geff_with_rate(&d->def.forcing, t, &geff, &geff_rate);
     contact_eval c;
     memset(&c, 0, sizeof c);
-    if (gb_contact_rate(&d->surface, zb, q, omega, c.rc_dot, NULL)) return INFINITY;
+    if (point_rate(d, zb, q, omega, c.rc_dot)) return INFINITY;
     for (int k = 0; k < 3; k++) c.rc[k] = L * q->rc[k], c.rc_dot[k] *= L;
     if (angular_acceleration(d, geff, zb, omega, &c, w_dot)) {
         gb_error_clear();
@@ -770,6 +872,21 @@ static double return_time(gb_dynamics *d, double t, const double y[GB_STATE_SIZE
     return an < 0.0 ? 2.0 * fmax(vn, 0.0) / -an : INFINITY;
 }
 
+/* Does the new point q [m] meet the plane at rest: no impulse at all, and its normal velocity (the body
+ * turning with the ω of y about P, the centroid at v) below 1e-9 of √(g_max L), the rounding of a located
+ * event's time? */
+static int grazing(const gb_dynamics *d, const double y[GB_STATE_SIZE], const double v[3], const gb_impact_result *r,
+                   const double q[3])
+{
+    const gb_forcing *f = &d->def.forcing;
+    double zb[3], wq[3];
+    vertical_of(y, zb);
+    gb_vec_cross(y + GB_STATE_OMEGA, q, wq);
+    const double vn = gb_vec_dot(zb, v) + gb_vec_dot(zb, wq);
+    const double scale = sqrt((f->g + fabs(f->a1) + fabs(f->a2)) * d->def.length);
+    return r->normal_impulse[0] == 0.0 && r->normal_impulse[1] == 0.0 && fabs(vn) <= 1e-9 * scale;
+}
+
 /* The outcome of the impact at a change of contact from P (`from`) to Q (`to`) at state y while rolling on
  * one point, nothing booked: the body rolling about P meets the plane at Q; *both: both points hold after
  * (the two-point mode begins), else P lifts; a lift whose fall back would come within def.settle_time is
@@ -783,6 +900,15 @@ static int impact_outcome(gb_dynamics *d, double t, const double y[GB_STATE_SIZE
     for (int k = 0; k < 3; k++) points[0][k] = L * from->rc[k], points[1][k] = L * to->rc[k];
     int status = impact_solve(d, t, y, points[0], (const double (*)[3])points, 2, v, r);
     if (status) return status;
+    if (!r->holds[1] && grazing(d, y, v, r, points[1])) {
+        /* Q arrives at rest (a grazing event, or two nodes tied at rest as a grid body may start): no
+         * impulse, and the forces decide. On both points, the two-point mode's lift event follows at
+         * once where one of its normal forces is below 0. */
+        hold_both(d, y, points[0], points[1], v, r);
+        *both = 1;
+        *back = INFINITY;
+        return GB_OK;
+    }
     if (!r->holds[1])
         return gb_error_set(GB_ENUMERIC, "unilateral contact at t = %.9g: after the impact the new contact does not hold", t);
     *both = r->holds[0];
@@ -810,7 +936,7 @@ static int impact(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const gb_co
     if (status) return status;
     gb_dynamics_impact e = {.t = t, .located = located, .kind = *both ? GB_IMPACT_TWO_POINT : GB_IMPACT_SWITCH,
                             .contacts_after = 1 + *both, .settled = *both && isfinite(back), .return_time = back};
-    record(&e, y, points[0], points[1], v, &r, 1);
+    record(&e, y, points[0], points[1], v, &r, 1, 0);
     return book(d, &e);
 }
 
@@ -818,6 +944,13 @@ static int check_global(gb_dynamics *d, const double zb[3], const gb_contact_poi
 static int canonical_minimum(gb_dynamics *d, const double zb[3], gb_contact_point *p);
 
 enum { PENDING_THIRD = 0, PENDING_LIFT = 1 };
+
+/* The accepted contact (P) becomes p; a grid body's node index with it. */
+static void set_contact(gb_dynamics *d, const gb_contact_point *p)
+{
+    d->contact = *p;
+    if (d->def.contact != GB_CONTACT_MODEL_CONTINUOUS) d->index = p->node;
+}
 
 static int same_point(const gb_contact_point *a, const gb_contact_point *b)
 {
@@ -864,6 +997,13 @@ static int two_point_search(gb_dynamics *d, double t, const double y[GB_STATE_SI
     }
     double zb[3];
     vertical_of(y, zb);
+    d->pending = PENDING_THIRD;
+    if (d->def.contact != GB_CONTACT_MODEL_CONTINUOUS) {
+        /* a grid body on an edge: a third node strictly lower than both */
+        status = next_node(d, zb, other);
+        *found = !status && other->height < fmin(tp.p.point.height, tp.q.height) - GRID_TIE;
+        return status;
+    }
     gb_contact_point candidate = tp.p.point.height <= tp.q.height ? tp.p.point : tp.q;
     for (int round = 0; round < 16; round++) {
         gb_certify_result r;
@@ -898,10 +1038,10 @@ static int two_point_event(gb_dynamics *d, double t, double y[GB_STATE_SIZE], co
         gb_impact_body body = {d->def.mass, {{0}}};
         memcpy(body.inertia, d->inertia, sizeof body.inertia);
         r.energy_before = r.energy_after = gb_impact_energy(&body, v, r.omega);
-        record(&e, y, up, stays, v, &r, 0);
+        record(&e, y, up, stays, v, &r, 0, -1);
         d->two_point = 0;
         d->two_point_time += t - d->two_point_since;
-        d->contact = lifts ? tp.p.point : tp.q;
+        set_contact(d, lifts ? &tp.p.point : &tp.q);
         return book(d, &e);
     }
     const double L = d->def.length;
@@ -911,20 +1051,92 @@ static int two_point_event(gb_dynamics *d, double t, double y[GB_STATE_SIZE], co
     gb_impact_result r;
     status = impact_solve(d, t, y, tp.rp, points, 3, v, &r);
     if (status) return status;
-    const int held = r.holds[0] + r.holds[1] + r.holds[2];
-    if (!r.holds[2] || held == 3)
-        return gb_error_set(GB_ENUMERIC, "unilateral contact at t = %.9g: a third point reaches the plane and %s", t,
-                            held == 3 ? "the body comes to rest on three points (not built yet)"
-                                      : "does not hold after the impact");
-    gb_dynamics_impact e = {.t = t, .located = 1, .kind = GB_IMPACT_THIRD, .contacts_after = held};
-    record(&e, y, r.holds[0] ? points[1] : points[0], points[2], v, &r, 2);
+    int held = r.holds[0] + r.holds[1] + r.holds[2];
+    if (!r.holds[2])
+        return gb_error_set(GB_ENUMERIC, "unilateral contact at t = %.9g: a third point reaches the plane and does not "
+                            "hold after the impact", t);
+    double back = INFINITY;
+    int settled = 0;
+    if (held == 1) {
+        /* The settle rule, as at a switch: P or Q lifts and would fall back within the settle time, so the
+         * body is held on the third point and that one (the lumped chatter, hold_both). */
+        double yafter[GB_STATE_SIZE];
+        memcpy(yafter, y, sizeof yafter);
+        memcpy(yafter + GB_STATE_OMEGA, r.omega, sizeof r.omega);
+        const double back_p = return_time(d, t, yafter, third, r.v, points[0]);
+        const double back_q = return_time(d, t, yafter, third, r.v, points[1]);
+        const int k = back_q < back_p;
+        back = fmin(back_p, back_q);
+        if (fmax(back_p, back_q) < d->def.settle_time) {
+            /* both would fall back within it: the body stops on the three points (the chatter's limit) */
+            double zb[3];
+            vertical_of(y, zb);
+            gb_impact_body body = {d->def.mass, {{0}}};
+            memcpy(body.inertia, d->inertia, sizeof body.inertia);
+            status = gb_impact_hold_all(&body, zb, points, 3, v, y + GB_STATE_OMEGA, &r);
+            if (status) return status;
+            held = 3, settled = 1;
+        } else if (back < d->def.settle_time) {
+            gb_impact_result h; /* its slots: 0 the third point, 1 the one held with it */
+            hold_both(d, y, points[2], points[k], v, &h);
+            r = h;
+            for (int j = 0; j < 3; j++) {
+                const int from = j == 2 ? 0 : j == k ? 1 : -1;
+                r.holds[j] = from >= 0;
+                r.normal_impulse[j] = from >= 0 ? h.normal_impulse[from] : 0.0;
+                r.tangential_impulse[j] = from >= 0 ? h.tangential_impulse[from] : 0.0;
+            }
+            /* at the third point, which lands (the one held with it may pull, as P in the settle rule) */
+            r.friction_needed = r.normal_impulse[2] > 0.0 ? r.tangential_impulse[2] / r.normal_impulse[2] : INFINITY;
+            held = 2, settled = 1;
+        }
+    }
+    gb_dynamics_impact e = {.t = t, .located = 1, .kind = GB_IMPACT_THIRD, .contacts_after = held,
+                            .settled = settled, .return_time = back};
+    const int old = held == 2 && r.holds[1]; /* the one that stays (P when none does) */
+    record(&e, y, points[old], points[2], v, &r, 2, old);
+    if (held == 3) {
+        /* Three points stop the body (ω = 0). With the vertical forcing alone (g_eff > 0) it stays at rest
+         * if its weight falls inside the triangle: the static normal forces are m g_eff times the
+         * barycentric weights of G's foot, w_k = z_b·(p_i × p_j) / z_b·((p_j − p_i) × (p_k − p_i)) for
+         * the cyclic (i, j, k). One weight below 0: it tips about the other two points, from rest. */
+        double zb[3], w[3], a[3], b[3], n[3];
+        vertical_of(y, zb);
+        for (int k = 0; k < 3; k++) a[k] = points[1][k] - points[0][k], b[k] = points[2][k] - points[0][k];
+        gb_vec_cross(a, b, n);
+        const double area = gb_vec_dot(zb, n);
+        int negative = 0, tip = -1;
+        for (int i = 0; i < 3; i++) {
+            gb_vec_cross(points[(i + 1) % 3], points[(i + 2) % 3], n);
+            w[i] = gb_vec_dot(zb, n) / area;
+            if (w[i] < 0.0) negative++, tip = i;
+        }
+        if (negative > 1 || !isfinite(w[0] + w[1] + w[2]))
+            return gb_error_set(GB_ENUMERIC, "unilateral contact at t = %.9g: the body stops on three points whose "
+                                "triangle holds neither its weight nor an edge to tip about (weights %.3g, %.3g, %.3g)",
+                                t, w[0], w[1], w[2]);
+        e.contacts_after = negative ? 2 : 3;
+        if (!negative) {
+            d->two_point = 0;
+            d->two_point_time += t - d->two_point_since;
+            d->resting = 1;
+            d->rest_since = t;
+            set_contact(d, third);
+            return book(d, &e);
+        }
+        /* tips about the edge opposite the negative weight: that edge's points, P first */
+        const gb_contact_point *const pts[3] = {&tp.p.point, &tp.q, third};
+        set_contact(d, pts[(tip + 1) % 3]);
+        d->contact2 = *pts[(tip + 2) % 3];
+        return book(d, &e);
+    }
     if (held == 2) {
         d->contact2 = r.holds[0] ? tp.p.point : tp.q;
     } else {
         d->two_point = 0;
         d->two_point_time += t - d->two_point_since;
     }
-    d->contact = *third;
+    set_contact(d, third);
     return book(d, &e);
 }
 
@@ -935,7 +1147,7 @@ int gb_dynamics_accept(gb_dynamics *d, double t, double y[GB_STATE_SIZE], double
     const double n = sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
     if (norm_drift) *norm_drift = n - 1.0;
     for (int k = 0; k < 4; k++) q[k] /= n;
-    if (d->def.contact != GB_CONTACT_MODEL_CONTINUOUS) {
+    if (d->def.contact != GB_CONTACT_MODEL_CONTINUOUS && !grid_unilateral(d)) {
         double zb[3];
         vertical_of(y, zb);
         contact_eval c;
@@ -947,6 +1159,14 @@ int gb_dynamics_accept(gb_dynamics *d, double t, double y[GB_STATE_SIZE], double
     }
     gb_contact_point continued, other;
     int found;
+    if (d->resting) {
+        double geff, geff_rate;
+        gb_forcing_geff_with_rate(&d->def.forcing, t, &geff, &geff_rate);
+        if (geff <= 0.0)
+            return gb_error_set(GB_ENUMERIC, "unilateral contact at t = %.9g: g_eff = %.6g m/s^2 <= 0 lifts the body off "
+                                "its three points; lift-off and flight are not built yet", t, geff);
+        return GB_OK;
+    }
     if (d->two_point) {
         /* Every event of the mode is located inside its step; one found here is a second inside one step. */
         int status = two_point_pending(d, t, y, &other, &found);
@@ -957,7 +1177,7 @@ int gb_dynamics_accept(gb_dynamics *d, double t, double y[GB_STATE_SIZE], double
         two_point_eval tp;
         if (!status) status = two_point_at(d, t, y, &tp);
         if (status) return status;
-        d->contact = tp.p.point;
+        set_contact(d, &tp.p.point);
         d->contact2 = tp.q;
         d->memo_valid = 0;
         return remember_rate(d, t, y);
@@ -982,7 +1202,7 @@ int gb_dynamics_accept(gb_dynamics *d, double t, double y[GB_STATE_SIZE], double
                                   "leave the plane (g_eff = %.6g m/s^2); lift-off and flight are not built yet", t, n, geff);
     }
     if (status) return status;
-    d->contact = found ? other : continued;
+    set_contact(d, found ? &other : &continued);
     d->memo_valid = 0; /* the accepted contact changed */
     if (found) d->last_valid = 0; /* the last contact found is on the branch left */
     d->branch_switches += found;
@@ -994,7 +1214,8 @@ int gb_dynamics_switch_pending(gb_dynamics *d, double t, const double y[GB_STATE
                                int *found)
 {
     *found = 0;
-    if (d->def.contact != GB_CONTACT_MODEL_CONTINUOUS) return GB_OK;
+    if (d->def.contact != GB_CONTACT_MODEL_CONTINUOUS && !grid_unilateral(d)) return GB_OK; /* held grid: the paper's rule */
+    if (d->resting) return GB_OK;
     if (d->two_point) return two_point_pending(d, t, y, other, found);
     gb_contact_point continued;
     return competitor(d, t, y, &continued, other, found);
@@ -1014,16 +1235,19 @@ int gb_dynamics_branch_gap(gb_dynamics *d, double t, const double y[GB_STATE_SIZ
         *other_here = *other;
         return GB_OK;
     }
-    int status = gb_contact_refine(&d->surface, zb, d->contact.phi, d->contact.theta, &d->refine, &here);
+    int status = point_at(d, zb, &d->contact, &here);
     if (!status && d->two_point) {
         /* a third point against the lower of P and Q */
         gb_contact_point q;
-        status = gb_contact_refine(&d->surface, zb, d->contact2.phi, d->contact2.theta, &d->refine, &q);
+        status = point_at(d, zb, &d->contact2, &q);
         if (!status && q.height < here.height) here = q;
     }
-    if (!status) status = gb_contact_refine(&d->surface, zb, other->phi, other->theta, &d->refine, other_here);
+    /* a grid body: the next node at this state, whichever it is (continuous: `other`, continued) */
+    if (!status) status = d->def.contact == GB_CONTACT_MODEL_CONTINUOUS ? point_at(d, zb, other, other_here)
+                                                                        : next_node(d, zb, other_here);
     if (status) return status;
     *gap = here.height - other_here->height; /* > 0: the other branch is lower (eq 39) */
+    if (d->def.contact != GB_CONTACT_MODEL_CONTINUOUS) *gap -= GRID_TIE;
     return GB_OK;
 }
 
@@ -1038,10 +1262,10 @@ int gb_dynamics_switch_to(gb_dynamics *d, double t, double y[GB_STATE_SIZE], con
         vertical_of(y, zb);
         gb_contact_point here;
         int both = 0;
-        int status = gb_contact_refine(&d->surface, zb, d->contact.phi, d->contact.theta, &d->refine, &here);
+        int status = point_at(d, zb, &d->contact, &here);
         if (!status) status = impact(d, t, y, &here, branch, 1, &both);
         if (status) return status;
-        d->contact = *branch;
+        set_contact(d, branch);
         if (both) {
             d->two_point = 1;
             d->contact2 = here;
@@ -1055,7 +1279,8 @@ int gb_dynamics_switch_to(gb_dynamics *d, double t, double y[GB_STATE_SIZE], con
     d->memo_valid = 0;
     d->contact_rate[0] = d->contact_rate[1] = 0.0; /* no predictor until the next accepted step */
     d->last_valid = 0;
-    d->branch_switches++;
+    if (d->def.contact == GB_CONTACT_MODEL_CONTINUOUS) d->branch_switches++;
+    else d->grid_switches++;
     return GB_OK;
 }
 
@@ -1069,17 +1294,17 @@ int gb_dynamics_jump(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], co
     vertical_of(y, zb);
     gb_contact_point p, q, r;
     gb_impact_result res;
-    int status = gb_contact_refine(&d->surface, zb, d->contact.phi, d->contact.theta, &d->refine, &p);
+    int status = point_at(d, zb, &d->contact, &p);
     if (!status && d->two_point) {
-        status = gb_contact_refine(&d->surface, zb, d->contact2.phi, d->contact2.theta, &d->refine, &q);
-        if (!status) status = gb_contact_refine(&d->surface, zb, branch->phi, branch->theta, &d->refine, &r);
+        status = point_at(d, zb, &d->contact2, &q);
+        if (!status) status = point_at(d, zb, branch, &r);
         const double points[3][3] = {{L * p.rc[0], L * p.rc[1], L * p.rc[2]}, {L * q.rc[0], L * q.rc[1], L * q.rc[2]},
                                      {L * r.rc[0], L * r.rc[1], L * r.rc[2]}};
         if (!status) status = impact_solve(d, t, y, points[0], points, 3, v, &res);
     } else if (!status) {
         double points[2][3], back;
         int both;
-        status = gb_contact_refine(&d->surface, zb, branch->phi, branch->theta, &d->refine, &q);
+        status = point_at(d, zb, branch, &q);
         if (!status) status = impact_outcome(d, t, y, &p, &q, points, v, &res, &back, &both);
     }
     if (!status) memcpy(out + GB_STATE_OMEGA, res.omega, sizeof res.omega);
@@ -1105,6 +1330,7 @@ void gb_dynamics_two_point_stats(const gb_dynamics *d, double t, gb_dynamics_two
     out->settled = d->settled;
     out->lifts = d->lifts;
     out->third_points = d->third_points;
+    out->rest_since = d->rest_since;
 }
 
 size_t gb_dynamics_switch_count(const gb_dynamics *d) { return d->grid_switches + d->branch_switches; }
@@ -1118,6 +1344,7 @@ void gb_dynamics_adopt_contact(gb_dynamics *to, const gb_dynamics *from)
     to->index = from->index;
     to->contact = from->contact;
     to->two_point = from->two_point;
+    to->resting = from->resting, to->rest_since = from->rest_since;
     to->contact2 = from->contact2;
     to->two_point_since = from->two_point_since;
     to->contact_time = from->contact_time;
@@ -1150,6 +1377,8 @@ int gb_dynamics_init_state(gb_dynamics *d, double t0, const double R0[9], const 
     d->grid_switches = d->branch_switches = d->branches_lost = 0;
     d->impacts = 0, d->impact_loss = d->impact_friction_max = 0.0;
     d->two_point = d->pending = 0, d->two_point_time = 0.0;
+    d->next_hint = SIZE_MAX;
+    d->resting = 0, d->rest_since = NAN;
     d->two_point_entries = d->settled = d->lifts = d->third_points = 0;
     d->last_switch_time = NAN;
     d->memo_valid = 0;
@@ -1172,7 +1401,10 @@ int gb_dynamics_observe(gb_dynamics *d, double t, const double y[GB_STATE_SIZE],
     two_point_eval tp;
     int status;
     gb_forcing_geff_with_rate(&d->def.forcing, t, &o->geff, &o->geff_rate);
-    if (d->two_point) {
+    if (d->resting) {
+        status = contact_at(d, t, o->zb, o->omega, &c); /* ω̇ = 0 */
+        if (status) return status;
+    } else if (d->two_point) {
         status = two_point_at(d, t, y, &tp);
         if (status) return status;
         c = tp.p;
@@ -1206,7 +1438,7 @@ int gb_dynamics_observe(gb_dynamics *d, double t, const double y[GB_STATE_SIZE],
     double horizontal[3];
     for (int k = 0; k < 3; k++) horizontal[k] = acc[k] - vertical * o->zb[k];
     o->friction_needed = o->normal_force > 0.0 ? m * gb_vec_norm(horizontal) / o->normal_force : INFINITY;
-    o->contacts = 1 + d->two_point;
+    o->contacts = d->resting ? 3 : 1 + d->two_point;
     o->normal_forces[0] = o->normal_force;
     if (d->two_point) {
         memcpy(o->rc_other, tp.rq, sizeof o->rc_other);

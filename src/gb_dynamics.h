@@ -91,18 +91,22 @@ typedef struct gb_dynamics_impact {
     gb_dynamics_impact_kind kind;
     int located;                          /* 1: at a located event; 0: a lower branch found at an accepted step */
     double old_point[3], new_point[3];    /* P and Q [m]: the point that lifts or holds before, the one that
-                                           * touches (a lift: the point that lifts, the one that stays) */
+                                           * touches (a lift: the point that lifts, the one that stays; a
+                                           * third point: of the two points before, the one that stays when
+                                           * two hold after, else P) */
     double omega_before[3], omega_after[3];
     double v_before[3], v_after[3];       /* the centroid's velocity relative to the plane */
     double normal_impulse, tangential_impulse, friction_needed; /* at the new point; friction = |P_t| / P_n */
     double old_normal_impulse;            /* at the old point: 0 but for the settle rule, where it is the pull
                                            * that stands for the weight's impulse over the return it removes */
     double kinetic_before, kinetic_after; /* [J] */
-    int contacts_after;                   /* points on the plane after: 1 or 2 */
-    int settled;                          /* kind two-point by the settle rule (def.settle_time): P would have
-                                           * lifted and fallen back within the settle time */
-    double return_time;                   /* kind switch or settled: 2 v_n / |a_n| of P after Moreau's impact
-                                           * (INFINITY when P does not fall back) */
+    int contacts_after;                   /* points on the plane after: 1, 2, or 3 (at rest) */
+    int settled;                          /* two points held by the settle rule (def.settle_time): the old
+                                           * point would have lifted and fallen back within the settle time
+                                           * (kind two-point; or third-point, with the point of the two
+                                           * before that would fall back first) */
+    double return_time;                   /* kind switch or settled: 2 v_n / |a_n| of the point that lifts
+                                           * after Moreau's impact (INFINITY when it does not fall back) */
 } gb_dynamics_impact;
 
 /* Called with every impact (the run's impacts file); a non-zero return stops the run with that status. */
@@ -209,11 +213,13 @@ int gb_dynamics_jump(gb_dynamics *dynamics, double t, const double y[GB_STATE_SI
  * energy they took (L) and the largest friction they needed. */
 void gb_dynamics_set_impact_sink(gb_dynamics *dynamics, gb_dynamics_impact_sink sink, void *context);
 void gb_dynamics_impact_stats(const gb_dynamics *dynamics, size_t *impacts, double *energy_lost, double *friction_max);
-/* The two-point mode up to time t: the time spent in it, how often it was entered (by the settle rule:
- * `settled` of them), left by a lift, and met a third point. */
+/* The two-point mode up to time t: the time spent in it, how often it was entered from one point, the
+ * impacts the settle rule ended (`settled`: entries and third points), how often it was left by a lift
+ * and met a third point; when the body came to rest on three points (NAN: it did not). */
 typedef struct gb_dynamics_two_point_summary {
     double time;
     size_t entries, settled, lifts, third_points;
+    double rest_since;
 } gb_dynamics_two_point_summary;
 
 void gb_dynamics_two_point_stats(const gb_dynamics *dynamics, double t, gb_dynamics_two_point_summary *out);
@@ -243,7 +249,7 @@ typedef struct gb_dynamics_observables {
     double normal_force;     /* N = m (g_eff + ζ̈), rolling kinematics (the sum of both in the two-point mode) */
     double friction_needed;  /* |horizontal contact force| / N (two-point mode: the larger of the two points',
                               * the force along PQ, which statics leaves open, split as the normal forces) */
-    int contacts;            /* points on the plane: 1, or 2 in the two-point mode */
+    int contacts;            /* points on the plane: 1, 2 in the two-point mode, 3 at rest */
     double rc_other[3];      /* two-point mode: the second contact Q [m] (else 0) */
     double normal_forces[2]; /* two-point mode: N_P, N_Q from Newton–Euler (else N, 0) */
     double balance;          /* two-point mode: Newton–Euler's moment about PQ left by the power balance's

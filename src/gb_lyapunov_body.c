@@ -289,7 +289,7 @@ static int tangent_impact_step(gb_lyapunov_body *b, double t, double h, double y
     gb_dynamics *d = b->dynamics[0];
     double tc = t, hc = h;
     gb_contact_point next = *other;
-    for (int events = 0; events < 64; events++) {
+    for (int events = 0; events < GB_INTEGRATE_EVENTS_PER_STEP_MAX; events++) {
         gb_integrate_switch at;
         int status = events ? gb_integrate_locate_next(d, tc, hc, y, &next, &at, NULL)
                             : gb_integrate_locate_switch(d, tc, hc, y, &next, &at, NULL);
@@ -331,7 +331,8 @@ static int tangent_impact_step(gb_lyapunov_body *b, double t, double h, double y
         memcpy(Y, Ye, k * S * sizeof *Y);
         tc = te, hc = (1.0 - a) * hc;
     }
-    return gb_error_set(GB_ENUMERIC, "more than 64 changes of contact inside the step from t = %.9g", t);
+    return gb_error_set(GB_ENUMERIC, "more than %d changes of contact inside the step from t = %.9g",
+                        GB_INTEGRATE_EVENTS_PER_STEP_MAX, t);
 }
 
 static int tangent_steps(gb_lyapunov_body *b, double t, double interval, size_t k, double *vectors)
@@ -389,11 +390,13 @@ gb_lyapunov_tangent_system gb_lyapunov_body_tangent(void)
 int gb_lyapunov_body_tangent_ready(const gb_lyapunov_body *body)
 {
     const gb_dynamics_def *def = gb_dynamics_get_def(body->dynamics[0]);
-    if (def->contact != GB_CONTACT_MODEL_CONTINUOUS || body->method != GB_INTEGRATOR_RK4)
+    if ((def->contact != GB_CONTACT_MODEL_CONTINUOUS && def->contact_law != GB_CONTACT_LAW_UNILATERAL) ||
+        body->method != GB_INTEGRATOR_RK4)
         return gb_error_set(GB_EINVAL,
-                            "the variational estimator needs continuous contact and RK4 (got %s, %s): a grid contact "
-                            "makes the vector field jump at every node change, where no variational equation holds",
-                            gb_contact_model_name(def->contact), gb_integrate_name(body->method));
+                            "the variational estimator needs RK4 and continuous contact or the unilateral law (got %s, %s, "
+                            "%s): a held grid contact makes the vector field jump at node changes that are not located, "
+                            "where no saltation can be applied", gb_contact_model_name(def->contact),
+                            gb_integrate_name(body->method), gb_dynamics_contact_law_name(def->contact_law));
     if (body->tangent_steps == 0 && gb_integrate_time(body->session[0]) != 0.0)
         return gb_error_set(GB_EINVAL, "the body's reference has already been advanced by the pair estimator");
     return GB_OK;

@@ -460,6 +460,8 @@ int command_run(int argc, char **argv)
             cli_json_add(tp, "entries", (double)r.two_point.entries);
             cli_json_add(tp, "lifts", (double)r.two_point.lifts);
             cli_json_add(tp, "third_points", (double)r.two_point.third_points);
+            /* when the body came to rest on three points (a grid body on a face), null if it did not */
+            cli_json_add(tp, "rest_since", r.two_point.rest_since);
         }
         if (r.has_strobe) cJSON_AddItemToObject(root, "strobe", strobe_json(&r.strobe));
         if (r.has_spectrum) cJSON_AddItemToObject(root, "spectrum", spectrum_json(&scene, &r.spectrum, r.spectrum_samples));

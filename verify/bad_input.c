@@ -288,7 +288,8 @@ static const bad_row rows[] = {
     {"run @CASE@ --atlas @D@/missing/a.atlas", ATLAS_SCENE, 0, 2, {"--atlas '", "its directory does not exist", "writable directory"}},
     /* smaller: options given twice, --curve-points alone */
     {RUN, "[model]\ncontact_law = bouncy\n", 0, 2, {"case.ini:2: [model] contact_law = bouncy", "unknown", "allowed: held, unilateral"}},
-    {RUN, "[model]\ncontact_law = unilateral\n", 0, 2, {"case.ini:2: [model] contact_law: = unilateral with [model] contact = grid", "built for continuous contact and the rolling equation", "allowed: held with any model"}},
+    {RUN, "[model]\ncontact = continuous\ncontact_law = unilateral\n", 0, 2, {"case.ini:3: [model] contact_law: = unilateral with [model] contact = continuous, equation = paper", "eq 44 makes and takes energy", "allowed: held with any model; unilateral with equation = rolling, or with a grid model"}},
+    {RUN, "[model]\ncontact_law = unilateral\n", 0, 2, {"case.ini: [integrator] locate_switches (default): = no with [model] contact_law = unilateral", "every impact is located", "allowed: yes with contact_law = unilateral"}},
     {RUN, "[model]\ncontact = continuous\nequation = rolling\ncontact_law = unilateral\n[integrator]\nlocate_switches = no\n", 0, 2, {"case.ini:6: [integrator] locate_switches: = no with [model] contact_law = unilateral", "allowed: yes with contact_law = unilateral", ""}},
     {RUN, "[output]\nimpacts = yes\n", 0, 2, {"case.ini:2: [output] impacts: = yes with [model] contact_law = held", "a held contact has no impacts", "allowed: yes with contact_law = unilateral"}},
     /* a computation the unilateral law cannot follow (exit 1): Table 1 read in units of g pulls the body off the plane */

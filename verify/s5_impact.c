@@ -23,6 +23,7 @@
 #include "verify_sections.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -381,7 +382,7 @@ typedef struct ledger {
     double g_max, settle_time;
     double residual_max, t_last, worst_rest, worst_momentum, worst_kelvin, lost;
     double balance_max, normal_min, pull_max, first_two_point, tie_max;
-    size_t impacts, changes, two_point_samples, samples;
+    size_t impacts, changes, two_point_samples, samples, rests;
     int status;
 } ledger;
 
@@ -415,10 +416,12 @@ static double rest_after(const gb_dynamics_impact *e, const double *const p[], i
     return worst / speed;
 }
 
-/* Each change of contact, recomputed from the body's inertia. A switch: Q at rest after, the angular
- * momentum about Q kept. Both points held (the two-point mode begins): P and Q at rest after, the
- * angular momentum about the line PQ kept, the energy lost equal to the energy of the jump (Kelvin); by
- * the settle rule, P's pull within the weight's impulse over the return time it removes. A lift: ω kept. */
+/* Each change of contact, recomputed from the body's inertia. A switch (or a third point that alone
+ * holds): Q at rest after, the angular momentum about Q kept. Two points held after (the two-point mode
+ * begins, or a third point lands and one of the two before stays): both at rest after, the angular
+ * momentum about their line kept; by the settle rule, the old point's pull within the weight's impulse
+ * over the return time it removes. Three points held: the body at rest. Every impact: the energy lost
+ * equal to the energy of the jump (Kelvin). A lift: ω kept. */
 static int ledger_impact(void *context, const gb_dynamics_impact *e)
 {
     ledger *l = context;
@@ -429,21 +432,26 @@ static int ledger_impact(void *context, const gb_dynamics_impact *e)
         return GB_OK;
     }
     const double *const points[2] = {e->new_point, e->old_point};
-    const int both = e->kind == GB_IMPACT_TWO_POINT;
+    const int both = e->contacts_after == 2 && e->kind != GB_IMPACT_SWITCH;
     l->worst_rest = fmax(l->worst_rest, rest_after(e, points, 1 + both));
     momentum_about(&l->body, e->new_point, e->v_before, e->omega_before, before);
     momentum_about(&l->body, e->new_point, e->v_after, e->omega_after, after);
     const double scale = sqrt(before[0] * before[0] + before[1] * before[1] + before[2] * before[2]);
-    if (both) {
+    double dv[3], dw[3];
+    for (int i = 0; i < 3; i++) dv[i] = e->v_after[i] - e->v_before[i], dw[i] = e->omega_after[i] - e->omega_before[i];
+    const double jump = gb_impact_energy(&l->body, dv, dw), loss = e->kinetic_before - e->kinetic_after;
+    if (e->kinetic_before > 0.0) l->worst_kelvin = fmax(l->worst_kelvin, fabs(loss - jump) / e->kinetic_before);
+    if (e->contacts_after == 3) {
+        /* at rest on three points: nothing moves after */
+        const double speed = sqrt(e->v_before[0] * e->v_before[0] + e->v_before[1] * e->v_before[1] + e->v_before[2] * e->v_before[2]);
+        for (int i = 0; i < 3; i++) l->worst_rest = fmax(l->worst_rest, fabs(e->v_after[i]) / speed);
+        l->rests++;
+    } else if (both) {
         double u[3], n = 0.0;
         for (int i = 0; i < 3; i++) u[i] = e->new_point[i] - e->old_point[i], n += u[i] * u[i];
         double kept = 0.0;
         for (int i = 0; i < 3; i++) kept += (after[i] - before[i]) * u[i] / sqrt(n);
         l->worst_momentum = fmax(l->worst_momentum, fabs(kept) / scale);
-        double dv[3], dw[3];
-        for (int i = 0; i < 3; i++) dv[i] = e->v_after[i] - e->v_before[i], dw[i] = e->omega_after[i] - e->omega_before[i];
-        const double jump = gb_impact_energy(&l->body, dv, dw), loss = e->kinetic_before - e->kinetic_after;
-        l->worst_kelvin = fmax(l->worst_kelvin, fabs(loss - jump) / e->kinetic_before);
         if (e->settled) l->pull_max = fmax(l->pull_max, -e->old_normal_impulse / (l->body.mass * l->g_max * l->settle_time));
         if (isnan(l->first_two_point)) l->first_two_point = e->t;
     } else {
@@ -454,40 +462,55 @@ static int ledger_impact(void *context, const gb_dynamics_impact *e)
     return GB_OK;
 }
 
+/* A scene (loaded) under the unilateral law, its settle time as gb_case sets it (one step), every
+ * change located, through the ledger's sample and impact sinks; the final state into y, the impacts'
+ * total loss and the two-point summary. The dynamics are freed. */
+static int ledger_run(gb_case *scene, ledger *l, double y[GB_STATE_SIZE], double *lost, gb_dynamics_two_point_summary *tp)
+{
+    const double period = gb_forcing_period(&scene->dynamics.forcing);
+    scene->dynamics.contact_law = GB_CONTACT_LAW_UNILATERAL;
+    scene->integrate.locate_switches = 1; /* as the law requires (the grid scenes do not locate when held) */
+    scene->dynamics.settle_time = l->settle_time = period / (double)scene->integrate.steps_per_period;
+    l->g_max = scene->dynamics.forcing.g + fabs(scene->dynamics.forcing.a1) + fabs(scene->dynamics.forcing.a2);
+    gb_massprops props;
+    gb_massprops_def mdef = gb_massprops_default_def();
+    mdef.mass = scene->dynamics.mass;
+    int status = gb_massprops_compute(&scene->body, &mdef, &props);
+    if (!status) status = gb_dynamics_start(&scene->body, &scene->dynamics, scene->attitude, scene->omega0, &l->d, y);
+    if (!status) {
+        l->body.mass = scene->dynamics.mass;
+        memcpy(l->body.inertia, props.inertia, sizeof l->body.inertia);
+        gb_dynamics_set_impact_sink(l->d, ledger_impact, l);
+        gb_integrate_stats stats;
+        status = gb_integrate_run(l->d, &scene->integrate, 0.0, y, ledger_sample, l, &stats);
+    }
+    *lost = NAN;
+    memset(tp, 0, sizeof *tp);
+    if (l->d) {
+        gb_dynamics_impact_stats(l->d, NULL, lost, NULL);
+        gb_dynamics_two_point_stats(l->d, l->t_last, tp);
+    }
+    gb_dynamics_free(l->d);
+    l->d = NULL;
+    return status;
+}
+
 static void test_table1_unilateral(void)
 {
-    static const char *const scenes[] = {"cases/table1-gomboc-I-rolling.ini", "cases/table1-gomboc-II-rolling.ini"};
-    for (int k = 0; k < 2; k++) {
+    /* the rolling scenes (continuous contact), and the paper's grid scenes: under this law a polyhedron of
+     * the grid's nodes, every node change a located impact */
+    static const char *const scenes[] = {"cases/table1-gomboc-I-rolling.ini", "cases/table1-gomboc-II-rolling.ini",
+                                         "cases/table1-gomboc-I.ini", "cases/table1-gomboc-II.ini"};
+    for (int k = 0; k < 4; k++) {
         gb_case scene;
         ledger l = {.normal_min = INFINITY, .first_two_point = NAN};
-        double y[GB_STATE_SIZE];
+        double y[GB_STATE_SIZE], lost = NAN;
+        gb_dynamics_two_point_summary tp = {0};
         int status = gb_case_load(scenes[k], &scene);
         const double period = gb_forcing_period(&scene.dynamics.forcing);
-        /* the scene under the unilateral law, its settle time as gb_case sets it: one step */
-        scene.dynamics.contact_law = GB_CONTACT_LAW_UNILATERAL;
-        scene.dynamics.settle_time = l.settle_time = period / (double)scene.integrate.steps_per_period;
-        l.g_max = scene.dynamics.forcing.g + fabs(scene.dynamics.forcing.a1) + fabs(scene.dynamics.forcing.a2);
-        gb_massprops props;
-        gb_massprops_def mdef = gb_massprops_default_def();
-        mdef.mass = scene.dynamics.mass;
-        if (!status) status = gb_massprops_compute(&scene.body, &mdef, &props);
-        if (!status) status = gb_dynamics_start(&scene.body, &scene.dynamics, scene.attitude, scene.omega0, &l.d, y);
-        if (!status) {
-            l.body.mass = scene.dynamics.mass;
-            memcpy(l.body.inertia, props.inertia, sizeof l.body.inertia);
-            gb_dynamics_set_impact_sink(l.d, ledger_impact, &l);
-            gb_integrate_stats stats;
-            status = gb_integrate_run(l.d, &scene.integrate, 0.0, y, ledger_sample, &l, &stats);
-        }
+        if (!status) status = ledger_run(&scene, &l, y, &lost, &tp);
         char why[300];
         snprintf(why, sizeof why, "%s", status ? gb_error_message() : "ran to the end");
-        double lost = NAN;
-        gb_dynamics_two_point_summary tp = {0};
-        if (l.d) {
-            gb_dynamics_impact_stats(l.d, NULL, &lost, NULL);
-            gb_dynamics_two_point_stats(l.d, l.t_last, &tp);
-        }
-        gb_dynamics_free(l.d);
         const int ran = !status && l.impacts > 0;
         char q[300];
         snprintf(q, sizeof q, "%s under the unilateral law: |E - E0 - W + L| over the run, %zu impacts", scenes[k], l.impacts);
@@ -512,12 +535,82 @@ static void test_table1_unilateral(void)
         gb_check cm = {"3, 5", "-", q, "measured: impacts until it rolls on two points, the share of the run on two points, "
                        "its exits, the smallest normal force there, the drift off the crease", "exact"};
         gb_check_true(&cm, ran && fabs(lost - l.lost) <= 1e-12 * l.lost && tp.entries >= 1,
-                      "%s: %zu impacts taking %.4g J; on two points from t = %.4g s (%.1f forcing periods), %zu entries (%zu by "
-                      "the settle rule), %zu lifts, %zu third points; %.1f %% of the run on two points; min normal force "
-                      "there %.4g N; max |h_P - h_Q| %.2g m; %s", ran ? "ran" : "failed", l.impacts, l.lost, l.first_two_point,
-                      l.first_two_point / period, tp.entries, tp.settled, tp.lifts, tp.third_points,
+                      "%s: %zu impacts taking %.4g J; on two points from t = %.4g s (%.1f forcing periods), %zu entries, %zu "
+                      "impacts ended by the settle rule, %zu lifts, %zu third points, %zu stops on three; %.1f %% of the run on two points; "
+                      "min normal force there %.4g N; max |h_P - h_Q| %.2g m; %s", ran ? "ran" : "failed", l.impacts, l.lost,
+                      l.first_two_point, l.first_two_point / period, tp.entries, tp.settled, tp.lifts, tp.third_points, l.rests,
                       100.0 * tp.time / (scene.integrate.periods * period), l.normal_min, l.tie_max, why);
     }
+}
+
+/* ---- a grid body comes to rest on a face ------------------------------------------------------------ */
+
+/* The paper's grid body (Table 1, Gömböc I), unforced and damped (c = 2 N m s), under the unilateral law:
+ * it rocks from edge to edge, ever more slowly, and must come to rest on three nodes whose triangle holds
+ * its weight: ω = 0 at rest, the three nodes on the plane (tied to rounding), G's foot inside the
+ * triangle (all three static normal forces >= 0), and nothing moving after. */
+static void test_grid_rest(void)
+{
+    gb_case scene;
+    ledger l = {.normal_min = INFINITY, .first_two_point = NAN};
+    double y[GB_STATE_SIZE], lost = NAN;
+    gb_dynamics_two_point_summary tp = {0};
+    int status = gb_case_load("cases/table1-gomboc-I.ini", &scene);
+    scene.dynamics.forcing.a1 = scene.dynamics.forcing.a2 = 0.0;
+    scene.dynamics.damping = 2.0;
+    if (!status) status = ledger_run(&scene, &l, y, &lost, &tp);
+    /* at the end: the three lowest nodes, their heights and G's foot in their triangle */
+    gb_contact_grid *grid = NULL;
+    double spread = NAN, weight_min = NAN, w_norm = NAN;
+    if (!status) status = gb_contact_grid_create(&scene.body, &scene.dynamics.grid, &grid);
+    if (!status) {
+        double R[9], zb[3];
+        gb_dynamics_rotation(y + GB_STATE_Q, R);
+        zb[0] = R[6], zb[1] = R[7], zb[2] = R[8];
+        size_t lowest[3];
+        gb_contact_node node;
+        for (int k = 0; k < 3 && !status; k++) {
+            status = gb_contact_grid_lowest_except(grid, zb, SIZE_MAX, lowest, k, &node);
+            lowest[k] = node.index;
+        }
+        double p[3][3], h[3];
+        for (int k = 0; k < 3; k++) gb_contact_grid_node(grid, lowest[k], NULL, NULL, p[k]), h[k] = zb[0] * p[k][0] + zb[1] * p[k][1] + zb[2] * p[k][2];
+        spread = fmax(fmax(h[0], h[1]), h[2]) - fmin(fmin(h[0], h[1]), h[2]);
+        double a[3], b[3], n[3];
+        for (int i = 0; i < 3; i++) a[i] = p[1][i] - p[0][i], b[i] = p[2][i] - p[0][i];
+        cross(a, b, n);
+        const double area = zb[0] * n[0] + zb[1] * n[1] + zb[2] * n[2];
+        weight_min = INFINITY;
+        for (int i = 0; i < 3; i++) {
+            cross(p[(i + 1) % 3], p[(i + 2) % 3], n);
+            weight_min = fmin(weight_min, (zb[0] * n[0] + zb[1] * n[1] + zb[2] * n[2]) / area);
+        }
+        w_norm = sqrt(y[GB_STATE_OMEGA] * y[GB_STATE_OMEGA] + y[GB_STATE_OMEGA + 1] * y[GB_STATE_OMEGA + 1] +
+                      y[GB_STATE_OMEGA + 2] * y[GB_STATE_OMEGA + 2]);
+    }
+    gb_contact_grid_free(grid);
+    const int rested = !status && isfinite(tp.rest_since) && l.rests == 1;
+    gb_check cr = {"3, 5", "-", "the paper's grid body (Gomboc I), unforced, c = 2, unilateral law: it comes to rest on three nodes",
+                   "at rest: |omega| at the end, the spread of the three lowest nodes' heights [m], the least barycentric "
+                   "weight of G's foot in their triangle (>= 0: the triangle holds the weight)", "exact: 1e-12 rad/s, 1e-12 m, >= 0"};
+    gb_check_true(&cr, rested && w_norm <= 1e-12 && spread <= 1e-12 && weight_min >= 0.0,
+                  "%s; at rest from t = %.4g s after %zu impacts taking %.4g J (%zu stops on three); |omega| = %.2g rad/s, "
+                  "height spread %.2g m, least weight %.3g; ledger |E - E0 - W + L| <= %.2g J",
+                  status ? gb_error_message() : "ran", tp.rest_since, l.impacts, lost, l.rests, w_norm, spread, weight_min,
+                  l.residual_max);
+    gb_check cl = {"3, 5", "46-51", "the same run: |E - E0 - W + L| over the run, rest included", "the energy ledger closes",
+                   "1e-6 J, as for Table 1 under this law"};
+    gb_check_close(&cl, rested ? l.residual_max : NAN, 0.0, 0.0, 1e-6);
+    gb_check ci = {"3, 5", "-", "the same run: each impact recomputed from the inertia, the stop on three points included",
+                   "the points that hold at rest after (all of them at the stop); the angular momentum kept about the new "
+                   "point or the held line; Kelvin (max relative to each impact's own speed and energy)",
+                   "1e-10: the impact law's sign tolerance (SIGN_TOL, src/gb_impact.c); the stop's three-point Delassus "
+                   "system is singular (statically indeterminate) and solved by SVD cut at 1e-12 of its largest singular "
+                   "value, at the creeping speeds of the last impacts"};
+    char worst[200];
+    snprintf(worst, sizeof worst, "rest %.2g, momentum %.2g, Kelvin %.2g", l.worst_rest, l.worst_momentum, l.worst_kelvin);
+    gb_check_close(&ci, rested ? fmax(fmax(l.worst_rest, l.worst_momentum), l.worst_kelvin) : NAN, 0.0, 0.0, 1e-10);
+    printf("\n    %s\n", worst);
 }
 
 /* ---- the two-point mode against a compound pendulum ---------------------------------------------------- */
@@ -733,6 +826,8 @@ int verify_register_s5_impact(void)
         {"sections 3, 5: Table 1 under the unilateral law: the ledger, the impacts, the two-point mode",
          test_table1_unilateral, "under the unilateral law the energy ledger closes across impacts and the two-point mode, "
          "each impact obeys the law, the mode's power balance agrees with Newton-Euler, and where the body goes is measured"},
+        {"sections 3, 5: a grid body comes to rest on a face", test_grid_rest,
+         "a damped, unforced grid body under the unilateral law stops on three nodes whose triangle holds its weight"},
         {"sections 3, 5: the two-point mode against a compound pendulum", test_two_point_pendulum,
          "unforced, the body swinging on two points about the lowest point of its crease has the period of a compound "
          "pendulum computed from the surface and the mass properties alone"},

@@ -387,6 +387,13 @@ static const variation VARIATIONS[] = {
      GB_CONTACT_LAW_UNILATERAL},
     {"continuous rolling, unilateral, beta = 0.02", GB_CONTACT_MODEL_CONTINUOUS, GB_VARIANT_ROLLING, 90, 180, 1.0, 1.0, 0.02, 160, 1e-7, 1.0, 1,
      GB_CONTACT_LAW_UNILATERAL},
+    /* the paper's grid body as what it is under that law, a polyhedron of its nodes pivoting from vertex
+     * to vertex, every node change a located impact (eq 44 and the rolling equation agree about a vertex) */
+    {"paper model, unilateral contact", BASE, 90, 180, 1.0, 1.0, 0.12, 160, 1e-7, 1.0, 1, GB_CONTACT_LAW_UNILATERAL},
+    {"paper model, unilateral, unforced", BASE, 90, 180, 0.0, 1.0, 0.12, 160, 1e-7, 1.0, 1, GB_CONTACT_LAW_UNILATERAL},
+    {"paper model, unilateral, beta = 0.02", BASE, 90, 180, 1.0, 1.0, 0.02, 160, 1e-7, 1.0, 1, GB_CONTACT_LAW_UNILATERAL},
+    {"paper model, unilateral, grid 180x360", BASE, 180, 360, 1.0, 1.0, 0.12, 160, 1e-7, 1.0, 1, GB_CONTACT_LAW_UNILATERAL},
+    {"paper model, unilateral, grid 360x720", BASE, 360, 720, 1.0, 1.0, 0.12, 160, 1e-7, 1.0, 1, GB_CONTACT_LAW_UNILATERAL},
 };
 enum { VARIATION_COUNT = sizeof VARIATIONS / sizeof VARIATIONS[0] };
 
@@ -617,8 +624,10 @@ static void test_chaos_real(void)
                                                   {"A1, A2 in units of g", "paper model, A in units of g"},
                                                   {"continuous contact, rolling equation", "continuous contact, rolling equation"},
                                                   {"continuous rolling, unilateral contact",
-                                                   "continuous contact, rolling equation, unilateral contact"}};
-        for (int k = 0; k < 4; k++) {
+                                                   "continuous contact, rolling equation, unilateral contact"},
+                                                  {"paper model, unilateral contact",
+                                                   "paper model (grid 90x180 as a polyhedron), unilateral contact"}};
+        for (int k = 0; k < 5; k++) {
             const estimate e = find(table, b, readings[k][0]);
             char q[160];
             snprintf(q, sizeof q, "Gomboc %s, %s: lambda_max - 4 sigma", bodies[b], readings[k][1]);
@@ -637,9 +646,9 @@ static void test_chaos_real(void)
         }
     }
     /* Similar long-time rates for the two shapes. */
-    static const char *const compared[3] = {"baseline (paper model, grid 90x180, A in m/s^2)", "continuous contact, rolling equation",
-                                            "continuous rolling, unilateral contact"};
-    for (int k = 0; k < 3; k++) {
+    static const char *const compared[4] = {"baseline (paper model, grid 90x180, A in m/s^2)", "continuous contact, rolling equation",
+                                            "continuous rolling, unilateral contact", "paper model, unilateral contact"};
+    for (int k = 0; k < 4; k++) {
         const estimate a = find(table, 0, compared[k]), b = find(table, 1, compared[k]);
         const double combined = hypot(a.error, b.error);
         char q[160];
@@ -667,6 +676,10 @@ static void test_chaos_real(void)
          "positive lambda_max needs the biharmonic forcing (sections 1, 7, 8.2)"},
         {"continuous rolling, unilateral, beta = 0.02", "continuous rolling, unilateral contact",
          "chaos comes from contact-branch competition (absent for a strictly convex body)"},
+        {"paper model, unilateral, unforced", "paper model, unilateral contact",
+         "positive lambda_max needs the biharmonic forcing (sections 1, 7, 8.2)"},
+        {"paper model, unilateral, beta = 0.02", "paper model, unilateral contact",
+         "chaos comes from contact-branch competition (absent for a strictly convex body)"},
     };
     /* Continuous rolling (n odd): 300 periods do not decide; its rows are judged by `make verify-full` on
      * 10000 periods (test_chaos_real_long). */
@@ -678,14 +691,15 @@ static void test_chaos_real(void)
         }
     /* Under the unilateral law, against that law's own baseline, on the same 300 periods. */
     static const char *const unilateral_labels[2] = {"unforced (A1 = A2 = 0)", "beta = 0.02 (strictly convex)"};
-    for (int n = 4; n < 6; n++)
+    for (int n = 4; n < 8; n++)
         for (int b = 0; b < 2; b++)
-            judge_need(bodies[b], needs[n][1], unilateral_labels[n - 4], needs[n][2], find(table, b, needs[n][0]),
-                       find(table, b, "continuous rolling, unilateral contact"), 300);
+            judge_need(bodies[b], needs[n][1], unilateral_labels[n % 2], needs[n][2], find(table, b, needs[n][0]),
+                       find(table, b, needs[n][1]), 300);
     /* The exponent of the paper's model against its own numerical parameters. */
     /* Each family's parameter on an axis where a trend would be linear (log of the grid size, delta0, step
      * and norm scale; 0/1 for located or not), in the order of the names. */
-    static const double family_x[][4] = {{0, 1, 2, 3}, {-7, -5, -9, -11}, {-1, 0, 1, 0}, {-7, -11, 0, 0}, {0, -1, 1, 0}, {0, 1, 0, 0}};
+    static const double family_x[][4] = {{0, 1, 2, 3}, {-7, -5, -9, -11}, {-1, 0, 1, 0}, {-7, -11, 0, 0}, {0, -1, 1, 0}, {0, 1, 0, 0},
+                                         {0, 1, 2, 0}};
     static const char *const families[][5] = {
         {"grid resolution", "baseline (paper model, grid 90x180, A in m/s^2)", "grid 180x360", "grid 360x720", "grid 720x1440"},
         {"delta0", "baseline (paper model, grid 90x180, A in m/s^2)", "delta0 = 1e-5", "delta0 = 1e-9", "delta0 = 1e-11"},
@@ -695,8 +709,11 @@ static void test_chaos_real(void)
          "separation norm: omega part / (10 omega)", NULL},
         {"switch location (continuous rolling)", "continuous contact, rolling equation",
          "continuous rolling, switches not located (taken at step ends)", NULL, NULL},
+        /* under the unilateral law a finer grid is a polyhedron of smaller facets, each change a smaller impact */
+        {"grid resolution under the unilateral law", "paper model, unilateral contact", "paper model, unilateral, grid 180x360",
+         "paper model, unilateral, grid 360x720", NULL},
     };
-    for (int f = 0; f < 6; f++)
+    for (int f = 0; f < 7; f++)
         for (int b = 0; b < 2; b++) {
             double x[4], y[4], sigma[4];
             size_t n = 0;
@@ -924,16 +941,20 @@ static void test_record_layout(void)
 }
 
 /* Eq 75 against eq 77 on the Gömböc: the variational equation with saltation at located switches
- * against the renormalised pair, continuous rolling, 300 periods. */
+ * against the renormalised pair, 300 periods: continuous rolling under both laws, and the paper's grid
+ * body (a polyhedron of 90 x 180 nodes, eq 44 = the rolling equation about a vertex) under the
+ * unilateral law, whose node changes are located impacts. */
 static void test_gomboc_estimators(void)
 {
-    static const struct { const char *body; double beta; gb_contact_law law; } runs[] = {
-        {"I", 0.12, GB_CONTACT_LAW_HELD}, {"II", 0.12, GB_CONTACT_LAW_HELD}, {"I", 0.02, GB_CONTACT_LAW_HELD},
-        {"I", 0.12, GB_CONTACT_LAW_UNILATERAL}, {"II", 0.12, GB_CONTACT_LAW_UNILATERAL}};
+    static const struct { const char *body; double beta; gb_contact_law law; int grid; } runs[] = {
+        {"I", 0.12, GB_CONTACT_LAW_HELD, 0}, {"II", 0.12, GB_CONTACT_LAW_HELD, 0}, {"I", 0.02, GB_CONTACT_LAW_HELD, 0},
+        {"I", 0.12, GB_CONTACT_LAW_UNILATERAL, 0}, {"II", 0.12, GB_CONTACT_LAW_UNILATERAL, 0},
+        {"I", 0.12, GB_CONTACT_LAW_UNILATERAL, 1}, {"II", 0.12, GB_CONTACT_LAW_UNILATERAL, 1}};
     cJSON *doc = cJSON_CreateArray();
     for (size_t n = 0; n < sizeof runs / sizeof runs[0]; n++) {
         gb_dynamics_def def = gb_dynamics_default_def();
         def.contact = GB_CONTACT_MODEL_CONTINUOUS, def.variant = GB_VARIANT_ROLLING;
+        if (runs[n].grid) def.contact = GB_CONTACT_MODEL_FAST_GRID, def.variant = GB_VARIANT_PAPER; /* Table 1's grid */
         gb_integrate_def idef = gb_integrate_default_def();
         idef.locate_switches = 1;
         def.contact_law = runs[n].law;
@@ -955,8 +976,9 @@ static void test_gomboc_estimators(void)
         if (!status) gb_lyapunov_body_tangent_counts(b, &saltations, &unlocated, &grazing);
         char q[200];
         const char *law = runs[n].law == GB_CONTACT_LAW_UNILATERAL ? ", unilateral contact (impacts)" : "";
-        snprintf(q, sizeof q, "Gomboc %s, beta %.2f, continuous rolling%s, located switches: lambda by eq 75 (saltation) - lambda "
-                 "by eq 77", runs[n].body, runs[n].beta, law);
+        const char *model = runs[n].grid ? "paper model, grid 90x180" : "continuous rolling";
+        snprintf(q, sizeof q, "Gomboc %s, beta %.2f, %s%s, located switches: lambda by eq 75 (saltation) - lambda by eq 77",
+                 runs[n].body, runs[n].beta, model, law);
         gb_check c = {"6", "75, 77", q, "zero: the two estimators agree where both apply", "4 x the combined batch-means error"};
         if (status) gb_check_true(&c, 0, "%s", gb_error_message());
         else gb_check_close(&c, tangent.lambda_max - pair.lambda_max, 0.0, 0.0, 4.0 * hypot(pair.error_bar, tangent.error_bar));
@@ -969,6 +991,7 @@ static void test_gomboc_estimators(void)
         cJSON_AddStringToObject(row, "body", runs[n].body);
         cJSON_AddNumberToObject(row, "beta", runs[n].beta);
         cJSON_AddStringToObject(row, "contact_law", gb_dynamics_contact_law_name(runs[n].law));
+        cJSON_AddStringToObject(row, "contact", gb_contact_model_name(def.contact));
         cJSON_AddNumberToObject(row, "pair", pair.lambda_max);
         cJSON_AddNumberToObject(row, "pair_error", pair.error_bar);
         cJSON_AddNumberToObject(row, "tangent", tangent.lambda_max);
