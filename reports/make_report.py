@@ -47,7 +47,7 @@ GATES = (("fuzz", "make fuzz", "the scene reader, the option parser and the atla
          ("verify-full", "make verify-full", "every check, the long studies (10000-period records) and the ensembles"),
          ("bench", "make bench", "speed ratios measured side by side in one run"),
          ("scans", "make scans", "the maps of Figs 10-13 (cases/scans), 25 x 25 points each, and their stability maps"),
-         ("study", "make study", "the ensembles of section 8.2 (cases/studies), 32 initial attitudes each"),
+         ("study", "make study", "the ensembles of section 8.2 (cases/studies), 32 initial attitudes each (64 for Gömböc I)"),
          ("mpi", "make mpi", "OpenMPI installed; gomboc-mpi's scans on 1, 2 and 3 ranks and after a kill -9, "
           "against one thread"))
 
@@ -227,7 +227,7 @@ def main():
             if where.startswith(f"Gomboc {body}, {model}: lambda_max - 4 sigma"):
                 agrees = (reading == "sustained") == (r["verdict"] == "holds")
                 if not agrees or reading == "undecided":
-                    detail += (f" — **preliminary: the ensemble of `make study` (32 initial attitudes, 3000 periods) "
+                    detail += (f" — **preliminary: the ensemble of `make study` (32 initial attitudes, 64 for Gömböc I; 3000 periods) "
                                f"reads {reading}** (see 'Chaotic for good, for a while, or not at all?')")
         lines.append(f"| §{r['section']} | {claim} | {where} | {detail} | {verdict_text(r['verdict'])} | "
                      f"{r['rule'].replace('|', '/')} |")

@@ -81,7 +81,7 @@ def study_section(out):
     files = sorted(f for f in os.listdir(folder) if f.endswith("-scan.csv")) if os.path.isdir(folder) else []
     if not files:
         return lines + ["No ensembles in this checkout: `make study` runs those of `cases/studies` (32 random initial "
-                        "attitudes per body and contact law, 3000 periods each) and writes them here.", ""]
+                        "attitudes per body and contact law, 64 for Gömböc I, 3000 periods each) and writes them here.", ""]
     stamp = os.path.join(out, "gates", "study.json")
     when = ""
     if os.path.exists(stamp):

@@ -108,6 +108,9 @@ struct gb_dynamics {
      * the time spent in it before, and how often it was entered. `pending`: the event that
      * gb_dynamics_switch_pending found in this mode, for gb_dynamics_branch_gap and gb_dynamics_switch_to. */
     int two_point, pending;
+    /* Q's Newton predictor, as last_* for P: the last Q found, its vertical and sensitivity (q_valid) */
+    int q_valid;
+    double q_zb[3], q_q[2], q_dq[2][3];
     int resting;       /* on three points at rest (ω = 0) since rest_since */
     double rest_since;
     gb_contact_point contact2;
@@ -490,6 +493,28 @@ typedef struct two_point_eval {
 
 static void vertical_of(const double y[GB_STATE_SIZE], double zb[3]);
 
+/* Q of the two-point mode at vertical zb: Newton (continuous contact) from the last Q found since the
+ * accepted state moved by its sensitivity (eq 70), as P is (contact_at); then Q's sensitivity for its rate
+ * and the next start. A grid node as it is. */
+static int second_point(gb_dynamics *d, const double zb[3], gb_contact_point *q)
+{
+    if (d->def.contact != GB_CONTACT_MODEL_CONTINUOUS) return point_at(d, zb, &d->contact2, q);
+    double unit[3], start[2] = {d->contact2.phi, d->contact2.theta};
+    int status = gb_contact_unit_vertical(zb, unit);
+    if (status) return status;
+    if (d->q_valid) {
+        const double step[3] = {unit[0] - d->q_zb[0], unit[1] - d->q_zb[1], unit[2] - d->q_zb[2]};
+        start[0] = d->q_q[0] + gb_vec_dot(d->q_dq[0], step);
+        start[1] = d->q_q[1] + gb_vec_dot(d->q_dq[1], step);
+    }
+    status = gb_contact_refine(&d->surface, unit, start[0], start[1], &d->refine, q);
+    if (status || !q->is_minimum) return status;
+    d->q_valid = gb_contact_sensitivity(&d->surface, unit, q, d->q_dq) == GB_OK;
+    memcpy(d->q_zb, unit, sizeof d->q_zb);
+    d->q_q[0] = q->phi, d->q_q[1] = q->theta;
+    return GB_OK;
+}
+
 static int two_point_at(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], two_point_eval *tp)
 {
     const double L = d->def.length, m = d->def.mass, c = d->def.damping;
@@ -500,7 +525,7 @@ static int two_point_at(gb_dynamics *d, double t, const double y[GB_STATE_SIZE],
     int status = contact_at(d, t, zb, omega, &tp->p);
     if (!status && d->branches_lost != lost)
         status = gb_error_set(GB_ENUMERIC, "two-point contact at t = %.9g: P has no minimum of height left (a fold)", t);
-    if (!status) status = point_at(d, zb, &d->contact2, &tp->q);
+    if (!status) status = second_point(d, zb, &tp->q);
     if (!status && !tp->q.is_minimum)
         status = gb_error_set(GB_ENUMERIC, "two-point contact at t = %.9g: Q has no minimum of height left (a fold)", t);
     if (status) return status;
@@ -516,7 +541,8 @@ static int two_point_at(gb_dynamics *d, double t, const double y[GB_STATE_SIZE],
     /* ṙ_P, ṙ_Q per unit σ (eq 72 with ω = u: the rates are linear in ω), and u̇ per unit σ */
     double vp[3], vq[3], du[3];
     status = point_rate(d, zb, &tp->p.point, u, vp);
-    if (!status) status = point_rate(d, zb, &tp->q, u, vq);
+    if (!status && d->q_valid) gb_contact_rate_from(d->q_dq, d->q_zb, &tp->q, u, vq, NULL); /* Q's own sensitivity */
+    else if (!status) status = point_rate(d, zb, &tp->q, u, vq);
     if (status) return status;
     for (int k = 0; k < 3; k++) vp[k] *= L, vq[k] *= L;
     const double rel[3] = {vp[0] - vq[0], vp[1] - vq[1], vp[2] - vq[2]}, along = gb_vec_dot(u, rel);
@@ -1128,10 +1154,12 @@ static int two_point_event(gb_dynamics *d, double t, double y[GB_STATE_SIZE], co
         const gb_contact_point *const pts[3] = {&tp.p.point, &tp.q, third};
         set_contact(d, pts[(tip + 1) % 3]);
         d->contact2 = *pts[(tip + 2) % 3];
+        d->q_valid = 0;
         return book(d, &e);
     }
     if (held == 2) {
         d->contact2 = r.holds[0] ? tp.p.point : tp.q;
+        d->q_valid = 0;
     } else {
         d->two_point = 0;
         d->two_point_time += t - d->two_point_since;
@@ -1269,6 +1297,7 @@ int gb_dynamics_switch_to(gb_dynamics *d, double t, double y[GB_STATE_SIZE], con
         if (both) {
             d->two_point = 1;
             d->contact2 = here;
+            d->q_valid = 0;
             d->two_point_since = t;
             d->two_point_entries++;
         }
@@ -1346,6 +1375,7 @@ void gb_dynamics_adopt_contact(gb_dynamics *to, const gb_dynamics *from)
     to->two_point = from->two_point;
     to->resting = from->resting, to->rest_since = from->rest_since;
     to->contact2 = from->contact2;
+    to->q_valid = 0;
     to->two_point_since = from->two_point_since;
     to->contact_time = from->contact_time;
     memcpy(to->contact_rate, from->contact_rate, sizeof to->contact_rate);
@@ -1379,6 +1409,7 @@ int gb_dynamics_init_state(gb_dynamics *d, double t0, const double R0[9], const 
     d->two_point = d->pending = 0, d->two_point_time = 0.0;
     d->next_hint = SIZE_MAX;
     d->resting = 0, d->rest_since = NAN;
+    d->q_valid = 0;
     d->two_point_entries = d->settled = d->lifts = d->third_points = 0;
     d->last_switch_time = NAN;
     d->memo_valid = 0;
