@@ -123,6 +123,7 @@ static const key_def keys[] = {
     {"model", "grid", KEY_GRID, 0, 0, 0, NULL, 0, NULL},
     NAME("model", "nodes", parse_nodes),
     REAL("model", "damping", 0.0, 1000.0, 0, "[N m s]", dynamics.damping),
+    REAL("model", "friction", 0.0, 1000.0, OPEN_MIN, "(the plane's mu, for the monitors)", dynamics.friction),
     NAME("integrator", "method", parse_method),
     COUNT("integrator", "steps_per_period", 1, 100000000, integrate.steps_per_period),
     REAL("integrator", "periods", 0.0, 1e7, OPEN_MIN, "[forcing periods]", integrate.periods),

@@ -59,6 +59,7 @@ gb_dynamics_def gb_dynamics_default_def(void)
         .forcing = {.g = 9.81, .a1 = 2.0, .a2 = 1.0, .omega = 18.0, .psi = M_PI / 3.0},
         .grid = gb_contact_grid_default_def(),
         .certify = gb_certify_default_def(),
+        .friction = INFINITY,
         .atlas = gb_atlas_default_def(),
     };
     /* Leaves of 16 nodes were the fastest of 8–32 for the patch tree's searches (make bench); the leaf
@@ -101,6 +102,7 @@ struct gb_dynamics {
     /* The unilateral law: impacts, the kinetic energy they took (L), the largest friction needed. */
     size_t impacts;
     double impact_loss, impact_friction_max;
+    size_t impacts_over_friction; /* that needed more than def.friction */
     size_t next_hint; /* a grid body: the last next node found (next_node) */
     gb_dynamics_impact_sink impact_sink;
     void *impact_context;
@@ -137,6 +139,8 @@ int gb_dynamics_create(const gb_surface *surface, const gb_dynamics_def *def, gb
         return gb_error_set(GB_EDOM, "mass = %g is out of range (allowed: finite, > 0)", def->mass);
     if (!(isfinite(def->length) && def->length > 0.0))
         return gb_error_set(GB_EDOM, "length = %g is out of range (allowed: finite, > 0)", def->length);
+    if (!(def->friction > 0.0)) /* INFINITY: no monitor */
+        return gb_error_set(GB_EDOM, "friction = %g is out of range (allowed: > 0)", def->friction);
     if (!(isfinite(def->damping) && def->damping >= 0.0))
         return gb_error_set(GB_EDOM, "damping c = %g is out of range (allowed: finite, >= 0)", def->damping);
     /* Under the unilateral law a grid body is a polyhedron pivoting about a vertex between impacts: ṙ_c = 0,
@@ -796,6 +800,7 @@ static int book(gb_dynamics *d, const gb_dynamics_impact *e)
         d->impacts++;
         d->impact_loss += e->kinetic_before - e->kinetic_after;
         d->impact_friction_max = fmax(d->impact_friction_max, e->friction_needed);
+        d->impacts_over_friction += e->friction_needed > d->def.friction;
     }
     d->memo_valid = 0; /* ω may have changed */
     return d->impact_sink ? d->impact_sink(d->impact_context, e) : GB_OK;
@@ -1352,6 +1357,8 @@ void gb_dynamics_impact_stats(const gb_dynamics *d, size_t *impacts, double *ene
     if (friction_max) *friction_max = d->impact_friction_max;
 }
 
+size_t gb_dynamics_impacts_over_friction(const gb_dynamics *d) { return d->impacts_over_friction; }
+
 void gb_dynamics_two_point_stats(const gb_dynamics *d, double t, gb_dynamics_two_point_summary *out)
 {
     out->time = d->two_point_time + (d->two_point ? t - d->two_point_since : 0.0);
@@ -1406,6 +1413,7 @@ int gb_dynamics_init_state(gb_dynamics *d, double t0, const double R0[9], const 
     d->last_valid = 0;
     d->grid_switches = d->branch_switches = d->branches_lost = 0;
     d->impacts = 0, d->impact_loss = d->impact_friction_max = 0.0;
+    d->impacts_over_friction = 0;
     d->two_point = d->pending = 0, d->two_point_time = 0.0;
     d->next_hint = SIZE_MAX;
     d->resting = 0, d->rest_since = NAN;

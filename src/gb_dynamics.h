@@ -129,6 +129,10 @@ typedef struct gb_dynamics_def {
                                     * points are taken as held instead: the impact that stops P and Q at once.
                                     * gb_case sets it to the integrator's step T / steps_per_period, so that the
                                     * return the rule removes would fall inside one step. */
+    double friction;               /* μ of the plane, for the monitors only (INFINITY, the default: none). The
+                                    * model's plane is perfectly rough; impacts that need more friction than μ
+                                    * are counted (gb_dynamics_impact_stats), where a plane of that μ would let
+                                    * the body slip, which the model does not follow. */
     gb_atlas_def atlas;            /* certificate = atlas: its cells (its height_tol is certify's) */
     const char *atlas_file;        /* certificate = atlas: load the atlas from here when the file matches the
                                     * body (else build it), and gb_dynamics_save_atlas writes it (NULL: none) */
@@ -213,6 +217,8 @@ int gb_dynamics_jump(gb_dynamics *dynamics, double t, const double y[GB_STATE_SI
  * energy they took (L) and the largest friction they needed. */
 void gb_dynamics_set_impact_sink(gb_dynamics *dynamics, gb_dynamics_impact_sink sink, void *context);
 void gb_dynamics_impact_stats(const gb_dynamics *dynamics, size_t *impacts, double *energy_lost, double *friction_max);
+/* Impacts so far that needed more friction than def.friction (0 when it is INFINITY). */
+size_t gb_dynamics_impacts_over_friction(const gb_dynamics *dynamics);
 /* The two-point mode up to time t: the time spent in it, how often it was entered from one point, the
  * impacts the settle rule ended (`settled`: entries and third points), how often it was left by a lift
  * and met a third point; when the body came to rest on three points (NAN: it did not). */

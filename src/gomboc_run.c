@@ -97,6 +97,8 @@ static cJSON *scene_json(const gb_case *c)
         cJSON_AddStringToObject(o, "nodes", gb_contact_nodes_name(d->grid.nodes));
     }
     cli_json_add(o, "damping", d->damping);
+    if (isfinite(d->friction)) cli_json_add(o, "friction", d->friction);
+    else cJSON_AddStringToObject(o, "friction", "rough (no monitor)");
     cJSON_AddStringToObject(o, "integrator", gb_integrate_name(c->integrate.method));
     cli_json_add(o, "steps_per_period", (double)c->integrate.steps_per_period);
     cli_json_add(o, "periods", c->integrate.periods);
@@ -415,6 +417,9 @@ int command_run(int argc, char **argv)
             cli_json_add(m, "normal_force_min", mo->normal_min);
             cli_json_add(m, "friction_needed_max", mo->friction_max);
             cli_json_add(m, "friction_over_half_fraction", (double)mo->friction_over_half / n);
+            /* the scene's friction μ (null when the plane is left perfectly rough: nothing to compare with) */
+            cli_json_add(m, "friction_over_mu_fraction", isfinite(scene.dynamics.friction)
+                                                             ? (double)mo->friction_over_mu / n : NAN);
         }
         if (r.has_certificate) {
             const gb_certify_stats *cs = &r.certificate;
@@ -455,6 +460,7 @@ int command_run(int argc, char **argv)
             cli_json_add(m, "energy_lost", r.impact_energy_lost);
             cli_json_add(m, "friction_needed_max", r.impact_friction_max);
             cli_json_add(m, "settled", (double)r.two_point.settled);
+            cli_json_add(m, "over_friction", isfinite(scene.dynamics.friction) ? (double)r.impacts_over_friction : NAN);
             cJSON *tp = cJSON_AddObjectToObject(root, "two_point");
             cli_json_add(tp, "time_fraction", r.two_point.time / r.t_end);
             cli_json_add(tp, "entries", (double)r.two_point.entries);
@@ -493,5 +499,11 @@ int command_run(int argc, char **argv)
     if (status) return cli_failure("run", status);
     fprintf(stderr, "gomboc run: %s: contact law %s; %zu steps in %.2f s CPU; fingerprint %s/%s\n", case_path,
             gb_dynamics_contact_law_name(scene.dynamics.contact_law), r.stats.steps, r.seconds, state_print, switch_print);
+    const size_t over = r.has_monitors ? r.monitors.friction_over_mu : 0;
+    if (isfinite(scene.dynamics.friction) && (over || r.impacts_over_friction))
+        fprintf(stderr, "gomboc run: %s: %zu of %zu impacts and %.2f %% of the samples need more friction than the scene's "
+                "friction = %g: a plane of that friction would let the body slip there, which this model (a perfectly "
+                "rough plane) does not follow\n", case_path, r.impacts_over_friction, r.impacts,
+                100.0 * (double)over / (double)(r.samples ? r.samples : 1), scene.dynamics.friction);
     return 0;
 }

@@ -141,6 +141,8 @@ static const bad_row rows[] = {
     {RUN, "[forcing]\nomega = 1e-300\n", 0, 2, {"case.ini:2: [forcing] omega = 1e-300", "out of range", "0.01 <= omega <= 10000 [rad/s]"}},
     {RUN, "[forcing]\ng = 1e308\n", 0, 2, {"case.ini:2: [forcing] g = 1e308", "out of range", "0 <= g <= 1000 [m/s2]"}},
     {RUN, "[model]\ndamping = 1e300\n", 0, 2, {"case.ini:2: [model] damping", "out of range", "0 <= damping <= 1000 [N m s]"}},
+    {RUN, "[model]\nfriction = 0\n", 0, 2, {"case.ini:2: [model] friction", "out of range", "0 < friction <= 1000"}},
+    {RUN, "[model]\nfriction = nan\n", 0, 2, {"case.ini:2: [model] friction", "", "0 < friction <= 1000"}},
     {RUN, "[initial]\nomega = 1e308,0,0\n", 0, 2, {"case.ini:2: [initial] omega", "out of range", "-1000 <= each component <= 1000 [rad/s]"}},
     {RUN, "[forcing]\nA2 = 1e308\n", 0, 2, {"case.ini:2: [forcing] A2", "out of range", "-1000 <= A2 <= 1000"}},
     {RUN, "[body]\nmass = 1e-300\n", 0, 2, {"case.ini:2: [body] mass", "out of range", "1e-06 <= mass <= 1000000 [kg]"}},
