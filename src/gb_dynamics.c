@@ -519,7 +519,9 @@ static int second_point(gb_dynamics *d, const double zb[3], gb_contact_point *q)
     return GB_OK;
 }
 
-static int two_point_at(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], two_point_eval *tp)
+/* The mode at state y: the points, σ and ω̇; with `forces`, the normal forces, the friction they need and
+ * the balance too (events and observables need them; the vector field does not). */
+static int two_point_eval_at(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], two_point_eval *tp, int forces)
 {
     const double L = d->def.length, m = d->def.mass, c = d->def.damping;
     const double *omega = y + GB_STATE_OMEGA;
@@ -564,6 +566,10 @@ static int two_point_at(gb_dynamics *d, double t, const double y[GB_STATE_SIZE],
     const double s = tp->sigma;
     const double sigma_dot = (m * geff * gb_vec_dot(zxu, tp->rp) - c * s - 0.5 * K * s * s) / Iu;
     for (int k = 0; k < 3; k++) tp->omega_dot[k] = sigma_dot * u[k] + s * s * du[k];
+    if (!forces) {
+        tp->normal[0] = tp->normal[1] = tp->friction_needed = tp->balance = NAN;
+        return GB_OK;
+    }
     /* Newton–Euler with these accelerations: the contact forces F = m a_G + m g_eff z_b, their moment
      * about G, M = I_G ω̇ + ω × I_G ω + c ω = r_P × F_P + r_Q × F_Q, so (r_P − r_Q) × F_P = M − r_Q × F
      * fixes F_P across PQ; its part along PQ (and Q's) is the internal force statics leaves open. */
@@ -593,6 +599,11 @@ static int two_point_at(gb_dynamics *d, double t, const double y[GB_STATE_SIZE],
     return GB_OK;
 }
 
+static int two_point_at(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], two_point_eval *tp)
+{
+    return two_point_eval_at(d, t, y, tp, 1);
+}
+
 int gb_dynamics_rhs(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], double dydt[GB_STATE_SIZE])
 {
     double zb[3];
@@ -612,7 +623,7 @@ int gb_dynamics_rhs(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], dou
     }
     if (d->two_point) {
         two_point_eval tp;
-        status = two_point_at(d, t, y, &tp);
+        status = two_point_eval_at(d, t, y, &tp, 0);
         if (status) return status;
         c = tp.p;
         memcpy(dydt + GB_STATE_OMEGA, tp.omega_dot, sizeof tp.omega_dot);
@@ -1208,7 +1219,7 @@ int gb_dynamics_accept(gb_dynamics *d, double t, double y[GB_STATE_SIZE], double
                                   "step of the two-point mode (%s)", t, d->pending == PENDING_LIFT ? "a normal force below 0"
                                   : "a third point lower than both");
         two_point_eval tp;
-        if (!status) status = two_point_at(d, t, y, &tp);
+        if (!status) status = two_point_eval_at(d, t, y, &tp, 0);
         if (status) return status;
         set_contact(d, &tp.p.point);
         d->contact2 = tp.q;
