@@ -546,8 +546,10 @@ static int two_point_eval_at(gb_dynamics *d, double t, const double y[GB_STATE_S
     tp->sigma = gb_vec_dot(omega, u);
     /* ṙ_P, ṙ_Q per unit σ (eq 72 with ω = u: the rates are linear in ω), and u̇ per unit σ */
     double vp[3], vq[3], du[3];
-    status = point_rate(d, zb, &tp->p.point, u, vp);
-    if (!status && d->q_valid) gb_contact_rate_from(d->q_dq, d->q_zb, &tp->q, u, vq, NULL); /* Q's own sensitivity */
+    /* each point's rate from the sensitivity its Newton solve left (contact_at's for P, second_point's for Q) */
+    if (d->def.contact == GB_CONTACT_MODEL_CONTINUOUS && d->last_valid) gb_contact_rate_from(d->last_dq, d->last_zb, &tp->p.point, u, vp, NULL);
+    else status = point_rate(d, zb, &tp->p.point, u, vp);
+    if (!status && d->q_valid) gb_contact_rate_from(d->q_dq, d->q_zb, &tp->q, u, vq, NULL);
     else if (!status) status = point_rate(d, zb, &tp->q, u, vq);
     if (status) return status;
     for (int k = 0; k < 3; k++) vp[k] *= L, vq[k] *= L;
