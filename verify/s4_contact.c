@@ -22,6 +22,7 @@
 #include <gsl/gsl_randist.h>
 #include <gsl/gsl_rng.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -268,6 +269,77 @@ static void compare_fast_with_brute(int c, size_t n_phi, gb_contact_nodes nodes,
                   t ? gb_contact_tracker_vertices(t) : 0, size, cold_visited / count, warm_visited / count);
     gb_contact_tracker_free(t);
     if (!status) gb_contact_grid_free(g);
+}
+
+/* The lowest node but one or two (what a grid body pivoting about a node, or rocking on an edge, meets
+ * the plane with next; gb_contact_grid_lowest_except) against brute force over the nodes left in: every
+ * case, the Table 1 grid, the sample's verticals, the nodes left out being the lowest (and the second
+ * lowest) there, and a random hint; and on the sphere's exact ties along the axis. */
+static void test_lowest_except(void)
+{
+    draw_sample();
+    size_t wrong = 0, queries = 0;
+    for (int c = 0; c < CASE_COUNT; c++) {
+        gb_surface s;
+        gb_surface_init(&s, cases[c].morphology, cases[c].beta);
+        gb_contact_grid_def def = gb_contact_grid_default_def();
+        gb_contact_grid *g = NULL;
+        if (gb_contact_grid_create(&s, &def, &g)) {
+            wrong++;
+            continue;
+        }
+        const size_t size = gb_contact_grid_size(g);
+        double *x = malloc(3 * size * sizeof *x);
+        for (size_t i = 0; x && i < size; i++) gb_contact_grid_node(g, i, NULL, NULL, x + 3 * i);
+        for (int k = 0; x && k < 2000; k++) {
+            const double *zb = sample_zb[k];
+            double d[3];
+            gb_contact_unit_vertical(zb, d); /* the unit vertical every grid search uses */
+            /* brute force: the three lowest (ties to the lower index), as node heights are computed */
+            size_t order[3] = {SIZE_MAX, SIZE_MAX, SIZE_MAX};
+            double best[3] = {INFINITY, INFINITY, INFINITY};
+            for (size_t i = 0; i < size; i++) {
+                const double h = d[0] * x[3 * i] + d[1] * x[3 * i + 1] + d[2] * x[3 * i + 2];
+                for (int r = 0; r < 3; r++)
+                    if (h < best[r]) {
+                        for (int m = 2; m > r; m--) best[m] = best[m - 1], order[m] = order[m - 1];
+                        best[r] = h, order[r] = i;
+                        break;
+                    }
+            }
+            for (int left_out = 1; left_out <= 2; left_out++) {
+                gb_contact_node node;
+                const size_t hint = (size_t)k * 7919 % size;
+                queries++;
+                if (gb_contact_grid_lowest_except(g, zb, hint, order, left_out, &node) || node.index != order[left_out])
+                    wrong++;
+            }
+        }
+        free(x);
+        gb_contact_grid_free(g);
+    }
+    /* the sphere along its axis: a whole row ties; the first of it is left out, the second must come */
+    gb_surface sphere;
+    gb_surface_init(&sphere, "I", 0.0);
+    gb_contact_grid_def def = gb_contact_grid_default_def();
+    gb_contact_grid *g = NULL;
+    int tie_ok = !gb_contact_grid_create(&sphere, &def, &g);
+    if (tie_ok) {
+        const double zb[3] = {0.0, 0.0, 1.0};
+        gb_contact_node first, next;
+        tie_ok = !gb_contact_grid_brute(g, zb, &first) &&
+                 !gb_contact_grid_lowest_except(g, zb, SIZE_MAX, &first.index, 1, &next) && next.index == first.index + 1 &&
+                 next.height == first.height;
+    }
+    size_t bad = 0;
+    gb_contact_node none;
+    tie_ok &= g && gb_contact_grid_lowest_except(g, (const double[3]){0, 0, 1}, SIZE_MAX, &bad, 3, &none) == GB_EINVAL;
+    gb_error_clear();
+    gb_contact_grid_free(g);
+    gb_check c = {"4", "29", "the lowest grid node but one or two (a grid body's next node under the unilateral law)",
+                  "brute force over the nodes left in (the 2000 first sample verticals, 4 bodies, grid 90 x 180)", "exact: the same node"};
+    gb_check_true(&c, wrong == 0 && queries > 0 && tie_ok, "%zu of %zu queries differ; the sphere's tied row %s; 3 left out %s",
+                  wrong, queries, tie_ok ? "gives its second node" : "fails", tie_ok ? "refused" : "not refused");
 }
 
 static void test_fast_equals_brute(void)
@@ -887,6 +959,8 @@ int verify_register_s4_contact(void)
 {
     static const verify_test tests[] = {
         {"eq 29: grid nodes where documented; every bad input refused", test_grid_nodes_and_errors, NULL},
+        {"eq 29: the lowest node but one or two against brute force", test_lowest_except,
+         "the next node a grid body meets the plane with is the lowest of the nodes it does not stand on"},
         {"eq 29: the exact fast grid search returns the brute-force node", test_fast_equals_brute,
          "the fast grid search returns the paper's brute-force node, bit for bit and with the same "
          "tie-break, for 10⁴ random verticals per body, β and node placement"},
