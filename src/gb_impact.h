@@ -46,8 +46,9 @@ int gb_impact_solve(const gb_impact_body *body, const double normal[3], double e
 
 /* The plastic impact that holds all `count` points at rest after, whatever the signs of its impulses: a
  * chatter of impacts lumped into one (the dynamics' settle rule). Where the impulses are indeterminate
- * (three points), the minimum-norm ones. GB_EDOM as gb_impact_solve; GB_ENUMERIC when no impulses hold
- * them (points that do not fix the body, as two coincident ones). */
+ * (coincident points, three points), the minimum-norm ones. The system always has a solution (the
+ * points' velocities lie in the range of the Delassus operator); GB_ENUMERIC only if its SVD solve
+ * misses it by more than its residual tolerance. GB_EDOM as gb_impact_solve. */
 int gb_impact_hold_all(const gb_impact_body *body, const double normal[3], const double (*points)[3], int count,
                        const double v[3], const double omega[3], gb_impact_result *out);
 /* The kinetic energy ½ m |v|² + ½ ω·Iω. */
