@@ -260,8 +260,7 @@ static int grid_unilateral(const gb_dynamics *d)
 static void grid_point(const gb_dynamics *d, size_t index, const double zb[3], gb_contact_point *p)
 {
     double unit[3];
-    const double n = gb_vec_norm(zb);
-    for (int k = 0; k < 3; k++) unit[k] = zb[k] / n;
+    gb_contact_unit_vertical(zb, unit); /* a state's vertical: never zero */
     memset(p, 0, sizeof *p);
     gb_contact_grid_node(d->grid, index, &p->phi, &p->theta, p->rc);
     p->height = gb_vec_dot(unit, p->rc);
@@ -609,21 +608,19 @@ static int two_point_at(gb_dynamics *d, double t, const double y[GB_STATE_SIZE],
 int gb_dynamics_rhs(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], double dydt[GB_STATE_SIZE])
 {
     double zb[3];
-    const double *q = y + GB_STATE_Q, *omega = y + GB_STATE_OMEGA;
+    static const double at_rest[3] = {0.0, 0.0, 0.0};
+    /* at rest on three points nothing turns, whatever rounding is left in the state's ω */
+    const double *q = y + GB_STATE_Q, *omega = d->resting ? at_rest : y + GB_STATE_OMEGA;
     vertical_of_quaternion(q, zb);
     contact_eval c;
     int status = GB_OK;
     double geff, geff_rate;
     gb_forcing_geff_with_rate(&d->def.forcing, t, &geff, &geff_rate);
     if (d->resting) {
-        /* at rest on three points: nothing turns; the weight's work moves with g_eff (Ẇ = m ġ_eff ζ) */
         status = contact_at(d, t, zb, omega, &c);
         if (status) return status;
-        memset(dydt, 0, GB_STATE_SIZE * sizeof *dydt);
-        dydt[GB_STATE_WORK] = d->def.mass * geff_rate * -gb_vec_dot(zb, c.rc);
-        return GB_OK;
-    }
-    if (d->two_point) {
+        memset(dydt + GB_STATE_OMEGA, 0, 3 * sizeof *dydt);
+    } else if (d->two_point) {
         two_point_eval tp;
         status = two_point_eval_at(d, t, y, &tp, 0);
         if (status) return status;
@@ -1063,6 +1060,60 @@ static int two_point_search(gb_dynamics *d, double t, const double y[GB_STATE_SI
     return status;
 }
 
+/* The outcome of a third point `third` [m] landing while the body rolls on P and Q (points[0], points[1] [m];
+ * points[2] is `third`), nothing booked: Moreau's impact over the three, then the settle rule (a point of the
+ * old pair that would fall back within the settle time is held with the third; both: the body stops on all
+ * three). *held: the points held after (2 or 3, or 1: the third alone), *back: the first return time, *settled:
+ * the settle rule decided. */
+static int third_point_outcome(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const gb_contact_point *third,
+                               const double points[3][3], double v[3], gb_impact_result *r, int *held, double *back,
+                               int *settled)
+{
+    int status = impact_solve(d, t, y, points[0], points, 3, v, r);
+    if (status) return status;
+    *held = r->holds[0] + r->holds[1] + r->holds[2];
+    *back = INFINITY;
+    *settled = 0;
+    if (!r->holds[2])
+        return gb_error_set(GB_ENUMERIC, "unilateral contact at t = %.9g: a third point reaches the plane and does not "
+                            "hold after the impact", t);
+    if (*held == 1) {
+        /* The settle rule, as at a switch: P or Q lifts and would fall back within the settle time, so the
+         * body is held on the third point and that one (the lumped chatter, hold_both). */
+        double yafter[GB_STATE_SIZE];
+        memcpy(yafter, y, sizeof yafter);
+        memcpy(yafter + GB_STATE_OMEGA, r->omega, sizeof r->omega);
+        const double back_p = return_time(d, t, yafter, third, r->v, points[0]);
+        const double back_q = return_time(d, t, yafter, third, r->v, points[1]);
+        const int k = back_q < back_p;
+        *back = fmin(back_p, back_q);
+        if (fmax(back_p, back_q) < d->def.settle_time) {
+            /* both would fall back within it: the body stops on the three points (the chatter's limit) */
+            double zb[3];
+            vertical_of(y, zb);
+            gb_impact_body body = {d->def.mass, {{0}}};
+            memcpy(body.inertia, d->inertia, sizeof body.inertia);
+            status = gb_impact_hold_all(&body, zb, points, 3, v, y + GB_STATE_OMEGA, r);
+            if (status) return status;
+            *held = 3, *settled = 1;
+        } else if (*back < d->def.settle_time) {
+            gb_impact_result h; /* its slots: 0 the third point, 1 the one held with it */
+            hold_both(d, y, points[2], points[k], v, &h);
+            *r = h;
+            for (int j = 0; j < 3; j++) {
+                const int from = j == 2 ? 0 : j == k ? 1 : -1;
+                r->holds[j] = from >= 0;
+                r->normal_impulse[j] = from >= 0 ? h.normal_impulse[from] : 0.0;
+                r->tangential_impulse[j] = from >= 0 ? h.tangential_impulse[from] : 0.0;
+            }
+            /* at the third point, which lands (the one held with it may pull, as P in the settle rule) */
+            r->friction_needed = r->normal_impulse[2] > 0.0 ? r->tangential_impulse[2] / r->normal_impulse[2] : INFINITY;
+            *held = 2, *settled = 1;
+        }
+    }
+    return GB_OK;
+}
+
 /* Two-point mode: the located event at state y (its `other` from two_point_pending, continued). */
 static int two_point_event(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const gb_contact_point *third)
 {
@@ -1091,50 +1142,11 @@ static int two_point_event(gb_dynamics *d, double t, double y[GB_STATE_SIZE], co
     const double L = d->def.length;
     const double points[3][3] = {{tp.rp[0], tp.rp[1], tp.rp[2]}, {tp.rq[0], tp.rq[1], tp.rq[2]},
                                  {L * third->rc[0], L * third->rc[1], L * third->rc[2]}};
-    double v[3];
+    double v[3], back;
     gb_impact_result r;
-    status = impact_solve(d, t, y, tp.rp, points, 3, v, &r);
+    int held, settled;
+    status = third_point_outcome(d, t, y, third, points, v, &r, &held, &back, &settled);
     if (status) return status;
-    int held = r.holds[0] + r.holds[1] + r.holds[2];
-    if (!r.holds[2])
-        return gb_error_set(GB_ENUMERIC, "unilateral contact at t = %.9g: a third point reaches the plane and does not "
-                            "hold after the impact", t);
-    double back = INFINITY;
-    int settled = 0;
-    if (held == 1) {
-        /* The settle rule, as at a switch: P or Q lifts and would fall back within the settle time, so the
-         * body is held on the third point and that one (the lumped chatter, hold_both). */
-        double yafter[GB_STATE_SIZE];
-        memcpy(yafter, y, sizeof yafter);
-        memcpy(yafter + GB_STATE_OMEGA, r.omega, sizeof r.omega);
-        const double back_p = return_time(d, t, yafter, third, r.v, points[0]);
-        const double back_q = return_time(d, t, yafter, third, r.v, points[1]);
-        const int k = back_q < back_p;
-        back = fmin(back_p, back_q);
-        if (fmax(back_p, back_q) < d->def.settle_time) {
-            /* both would fall back within it: the body stops on the three points (the chatter's limit) */
-            double zb[3];
-            vertical_of(y, zb);
-            gb_impact_body body = {d->def.mass, {{0}}};
-            memcpy(body.inertia, d->inertia, sizeof body.inertia);
-            status = gb_impact_hold_all(&body, zb, points, 3, v, y + GB_STATE_OMEGA, &r);
-            if (status) return status;
-            held = 3, settled = 1;
-        } else if (back < d->def.settle_time) {
-            gb_impact_result h; /* its slots: 0 the third point, 1 the one held with it */
-            hold_both(d, y, points[2], points[k], v, &h);
-            r = h;
-            for (int j = 0; j < 3; j++) {
-                const int from = j == 2 ? 0 : j == k ? 1 : -1;
-                r.holds[j] = from >= 0;
-                r.normal_impulse[j] = from >= 0 ? h.normal_impulse[from] : 0.0;
-                r.tangential_impulse[j] = from >= 0 ? h.tangential_impulse[from] : 0.0;
-            }
-            /* at the third point, which lands (the one held with it may pull, as P in the settle rule) */
-            r.friction_needed = r.normal_impulse[2] > 0.0 ? r.tangential_impulse[2] / r.normal_impulse[2] : INFINITY;
-            held = 2, settled = 1;
-        }
-    }
     gb_dynamics_impact e = {.t = t, .located = 1, .kind = GB_IMPACT_THIRD, .contacts_after = held,
                             .settled = settled, .return_time = back};
     const int old = held == 2 && r.holds[1]; /* the one that stays (P when none does) */
@@ -1143,7 +1155,8 @@ static int two_point_event(gb_dynamics *d, double t, double y[GB_STATE_SIZE], co
         /* Three points stop the body (ω = 0). With the vertical forcing alone (g_eff > 0) it stays at rest
          * if its weight falls inside the triangle: the static normal forces are m g_eff times the
          * barycentric weights of G's foot, w_k = z_b·(p_i × p_j) / z_b·((p_j − p_i) × (p_k − p_i)) for
-         * the cyclic (i, j, k). One weight below 0: it tips about the other two points, from rest. */
+         * the cyclic (i, j, k). One weight below 0: it tips about the other two points, from rest (the
+         * impact's record says three held: the tip begins after it). */
         double zb[3], w[3], a[3], b[3], n[3];
         vertical_of(y, zb);
         for (int k = 0; k < 3; k++) a[k] = points[1][k] - points[0][k], b[k] = points[2][k] - points[0][k];
@@ -1159,7 +1172,6 @@ static int two_point_event(gb_dynamics *d, double t, double y[GB_STATE_SIZE], co
             return gb_error_set(GB_ENUMERIC, "unilateral contact at t = %.9g: the body stops on three points whose "
                                 "triangle holds neither its weight nor an edge to tip about (weights %.3g, %.3g, %.3g)",
                                 t, w[0], w[1], w[2]);
-        e.contacts_after = negative ? 2 : 3;
         if (!negative) {
             d->two_point = 0;
             d->two_point_time += t - d->two_point_since;
@@ -1347,7 +1359,9 @@ int gb_dynamics_jump(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], co
         if (!status) status = point_at(d, zb, branch, &r);
         const double points[3][3] = {{L * p.rc[0], L * p.rc[1], L * p.rc[2]}, {L * q.rc[0], L * q.rc[1], L * q.rc[2]},
                                      {L * r.rc[0], L * r.rc[1], L * r.rc[2]}};
-        if (!status) status = impact_solve(d, t, y, points[0], points, 3, v, &res);
+        double back;
+        int held, settled;
+        if (!status) status = third_point_outcome(d, t, y, &r, points, v, &res, &held, &back, &settled);
     } else if (!status) {
         double points[2][3], back;
         int both;
