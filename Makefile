@@ -61,7 +61,9 @@ run: deps
 RUN_SCENES    := table1-gomboc-I table1-gomboc-II
 VERIFY_SCENES := $(RUN_SCENES) table1-gomboc-I-g-units table1-gomboc-II-g-units harmonic-gomboc-I harmonic-gomboc-II \
                  table1-gomboc-I-rolling table1-gomboc-II-rolling table1-gomboc-I-unilateral table1-gomboc-II-unilateral \
-                 table1-gomboc-I-grid-unilateral table1-gomboc-II-grid-unilateral
+                 table1-gomboc-I-grid-unilateral table1-gomboc-II-grid-unilateral \
+                 table1-gomboc-I-g-units-unilateral table1-gomboc-II-g-units-unilateral \
+                 table1-gomboc-I-g-units-bouncing table1-gomboc-II-g-units-bouncing
 
 run-only: $(BIN)
 	@mkdir -p $(OUT)

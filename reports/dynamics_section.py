@@ -12,7 +12,9 @@ import matplotlib.pyplot as plt  # noqa: E402
 from common import load_json, save_figure  # noqa: E402
 
 SCENE_ORDER = ["table1-gomboc-I", "table1-gomboc-II", "table1-gomboc-I-g-units", "table1-gomboc-II-g-units",
-               "harmonic-gomboc-I", "harmonic-gomboc-II", "table1-gomboc-I-rolling", "table1-gomboc-II-rolling"]
+               "harmonic-gomboc-I", "harmonic-gomboc-II", "table1-gomboc-I-rolling", "table1-gomboc-II-rolling",
+               "table1-gomboc-I-g-units-unilateral", "table1-gomboc-II-g-units-unilateral",
+               "table1-gomboc-I-g-units-bouncing", "table1-gomboc-II-g-units-bouncing"]
 
 
 def work_precision(out):

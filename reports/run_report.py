@@ -159,6 +159,12 @@ def summary_lines(name, summary):
                      f"{impacts['settled']:.0f} impacts ended by the settle rule; {two_point['lifts']:.0f} lifts, "
                      f"{two_point['third_points']:.0f} third points"
                      + (f"; at rest on three points from t = {rest:.4f} s" if rest is not None else "") + ")")
+    flight = summary.get("flight")
+    if flight and (flight["lift_offs"] or flight["landings"]):
+        lines.append(f"- flight (restitution e = {flight['restitution']:g}): {100 * flight['flight_time_fraction']:.1f} % of the "
+                     f"run in flight; {flight['lift_offs']:.0f} lift-offs, {flight['landings']:.0f} landings "
+                     f"({flight['bounces']:.0f} bounced); highest gap between the lowest point and the plane "
+                     f"{flight['max_hop_height']:.4g} m")
     lines.append(f"- attitude: max |RᵀR − I| = {summary['orthonormality_max']:.2g}; largest quaternion-norm "
                  f"correction {summary['quaternion_drift_max']:.2g}")
     monitors = summary.get("monitors")

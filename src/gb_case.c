@@ -124,6 +124,7 @@ static const key_def keys[] = {
     NAME("model", "nodes", parse_nodes),
     REAL("model", "damping", 0.0, 1000.0, 0, "[N m s]", dynamics.damping),
     REAL("model", "friction", 0.0, 1000.0, OPEN_MIN, "(the plane's mu, for the monitors)", dynamics.friction),
+    REAL("model", "restitution", 0.0, 1.0, 0, "(Newton's e; needs contact_law = unilateral)", dynamics.restitution),
     NAME("integrator", "method", parse_method),
     COUNT("integrator", "steps_per_period", 1, 100000000, integrate.steps_per_period),
     REAL("integrator", "periods", 0.0, 1e7, OPEN_MIN, "[forcing periods]", integrate.periods),
@@ -132,6 +133,10 @@ static const key_def keys[] = {
     FLAG("integrator", "locate_switches", integrate.locate_switches),
     {"initial", "attitude", KEY_ATTITUDE, 0, 0, 0, NULL, 0, NULL},
     {"initial", "omega", KEY_VECTOR, -1000.0, 1000.0, 0, "[rad/s]", AT(omega0), NULL},
+    REAL("initial", "height", 0.0, 1e6, 0, "[m] (the lowest point above the plane; needs contact_law = unilateral)",
+         dynamics.height0),
+    {"initial", "velocity", KEY_VECTOR, -1e4, 1e4, 0, "[m/s] (the centroid, inertial axes; needs contact_law = unilateral)",
+     AT(dynamics.velocity0), NULL},
     FLAG("output", "history", write_history),
     FLAG("output", "summary", write_summary),
     FLAG("output", "impacts", write_impacts),
@@ -425,6 +430,16 @@ static int cross_check(const char *path, gb_case *c)
         return cross_fail(path, c, "integrator", "locate_switches",
                           "= no with [model] contact_law = unilateral: every impact is located inside its step (allowed: "
                           "yes with contact_law = unilateral)");
+    if (c->dynamics.contact_law != GB_CONTACT_LAW_UNILATERAL) {
+        const double *v = c->dynamics.velocity0;
+        const char *key = c->dynamics.restitution != 0.0 ? "restitution" : c->dynamics.height0 != 0.0 ? "height"
+                          : (v[0] != 0.0 || v[1] != 0.0 || v[2] != 0.0)                             ? "velocity"
+                                                                                                  : NULL;
+        if (key)
+            return cross_fail(path, c, strcmp(key, "restitution") ? "initial" : "model", key,
+                              "with [model] contact_law = held: a held contact never leaves the plane and has no impacts "
+                              "(allowed: the default, 0, with contact_law = held; any value in range with unilateral)");
+    }
     if (c->write_impacts && c->dynamics.contact_law != GB_CONTACT_LAW_UNILATERAL)
         return cross_fail(path, c, "output", "impacts",
                           "= yes with [model] contact_law = held: a held contact has no impacts (allowed: yes with "

@@ -8,6 +8,7 @@
 #include "gb_vec.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -118,6 +119,17 @@ struct gb_dynamics {
     gb_contact_point contact2;
     double two_point_since, two_point_time;
     size_t two_point_entries, settled, lifts, third_points;
+    /* Flight (the unilateral law): since fly_t0 the centroid moves under g_eff alone, from height fly_zeta0
+     * above the plane with velocity fly_v0 (inertial, relative to the plane): closed form (flight_state).
+     * `contact` is then the lowest point, continued and certified as a contact is. flight_event: the event
+     * gb_dynamics_switch_pending found (FLIGHT_NONE, FLIGHT_LIFT_OFF, FLIGHT_LANDING), for
+     * gb_dynamics_branch_gap, gb_dynamics_switch_to and gb_dynamics_jump. */
+    int flying, flight_event;
+    double gap_allow; /* a landing is the lowest point this far below the plane [body lengths]: FLIGHT_GAP_TOL,
+                       * or a lift-off's dip until the gap has opened */
+    double fly_t0, fly_zeta0, fly_v0[3];
+    double flight_since, flight_time, hop_max;
+    size_t lift_offs, landings, bounces;
     /* The last competitor() answer and the state it was for: with switch location, the step's end is
      * checked by gb_dynamics_switch_pending and then again by gb_dynamics_accept at the same state. */
     int memo_valid, memo_found, memo_pending;
@@ -143,6 +155,17 @@ int gb_dynamics_create(const gb_surface *surface, const gb_dynamics_def *def, gb
         return gb_error_set(GB_EDOM, "friction = %g is out of range (allowed: > 0)", def->friction);
     if (!(isfinite(def->damping) && def->damping >= 0.0))
         return gb_error_set(GB_EDOM, "damping c = %g is out of range (allowed: finite, >= 0)", def->damping);
+    if (!(def->restitution >= 0.0 && def->restitution <= 1.0))
+        return gb_error_set(GB_EDOM, "restitution e = %g is out of range (allowed: 0 <= e <= 1)", def->restitution);
+    if (!(isfinite(def->height0) && def->height0 >= 0.0) ||
+        !(isfinite(def->velocity0[0]) && isfinite(def->velocity0[1]) && isfinite(def->velocity0[2])))
+        return gb_error_set(GB_EDOM, "initial height %g or velocity is out of range (allowed: height finite, >= 0; "
+                            "velocity finite)", def->height0);
+    if (def->contact_law != GB_CONTACT_LAW_UNILATERAL &&
+        (def->restitution != 0.0 || def->height0 != 0.0 || def->velocity0[0] != 0.0 || def->velocity0[1] != 0.0 ||
+         def->velocity0[2] != 0.0))
+        return gb_error_set(GB_EINVAL, "restitution, an initial height and an initial velocity need the unilateral "
+                            "law (allowed with held: e = 0, height 0, velocity 0)");
     /* Under the unilateral law a grid body is a polyhedron pivoting about a vertex between impacts: ṙ_c = 0,
      * where eq 44 and the rolling equation are the same equation. Continuous contact moves the contact along
      * the surface, where only the rolling equation conserves energy (docs/rolling.md). */
@@ -481,6 +504,102 @@ static double normal_force_of(const gb_dynamics *d, double geff, const double zb
     return d->def.mass * (geff + gb_vec_dot(acc, zb));
 }
 
+/* The accepted contact (P) becomes p; a grid body's node index with it. */
+static void set_contact(gb_dynamics *d, const gb_contact_point *p)
+{
+    d->contact = *p;
+    if (d->def.contact != GB_CONTACT_MODEL_CONTINUOUS) d->index = p->node;
+}
+
+/* ---------------------------------------------------------------- flight (unilateral law) */
+
+enum { FLIGHT_NONE = 0, FLIGHT_LIFT_OFF = 1, FLIGHT_LANDING = 2 };
+
+/* A landing is the lowest point this far below the plane [body lengths]. At a lift-off the gap opens as
+ * the cube of the time (N = 0 there: the gap's first two derivatives vanish), where its rounding (1e-16 of
+ * the centroid's height) would meet the plane again at once; 1e-12 is far above that rounding and far
+ * below any length of the problem. */
+#define FLIGHT_GAP_TOL GB_DYNAMICS_LANDING_TOL
+/* The deepest dip a lift-off may make [body lengths] (lift_off_consistent): a micrometre for a body of a metre,
+ * below the elastic compliance of any real body under its own weight. */
+#define LIFT_OFF_DIP_MAX 1e-6
+
+/* ∫ g_eff ds over [t0, t] and its integral again, ∫∫ g_eff du ds, in closed form from eq 25. */
+static void geff_integrals(const gb_forcing *f, double t0, double t, double *once, double *twice)
+{
+    const double dt = t - t0;
+    const double amp[2] = {f->a1, f->a2}, w[2] = {f->omega, 2.0 * f->omega}, phase[2] = {0.0, f->psi};
+    *once = f->g * dt;
+    *twice = 0.5 * f->g * dt * dt;
+    for (int k = 0; k < 2; k++) {
+        if (amp[k] == 0.0) continue; /* as gb_forcing skips it */
+        const double s0 = sin(w[k] * t0 + phase[k]), c0 = cos(w[k] * t0 + phase[k]);
+        const double s1 = sin(w[k] * t + phase[k]), c1 = cos(w[k] * t + phase[k]);
+        *once += amp[k] / w[k] * (s1 - s0);
+        *twice += amp[k] / w[k] * ((c0 - c1) / w[k] - s0 * dt);
+    }
+}
+
+/* In flight at time t: the centroid's height above the plane and its velocity relative to the plane
+ * (inertial axes). In the plane's frame the only force is the weight m g_eff: ζ̈ = −g_eff, and the
+ * horizontal velocity is constant. */
+static void flight_state(const gb_dynamics *d, double t, double *zeta, double v[3])
+{
+    double once, twice;
+    geff_integrals(&d->def.forcing, d->fly_t0, t, &once, &twice);
+    *zeta = d->fly_zeta0 + d->fly_v0[2] * (t - d->fly_t0) - twice;
+    v[0] = d->fly_v0[0], v[1] = d->fly_v0[1], v[2] = d->fly_v0[2] - once;
+}
+
+/* Torque-free but for the damping torque −c ω (eq 42, which the scene keeps in flight): I_G ω̇ + ω × I_G ω = −c ω. */
+static int free_angular_acceleration(const gb_dynamics *d, const double omega[3], double omega_dot[3])
+{
+    double I[3][3], Iw[3], gyro[3], rhs[3];
+    memcpy(I, d->inertia, sizeof I);
+    mat_vec(I, omega, Iw);
+    gb_vec_cross(omega, Iw, gyro);
+    for (int k = 0; k < 3; k++) rhs[k] = -gyro[k] - d->def.damping * omega[k];
+    return solve3(I, rhs, omega_dot);
+}
+
+/* The body leaves the plane (or bounces) at time t: its centroid at height zeta above the plane, moving
+ * with v_body (body axes) relative to it. */
+static void start_flight(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const double v_body[3], double zeta)
+{
+    d->gap_allow = FLIGHT_GAP_TOL;
+    double R[9];
+    gb_dynamics_rotation(y + GB_STATE_Q, R);
+    for (int i = 0; i < 3; i++) d->fly_v0[i] = R[3 * i] * v_body[0] + R[3 * i + 1] * v_body[1] + R[3 * i + 2] * v_body[2];
+    d->fly_t0 = t;
+    d->fly_zeta0 = zeta;
+    if (!d->flying) d->flight_since = t;
+    d->flying = 1;
+}
+
+/* Rolling on the accepted contact alone at state y: its normal force N = m (g_eff + z_b·a_G). */
+static int one_point_normal(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], double *n)
+{
+    double zb[3], geff, geff_rate, w_dot[3], acc[3];
+    contact_eval c;
+    vertical_of_quaternion(y + GB_STATE_Q, zb);
+    gb_forcing_geff_with_rate(&d->def.forcing, t, &geff, &geff_rate);
+    int status = contact_at(d, t, zb, y + GB_STATE_OMEGA, &c);
+    if (!status) status = angular_acceleration(d, geff, zb, y + GB_STATE_OMEGA, &c, w_dot);
+    *n = status ? NAN : normal_force_of(d, geff, zb, y + GB_STATE_OMEGA, w_dot, &c, acc);
+    return status;
+}
+
+/* Newton's restitution at a point approaching the plane with normal speed `approach` (> 0) at time t,
+ * and the end to bouncing: a rebound e·approach that would fall back within settle_time under g_eff
+ * (2 e approach / g_eff < settle_time) is taken as plastic, so that a bounce sequence ends in finite time. */
+static double restitution_at(const gb_dynamics *d, double t, double approach)
+{
+    const double e = d->def.restitution;
+    if (e == 0.0) return 0.0;
+    const double geff = gb_forcing_geff(&d->def.forcing, t);
+    return e * approach < 0.5 * fmax(geff, 0.0) * d->def.settle_time ? 0.0 : e;
+}
+
 /* ---------------------------------------------------------------- the two-point mode (unilateral law) */
 
 /* The body rolling on P (the accepted contact, continued) and Q (contact2, continued) at state y. */
@@ -616,7 +735,14 @@ int gb_dynamics_rhs(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], dou
     int status = GB_OK;
     double geff, geff_rate;
     gb_forcing_geff_with_rate(&d->def.forcing, t, &geff, &geff_rate);
-    if (d->resting) {
+    double zeta = NAN;
+    if (d->flying) {
+        /* the centroid's motion is in closed form; only the turning is integrated */
+        double v[3];
+        status = free_angular_acceleration(d, omega, dydt + GB_STATE_OMEGA);
+        if (status) return status;
+        flight_state(d, t, &zeta, v);
+    } else if (d->resting) {
         status = contact_at(d, t, zb, omega, &c);
         if (status) return status;
         memset(dydt + GB_STATE_OMEGA, 0, 3 * sizeof *dydt);
@@ -636,8 +762,9 @@ int gb_dynamics_rhs(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], dou
     dydt[1] = 0.5 * (q[0] * omega[0] + q[2] * omega[2] - q[3] * omega[1]);
     dydt[2] = 0.5 * (q[0] * omega[1] + q[3] * omega[0] - q[1] * omega[2]);
     dydt[3] = 0.5 * (q[0] * omega[2] + q[1] * omega[1] - q[2] * omega[0]);
-    /* Ẇ = P_d + m ġ_eff ζ with ζ = −z_b·r_c (eqs 37, 50) */
-    const double zeta = -gb_vec_dot(zb, c.rc);
+    /* Ẇ = P_d + m ġ_eff ζ with ζ = −z_b·r_c in contact (eqs 37, 50); in flight E = ½ m |v|² + ½ ω·I_G ω +
+     * m g_eff ζ obeys the same balance, since d/dt(½ m |v|²) = −m g_eff ζ̇ there */
+    if (!d->flying) zeta = -gb_vec_dot(zb, c.rc);
     dydt[GB_STATE_WORK] = -d->def.damping * gb_vec_dot(omega, omega) +
                           d->def.mass * geff_rate * zeta;
     return GB_OK;
@@ -779,14 +906,14 @@ int gb_dynamics_save_atlas(const gb_dynamics *d)
     return gb_atlas_save(d->atlas, d->def.atlas_file);
 }
 
-static const char *const impact_kind_names[] = {"switch", "two-point", "lift", "third-point"};
+static const char *const impact_kind_names[] = {"switch", "two-point", "lift", "third-point", "lift-off", "landing", "bounce"};
 
-const char *gb_dynamics_impact_kind_name(gb_dynamics_impact_kind k) { return (unsigned)k < 4 ? impact_kind_names[k] : NULL; }
+const char *gb_dynamics_impact_kind_name(gb_dynamics_impact_kind k) { return (unsigned)k < 7 ? impact_kind_names[k] : NULL; }
 
 /* The plastic impact (gb_impact, body axes, the plane's normal z_b) of the body turning with the ω of y
  * about the point `rest` (at rest on the plane before), on the plane at `count` points [m]. */
 static int impact_solve(const gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const double rest[3],
-                        const double (*points)[3], int count, double v_before[3], gb_impact_result *r)
+                        const double (*points)[3], int count, double e, double v_before[3], gb_impact_result *r)
 {
     double zb[3];
     vertical_of(y, zb);
@@ -794,7 +921,7 @@ static int impact_solve(const gb_dynamics *d, double t, const double y[GB_STATE_
     gb_vec_cross(y + GB_STATE_OMEGA, arm, v_before);
     gb_impact_body body = {d->def.mass, {{0}}};
     memcpy(body.inertia, d->inertia, sizeof body.inertia);
-    if (gb_impact_solve(&body, zb, 0.0, points, count, v_before, y + GB_STATE_OMEGA, r))
+    if (gb_impact_solve(&body, zb, e, points, count, v_before, y + GB_STATE_OMEGA, r))
         return gb_error_set(GB_ENUMERIC, "unilateral contact at t = %.9g: %s; a finite friction coefficient is not built yet",
                             t, gb_error_message());
     return GB_OK;
@@ -806,9 +933,12 @@ static int book(gb_dynamics *d, const gb_dynamics_impact *e)
     d->settled += (size_t)e->settled;
     d->lifts += e->kind == GB_IMPACT_LIFT;
     d->third_points += e->kind == GB_IMPACT_THIRD;
-    if (e->kind != GB_IMPACT_LIFT) {
+    d->lift_offs += e->kind == GB_IMPACT_LIFT_OFF;
+    d->landings += e->kind == GB_IMPACT_LANDING;
+    d->bounces += e->kind == GB_IMPACT_BOUNCE || (e->kind == GB_IMPACT_LANDING && e->rebound);
+    if (e->kind != GB_IMPACT_LIFT && e->kind != GB_IMPACT_LIFT_OFF) {
         d->impacts++;
-        d->impact_loss += e->kinetic_before - e->kinetic_after;
+        d->impact_loss += e->kinetic_before - e->kinetic_after - e->potential_jump;
         d->impact_friction_max = fmax(d->impact_friction_max, e->friction_needed);
         d->impacts_over_friction += e->friction_needed > d->def.friction;
     }
@@ -935,12 +1065,30 @@ static int grazing(const gb_dynamics *d, const double y[GB_STATE_SIZE], const do
  * the solver's answer (the settle rule applied), P's return time and whether both points hold. */
 static int impact_outcome(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const gb_contact_point *from,
                           const gb_contact_point *to, double points[2][3], double v[3], gb_impact_result *r, double *back,
-                          int *both)
+                          int *both, int *bounce)
 {
     const double L = d->def.length;
     for (int k = 0; k < 3; k++) points[0][k] = L * from->rc[k], points[1][k] = L * to->rc[k];
-    int status = impact_solve(d, t, y, points[0], (const double (*)[3])points, 2, v, r);
+    double e = 0.0;
+    *bounce = 0;
+    if (d->def.restitution > 0.0) {
+        /* Q's approach speed, the body turning about P */
+        double zb[3], vg[3], wq[3];
+        vertical_of(y, zb);
+        gb_vec_cross(y + GB_STATE_OMEGA, (const double[3]){-points[0][0], -points[0][1], -points[0][2]}, vg);
+        gb_vec_cross(y + GB_STATE_OMEGA, points[1], wq);
+        e = restitution_at(d, t, -(gb_vec_dot(zb, vg) + gb_vec_dot(zb, wq)));
+    }
+    int status = impact_solve(d, t, y, points[0], (const double (*)[3])points, 2, e, v, r);
     if (status) return status;
+    if (e > 0.0) {
+        /* Q rebounds at e times its approach speed and leaves the plane; P holds (the body rolls on about P)
+         * or separates too (the body hops) */
+        *bounce = r->holds[0] ? 1 : 2;
+        *both = 0;
+        *back = INFINITY;
+        return GB_OK;
+    }
     if (!r->holds[1] && grazing(d, y, v, r, points[1])) {
         /* Q arrives at rest (a grazing event, or two nodes tied at rest as a grid body may start): no
          * impulse, and the forces decide. On both points, the two-point mode's lift event follows at
@@ -969,16 +1117,165 @@ static int impact_outcome(gb_dynamics *d, double t, const double y[GB_STATE_SIZE
 
 /* That impact, booked: ω in y takes its value after. */
 static int impact(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const gb_contact_point *from, const gb_contact_point *to,
-                  int located, int *both)
+                  int located, int *both, int *bounce)
 {
     double points[2][3], v[3], back;
     gb_impact_result r;
-    const int status = impact_outcome(d, t, y, from, to, points, v, &r, &back, both);
+    const int status = impact_outcome(d, t, y, from, to, points, v, &r, &back, both, bounce);
     if (status) return status;
     gb_dynamics_impact e = {.t = t, .located = located, .kind = *both ? GB_IMPACT_TWO_POINT : GB_IMPACT_SWITCH,
                             .contacts_after = 1 + *both, .settled = *both && isfinite(back), .return_time = back};
+    if (*bounce) e.kind = GB_IMPACT_BOUNCE, e.contacts_after = *bounce == 1, e.rebound = 1;
     record(&e, y, points[0], points[1], v, &r, 1, 0);
+    if (*bounce == 2) {
+        /* both points leave the plane: the body flies, its centroid where it is, at its velocity after */
+        double zb[3];
+        vertical_of(y, zb);
+        start_flight(d, t, y, r.v, -gb_vec_dot(zb, points[0]));
+    }
     return book(d, &e);
+}
+
+/* At a lift-off from one point the normal force is 0 but the rolling contact's tangential force F_t
+ * generally is not (the friction it needs, |F_t|/N, grows without bound as N reaches 0). Without F_t the
+ * point's normal acceleration changes by −n·W F_t (W the point's Delassus operator, as in gb_impact): if
+ * that drives the point into the plane, neither rolling (N < 0 after) nor flight (the point would
+ * penetrate) continues the motion: on a plane of finite friction the body slides before it lifts, which
+ * this model (rough, no slip) does not follow. GB_ENUMERIC then, saying so. */
+static int lift_off_consistent(gb_dynamics *d, double t, const double y[GB_STATE_SIZE])
+{
+    const double m = d->def.mass, *omega = y + GB_STATE_OMEGA;
+    double zb[3], geff, geff_rate, w_dot[3], acc[3], F[3], rxF[3], I[3][3], dw[3], dv[3];
+    contact_eval c;
+    if (d->two_point) return GB_OK; /* left by its lift event first: a lift-off is from one point */
+    vertical_of(y, zb);
+    gb_forcing_geff_with_rate(&d->def.forcing, t, &geff, &geff_rate);
+    int status = contact_at(d, t, zb, omega, &c);
+    if (!status) status = angular_acceleration(d, geff, zb, omega, &c, w_dot);
+    if (status) return status;
+    normal_force_of(d, geff, zb, omega, w_dot, &c, acc);
+    for (int k = 0; k < 3; k++) F[k] = m * (acc[k] + geff * zb[k]); /* the contact force rolling needs */
+    /* W F = F/m + (I⁻¹ (r × F)) × r: the contact point's acceleration that F makes */
+    memcpy(I, d->inertia, sizeof I);
+    gb_vec_cross(c.rc, F, rxF);
+    status = solve3(I, rxF, dw);
+    if (status) return status;
+    gb_vec_cross(dw, c.rc, dv);
+    const double drop = gb_vec_dot(zb, F) / m + gb_vec_dot(zb, dv); /* n·W F */
+    if (!(drop > 0.0)) return GB_OK;
+    /* The gap then opens as −a t²/2 + b t³/6 (a = drop, b = −Ṅ/m, N falling through 0), whose deepest dip is
+     * (2/3) a³/b² at t = 2a/b: within the landing tolerance (FLIGHT_GAP_TOL) the lift-off stands. Ṅ by a
+     * forward difference along the rolling flow over 1e-6 of the step. */
+    double f[GB_STATE_SIZE], y2[GB_STATE_SIZE], n2;
+    const double delta = 1e-6 * (d->def.settle_time > 0.0 ? d->def.settle_time : gb_forcing_period(&d->def.forcing) / 160.0);
+    status = gb_dynamics_rhs(d, t, y, f);
+    for (int k = 0; k < GB_STATE_SIZE; k++) y2[k] = y[k] + delta * f[k];
+    if (!status) status = one_point_normal(d, t + delta, y2, &n2);
+    if (status) return status;
+    const double b = -n2 / (delta * m), dip = b > 0.0 ? 2.0 / 3.0 * drop * drop * drop / (b * b) : INFINITY;
+    if (dip > LIFT_OFF_DIP_MAX * d->def.length) {
+        const double fn = gb_vec_dot(zb, F), ft[3] = {F[0] - fn * zb[0], F[1] - fn * zb[1], F[2] - fn * zb[2]};
+        return gb_error_set(GB_ENUMERIC, "lift-off at t = %.9g: the normal force reaches 0 while rolling still needs a "
+                            "friction force of %.3g N, without which the contact point is driven %.3g m into the plane: "
+                            "on a plane of finite friction the body slides before it lifts, which this rough-plane model "
+                            "does not follow (sliding is not built)", t, gb_vec_norm(ft), dip);
+    }
+    /* the flight's landing waits below the dip (twice the estimate) until the gap has opened */
+    d->gap_allow = fmax(d->gap_allow, 2.0 * dip / d->def.length);
+    return GB_OK;
+}
+
+/* The last contact's normal force (or g_eff on three points at rest) has reached 0 at state y: the body
+ * leaves the plane with the velocity it has, no impulse. Ends the two-point mode or the rest. */
+static int lift_off(gb_dynamics *d, double t, double y[GB_STATE_SIZE])
+{
+    const double L = d->def.length;
+    double zb[3], rp[3], v[3];
+    vertical_of(y, zb);
+    gb_contact_point p;
+    int status = point_at(d, zb, &d->contact, &p);
+    double allow = FLIGHT_GAP_TOL;
+    if (!status && !d->resting) {
+        d->gap_allow = FLIGHT_GAP_TOL;
+        status = lift_off_consistent(d, t, y);
+        allow = d->gap_allow;
+    }
+    if (status) return status;
+    if (d->resting) memset(y + GB_STATE_OMEGA, 0, 3 * sizeof *y); /* at rest nothing turns (gb_dynamics_rhs) */
+    for (int k = 0; k < 3; k++) rp[k] = L * p.rc[k];
+    gb_vec_cross(y + GB_STATE_OMEGA, (const double[3]){-rp[0], -rp[1], -rp[2]}, v);
+    gb_impact_result r;
+    memset(&r, 0, sizeof r);
+    memcpy(r.omega, y + GB_STATE_OMEGA, sizeof r.omega);
+    memcpy(r.v, v, sizeof v);
+    gb_impact_body body = {d->def.mass, {{0}}};
+    memcpy(body.inertia, d->inertia, sizeof body.inertia);
+    r.energy_before = r.energy_after = gb_impact_energy(&body, v, r.omega);
+    gb_dynamics_impact e = {.t = t, .located = 1, .kind = GB_IMPACT_LIFT_OFF, .contacts_after = 0, .return_time = INFINITY};
+    record(&e, y, rp, rp, v, &r, 0, -1);
+    if (d->two_point) d->two_point = 0, d->two_point_time += t - d->two_point_since;
+    d->resting = 0;
+    set_contact(d, &p);
+    start_flight(d, t, y, v, -gb_vec_dot(zb, rp));
+    d->gap_allow = allow;
+    return book(d, &e);
+}
+
+/* In flight, the lowest point q (continued to state y) reaches the plane: Moreau's impact at q with
+ * Newton's restitution (restitution_at). A plastic landing leaves the body rolling on q, unless its normal
+ * force is below 0 there (g_eff pulls the plane away faster): then it flies on from q at rest. */
+static int landing(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const gb_contact_point *q)
+{
+    const double L = d->def.length;
+    double zb[3], R[9], zeta, v_in[3], v[3], rq[3], wq[3];
+    gb_dynamics_rotation(y + GB_STATE_Q, R);
+    zb_of(R, zb);
+    flight_state(d, t, &zeta, v_in);
+    for (int i = 0; i < 3; i++) v[i] = R[i] * v_in[0] + R[3 + i] * v_in[1] + R[6 + i] * v_in[2]; /* Rᵀ v */
+    for (int k = 0; k < 3; k++) rq[k] = L * q->rc[k];
+    gb_vec_cross(y + GB_STATE_OMEGA, rq, wq);
+    const double e = restitution_at(d, t, -(gb_vec_dot(zb, v) + gb_vec_dot(zb, wq)));
+    gb_impact_body body = {d->def.mass, {{0}}};
+    memcpy(body.inertia, d->inertia, sizeof body.inertia);
+    gb_impact_result r;
+    if (gb_impact_rough_point(&body, zb, e, rq, v, y + GB_STATE_OMEGA, &r))
+        return gb_error_set(GB_ENUMERIC, "landing at t = %.9g: %s", t, gb_error_message());
+    gb_dynamics_impact rec = {.t = t, .located = 1, .kind = GB_IMPACT_LANDING, .rebound = e > 0.0 && r.holds[0],
+                              .return_time = INFINITY};
+    record(&rec, y, rq, rq, v, &r, 0, -1);
+    set_contact(d, q);
+    int flies = e > 0.0 || !r.holds[0]; /* a rebound, or the slip stopped and the point leaves */
+    if (!flies) {
+        double n;
+        const int status = one_point_normal(d, t, y, &n);
+        if (status) return status;
+        flies = n < 0.0;
+    }
+    if (flies) {
+        start_flight(d, t, y, r.v, zeta); /* the same flight goes on */
+    } else {
+        d->flying = 0;
+        d->flight_time += t - d->flight_since;
+        rec.contacts_after = 1;
+        rec.potential_jump = -d->def.mass * gb_forcing_geff(&d->def.forcing, t) * (zeta + L * gb_vec_dot(zb, q->rc));
+    }
+    return book(d, &rec);
+}
+
+/* Flight at state y: does the lowest point (continued, or a lower minimum the certificate finds) lie
+ * below the plane? Then *other is it and the event is a landing. */
+static int flight_pending(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], gb_contact_point *other, int *found)
+{
+    gb_contact_point continued, lower;
+    int lower_found;
+    const int status = competitor(d, t, y, &continued, &lower, &lower_found);
+    if (status) return status;
+    const gb_contact_point *lowest = lower_found ? &lower : &continued;
+    double zeta, v[3];
+    flight_state(d, t, &zeta, v);
+    *found = zeta + d->def.length * (lowest->height + d->gap_allow) < 0.0;
+    if (*found) *other = *lowest, d->flight_event = FLIGHT_LANDING;
+    return GB_OK;
 }
 
 static int check_global(gb_dynamics *d, const double zb[3], const gb_contact_point *candidate, gb_certify_result *r);
@@ -986,12 +1283,6 @@ static int canonical_minimum(gb_dynamics *d, const double zb[3], gb_contact_poin
 
 enum { PENDING_THIRD = 0, PENDING_LIFT = 1 };
 
-/* The accepted contact (P) becomes p; a grid body's node index with it. */
-static void set_contact(gb_dynamics *d, const gb_contact_point *p)
-{
-    d->contact = *p;
-    if (d->def.contact != GB_CONTACT_MODEL_CONTINUOUS) d->index = p->node;
-}
 
 static int same_point(const gb_contact_point *a, const gb_contact_point *b)
 {
@@ -1069,7 +1360,7 @@ static int third_point_outcome(gb_dynamics *d, double t, const double y[GB_STATE
                                const double points[3][3], double v[3], gb_impact_result *r, int *held, double *back,
                                int *settled)
 {
-    int status = impact_solve(d, t, y, points[0], points, 3, v, r);
+    int status = impact_solve(d, t, y, points[0], points, 3, 0.0, v, r);
     if (status) return status;
     *held = r->holds[0] + r->holds[1] + r->holds[2];
     *back = INFINITY;
@@ -1217,12 +1508,27 @@ int gb_dynamics_accept(gb_dynamics *d, double t, double y[GB_STATE_SIZE], double
     }
     gb_contact_point continued, other;
     int found;
+    if (d->flying) {
+        /* the lowest point: continued, certified, and relabelled when a lower minimum takes over (no impact) */
+        int status = competitor(d, t, y, &continued, &other, &found);
+        if (status) return status;
+        set_contact(d, found ? &other : &continued);
+        d->memo_valid = 0;
+        if (found) d->last_valid = 0;
+        double zeta, v[3];
+        flight_state(d, t, &zeta, v);
+        const double clearance = zeta + d->def.length * d->contact.height;
+        if (clearance > 0.0) d->gap_allow = FLIGHT_GAP_TOL; /* the gap has opened */
+        if (clearance < -d->def.length * d->gap_allow)
+            return gb_error_set(GB_ENUMERIC, "flight at t = %.9g: the lowest point is %.3g m below the plane, a landing "
+                                "that the step's event location did not find", t, -clearance);
+        d->hop_max = fmax(d->hop_max, clearance);
+        return remember_rate(d, t, y);
+    }
     if (d->resting) {
-        double geff, geff_rate;
-        gb_forcing_geff_with_rate(&d->def.forcing, t, &geff, &geff_rate);
-        if (geff <= 0.0)
-            return gb_error_set(GB_ENUMERIC, "unilateral contact at t = %.9g: g_eff = %.6g m/s^2 <= 0 lifts the body off "
-                                "its three points; lift-off and flight are not built yet", t, geff);
+        if (gb_forcing_geff(&d->def.forcing, t) < 0.0)
+            return gb_error_set(GB_ENUMERIC, "unilateral contact at t = %.9g: g_eff < 0 on three points, a lift-off that "
+                                "the step's event location did not find", t);
         return GB_OK;
     }
     if (d->two_point) {
@@ -1246,19 +1552,7 @@ int gb_dynamics_accept(gb_dynamics *d, double t, double y[GB_STATE_SIZE], double
     if (!status && found && d->def.contact_law == GB_CONTACT_LAW_UNILATERAL)
         status = gb_error_set(GB_ENUMERIC, "unilateral contact at t = %.9g: a change of contact at the step's end that the "
                               "step's event location did not find (%zu impacts so far)", t, d->impacts);
-    if (!status && d->def.contact_law == GB_CONTACT_LAW_UNILATERAL) {
-        /* A plane that can only push cannot hold the body down: where N < 0 it would leave the plane. */
-        double zb[3], geff, geff_rate, w_dot[3], acc[3];
-        contact_eval c;
-        vertical_of(y, zb);
-        gb_forcing_geff_with_rate(&d->def.forcing, t, &geff, &geff_rate);
-        status = contact_at(d, t, zb, y + GB_STATE_OMEGA, &c);
-        if (!status) status = angular_acceleration(d, geff, zb, y + GB_STATE_OMEGA, &c, w_dot);
-        const double n = status ? 0.0 : normal_force_of(d, geff, zb, y + GB_STATE_OMEGA, w_dot, &c, acc);
-        if (!status && n < 0.0)
-            status = gb_error_set(GB_ENUMERIC, "unilateral contact at t = %.9g: the normal force is %.6g N < 0, so the body would "
-                                  "leave the plane (g_eff = %.6g m/s^2); lift-off and flight are not built yet", t, n, geff);
-    }
+    /* (N < 0 at the step's end was a lift-off event, located by gb_dynamics_switch_pending) */
     if (status) return status;
     set_contact(d, found ? &other : &continued);
     d->memo_valid = 0; /* the accepted contact changed */
@@ -1272,11 +1566,24 @@ int gb_dynamics_switch_pending(gb_dynamics *d, double t, const double y[GB_STATE
                                int *found)
 {
     *found = 0;
+    d->flight_event = FLIGHT_NONE;
     if (d->def.contact != GB_CONTACT_MODEL_CONTINUOUS && !grid_unilateral(d)) return GB_OK; /* held grid: the paper's rule */
-    if (d->resting) return GB_OK;
+    if (d->flying) return flight_pending(d, t, y, other, found);
+    if (d->resting) {
+        /* on three points the weight m g_eff holds the body; it lifts off them all where g_eff reaches 0 */
+        if (gb_forcing_geff(&d->def.forcing, t) < 0.0) *other = d->contact, *found = 1, d->flight_event = FLIGHT_LIFT_OFF;
+        return GB_OK;
+    }
     if (d->two_point) return two_point_pending(d, t, y, other, found);
     gb_contact_point continued;
-    return competitor(d, t, y, &continued, other, found);
+    int status = competitor(d, t, y, &continued, other, found);
+    if (!status && !*found && d->def.contact_law == GB_CONTACT_LAW_UNILATERAL) {
+        /* a plane that can only push cannot hold the body down: where N reaches 0 it leaves the plane */
+        double n;
+        status = one_point_normal(d, t, y, &n);
+        if (!status && n < 0.0) *other = continued, *found = 1, d->flight_event = FLIGHT_LIFT_OFF;
+    }
+    return status;
 }
 
 int gb_dynamics_branch_gap(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const gb_contact_point *other,
@@ -1285,6 +1592,27 @@ int gb_dynamics_branch_gap(gb_dynamics *d, double t, const double y[GB_STATE_SIZ
     double zb[3];
     vertical_of(y, zb);
     gb_contact_point here;
+    if (d->flight_event == FLIGHT_LIFT_OFF) {
+        /* −N of the last contact (at rest on three points: −g_eff, to which all three forces are proportional) */
+        double n;
+        const int status = d->resting ? (n = gb_forcing_geff(&d->def.forcing, t), GB_OK) : one_point_normal(d, t, y, &n);
+        *gap = -n;
+        *other_here = *other;
+        return status;
+    }
+    if (d->flying) {
+        /* −(the lowest point's height above the plane): the lower of the lowest point at the step's start and
+         * the one at its end (`other`), both continued, since the lowest point may change branch inside the step */
+        double zeta, v[3];
+        int status = point_at(d, zb, other, other_here);
+        if (!status && !same_point(other, &d->contact)) {
+            status = point_at(d, zb, &d->contact, &here);
+            if (!status && here.height < other_here->height) *other_here = here;
+        }
+        flight_state(d, t, &zeta, v);
+        *gap = -(zeta + d->def.length * (other_here->height + d->gap_allow));
+        return status;
+    }
     if (d->two_point && d->pending == PENDING_LIFT) {
         two_point_eval tp;
         const int status = two_point_at(d, t, y, &tp);
@@ -1311,6 +1639,15 @@ int gb_dynamics_branch_gap(gb_dynamics *d, double t, const double y[GB_STATE_SIZ
 
 int gb_dynamics_switch_to(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const gb_contact_point *branch)
 {
+    if (d->flight_event != FLIGHT_NONE) {
+        /* a lift-off or a landing: neither is a switch of contact branch */
+        const int status = d->flight_event == FLIGHT_LIFT_OFF ? lift_off(d, t, y) : landing(d, t, y, branch);
+        d->flight_event = FLIGHT_NONE;
+        d->memo_valid = 0;
+        d->contact_rate[0] = d->contact_rate[1] = 0.0;
+        d->last_valid = 0;
+        return status;
+    }
     if (d->two_point) {
         const int status = two_point_event(d, t, y, branch);
         if (status) return status;
@@ -1319,11 +1656,11 @@ int gb_dynamics_switch_to(gb_dynamics *d, double t, double y[GB_STATE_SIZE], con
         double zb[3];
         vertical_of(y, zb);
         gb_contact_point here;
-        int both = 0;
+        int both = 0, bounce = 0;
         int status = point_at(d, zb, &d->contact, &here);
-        if (!status) status = impact(d, t, y, &here, branch, 1, &both);
+        if (!status) status = impact(d, t, y, &here, branch, 1, &both, &bounce);
         if (status) return status;
-        set_contact(d, branch);
+        if (bounce != 1) set_contact(d, branch); /* a rebound of Q off P that holds: the body rolls on about P */
         if (both) {
             d->two_point = 1;
             d->contact2 = here;
@@ -1347,6 +1684,10 @@ int gb_dynamics_jump(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], co
                      double out[GB_STATE_SIZE])
 {
     memcpy(out, y, GB_STATE_SIZE * sizeof *out);
+    if (d->flying || d->flight_event != FLIGHT_NONE)
+        return gb_error_set(GB_EINVAL, "t = %.9g: the variational estimator does not follow lift-off and flight (the "
+                            "centroid's height and velocity are not in its tangent space); use [lyapunov] estimator = "
+                            "pair", t);
     if (d->def.contact_law != GB_CONTACT_LAW_UNILATERAL || (d->two_point && d->pending == PENDING_LIFT)) return GB_OK;
     const double L = d->def.length;
     double zb[3], v[3];
@@ -1364,9 +1705,12 @@ int gb_dynamics_jump(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], co
         if (!status) status = third_point_outcome(d, t, y, &r, points, v, &res, &held, &back, &settled);
     } else if (!status) {
         double points[2][3], back;
-        int both;
+        int both, bounce;
         status = point_at(d, zb, branch, &q);
-        if (!status) status = impact_outcome(d, t, y, &p, &q, points, v, &res, &back, &both);
+        if (!status) status = impact_outcome(d, t, y, &p, &q, points, v, &res, &back, &both, &bounce);
+        if (!status && bounce == 2)
+            status = gb_error_set(GB_EINVAL, "t = %.9g: the variational estimator does not follow a hop (restitution "
+                                  "lifts both points); use [lyapunov] estimator = pair", t);
     }
     if (!status) memcpy(out + GB_STATE_OMEGA, res.omega, sizeof res.omega);
     return status;
@@ -1396,6 +1740,28 @@ void gb_dynamics_two_point_stats(const gb_dynamics *d, double t, gb_dynamics_two
     out->rest_since = d->rest_since;
 }
 
+void gb_dynamics_flight_stats(const gb_dynamics *d, double t, gb_dynamics_flight_summary *out)
+{
+    out->time = d->flight_time + (d->flying ? t - d->flight_since : 0.0);
+    out->lift_offs = d->lift_offs;
+    out->landings = d->landings;
+    out->bounces = d->bounces;
+    out->hop_max = d->hop_max;
+    out->flying = d->flying;
+}
+
+int gb_dynamics_flight_displace(gb_dynamics *d, double t, double dzeta, const double dv[3])
+{
+    if (!d->flying) return gb_error_set(GB_EINVAL, "the body is not in flight at t = %.9g", t);
+    double zeta, v[3];
+    flight_state(d, t, &zeta, v);
+    d->fly_t0 = t;
+    d->fly_zeta0 = zeta + dzeta;
+    for (int k = 0; k < 3; k++) d->fly_v0[k] = v[k] + dv[k];
+    d->memo_valid = 0;
+    return GB_OK;
+}
+
 size_t gb_dynamics_switch_count(const gb_dynamics *d) { return d->grid_switches + d->branch_switches; }
 
 double gb_dynamics_last_switch_time(const gb_dynamics *d) { return d->last_switch_time; }
@@ -1411,6 +1777,9 @@ void gb_dynamics_adopt_contact(gb_dynamics *to, const gb_dynamics *from)
     to->contact2 = from->contact2;
     to->q_valid = 0;
     to->two_point_since = from->two_point_since;
+    to->flying = from->flying, to->flight_event = FLIGHT_NONE, to->gap_allow = from->gap_allow;
+    to->fly_t0 = from->fly_t0, to->fly_zeta0 = from->fly_zeta0, to->flight_since = from->flight_since;
+    memcpy(to->fly_v0, from->fly_v0, sizeof to->fly_v0);
     to->contact_time = from->contact_time;
     memcpy(to->contact_rate, from->contact_rate, sizeof to->contact_rate);
 }
@@ -1446,6 +1815,18 @@ int gb_dynamics_init_state(gb_dynamics *d, double t0, const double R0[9], const 
     d->resting = 0, d->rest_since = NAN;
     d->q_valid = 0;
     d->two_point_entries = d->settled = d->lifts = d->third_points = 0;
+    d->flying = 0, d->flight_event = FLIGHT_NONE;
+    d->gap_allow = FLIGHT_GAP_TOL;
+    d->flight_time = d->hop_max = 0.0;
+    d->lift_offs = d->landings = d->bounces = 0;
+    const double *v0 = d->def.velocity0;
+    if (d->def.height0 > 0.0 || v0[0] != 0.0 || v0[1] != 0.0 || v0[2] != 0.0) {
+        /* in flight: the lowest point (the contact found) at height0 above the plane, the centroid at v0 */
+        double vb[3];
+        for (int i = 0; i < 3; i++) vb[i] = R[i] * v0[0] + R[3 + i] * v0[1] + R[6 + i] * v0[2]; /* Rᵀ v0 */
+        start_flight(d, t0, y, vb, d->def.height0 - d->def.length * gb_vec_dot(zb, d->contact.rc));
+        d->hop_max = d->def.height0;
+    }
     d->last_switch_time = NAN;
     d->memo_valid = 0;
     d->t0 = t0;
@@ -1454,6 +1835,18 @@ int gb_dynamics_init_state(gb_dynamics *d, double t0, const double R0[9], const 
     status = gb_dynamics_observe(d, t0, y, &o);
     if (!status) d->energy0 = o.energy;
     return status;
+}
+
+/* max |RᵀR − I| */
+static double orthonormality_of(const double R[9])
+{
+    double worst = 0.0;
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) {
+            const double dot = R[i] * R[j] + R[3 + i] * R[3 + j] + R[6 + i] * R[6 + j];
+            worst = fmax(worst, fabs(dot - (i == j)));
+        }
+    return worst;
 }
 
 int gb_dynamics_observe(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], gb_dynamics_observables *o)
@@ -1467,6 +1860,35 @@ int gb_dynamics_observe(gb_dynamics *d, double t, const double y[GB_STATE_SIZE],
     two_point_eval tp;
     int status;
     gb_forcing_geff_with_rate(&d->def.forcing, t, &o->geff, &o->geff_rate);
+    if (d->flying) {
+        /* the lowest point for the clearance; no contact force */
+        const double m = d->def.mass;
+        double Iw[3], I[3][3];
+        status = contact_at(d, t, o->zb, o->omega, &c);
+        if (!status) status = free_angular_acceleration(d, o->omega, o->omega_dot);
+        if (status) return status;
+        flight_state(d, t, &o->zeta, o->velocity);
+        memcpy(o->rc, c.rc, sizeof o->rc);
+        memcpy(o->rc_dot, c.rc_dot, sizeof o->rc_dot);
+        o->index = c.index;
+        o->height = gb_vec_dot(o->zb, c.rc);
+        o->clearance = o->zeta + o->height;
+        memcpy(I, d->inertia, sizeof I);
+        mat_vec(I, o->omega, Iw);
+        o->kinetic = 0.5 * m * gb_vec_dot(o->velocity, o->velocity) + 0.5 * gb_vec_dot(o->omega, Iw);
+        o->potential = m * o->geff * o->zeta;
+        o->energy = o->kinetic + o->potential;
+        o->power_gravity = -m * o->geff * o->velocity[2];
+        o->power_damping = -d->def.damping * gb_vec_dot(o->omega, o->omega);
+        o->work = y[GB_STATE_WORK];
+        o->residual = o->energy - d->energy0 - o->work + d->impact_loss;
+        o->contacts = 0;
+        o->orthonormality = orthonormality_of(o->R);
+        o->grid_switches = d->grid_switches;
+        o->branch_switches = d->branch_switches;
+        o->branches_lost = d->branches_lost;
+        return GB_OK;
+    }
     if (d->resting) {
         status = contact_at(d, t, o->zb, o->omega, &c); /* ω̇ = 0 */
         if (status) return status;
@@ -1505,6 +1927,9 @@ int gb_dynamics_observe(gb_dynamics *d, double t, const double y[GB_STATE_SIZE],
     for (int k = 0; k < 3; k++) horizontal[k] = acc[k] - vertical * o->zb[k];
     o->friction_needed = o->normal_force > 0.0 ? m * gb_vec_norm(horizontal) / o->normal_force : INFINITY;
     o->contacts = d->resting ? 3 : 1 + d->two_point;
+    double vb[3];
+    gb_vec_cross(o->omega, (const double[3]){-c.rc[0], -c.rc[1], -c.rc[2]}, vb); /* v_G = ω × (G − P) */
+    for (int i = 0; i < 3; i++) o->velocity[i] = o->R[3 * i] * vb[0] + o->R[3 * i + 1] * vb[1] + o->R[3 * i + 2] * vb[2];
     o->normal_forces[0] = o->normal_force;
     if (d->two_point) {
         memcpy(o->rc_other, tp.rq, sizeof o->rc_other);
@@ -1513,13 +1938,7 @@ int gb_dynamics_observe(gb_dynamics *d, double t, const double y[GB_STATE_SIZE],
         o->balance = tp.balance;
         o->tie = d->def.length * (tp.p.point.height - tp.q.height);
     }
-    double worst = 0.0;
-    for (int i = 0; i < 3; i++)
-        for (int j = 0; j < 3; j++) {
-            const double dot = o->R[i] * o->R[j] + o->R[3 + i] * o->R[3 + j] + o->R[6 + i] * o->R[6 + j];
-            worst = fmax(worst, fabs(dot - (i == j)));
-        }
-    o->orthonormality = worst;
+    o->orthonormality = orthonormality_of(o->R);
     o->grid_switches = d->grid_switches;
     o->branch_switches = d->branch_switches;
     o->branches_lost = d->branches_lost;

@@ -64,23 +64,39 @@ int gb_dynamics_certificate_parse(const char *name, gb_dynamics_certificate *cer
  *    power balance d/dt(½ I_u σ²) = −m g_eff ζ̇ − c|ω|² (the rolling contacts do no work). Both normal
  *    forces come from Newton–Euler. It ends at a located event: a normal force reaching 0 (the body rolls
  *    on the other point, ω unchanged) or a third point reaching the plane (an impact over all three).
+ *  - Lift-off, flight and landing (docs/impact.md): where the last contact's normal force reaches 0 (on three
+ *    points at rest: g_eff) the body flies, its centroid under g_eff in closed form, the body turning
+ *    torque-free but for −c ω; it lands where its lowest point (certified as a contact is) reaches the plane:
+ *    a one-point impact of a rough plane (gb_impact_rough_point) with Newton's def.restitution. With e > 0 a
+ *    change of contact from one point is a rebound too (kind bounce).
  * Stops the run with GB_ENUMERIC, saying which: an impact a rough plane cannot absorb (stopping the slip
- * needs a pulling impulse; a finite friction coefficient is not built), a body coming to rest on three
- * points, the two points of the mode merging (the end of a crease), a normal force below 0 while rolling
- * on one point (at an accepted step: lift-off and flight are not built), and a change of contact the
- * step's event location missed. A chatter of impacts between P and Q (the lifted point falling back
- * ever sooner, as a bouncing ball's) is ended by def.settle_time. */
+ * needs a pulling impulse; a finite friction coefficient is not built), three points whose triangle holds
+ * neither the weight nor an edge, the two points of the mode merging (the end of a crease), a lift-off the
+ * body would have to slide through (its lowest point driven over 1e-6 body lengths into the plane), and a
+ * change of contact the step's event location missed. A chatter of impacts between P and Q (the lifted
+ * point falling back ever sooner, as a bouncing ball's) is ended by def.settle_time, and so is a bounce
+ * sequence (a rebound that would return within it is plastic). */
 typedef enum gb_contact_law { GB_CONTACT_LAW_HELD = 0, GB_CONTACT_LAW_UNILATERAL = 1 } gb_contact_law;
 
 const char *gb_dynamics_contact_law_name(gb_contact_law law);
 int gb_dynamics_contact_law_parse(const char *name, gb_contact_law *law);
+
+/* The unilateral law: a landing is located where the lowest point is this far below the plane [body
+ * lengths] (far above the rounding of its height, far below any length of the problem). */
+#define GB_DYNAMICS_LANDING_TOL 1e-12
 
 /* What happened at a change of contact of the unilateral law. */
 typedef enum gb_dynamics_impact_kind {
     GB_IMPACT_SWITCH = 0,    /* rolling on P, the body meets the plane at Q; P lifts */
     GB_IMPACT_TWO_POINT = 1, /* rolling on P, the body meets the plane at Q; both hold (the two-point mode) */
     GB_IMPACT_LIFT = 2,      /* two-point mode: a normal force reaches 0, that point lifts (no impulse) */
-    GB_IMPACT_THIRD = 3      /* two-point mode: a third point reaches the plane (an impact over all three) */
+    GB_IMPACT_THIRD = 3,     /* two-point mode: a third point reaches the plane (an impact over all three) */
+    GB_IMPACT_LIFT_OFF = 4,  /* the last contact's normal force (or g_eff at rest) reaches 0: the body flies
+                              * (no impulse; old point = the one left, new point = the lowest point) */
+    GB_IMPACT_LANDING = 5,   /* in flight, the lowest point reaches the plane (contacts after: 1 when it
+                              * holds, 0 when the body bounces or is pulled off at once) */
+    GB_IMPACT_BOUNCE = 6     /* restitution e > 0 at a change of contact: Q rebounds; P holds (contacts
+                              * after 1, the body rolls on P) or lifts too (0: the body hops) */
 } gb_dynamics_impact_kind;
 
 const char *gb_dynamics_impact_kind_name(gb_dynamics_impact_kind kind);
@@ -105,6 +121,12 @@ typedef struct gb_dynamics_impact {
                                            * point would have lifted and fallen back within the settle time
                                            * (kind two-point; or third-point, with the point of the two
                                            * before that would fall back first) */
+    double potential_jump;                /* [J] a landing that ends in contact: the weight's energy m g_eff ×
+                                           * the lowest point's depth below the plane (the event's tolerance),
+                                           * by which the contact puts the body back on the plane; booked with
+                                           * the kinetic energy lost (L) so that the ledger closes */
+    int rebound;                          /* restitution applied: the new point leaves the plane at e times its
+                                           * approach speed (kinds bounce and landing) */
     double return_time;                   /* kind switch or settled: 2 v_n / |a_n| of the point that lifts
                                            * after Moreau's impact (INFINITY when it does not fall back) */
 } gb_dynamics_impact;
@@ -133,6 +155,15 @@ typedef struct gb_dynamics_def {
                                     * model's plane is perfectly rough; impacts that need more friction than μ
                                     * are counted (gb_dynamics_impact_stats), where a plane of that μ would let
                                     * the body slip, which the model does not follow. */
+    double restitution;            /* unilateral: Newton's e on the normal approach speed at a landing and at a
+                                    * change of contact from one point, 0 <= e <= 1 (0, the default: plastic). A
+                                    * third point meeting the two-point mode is plastic whatever e. The end to
+                                    * bouncing (Zeno): a rebound e v_n that would return within settle_time under
+                                    * g_eff, e v_n < g_eff settle_time / 2, is taken as plastic. */
+    double height0;                /* unilateral: the initial gap [m] between the lowest point and the plane
+                                    * (0, the default: in contact); > 0 starts in flight */
+    double velocity0[3];           /* with height0 > 0: the centroid's initial velocity relative to the plane,
+                                    * inertial axes [m/s] (default 0) */
     gb_atlas_def atlas;            /* certificate = atlas: its cells (its height_tol is certify's) */
     const char *atlas_file;        /* certificate = atlas: load the atlas from here when the file matches the
                                     * body (else build it), and gb_dynamics_save_atlas writes it (NULL: none) */
@@ -230,6 +261,21 @@ typedef struct gb_dynamics_two_point_summary {
 
 void gb_dynamics_two_point_stats(const gb_dynamics *dynamics, double t, gb_dynamics_two_point_summary *out);
 
+/* Flight (the unilateral law) up to time t: the time spent in flight, lift-offs, landings, the highest
+ * gap between the lowest point and the plane at the accepted steps of a flight [m] (0: none), and whether
+ * the body is in flight now. */
+typedef struct gb_dynamics_flight_summary {
+    double time;
+    size_t lift_offs, landings, bounces;
+    double hop_max;
+    int flying;
+} gb_dynamics_flight_summary;
+
+void gb_dynamics_flight_stats(const gb_dynamics *dynamics, double t, gb_dynamics_flight_summary *out);
+/* In flight: move the centroid by dzeta [m] up and change its velocity by dv [m/s] (inertial) at time t (a
+ * Lyapunov perturbation). GB_EINVAL when the body is not in flight. */
+int gb_dynamics_flight_displace(gb_dynamics *dynamics, double t, double dzeta, const double dv[3]);
+
 /* Take over the accepted contact of `from` (same body and model): for a trajectory placed next to
  * another one (a Lyapunov perturbation), whose contact is then continued from there. The next accepted
  * step re-checks it as every step does. Switch counters are left alone. */
@@ -246,7 +292,7 @@ typedef struct gb_dynamics_observables {
     double R[9], zb[3], omega[3], omega_dot[3];
     double rc[3], rc_dot[3];
     double height;           /* h* = z_b·r_c (eq 36), < 0 */
-    double zeta;             /* −h*, the centroid height (eq 37) */
+    double zeta;             /* the centroid's height above the plane: −h* in contact (eq 37), + clearance in flight */
     double geff, geff_rate;  /* eqs 25–26 */
     double kinetic, potential, energy; /* eqs 46–48 */
     double power_damping, power_gravity; /* eqs 50–51 */
@@ -255,7 +301,9 @@ typedef struct gb_dynamics_observables {
     double normal_force;     /* N = m (g_eff + ζ̈), rolling kinematics (the sum of both in the two-point mode) */
     double friction_needed;  /* |horizontal contact force| / N (two-point mode: the larger of the two points',
                               * the force along PQ, which statics leaves open, split as the normal forces) */
-    int contacts;            /* points on the plane: 1, 2 in the two-point mode, 3 at rest */
+    int contacts;            /* points on the plane: 0 in flight, 1, 2 in the two-point mode, 3 at rest */
+    double clearance;        /* the lowest point's height above the plane [m] (0 in contact) */
+    double velocity[3];      /* the centroid's velocity relative to the plane, inertial axes [m/s] */
     double rc_other[3];      /* two-point mode: the second contact Q [m] (else 0) */
     double normal_forces[2]; /* two-point mode: N_P, N_Q from Newton–Euler (else N, 0) */
     double balance;          /* two-point mode: Newton–Euler's moment about PQ left by the power balance's

@@ -231,3 +231,60 @@ int gb_impact_solve(const gb_impact_body *body, const double normal[3], double e
     out->energy_after = gb_impact_energy(body, out->v, out->omega);
     return GB_OK;
 }
+
+int gb_impact_rough_point(const gb_impact_body *body, const double normal[3], double e, const double point[3],
+                          const double v[3], const double omega[3], gb_impact_result *out)
+{
+    memset(out, 0, sizeof *out);
+    double inv[3][3];
+    int status = check_body(body, 1, inv);
+    if (status) return status;
+    if (!(e >= 0.0 && e <= 1.0)) return gb_error_set(GB_EDOM, "impact: restitution %g (allowed: 0 <= e <= 1)", e);
+    /* The Delassus operator of the point: Δu = W P, W = I/m − [r]× I⁻¹ [r]× */
+    double rx[3][3], a[3][3], W[3][3];
+    cross_matrix(point, rx);
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) a[i][j] = inv[i][0] * rx[0][j] + inv[i][1] * rx[1][j] + inv[i][2] * rx[2][j];
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++)
+            W[i][j] = (i == j) / body->mass - (rx[i][0] * a[0][j] + rx[i][1] * a[1][j] + rx[i][2] * a[2][j]);
+    /* a tangent basis t1, t2 of the plane */
+    double t1[3], t2[3];
+    const double pick[3] = {fabs(normal[0]) < 0.6 ? 1.0 : 0.0, fabs(normal[0]) < 0.6 ? 0.0 : 1.0, 0.0};
+    gb_vec_cross(normal, pick, t1);
+    const double n1 = gb_vec_norm(t1);
+    for (int i = 0; i < 3; i++) t1[i] /= n1;
+    gb_vec_cross(normal, t1, t2);
+    double u[3], Wt1[3], Wt2[3];
+    point_velocity(v, omega, point, u);
+    const double speed = gb_vec_norm(u);
+    for (int i = 0; i < 3; i++) {
+        Wt1[i] = W[i][0] * t1[0] + W[i][1] * t1[1] + W[i][2] * t1[2];
+        Wt2[i] = W[i][0] * t2[0] + W[i][1] * t2[1] + W[i][2] * t2[2];
+    }
+    /* Stage 1, the slip stopped by a tangential impulse (W_tt x = −u_t); stage 2, compression and restitution
+     * at no slip, when the point still approaches after stage 1 */
+    const double k11 = gb_vec_dot(t1, Wt1), k12 = gb_vec_dot(t1, Wt2), k22 = gb_vec_dot(t2, Wt2);
+    const double det = k11 * k22 - k12 * k12, b1 = -gb_vec_dot(t1, u), b2 = -gb_vec_dot(t2, u);
+    const double x1 = (k22 * b1 - k12 * b2) / det, x2 = (k11 * b2 - k12 * b1) / det;
+    double P[1][3];
+    for (int i = 0; i < 3; i++) P[0][i] = x1 * t1[i] + x2 * t2[i];
+    const double approach = gb_vec_dot(normal, u) + x1 * gb_vec_dot(normal, Wt1) + x2 * gb_vec_dot(normal, Wt2);
+    const double velocity_tol = SIGN_TOL * (speed + 1e-300);
+    const int compresses = approach < -velocity_tol;
+    if (compresses) {
+        /* W P₂ = −(1 + e) u′_n n: the point's velocity becomes −e u′_n n */
+        double Winv[3][3], dn[3];
+        if (invert(W, Winv)) return gb_error_set(GB_ENUMERIC, "impact: the point's Delassus operator is singular");
+        for (int i = 0; i < 3; i++) dn[i] = -(1.0 + e) * approach * normal[i];
+        for (int i = 0; i < 3; i++) P[0][i] += Winv[i][0] * dn[0] + Winv[i][1] * dn[1] + Winv[i][2] * dn[2];
+    }
+    apply(body, inv, (const double(*)[3])&point[0], 1, (const double(*)[3])P, v, omega, out->v, out->omega);
+    out->energy_before = gb_impact_energy(body, v, omega);
+    out->energy_after = gb_impact_energy(body, out->v, out->omega);
+    const double impulse_tol = SIGN_TOL * body->mass * (speed + 1e-300);
+    fill_impulses(normal, 1, (unsigned)compresses, (const double(*)[3])P, impulse_tol, out);
+    if (!compresses && out->tangential_impulse[0] > impulse_tol) out->friction_needed = INFINITY;
+    out->feasible_sets = 1;
+    return GB_OK;
+}

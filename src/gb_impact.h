@@ -51,6 +51,17 @@ int gb_impact_solve(const gb_impact_body *body, const double normal[3], double e
  * misses it by more than its residual tolerance. GB_EDOM as gb_impact_solve. */
 int gb_impact_hold_all(const gb_impact_body *body, const double normal[3], const double (*points)[3], int count,
                        const double v[3], const double omega[3], gb_impact_result *out);
+/* One point meeting the plane, rough in the limit of Coulomb friction μ → ∞ of the Darboux–Keller impulse
+ * process: the slip is stopped first by a tangential impulse (no normal impulse is needed for it when μ is
+ * unbounded); if the point still approaches the plane after that, the normal impulse brings its velocity
+ * to −e times that approach at no slip (holds[0] = 1); if it no longer approaches, the impact ends there and
+ * the point leaves (holds[0] = 0, friction_needed INFINITY: a tangential impulse with no normal one). Where
+ * Moreau's law with a held point (gb_impact_solve, count 1) has a pushing solution and the slip-stopping
+ * stage leaves the point approaching, the two laws give the same impulse; where Moreau's would need the
+ * plane to pull, this one has the answer. The kinetic energy never grows (each stage takes the energy of
+ * its velocity jump, less e² of the normal part's). GB_EDOM as gb_impact_solve. */
+int gb_impact_rough_point(const gb_impact_body *body, const double normal[3], double e, const double point[3],
+                          const double v[3], const double omega[3], gb_impact_result *out);
 /* The kinetic energy ½ m |v|² + ½ ω·Iω. */
 double gb_impact_energy(const gb_impact_body *body, const double v[3], const double omega[3]);
 

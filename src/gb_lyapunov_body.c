@@ -17,6 +17,7 @@ struct gb_lyapunov_body {
     gb_integrate_session *session[2];
     double y[2][GB_STATE_SIZE];
     double period, omega_scale;
+    int translation; /* the unilateral law: the separation has the centroid's height and velocity too */
     gb_integrate_sample sample; /* the reference's samples (gb_lyapunov_body_observe) */
     void *sample_context;
     /* the variational estimator's own RK4 stepping of the reference */
@@ -38,6 +39,7 @@ int gb_lyapunov_body_create(const gb_surface *surface, const gb_dynamics_def *dy
     b->method = integrate->method;
     b->steps_per_period = integrate->steps_per_period;
     b->omega_scale = omega_scale;
+    b->translation = dynamics->contact_law == GB_CONTACT_LAW_UNILATERAL;
     int status = GB_OK;
     for (int k = 0; k < 2 && !status; k++) {
         status = gb_dynamics_start(surface, dynamics, R0, omega0, &b->dynamics[k], b->y[k]);
@@ -113,12 +115,41 @@ static int body_separation(void *context, double *e)
     const double angle = 2.0 * atan2(v, sign * dq[0]);
     for (int k = 0; k < 3; k++) e[k] = v > 0.0 ? angle * sign * dq[k + 1] / v : 0.0;
     for (int k = 0; k < 3; k++) e[3 + k] = (b->y[1][GB_STATE_OMEGA + k] - b->y[0][GB_STATE_OMEGA + k]) / b->omega_scale;
+    if (!b->translation) return GB_OK;
+    gb_dynamics_flight_summary f[2];
+    const double t = gb_integrate_time(b->session[0]);
+    for (int k = 0; k < 2; k++) gb_dynamics_flight_stats(b->dynamics[k], t, &f[k]);
+    memset(e + 6, 0, 4 * sizeof *e);
+    if (!f[0].flying && !f[1].flying) return GB_OK;
+    gb_dynamics_observables o[2];
+    for (int k = 0; k < 2; k++) {
+        const int status = gb_dynamics_observe(b->dynamics[k], t, b->y[k], &o[k]);
+        if (status) return status;
+    }
+    const double L = gb_dynamics_mean_radius(b->dynamics[0]);
+    e[6] = (o[1].zeta - o[0].zeta) / L;
+    for (int k = 0; k < 3; k++) e[7 + k] = (o[1].velocity[k] - o[0].velocity[k]) / (b->omega_scale * L);
     return GB_OK;
 }
 
-static int body_place(void *context, const double *e)
+static int body_place(void *context, const double *given)
 {
     gb_lyapunov_body *b = context;
+    double e[10];
+    memcpy(e, given, (b->translation ? 10 : 6) * sizeof *e);
+    gb_dynamics_flight_summary f;
+    const double t = gb_integrate_time(b->session[0]);
+    if (b->translation) {
+        gb_dynamics_flight_stats(b->dynamics[0], t, &f);
+        if (!f.flying) {
+            /* on the plane the height and velocity follow from the attitude and ω: the rotational part takes
+             * the whole length */
+            double all = 0.0, rotational = 0.0;
+            for (int k = 0; k < 10; k++) all += e[k] * e[k], rotational += k < 6 ? e[k] * e[k] : 0.0;
+            const double scale = rotational > 0.0 ? sqrt(all / rotational) : 1.0;
+            for (int k = 0; k < 6; k++) e[k] *= scale;
+        }
+    }
     const double angle = sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
     const double s = angle > 0.0 ? sin(0.5 * angle) / angle : 0.5;
     const double dq[4] = {cos(0.5 * angle), s * e[0], s * e[1], s * e[2]};
@@ -127,12 +158,16 @@ static int body_place(void *context, const double *e)
     for (int k = 0; k < 3; k++) b->y[1][GB_STATE_OMEGA + k] = b->y[0][GB_STATE_OMEGA + k] + b->omega_scale * e[3 + k];
     gb_dynamics_adopt_contact(b->dynamics[1], b->dynamics[0]);
     gb_integrate_follow(b->session[1], b->session[0]);
+    if (b->translation && f.flying) {
+        const double L = gb_dynamics_mean_radius(b->dynamics[0]), scale = b->omega_scale * L;
+        return gb_dynamics_flight_displace(b->dynamics[1], t, L * e[6], (const double[3]){scale * e[7], scale * e[8], scale * e[9]});
+    }
     return GB_OK;
 }
 
-gb_lyapunov_pair_system gb_lyapunov_body_pair(void)
+gb_lyapunov_pair_system gb_lyapunov_body_pair(const gb_lyapunov_body *body)
 {
-    return (gb_lyapunov_pair_system){6, body_advance, body_separation, body_place};
+    return (gb_lyapunov_pair_system){body->translation ? 10 : 6, body_advance, body_separation, body_place};
 }
 
 /* ---------------------------------------------------------------- the variational equation on a Gömböc */

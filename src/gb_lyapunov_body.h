@@ -22,7 +22,12 @@ int gb_lyapunov_body_create(const gb_surface *body, const gb_dynamics_def *dynam
                             const gb_integrate_def *integrate, const double R0[9], const double omega0[3],
                             double omega_scale, gb_lyapunov_body **out);
 void gb_lyapunov_body_free(gb_lyapunov_body *body);
-gb_lyapunov_pair_system gb_lyapunov_body_pair(void);
+/* The pair system of `body`. Under the unilateral law the separation has four more coordinates, the
+ * centroid's height and velocity relative to the plane, (ζ₂ − ζ₁)/L and (v₂ − v₁)/(Ω L) (inertial axes, L
+ * the mean radius, eq 53), non-zero only while either copy flies (in contact both follow from the attitude
+ * and ω); they are placed when the reference flies (gb_dynamics_flight_displace), and when it does not the
+ * rotational part is scaled to the whole displacement's length, so that the copy always starts δ₀ away. */
+gb_lyapunov_pair_system gb_lyapunov_body_pair(const gb_lyapunov_body *body);
 /* The reference copy's dynamics and state (for its observables). */
 gb_dynamics *gb_lyapunov_body_dynamics(gb_lyapunov_body *body);
 const double *gb_lyapunov_body_state(const gb_lyapunov_body *body);

@@ -110,7 +110,7 @@ static int run_with_lyapunov(const gb_case *scene, observer *s, gb_dynamics **dy
     if (observe(s, 0.0, gb_lyapunov_body_state(*body)))
         return s->status ? s->status : gb_error_set(GB_EINVAL, "the sampler stopped the run at t = 0");
     gb_lyapunov_body_observe(*body, observe, s);
-    const gb_lyapunov_pair_system system = gb_lyapunov_body_pair();
+    const gb_lyapunov_pair_system system = gb_lyapunov_body_pair(*body);
     status = gb_lyapunov_pair(&system, *body, &scene->lyapunov_def, 0.0, NULL, &r->lyapunov);
     if (status) return s->status ? s->status : status;
     r->has_lyapunov = 1;
@@ -170,6 +170,7 @@ int gb_run(const gb_case *scene, const gb_run_sinks *sinks, gb_run_result *out)
         gb_dynamics_impact_stats(dynamics, &out->impacts, &out->impact_energy_lost, &out->impact_friction_max);
         out->impacts_over_friction = gb_dynamics_impacts_over_friction(dynamics);
         gb_dynamics_two_point_stats(dynamics, out->t_end, &out->two_point);
+        gb_dynamics_flight_stats(dynamics, out->t_end, &out->flight);
         out->has_certificate = gb_dynamics_certify_stats(dynamics, &out->certificate) == GB_OK;
         gb_error_clear(); /* a grid model has no certificate: not an error of the run */
         out->has_atlas = gb_dynamics_atlas_stats(dynamics, &out->atlas, &out->atlas_fallbacks, &out->atlas_loaded) == GB_OK;

@@ -66,6 +66,7 @@ typedef struct gb_run_result {
     double impact_friction_max;          /* friction coefficient an impact needed */
     size_t impacts_over_friction;        /* impacts that needed more than the scene's friction μ */
     gb_dynamics_two_point_summary two_point; /* the unilateral law's two-point mode over the run */
+    gb_dynamics_flight_summary flight;       /* the unilateral law's flights over the run */
     /* Fingerprints (FNV-1a 64): the bytes of the final state; the (sample, contact index, grid and
      * branch switch counts) of every sample with a switch. Equal runs have equal fingerprints. */
     uint64_t state_fingerprint, switch_fingerprint;

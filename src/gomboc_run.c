@@ -31,7 +31,7 @@ static const char *usage_run =
 
 /* The history file: one row a sample. */
 static const char history_header[] = "t,omega_x,omega_y,omega_z,h,E,residual,geff,index,grid_switch,branch_switch,"
-                                     "switch_rate,rc_x,rc_y,rc_z,normal_force,friction_needed\n";
+                                     "switch_rate,rc_x,rc_y,rc_z,normal_force,friction_needed,contacts,zeta,clearance\n";
 
 /* Where the run's streams go: the history (a sample a row) and the impacts (an impact a row). */
 typedef struct streams {
@@ -43,10 +43,10 @@ static int history_row(void *context, const gb_run_sample *s)
     const gb_dynamics_observables *o = s->o;
     FILE *history = ((streams *)context)->history;
     if (!history) return GB_OK;
-    if (fprintf(history, "%.10g,%.12g,%.12g,%.12g,%.15g,%.15g,%.6e,%.12g,%zu,%d,%d,%.6g,%.12g,%.12g,%.12g,%.10g,%.6g\n",
+    if (fprintf(history, "%.10g,%.12g,%.12g,%.12g,%.15g,%.15g,%.6e,%.12g,%zu,%d,%d,%.6g,%.12g,%.12g,%.12g,%.10g,%.6g,%d,%.12g,%.12g\n",
                 s->t, o->omega[0], o->omega[1], o->omega[2], o->height, o->energy, o->residual, o->geff, o->index,
                 s->grid_switch, s->branch_switch, s->switch_rate, o->rc[0], o->rc[1], o->rc[2], o->normal_force,
-                o->friction_needed) < 0)
+                o->friction_needed, o->contacts, o->zeta, o->clearance) < 0)
         return gb_error_set(GB_EIO, "cannot write the history: %s", strerror(errno));
     return GB_OK;
 }
@@ -109,6 +109,11 @@ static cJSON *scene_json(const gb_case *c)
     }
     cJSON_AddStringToObject(o, "attitude", c->attitude_text);
     cJSON_AddItemToObject(o, "omega0", cli_json_vector(c->omega0, 3));
+    if (d->contact_law == GB_CONTACT_LAW_UNILATERAL) {
+        cli_json_add(o, "restitution", d->restitution);
+        cli_json_add(o, "height0", d->height0);
+        cJSON_AddItemToObject(o, "velocity0", cli_json_vector(d->velocity0, 3));
+    }
     cJSON_AddBoolToObject(o, "history", c->write_history);
     cJSON_AddBoolToObject(o, "monitors", c->monitors);
     cli_json_add(o, "sample_every", (double)c->integrate.sample_every);
@@ -468,6 +473,15 @@ int command_run(int argc, char **argv)
             cli_json_add(tp, "third_points", (double)r.two_point.third_points);
             /* when the body came to rest on three points (a grid body on a face), null if it did not */
             cli_json_add(tp, "rest_since", r.two_point.rest_since);
+            cJSON *fl = cJSON_AddObjectToObject(root, "flight");
+            cli_json_add(fl, "restitution", scene.dynamics.restitution);
+            cli_json_add(fl, "flight_time_fraction", r.flight.time / r.t_end);
+            cli_json_add(fl, "lift_offs", (double)r.flight.lift_offs);
+            cli_json_add(fl, "landings", (double)r.flight.landings);
+            cli_json_add(fl, "bounces", (double)r.flight.bounces);
+            /* the highest gap between the lowest point and the plane at the accepted steps of a flight [m] */
+            cli_json_add(fl, "max_hop_height", r.flight.hop_max);
+            cJSON_AddBoolToObject(fl, "flying_at_end", r.flight.flying);
         }
         if (r.has_strobe) cJSON_AddItemToObject(root, "strobe", strobe_json(&r.strobe));
         if (r.has_spectrum) cJSON_AddItemToObject(root, "spectrum", spectrum_json(&scene, &r.spectrum, r.spectrum_samples));
@@ -497,8 +511,11 @@ int command_run(int argc, char **argv)
     free(w.mean);
     gb_run_result_free(&r);
     if (status) return cli_failure("run", status);
-    fprintf(stderr, "gomboc run: %s: contact law %s; %zu steps in %.2f s CPU; fingerprint %s/%s\n", case_path,
-            gb_dynamics_contact_law_name(scene.dynamics.contact_law), r.stats.steps, r.seconds, state_print, switch_print);
+    fprintf(stderr, "gomboc run: %s: contact law %s", case_path, gb_dynamics_contact_law_name(scene.dynamics.contact_law));
+    if (scene.dynamics.contact_law == GB_CONTACT_LAW_UNILATERAL)
+        fprintf(stderr, " (restitution %g; %zu impacts, %zu landings, %.1f %% of the time in flight)",
+                scene.dynamics.restitution, r.impacts, r.flight.landings, 100.0 * r.flight.time / r.t_end);
+    fprintf(stderr, "; %zu steps in %.2f s CPU; fingerprint %s/%s\n", r.stats.steps, r.seconds, state_print, switch_print);
     const size_t over = r.has_monitors ? r.monitors.friction_over_mu : 0;
     if (isfinite(scene.dynamics.friction) && (over || r.impacts_over_friction))
         fprintf(stderr, "gomboc run: %s: %zu of %zu impacts and %.2f %% of the samples need more friction than the scene's "

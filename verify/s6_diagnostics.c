@@ -208,7 +208,7 @@ static void test_pair_reference_is_the_run(void)
             gb_lyapunov_def ldef = gb_lyapunov_default_def();
             ldef.interval = 2.0 * M_PI / def.forcing.omega, ldef.intervals = 10, ldef.transient = 2, ldef.batches = 5;
             int status = gb_lyapunov_body_create(gb_check_body("II", 0.12), &def, &idef, R0, w0, def.forcing.omega, &body);
-            const gb_lyapunov_pair_system ps = gb_lyapunov_body_pair();
+            const gb_lyapunov_pair_system ps = gb_lyapunov_body_pair(body);
             if (!status) status = gb_lyapunov_pair(&ps, body, &ldef, 0.0, NULL, &r);
             gb_dynamics *d = NULL;
             double y[GB_STATE_SIZE];
