@@ -213,6 +213,16 @@ def dynamics_section(out, rows):
                              ["body", "certificate or model", "held [s]", "unilateral [s]", "ratio"],
                              lambda r: [r["body"], r["law_certificate"], f"{r['held_seconds']:.3f}",
                                         f"{r['unilateral_seconds']:.3f}", f"{r['unilateral_over_held']:.2f}×"])
+        lines += bench_table(records, "flight_held_seconds",
+                             "Table 1 read in units of g (continuous rolling, 300 periods, the same `make bench` run, best of "
+                             "2): the held law, whose one contact is kept where the normal force is negative (no physical "
+                             "motion), against the unilateral law, where every lift-off and landing is a located event and "
+                             "the body flies between them, plastic (e = 0) and bouncing (e = 0.5).",
+                             ["body", "held [s]", "unilateral e = 0 [s]", "ratio", "unilateral e = 0.5 [s]", "ratio"],
+                             lambda r: [r["body"], f"{r['flight_held_seconds']:.3f}", f"{r['flight_plastic_seconds']:.3f}",
+                                        f"{r['flight_plastic_seconds'] / r['flight_held_seconds']:.2f}×",
+                                        f"{r['flight_bouncing_seconds']:.3f}",
+                                        f"{r['flight_bouncing_seconds'] / r['flight_held_seconds']:.2f}×"])
         headroom = [r for r in records if "headroom_total_seconds" in r]
         if headroom:
             lines += ["", "Why the certified run is far from 50× (the same `make bench` run): the run's time inside the "

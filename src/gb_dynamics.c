@@ -611,6 +611,7 @@ typedef struct two_point_eval {
     double sigma, omega_dot[3];
     double normal[2];         /* N_P, N_Q */
     double friction_needed, balance;
+    int merged;               /* the end of a crease: Q merged with P or vanished; only p is filled */
 } two_point_eval;
 
 static void vertical_of(const double y[GB_STATE_SIZE], double zb[3]);
@@ -650,15 +651,14 @@ static int two_point_eval_at(gb_dynamics *d, double t, const double y[GB_STATE_S
     if (!status && d->branches_lost != lost)
         status = gb_error_set(GB_ENUMERIC, "two-point contact at t = %.9g: P has no minimum of height left (a fold)", t);
     if (!status) status = second_point(d, zb, &tp->q);
-    if (!status && !tp->q.is_minimum)
-        status = gb_error_set(GB_ENUMERIC, "two-point contact at t = %.9g: Q has no minimum of height left (a fold)", t);
     if (status) return status;
     double dvec[3];
     for (int k = 0; k < 3; k++) tp->rp[k] = L * tp->p.point.rc[k], tp->rq[k] = L * tp->q.rc[k], dvec[k] = tp->rp[k] - tp->rq[k];
     tp->dist = gb_vec_norm(dvec);
-    if (!(tp->dist > 1e-9 * L))
-        return gb_error_set(GB_ENUMERIC, "two-point contact at t = %.9g: P and Q merge (|PQ| = %.3g m, the end of a crease)",
-                            t, tp->dist);
+    /* The end of a crease: Q's minimum of height merges with P's, or vanishes in a fold (Newton from Q ends on
+     * a point that is not a minimum). The state is the body rolling on P alone, with no jump. */
+    tp->merged = !tp->q.is_minimum || !(tp->dist > 1e-9 * L);
+    if (tp->merged) return GB_OK;
     for (int k = 0; k < 3; k++) tp->u[k] = dvec[k] / tp->dist;
     const double *u = tp->u;
     tp->sigma = gb_vec_dot(omega, u);
@@ -751,7 +751,9 @@ int gb_dynamics_rhs(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], dou
         status = two_point_eval_at(d, t, y, &tp, 0);
         if (status) return status;
         c = tp.p;
-        memcpy(dydt + GB_STATE_OMEGA, tp.omega_dot, sizeof tp.omega_dot);
+        if (tp.merged) status = angular_acceleration(d, geff, zb, omega, &c, dydt + GB_STATE_OMEGA); /* on P alone */
+        else memcpy(dydt + GB_STATE_OMEGA, tp.omega_dot, sizeof tp.omega_dot);
+        if (status) return status;
     } else {
         status = contact_at(d, t, zb, omega, &c);
         if (!status) status = angular_acceleration(d, geff, zb, omega, &c, dydt + GB_STATE_OMEGA);
@@ -814,6 +816,13 @@ static int canonical_minimum(gb_dynamics *d, const double zb[3], gb_contact_poin
     return GB_OK;
 }
 
+/* Two contact points within 1e-7 body lengths of each other: the same point. */
+static int same_point(const gb_contact_point *a, const gb_contact_point *b)
+{
+    const double dx[3] = {a->rc[0] - b->rc[0], a->rc[1] - b->rc[1], a->rc[2] - b->rc[2]};
+    return gb_vec_norm(dx) < 1e-7;
+}
+
 /* Continuous contact at state y: the continued branch (*continued) and, when the certificate finds a
  * lower local minimum, that minimum (*other, *found = 1). */
 static int competitor(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], gb_contact_point *continued,
@@ -860,6 +869,10 @@ static int competitor(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], g
     }
     if (*found) status = canonical_minimum(d, zb, other);
     if (status) return status;
+    /* Under the unilateral law a lower minimum within 1e-7 of the continued one is the same contact (a tie
+     * where minima crowd together at the end of a crease), as in the two-point mode: an impact between two
+     * coincident points has no meaning. (The held law keeps its switches as they always were.) */
+    if (*found && d->def.contact_law == GB_CONTACT_LAW_UNILATERAL && same_point(other, continued)) *found = 0;
     memcpy(d->memo_key, key, sizeof key);
     d->memo_continued = *continued;
     d->memo_found = *found;
@@ -906,9 +919,10 @@ int gb_dynamics_save_atlas(const gb_dynamics *d)
     return gb_atlas_save(d->atlas, d->def.atlas_file);
 }
 
-static const char *const impact_kind_names[] = {"switch", "two-point", "lift", "third-point", "lift-off", "landing", "bounce"};
+static const char *const impact_kind_names[] = {"switch", "two-point", "lift", "third-point", "lift-off", "landing", "bounce",
+                                                "crease-end"};
 
-const char *gb_dynamics_impact_kind_name(gb_dynamics_impact_kind k) { return (unsigned)k < 7 ? impact_kind_names[k] : NULL; }
+const char *gb_dynamics_impact_kind_name(gb_dynamics_impact_kind k) { return (unsigned)k < 8 ? impact_kind_names[k] : NULL; }
 
 /* The plastic impact (gb_impact, body axes, the plane's normal z_b) of the body turning with the ω of y
  * about the point `rest` (at rest on the plane before), on the plane at `count` points [m]. */
@@ -936,7 +950,7 @@ static int book(gb_dynamics *d, const gb_dynamics_impact *e)
     d->lift_offs += e->kind == GB_IMPACT_LIFT_OFF;
     d->landings += e->kind == GB_IMPACT_LANDING;
     d->bounces += e->kind == GB_IMPACT_BOUNCE || (e->kind == GB_IMPACT_LANDING && e->rebound);
-    if (e->kind != GB_IMPACT_LIFT && e->kind != GB_IMPACT_LIFT_OFF) {
+    if (e->kind != GB_IMPACT_LIFT && e->kind != GB_IMPACT_LIFT_OFF && e->kind != GB_IMPACT_CREASE_END) {
         d->impacts++;
         d->impact_loss += e->kinetic_before - e->kinetic_after - e->potential_jump;
         d->impact_friction_max = fmax(d->impact_friction_max, e->friction_needed);
@@ -1136,6 +1150,21 @@ static int impact(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const gb_co
     return book(d, &e);
 }
 
+/* A change of contact with no impulse (a lift, a lift-off, the end of a crease), the body turning with the ω
+ * of y about the point `about` [m]: the centroid's velocity v = ω × (G − P), and the impact's record of
+ * nothing changed. */
+static void no_impulse(const gb_dynamics *d, const double y[GB_STATE_SIZE], const double about[3], double v[3],
+                       gb_impact_result *r)
+{
+    memset(r, 0, sizeof *r);
+    memcpy(r->omega, y + GB_STATE_OMEGA, sizeof r->omega);
+    gb_vec_cross(y + GB_STATE_OMEGA, (const double[3]){-about[0], -about[1], -about[2]}, v);
+    memcpy(r->v, v, sizeof r->v);
+    gb_impact_body body = {d->def.mass, {{0}}};
+    memcpy(body.inertia, d->inertia, sizeof body.inertia);
+    r->energy_before = r->energy_after = gb_impact_energy(&body, v, r->omega);
+}
+
 /* At a lift-off from one point the normal force is 0 but the rolling contact's tangential force F_t
  * generally is not (the friction it needs, |F_t|/N, grows without bound as N reaches 0). Without F_t the
  * point's normal acceleration changes by −n·W F_t (W the point's Delassus operator, as in gb_impact): if
@@ -1181,7 +1210,7 @@ static int lift_off_consistent(gb_dynamics *d, double t, const double y[GB_STATE
                             "does not follow (sliding is not built)", t, gb_vec_norm(ft), dip);
     }
     /* the flight's landing waits below the dip (twice the estimate) until the gap has opened */
-    d->gap_allow = fmax(d->gap_allow, 2.0 * dip / d->def.length);
+    d->gap_allow = fmax(d->gap_allow, FLIGHT_GAP_TOL + 2.0 * dip / d->def.length);
     return GB_OK;
 }
 
@@ -1203,14 +1232,8 @@ static int lift_off(gb_dynamics *d, double t, double y[GB_STATE_SIZE])
     if (status) return status;
     if (d->resting) memset(y + GB_STATE_OMEGA, 0, 3 * sizeof *y); /* at rest nothing turns (gb_dynamics_rhs) */
     for (int k = 0; k < 3; k++) rp[k] = L * p.rc[k];
-    gb_vec_cross(y + GB_STATE_OMEGA, (const double[3]){-rp[0], -rp[1], -rp[2]}, v);
     gb_impact_result r;
-    memset(&r, 0, sizeof r);
-    memcpy(r.omega, y + GB_STATE_OMEGA, sizeof r.omega);
-    memcpy(r.v, v, sizeof v);
-    gb_impact_body body = {d->def.mass, {{0}}};
-    memcpy(body.inertia, d->inertia, sizeof body.inertia);
-    r.energy_before = r.energy_after = gb_impact_energy(&body, v, r.omega);
+    no_impulse(d, y, rp, v, &r);
     gb_dynamics_impact e = {.t = t, .located = 1, .kind = GB_IMPACT_LIFT_OFF, .contacts_after = 0, .return_time = INFINITY};
     record(&e, y, rp, rp, v, &r, 0, -1);
     if (d->two_point) d->two_point = 0, d->two_point_time += t - d->two_point_since;
@@ -1245,14 +1268,26 @@ static int landing(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const gb_c
     record(&rec, y, rq, rq, v, &r, 0, -1);
     set_contact(d, q);
     int flies = e > 0.0 || !r.holds[0]; /* a rebound, or the slip stopped and the point leaves */
+    double allow = FLIGHT_GAP_TOL;
     if (!flies) {
         double n;
-        const int status = one_point_normal(d, t, y, &n);
+        int status = one_point_normal(d, t, y, &n);
+        flies = !status && n < 0.0;
+        if (flies) {
+            /* the plane still falls away faster than gravity: the body leaves the point at rest, as at a
+             * lift-off, and its dip is bounded the same way */
+            d->gap_allow = FLIGHT_GAP_TOL;
+            status = lift_off_consistent(d, t, y);
+            allow = d->gap_allow;
+        }
         if (status) return status;
-        flies = n < 0.0;
     }
     if (flies) {
-        start_flight(d, t, y, r.v, zeta); /* the same flight goes on */
+        /* the flight goes on from where the point is, up to the landing tolerance below the plane: the next
+         * landing is a return below that */
+        const double depth = -(zeta + L * gb_vec_dot(zb, q->rc)) / L;
+        start_flight(d, t, y, r.v, zeta);
+        d->gap_allow = fmax(allow, fmax(depth, 0.0) + FLIGHT_GAP_TOL);
     } else {
         d->flying = 0;
         d->flight_time += t - d->flight_since;
@@ -1284,11 +1319,6 @@ static int canonical_minimum(gb_dynamics *d, const double zb[3], gb_contact_poin
 enum { PENDING_THIRD = 0, PENDING_LIFT = 1 };
 
 
-static int same_point(const gb_contact_point *a, const gb_contact_point *b)
-{
-    const double dx[3] = {a->rc[0] - b->rc[0], a->rc[1] - b->rc[1], a->rc[2] - b->rc[2]};
-    return gb_vec_norm(dx) < 1e-7;
-}
 
 static int two_point_search(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], gb_contact_point *other, int *found);
 
@@ -1320,7 +1350,7 @@ static int two_point_search(gb_dynamics *d, double t, const double y[GB_STATE_SI
     two_point_eval tp;
     *found = 0;
     int status = two_point_at(d, t, y, &tp);
-    if (status) return status;
+    if (status || tp.merged) return status; /* the end of a crease: gb_dynamics_accept leaves the mode */
     if (fmin(tp.normal[0], tp.normal[1]) < 0.0) {
         d->pending = PENDING_LIFT;
         *other = tp.q;
@@ -1410,20 +1440,16 @@ static int two_point_event(gb_dynamics *d, double t, double y[GB_STATE_SIZE], co
 {
     two_point_eval tp;
     int status = two_point_at(d, t, y, &tp);
+    if (!status && tp.merged)
+        status = gb_error_set(GB_ENUMERIC, "two-point contact at t = %.9g: the crease ends at a located event", t);
     if (status) return status;
     if (d->pending == PENDING_LIFT) {
         const int lifts = tp.normal[0] < tp.normal[1] ? 0 : 1; /* the point whose force reached 0 */
         const double *up = lifts ? tp.rq : tp.rp, *stays = lifts ? tp.rp : tp.rq;
         gb_dynamics_impact e = {.t = t, .located = 1, .kind = GB_IMPACT_LIFT, .contacts_after = 1};
         gb_impact_result r;
-        memset(&r, 0, sizeof r);
         double v[3];
-        memcpy(r.omega, y + GB_STATE_OMEGA, sizeof r.omega);
-        gb_vec_cross(y + GB_STATE_OMEGA, (const double[3]){-stays[0], -stays[1], -stays[2]}, v);
-        memcpy(r.v, v, sizeof v);
-        gb_impact_body body = {d->def.mass, {{0}}};
-        memcpy(body.inertia, d->inertia, sizeof body.inertia);
-        r.energy_before = r.energy_after = gb_impact_energy(&body, v, r.omega);
+        no_impulse(d, y, stays, v, &r);
         record(&e, y, up, stays, v, &r, 0, -1);
         d->two_point = 0;
         d->two_point_time += t - d->two_point_since;
@@ -1542,8 +1568,28 @@ int gb_dynamics_accept(gb_dynamics *d, double t, double y[GB_STATE_SIZE], double
         if (!status) status = two_point_eval_at(d, t, y, &tp, 0);
         if (status) return status;
         set_contact(d, &tp.p.point);
-        d->contact2 = tp.q;
         d->memo_valid = 0;
+        if (tp.merged) {
+            /* the end of a crease inside the step (not located: the state is continuous there, and the mode
+             * whose constraint ends has nothing to jump): the body rolls on P alone from here */
+            const double L = d->def.length;
+            double rp[3], v[3];
+            for (int k = 0; k < 3; k++) rp[k] = L * tp.p.point.rc[k];
+            gb_impact_result r;
+            no_impulse(d, y, rp, v, &r);
+            gb_dynamics_impact e = {.t = t, .located = 0, .kind = GB_IMPACT_CREASE_END, .contacts_after = 1,
+                                    .return_time = INFINITY};
+            double qr[3];
+            for (int k = 0; k < 3; k++) qr[k] = L * d->contact2.rc[k];
+            record(&e, y, qr, rp, v, &r, 0, -1);
+            d->two_point = 0;
+            d->two_point_time += t - d->two_point_since;
+            d->last_valid = 0;
+            status = book(d, &e);
+            if (status) return status;
+            return remember_rate(d, t, y);
+        }
+        d->contact2 = tp.q;
         return remember_rate(d, t, y);
     }
     int status = competitor(d, t, y, &continued, &other, &found);
@@ -1615,7 +1661,9 @@ int gb_dynamics_branch_gap(gb_dynamics *d, double t, const double y[GB_STATE_SIZ
     }
     if (d->two_point && d->pending == PENDING_LIFT) {
         two_point_eval tp;
-        const int status = two_point_at(d, t, y, &tp);
+        int status = two_point_at(d, t, y, &tp);
+        if (!status && tp.merged)
+            status = gb_error_set(GB_ENUMERIC, "two-point contact at t = %.9g: the crease ends while a lift is located", t);
         if (status) return status;
         *gap = -fmin(tp.normal[0], tp.normal[1]);
         *other_here = *other;
@@ -1634,6 +1682,11 @@ int gb_dynamics_branch_gap(gb_dynamics *d, double t, const double y[GB_STATE_SIZ
     if (status) return status;
     *gap = here.height - other_here->height; /* > 0: the other branch is lower (eq 39) */
     if (d->def.contact != GB_CONTACT_MODEL_CONTINUOUS) *gap -= GRID_TIE;
+    /* Under the unilateral law: where Newton from the other branch ends on the contact itself, that branch is
+     * not born yet (it appears in a fold inside the step, above the contact, since the lowest height is
+     * continuous), so it is not lower: the crossing is located where it has been born and passes below. */
+    else if (d->def.contact_law == GB_CONTACT_LAW_UNILATERAL && !d->two_point && same_point(other_here, &here))
+        *gap = -1e-15;
     return GB_OK;
 }
 
@@ -1858,7 +1911,8 @@ int gb_dynamics_observe(gb_dynamics *d, double t, const double y[GB_STATE_SIZE],
     memcpy(o->omega, y + GB_STATE_OMEGA, sizeof o->omega);
     contact_eval c;
     two_point_eval tp;
-    int status;
+    int status = GB_OK;
+    tp.merged = 0;
     gb_forcing_geff_with_rate(&d->def.forcing, t, &o->geff, &o->geff_rate);
     if (d->flying) {
         /* the lowest point for the clearance; no contact force */
@@ -1892,12 +1946,11 @@ int gb_dynamics_observe(gb_dynamics *d, double t, const double y[GB_STATE_SIZE],
     if (d->resting) {
         status = contact_at(d, t, o->zb, o->omega, &c); /* ω̇ = 0 */
         if (status) return status;
-    } else if (d->two_point) {
-        status = two_point_at(d, t, y, &tp);
-        if (status) return status;
+    } else if (d->two_point && (status = two_point_at(d, t, y, &tp)) == GB_OK && !tp.merged) {
         c = tp.p;
         memcpy(o->omega_dot, tp.omega_dot, sizeof tp.omega_dot);
     } else {
+        if (status) return status; /* (the end of a crease is observed as rolling on P) */
         status = contact_at(d, t, o->zb, o->omega, &c);
         if (!status) status = angular_acceleration(d, o->geff, o->zb, o->omega, &c, o->omega_dot);
         if (status) return status;
@@ -1926,12 +1979,13 @@ int gb_dynamics_observe(gb_dynamics *d, double t, const double y[GB_STATE_SIZE],
     double horizontal[3];
     for (int k = 0; k < 3; k++) horizontal[k] = acc[k] - vertical * o->zb[k];
     o->friction_needed = o->normal_force > 0.0 ? m * gb_vec_norm(horizontal) / o->normal_force : INFINITY;
-    o->contacts = d->resting ? 3 : 1 + d->two_point;
+    const int two = d->two_point && !d->resting && !tp.merged;
+    o->contacts = d->resting ? 3 : 1 + two;
     double vb[3];
     gb_vec_cross(o->omega, (const double[3]){-c.rc[0], -c.rc[1], -c.rc[2]}, vb); /* v_G = ω × (G − P) */
     for (int i = 0; i < 3; i++) o->velocity[i] = o->R[3 * i] * vb[0] + o->R[3 * i + 1] * vb[1] + o->R[3 * i + 2] * vb[2];
     o->normal_forces[0] = o->normal_force;
-    if (d->two_point) {
+    if (two) {
         memcpy(o->rc_other, tp.rq, sizeof o->rc_other);
         memcpy(o->normal_forces, tp.normal, sizeof tp.normal);
         o->friction_needed = tp.friction_needed;

@@ -69,11 +69,13 @@ int gb_dynamics_certificate_parse(const char *name, gb_dynamics_certificate *cer
  *    torque-free but for −c ω; it lands where its lowest point (certified as a contact is) reaches the plane:
  *    a one-point impact of a rough plane (gb_impact_rough_point) with Newton's def.restitution. With e > 0 a
  *    change of contact from one point is a rebound too (kind bounce).
+ *  - The end of a crease: where Q's minimum merges with P's or vanishes in a fold, the two-point mode ends
+ *    at that step's end and the body rolls on P alone (no jump: the state is continuous there; kind
+ *    crease-end). A lower minimum within 1e-7 of the contact is the same contact, not a switch.
  * Stops the run with GB_ENUMERIC, saying which: an impact a rough plane cannot absorb (stopping the slip
  * needs a pulling impulse; a finite friction coefficient is not built), three points whose triangle holds
- * neither the weight nor an edge, the two points of the mode merging (the end of a crease), a lift-off the
- * body would have to slide through (its lowest point driven over 1e-6 body lengths into the plane), and a
- * change of contact the step's event location missed. A chatter of impacts between P and Q (the lifted
+ * neither the weight nor an edge, a lift-off the body would have to slide through (its lowest point driven
+ * over 1e-6 body lengths into the plane), and a change of contact the step's event location missed. A chatter of impacts between P and Q (the lifted
  * point falling back ever sooner, as a bouncing ball's) is ended by def.settle_time, and so is a bounce
  * sequence (a rebound that would return within it is plastic). */
 typedef enum gb_contact_law { GB_CONTACT_LAW_HELD = 0, GB_CONTACT_LAW_UNILATERAL = 1 } gb_contact_law;
@@ -95,8 +97,10 @@ typedef enum gb_dynamics_impact_kind {
                               * (no impulse; old point = the one left, new point = the lowest point) */
     GB_IMPACT_LANDING = 5,   /* in flight, the lowest point reaches the plane (contacts after: 1 when it
                               * holds, 0 when the body bounces or is pulled off at once) */
-    GB_IMPACT_BOUNCE = 6     /* restitution e > 0 at a change of contact: Q rebounds; P holds (contacts
+    GB_IMPACT_BOUNCE = 6,    /* restitution e > 0 at a change of contact: Q rebounds; P holds (contacts
                               * after 1, the body rolls on P) or lifts too (0: the body hops) */
+    GB_IMPACT_CREASE_END = 7 /* two-point mode: Q's minimum merges with P's or vanishes in a fold (the end of
+                              * the crease); the body rolls on P alone (no impulse; found at a step's end) */
 } gb_dynamics_impact_kind;
 
 const char *gb_dynamics_impact_kind_name(gb_dynamics_impact_kind kind);
