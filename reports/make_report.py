@@ -223,12 +223,19 @@ def main():
                 detail += f" — {reading} (see 'Convergence')"
         # The one-trajectory, 300-period chaos verdict of the rolling model against the ensemble of `make study`.
         for (body, law), reading in ensembles.items():
-            model = "continuous contact, rolling equation" + (", unilateral contact" if law == "unilateral" else "")
+            model = {"unilateral": "continuous contact, rolling equation, unilateral contact",
+                     "flight": "continuous rolling, unilateral contact with flight (e = 0), A in units of g",
+                     "bouncing": "continuous rolling, unilateral contact with flight (e = 0.5), A in units of g"}.get(
+                         law, "continuous contact, rolling equation")
             if where.startswith(f"Gomboc {body}, {model}: lambda_max - 4 sigma"):
                 agrees = (reading == "sustained") == (r["verdict"] == "holds")
+                size = ("16 initial attitudes, 1000 periods" if law in ("flight", "bouncing")
+                        else "32 initial attitudes, 64 for Gömböc I; 3000 periods")
                 if not agrees or reading == "undecided":
-                    detail += (f" — **preliminary: the ensemble of `make study` (32 initial attitudes, 64 for Gömböc I; 3000 periods) "
+                    detail += (f" — **preliminary: the ensemble of `make study` ({size}) "
                                f"reads {reading}** (see 'Chaotic for good, for a while, or not at all?')")
+                else:
+                    detail += f" — the ensemble of `make study` ({size}) reads {reading}"
         lines.append(f"| §{r['section']} | {claim} | {where} | {detail} | {verdict_text(r['verdict'])} | "
                      f"{r['rule'].replace('|', '/')} |")
     # Results that are not findings, stated only as far as their checks passed in this run.

@@ -62,16 +62,20 @@ def classify(rows):
 
 def ensemble_readings(out):
     """{(body, law): reading} of the ensembles `make study` last ran (sustained, transient, regular, undecided);
-    law is "held" (ensemble-gomboc-BODY-rolling) or "unilateral" (ensemble-gomboc-BODY-unilateral)."""
+    law is "held" (ensemble-gomboc-BODY-rolling), "unilateral" (ensemble-gomboc-BODY-unilateral), or, for Table 1
+    read in units of g under the unilateral law with flight, "flight" (e = 0, ensemble-gomboc-BODY-g-units-flight)
+    and "bouncing" (e = 0.5, ensemble-gomboc-BODY-g-units-bouncing)."""
     folder = os.path.join(out, "study")
     readings = {}
     if not os.path.isdir(folder):
         return readings
     for name in sorted(os.listdir(folder)):
-        for suffix, law in (("-rolling-scan.csv", "held"), ("-unilateral-scan.csv", "unilateral")):
+        for suffix, law in (("-g-units-flight-scan.csv", "flight"), ("-g-units-bouncing-scan.csv", "bouncing"),
+                            ("-rolling-scan.csv", "held"), ("-unilateral-scan.csv", "unilateral")):
             if name.startswith("ensemble-gomboc-") and name.endswith(suffix):
                 body = name[len("ensemble-gomboc-"):-len(suffix)]
                 readings[(body, law)] = classify(list(csv.DictReader(open(os.path.join(folder, name)))))[-1]
+                break
     return readings
 
 
@@ -81,7 +85,8 @@ def study_section(out):
     files = sorted(f for f in os.listdir(folder) if f.endswith("-scan.csv")) if os.path.isdir(folder) else []
     if not files:
         return lines + ["No ensembles in this checkout: `make study` runs those of `cases/studies` (32 random initial "
-                        "attitudes per body and contact law, 64 for Gömböc I, 3000 periods each) and writes them here.", ""]
+                        "attitudes per body and contact law, 64 for Gömböc I, 3000 periods each; Table 1 in units of g with "
+                        "flight, 16 attitudes x 1000 periods) and writes them here.", ""]
     stamp = os.path.join(out, "gates", "study.json")
     when = ""
     if os.path.exists(stamp):

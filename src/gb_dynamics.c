@@ -124,6 +124,11 @@ struct gb_dynamics {
      * `contact` is then the lowest point, continued and certified as a contact is. flight_event: the event
      * gb_dynamics_switch_pending found (FLIGHT_NONE, FLIGHT_LIFT_OFF, FLIGHT_LANDING), for
      * gb_dynamics_branch_gap, gb_dynamics_switch_to and gb_dynamics_jump. */
+    /* After a lift of the two-point mode (continuous contact): the point that lifted, and how far below the
+     * contact it may dip before its return counts as a change of contact (LIFT_OFF_DIP_MAX), until its gap
+     * has opened (lift_allow is 0 when none is pending). */
+    gb_contact_point lifted;
+    double lift_allow;
     int flying, flight_event;
     double gap_allow; /* a landing is the lowest point this far below the plane [body lengths]: FLIGHT_GAP_TOL,
                        * or a lift-off's dip until the gap has opened */
@@ -873,6 +878,7 @@ static int competitor(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], g
      * where minima crowd together at the end of a crease), as in the two-point mode: an impact between two
      * coincident points has no meaning. (The held law keeps its switches as they always were.) */
     if (*found && d->def.contact_law == GB_CONTACT_LAW_UNILATERAL && same_point(other, continued)) *found = 0;
+    if (*found && continued->height - other->height < d->lift_allow) *found = 0; /* a lifted point's dip */
     memcpy(d->memo_key, key, sizeof key);
     d->memo_continued = *continued;
     d->memo_found = *found;
@@ -1075,8 +1081,10 @@ static int grazing(const gb_dynamics *d, const double y[GB_STATE_SIZE], const do
 /* The outcome of the impact at a change of contact from P (`from`) to Q (`to`) at state y while rolling on
  * one point, nothing booked: the body rolling about P meets the plane at Q; *both: both points hold after
  * (the two-point mode begins), else P lifts; a lift whose fall back would come within def.settle_time is
- * taken as both held (the settle rule). Also: the points [m], the centroid's velocity before,
- * the solver's answer (the settle rule applied), P's return time and whether both points hold. */
+ * taken as both held (the settle rule). *bounce: 0, or with restitution 1 (Q rebounds, P holds) and 2 (both
+ * leave), or 3 (e = 0 where Moreau's law would need a pull: Q's slip stopped leaves Q moving away, and P
+ * too: the body hops). Also: the points [m], the centroid's velocity before, the solver's answer (the
+ * settle rule applied), P's return time and whether both points hold. */
 static int impact_outcome(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const gb_contact_point *from,
                           const gb_contact_point *to, double points[2][3], double v[3], gb_impact_result *r, double *back,
                           int *both, int *bounce)
@@ -1094,6 +1102,38 @@ static int impact_outcome(gb_dynamics *d, double t, const double y[GB_STATE_SIZE
         e = restitution_at(d, t, -(gb_vec_dot(zb, vg) + gb_vec_dot(zb, wq)));
     }
     int status = impact_solve(d, t, y, points[0], (const double (*)[3])points, 2, e, v, r);
+    if (status == GB_ENUMERIC && e == 0.0) {
+        /* Moreau's law has no answer: holding Q would need the plane to pull. The rough plane's one-point law
+         * (gb_impact_rough_point, a landing's) at Q: Q's slip stopped first, then its approach if any is
+         * left; it stands when P then moves away from the plane (P lifts with no impulse). If Q leaves too,
+         * the body hops. */
+        double zb[3], uP[3];
+        gb_impact_result q;
+        gb_impact_body body = {d->def.mass, {{0}}};
+        memcpy(body.inertia, d->inertia, sizeof body.inertia);
+        vertical_of(y, zb);
+        if (gb_impact_rough_point(&body, zb, 0.0, points[1], v, y + GB_STATE_OMEGA, &q) == GB_OK) {
+            gb_vec_cross(q.omega, points[0], uP);
+            for (int k = 0; k < 3; k++) uP[k] += q.v[k];
+            if (gb_vec_dot(zb, uP) >= -1e-10 * gb_vec_norm(v)) {
+                gb_error_clear();
+                memset(r, 0, sizeof *r);
+                memcpy(r->v, q.v, sizeof r->v);
+                memcpy(r->omega, q.omega, sizeof r->omega);
+                r->holds[1] = q.holds[0];
+                memcpy(r->impulse[1], q.impulse[0], sizeof r->impulse[1]);
+                r->normal_impulse[1] = q.normal_impulse[0], r->tangential_impulse[1] = q.tangential_impulse[0];
+                r->friction_needed = q.friction_needed;
+                r->energy_before = q.energy_before, r->energy_after = q.energy_after;
+                r->feasible_sets = 1;
+                status = GB_OK;
+                if (!q.holds[0]) { /* Q leaves with P: a hop */
+                    *bounce = 3, *both = 0, *back = INFINITY;
+                    return GB_OK;
+                }
+            }
+        }
+    }
     if (status) return status;
     if (e > 0.0) {
         /* Q rebounds at e times its approach speed and leaves the plane; P holds (the body rolls on about P)
@@ -1139,9 +1179,10 @@ static int impact(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const gb_co
     if (status) return status;
     gb_dynamics_impact e = {.t = t, .located = located, .kind = *both ? GB_IMPACT_TWO_POINT : GB_IMPACT_SWITCH,
                             .contacts_after = 1 + *both, .settled = *both && isfinite(back), .return_time = back};
-    if (*bounce) e.kind = GB_IMPACT_BOUNCE, e.contacts_after = *bounce == 1, e.rebound = 1;
+    if (*bounce == 1 || *bounce == 2) e.kind = GB_IMPACT_BOUNCE, e.contacts_after = *bounce == 1, e.rebound = 1;
+    else if (*bounce == 3) e.contacts_after = 0; /* Q's slip stopped and Q leaves with P: the body hops */
     record(&e, y, points[0], points[1], v, &r, 1, 0);
-    if (*bounce == 2) {
+    if (*bounce >= 2) {
         /* both points leave the plane: the body flies, its centroid where it is, at its velocity after */
         double zb[3];
         vertical_of(y, zb);
@@ -1454,6 +1495,13 @@ static int two_point_event(gb_dynamics *d, double t, double y[GB_STATE_SIZE], co
         d->two_point = 0;
         d->two_point_time += t - d->two_point_since;
         set_contact(d, lifts ? &tp.p.point : &tp.q);
+        if (d->def.contact == GB_CONTACT_MODEL_CONTINUOUS) {
+            /* As at a lift-off, the lifted point's gap opens only at third order while the rough contact it
+             * leaves still needed a friction force: it may dip below the plane by a micrometre a metre of body
+             * (LIFT_OFF_DIP_MAX) before its return is a change of contact, until its gap has opened. */
+            d->lifted = lifts ? tp.q : tp.p.point;
+            d->lift_allow = LIFT_OFF_DIP_MAX;
+        }
         return book(d, &e);
     }
     const double L = d->def.length;
@@ -1600,6 +1648,15 @@ int gb_dynamics_accept(gb_dynamics *d, double t, double y[GB_STATE_SIZE], double
                               "step's event location did not find (%zu impacts so far)", t, d->impacts);
     /* (N < 0 at the step's end was a lift-off event, located by gb_dynamics_switch_pending) */
     if (status) return status;
+    if (d->lift_allow > 0.0) {
+        /* has the lifted point's gap opened (or its minimum gone)? */
+        double zb[3];
+        gb_contact_point q;
+        vertical_of(y, zb);
+        if (point_at(d, zb, &d->lifted, &q) || !q.is_minimum || q.height > continued.height) d->lift_allow = 0.0;
+        else d->lifted = q;
+        gb_error_clear();
+    }
     set_contact(d, found ? &other : &continued);
     d->memo_valid = 0; /* the accepted contact changed */
     if (found) d->last_valid = 0; /* the last contact found is on the branch left */
@@ -1687,11 +1744,14 @@ int gb_dynamics_branch_gap(gb_dynamics *d, double t, const double y[GB_STATE_SIZ
      * continuous), so it is not lower: the crossing is located where it has been born and passes below. */
     else if (d->def.contact_law == GB_CONTACT_LAW_UNILATERAL && !d->two_point && same_point(other_here, &here))
         *gap = -1e-15;
+    else if (!d->two_point)
+        *gap -= d->lift_allow;
     return GB_OK;
 }
 
 int gb_dynamics_switch_to(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const gb_contact_point *branch)
 {
+    d->lift_allow = 0.0; /* any change of contact ends a lifted point's allowance (a lift sets a new one) */
     if (d->flight_event != FLIGHT_NONE) {
         /* a lift-off or a landing: neither is a switch of contact branch */
         const int status = d->flight_event == FLIGHT_LIFT_OFF ? lift_off(d, t, y) : landing(d, t, y, branch);
@@ -1761,7 +1821,7 @@ int gb_dynamics_jump(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], co
         int both, bounce;
         status = point_at(d, zb, branch, &q);
         if (!status) status = impact_outcome(d, t, y, &p, &q, points, v, &res, &back, &both, &bounce);
-        if (!status && bounce == 2)
+        if (!status && bounce >= 2)
             status = gb_error_set(GB_EINVAL, "t = %.9g: the variational estimator does not follow a hop (restitution "
                                   "lifts both points); use [lyapunov] estimator = pair", t);
     }
@@ -1831,6 +1891,7 @@ void gb_dynamics_adopt_contact(gb_dynamics *to, const gb_dynamics *from)
     to->q_valid = 0;
     to->two_point_since = from->two_point_since;
     to->flying = from->flying, to->flight_event = FLIGHT_NONE, to->gap_allow = from->gap_allow;
+    to->lifted = from->lifted, to->lift_allow = from->lift_allow;
     to->fly_t0 = from->fly_t0, to->fly_zeta0 = from->fly_zeta0, to->flight_since = from->flight_since;
     memcpy(to->fly_v0, from->fly_v0, sizeof to->fly_v0);
     to->contact_time = from->contact_time;
@@ -1870,6 +1931,7 @@ int gb_dynamics_init_state(gb_dynamics *d, double t0, const double R0[9], const 
     d->two_point_entries = d->settled = d->lifts = d->third_points = 0;
     d->flying = 0, d->flight_event = FLIGHT_NONE;
     d->gap_allow = FLIGHT_GAP_TOL;
+    d->lift_allow = 0.0;
     d->flight_time = d->hop_max = 0.0;
     d->lift_offs = d->landings = d->bounces = 0;
     const double *v0 = d->def.velocity0;
