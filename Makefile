@@ -42,7 +42,8 @@ MPI_ENV    = $(if $(MPICC),GOMBOC_MPI_BIN=$(MPI_BIN) GOMBOC_MPIRUN="$(MPIRUN)")
 
 .PHONY: all deps run verify verify-full bench references report install clean \
         build run-only verify-only references-only bench-only fuzz fuzz-only sanitize sanitize-only \
-        valgrind valgrind-only install-only example-only scans scans-only study study-only mpi mpi-only
+        valgrind valgrind-only install-only example-only scans scans-only study study-only mpi mpi-only \
+        check help uninstall
 
 all: deps
 	@$(MAKE) --no-print-directory build
@@ -297,6 +298,32 @@ example-only: $(BIN) $(LIB)
 	$(CC) -std=c11 -Wall -Wextra -Werror examples/contact_and_scene.c -o $(BUILD)/example \
 	  $$(PKG_CONFIG_PATH=$(STAGE)/usr/local/lib/pkgconfig pkg-config --define-variable=prefix=$(STAGE)/usr/local --cflags --libs gomboc)
 	$(BUILD)/example verify/valgrind/paper-grid.ini
+	$(CXX) -std=c++17 -Wall -Wextra -Werror examples/cxx_link.cpp -o $(BUILD)/example-cxx \
+	  $$(PKG_CONFIG_PATH=$(STAGE)/usr/local/lib/pkgconfig pkg-config --define-variable=prefix=$(STAGE)/usr/local --cflags --libs gomboc)
+	$(BUILD)/example-cxx
+
+# `make check` is `make verify`, by the usual name.
+check: verify
+
+# What `make install` put under $(DESTDIR)$(PREFIX), removed (directories it made are removed when empty).
+uninstall:
+	rm -f $(DESTDIR)$(PREFIX)/bin/gomboc $(DESTDIR)$(PREFIX)/lib/libgomboc.a $(DESTDIR)$(PREFIX)/lib/pkgconfig/gomboc.pc
+	rm -f $(addprefix $(DESTDIR)$(PREFIX)/include/gomboc/,$(notdir $(PUBLIC_HEADERS)))
+	-rmdir $(DESTDIR)$(PREFIX)/include/gomboc 2>/dev/null
+
+help:
+	@echo "make run          the default scenes (Table 1, both bodies) and their report: reports/out/runs.md"
+	@echo "make verify       build, run every check and write reports/out/verification.md (make check: the same)"
+	@echo "make verify-full  make verify plus the long studies and the ensembles of make study"
+	@echo "make bench        speed ratios measured side by side in one run"
+	@echo "make scans        the parameter maps of Figs 10-13 (cases/scans)"
+	@echo "make study        the ensembles of cases/studies (random initial attitudes)"
+	@echo "make mpi          scans on MPI ranks (installs OpenMPI)"
+	@echo "make fuzz | sanitize | valgrind   the robustness gates"
+	@echo "make references   regenerate references/*.json with scipy and sympy"
+	@echo "make install | uninstall          the command, library, headers and pkg-config file under PREFIX"
+	@echo "make clean        remove build/ and reports/out"
+	@echo "Debian packages missing are installed by every target that needs them (as root)." 
 
 clean:
 	rm -rf $(BUILD) $(OUT) build-san $(FUZZ_DIR)
@@ -304,6 +331,13 @@ clean:
 # --- compilation
 $(BUILD)/obj/%.o: src/%.c $(wildcard src/*.h) | $(BUILD)/obj
 	$(CC) $(ALL_CFLAGS) -c $< -o $@
+
+# `gomboc --version`: the version (git describe) in a header rewritten only when it changes.
+$(BUILD)/obj/gomboc.o: $(BUILD)/obj/gomboc_version.h
+$(BUILD)/obj/gomboc.o: ALL_CFLAGS += -I$(BUILD)/obj
+$(BUILD)/obj/gomboc_version.h: FORCE | $(BUILD)/obj
+	@printf '#define GOMBOC_VERSION "%s"\n' '$(VERSION)' > $@.tmp; cmp -s $@.tmp $@ && rm -f $@.tmp || mv $@.tmp $@
+FORCE:
 
 $(BUILD)/obj/verify_%.o: verify/%.c $(wildcard src/*.h verify/*.h) | $(BUILD)/obj
 	$(CC) $(ALL_CFLAGS) -Iverify -c $< -o $@

@@ -39,6 +39,10 @@
 
 #include <stddef.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct gb_atlas_def {
     double height_tol;   /* η, as gb_certify_def (default 1e-12) */
     int first_level;     /* cells are first built at this quadtree level of a cube face (default 5) */
@@ -112,5 +116,9 @@ size_t gb_atlas_file_limit(const gb_atlas *atlas);
 int gb_atlas_load_buffer(gb_atlas *atlas, const unsigned char *data, size_t size, const char *name);
 
 void gb_atlas_get_stats(const gb_atlas *atlas, gb_atlas_stats *out);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

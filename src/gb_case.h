@@ -23,6 +23,10 @@
 #include "gb_spectrum.h"
 #include "gb_strobe.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* A scene file holds at most this many bytes; a text value at most GB_CASE_TEXT_MAX - 1. */
 #define GB_CASE_FILE_MAX (1 << 20)
 #define GB_CASE_TEXT_MAX 256
@@ -86,5 +90,9 @@ int gb_case_key_numeric(const char *section, const char *name);
  * `gomboc lyapunov` asks for it whatever the flag): sets lyapunov_def.interval [s] and .intervals and
  * omega_scale. GB_EDOM with "FILE:LINE: [lyapunov] key: reason (allowed: ...)". */
 int gb_case_lyapunov_check(const char *path, gb_case *c);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

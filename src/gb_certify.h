@@ -43,6 +43,10 @@
 
 #include <stddef.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct gb_certify_def {
     double height_tol;  /* η: allowed depth of a lower point [body length units] (default 1e-12) */
     int max_depth;      /* splits of a root box (default 24: boxes down to ~2.3e-8 rad) */
@@ -97,5 +101,9 @@ int gb_certify_global_minimum(gb_certify *certify, const double zb[3], const gb_
                               gb_contact_point *out);
 
 void gb_certify_get_stats(const gb_certify *certify, gb_certify_stats *out);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

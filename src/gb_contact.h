@@ -25,6 +25,10 @@
 
 #include <stddef.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef enum gb_contact_nodes {
     GB_CONTACT_NODES_CENTRED = 0,
     GB_CONTACT_NODES_LINSPACE = 1
@@ -192,5 +196,9 @@ int gb_contact_rate(const gb_surface *surface, const double zb[3], const gb_cont
 
 /* Normalise z_b into `unit`; GB_EDOM for a zero or non-finite vector. */
 int gb_contact_unit_vertical(const double zb[3], double unit[3]);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -28,6 +28,10 @@
 
 #include <stddef.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 enum { GB_STATE_Q = 0, GB_STATE_OMEGA = 4, GB_STATE_WORK = 7, GB_STATE_SIZE = 8 };
 
 typedef enum gb_dynamics_variant { GB_VARIANT_PAPER = 0, GB_VARIANT_ROLLING = 1 } gb_dynamics_variant;
@@ -327,5 +331,9 @@ int gb_dynamics_observe(gb_dynamics *dynamics, double t, const double y[GB_STATE
 void gb_dynamics_rotation(const double q[4], double R[9]);
 /* The unit quaternion of an orthonormal R. */
 void gb_dynamics_quaternion(const double R[9], double q[4]);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -6,6 +6,10 @@
 #ifndef GB_ERROR_H
 #define GB_ERROR_H
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 enum gb_status {
     GB_OK = 0,
     GB_EDOM = 1,     /* a value outside its allowed range */
@@ -37,5 +41,9 @@ int gb_error_parse_name(const char *name, const char *const *names, int count, c
 /* Install a GSL error handler that does not abort: GSL failures come back as status codes, and the
  * callers turn them into gb_ messages. Call once before using GSL-backed modules. */
 void gb_error_init_gsl(void);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

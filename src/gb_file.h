@@ -23,6 +23,10 @@
 #include <stdint.h>
 #include <stdio.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* Read the regular file `path` whole into a malloc'd, NUL-terminated buffer of at most max_bytes
  * (plus the NUL). `noun` names it in messages ("case file"), `allowed` says what is allowed. GB_EINVAL
  * for a path that is not a readable regular file or is too large, GB_EIO for a failed read. */
@@ -77,5 +81,9 @@ int gb_file_digest(const char *path, uint64_t *bytes, uint64_t *checksum);
 
 /* Remove every temporary of this process (async-signal-safe). */
 void gb_file_remove_temporaries(void);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -8,6 +8,10 @@
 #ifndef GB_FORCING_H
 #define GB_FORCING_H
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct gb_forcing {
     double g;      /* gravitational acceleration [m/s²] (Table 1: 9.81) */
     double a1, a2; /* acceleration amplitudes of the two harmonics [m/s²] */
@@ -30,5 +34,9 @@ double gb_forcing_period(const gb_forcing *forcing);
  * follow: a single-contact model is then invalid), and the smallest g_eff on the samples. Sign
  * changes are bracketed on 4096 samples and refined by bisection to 1e-14 of the period. */
 int gb_forcing_nonpositive_fraction(const gb_forcing *forcing, double *fraction, double *geff_min);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -20,6 +20,10 @@
 #ifndef GB_IMPACT_H
 #define GB_IMPACT_H
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 enum { GB_IMPACT_CONTACTS_MAX = 4 };
 
 typedef struct gb_impact_body {
@@ -64,5 +68,9 @@ int gb_impact_rough_point(const gb_impact_body *body, const double normal[3], do
                           const double v[3], const double omega[3], gb_impact_result *out);
 /* The kinetic energy ½ m |v|² + ½ ω·Iω. */
 double gb_impact_energy(const gb_impact_body *body, const double v[3], const double omega[3]);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -12,6 +12,10 @@
 
 #include <stddef.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 #define GB_INI_LINE_MAX 198
 
 typedef struct gb_ini_reader gb_ini_reader;
@@ -30,5 +34,9 @@ int gb_ini_fail(gb_ini_reader *reader, const char *fmt, ...) __attribute__((form
 
 /* The line of the key being handled (1-based). */
 int gb_ini_line(const gb_ini_reader *reader);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -18,6 +18,10 @@
 
 #include "gb_dynamics.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef enum gb_integrator {
     GB_INTEGRATOR_RK4 = 0,
     GB_INTEGRATOR_RK8PD = 1,
@@ -74,5 +78,9 @@ const gb_integrate_stats *gb_integrate_session_stats(const gb_integrate_session 
  * `from`: for a trajectory placed next to another one. */
 void gb_integrate_follow(gb_integrate_session *to, const gb_integrate_session *from);
 void gb_integrate_end(gb_integrate_session *session);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

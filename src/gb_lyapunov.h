@@ -33,6 +33,10 @@
 
 #include <stddef.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct gb_lyapunov_def {
     double delta0;          /* pair: the separation restored after every interval (Table 1: 1e-7) */
     double interval;        /* τ: time between renormalisations (1 for a map; T for a forced flow) */
@@ -127,5 +131,9 @@ size_t gb_lyapunov_windows(const double *lambda, size_t n, size_t per_window, do
  * in the same): the end of the last chaotic window; 0 when none is, +inf when the last one is (chaotic
  * to the end of the record: censored). */
 double gb_lyapunov_lifetime(const double *mean, size_t count, double per_window);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -9,6 +9,10 @@
 #include "gb_integrate.h"
 #include "gb_lyapunov.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* A Gömböc as a pair system (eq 77): two copies of the dynamics, each a resumable integration
  * (gb_integrate_session) with `integrate` that starts at t = 0; the pair advances them interval by
  * interval, and the reference takes exactly the steps of one plain run of the scene. The separation is a 6-vector: the rotation vector δθ that turns the
@@ -53,5 +57,9 @@ void gb_lyapunov_body_tangent_counts(const gb_lyapunov_body *body, size_t *salta
 /* Of the located switches, those with no sign change of Δh inside the step (a branch born or lost in a
  * fold): the saltation formula assumes a crossing Δh = 0 and is only approximate there. */
 size_t gb_lyapunov_body_tangent_jumps(const gb_lyapunov_body *body);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -10,6 +10,10 @@
 
 #include "gb_surface.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct gb_massprops_def {
     double mass;         /* m > 0 (Table 1: 1) */
     double epsabs;       /* absolute target of each 1-D quadrature */
@@ -32,5 +36,9 @@ typedef struct gb_massprops {
  * estimates bound |computed − exact| as outer abserr + 2π · max inner abserr (the inner errors
  * enter the outer integral at most with weight 2π), propagated through the formulas above. */
 int gb_massprops_compute(const gb_surface *surface, const gb_massprops_def *def, gb_massprops *out);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

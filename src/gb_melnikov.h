@@ -23,6 +23,10 @@
 
 #include <stddef.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct gb_melnikov_values {
     double M, dM, U, dU, S; /* at one q: the effective mass and its derivative, the potential and its
                                derivative, the coupling of the vertical excitation */
@@ -117,5 +121,9 @@ int gb_melnikov_split_forced(const gb_melnikov_model *model, const gb_melnikov_o
  * turning point). To compare with gb_melnikov_time(q_b) − gb_melnikov_time(q_a). */
 int gb_melnikov_flight_time(const gb_melnikov_model *model, const gb_melnikov_orbit *orbit, double q_a, double q_b,
                             double *dt);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -27,6 +27,10 @@
 #include "gb_melnikov.h"
 #include "gb_surface.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct gb_melnikov_body gb_melnikov_body;
 
 /* The table density `gomboc melnikov` and the scans' margins use (points a smooth piece per radian). */
@@ -66,5 +70,9 @@ void gb_melnikov_body_get_info(const gb_melnikov_body *body, gb_melnikov_body_in
 /* H, H′ and M at q computed directly (continuation from the nearest table node and certification), not
  * interpolated: the tables' oracle. */
 int gb_melnikov_body_direct(gb_melnikov_body *body, double q, double *H, double *dH, double *M);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

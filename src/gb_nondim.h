@@ -11,6 +11,10 @@
 
 #include "gb_dynamics.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct gb_nondim {
     double L;               /* mean radius [m] (eq 53) */
     double omega;           /* forcing frequency [rad/s]: the time scale is 1/omega */
@@ -25,5 +29,9 @@ int gb_nondim_groups(const gb_dynamics_def *def, double L, gb_nondim *out);
 
 /* The dimensionless problem as a gb_dynamics_def (see above). */
 gb_dynamics_def gb_nondim_scaled_def(const gb_dynamics_def *def, const gb_nondim *groups);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

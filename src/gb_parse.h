@@ -14,6 +14,10 @@
 
 #include <stddef.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef enum gb_parse_result {
     GB_PARSE_OK = 0,
     GB_PARSE_SYNTAX = 1,   /* not of the allowed form */
@@ -39,5 +43,9 @@ gb_parse_result gb_parse_angle(const char *text, double *value);
 
 /* Two counts written AxB (e.g. "90x180"), each at most `max`. */
 gb_parse_result gb_parse_pair(const char *text, unsigned long long max, unsigned long long *a, unsigned long long *b);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

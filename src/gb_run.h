@@ -21,6 +21,10 @@
 
 #include <stdint.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* One sample of the run, as the observer saw it. */
 typedef struct gb_run_sample {
     double t;
@@ -82,5 +86,9 @@ typedef struct gb_run_result {
  * gb_run_result_free. On failure nothing is left to free. */
 int gb_run(const gb_case *scene, const gb_run_sinks *sinks, gb_run_result *out);
 void gb_run_result_free(gb_run_result *result);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -15,6 +15,10 @@
 
 #include <stdint.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 #define GB_SCAN_FILE_MAX (64 * 1024)
 #define GB_SCAN_AXIS_MAX 10000
 #define GB_SCAN_POINTS_MAX 1000000 /* points in all: a scan's results are held in memory */
@@ -179,5 +183,9 @@ int gb_scan_journal_line(const char *header, const char *row, char *out, size_t 
  * (all but a half-written last line), or GB_EINVAL naming the line and what is wrong with it. */
 int gb_scan_journal_read(const gb_scan *scan, const char *name, const char *header, const char *text, size_t size,
                          gb_scan_metrics *results, unsigned char *done, size_t *count, size_t *keep);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

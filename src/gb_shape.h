@@ -11,6 +11,10 @@
 
 #include <stddef.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct gb_curvature {
     double K;               /* Gaussian curvature */
     double H;               /* mean curvature */
@@ -101,5 +105,9 @@ typedef struct gb_hull_equilibria {
 /* Convex hull of a hull_phi × hull_theta midpoint sample plus both poles (Qhull). */
 int gb_shape_hull_equilibria(const gb_surface *surface, const gb_shape_def *def,
                              gb_hull_equilibria *out);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -11,6 +11,10 @@
 
 #include <stddef.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef enum gb_window { GB_WINDOW_RECTANGULAR = 0, GB_WINDOW_HANN = 1 } gb_window;
 
 const char *gb_window_name(gb_window window);
@@ -29,5 +33,9 @@ void gb_spectrum_free(gb_spectrum *spectrum);
 
 /* The bin of largest power among k ≥ 1 (the mean was removed). */
 size_t gb_spectrum_peak(const gb_spectrum *spectrum);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -10,6 +10,10 @@
 
 #include <stddef.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct gb_strobe_def {
     size_t transient;  /* periods discarded before the first strobe sample */
     double phase;      /* where in the period to sample, in [0, 1) (0: t_n = t0 + nT) */
@@ -41,5 +45,9 @@ size_t gb_strobe_period(const double *x, size_t count, size_t dimension, size_t 
 
 /* Mean and (population) standard deviation of each component. */
 void gb_strobe_spread(const double *x, size_t count, size_t dimension, double *mean, double *sd);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

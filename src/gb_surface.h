@@ -12,6 +12,10 @@
 
 #include <stddef.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* χ and its derivatives at one (φ, θ). */
 struct gb_jet; /* an interval jet: gb_interval.h, internal */
 
@@ -92,5 +96,9 @@ void gb_surface_chart_direction(gb_surface_chart chart, double a, double b, doub
 /* Chart coordinates of the direction (φ, θ) (b in [0, 2π) for POLAR_X), and back (θ in [0, 2π)). */
 void gb_surface_chart_coordinates(gb_surface_chart chart, double phi, double theta, double *a, double *b);
 void gb_surface_chart_angles(gb_surface_chart chart, double a, double b, double *phi, double *theta);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

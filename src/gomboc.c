@@ -5,9 +5,11 @@
 #include "gomboc_cli.h"
 
 #include "gb_error.h"
+#include "gomboc_version.h" /* GOMBOC_VERSION, written by the Makefile */
 
 #include <errno.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 static const char *usage_main =
@@ -25,7 +27,9 @@ static const char *usage_main =
     "  scan      a map over two keys of a scene, parallel and resumable (section 8.3, Figs 10-13)\n"
     "  melnikov  the reduced separatrix-splitting criterion for a scene's body and forcing (section 7)\n"
     "\n"
-    "'gomboc <command> --help' describes each command's options.\n";
+    "'gomboc <command> --help' (or 'gomboc help <command>') describes each command's options; an option's\n"
+    "value follows it as the next word or after '=' (--beta 0.12, --beta=0.12). 'gomboc --version' prints\n"
+    "the version.\n";
 
 static const struct {
     const char *name;
@@ -44,6 +48,28 @@ static int stdout_written(const char *command, int status)
     return status;
 }
 
+/* The subcommand's words with every "--name=value" split into "--name" "value" (malloc'd; NULL when out of
+ * memory), so that each command's parser sees one form. */
+static char **split_equals(int argc, char **argv, int *out_argc)
+{
+    char **words = malloc((size_t)(2 * argc + 1) * sizeof *words);
+    if (!words) return NULL;
+    int n = 0;
+    for (int k = 0; k < argc; k++) {
+        char *eq = strncmp(argv[k], "--", 2) ? NULL : strchr(argv[k], '=');
+        if (eq && eq > argv[k] + 2) {
+            *eq = '\0'; /* argv's strings are ours to modify */
+            words[n++] = argv[k];
+            words[n++] = eq + 1;
+        } else {
+            words[n++] = argv[k];
+        }
+    }
+    words[n] = NULL;
+    *out_argc = n;
+    return words;
+}
+
 /* The command (main without the process): the option fuzzer calls it with cli_parse_only set. */
 int gomboc_main(int argc, char **argv)
 {
@@ -52,15 +78,40 @@ int gomboc_main(int argc, char **argv)
         fputs(usage_main, stderr);
         return EXIT_INPUT;
     }
-    if (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h")) {
+    if (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h") || (!strcmp(argv[1], "help") && argc == 2)) {
         fputs(usage_main, stdout);
         return stdout_written(NULL, 0);
     }
+    if (!strcmp(argv[1], "--version")) {
+        printf("gomboc %s\n", GOMBOC_VERSION);
+        return stdout_written(NULL, 0);
+    }
+    const int help = !strcmp(argv[1], "help");
+    if (help && argc > 3) {
+        fprintf(stderr, "gomboc help: one topic at a time (allowed: gomboc help [COMMAND])\n");
+        return EXIT_INPUT;
+    }
+    const char *name = help ? argv[2] : argv[1];
     for (size_t k = 0; k < sizeof commands / sizeof commands[0]; k++)
-        if (!strcmp(argv[1], commands[k].name)) {
+        if (!strcmp(name, commands[k].name)) {
+            if (help) return stdout_written(name, commands[k].run(1, (char *[]){"--help", NULL}));
             cli_install_cleanup();
-            return stdout_written(argv[1], commands[k].run(argc - 2, argv + 2));
+            int n;
+            char **words = split_equals(argc - 2, argv + 2, &n);
+            if (!words) {
+                fprintf(stderr, "gomboc %s: out of memory\n", name);
+                return EXIT_COMPUTE;
+            }
+            const int status = stdout_written(name, commands[k].run(n, words));
+            free(words);
+            return status;
         }
+    if (help) {
+        fprintf(stderr, "gomboc help: unknown topic '%s' (allowed:", name);
+        for (size_t k = 0; k < sizeof commands / sizeof commands[0]; k++) fprintf(stderr, "%s %s", k ? "," : "", commands[k].name);
+        fprintf(stderr, ")\n");
+        return EXIT_INPUT;
+    }
     fprintf(stderr, "gomboc: unknown command '%s' (allowed:", argv[1]);
     for (size_t k = 0; k < sizeof commands / sizeof commands[0]; k++) fprintf(stderr, "%s %s", k ? "," : "", commands[k].name);
     fprintf(stderr, ")\n\n%s", usage_main);

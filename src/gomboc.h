@@ -32,4 +32,12 @@
 #include "gb_melnikov.h"
 #include "gb_melnikov_body.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#ifdef __cplusplus
+}
+#endif
+
 #endif

@@ -9,6 +9,7 @@
 #include <fcntl.h>
 #include <inttypes.h>
 #include <math.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -44,6 +45,29 @@ static const char *usage_scan =
     "base scene. The CSV does not depend on N.\n"
 #endif
     ;
+
+/* On SIGINT, SIGTERM or SIGHUP once the journal exists: say how to continue (a prepared message, written
+ * by the async-signal-safe write), then what cli_install_cleanup does (temporaries removed, the signal
+ * re-raised). */
+static char hint_text[1024];
+static size_t hint_length;
+
+static void interrupted(int sig)
+{
+    if (hint_length && write(STDERR_FILENO, hint_text, hint_length) < 0) hint_length = 0;
+    gb_file_remove_temporaries();
+    signal(sig, SIG_DFL);
+    raise(sig);
+}
+
+static void interrupt_hint(const char *scan_path, const char *dir)
+{
+    const int n = snprintf(hint_text, sizeof hint_text, "\ngomboc scan: interrupted; the finished points are kept in the "
+                           "journal: 'gomboc scan %s --out %s --resume' continues from them\n", scan_path, dir);
+    hint_length = n > 0 && (size_t)n < sizeof hint_text ? (size_t)n : 0;
+    static const int signals[] = {SIGINT, SIGTERM, SIGHUP};
+    for (size_t k = 0; k < sizeof signals / sizeof signals[0]; k++) signal(signals[k], interrupted);
+}
 
 /* The running binary's fingerprint (FNV-1a of /proc/self/exe): a journal is resumed by the same build. */
 static uint64_t binary_fingerprint(void)
@@ -520,6 +544,7 @@ static int scan_command(int argc, char **argv, const ranks *r)
             exit_status = EXIT_INPUT;
         }
         if (!exit_status) exit_status = exists ? journal_resume(&j, &scan, results, done, &already) : journal_create(&j);
+        if (!exit_status) interrupt_hint(scan_path, dir);
     }
 #ifdef GOMBOC_MPI
     if (r->size > 1) { /* every rank learns what is done (or that nothing will be) */

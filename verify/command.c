@@ -213,6 +213,38 @@ static void test_run_command(void)
     rmdir(dir);
 }
 
+/* The command's conventions: --version, --option=value as --option value, help TOPIC as TOPIC --help. */
+static void test_conventions(void)
+{
+    static char a[1 << 16], b[1 << 16];
+    int code = run("--version", a, sizeof a);
+    gb_check cv = {"-", "-", "gomboc --version", "prints 'gomboc VERSION' and exits 0", "exact"};
+    gb_check_true(&cv, code == 0 && !strncmp(a, "gomboc ", 7) && strlen(a) > 8, "exit %d: %.60s", code, a);
+    const int c1 = run("shape --morphology=II --beta=0.02 --json", a, sizeof a);
+    const int c2 = run("shape --morphology II --beta 0.02 --json", b, sizeof b);
+    gb_check ce = {"-", "-", "gomboc shape --morphology=II --beta=0.02 against --morphology II --beta 0.02",
+                   "the same output bytes and exit status", "exact"};
+    gb_check_true(&ce, c1 == 0 && c2 == 0 && !strcmp(a, b), "exits %d and %d, %zu and %zu bytes", c1, c2, strlen(a), strlen(b));
+    const int c3 = run("shape --beta=0.3 --morphology=I", a, sizeof a);
+    gb_check cr = {"-", "-", "gomboc shape --beta=0.3", "refused as --beta 0.3 is: exit 2, naming --beta and its range", "exact"};
+    gb_check_true(&cr, c3 == 2 && strstr(a, "--beta") && strstr(a, "0 <= beta < 0.25"), "exit %d: %.120s", c3, a);
+    static const char *const topics[] = {"shape", "contact", "run", "lyapunov", "scan", "melnikov"};
+    for (size_t k = 0; k < sizeof topics / sizeof topics[0]; k++) {
+        char args[64];
+        snprintf(args, sizeof args, "help %s", topics[k]);
+        const int h1 = run(args, a, sizeof a);
+        snprintf(args, sizeof args, "%s --help", topics[k]);
+        const int h2 = run(args, b, sizeof b);
+        char q[96];
+        snprintf(q, sizeof q, "gomboc help %s against gomboc %s --help", topics[k], topics[k]);
+        gb_check ch = {"-", "-", q, "the same text, exit 0", "exact"};
+        gb_check_true(&ch, h1 == 0 && h2 == 0 && !strcmp(a, b), "exits %d and %d", h1, h2);
+    }
+    const int c4 = run("help bogus", a, sizeof a);
+    gb_check cu = {"-", "-", "gomboc help bogus", "exit 2, listing the topics", "exact"};
+    gb_check_true(&cu, c4 == 2 && strstr(a, "allowed: shape"), "exit %d: %.120s", c4, a);
+}
+
 int verify_register_command(void)
 {
     static const verify_test tests[] = {
@@ -220,6 +252,8 @@ int verify_register_command(void)
         {"command: atomic output", test_failed_write_leaves_nothing, NULL},
         {"command: gomboc contact, its methods and keys", test_contact_command, NULL},
         {"command: gomboc run, case files and outputs", test_run_command, NULL},
+        {"command: --version, --option=value, help TOPIC", test_conventions,
+         "the command follows the usual conventions: a version, options written either way, help by topic"},
         {NULL, NULL, NULL},
     };
     return verify_register_suite("The gomboc command", tests);

@@ -375,20 +375,31 @@ static size_t lines_of(const char *path)
     return n;
 }
 
-/* Start `gomboc scan` on one thread and kill -9 it once its journal holds `lines` lines; the wait status. */
-static int killed_scan(const scan_dir *d, size_t lines)
+/* Start `gomboc scan` on one thread, its standard error into `err` (a file of the test's directory), and
+ * send it `sig` once its journal holds `lines` lines; the wait status. */
+static int signalled_scan(const scan_dir *d, size_t lines, int sig, const char *err)
 {
     const pid_t pid = fork();
     if (pid == 0) {
-        if (!freopen("/dev/null", "w", stderr)) _exit(127);
+        if (!freopen(err, "w", stderr)) _exit(127);
         execl(binary(), binary(), "scan", d->scan, "--out", d->path, "--threads", "1", (char *)NULL);
         _exit(127);
     }
     const struct timespec ms = {0, 1000000};
     for (int k = 0; k < 60000 && lines_of(d->journal) < lines; k++) nanosleep(&ms, NULL);
-    kill(pid, SIGKILL);
+    kill(pid, sig);
     int wstatus = 0;
     waitpid(pid, &wstatus, 0);
+    return wstatus;
+}
+
+/* kill -9 once the journal holds `lines` lines. */
+static int killed_scan(const scan_dir *d, size_t lines)
+{
+    char err[96];
+    snprintf(err, sizeof err, "%s/killed.txt", d->path);
+    const int wstatus = signalled_scan(d, lines, SIGKILL, err);
+    remove(err);
     return wstatus;
 }
 
@@ -422,6 +433,25 @@ static void test_threads_and_resume(void)
                   resumed && one && !strcmp(one, resumed) ? "identical" : "different",
                   access(d.journal, F_OK) ? "removed" : "left");
     free(resumed);
+
+    /* Ctrl-C: the scan says how to continue, and --resume does. */
+    remove(d.csv);
+    char err[96];
+    snprintf(err, sizeof err, "%s/interrupted.txt", d.path);
+    const int istatus = signalled_scan(&d, 3, SIGINT, err);
+    char *said = slurp(err);
+    const int ci = scan_run(&d, "--resume", out, sizeof out);
+    char *continued = slurp(d.csv);
+    gb_check cint = {"8.3", "-", "scan interrupted by SIGINT (Ctrl-C) with 2 or more points in the journal",
+                     "says how to resume (the scan file, --out and --resume on standard error), and --resume gives the "
+                     "uninterrupted run's CSV", "exact"};
+    gb_check_true(&cint, WIFSIGNALED(istatus) && WTERMSIG(istatus) == SIGINT && said && strstr(said, "--resume") &&
+                  strstr(said, d.scan) && ci == 0 && continued && one && !strcmp(one, continued),
+                  "signal %d; said: %.200s; resume exit %d; %s", WIFSIGNALED(istatus) ? WTERMSIG(istatus) : 0,
+                  said ? said : "(nothing)", ci, continued && one && !strcmp(one, continued) ? "identical" : "different");
+    free(said);
+    free(continued);
+    remove(err);
 
     /* A journal of another scan (another header), and a malformed line: refused, the journal kept. */
     spill(d.journal, "gomboc scan journal 1: scan 0000000000000000, binary 0000000000000000, 9 points\n");
