@@ -5,7 +5,14 @@
 #include "gomboc_cli.h"
 
 #include "gb_error.h"
+#if defined(__has_include)
+#if __has_include("gomboc_version.h")
 #include "gomboc_version.h" /* GOMBOC_VERSION, written by the Makefile */
+#endif
+#endif
+#ifndef GOMBOC_VERSION
+#define GOMBOC_VERSION "unknown" /* a build without the Makefile's header (the option fuzzer's) */
+#endif
 
 #include <errno.h>
 #include <stdio.h>
