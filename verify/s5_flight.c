@@ -185,6 +185,8 @@ static int landing_sink(void *context, const gb_dynamics_impact *e)
     l->n++;
     momentum_about(&l->body, e->new_point, e->v_before, e->omega_before, before);
     momentum_about(&l->body, e->new_point, e->v_after, e->omega_after, after);
+    /* relative to the momentum before, or, where that is nearly 0, to m |v| times a 1 mm arm (a thousandth of
+     * the body's size: a momentum the landing's impulse could change by far more than rounding) */
     const double scale = fmax(norm3(before), l->body.mass * norm3(e->v_before) * 1e-3);
     for (int i = 0; i < 3; i++) l->worst_momentum = fmax(l->worst_momentum, fabs(after[i] - before[i]) / scale);
     const double impulse = hypot(e->normal_impulse, e->tangential_impulse);
