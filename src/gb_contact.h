@@ -110,14 +110,21 @@ size_t gb_contact_tracker_vertices(const gb_contact_tracker *tracker);
 int gb_contact_tracker_find(gb_contact_tracker *tracker, const double zb[3], gb_contact_node *out);
 
 /* A stationary point of h polished by the continuous minimiser. */
+/* Derivatives are taken in the point's chart: (φ, θ) itself (GB_SURFACE_CHART_POLAR_Z, the paper's
+ * eqs), or, within GB_CONTACT_POLAR_CAP of the poles ±e_z where ∂θx vanishes, the chart
+ * GB_SURFACE_CHART_POLAR_X (coordinates (a, b) = chart_a, chart_b, poles ±e_x); then the fields named
+ * after φ and θ hold the derivatives by a and b, and sensitivities and rates (eqs 70–72) are in (a, b). */
+#define GB_CONTACT_POLAR_CAP 1e-2 /* sin φ below which Newton works in the POLAR_X chart */
 typedef struct gb_contact_point {
     double phi, theta;
     double height;          /* h = ẑ_b·x (eq 28) */
     double rc[3];           /* x(φ, θ), the contact vector (eq 30) */
     double n_hat[3];        /* unit outward normal (eq 17) */
-    double gradient[2];     /* ∂φh, ∂θh (eqs 31–32) */
-    double hessian[3];      /* H_φφ, H_φθ, H_θθ (eq 34) */
-    double x_phi[3], x_theta[3]; /* the tangents ∂φx, ∂θx (eq 15) at the point */
+    double gradient[2];     /* ∂φh, ∂θh (eqs 31–32), in the point's chart */
+    double hessian[3];      /* H_φφ, H_φθ, H_θθ (eq 34), in the point's chart */
+    double x_phi[3], x_theta[3]; /* the tangents ∂φx, ∂θx (eq 15) at the point, in the point's chart */
+    gb_surface_chart chart; /* the chart of the derivatives: POLAR_Z (0) unless near ±e_z */
+    double chart_a, chart_b; /* the point's coordinates in a POLAR_X chart (unused for POLAR_Z) */
     double residual;        /* |ẑ_b × n̂| (eq 33) */
     int is_minimum;         /* eq 35: H_φφ > 0 and H_φφ H_θθ − H_φθ² > 0 */
     int iterations;         /* Newton iterations */
@@ -133,6 +140,13 @@ typedef struct gb_contact_refine_def {
 } gb_contact_refine_def;
 
 gb_contact_refine_def gb_contact_refine_default_def(void);
+
+/* The (φ, θ) of the point at chart offsets (Δa, Δb) from `p` in p's chart: a predictor's start, such as
+ * p + (∂q/∂z_b)·Δz_b with the sensitivity of gb_contact_sensitivity. For POLAR_Z it is (φ + Δa, θ + Δb)
+ * unwrapped (gb_contact_refine wraps its start). */
+void gb_contact_chart_offset(const gb_contact_point *p, double da, double db, double *phi, double *theta);
+/* The length of a chart step (Δa, Δb) at `p` on the unit sphere of directions, √(Δa² + sin²a Δb²). */
+double gb_contact_chart_step_length(const gb_contact_point *p, double da, double db);
 
 /* The local minimum of h reached from (φ0, θ0): safeguarded Newton (positive-definite Hessian or a
  * shifted one, backtracking on h), falling back to GSL's nmsimplex2 in a pole-free tangent chart

@@ -33,12 +33,34 @@ static void wrap_angles(double *phi, double *theta)
     if (*theta < 0.0) *theta += 2.0 * M_PI;
 }
 
-/* h, its gradient (eqs 31–32) and Hessian (eq 34) at (φ, θ) for the unit vertical d. */
-static void height_derivatives(const gb_surface *surface, const double d[3], double phi,
+/* The surface at chart coordinates (a, b): eq 1's (φ, θ) through the paper's formulas, or POLAR_X. */
+static void eval_in(const gb_surface *surface, gb_surface_chart chart, double a, double b, gb_surface_point *p)
+{
+    if (chart == GB_SURFACE_CHART_POLAR_Z) gb_surface_eval_jet(surface, a, b, p);
+    else gb_surface_eval_chart(surface, chart, a, b, p);
+}
+
+static double height_in(const gb_surface *surface, gb_surface_chart chart, const double d[3], double a, double b)
+{
+    double x[3], phi = a, theta = b;
+    if (chart != GB_SURFACE_CHART_POLAR_Z) gb_surface_chart_angles(chart, a, b, &phi, &theta);
+    gb_surface_position(surface, phi, theta, x);
+    return gb_vec_dot(d, x);
+}
+
+/* sin² of the chart's own polar angle at the evaluated point: its distance from the chart's poles. */
+static double chart_sin2(gb_surface_chart chart, const gb_surface_point *p)
+{
+    return chart == GB_SURFACE_CHART_POLAR_Z ? p->u[0] * p->u[0] + p->u[1] * p->u[1]
+                                             : p->u[1] * p->u[1] + p->u[2] * p->u[2];
+}
+
+/* h, its gradient (eqs 31–32) and Hessian (eq 34) at chart coordinates (a, b) for the unit vertical d. */
+static void height_derivatives(const gb_surface *surface, gb_surface_chart chart, const double d[3], double phi,
                                double theta, gb_surface_point *p, double *h, double g[2],
                                double H[3])
 {
-    gb_surface_eval_jet(surface, phi, theta, p); /* the normal only at the point returned */
+    eval_in(surface, chart, phi, theta, p); /* the normal only at the point returned */
     *h = gb_vec_dot(d, p->x);
     g[0] = gb_vec_dot(d, p->x_phi);
     g[1] = gb_vec_dot(d, p->x_theta);
@@ -48,8 +70,12 @@ static void height_derivatives(const gb_surface *surface, const double d[3], dou
 }
 
 /* A stationary-point record from the surface evaluated at it (no new evaluation). */
-static void fill_point_from(const gb_surface_point *p, const double d[3], gb_contact_point *out)
+static void fill_point_from(const gb_surface_point *p, gb_surface_chart chart, double a, double b, const double d[3],
+                            gb_contact_point *out)
 {
+    out->chart = chart;
+    out->chart_a = chart == GB_SURFACE_CHART_POLAR_Z ? 0.0 : a;
+    out->chart_b = chart == GB_SURFACE_CHART_POLAR_Z ? 0.0 : b;
     out->height = gb_vec_dot(d, p->x);
     out->gradient[0] = gb_vec_dot(d, p->x_phi);
     out->gradient[1] = gb_vec_dot(d, p->x_theta);
@@ -69,12 +95,17 @@ static void fill_point_from(const gb_surface_point *p, const double d[3], gb_con
     out->is_minimum = H[0] > 0.0 && H[0] * H[2] - H[1] * H[1] > 0.0;
 }
 
-static void fill_point(const gb_surface *surface, const double d[3], double phi, double theta,
+static void fill_point(const gb_surface *surface, gb_surface_chart chart, const double d[3], double a, double b,
                        gb_contact_point *out)
 {
     gb_surface_point p;
-    gb_surface_eval(surface, phi, theta, &p);
-    fill_point_from(&p, d, out);
+    if (chart == GB_SURFACE_CHART_POLAR_Z) {
+        gb_surface_eval(surface, a, b, &p);
+    } else {
+        gb_surface_eval_chart(surface, chart, a, b, &p);
+        gb_surface_normal(&p);
+    }
+    fill_point_from(&p, chart, a, b, d, out);
 }
 
 /* Safeguarded Newton. Step: −H⁻¹g (Cramer's rule) when H is positive definite with λ_min > 1e-8 λ_max,
@@ -84,15 +115,14 @@ static void fill_point(const gb_surface *surface, const double d[3], double phi,
  * shrinking below 1e-8 rad (the rounding floor of the gradient). Returns 0 when converged to a
  * point with positive-definite Hessian, 1 otherwise (including nearing a pole). */
 #define WHOLE_STEP 1e-4
-static int newton(const gb_surface *surface, const double d[3], double *phi, double *theta,
+static int newton(const gb_surface *surface, gb_surface_chart chart, const double d[3], double *phi, double *theta,
                   const gb_contact_refine_def *def, int *iterations, gb_surface_point *p)
 {
     double h, g[2], H[3], previous_step = INFINITY;
-    height_derivatives(surface, d, *phi, *theta, p, &h, g, H);
+    height_derivatives(surface, chart, d, *phi, *theta, p, &h, g, H);
     for (int it = 0; it < def->max_iterations; it++) {
         *iterations = it + 1;
-        /* sin φ of the point evaluated, squared */
-        if (p->u[0] * p->u[0] + p->u[1] * p->u[1] < def->pole_guard * def->pole_guard) return 1;
+        if (chart_sin2(chart, p) < def->pole_guard * def->pole_guard) return 1;
         double s[2];
         int definite;
         const double trace = H[0] + H[2], det = H[0] * H[2] - H[1] * H[1];
@@ -145,15 +175,13 @@ static int newton(const gb_surface *surface, const double d[3], double *phi, dou
             new_phi = *phi + t * s[0];
             new_theta = *theta + t * s[1];
             wrap_angles(&new_phi, &new_theta);
-            double x[3];
-            gb_surface_position(surface, new_phi, new_theta, x);
-            new_h = gb_vec_dot(d, x);
+            new_h = height_in(surface, chart, d, new_phi, new_theta);
             accepted = new_h <= h + 1e-4 * t * slope || (definite && t * step < WHOLE_STEP);
         }
         if (!accepted) return 1;
         *phi = new_phi;
         *theta = new_theta;
-        height_derivatives(surface, d, *phi, *theta, p, &h, g, H);
+        height_derivatives(surface, chart, d, *phi, *theta, p, &h, g, H);
     }
     return 1;
 }
@@ -238,6 +266,55 @@ static int simplex_fallback(const gb_surface *surface, const double d[3], double
     return GB_OK;
 }
 
+/* The chart Newton works in from (φ, θ): POLAR_X within the polar cap, where ∂θx → 0 makes the
+ * (φ, θ) Hessian singular (the sphere's minimum at ±e_z is a regular point of POLAR_X). */
+static gb_surface_chart chart_for(double phi)
+{
+    return sin(phi) < GB_CONTACT_POLAR_CAP ? GB_SURFACE_CHART_POLAR_X : GB_SURFACE_CHART_POLAR_Z;
+}
+
+/* Newton from (φ, θ) in the chart chart_for picks, and once more in POLAR_X when the (φ, θ) chart's
+ * iterates run into its pole. A minimum found in one chart but lying in the other's domain is polished
+ * there (one or two iterations), so that the chart of a point returned is chart_for(φ) of the point itself;
+ * if that polish fails, the first answer stands. On success (φ, θ) is the minimum and (*chart, *a, *b) its chart. */
+static int newton_in(const gb_surface *surface, gb_surface_chart chart, const double d[3], double *phi, double *theta,
+                     const gb_contact_refine_def *def, int *iterations, gb_surface_point *p, double *a, double *b)
+{
+    gb_surface_chart_coordinates(chart, *phi, *theta, a, b);
+    int its = 0;
+    const int status = newton(surface, chart, d, a, b, def, &its, p);
+    *iterations += its;
+    if (status) return status;
+    if (chart == GB_SURFACE_CHART_POLAR_Z) *phi = *a, *theta = *b; /* the iterate's own bits */
+    else gb_surface_chart_angles(chart, *a, *b, phi, theta);
+    return 0;
+}
+
+static int newton_charted(const gb_surface *surface, const double d[3], double *phi, double *theta,
+                          const gb_contact_refine_def *def, int *iterations, gb_surface_point *p,
+                          gb_surface_chart *chart, double *a, double *b)
+{
+    double at[2] = {*phi, *theta};
+    *chart = chart_for(*phi);
+    if (newton_in(surface, *chart, d, &at[0], &at[1], def, iterations, p, a, b)) {
+        if (*chart != GB_SURFACE_CHART_POLAR_Z || chart_sin2(*chart, p) >= def->pole_guard * def->pole_guard) return 1;
+        *chart = GB_SURFACE_CHART_POLAR_X;
+        at[0] = *phi, at[1] = *theta;
+        if (newton_in(surface, *chart, d, &at[0], &at[1], def, iterations, p, a, b)) return 1;
+    }
+    const gb_surface_chart own = chart_for(at[0]);
+    if (own != *chart) {
+        double again[2] = {at[0], at[1]}, a2, b2;
+        gb_surface_point q;
+        if (newton_in(surface, own, d, &again[0], &again[1], def, iterations, &q, &a2, &b2) == 0) {
+            *chart = own, *p = q, *a = a2, *b = b2;
+            at[0] = again[0], at[1] = again[1];
+        }
+    }
+    *phi = at[0], *theta = at[1];
+    return 0;
+}
+
 int gb_contact_refine(const gb_surface *surface, const double zb[3], double phi0, double theta0,
                       const gb_contact_refine_def *def, gb_contact_point *out)
 {
@@ -250,10 +327,12 @@ int gb_contact_refine(const gb_surface *surface, const double zb[3], double phi0
     wrap_angles(&phi, &theta);
     int iterations = 0, fallback = def->force_fallback;
     gb_surface_point at; /* the surface at the returned point, when Newton evaluated it last */
+    gb_surface_chart chart = GB_SURFACE_CHART_POLAR_Z;
+    double a = phi, b = theta;
     int have_point = 0;
     if (!fallback) {
         double try_phi = phi, try_theta = theta;
-        if (newton(surface, d, &try_phi, &try_theta, def, &iterations, &at) == 0) {
+        if (newton_charted(surface, d, &try_phi, &try_theta, def, &iterations, &at, &chart, &a, &b) == 0) {
             phi = try_phi, theta = try_theta;
             have_point = 1;
         } else {
@@ -263,12 +342,11 @@ int gb_contact_refine(const gb_surface *surface, const double zb[3], double phi0
     if (fallback) {
         status = simplex_fallback(surface, d, &phi, &theta);
         if (status) return status;
-        /* Polish with Newton where the chart allows; keep the simplex point if that fails. */
+        /* Polish with Newton; keep the simplex point if that fails. */
         double polish_phi = phi, polish_theta = theta;
         int polish_iterations = 0;
         gb_contact_refine_def polish = *def;
-        if (sin(phi) >= def->pole_guard &&
-            newton(surface, d, &polish_phi, &polish_theta, &polish, &polish_iterations, &at) == 0 &&
+        if (newton_charted(surface, d, &polish_phi, &polish_theta, &polish, &polish_iterations, &at, &chart, &a, &b) == 0 &&
             hypot(sin(phi) * (polish_theta - theta), polish_phi - phi) < 1e-4) {
             phi = polish_phi, theta = polish_theta;
             have_point = 1;
@@ -277,13 +355,32 @@ int gb_contact_refine(const gb_surface *surface, const double zb[3], double phi0
     }
     if (have_point) {
         gb_surface_normal(&at);
-        fill_point_from(&at, d, out);
+        fill_point_from(&at, chart, a, b, d, out);
+    } else {
+        chart = chart_for(phi);
+        gb_surface_chart_coordinates(chart, phi, theta, &a, &b);
+        fill_point(surface, chart, d, a, b, out);
     }
-    else
-        fill_point(surface, d, phi, theta, out);
+    out->phi = phi, out->theta = theta;
     out->iterations = iterations;
     out->used_fallback = fallback;
     return GB_OK;
+}
+
+void gb_contact_chart_offset(const gb_contact_point *p, double da, double db, double *phi, double *theta)
+{
+    if (p->chart == GB_SURFACE_CHART_POLAR_Z) {
+        *phi = p->phi + da, *theta = p->theta + db;
+        return;
+    }
+    double a = p->chart_a + da, b = p->chart_b + db;
+    wrap_angles(&a, &b);
+    gb_surface_chart_angles(p->chart, a, b, phi, theta);
+}
+
+double gb_contact_chart_step_length(const gb_contact_point *p, double da, double db)
+{
+    return hypot(da, sin(p->chart == GB_SURFACE_CHART_POLAR_Z ? p->phi : p->chart_a) * db);
 }
 
 /* ---------------------------------------------------------------- branches */
@@ -408,9 +505,8 @@ int gb_contact_switch_detect(const gb_contact_grid *grid, const double zb_from[3
         double step_norm = 0.0;
         if (gb_contact_sensitivity(surface, current_zb, &current, dq) == GB_OK) {
             const double dz[3] = {z[0] - current_zb[0], z[1] - current_zb[1], z[2] - current_zb[2]};
-            predicted[0] += gb_vec_dot(dq[0], dz);
-            predicted[1] += gb_vec_dot(dq[1], dz);
-            step_norm = hypot(gb_vec_dot(dq[0], dz), sin(current.phi) * gb_vec_dot(dq[1], dz));
+            gb_contact_chart_offset(&current, gb_vec_dot(dq[0], dz), gb_vec_dot(dq[1], dz), &predicted[0], &predicted[1]);
+            step_norm = gb_contact_chart_step_length(&current, gb_vec_dot(dq[0], dz), gb_vec_dot(dq[1], dz));
         } else {
             lost = 1;
             break;

@@ -93,7 +93,7 @@ struct gb_dynamics {
      * sensitivity (eq 70): (φ, θ) ≈ last + ∂(φ, θ)/∂z_b (z_b − z_b,last). Between the two middle stages of
      * RK4 the verticals differ by O(h²) and this start is the minimum to ~1e-12 rad. */
     int last_valid;
-    double last_zb[3], last_q[2], last_dq[2][3];
+    double last_zb[3], last_dq[2][3];
     gb_contact_point last_point; /* that contact: an evaluation at the same vertical takes it as it is */
     double energy0, t0;
     size_t grid_switches, branch_switches;
@@ -113,7 +113,8 @@ struct gb_dynamics {
     int two_point, pending;
     /* Q's Newton predictor, as last_* for P: the last Q found, its vertical and sensitivity (q_valid) */
     int q_valid;
-    double q_zb[3], q_q[2], q_dq[2][3];
+    double q_zb[3], q_dq[2][3];
+    gb_contact_point q_last; /* that Q (its chart and coordinates start the predictor) */
     int resting;       /* on three points at rest (ω = 0) since rest_since */
     double rest_since;
     gb_contact_point contact2;
@@ -388,12 +389,11 @@ static int contact_at(gb_dynamics *d, double t, const double zb[3], const double
         c->point = d->last_point;
     } else if (d->last_valid) {
         const double step[3] = {unit[0] - d->last_zb[0], unit[1] - d->last_zb[1], unit[2] - d->last_zb[2]};
-        start[0] = d->last_q[0] + gb_vec_dot(d->last_dq[0], step);
-        start[1] = d->last_q[1] + gb_vec_dot(d->last_dq[1], step);
+        gb_contact_chart_offset(&d->last_point, gb_vec_dot(d->last_dq[0], step), gb_vec_dot(d->last_dq[1], step),
+                                &start[0], &start[1]);
     } else {
         const double dt = t - d->contact_time;
-        start[0] = d->contact.phi + d->contact_rate[0] * dt;
-        start[1] = d->contact.theta + d->contact_rate[1] * dt;
+        gb_contact_chart_offset(&d->contact, d->contact_rate[0] * dt, d->contact_rate[1] * dt, &start[0], &start[1]);
     }
     if (!same) status = gb_contact_refine(&d->surface, unit, start[0], start[1], &d->refine, &c->point);
     if ((status == GB_ENOCONV || (!status && !c->point.is_minimum)) && d->certify) {
@@ -410,7 +410,6 @@ static int contact_at(gb_dynamics *d, double t, const double zb[3], const double
         status = gb_contact_sensitivity(&d->surface, unit, &c->point, d->last_dq);
         d->last_valid = !status;
         memcpy(d->last_zb, unit, sizeof d->last_zb);
-        d->last_q[0] = c->point.phi, d->last_q[1] = c->point.theta;
         d->last_point = c->point;
     }
     if (status) return status;
@@ -632,14 +631,14 @@ static int second_point(gb_dynamics *d, const double zb[3], gb_contact_point *q)
     if (status) return status;
     if (d->q_valid) {
         const double step[3] = {unit[0] - d->q_zb[0], unit[1] - d->q_zb[1], unit[2] - d->q_zb[2]};
-        start[0] = d->q_q[0] + gb_vec_dot(d->q_dq[0], step);
-        start[1] = d->q_q[1] + gb_vec_dot(d->q_dq[1], step);
+        gb_contact_chart_offset(&d->q_last, gb_vec_dot(d->q_dq[0], step), gb_vec_dot(d->q_dq[1], step), &start[0],
+                                &start[1]);
     }
     status = gb_contact_refine(&d->surface, unit, start[0], start[1], &d->refine, q);
     if (status || !q->is_minimum) return status;
     d->q_valid = gb_contact_sensitivity(&d->surface, unit, q, d->q_dq) == GB_OK;
     memcpy(d->q_zb, unit, sizeof d->q_zb);
-    d->q_q[0] = q->phi, d->q_q[1] = q->theta;
+    d->q_last = *q;
     return GB_OK;
 }
 

@@ -295,6 +295,36 @@ static int position_jets(const gb_surface *surface, gb_surface_chart chart, gb_j
     return smooth;
 }
 
+/* The midpoint of a point computation's enclosure: within a few ulps of the exact value. */
+static double centre(gb_interval v) { return 0.5 * v.lo + 0.5 * v.hi; }
+
+void gb_surface_eval_chart(const gb_surface *surface, gb_surface_chart chart, double a, double b, gb_surface_point *p)
+{
+    memset(p, 0, sizeof *p);
+    gb_surface_chart_direction(chart, a, b, p->u);
+    gb_surface_chart_angles(chart, a, b, &p->phi, &p->theta);
+    if (surface->beta == 0.0 && chart == GB_SURFACE_CHART_POLAR_X) {
+        /* the sphere: r ≡ 1 and x = u(a, b) = (cos a, sin a cos b, sin a sin b), derivatives in closed form */
+        const double sa = sin(a), ca = cos(a), sb = sin(b), cb = cos(b);
+        const double xa[3] = {-sa, ca * cb, ca * sb}, xb[3] = {0.0, -sa * sb, sa * cb};
+        const double xab[3] = {0.0, -ca * sb, ca * cb}, xbb[3] = {0.0, -sa * cb, -sa * sb};
+        for (int i = 0; i < 3; i++) {
+            p->x[i] = p->u[i], p->x_phi[i] = xa[i], p->x_theta[i] = xb[i];
+            p->x_phiphi[i] = -p->u[i], p->x_phitheta[i] = xab[i], p->x_thetatheta[i] = xbb[i];
+        }
+        p->r = 1.0;
+        return;
+    }
+    gb_jet x[3];
+    position_jets(surface, chart, gb_jet_param_a(a, a), gb_jet_param_b(b, b), x);
+    for (int i = 0; i < 3; i++) {
+        p->x[i] = centre(x[i].v);
+        p->x_phi[i] = centre(x[i].a), p->x_theta[i] = centre(x[i].b);
+        p->x_phiphi[i] = centre(x[i].aa), p->x_phitheta[i] = centre(x[i].ab), p->x_thetatheta[i] = centre(x[i].bb);
+    }
+    p->r = sqrt(p->x[0] * p->x[0] + p->x[1] * p->x[1] + p->x[2] * p->x[2]);
+}
+
 /* Offsets of the box from its centre, as intervals. */
 static gb_interval offset(double lo, double hi, double centre)
 {

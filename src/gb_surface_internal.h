@@ -27,6 +27,12 @@ typedef struct gb_surface_enclosure {
 void gb_surface_eval_jet(const gb_surface *surface, double phi, double theta, gb_surface_point *point);
 void gb_surface_normal(gb_surface_point *point);
 
+/* x and its first and second derivatives in the coordinates (a, b) of `chart` at one point, with u, r and the
+ * point's (φ, θ); the fields named after φ and θ then hold the derivatives by a and b, and the kernel's
+ * fields are left 0. Point intervals through the jets of gb_surface_enclose, each value the centre of its
+ * enclosure (a few ulps). The contact's Newton uses it in the POLAR_X chart near the (φ, θ) poles. */
+void gb_surface_eval_chart(const gb_surface *surface, gb_surface_chart chart, double a, double b, gb_surface_point *point);
+
 void gb_surface_enclose(const gb_surface *surface, gb_surface_chart chart, double a_lo, double a_hi, double b_lo,
                         double b_hi, gb_surface_enclosure *out);
 

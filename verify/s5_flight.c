@@ -25,6 +25,8 @@
 #include "gb_impact.h"
 #include "gb_integrate.h"
 #include "gb_massprops.h"
+#include "gb_run.h"
+#include "gb_surface_internal.h"
 #include "verify_sections.h"
 
 #include <math.h>
@@ -279,7 +281,10 @@ static void test_ball_drop(void)
     for (int k = 0; k < 3; k++) {
         const double e = rates[k], t_inf = t1 * (1.0 + e) / (1.0 - e);
         landings l = {0};
-        const int status = flight_run("I", 0.0, &still, e, ceil(1.5 * t_inf / gb_forcing_period(&still)), R, H, zero, zero, &l, 160);
+        /* e = 0.5 lands on the (φ, θ) chart's pole (R0 = I), the others off it */
+        const double identity[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+        const int status = flight_run("I", 0.0, &still, e, ceil(1.5 * t_inf / gb_forcing_period(&still)), k == 1 ? identity : R,
+                                      H, zero, zero, &l, 160);
         const int ran = !status && l.n > 0;
         /* A landing is located where the lowest point is GB_DYNAMICS_LANDING_TOL below the plane: the first
          * one is late by ε/v₀, and each rebound, from ε lower at a speed larger by gε/v, lengthens the next
@@ -298,7 +303,8 @@ static void test_ball_drop(void)
             expected += 2.0 * speed / g;
         }
         char q[240];
-        snprintf(q, sizeof q, "ball dropped from H = %g m, e = %g: landing times before the bouncing ends", H, e);
+        snprintf(q, sizeof q, "ball dropped from H = %g m, e = %g%s: landing times before the bouncing ends", H, e,
+                 k == 1 ? " onto the chart's pole" : "");
         gb_check ct = {"-", "-", q, "t_k = t1 (1 + 2e + ... + 2e^(k-1)), t1 = sqrt(2H/g): max |error| / its allowance",
                        "1: the allowance eps/v0 + sum 2 e eps/v_k + 1e-14 s a landing, from the landing tolerance eps = 1e-12 m "
                        "(the flight is in closed form)"};
@@ -491,6 +497,163 @@ static void test_table1_g_units(void)
     }
 }
 
+/* ---------------------------------------------------------------- the sphere at the chart's pole */
+
+/* x and its derivatives in the POLAR_X chart (gb_surface_eval_chart) against central differences of the
+ * position at (a, b): the worst absolute error of x and its first and second derivatives. */
+static double chart_fd_error(const gb_surface *surface, double a, double b, double h)
+{
+    gb_surface_point p;
+    gb_surface_eval_chart(surface, GB_SURFACE_CHART_POLAR_X, a, b, &p);
+    double at[3][3][3]; /* x at (a + i h, b + j h) for i, j in -1, 0, 1 */
+    for (int i = -1; i <= 1; i++)
+        for (int j = -1; j <= 1; j++) {
+            double phi, theta;
+            gb_surface_chart_angles(GB_SURFACE_CHART_POLAR_X, a + i * h, b + j * h, &phi, &theta);
+            gb_surface_position(surface, phi, theta, at[i + 1][j + 1]);
+        }
+    double worst = 0.0;
+    for (int k = 0; k < 3; k++) {
+        const double fd[5] = {(at[2][1][k] - at[0][1][k]) / (2 * h), (at[1][2][k] - at[1][0][k]) / (2 * h),
+                              (at[2][1][k] - 2 * at[1][1][k] + at[0][1][k]) / (h * h),
+                              (at[2][2][k] - at[2][0][k] - at[0][2][k] + at[0][0][k]) / (4 * h * h),
+                              (at[1][2][k] - 2 * at[1][1][k] + at[1][0][k]) / (h * h)};
+        const double jet[5] = {p.x_phi[k], p.x_theta[k], p.x_phiphi[k], p.x_phitheta[k], p.x_thetatheta[k]};
+        for (int m = 0; m < 5; m++) worst = fmax(worst, fabs(jet[m] - fd[m]));
+        worst = fmax(worst, fabs(p.x[k] - at[1][1][k]));
+    }
+    return worst;
+}
+
+static int spin_sample(void *context, const gb_run_sample *s)
+{
+    double *omega_max = context;
+    *omega_max = fmax(*omega_max, norm3(s->y + GB_STATE_OMEGA));
+    return 0;
+}
+
+static void test_sphere_at_pole(void)
+{
+    /* The POLAR_X chart's derivatives where the (φ, θ) chart is singular: II and the sphere at ±e_z itself, I
+     * (C¹,¹ but not C² at ±e_z) 0.005 rad off it; all inside the polar cap where Newton uses this chart. */
+    const struct {
+        const char *morphology;
+        double beta, phi, theta;
+    } at[] = {{"II", 0.12, 0.0, 0.0}, {"II", 0.12, 0.004, 2.0}, {"I", 0.12, 0.005, 1.0}, {"I", 0.12, M_PI - 0.005, 4.0},
+              {"I", 0.0, 0.0, 0.0},   {"I", 0.0, M_PI, 0.0}};
+    double worst = 0.0, slowest = INFINITY;
+    for (size_t k = 0; k < sizeof at / sizeof at[0]; k++) {
+        double a, b;
+        gb_surface_chart_coordinates(GB_SURFACE_CHART_POLAR_X, at[k].phi, at[k].theta, &a, &b);
+        const gb_surface *surface = gb_check_body(at[k].morphology, at[k].beta);
+        const double fine = chart_fd_error(surface, a, b, 1e-4), coarse = chart_fd_error(surface, a, b, 1e-3);
+        if (strcmp(at[k].morphology, "I") || at[k].beta == 0.0) worst = fmax(worst, coarse);
+        else slowest = fmin(slowest, coarse / fine);
+    }
+    gb_check cd = {"2", "1, 2",
+                   "x and its first and second derivatives in the POLAR_X chart at the (phi, theta) poles and near them (II "
+                   "at beta = 0.12, the sphere)", "central differences of x, step h = 1e-3: max |error|",
+                   "1e-6: the differences' truncation h^2 |x^(4)| / 12 (|x^(4)| of order 10: II's phase turns by 3 pi / 2) and "
+                   "their rounding eps / (h^2 sin phi) <= 6e-8 (the position near the pole goes through acos)"};
+    gb_check_close(&cd, worst, 0.0, 0.0, 1e-6);
+    gb_check c1 = {"2", "1, 2",
+                   "the same for I at beta = 0.12, 0.005 rad from the poles (C^1,1 but not C^2 at them: its fourth "
+                   "derivatives there are too large for a fixed tolerance)",
+                   "central differences converge to the chart's derivatives as h^2: min of error(h = 1e-3) / error(1e-4)",
+                   ">= 50: 100 for second order, halved for rounding"};
+    gb_check_true(&c1, slowest >= 50.0, "min ratio %.4g", slowest);
+
+    /* The sphere's contact for verticals at and near the poles, from starts at both poles and off them: the
+     * point -ẑ_b itself, a regular minimum. */
+    const gb_surface *sphere = gb_check_body("I", 0.0);
+    const gb_contact_refine_def refine = gb_contact_refine_default_def();
+    const double verticals[][3] = {{0, 0, 1}, {0, 0, -1}, {1e-9, 0, 1}, {0, -3e-7, -1}, {0.004, 0.003, 1}};
+    const double starts[][2] = {{0.0, 0.0}, {M_PI, 0.0}, {0.3, 1.0}, {2.8, 5.0}};
+    double worst_point = 0.0, worst_rate = 0.0;
+    int minima = 0, tried = 0;
+    for (size_t k = 0; k < sizeof verticals / sizeof verticals[0]; k++)
+        for (size_t j = 0; j < sizeof starts / sizeof starts[0]; j++) {
+            const double *z = verticals[k], n = norm3(z);
+            double u[3];
+            gb_surface_direction(starts[j][0], starts[j][1], u);
+            if ((u[0] * z[0] + u[1] * z[1] + u[2] * z[2]) / n > 0.99) continue; /* at the maximum: h has no slope */
+            gb_contact_point c;
+            tried++;
+            if (gb_contact_refine(sphere, z, starts[j][0], starts[j][1], &refine, &c) || !c.is_minimum) continue;
+            minima++;
+            const double off[3] = {c.rc[0] + z[0] / n, c.rc[1] + z[1] / n, c.rc[2] + z[2] / n};
+            worst_point = fmax(worst_point, norm3(off));
+            /* the rate through the chart's sensitivity (eqs 70-72): r_c = -z_b moves as -z_b x omega */
+            const double w[3] = {0.3, -0.2, 0.5}, unit[3] = {z[0] / n, z[1] / n, z[2] / n};
+            double rate[3], expected[3];
+            cross(unit, w, expected);
+            if (gb_contact_rate(sphere, z, &c, w, rate, NULL) != GB_OK) {
+                worst_rate = INFINITY;
+                continue;
+            }
+            const double dr[3] = {rate[0] + expected[0], rate[1] + expected[1], rate[2] + expected[2]};
+            worst_rate = fmax(worst_rate, norm3(dr));
+        }
+    gb_check cp = {"4", "28-35",
+                   "the sphere's contact for verticals at and within 0.005 rad of the chart's poles, from the poles and two "
+                   "other starts (none at the maximum): "
+                   "a minimum (eq 35)", "the point -z_b: max |r_c + z_b|",
+                   "1e-15: rounding of a unit vector"};
+    if (!gb_check_close(&cp, minima == tried ? worst_point : NAN, 0.0, 0.0, 1e-15))
+        fprintf(stderr, "%d of %d refinements ended on a minimum\n", minima, tried);
+    gb_check cv = {"4", "70-72", "the sphere's contact above: its rate through the sensitivity in the point's chart, omega = "
+                   "(0.3, -0.2, 0.5) rad/s", "r_c = -z_b, so dr_c/dt = -z_b x omega: max |error| [1/s]",
+                   "1e-14: rounding of a 2 x 2 solve with a unit Hessian"};
+    gb_check_close(&cv, minima == tried ? worst_rate : NAN, 0.0, 0.0, 1e-14);
+
+    /* Runs from R0 = I, whose lowest point is the pole, under every contact law and contact model (eq 44 only
+     * held: the unilateral law refuses it, cases/README.md). */
+    static const char *const models[][3] = {{"held", "continuous", "rolling"},       {"held", "continuous", "paper"},
+                                            {"held", "grid", "rolling"},             {"held", "fast-grid", "paper"},
+                                            {"unilateral", "continuous", "rolling"}, {"unilateral", "grid", "rolling"},
+                                            {"unilateral", "fast-grid", "rolling"}};
+    const int count = (int)(sizeof models / sizeof models[0]);
+    int ran = 0;
+    double spin = 0.0;
+    char failed[600] = "";
+    for (int k = 0; k < count; k++) {
+        const int unilateral = !strcmp(models[k][0], "unilateral");
+        char text[1400];
+        snprintf(text, sizeof text,
+                 "[body]\nmorphology = I\nbeta = 0\n[forcing]\nA1 = 2.0\nA2 = 1.0\namplitude_units = %s\nomega = 18\n"
+                 "psi = pi/3\n[model]\nequation = %s\ncontact = %s\ndamping = 0.02\ncontact_law = %s\n%s"
+                 "[integrator]\nmethod = rk4\nsteps_per_period = 160\nperiods = 20\nlocate_switches = yes\n"
+                 "[initial]\nattitude = identity\n",
+                 unilateral ? "g" : "m/s2", models[k][2], models[k][1], models[k][0], unilateral ? "restitution = 0.5\n" : "");
+        gb_case scene;
+        gb_run_result result;
+        double omega_max = 0.0;
+        const gb_run_sinks sinks = {spin_sample, &omega_max, NULL};
+        int status = gb_case_load_text("sphere.ini", text, strlen(text), &scene);
+        if (!status) status = gb_run(&scene, &sinks, &result);
+        if (status) {
+            snprintf(failed + strlen(failed), sizeof failed - strlen(failed), " %s/%s/%s: %s;", models[k][0],
+                     models[k][1], models[k][2], gb_error_message());
+            continue;
+        }
+        gb_run_result_free(&result);
+        ran++;
+        /* a grid body is a polyhedron, and one standing on its pole vertex is an inverted pendulum: it tips */
+        if (!strcmp(models[k][1], "continuous")) spin = fmax(spin, omega_max);
+    }
+    gb_check cr = {"3, 5", "-",
+                   "the sphere from R0 = I (its lowest point the (phi, theta) chart's pole), 20 Table 1 periods under each "
+                   "contact law and model: held (continuous rolling and eq 44, grid, fast grid), unilateral with flight in "
+                   "units of g, e = 0.5 (continuous, grid, fast grid)",
+                   "every run completes", "exact"};
+    gb_check_true(&cr, ran == count, "%d of %d ran;%s", ran, count, failed);
+    gb_check cw = {"3, 5", "-", "the sphere from R0 = I, the runs above with continuous contact (a grid body is a "
+                   "polyhedron, which standing on its pole vertex tips over)", "omega stays 0: max |omega| [rad/s]",
+                   "1e-12: the centroid is the centre, so neither g_eff nor the plane's push has a moment about it and "
+                   "omega0 = 0 stays 0 but for rounding"};
+    gb_check_close(&cw, ran ? spin : NAN, 0.0, 0.0, 1e-12);
+}
+
 int verify_register_s5_flight(void)
 {
     static const verify_test tests[] = {
@@ -505,6 +668,9 @@ int verify_register_s5_flight(void)
         {"flight: a Gomboc dropped with spin", test_gomboc_drop,
          "a spinning Gomboc's landings obey the impulse-momentum laws, its flights keep the horizontal momentum, and the "
          "ledger closes"},
+        {"the sphere at the (phi, theta) chart's pole", test_sphere_at_pole,
+         "beta = 0 runs under every contact law and contact model from an attitude whose lowest point is the chart's "
+         "pole, and the second chart there has the surface's derivatives"},
         {"sections 3, 6: Table 1 in units of g, with lift-off and flight", test_table1_g_units,
          "Table 1 read in units of g runs through every lift-off and landing under the unilateral law with e = 0 and 0.5, "
          "and its ledger closes to the integration's accuracy"},
