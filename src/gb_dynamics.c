@@ -728,13 +728,28 @@ static int two_point_at(gb_dynamics *d, double t, const double y[GB_STATE_SIZE],
     return two_point_eval_at(d, t, y, tp, 1);
 }
 
+static int diverged(double t)
+{
+    return gb_error_set(GB_ENUMERIC, "t = %.9g: the state is no longer finite: the integration diverged (a step too "
+                        "large for the scene's stiffest rate, such as the damping c over the inertia?)", t);
+}
+
+int gb_dynamics_state_finite(double t, const double y[GB_STATE_SIZE])
+{
+    for (int i = 0; i < GB_STATE_SIZE; i++)
+        if (!isfinite(y[i])) return diverged(t);
+    return GB_OK;
+}
+
 int gb_dynamics_rhs(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], double dydt[GB_STATE_SIZE])
 {
     double zb[3];
     static const double at_rest[3] = {0.0, 0.0, 0.0};
     /* at rest on three points nothing turns, whatever rounding is left in the state's ω */
     const double *q = y + GB_STATE_Q, *omega = d->resting ? at_rest : y + GB_STATE_OMEGA;
+    if (gb_dynamics_state_finite(t, y)) return GB_ENUMERIC;
     vertical_of_quaternion(q, zb);
+    if (!(isfinite(zb[0]) && isfinite(zb[1]) && isfinite(zb[2]))) return diverged(t); /* a quaternion overflowed */
     contact_eval c;
     int status = GB_OK;
     double geff, geff_rate;
@@ -1564,9 +1579,9 @@ static int two_point_event(gb_dynamics *d, double t, double y[GB_STATE_SIZE], co
 
 int gb_dynamics_accept(gb_dynamics *d, double t, double y[GB_STATE_SIZE], double *norm_drift)
 {
-    (void)t;
     double *q = y + GB_STATE_Q;
     const double n = sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+    if (!(isfinite(n) && n > 0.0) || gb_dynamics_state_finite(t, y)) return diverged(t);
     if (norm_drift) *norm_drift = n - 1.0;
     for (int k = 0; k < 4; k++) q[k] /= n;
     if (d->def.contact != GB_CONTACT_MODEL_CONTINUOUS && !grid_unilateral(d)) {

@@ -223,7 +223,12 @@ int gb_dynamics_init_state(gb_dynamics *dynamics, double t0, const double R0[9],
 int gb_dynamics_start(const gb_surface *body, const gb_dynamics_def *def, const double R0[9], const double omega0[3],
                       gb_dynamics **out, double y[GB_STATE_SIZE]);
 
-/* dy/dt (eqs 23, 44 or rolling, and Ẇ). GB_ENOCONV when the contact cannot be found. */
+/* GB_ENUMERIC, with a message that names t and says the integration diverged, when a component of y is
+ * not finite (the steppers check each step's result, gb_dynamics_rhs its argument); GB_OK otherwise. */
+int gb_dynamics_state_finite(double t, const double y[GB_STATE_SIZE]);
+
+/* dy/dt (eqs 23, 44 or rolling, and Ẇ). GB_ENOCONV when the contact cannot be found; GB_ENUMERIC for a
+ * state that is not finite. */
 int gb_dynamics_rhs(gb_dynamics *dynamics, double t, const double y[GB_STATE_SIZE], double dydt[GB_STATE_SIZE]);
 
 /* After an accepted step to (t, y): renormalise q (returns the |q| − 1 it removed), update the

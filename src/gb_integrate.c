@@ -72,6 +72,8 @@ int gb_integrate_rk4_step(gb_dynamics *d, double t, double h, const double y[GB_
     }
     if (status) return status;
     for (int i = 0; i < S; i++) out[i] = y[i] + h / 6.0 * (K[0][i] + 2.0 * K[1][i] + 2.0 * K[2][i] + K[3][i]);
+    status = gb_dynamics_state_finite(t + h, out);
+    if (status) return status;
     for (size_t j = 0; j < k; j++)
         for (int i = 0; i < S; i++)
             Y[j * S + i] += h / 6.0 * (KY[0][j][i] + 2.0 * KY[1][j][i] + 2.0 * KY[2][j][i] + KY[3][j][i]);

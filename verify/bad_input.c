@@ -305,6 +305,11 @@ static const bad_row rows[] = {
     {RUN, "[forcing]\namplitude_units = g\n[model]\ncontact = continuous\nequation = rolling\ncontact_law = unilateral\n"
           "restitution = 0.5\n[integrator]\nperiods = 100\nsteps_per_period = 640\nlocate_switches = yes\n", 0, 1,
      {"lift-off at t = ", "the body slides before it lifts", "sliding is not built"}},
+    /* a computation that diverged (exit 1, not 2: the input was valid): RK4 at one step a period against a damping
+     * rate c/I of ~2500 /s */
+    {RUN, "[body]\nbeta = 0.12\n[model]\ncontact = continuous\nequation = rolling\ndamping = 1000\n[integrator]\n"
+          "periods = 2\nsteps_per_period = 1\n[initial]\nomega = 1,0,0\n", 0, 1,
+     {"t = 0.698131701: the state is no longer finite", "the integration diverged", "damping c over the inertia"}},
     {"run @CASE@ --out @D@ --out @D@", "[body]\nbeta = 0.1\n", 0, 2, {"option '--out' is given twice", "allowed: each option once", ""}},
     {"run @CASE@ --atlas @D@/a --atlas @D@/b", ATLAS_SCENE, 0, 2, {"option '--atlas' is given twice", "each option once", ""}},
     {"melnikov @CASE@ --curve-points 5", "[body]\nbeta = 0.1\n", 0, 2, {"--curve-points 5 without --curve", "allowed: --curve-points with --curve FILE", ""}},
