@@ -11,10 +11,12 @@ CC        ?= cc
 # loop that ran 37 % slower (18.5 against 13.7 us a query) when a change elsewhere in the library moved it
 # across a 64-byte line; aligned, its speed no longer depends on the link layout. No result changes.
 CFLAGS    ?= -O2 -g -falign-loops=64
-WARN      := -std=c11 -D_GNU_SOURCE -ffp-contract=off -Wall -Wextra -Werror
+# Warnings are errors in `make verify` (and so in CI), not in a user's own build: WERROR=-Werror turns them on.
+WERROR    ?=
+WARN      := -std=c11 -D_GNU_SOURCE -ffp-contract=off -Wall -Wextra $(WERROR)
 # OpenMP for `gomboc scan` (points in parallel) where the compiler has it; without, scans run on one thread.
 OPENMP    := $(shell echo 'int main(void){return 0;}' | $(CC) -fopenmp -x c - -o /dev/null 2>/dev/null && echo -fopenmp)
-ALL_CFLAGS = $(WARN) $(CFLAGS) $(shell pkg-config --cflags $(PKGS)) -Isrc
+ALL_CFLAGS = $(WARN) $(CPPFLAGS) $(CFLAGS) $(shell pkg-config --cflags $(PKGS)) -Isrc
 CORE_LIBS  = $(shell pkg-config --libs gsl libcjson inih qhull_r) -lm
 TEST_LIBS  = $(shell pkg-config --libs cunit)
 
@@ -23,6 +25,13 @@ CORE_OBJ  := $(CORE_SRC:src/%.c=$(BUILD)/obj/%.o)
 CLI_SRC   := $(sort $(wildcard src/gomboc*.c))
 CLI_OBJ   := $(CLI_SRC:src/%.c=$(BUILD)/obj/%.o)
 LIB       := $(BUILD)/libgomboc.a
+# The shared library beside the static one: soname libgomboc.so.$(SOMAJOR), built from position-independent
+# objects of their own (build/pic), only for install and the examples.
+SOMAJOR   := 0
+SOMINOR   := 1
+SONAME    := libgomboc.so.$(SOMAJOR)
+SOLIB     := $(BUILD)/$(SONAME).$(SOMINOR)
+PIC_OBJ   := $(CORE_SRC:src/%.c=$(BUILD)/pic/%.o)
 BIN       := $(BUILD)/gomboc
 VERIFY_SRC := $(sort $(wildcard verify/*.c))
 VERIFY_OBJ := $(VERIFY_SRC:verify/%.c=$(BUILD)/obj/verify_%.o)
@@ -40,7 +49,7 @@ MPI_BIN   := $(BUILD)/gomboc-mpi
 MPIRUN    := mpirun --oversubscribe$(if $(filter 0,$(shell id -u)), --allow-run-as-root)
 MPI_ENV    = $(if $(MPICC),GOMBOC_MPI_BIN=$(MPI_BIN) GOMBOC_MPIRUN="$(MPIRUN)")
 
-.PHONY: all deps run verify verify-full bench references report install clean \
+.PHONY: all deps run verify verify-full bench references report install clean distclean example \
         build run-only verify-only references-only bench-only fuzz fuzz-only sanitize sanitize-only \
         valgrind valgrind-only install-only example-only scans scans-only study study-only mpi mpi-only \
         check help uninstall
@@ -77,7 +86,7 @@ run-only: $(BIN)
 
 # --- every check, then the reproducibility report
 verify: deps
-	@$(MAKE) --no-print-directory verify-only
+	@$(MAKE) --no-print-directory verify-only WERROR=-Werror
 
 # Figure 2 of the paper: the height landscape for one documented vertical (see reports/contact_section.py).
 FIG2_ZB := 0.6,0.6,-0.5
@@ -118,7 +127,7 @@ bench-only: $(BENCH_BIN) $(BENCH_NATIVE) $(BIN)
 verify-full: deps
 	@sh scripts/install-deps.sh fuzz
 	@$(MAKE) --no-print-directory fuzz-only FUZZ_SECONDS=30
-	@status=0; $(MAKE) --no-print-directory verify-only VERIFY_FLAGS=--full || status=$$?; \
+	@status=0; $(MAKE) --no-print-directory verify-only VERIFY_FLAGS=--full WERROR=-Werror || status=$$?; \
 	$(MAKE) --no-print-directory study-only || status=1; \
 	sh scripts/gate-stamp.sh $(GATES) verify-full $$status "every check, the long studies and the ensembles"; \
 	$(PYTHON) reports/make_report.py $(OUT) "$(CC)" "$(WARN) $(CFLAGS)" || status=1; exit $$status
@@ -273,34 +282,53 @@ references-only:
 	$(PYTHON) references/grid_model.py > references/grid_model.json.tmp && mv references/grid_model.json.tmp references/grid_model.json
 	$(PYTHON) references/switching.py > references/switching.json.tmp && mv references/switching.json.tmp references/switching.json
 
-# The command, the library, its public headers (src/gomboc.h includes them all; the internal ones,
-# *_internal.h, gb_interval.h, gb_arena.h and gb_vec.h, stay) and a
-# pkg-config file, under $(DESTDIR)$(PREFIX).
+# The command, the static and shared libraries, the public headers (src/gomboc.h includes them all; the
+# internal ones, *_internal.h, gb_interval.h, gb_arena.h, gb_vec.h, gb_hash.h, and the readers behind gb_case
+# and gb_scan, gb_ini.h and gb_parse.h, stay), a pkg-config file and the man page, under $(DESTDIR)$(PREFIX).
 PREFIX  ?= /usr/local
 VERSION := $(shell git describe --always --dirty 2>/dev/null || echo unknown)
-PUBLIC_HEADERS = src/gomboc.h $(filter-out %_internal.h src/gb_interval.h src/gb_arena.h src/gb_vec.h src/gb_hash.h,$(wildcard src/gb_*.h))
+PRIVATE_HEADERS := %_internal.h src/gb_interval.h src/gb_arena.h src/gb_vec.h src/gb_hash.h src/gb_ini.h src/gb_parse.h
+PUBLIC_HEADERS = src/gomboc.h $(filter-out $(PRIVATE_HEADERS),$(wildcard src/gb_*.h))
 
 install: deps
 	@$(MAKE) --no-print-directory build
 	@$(MAKE) --no-print-directory install-only
 
-install-only: $(BIN) $(LIB)
-	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/lib/pkgconfig $(DESTDIR)$(PREFIX)/include/gomboc
+install-only: $(BIN) $(LIB) $(SOLIB)
+	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/lib/pkgconfig $(DESTDIR)$(PREFIX)/include/gomboc \
+	  $(DESTDIR)$(PREFIX)/share/man/man1
 	install -m 755 $(BIN) $(DESTDIR)$(PREFIX)/bin/gomboc
 	install -m 644 $(LIB) $(DESTDIR)$(PREFIX)/lib/libgomboc.a
+	install -m 755 $(SOLIB) $(DESTDIR)$(PREFIX)/lib/$(notdir $(SOLIB))
+	ln -sf $(notdir $(SOLIB)) $(DESTDIR)$(PREFIX)/lib/$(SONAME)
+	ln -sf $(SONAME) $(DESTDIR)$(PREFIX)/lib/libgomboc.so
 	install -m 644 $(PUBLIC_HEADERS) $(DESTDIR)$(PREFIX)/include/gomboc/
+	install -m 644 docs/gomboc.1 $(DESTDIR)$(PREFIX)/share/man/man1/gomboc.1
 	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(VERSION)|' scripts/gomboc.pc.in > $(DESTDIR)$(PREFIX)/lib/pkgconfig/gomboc.pc
 
-# The README's example, compiled against a staged install with pkg-config and run (make verify).
+# The README's example and a C++ program, compiled against a staged install with pkg-config (the shared
+# library) and run from another directory; then the staged install is removed by make uninstall, which
+# must leave its prefix empty (make verify runs this).
 STAGE := $(abspath $(BUILD))/stage
-example-only: $(BIN) $(LIB)
+STAGED_PC = PKG_CONFIG_PATH=$(STAGE)/usr/local/lib/pkgconfig pkg-config --define-variable=prefix=$(STAGE)/usr/local
+example: deps
+	@$(MAKE) --no-print-directory example-only
+
+example-only: $(BIN) $(LIB) $(SOLIB)
+	@rm -rf $(STAGE)
 	@$(MAKE) --no-print-directory install-only DESTDIR=$(STAGE) PREFIX=/usr/local > /dev/null
-	$(CC) -std=c11 -Wall -Wextra -Werror examples/contact_and_scene.c -o $(BUILD)/example \
-	  $$(PKG_CONFIG_PATH=$(STAGE)/usr/local/lib/pkgconfig pkg-config --define-variable=prefix=$(STAGE)/usr/local --cflags --libs gomboc)
-	$(BUILD)/example verify/valgrind/paper-grid.ini
-	$(CXX) -std=c++17 -Wall -Wextra -Werror examples/cxx_link.cpp -o $(BUILD)/example-cxx \
-	  $$(PKG_CONFIG_PATH=$(STAGE)/usr/local/lib/pkgconfig pkg-config --define-variable=prefix=$(STAGE)/usr/local --cflags --libs gomboc)
-	$(BUILD)/example-cxx
+	$(CC) -std=c11 -Wall -Wextra -Werror examples/contact_and_scene.c -o $(BUILD)/example $$($(STAGED_PC) --cflags --libs gomboc)
+	cd / && LD_LIBRARY_PATH=$(STAGE)/usr/local/lib $(abspath $(BUILD))/example
+	$(CXX) -std=c++17 -Wall -Wextra -Werror examples/cxx_link.cpp -o $(BUILD)/example-cxx $$($(STAGED_PC) --cflags --libs gomboc)
+	cd / && LD_LIBRARY_PATH=$(STAGE)/usr/local/lib $(abspath $(BUILD))/example-cxx
+	@readelf -d $(BUILD)/example | grep -q 'NEEDED.*\[$(SONAME)\]' && readelf -d $(SOLIB) | grep -q 'SONAME.*\[$(SONAME)\]' \
+	  || { echo "example: not linked against $(SONAME)"; exit 1; }
+	@test -z "$$(groff -man -ww -z $(STAGE)/usr/local/share/man/man1/gomboc.1 2>&1)" && \
+	  groff -man -Tutf8 -P-cbou $(STAGE)/usr/local/share/man/man1/gomboc.1 2>/dev/null | grep -q '^       run CASE' \
+	  || { echo "example: the man page does not render without warnings"; exit 1; }
+	@$(MAKE) --no-print-directory uninstall DESTDIR=$(STAGE) PREFIX=/usr/local > /dev/null
+	@left=$$(find $(STAGE) -type f -o -type l); test -z "$$left" || { echo "uninstall left: $$left"; exit 1; }
+	@echo "example: built and run against the staged shared library (soname $(SONAME)); man page renders; uninstall leaves no file"
 
 # `make check` is `make verify`, by the usual name.
 check: verify
@@ -308,6 +336,8 @@ check: verify
 # What `make install` put under $(DESTDIR)$(PREFIX), removed (directories it made are removed when empty).
 uninstall:
 	rm -f $(DESTDIR)$(PREFIX)/bin/gomboc $(DESTDIR)$(PREFIX)/lib/libgomboc.a $(DESTDIR)$(PREFIX)/lib/pkgconfig/gomboc.pc
+	rm -f $(DESTDIR)$(PREFIX)/lib/$(notdir $(SOLIB)) $(DESTDIR)$(PREFIX)/lib/$(SONAME) $(DESTDIR)$(PREFIX)/lib/libgomboc.so
+	rm -f $(DESTDIR)$(PREFIX)/share/man/man1/gomboc.1
 	rm -f $(addprefix $(DESTDIR)$(PREFIX)/include/gomboc/,$(notdir $(PUBLIC_HEADERS)))
 	-rmdir $(DESTDIR)$(PREFIX)/include/gomboc 2>/dev/null
 
@@ -321,16 +351,36 @@ help:
 	@echo "make mpi          scans on MPI ranks (installs OpenMPI)"
 	@echo "make fuzz | sanitize | valgrind   the robustness gates"
 	@echo "make references   regenerate references/*.json with scipy and sympy"
-	@echo "make install | uninstall          the command, library, headers and pkg-config file under PREFIX"
-	@echo "make clean        remove build/ and reports/out"
+	@echo "make install | uninstall          the command, static and shared library, headers, pkg-config file and man page under PREFIX"
+	@echo "make example      the library's example and a C++ program against a staged install"
+	@echo "make clean        remove the build and the reports, keeping the long results (scans, study, gates)"
+	@echo "make distclean    remove those too"
 	@echo "Debian packages missing are installed by every target that needs them (as root)." 
 
+# The long results (make scans, make study: tens of minutes) and the gates' stamps stay; distclean removes them.
+LONG_RESULTS := scans study gates
 clean:
-	rm -rf $(BUILD) $(OUT) build-san $(FUZZ_DIR)
+	rm -rf $(BUILD) build-san $(FUZZ_DIR)
+	if [ -d $(OUT) ]; then find $(OUT) -mindepth 1 -maxdepth 1 $(LONG_RESULTS:%=! -name %) -exec rm -rf {} +; fi
+
+distclean: clean
+	rm -rf $(OUT)
 
 # --- compilation
-$(BUILD)/obj/%.o: src/%.c $(wildcard src/*.h) | $(BUILD)/obj
+# The compiler and flags of the last build: an object is rebuilt when they change (WERROR, CFLAGS, CPPFLAGS).
+FLAGS_STAMP := $(BUILD)/obj/flags
+$(FLAGS_STAMP): FORCE | $(BUILD)/obj
+	@printf '%s\n' '$(CC) $(ALL_CFLAGS) $(LDFLAGS)' > $@.tmp; cmp -s $@.tmp $@ && rm -f $@.tmp || mv $@.tmp $@
+
+$(BUILD)/obj/%.o: src/%.c $(wildcard src/*.h) $(FLAGS_STAMP) | $(BUILD)/obj
 	$(CC) $(ALL_CFLAGS) -c $< -o $@
+
+$(BUILD)/pic/%.o: src/%.c $(wildcard src/*.h) $(FLAGS_STAMP)
+	@mkdir -p $(BUILD)/pic
+	$(CC) $(ALL_CFLAGS) -fPIC -c $< -o $@
+
+$(SOLIB): $(PIC_OBJ)
+	$(CC) -shared -Wl,-soname,$(SONAME) $(LDFLAGS) -o $@ $^ $(CORE_LIBS)
 
 # `gomboc --version`: the version (git describe) in a header rewritten only when it changes.
 $(BUILD)/obj/gomboc.o: $(BUILD)/obj/gomboc_version.h
@@ -339,7 +389,7 @@ $(BUILD)/obj/gomboc_version.h: FORCE | $(BUILD)/obj
 	@printf '#define GOMBOC_VERSION "%s"\n' '$(VERSION)' > $@.tmp; cmp -s $@.tmp $@ && rm -f $@.tmp || mv $@.tmp $@
 FORCE:
 
-$(BUILD)/obj/verify_%.o: verify/%.c $(wildcard src/*.h verify/*.h) | $(BUILD)/obj
+$(BUILD)/obj/verify_%.o: verify/%.c $(wildcard src/*.h verify/*.h) $(FLAGS_STAMP) | $(BUILD)/obj
 	$(CC) $(ALL_CFLAGS) -Iverify -c $< -o $@
 
 # Made anew each time: an object whose source was removed must not stay in the archive.
@@ -349,10 +399,12 @@ $(LIB): $(CORE_OBJ)
 
 $(BUILD)/obj/gomboc_scan.o: ALL_CFLAGS += $(OPENMP)
 $(BIN): $(CLI_OBJ) $(LIB)
-	$(CC) $(ALL_CFLAGS) $(OPENMP) -o $@ $^ $(CORE_LIBS)
+	$(CC) $(ALL_CFLAGS) $(OPENMP) $(LDFLAGS) -o $@ $(filter-out $(FLAGS_STAMP),$^) $(CORE_LIBS)
 
+# The harness runs independent long computations on the machine's threads where OpenMP is (s6_chaos).
+$(BUILD)/obj/verify_s6_chaos.o: ALL_CFLAGS += $(OPENMP)
 $(VERIFY_BIN): $(VERIFY_OBJ) $(LIB)
-	$(CC) $(ALL_CFLAGS) -o $@ $^ $(TEST_LIBS) $(CORE_LIBS)
+	$(CC) $(ALL_CFLAGS) $(OPENMP) $(LDFLAGS) -o $@ $^ $(TEST_LIBS) $(CORE_LIBS)
 
 $(BENCH_BIN): verify/bench/bench.c verify/bench/plain.c $(LIB) $(wildcard src/*.h verify/bench/*.h) | $(BUILD)/obj
 	$(CC) $(ALL_CFLAGS) -fopenmp-simd -o $@ verify/bench/bench.c verify/bench/plain.c $(LIB) $(CORE_LIBS)

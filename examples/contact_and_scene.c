@@ -1,7 +1,15 @@
-/* A program using libgomboc: the contact of Gömböc I (β = 0.12) for one vertical, then a scene file
- * integrated to its end. Build: cc contact_and_scene.c $(pkg-config --cflags --libs gomboc) */
+/* A program using libgomboc: the contact of Gömböc I (β = 0.12) for one vertical, then a scene integrated
+ * to its end: the scene file named on the command line, or without one a scene written here (Table 1's
+ * forcing, 20 periods), so that it runs from any directory.
+ * Build: cc contact_and_scene.c $(pkg-config --cflags --libs gomboc) */
 #include <gomboc.h>
 #include <stdio.h>
+#include <string.h>
+
+static const char scene_text[] = "[body]\nmorphology = I\nbeta = 0.12\n"
+                                 "[forcing]\nA1 = 2.0\nA2 = 1.0\nomega = 18\npsi = pi/3\n"
+                                 "[model]\nequation = rolling\ncontact = continuous\ndamping = 0.02\n"
+                                 "[integrator]\nmethod = rk4\nsteps_per_period = 160\nperiods = 20\nlocate_switches = yes\n";
 
 int main(int argc, char **argv)
 {
@@ -24,7 +32,7 @@ int main(int argc, char **argv)
     gb_dynamics *dynamics = NULL;
     gb_integrate_stats stats;
     double y[GB_STATE_SIZE];
-    status = gb_case_load(argc > 1 ? argv[1] : "cases/table1-gomboc-I.ini", &scene);
+    status = argc > 1 ? gb_case_load(argv[1], &scene) : gb_case_load_text("built-in", scene_text, strlen(scene_text), &scene);
     if (!status) status = gb_dynamics_start(&scene.body, &scene.dynamics, scene.attitude, scene.omega0, &dynamics, y);
     if (!status) status = gb_integrate_run(dynamics, &scene.integrate, 0.0, y, NULL, NULL, &stats);
     gb_dynamics_free(dynamics);

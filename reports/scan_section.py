@@ -53,7 +53,14 @@ STABILITY_METRICS = (("switch_rate", "switching rate"), ("omega_rms", "ω_RMS"))
 
 
 def load_rows(path):
-    return list(csv.DictReader(open(path)))
+    """The rows of a scan's CSV, its axis columns (the second and third, named after their keys) also as x and y."""
+    with open(path) as f:
+        reader = csv.DictReader(f)
+        x_name, y_name = reader.fieldnames[1], reader.fieldnames[2]
+        rows = list(reader)
+    for r in rows:
+        r["x"], r["y"] = r[x_name], r[y_name]
+    return rows
 
 
 def load_map(path):

@@ -325,8 +325,12 @@ int gb_scan_load(const char *path, gb_scan *out)
     if (status) return status;
     status = gb_file_read(out->base, GB_CASE_FILE_MAX, "case file", "a scene file, see cases/README.md", &out->base_text,
                           &out->base_size);
-    if (status)
-        return gb_error_set(status, "%s:%d: [scan] base = %s: %s", path, out->base_line, out->base, gb_error_message());
+    if (status) {
+        const char *slash = strrchr(path, '/');
+        return gb_error_set(status, "%s:%d: [scan] base = %s: %s (a relative base is read from the scan file's directory, "
+                            "'%.*s')", path, out->base_line, out->base, gb_error_message(),
+                            slash ? (int)(slash - path + (slash == path)) : 1, slash ? path : ".");
+    }
     out->fingerprint = gb_hash_add(out->fingerprint, out->base_text, out->base_size);
     /* Every point's scene, before any run. */
     gb_case scene;
@@ -624,9 +628,16 @@ double gb_scan_chaos_lifetime(const double *lambda, size_t n, double periods_per
 
 /* ---- rows -------------------------------------------------------------------------------------- */
 
-const char *gb_scan_csv_header(void)
+int gb_scan_csv_header(const gb_scan *scan, char *out, size_t size)
 {
-    return "index,x,y,omega_rms,switch_rate,strobe_sd,mean_height,geff_nonpositive_fraction,lift_off_fraction,"
+    const int n = snprintf(out, size, "index,%s.%s,%s.%s,%s", scan->axis[0].section, scan->axis[0].key, scan->axis[1].section,
+                           scan->axis[1].key, gb_scan_csv_metric_columns());
+    return n > 0 && (size_t)n < size ? GB_OK : gb_error_set(GB_EINVAL, "the scan's CSV header does not fit %zu bytes", size);
+}
+
+const char *gb_scan_csv_metric_columns(void)
+{
+    return "omega_rms,switch_rate,strobe_sd,mean_height,geff_nonpositive_fraction,lift_off_fraction,"
            "lambda_max,lambda_error,lambda_first_half,lambda_second_half,chaos_lifetime_periods,melnikov_margin,"
            "melnikov_margin_eq93,certificate_undecided,"
            "state_fingerprint,"

@@ -158,8 +158,11 @@ void gb_scan_accumulated(const gb_scan_accumulator *a, double *omega_rms, double
 /* The lifetime of the chaos in a record λ_inst[0..n) (see gb_scan_metrics.chaos_lifetime). */
 double gb_scan_chaos_lifetime(const double *lambda, size_t n, double periods_per_interval);
 
-/* The CSV header and one row (every metric %.17g, fingerprints in hex); the row ends with '\n'. */
-const char *gb_scan_csv_header(void);
+/* The CSV header and one row (every metric %.17g, fingerprints in hex); each ends with '\n'. The header names
+ * the columns: index, the two axes by their keys (SECTION.KEY, such as forcing.omega), then the metrics
+ * (gb_scan_csv_metric_columns). */
+int gb_scan_csv_header(const gb_scan *scan, char *out, size_t size);
+const char *gb_scan_csv_metric_columns(void);
 int gb_scan_csv_row(const gb_scan_metrics *m, size_t index, char *out, size_t size);
 
 /* The metrics of a point that failed under failed_points = record: its coordinates, every metric NaN,

@@ -10,7 +10,6 @@
 
 #include "gb_error.h"
 #include "gb_file.h"
-#include "gb_parse.h"
 #include "gb_surface.h"
 #include "gb_massprops.h"
 #include "gb_shape.h"

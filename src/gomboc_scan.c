@@ -164,8 +164,9 @@ static int write_outputs(const char *dir, const char *path, const gb_scan *scan,
     char *csv_path = cli_output_name(dir, path, "scan.csv"), *json_path = cli_output_name(dir, path, "scan.json");
     if (!csv_path || !json_path) status = gb_error_set(GB_ENOMEM, "out of memory for an output name");
     FILE *csv = gb_file_set_open(&set, csv_path, &status);
-    if (csv && fputs(gb_scan_csv_header(), csv) < 0) status = gb_error_set(GB_EIO, "cannot write '%s': %s", csv_path, strerror(errno));
     char row[1024];
+    if (csv && !status) status = gb_scan_csv_header(scan, row, sizeof row);
+    if (csv && !status && fputs(row, csv) < 0) status = gb_error_set(GB_EIO, "cannot write '%s': %s", csv_path, strerror(errno));
     for (size_t k = 0; !status && k < gb_scan_points(scan); k++) {
         status = gb_scan_csv_row(&results[k], k, row, sizeof row);
         if (!status && fputs(row, csv) < 0) status = gb_error_set(GB_EIO, "cannot write '%s': %s", csv_path, strerror(errno));

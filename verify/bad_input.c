@@ -211,7 +211,7 @@ static const bad_row rows[] = {
     {"scan @CASE@ --out @D@", "[scan]\nbase = x.ini\n[x]\ncount = 0\n", 0, 2, {"case.ini:4: [x] count = 0: out of range", "an integer from 1 to 10000", ""}},
     {"scan @CASE@ --out @D@", "[scan]\nbase = x.ini\n[x]\nkey = forcing.omega\nfrom = 10\nto = 20\ncount = 3\n", 0, 2, {"[y] key is missing", "Scan files", ""}},
     {"scan @CASE@ --out @D@", "[scan]\nbase = x.ini\n[x]\nkey = forcing.omega\nfrom = 10\nto = 20\ncount = 3\n[y]\nkey = forcing.omega\nfrom = 1\nto = 2\ncount = 2\n", 0, 2, {"case.ini:9: [y] key = forcing.omega: the same key as [x]", "two different keys", ""}},
-    {"scan @CASE@ --out @D@", "[scan]\nbase = nothing.ini\n[x]\nkey = forcing.omega\nfrom = 10\nto = 20\ncount = 3\n[y]\nkey = forcing.A1\nfrom = 1\nto = 2\ncount = 2\n", 0, 2, {"nothing.ini: cannot open the case file", "No such file", ""}},
+    {"scan @CASE@ --out @D@", "[scan]\nbase = nothing.ini\n[x]\nkey = forcing.omega\nfrom = 10\nto = 20\ncount = 3\n[y]\nkey = forcing.A1\nfrom = 1\nto = 2\ncount = 2\n", 0, 2, {"case.ini:2: [scan] base = ", "nothing.ini: cannot open the case file", "a relative base is read from the scan file's directory"}},
     {"scan @CASE@ --out @D@", "[scan]\nbase = x.ini\n[z]\n", 0, 2, {"case.ini:3: unknown section [z]", "allowed: scan, x, y", ""}},
     {"scan @CASE@ --out @D@", "[scan]\nbase = x.ini\n[x]\nkey = omega\n", 0, 2, {"case.ini:4: [x] key = omega: not a scene key", "SECTION.KEY", ""}},
     {"scan @CASE@ --out @D@", "[scan]\nbase = x.ini\ntransient_periods = 100\n[x]\nkey = forcing.omega\nfrom = 10\nto = 20\ncount = 3\n[y]\nkey = forcing.A1\nfrom = 1\nto = 2\ncount = 2\n", 0, 2, {"case.ini:3: [scan] transient_periods = 100 leaves less than one period", "periods - 1 = 99", ""}},

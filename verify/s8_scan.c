@@ -188,6 +188,9 @@ static void test_point_is_the_run(void)
     const int code = scan_run(&d, "", out, sizeof out);
     char *csv = slurp(d.csv);
     gb_check_true(&cs, code == 0 && csv != NULL, "exit %d: %.300s", code, out);
+    gb_check ch = {"8.3", "-", "that scan's CSV header", "index, the axes by their keys, then the metrics", "exact"};
+    const char *header_start = "index,forcing.omega,forcing.A2,omega_rms,";
+    gb_check_true(&ch, csv && !strncmp(csv, header_start, strlen(header_start)), "%.80s", csv ? csv : "(no CSV)");
     int rows = 0, same_fingerprint = 0, same_diagnostics = 0, same_margin = 0;
     double worst = 0.0, worst_threshold = 0.0;
     for (const char *line = csv ? strchr(csv, '\n') : NULL; line && line[1]; line = strchr(line + 1, '\n')) {
