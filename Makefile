@@ -152,7 +152,7 @@ scans-only: $(BIN)
 	$(call scan_all,$(SCANS),scans,maps of cases/scans)
 
 # --- the ensembles of section 8.2 (cases/studies): 32 random initial attitudes per body, 3000 periods
-# each, lambda over the record and its halves; resumable like the scans (about 6 minutes on 2 cores).
+# each, lambda over the record and its halves; resumable like the scans.
 STUDIES := $(sort $(wildcard cases/studies/*.ini))
 
 study: deps
@@ -283,11 +283,11 @@ references-only:
 	$(PYTHON) references/switching.py > references/switching.json.tmp && mv references/switching.json.tmp references/switching.json
 
 # The command, the static and shared libraries, the public headers (src/gomboc.h includes them all; the
-# internal ones, *_internal.h, gb_interval.h, gb_arena.h, gb_vec.h, gb_hash.h, and the readers behind gb_case
+# internal ones, *_internal.h, gb_interval.h, gb_arena.h, gb_vec.h, gb_hash.h, gb_clock.h, and the readers behind gb_case
 # and gb_scan, gb_ini.h and gb_parse.h, stay), a pkg-config file and the man page, under $(DESTDIR)$(PREFIX).
 PREFIX  ?= /usr/local
 VERSION := $(shell git describe --always --dirty 2>/dev/null || echo unknown)
-PRIVATE_HEADERS := %_internal.h src/gb_interval.h src/gb_arena.h src/gb_vec.h src/gb_hash.h src/gb_ini.h src/gb_parse.h
+PRIVATE_HEADERS := %_internal.h src/gb_interval.h src/gb_arena.h src/gb_vec.h src/gb_hash.h src/gb_clock.h src/gb_ini.h src/gb_parse.h
 PUBLIC_HEADERS = src/gomboc.h $(filter-out $(PRIVATE_HEADERS),$(wildcard src/gb_*.h))
 
 install: deps

@@ -44,8 +44,12 @@ def time_series_figure(out, name, h, summary):
     axes[3].set_ylabel("switches / s\n(trailing period)")
     axes[3].set_xlabel("t [s]")
     scene = summary["scene"]
-    fig.suptitle(f"{scene['description']}: {summary['grid_switches']:.0f} grid-index changes, "
-                 f"{summary['branch_switches']:.0f} branch switches", fontsize=10)
+    # the changes of contact the scene's contact model makes: grid-node changes, or continuous branch switches
+    if scene.get("contact") in ("grid", "fast-grid"):
+        changes = f"{summary['grid_switches']:.0f} grid-node changes"
+    else:
+        changes = f"{summary['branch_switches']:.0f} branch switches"
+    fig.suptitle(f"{scene['description']}: {changes}", fontsize=10)
     fig.tight_layout()
     save_figure(fig, os.path.join(out, f"fig-timeseries-{name}.png"))
     plt.close(fig)
@@ -97,6 +101,11 @@ def spectrum_figure(out, name, summary, history):
     for k in (1, 2):
         ax.axvline(k * forcing, color="tab:red", lw=0.5, ls="--")
     ax.set_xlim(0, 4 * forcing)
+    # the axis spans the shown band's spectrum, from its 0.1 % quantile up: one isolated near-zero bin (a
+    # window's null) would otherwise stretch it over many decades
+    band = data["power"][1:][(data["frequency_hz"][1:] <= 4 * forcing) & (data["power"][1:] > 0)]
+    if band.size:
+        ax.set_ylim(max(numpy.quantile(band, 0.001), band.max() * 1e-12) / 2, band.max() * 2)
     ax.set_xlabel("frequency [Hz] (dashed: ω/2π and 2ω/2π)")
     ax.set_ylabel("PSD of ω_x [(rad/s)²/Hz]")
     ax.set_title(f"power spectrum ({summary['spectrum']['window']} window)")

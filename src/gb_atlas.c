@@ -1,4 +1,5 @@
 #include "gb_atlas.h"
+#include "gb_clock.h"
 
 #include "gb_arena.h"
 #include "gb_file.h"
@@ -80,12 +81,6 @@ gb_atlas_def gb_atlas_default_def(void)
     return (gb_atlas_def){.height_tol = 1e-12, .first_level = 5, .max_level = 13, .max_depth = 14};
 }
 
-static double wall_seconds(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
 
 /* ---------------------------------------------------------------- the surface boxes */
 
@@ -97,12 +92,9 @@ static void box_fill(const gb_atlas *A, box *n, gb_surface_enclosure *e, int reg
     n->a_lo = a_lo, n->a_hi = a_hi, n->b_lo = b_lo, n->b_hi = b_hi;
     n->region = (unsigned char)region;
     n->depth = (unsigned char)depth;
-    gb_surface_enclose(&A->surface, gb_region_chart(region), a_lo, a_hi, b_lo, b_hi, e);
-    n->xa_mag = gb_certify_norm_of_mags(e->x_a);
-    n->xb_mag = gb_certify_norm_of_mags(e->x_b);
-    n->xaa_mag = gb_certify_norm_of_mags(e->x_aa);
-    n->xab_mag = gb_certify_norm_of_mags(e->x_ab);
-    n->xbb_mag = gb_certify_norm_of_mags(e->x_bb);
+    double mags[5];
+    gb_certify_enclose_box(&A->surface, region, a_lo, a_hi, b_lo, b_hi, e, mags);
+    n->xa_mag = mags[0], n->xb_mag = mags[1], n->xaa_mag = mags[2], n->xab_mag = mags[3], n->xbb_mag = mags[4];
 }
 
 static int box_split(gb_atlas *A, box *n)
@@ -350,7 +342,7 @@ static int settle_all(gb_atlas *A, proof *p, int *status)
 /* Prove cell c: CERTIFIED, split (its children unbuilt), or FAILED at max_level. */
 static int cell_prove(gb_atlas *A, cell *c, const gb_contact_refine_def *refine)
 {
-    const double start = wall_seconds();
+    const double start = gb_wall_seconds();
     proof p = {.sites = 0};
     cell_geometry(c, p.d0, &p.rho);
     gb_contact_point p0;
@@ -395,7 +387,7 @@ static int cell_prove(gb_atlas *A, cell *c, const gb_contact_refine_def *refine)
             A->stats.cells_failed++;
         }
     }
-    A->stats.build_seconds += wall_seconds() - start;
+    A->stats.build_seconds += gb_wall_seconds() - start;
     return status;
 }
 

@@ -503,7 +503,7 @@ int gb_case_lyapunov_check(const char *path, gb_case *c)
                           "(allowed: 0 for no windows, or a multiple of interval_periods up to periods - "
                           "transient_periods)",
                           window, c->lyapunov_interval_periods, record);
-    l->interval = k * 2.0 * M_PI / c->dynamics.forcing.omega;
+    l->interval = (double)k * gb_forcing_period(&c->dynamics.forcing);
     l->intervals = (size_t)nearbyint(intervals);
     if (c->omega_scale == 0.0) c->omega_scale = c->dynamics.forcing.omega;
     return GB_OK;
@@ -536,7 +536,7 @@ int gb_case_load_text_with(const char *name, const char *text, size_t size, cons
     scene.dynamics.forcing.a2 = scene.A2 * unit;
     /* The unilateral law's end to chatter: a return shorter than one step (gb_dynamics_def.settle_time). */
     if (scene.dynamics.contact_law == GB_CONTACT_LAW_UNILATERAL)
-        scene.dynamics.settle_time = gb_forcing_period(&scene.dynamics.forcing) / (double)scene.integrate.steps_per_period;
+        scene.dynamics.settle_time = gb_forcing_step(&scene.dynamics.forcing, scene.integrate.steps_per_period);
     *out = scene;
     return GB_OK;
 }

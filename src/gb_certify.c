@@ -1,4 +1,5 @@
 #include "gb_certify.h"
+#include "gb_clock.h"
 
 #include "gb_arena.h"
 #include "gb_error.h"
@@ -116,11 +117,9 @@ static void node_fill(const gb_certify *c, node *n, gb_surface_enclosure *e, int
     n->a_lo = a_lo, n->a_hi = a_hi, n->b_lo = b_lo, n->b_hi = b_hi;
     n->region = (unsigned char)region;
     n->depth = (unsigned char)depth;
-    gb_surface_enclose(&c->surface, gb_region_chart(region), a_lo, a_hi, b_lo, b_hi, e);
-    n->xa_mag = gb_certify_norm_of_mags(e->x_a);
-    n->xb_mag = gb_certify_norm_of_mags(e->x_b);
-    n->xaa_mag = gb_certify_norm_of_mags(e->x_aa);
-    n->xbb_mag = gb_certify_norm_of_mags(e->x_bb);
+    double mags[5];
+    gb_certify_enclose_box(&c->surface, region, a_lo, a_hi, b_lo, b_hi, e, mags);
+    n->xa_mag = mags[0], n->xb_mag = mags[1], n->xaa_mag = mags[2], n->xbb_mag = mags[4];
 }
 
 static quad *quad_take(gb_certify *c) { return gb_arena_take(&c->quads); }
@@ -646,20 +645,14 @@ void gb_certify_forget(gb_certify *c)
 static int certify_check(gb_certify *c, const double zb[3], const gb_contact_point *minimum,
                          const gb_contact_refine_def *refine, gb_certify_result *out);
 
-static double wall_seconds(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
 
 int gb_certify_check(gb_certify *c, const double zb[3], const gb_contact_point *minimum,
                      const gb_contact_refine_def *refine, gb_certify_result *out)
 {
     if (!c->def.time_checks) return certify_check(c, zb, minimum, refine, out);
-    const double start = wall_seconds();
+    const double start = gb_wall_seconds();
     const int status = certify_check(c, zb, minimum, refine, out);
-    c->stats.check_seconds += wall_seconds() - start;
+    c->stats.check_seconds += gb_wall_seconds() - start;
     return status;
 }
 

@@ -60,6 +60,17 @@ static inline double gb_certify_norm_of_mags(const gb_interval v[3])
     return sqrt(a * a + b * b + c * c) * (1.0 + 1e-12);
 }
 
+/* A box of `region` enclosed (gb_surface_enclose in the region's chart), with the bounds of |x_a|, |x_b|,
+ * |x_aa|, |x_ab|, |x_bb| over it in mags[0..4]: what the certificate's and the atlas's boxes keep. */
+static inline void gb_certify_enclose_box(const gb_surface *surface, int region, double a_lo, double a_hi, double b_lo,
+                                          double b_hi, gb_surface_enclosure *e, double mags[5])
+{
+    gb_surface_enclose(surface, gb_region_chart(region), a_lo, a_hi, b_lo, b_hi, e);
+    mags[0] = gb_certify_norm_of_mags(e->x_a), mags[1] = gb_certify_norm_of_mags(e->x_b);
+    mags[2] = gb_certify_norm_of_mags(e->x_aa), mags[3] = gb_certify_norm_of_mags(e->x_ab);
+    mags[4] = gb_certify_norm_of_mags(e->x_bb);
+}
+
 /* Σ d_k v_k over intervals v_k, in plain double arithmetic (see GB_CERTIFY_SLACK_ROUNDING). */
 static inline gb_interval gb_certify_dot(const double d[3], const gb_interval v[3])
 {

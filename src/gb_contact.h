@@ -207,6 +207,11 @@ int gb_contact_sensitivity(const gb_surface *surface, const double zb[3],
  * and ṙ_c = ∂φx φ̇* + ∂θx θ̇*, which eq 45 needs. `q_dot` may be NULL. */
 int gb_contact_rate(const gb_surface *surface, const double zb[3], const gb_contact_point *contact,
                     const double omega[3], double rc_dot[3], double q_dot[2]);
+/* gb_contact_rate for a contact whose sensitivity ∂(φ, θ)/∂z_b (gb_contact_sensitivity) is already known, at
+ * the unit vertical d: ṙ_c and the chart rates (q_dot may be NULL), eq 72; for a caller that keeps the
+ * sensitivity (the dynamics reuse it as the next Newton start's predictor). */
+void gb_contact_rate_from(const double dq_dzb[2][3], const double d[3], const gb_contact_point *contact,
+                          const double omega[3], double rc_dot[3], double q_dot[2]);
 
 /* Normalise z_b into `unit`; GB_EDOM for a zero or non-finite vector. */
 int gb_contact_unit_vertical(const double zb[3], double unit[3]);

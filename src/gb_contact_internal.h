@@ -110,9 +110,4 @@ void gb_contact_grid_fill_node(const gb_contact_grid *grid, size_t index, double
  * SIZE_MAX) seeds the best height with a real node. */
 int gb_contact_grid_search(const gb_contact_grid *grid, const double d[3], size_t hint, gb_contact_node *out);
 
-/* gb_contact_rate for a contact whose sensitivity ∂(φ, θ)/∂z_b (gb_contact_sensitivity) is known, at the
- * unit vertical d: ṙ_c and (φ̇, θ̇) (q_dot may be NULL), eq 72. */
-void gb_contact_rate_from(const double dq_dzb[2][3], const double d[3], const gb_contact_point *contact,
-                          const double omega[3], double rc_dot[3], double q_dot[2]);
-
 #endif

@@ -2,13 +2,14 @@
 
 #include "gb_impact.h"
 
-#include "gb_contact_internal.h"
+#include "gb_contact.h"
 #include "gb_error.h"
 #include "gb_massprops.h"
 #include "gb_vec.h"
 
 #include <math.h>
 #include <stdio.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 

@@ -49,6 +49,7 @@ void gb_forcing_geff_with_rate(const gb_forcing *f, double t, double *geff, doub
 }
 
 double gb_forcing_period(const gb_forcing *f) { return 2.0 * M_PI / f->omega; }
+double gb_forcing_step(const gb_forcing *f, size_t steps_per_period) { return gb_forcing_period(f) / (double)steps_per_period; }
 
 /* A root of g_eff in [a, b] where the signs differ, by bisection to tolerance tol. */
 static double bisect(const gb_forcing *f, double a, double b, double tol)

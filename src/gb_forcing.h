@@ -8,6 +8,8 @@
 #ifndef GB_FORCING_H
 #define GB_FORCING_H
 
+#include <stddef.h>
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -29,6 +31,9 @@ void gb_forcing_geff_with_rate(const gb_forcing *forcing, double t, double *geff
 
 /* The forcing period T = 2π/ω. */
 double gb_forcing_period(const gb_forcing *forcing);
+/* The fixed step of a run with `steps_per_period` steps a forcing period: gb_forcing_period / steps_per_period,
+ * the one place it is computed (the integrator, the run's observer, a scan's metrics, the settle time). */
+double gb_forcing_step(const gb_forcing *forcing, size_t steps_per_period);
 
 /* The fraction of one period in which g_eff ≤ 0 (the support pulls the body down faster than it can
  * follow: a single-contact model is then invalid), and the smallest g_eff on the samples. Sign

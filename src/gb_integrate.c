@@ -388,7 +388,7 @@ int gb_integrate_begin(gb_dynamics *d, const gb_integrate_def *def, double t0, g
     s->dynamics = d;
     s->def = *def;
     s->t0 = s->t = t0;
-    s->h = gb_forcing_period(&gb_dynamics_get_def(d)->forcing) / (double)def->steps_per_period;
+    s->h = gb_forcing_step(&gb_dynamics_get_def(d)->forcing, def->steps_per_period);
     s->dt = s->h;
     if (def->method != GB_INTEGRATOR_RK4) {
         s->gsl = malloc(sizeof *s->gsl);

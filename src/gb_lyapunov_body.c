@@ -35,7 +35,7 @@ int gb_lyapunov_body_create(const gb_surface *surface, const gb_dynamics_def *dy
         return gb_error_set(GB_EDOM, "omega_scale = %g is out of range (allowed: finite, > 0)", omega_scale);
     gb_lyapunov_body *b = calloc(1, sizeof *b);
     if (!b) return gb_error_set(GB_ENOMEM, "out of memory for a Lyapunov pair");
-    b->period = 2.0 * M_PI / dynamics->forcing.omega;
+    b->period = gb_forcing_period(&dynamics->forcing);
     b->method = integrate->method;
     b->steps_per_period = integrate->steps_per_period;
     b->omega_scale = omega_scale;
@@ -375,7 +375,7 @@ static int tangent_steps(gb_lyapunov_body *b, double t, double interval, size_t 
     gb_dynamics *d = b->dynamics[0];
     double *y = b->y[0];
     const size_t steps = (size_t)llround(interval / b->period * (double)b->steps_per_period);
-    const double h = b->period / (double)b->steps_per_period;
+    const double h = gb_forcing_step(&gb_dynamics_get_def(d)->forcing, b->steps_per_period);
     double Y[GB_LYAPUNOV_MAX_EXPONENTS * GB_STATE_SIZE];
     if (fabs(t - (double)b->tangent_steps * h) > 1e-9 * b->period)
         return gb_error_set(GB_EINVAL, "the variational reference is at t = %.17g, asked to advance from t = %.17g",

@@ -129,7 +129,7 @@ int gb_run(const gb_case *scene, const gb_run_sinks *sinks, gb_run_result *out)
     out->monitors = (gb_run_monitors){.geff_min = INFINITY, .normal_min = INFINITY};
     observer s = {.scene = scene, .sinks = sinks, .out = out};
     s.period = gb_forcing_period(&scene->dynamics.forcing);
-    s.step = s.period / (double)scene->integrate.steps_per_period;
+    s.step = gb_forcing_step(&scene->dynamics.forcing, scene->integrate.steps_per_period);
     s.spectrum_first_step = scene->spectrum_transient * scene->integrate.steps_per_period;
     s.window_size = scene->integrate.steps_per_period / scene->integrate.sample_every;
     if (s.window_size < 1) s.window_size = 1;

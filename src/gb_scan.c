@@ -15,6 +15,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <stddef.h>
 #include <string.h>
 
 static const char *const scan_sections[] = {"scan", "x", "y"};
@@ -574,7 +575,7 @@ int gb_scan_point_run(const gb_scan *scan, const gb_scan_melnikov *melnikov, siz
         return GB_OK;
     }
     const double T = gb_forcing_period(&scene.dynamics.forcing);
-    const double step = T / (double)scene.integrate.steps_per_period;
+    const double step = gb_forcing_step(&scene.dynamics.forcing, scene.integrate.steps_per_period);
     /* Samples from the first one at the end of the transient (half a step of slack for rounding). */
     gb_scan_accumulator acc = {.first_t = (double)scan->transient_periods * T - 0.5 * step};
     const gb_run_sinks sinks = {accumulate_sample, &acc, NULL};
@@ -635,42 +636,59 @@ int gb_scan_csv_header(const gb_scan *scan, char *out, size_t size)
     return n > 0 && (size_t)n < size ? GB_OK : gb_error_set(GB_EINVAL, "the scan's CSV header does not fit %zu bytes", size);
 }
 
+/* The CSV's numeric columns after index, x and y, from one list: the column's name and its field, in row
+ * order. A new metric is a field of gb_scan_metrics and a line here; the header, the row, its parser and the
+ * NaNs of a failed point follow. certificate_undecided (a count) and the two fingerprints (hex) close every
+ * row. */
+#define SCAN_COLUMNS(X)                                                                                                \
+    X(omega_rms, omega_rms)                                                                                            \
+    X(switch_rate, switch_rate)                                                                                        \
+    X(strobe_sd, strobe_sd)                                                                                            \
+    X(mean_height, mean_height)                                                                                        \
+    X(geff_nonpositive_fraction, geff_nonpositive)                                                                     \
+    X(lift_off_fraction, lift_off)                                                                                     \
+    X(lambda_max, lambda)                                                                                              \
+    X(lambda_error, lambda_error)                                                                                      \
+    X(lambda_first_half, lambda_early)                                                                                 \
+    X(lambda_second_half, lambda_late)                                                                                 \
+    X(chaos_lifetime_periods, chaos_lifetime)                                                                          \
+    X(melnikov_margin, melnikov_margin)                                                                                \
+    X(melnikov_margin_eq93, melnikov_margin_eq93)
+#define COLUMN_OFFSET(name, field) offsetof(gb_scan_metrics, field),
+#define COLUMN_NAME(name, field) #name ","
+static const size_t column_offsets[] = {SCAN_COLUMNS(COLUMN_OFFSET)};
+enum { COLUMN_COUNT = sizeof column_offsets / sizeof column_offsets[0] };
+
+static double *column(gb_scan_metrics *m, size_t k) { return (double *)((char *)m + column_offsets[k]); }
+static double column_of(const gb_scan_metrics *m, size_t k) { return *(const double *)((const char *)m + column_offsets[k]); }
+
 const char *gb_scan_csv_metric_columns(void)
 {
-    return "omega_rms,switch_rate,strobe_sd,mean_height,geff_nonpositive_fraction,lift_off_fraction,"
-           "lambda_max,lambda_error,lambda_first_half,lambda_second_half,chaos_lifetime_periods,melnikov_margin,"
-           "melnikov_margin_eq93,certificate_undecided,"
-           "state_fingerprint,"
-           "switch_fingerprint\n";
+    return SCAN_COLUMNS(COLUMN_NAME) "certificate_undecided,state_fingerprint,switch_fingerprint\n";
 }
 
 void gb_scan_failed_metrics(const gb_scan *scan, size_t index, gb_scan_metrics *out)
 {
     memset(out, 0, sizeof *out);
     gb_scan_coordinates(scan, index, &out->x, &out->y);
-    double *nan_fields[] = {&out->omega_rms, &out->switch_rate, &out->strobe_sd, &out->mean_height, &out->geff_nonpositive,
-                            &out->lift_off, &out->lambda, &out->lambda_error, &out->lambda_early, &out->lambda_late,
-                            &out->chaos_lifetime, &out->melnikov_margin, &out->melnikov_margin_eq93};
-    for (size_t k = 0; k < sizeof nan_fields / sizeof nan_fields[0]; k++) *nan_fields[k] = NAN;
+    for (size_t k = 0; k < COLUMN_COUNT; k++) *column(out, k) = NAN;
 }
 
 int gb_scan_csv_row(const gb_scan_metrics *m, size_t index, char *out, size_t size)
 {
-    const int n = snprintf(out, size, "%zu,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%zu,%016" PRIx64
-                           ",%016" PRIx64 "\n",
-                           index, m->x, m->y, m->omega_rms, m->switch_rate, m->strobe_sd, m->mean_height,
-                           m->geff_nonpositive, m->lift_off, m->lambda, m->lambda_error, m->lambda_early, m->lambda_late,
-                           m->chaos_lifetime, m->melnikov_margin, m->melnikov_margin_eq93, m->certificate_undecided,
-                           m->state_fingerprint, m->switch_fingerprint);
-    return n > 0 && (size_t)n < size ? GB_OK : gb_error_set(GB_EINVAL, "a scan row does not fit %zu bytes", size);
+    size_t n = (size_t)snprintf(out, size, "%zu,%.17g,%.17g", index, m->x, m->y);
+    for (size_t k = 0; k < COLUMN_COUNT && n < size; k++) n += (size_t)snprintf(out + n, size - n, ",%.17g", column_of(m, k));
+    if (n < size)
+        n += (size_t)snprintf(out + n, size - n, ",%zu,%016" PRIx64 ",%016" PRIx64 "\n", m->certificate_undecided,
+                              m->state_fingerprint, m->switch_fingerprint);
+    return n < size ? GB_OK : gb_error_set(GB_EINVAL, "a scan row does not fit %zu bytes", size);
 }
 
 int gb_scan_csv_parse(const char *line, size_t *index, gb_scan_metrics *out)
 {
     gb_scan_metrics m;
-    double *fields[] = {&m.x, &m.y, &m.omega_rms, &m.switch_rate, &m.strobe_sd, &m.mean_height, &m.geff_nonpositive,
-                        &m.lift_off, &m.lambda, &m.lambda_error, &m.lambda_early, &m.lambda_late, &m.chaos_lifetime,
-                        &m.melnikov_margin, &m.melnikov_margin_eq93};
+    double *fields[2 + COLUMN_COUNT] = {&m.x, &m.y};
+    for (size_t k = 0; k < COLUMN_COUNT; k++) fields[2 + k] = column(&m, k);
     char *end;
     const char *p = line;
     const unsigned long long i = strtoull(p, &end, 10);

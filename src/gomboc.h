@@ -2,7 +2,7 @@
  *
  * Every module has its own header (gb_<module>.h, prefix gb_<module>_); this one includes them all. A
  * program that links the library compiles with `pkg-config --cflags gomboc` and links with
- * `pkg-config --libs gomboc` (see README: "Using the library"). Functions return a gb_ status (0 on
+ * `pkg-config --libs gomboc` (see README: "The library"). Functions return a gb_ status (0 on
  * success) and leave a message in gb_error_message(); the library never prints and never exits. Call
  * gb_error_init_gsl() once before using a module that calls GSL. */
 #ifndef GOMBOC_H

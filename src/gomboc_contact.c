@@ -100,6 +100,79 @@ static cJSON *point_json(const gb_contact_point *p)
     return o;
 }
 
+/* What `gomboc contact` found, for its JSON and its text. */
+typedef struct contact_answer {
+    const gb_surface *surface;
+    double beta, unit[3];
+    gb_contact_model method;
+    gb_contact_grid_def grid_def, seed_def;
+    gb_contact_node node;       /* the grid methods' node */
+    size_t grid_size;           /* the grid methods' node count */
+    const gb_contact_branches *branches;
+    double phi, theta;          /* the contact's angles by the method asked for */
+} contact_answer;
+
+static cJSON *contact_json(const contact_answer *a)
+{
+    const gb_contact_point *contact = &a->branches->branch[0];
+    cJSON *root = cJSON_CreateObject();
+    cJSON_AddStringToObject(root, "morphology", a->surface->morphology->name);
+    cli_json_add(root, "beta", a->beta);
+    cJSON_AddItemToObject(root, "zb", cli_json_vector(a->unit, 3));
+    cJSON_AddStringToObject(root, "method", gb_contact_model_name(a->method));
+    if (a->method != GB_CONTACT_MODEL_CONTINUOUS) {
+        cJSON_AddItemToObject(root, "grid", cli_json_vector((double[]){(double)a->grid_def.n_phi, (double)a->grid_def.n_theta}, 2));
+        cJSON_AddStringToObject(root, "nodes", gb_contact_nodes_name(a->grid_def.nodes));
+        cli_json_add(root, "phi", a->node.phi);
+        cli_json_add(root, "theta", a->node.theta);
+        cli_json_add(root, "height", a->node.height);
+        cJSON_AddItemToObject(root, "rc", cli_json_vector(a->node.x, 3));
+        cli_json_add(root, "index", (double)a->node.index);
+        cli_json_add(root, "nodes_visited", (double)a->node.visited);
+    } else {
+        cJSON_AddItemToObject(root, "grid", cli_json_vector((double[]){(double)a->seed_def.n_phi, (double)a->seed_def.n_theta}, 2));
+        cJSON_AddStringToObject(root, "nodes", gb_contact_nodes_name(a->seed_def.nodes));
+        cli_json_add(root, "phi", contact->phi);
+        cli_json_add(root, "theta", contact->theta);
+        cli_json_add(root, "height", contact->height);
+        cJSON_AddItemToObject(root, "rc", cli_json_vector(contact->rc, 3));
+        cJSON_AddNullToObject(root, "index");
+        cli_json_add(root, "residual", contact->residual);
+    }
+    cJSON *list = cJSON_AddArrayToObject(root, "branches");
+    for (size_t k = 0; k < a->branches->count; k++) cJSON_AddItemToArray(list, point_json(&a->branches->branch[k]));
+    if (isfinite(a->branches->gap)) cli_json_add(root, "gap", a->branches->gap);
+    else cJSON_AddNullToObject(root, "gap");
+    cJSON_AddItemToObject(root, "branch_seed_grid", cli_json_vector((double[]){(double)a->seed_def.n_phi, (double)a->seed_def.n_theta}, 2));
+    return root;
+}
+
+static void print_contact(const contact_answer *a)
+{
+    const gb_contact_point *contact = &a->branches->branch[0];
+    const int continuous = a->method == GB_CONTACT_MODEL_CONTINUOUS;
+    printf("body          morphology %s (chi = %s), beta = %.17g\n", a->surface->morphology->name,
+           a->surface->morphology->chi_formula, a->beta);
+    printf("z_b (unit)    %.12f %.12f %.12f\n", a->unit[0], a->unit[1], a->unit[2]);
+    if (!continuous)
+        printf("method        %s on a %zux%zu %s grid: node %zu (%zu of %zu nodes visited)\n", gb_contact_model_name(a->method),
+               a->grid_def.n_phi, a->grid_def.n_theta, gb_contact_nodes_name(a->grid_def.nodes), a->node.index,
+               a->node.visited, a->grid_size);
+    else
+        printf("method        continuous (Newton, eqs 31-35) seeded on a %zux%zu grid; |z_b x n| = %.2e\n",
+               a->seed_def.n_phi, a->seed_def.n_theta, contact->residual);
+    const double *rc = continuous ? contact->rc : a->node.x;
+    printf("contact       phi* = %.12f  theta* = %.12f  h* = %.15f\n", a->phi, a->theta,
+           continuous ? contact->height : a->node.height);
+    printf("r_c           %.12f %.12f %.12f\n", rc[0], rc[1], rc[2]);
+    printf("local minima  %zu (seeded on %zux%zu)", a->branches->count, a->seed_def.n_phi, a->seed_def.n_theta);
+    if (isfinite(a->branches->gap)) printf(", gap h2 - h1 = %.6e", a->branches->gap);
+    printf("\n");
+    for (size_t k = 0; k < a->branches->count; k++)
+        printf("  %zu  phi = %.12f  theta = %.12f  h = %.15f\n", k + 1, a->branches->branch[k].phi,
+               a->branches->branch[k].theta, a->branches->branch[k].height);
+}
+
 int command_contact(int argc, char **argv)
 {
     const char *landscape = NULL, *zoom = NULL;
@@ -210,60 +283,11 @@ int command_contact(int argc, char **argv)
         return cli_failure("contact", status);
     }
 
-    cJSON *root = cJSON_CreateObject();
-    cJSON_AddStringToObject(root, "morphology", surface.morphology->name);
-    cli_json_add(root, "beta", beta);
-    cJSON_AddItemToObject(root, "zb", cli_json_vector(unit, 3));
-    cJSON_AddStringToObject(root, "method", gb_contact_model_name(method));
-    if (method != GB_CONTACT_MODEL_CONTINUOUS) {
-        cJSON_AddItemToObject(root, "grid", cli_json_vector((double[]){(double)grid_def.n_phi, (double)grid_def.n_theta}, 2));
-        cJSON_AddStringToObject(root, "nodes", gb_contact_nodes_name(grid_def.nodes));
-        cli_json_add(root, "phi", node.phi);
-        cli_json_add(root, "theta", node.theta);
-        cli_json_add(root, "height", node.height);
-        cJSON_AddItemToObject(root, "rc", cli_json_vector(node.x, 3));
-        cli_json_add(root, "index", (double)node.index);
-        cli_json_add(root, "nodes_visited", (double)node.visited);
-    } else {
-        cJSON_AddItemToObject(root, "grid", cli_json_vector((double[]){(double)seed_def.n_phi, (double)seed_def.n_theta}, 2));
-        cJSON_AddStringToObject(root, "nodes", gb_contact_nodes_name(seed_def.nodes));
-        cli_json_add(root, "phi", contact->phi);
-        cli_json_add(root, "theta", contact->theta);
-        cli_json_add(root, "height", contact->height);
-        cJSON_AddItemToObject(root, "rc", cli_json_vector(contact->rc, 3));
-        cJSON_AddNullToObject(root, "index");
-        cli_json_add(root, "residual", contact->residual);
-    }
-    cJSON *list = cJSON_AddArrayToObject(root, "branches");
-    for (size_t k = 0; k < branches.count; k++) cJSON_AddItemToArray(list, point_json(&branches.branch[k]));
-    if (isfinite(branches.gap)) cli_json_add(root, "gap", branches.gap);
-    else cJSON_AddNullToObject(root, "gap");
-    cJSON_AddItemToObject(root, "branch_seed_grid", cli_json_vector((double[]){(double)seed_def.n_phi, (double)seed_def.n_theta}, 2));
-
-    if (json) {
-        cli_print_json(root);
-    } else {
-        printf("body          morphology %s (chi = %s), beta = %.17g\n", surface.morphology->name,
-               surface.morphology->chi_formula, beta);
-        printf("z_b (unit)    %.12f %.12f %.12f\n", unit[0], unit[1], unit[2]);
-        if (method != GB_CONTACT_MODEL_CONTINUOUS)
-            printf("method        %s on a %zux%zu %s grid: node %zu (%zu of %zu nodes visited)\n", gb_contact_model_name(method),
-                   grid_def.n_phi, grid_def.n_theta, gb_contact_nodes_name(grid_def.nodes), node.index, node.visited,
-                   gb_contact_grid_size(grid));
-        else
-            printf("method        continuous (Newton, eqs 31-35) seeded on a %zux%zu grid; |z_b x n| = %.2e\n",
-                   seed_def.n_phi, seed_def.n_theta, contact->residual);
-        const double *rc = method == GB_CONTACT_MODEL_CONTINUOUS ? contact->rc : node.x;
-        printf("contact       phi* = %.12f  theta* = %.12f  h* = %.15f\n", phi, theta,
-               method == GB_CONTACT_MODEL_CONTINUOUS ? contact->height : node.height);
-        printf("r_c           %.12f %.12f %.12f\n", rc[0], rc[1], rc[2]);
-        printf("local minima  %zu (seeded on %zux%zu)", branches.count, seed_def.n_phi, seed_def.n_theta);
-        if (isfinite(branches.gap)) printf(", gap h2 - h1 = %.6e", branches.gap);
-        printf("\n");
-        for (size_t k = 0; k < branches.count; k++)
-            printf("  %zu  phi = %.12f  theta = %.12f  h = %.15f\n", k + 1, branches.branch[k].phi,
-                   branches.branch[k].theta, branches.branch[k].height);
-    }
+    const contact_answer answer = {&surface, beta, {unit[0], unit[1], unit[2]}, method, grid_def, seed_def, node,
+                                   grid ? gb_contact_grid_size(grid) : 0, &branches, phi, theta};
+    cJSON *root = contact_json(&answer);
+    if (json) cli_print_json(root);
+    else print_contact(&answer);
     cJSON_Delete(root);
     gb_contact_grid_free(grid);
     gb_contact_grid_free(seeds);

@@ -65,7 +65,7 @@ int command_lyapunov(int argc, char **argv)
         cli_print_json(root);
         cJSON_Delete(root);
     } else {
-        const double T = 2.0 * M_PI / scene.dynamics.forcing.omega;
+        const double T = gb_forcing_period(&scene.dynamics.forcing);
         printf("%s: lambda_max = %.6g +- %.2g 1/s (%.6g +- %.2g per forcing period)\n", case_path, r.lambda_max,
                r.error_bar, r.lambda_max * T, r.error_bar * T);
         printf("  %zu intervals of %zu period(s) after %zu transient period(s); delta0 = %g; omega_scale = %g rad/s\n",

@@ -328,6 +328,112 @@ static cJSON *spectrum_json(const gb_case *scene, const gb_spectrum *spectrum, s
     return o;
 }
 
+/* The run's summary (NAME-summary.json) but for its list of files: the scene as read, the final state,
+ * counts, residuals, fingerprints, and what the scene's model and diagnostics computed. */
+static cJSON *summary_json(const gb_case *scene, const gb_run_result *r, const windows *w, const char *state_print,
+                           const char *switch_print)
+{
+    const gb_dynamics_observables *o = &r->final;
+    cJSON *root = cJSON_CreateObject();
+    cJSON_AddItemToObject(root, "scene", scene_json(scene));
+    cli_json_add(root, "t_end", r->t_end);
+    cJSON_AddItemToObject(root, "quaternion", cli_json_vector(r->y + GB_STATE_Q, 4));
+    cJSON_AddItemToObject(root, "omega", cli_json_vector(r->y + GB_STATE_OMEGA, 3));
+    cli_json_add(root, "grid_switches", (double)o->grid_switches);
+    cli_json_add(root, "branch_switches", (double)o->branch_switches);
+    cli_json_add(root, "energy_residual_final", o->residual);
+    cli_json_add(root, "energy_residual_max", r->residual_max);
+    cli_json_add(root, "orthonormality_max", r->orthonormality_max);
+    cli_json_add(root, "quaternion_drift_max", r->stats.max_norm_drift);
+    cli_json_add(root, "steps", (double)r->stats.steps);
+    cli_json_add(root, "rhs_evaluations", (double)r->stats.rhs_evaluations);
+    cli_json_add(root, "samples", (double)r->samples);
+    cJSON *fp = cJSON_AddObjectToObject(root, "fingerprint");
+    cJSON_AddStringToObject(fp, "final_state", state_print);
+    cJSON_AddStringToObject(fp, "switches", switch_print);
+    cJSON_AddStringToObject(fp, "method", "FNV-1a 64: the bytes of the final state (q, omega, W); the (sample, "
+                            "contact index, grid and branch switch counts) of every sample with a switch");
+    if (r->has_monitors) {
+        const gb_run_monitors *mo = &r->monitors;
+        const double n = (double)r->samples;
+        cJSON *m = cJSON_AddObjectToObject(root, "monitors");
+        cli_json_add(m, "geff_nonpositive_fraction", (double)mo->geff_nonpositive / n);
+        cli_json_add(m, "geff_min", mo->geff_min);
+        cli_json_add(m, "lift_off_fraction", (double)mo->lift_off / n);
+        cli_json_add(m, "normal_force_min", mo->normal_min);
+        cli_json_add(m, "friction_needed_max", mo->friction_max);
+        cli_json_add(m, "friction_over_half_fraction", (double)mo->friction_over_half / n);
+        /* the scene's friction μ (null when the plane is left perfectly rough: nothing to compare with) */
+        cli_json_add(m, "friction_over_mu_fraction", isfinite(scene->dynamics.friction)
+                                                         ? (double)mo->friction_over_mu / n : NAN);
+    }
+    if (r->has_certificate) {
+        const gb_certify_stats *cs = &r->certificate;
+        cJSON *m = cJSON_AddObjectToObject(root, "certificate");
+        cli_json_add(m, "checks", (double)cs->checks);
+        cli_json_add(m, "global", (double)cs->global);
+        cli_json_add(m, "lower_found", (double)cs->lower_found);
+        cli_json_add(m, "undecided", (double)cs->undecided);
+        cli_json_add(m, "boxes_tested", (double)cs->boxes_tested);
+        cli_json_add(m, "newton_runs", (double)cs->newton_runs);
+        cli_json_add(m, "basins_built", (double)cs->basins_built);
+        cli_json_add(m, "boxes_kept", (double)cs->boxes_kept);
+        cli_json_add(m, "deepest_split", cs->deepest);
+        cli_json_add(m, "branches_lost", (double)o->branches_lost);
+    }
+    if (r->has_atlas) {
+        const gb_atlas_stats *as = &r->atlas;
+        cJSON *m = cJSON_AddObjectToObject(root, "atlas");
+        cli_json_add(m, "loaded", r->atlas_loaded);
+        cli_json_add(m, "checks", (double)as->checks);
+        cli_json_add(m, "answered", (double)as->answered);
+        cli_json_add(m, "fallbacks", (double)r->atlas_fallbacks);
+        cli_json_add(m, "lower_found", (double)as->lower_found);
+        cli_json_add(m, "newton_runs", (double)as->newton_runs);
+        cli_json_add(m, "cells", (double)as->cells);
+        cli_json_add(m, "two_site_cells", (double)as->two_site_cells);
+        cli_json_add(m, "cells_failed", (double)as->cells_failed);
+        cli_json_add(m, "deepest_level", as->deepest_level);
+        cli_json_add(m, "boxes", (double)as->boxes);
+        cli_json_add(m, "boxes_tested", (double)as->boxes_tested);
+        cli_json_add(m, "build_seconds", as->build_seconds);
+        cli_json_add(m, "bytes", (double)as->bytes);
+    }
+    if (scene->dynamics.contact_law == GB_CONTACT_LAW_UNILATERAL) {
+        /* energy_residual_* above is the ledger E − E0 − W + L, L the energy the impacts took */
+        cJSON *m = cJSON_AddObjectToObject(root, "impacts");
+        cli_json_add(m, "count", (double)r->impacts);
+        cli_json_add(m, "energy_lost", r->impact_energy_lost);
+        cli_json_add(m, "friction_needed_max", r->impact_friction_max);
+        cli_json_add(m, "settled", (double)r->two_point.settled);
+        cli_json_add(m, "over_friction", isfinite(scene->dynamics.friction) ? (double)r->impacts_over_friction : NAN);
+        cJSON *tp = cJSON_AddObjectToObject(root, "two_point");
+        cli_json_add(tp, "time_fraction", r->two_point.time / r->t_end);
+        cli_json_add(tp, "entries", (double)r->two_point.entries);
+        cli_json_add(tp, "lifts", (double)r->two_point.lifts);
+        cli_json_add(tp, "third_points", (double)r->two_point.third_points);
+        /* when the body came to rest on three points (a grid body on a face), null if it did not */
+        cli_json_add(tp, "rest_since", r->two_point.rest_since);
+        cJSON *fl = cJSON_AddObjectToObject(root, "flight");
+        cli_json_add(fl, "restitution", scene->dynamics.restitution);
+        cli_json_add(fl, "flight_time_fraction", r->flight.time / r->t_end);
+        cli_json_add(fl, "lift_offs", (double)r->flight.lift_offs);
+        cli_json_add(fl, "landings", (double)r->flight.landings);
+        cli_json_add(fl, "bounces", (double)r->flight.bounces);
+        /* the highest gap between the lowest point and the plane at the accepted steps of a flight [m] */
+        cli_json_add(fl, "max_hop_height", r->flight.hop_max);
+        cJSON_AddBoolToObject(fl, "flying_at_end", r->flight.flying);
+    }
+    if (r->has_strobe) cJSON_AddItemToObject(root, "strobe", strobe_json(&r->strobe));
+    if (r->has_spectrum) cJSON_AddItemToObject(root, "spectrum", spectrum_json(scene, &r->spectrum, r->spectrum_samples));
+    if (r->has_lyapunov) {
+        cJSON *l = cli_lyapunov_json(scene, &r->lyapunov, 0);
+        if (w->mean) cJSON_AddItemToObject(l, "windows", windows_json(scene, w));
+        cJSON_AddItemToObject(root, "lyapunov", l);
+    }
+    return root;
+}
+
 int command_run(int argc, char **argv)
 {
     const char *case_path = NULL, *dir = ".", *atlas = NULL;
@@ -392,104 +498,7 @@ int command_run(int argc, char **argv)
     snprintf(state_print, sizeof state_print, "%016llx", (unsigned long long)r.state_fingerprint);
     snprintf(switch_print, sizeof switch_print, "%016llx", (unsigned long long)r.switch_fingerprint);
     if (!status) {
-        const gb_dynamics_observables *o = &r.final;
-        root = cJSON_CreateObject();
-        cJSON_AddItemToObject(root, "scene", scene_json(&scene));
-        cli_json_add(root, "t_end", r.t_end);
-        cJSON_AddItemToObject(root, "quaternion", cli_json_vector(r.y + GB_STATE_Q, 4));
-        cJSON_AddItemToObject(root, "omega", cli_json_vector(r.y + GB_STATE_OMEGA, 3));
-        cli_json_add(root, "grid_switches", (double)o->grid_switches);
-        cli_json_add(root, "branch_switches", (double)o->branch_switches);
-        cli_json_add(root, "energy_residual_final", o->residual);
-        cli_json_add(root, "energy_residual_max", r.residual_max);
-        cli_json_add(root, "orthonormality_max", r.orthonormality_max);
-        cli_json_add(root, "quaternion_drift_max", r.stats.max_norm_drift);
-        cli_json_add(root, "steps", (double)r.stats.steps);
-        cli_json_add(root, "rhs_evaluations", (double)r.stats.rhs_evaluations);
-        cli_json_add(root, "samples", (double)r.samples);
-        cJSON *fp = cJSON_AddObjectToObject(root, "fingerprint");
-        cJSON_AddStringToObject(fp, "final_state", state_print);
-        cJSON_AddStringToObject(fp, "switches", switch_print);
-        cJSON_AddStringToObject(fp, "method", "FNV-1a 64: the bytes of the final state (q, omega, W); the (sample, "
-                                "contact index, grid and branch switch counts) of every sample with a switch");
-        if (r.has_monitors) {
-            const gb_run_monitors *mo = &r.monitors;
-            const double n = (double)r.samples;
-            cJSON *m = cJSON_AddObjectToObject(root, "monitors");
-            cli_json_add(m, "geff_nonpositive_fraction", (double)mo->geff_nonpositive / n);
-            cli_json_add(m, "geff_min", mo->geff_min);
-            cli_json_add(m, "lift_off_fraction", (double)mo->lift_off / n);
-            cli_json_add(m, "normal_force_min", mo->normal_min);
-            cli_json_add(m, "friction_needed_max", mo->friction_max);
-            cli_json_add(m, "friction_over_half_fraction", (double)mo->friction_over_half / n);
-            /* the scene's friction μ (null when the plane is left perfectly rough: nothing to compare with) */
-            cli_json_add(m, "friction_over_mu_fraction", isfinite(scene.dynamics.friction)
-                                                             ? (double)mo->friction_over_mu / n : NAN);
-        }
-        if (r.has_certificate) {
-            const gb_certify_stats *cs = &r.certificate;
-            cJSON *m = cJSON_AddObjectToObject(root, "certificate");
-            cli_json_add(m, "checks", (double)cs->checks);
-            cli_json_add(m, "global", (double)cs->global);
-            cli_json_add(m, "lower_found", (double)cs->lower_found);
-            cli_json_add(m, "undecided", (double)cs->undecided);
-            cli_json_add(m, "boxes_tested", (double)cs->boxes_tested);
-            cli_json_add(m, "newton_runs", (double)cs->newton_runs);
-            cli_json_add(m, "basins_built", (double)cs->basins_built);
-            cli_json_add(m, "boxes_kept", (double)cs->boxes_kept);
-            cli_json_add(m, "deepest_split", cs->deepest);
-            cli_json_add(m, "branches_lost", (double)o->branches_lost);
-        }
-        if (r.has_atlas) {
-            const gb_atlas_stats *as = &r.atlas;
-            cJSON *m = cJSON_AddObjectToObject(root, "atlas");
-            cli_json_add(m, "loaded", r.atlas_loaded);
-            cli_json_add(m, "checks", (double)as->checks);
-            cli_json_add(m, "answered", (double)as->answered);
-            cli_json_add(m, "fallbacks", (double)r.atlas_fallbacks);
-            cli_json_add(m, "lower_found", (double)as->lower_found);
-            cli_json_add(m, "newton_runs", (double)as->newton_runs);
-            cli_json_add(m, "cells", (double)as->cells);
-            cli_json_add(m, "two_site_cells", (double)as->two_site_cells);
-            cli_json_add(m, "cells_failed", (double)as->cells_failed);
-            cli_json_add(m, "deepest_level", as->deepest_level);
-            cli_json_add(m, "boxes", (double)as->boxes);
-            cli_json_add(m, "boxes_tested", (double)as->boxes_tested);
-            cli_json_add(m, "build_seconds", as->build_seconds);
-            cli_json_add(m, "bytes", (double)as->bytes);
-        }
-        if (scene.dynamics.contact_law == GB_CONTACT_LAW_UNILATERAL) {
-            /* energy_residual_* above is the ledger E − E0 − W + L, L the energy the impacts took */
-            cJSON *m = cJSON_AddObjectToObject(root, "impacts");
-            cli_json_add(m, "count", (double)r.impacts);
-            cli_json_add(m, "energy_lost", r.impact_energy_lost);
-            cli_json_add(m, "friction_needed_max", r.impact_friction_max);
-            cli_json_add(m, "settled", (double)r.two_point.settled);
-            cli_json_add(m, "over_friction", isfinite(scene.dynamics.friction) ? (double)r.impacts_over_friction : NAN);
-            cJSON *tp = cJSON_AddObjectToObject(root, "two_point");
-            cli_json_add(tp, "time_fraction", r.two_point.time / r.t_end);
-            cli_json_add(tp, "entries", (double)r.two_point.entries);
-            cli_json_add(tp, "lifts", (double)r.two_point.lifts);
-            cli_json_add(tp, "third_points", (double)r.two_point.third_points);
-            /* when the body came to rest on three points (a grid body on a face), null if it did not */
-            cli_json_add(tp, "rest_since", r.two_point.rest_since);
-            cJSON *fl = cJSON_AddObjectToObject(root, "flight");
-            cli_json_add(fl, "restitution", scene.dynamics.restitution);
-            cli_json_add(fl, "flight_time_fraction", r.flight.time / r.t_end);
-            cli_json_add(fl, "lift_offs", (double)r.flight.lift_offs);
-            cli_json_add(fl, "landings", (double)r.flight.landings);
-            cli_json_add(fl, "bounces", (double)r.flight.bounces);
-            /* the highest gap between the lowest point and the plane at the accepted steps of a flight [m] */
-            cli_json_add(fl, "max_hop_height", r.flight.hop_max);
-            cJSON_AddBoolToObject(fl, "flying_at_end", r.flight.flying);
-        }
-        if (r.has_strobe) cJSON_AddItemToObject(root, "strobe", strobe_json(&r.strobe));
-        if (r.has_spectrum) cJSON_AddItemToObject(root, "spectrum", spectrum_json(&scene, &r.spectrum, r.spectrum_samples));
-        if (r.has_lyapunov) {
-            cJSON *l = cli_lyapunov_json(&scene, &r.lyapunov, 0);
-            if (w.mean) cJSON_AddItemToObject(l, "windows", windows_json(&scene, &w));
-            cJSON_AddItemToObject(root, "lyapunov", l);
-        }
+        root = summary_json(&scene, &r, &w, state_print, switch_print);
         /* Exactly the files of this run (any other NAME-* output of an earlier run is removed), each
          * with its size and checksum: the summary is the set's manifest. */
         cJSON *list = cJSON_AddArrayToObject(root, "files");

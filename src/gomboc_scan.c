@@ -1,5 +1,6 @@
 /* gomboc scan — a map over two keys of a scene (paper §8.3), parallel over points, resumable. */
 #include "gomboc_cli.h"
+#include "gb_clock.h"
 
 #include "gb_error.h"
 #include "gb_parse.h"
@@ -131,12 +132,6 @@ static int journal_create(journal *j)
     return 0;
 }
 
-static double wall_seconds(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 static cJSON *axis_json(const gb_scan_axis *a)
 {
@@ -272,7 +267,7 @@ static void accept_point(scan_state *st, size_t k, const gb_scan_metrics *m, con
     if (!st->done[k]) st->finished++;
     st->results[k] = *m, st->done[k] = 1;
     st->run_here++;
-    const double now = wall_seconds();
+    const double now = gb_wall_seconds();
     if (now - st->last_report >= 2.0 || st->finished == st->points) {
         const double rate = (double)st->run_here / (now - st->points_start);
         fprintf(stderr, "gomboc scan: %zu of %zu points, %.2f points/s, %.0f s left\n", st->finished, st->points, rate,
@@ -345,7 +340,7 @@ static gb_scan_melnikov *prepare_melnikov(scan_state *st, const ranks *r, const 
     if (!status && gb_scan_melnikov_frequencies(plan) && r->rank == 0)
         fprintf(stderr, "gomboc scan: the Melnikov margins need %zu reduced model(s) and their integrals at %zu frequency(ies)\n",
                 gb_scan_melnikov_bodies(plan), gb_scan_melnikov_frequencies(plan));
-    const double start = wall_seconds();
+    const double start = gb_wall_seconds();
     double last_report = start;
     const size_t tasks = status ? 0 : gb_scan_melnikov_bodies(plan) + gb_scan_melnikov_frequencies(plan);
     size_t finished = 0;
@@ -367,7 +362,7 @@ static gb_scan_melnikov *prepare_melnikov(scan_state *st, const ranks *r, const 
                     status = s;
                 }
                 finished++;
-                const double now = wall_seconds();
+                const double now = gb_wall_seconds();
                 if (r->rank == 0 && now - last_report >= 2.0 && finished < tasks) {
                     fprintf(stderr, "gomboc scan: the Melnikov margins: %zu of %zu models and frequencies, %.0f s\n", finished,
                             tasks, now - start);
@@ -377,7 +372,7 @@ static gb_scan_melnikov *prepare_melnikov(scan_state *st, const ranks *r, const 
         }
     }
     if (!status && gb_scan_melnikov_frequencies(plan) && r->rank == 0)
-        fprintf(stderr, "gomboc scan: the Melnikov margins' models and integrals in %.1f s\n", wall_seconds() - start);
+        fprintf(stderr, "gomboc scan: the Melnikov margins' models and integrals in %.1f s\n", gb_wall_seconds() - start);
     if (status) {
         if (!st->failed) fail_with(st, gb_error_message());
         gb_scan_melnikov_free(plan);
@@ -396,7 +391,7 @@ static void run_points(scan_state *st, const ranks *r)
         if (!st->done[k]) todo[left++] = k;
     const size_t step = (size_t)r->size;
     gb_scan_melnikov *melnikov = todo ? prepare_melnikov(st, r, todo, left) : NULL;
-    st->points_start = st->last_report = wall_seconds();
+    st->points_start = st->last_report = gb_wall_seconds();
 #ifdef _OPENMP
 #pragma omp parallel for schedule(dynamic, 1)
 #endif
@@ -565,7 +560,7 @@ static int scan_command(int argc, char **argv, const ranks *r)
     (void)threads;
 #endif
     scan_state st = {.scan = &scan, .j = &j, .results = results, .done = done,
-                     .points = points, .finished = already, .start = wall_seconds()};
+                     .points = points, .finished = already, .start = gb_wall_seconds()};
     st.last_report = st.start;
     if (!exit_status) {
         if (already && r->rank == 0)
@@ -576,7 +571,7 @@ static int scan_command(int argc, char **argv, const ranks *r)
             exit_status = EXIT_COMPUTE;
         }
     }
-    const double seconds = wall_seconds() - st.start;
+    const double seconds = gb_wall_seconds() - st.start;
     if (j.file && fclose(j.file) != 0 && !exit_status) {
         fprintf(stderr, "gomboc scan: cannot close the journal '%s': %s\n", j.path, strerror(errno));
         exit_status = EXIT_COMPUTE;

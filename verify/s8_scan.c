@@ -18,6 +18,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <time.h>
@@ -191,6 +192,15 @@ static void test_point_is_the_run(void)
     gb_check ch = {"8.3", "-", "that scan's CSV header", "index, the axes by their keys, then the metrics", "exact"};
     const char *header_start = "index,forcing.omega,forcing.A2,omega_rms,";
     gb_check_true(&ch, csv && !strncmp(csv, header_start, strlen(header_start)), "%.80s", csv ? csv : "(no CSV)");
+    /* the scan plotter of the README, on that CSV */
+    char plot_args[600], png[200], plot_out[4096];
+    snprintf(png, sizeof png, "%s/map-lambda.png", d.path);
+    snprintf(plot_args, sizeof plot_args, "reports/plot_scan.py '%s' lambda_max omega_rms --out '%s'", d.csv, png);
+    const int plotted = gb_check_command("/usr/bin/python3", plot_args, plot_out, sizeof plot_out);
+    struct stat png_stat;
+    gb_check cp = {"8.3", "-", "reports/plot_scan.py on that scan (two metrics over the axes named by their keys)",
+                   "exit 0 and a PNG written", "exact"};
+    gb_check_true(&cp, plotted == 0 && stat(png, &png_stat) == 0 && png_stat.st_size > 1000, "exit %d: %.200s", plotted, plot_out);
     int rows = 0, same_fingerprint = 0, same_diagnostics = 0, same_margin = 0;
     double worst = 0.0, worst_threshold = 0.0;
     for (const char *line = csv ? strchr(csv, '\n') : NULL; line && line[1]; line = strchr(line + 1, '\n')) {
