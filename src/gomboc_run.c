@@ -328,6 +328,17 @@ static cJSON *spectrum_json(const gb_case *scene, const gb_spectrum *spectrum, s
     return o;
 }
 
+/* A summary's block of named numbers, in order. */
+typedef struct named_value {
+    const char *name;
+    double value;
+} named_value;
+
+static void add_values(cJSON *object, const named_value *values, size_t count)
+{
+    for (size_t k = 0; k < count; k++) cli_json_add(object, values[k].name, values[k].value);
+}
+
 /* The run's summary (NAME-summary.json) but for its list of files: the scene as read, the final state,
  * counts, residuals, fingerprints, and what the scene's model and diagnostics computed. */
 static cJSON *summary_json(const gb_case *scene, const gb_run_result *r, const windows *w, const char *state_print,
@@ -369,35 +380,25 @@ static cJSON *summary_json(const gb_case *scene, const gb_run_result *r, const w
     }
     if (r->has_certificate) {
         const gb_certify_stats *cs = &r->certificate;
-        cJSON *m = cJSON_AddObjectToObject(root, "certificate");
-        cli_json_add(m, "checks", (double)cs->checks);
-        cli_json_add(m, "global", (double)cs->global);
-        cli_json_add(m, "lower_found", (double)cs->lower_found);
-        cli_json_add(m, "undecided", (double)cs->undecided);
-        cli_json_add(m, "boxes_tested", (double)cs->boxes_tested);
-        cli_json_add(m, "newton_runs", (double)cs->newton_runs);
-        cli_json_add(m, "basins_built", (double)cs->basins_built);
-        cli_json_add(m, "boxes_kept", (double)cs->boxes_kept);
-        cli_json_add(m, "deepest_split", cs->deepest);
-        cli_json_add(m, "branches_lost", (double)o->branches_lost);
+        const named_value certificate[] = {
+            {"checks", (double)cs->checks},         {"global", (double)cs->global},
+            {"lower_found", (double)cs->lower_found}, {"undecided", (double)cs->undecided},
+            {"boxes_tested", (double)cs->boxes_tested}, {"newton_runs", (double)cs->newton_runs},
+            {"basins_built", (double)cs->basins_built}, {"boxes_kept", (double)cs->boxes_kept},
+            {"deepest_split", cs->deepest},          {"branches_lost", (double)o->branches_lost}};
+        add_values(cJSON_AddObjectToObject(root, "certificate"), certificate, sizeof certificate / sizeof certificate[0]);
     }
     if (r->has_atlas) {
         const gb_atlas_stats *as = &r->atlas;
-        cJSON *m = cJSON_AddObjectToObject(root, "atlas");
-        cli_json_add(m, "loaded", r->atlas_loaded);
-        cli_json_add(m, "checks", (double)as->checks);
-        cli_json_add(m, "answered", (double)as->answered);
-        cli_json_add(m, "fallbacks", (double)r->atlas_fallbacks);
-        cli_json_add(m, "lower_found", (double)as->lower_found);
-        cli_json_add(m, "newton_runs", (double)as->newton_runs);
-        cli_json_add(m, "cells", (double)as->cells);
-        cli_json_add(m, "two_site_cells", (double)as->two_site_cells);
-        cli_json_add(m, "cells_failed", (double)as->cells_failed);
-        cli_json_add(m, "deepest_level", as->deepest_level);
-        cli_json_add(m, "boxes", (double)as->boxes);
-        cli_json_add(m, "boxes_tested", (double)as->boxes_tested);
-        cli_json_add(m, "build_seconds", as->build_seconds);
-        cli_json_add(m, "bytes", (double)as->bytes);
+        const named_value atlas[] = {
+            {"loaded", r->atlas_loaded},                 {"checks", (double)as->checks},
+            {"answered", (double)as->answered},          {"fallbacks", (double)r->atlas_fallbacks},
+            {"lower_found", (double)as->lower_found},    {"newton_runs", (double)as->newton_runs},
+            {"cells", (double)as->cells},                {"two_site_cells", (double)as->two_site_cells},
+            {"cells_failed", (double)as->cells_failed},  {"deepest_level", as->deepest_level},
+            {"boxes", (double)as->boxes},                {"boxes_tested", (double)as->boxes_tested},
+            {"build_seconds", as->build_seconds},        {"bytes", (double)as->bytes}};
+        add_values(cJSON_AddObjectToObject(root, "atlas"), atlas, sizeof atlas / sizeof atlas[0]);
     }
     if (scene->dynamics.contact_law == GB_CONTACT_LAW_UNILATERAL) {
         /* energy_residual_* above is the ledger E − E0 − W + L, L the energy the impacts took */
