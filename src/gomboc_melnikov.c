@@ -58,45 +58,64 @@ static int threshold_at(const melnikov_run *r, double omega, double A1, double A
     return GB_OK;
 }
 
-int command_melnikov(int argc, char **argv)
+/* The options of `gomboc melnikov`, read and checked. */
+typedef struct melnikov_options {
+    const char *case_path, *curve;
+    int json, variable_mass, paper_weight, damping_exact;
+    double points; /* --curve-points */
+} melnikov_options;
+
+/* Read the options into *o: -1 to go on, else the exit status (0 for --help). */
+static int melnikov_options_read(int argc, char **argv, melnikov_options *o)
 {
-    const char *case_path = NULL, *curve = NULL, *points_text = NULL;
-    int json = 0, variable_mass = 0, paper_weight = 0, damping_exact = 0;
+    *o = (melnikov_options){NULL, NULL, 0, 0, 0, 0, 13};
+    const char *points_text = NULL;
     static const char *const valued[] = {"--mass", "--weight", "--damping", "--curve", "--curve-points", NULL};
     for (int i = 0; i < argc; i++) {
         const char *opt = argv[i], *value = NULL;
-        const int positional = cli_positional("melnikov", opt, &case_path, "case file", "CASE");
+        const int positional = cli_positional("melnikov", opt, &o->case_path, "case file", "CASE");
         if (positional) {
             if (positional == 1) continue;
             return positional;
         }
         const int kind = cli_next_option("melnikov", argc, argv, &i, usage_melnikov, valued,
                                          " (allowed: --json, --mass, --weight, --damping, --curve, --curve-points, --help)", NULL,
-                                         &json, &value);
+                                         &o->json, &value);
         if (kind != CLI_VALUE) {
             if (kind == CLI_NEXT) continue;
             return kind == CLI_HELP ? 0 : kind;
         }
         int bad = 0;
-        if (!strcmp(opt, "--mass")) bad = parse_choice(opt, value, "top", "variable", &variable_mass);
-        else if (!strcmp(opt, "--weight")) bad = parse_choice(opt, value, "exact", "paper", &paper_weight);
-        else if (!strcmp(opt, "--damping")) bad = parse_choice(opt, value, "paper", "exact", &damping_exact);
-        else if (!strcmp(opt, "--curve")) curve = value;
+        if (!strcmp(opt, "--mass")) bad = parse_choice(opt, value, "top", "variable", &o->variable_mass);
+        else if (!strcmp(opt, "--weight")) bad = parse_choice(opt, value, "exact", "paper", &o->paper_weight);
+        else if (!strcmp(opt, "--damping")) bad = parse_choice(opt, value, "paper", "exact", &o->damping_exact);
+        else if (!strcmp(opt, "--curve")) o->curve = value;
         else points_text = value;
         if (bad) return bad;
     }
-    if (!case_path) return cli_input_error("melnikov", "missing %s%s", "CASE", " (allowed: a scene file, e.g. cases/table1-gomboc-I.ini)");
-    double points = 13;
-    if (points_text && !curve)
+    if (!o->case_path) return cli_input_error("melnikov", "missing %s%s", "CASE", " (allowed: a scene file, e.g. cases/table1-gomboc-I.ini)");
+    if (points_text && !o->curve)
         return cli_input_error("melnikov", "--curve-points %s without --curve (allowed: --curve-points with --curve FILE)",
                                points_text);
     if (points_text && cli_number("melnikov", "--curve-points", points_text, 2, 1000, 0,
-                                  " (allowed: an integer from 2 to 1000)", &points))
+                                  " (allowed: an integer from 2 to 1000)", &o->points))
         return EXIT_INPUT;
-    if (points != floor(points))
+    if (o->points != floor(o->points))
         return cli_input_error("melnikov", "--curve-points %s: not an integer (allowed: an integer from 2 to 1000)", points_text);
-    const gb_file_use uses[] = {{case_path, "CASE", GB_FILE_INPUT}, {curve, "--curve", GB_FILE_OUTPUT}};
+    const gb_file_use uses[] = {{o->case_path, "CASE", GB_FILE_INPUT}, {o->curve, "--curve", GB_FILE_OUTPUT}};
     if (cli_files_check("melnikov", uses, 2)) return EXIT_INPUT;
+    return -1;
+}
+
+int command_melnikov(int argc, char **argv)
+{
+    melnikov_options options;
+    const int read = melnikov_options_read(argc, argv, &options);
+    if (read >= 0) return read;
+    const char *case_path = options.case_path, *curve = options.curve;
+    const int json = options.json, variable_mass = options.variable_mass, paper_weight = options.paper_weight,
+              damping_exact = options.damping_exact;
+    const double points = options.points;
     gb_case scene;
     int status = gb_case_load(case_path, &scene);
     if (status) return cli_failure("melnikov", status);

@@ -444,20 +444,27 @@ static void run_points(scan_state *st, const ranks *r)
 #endif
 }
 
-static int scan_command(int argc, char **argv, const ranks *r)
+/* The options of `gomboc scan`, read and checked (--threads as a count, 0 for OpenMP's own choice). */
+typedef struct scan_options {
+    const char *scan_path, *dir;
+    int resume, threads;
+} scan_options;
+
+/* Read the options into *o: -1 to go on, else the exit status (0 for --help). */
+static int scan_options_read(int argc, char **argv, scan_options *o)
 {
-    const char *scan_path = NULL, *dir = ".", *threads_text = NULL;
-    int resume = 0;
+    *o = (scan_options){NULL, ".", 0, 0};
+    const char *threads_text = NULL;
     static const char *const valued[] = {"--out", "--threads", NULL};
     for (int i = 0; i < argc; i++) {
         const char *opt = argv[i], *value = NULL;
-        const int positional = cli_positional("scan", opt, &scan_path, "scan file", "SCAN");
+        const int positional = cli_positional("scan", opt, &o->scan_path, "scan file", "SCAN");
         if (positional) {
             if (positional == 1) continue;
             return positional;
         }
         if (!strcmp(opt, "--resume")) {
-            resume = 1;
+            o->resume = 1;
             continue;
         }
         const int kind = cli_next_option("scan", argc, argv, &i, usage_scan, valued,
@@ -466,17 +473,26 @@ static int scan_command(int argc, char **argv, const ranks *r)
             if (kind == CLI_NEXT) continue;
             return kind == CLI_HELP ? 0 : kind;
         }
-        if (!strcmp(opt, "--out")) dir = value;
+        if (!strcmp(opt, "--out")) o->dir = value;
         else threads_text = value;
     }
-    if (!scan_path) return cli_input_error("scan", "missing %s%s", "SCAN", " (allowed: a scan file, e.g. cases/scans/fig10-gomboc-I-omega-A1.ini)");
-    int threads = 0;
+    if (!o->scan_path) return cli_input_error("scan", "missing %s%s", "SCAN", " (allowed: a scan file, e.g. cases/scans/fig10-gomboc-I-omega-A1.ini)");
     if (threads_text) {
         double n;
         if (cli_number("scan", "--threads", threads_text, 1, 256, 0, " (allowed: an integer from 1 to 256)", &n)) return EXIT_INPUT;
         if (n != floor(n)) return cli_input_error("scan", "--threads %s: not an integer (allowed: an integer from 1 to 256)", threads_text);
-        threads = (int)n;
+        o->threads = (int)n;
     }
+    return -1;
+}
+
+static int scan_command(int argc, char **argv, const ranks *r)
+{
+    scan_options options;
+    const int read = scan_options_read(argc, argv, &options);
+    if (read >= 0) return read;
+    const char *scan_path = options.scan_path, *dir = options.dir;
+    const int resume = options.resume, threads = options.threads;
     /* The outputs are rank 0's: only it checks where they go. */
     journal j = {.path = cli_output_name(dir, scan_path, "scan.journal")};
     int bad = !j.path;

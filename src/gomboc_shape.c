@@ -48,6 +48,107 @@ static int write_radial_map(const gb_surface *surface, const char *path)
     return status;
 }
 
+/* Everything `gomboc shape` computes for one body, for its JSON and its text. */
+typedef struct shape_study {
+    gb_surface surface;
+    double beta, mass;
+    gb_massprops props;
+    gb_shape_def sdef;
+    gb_curvature_survey survey;
+    gb_equilibria equilibria;
+    gb_hull_equilibria hull;
+    double beta_limit, limit_phi, limit_theta;
+    int convex, mono;
+} shape_study;
+
+static cJSON *shape_json(const shape_study *st)
+{
+    cJSON *root = cJSON_CreateObject();
+    cJSON_AddStringToObject(root, "morphology", st->surface.morphology->name);
+    cli_json_add(root, "beta", st->beta);
+    cli_json_add(root, "mass", st->mass);
+    cli_json_add(root, "volume", st->props.volume);
+    cli_json_add(root, "volume_error", st->props.volume_err);
+    cJSON_AddItemToObject(root, "centroid", cli_json_vector(st->props.centroid, 3));
+    cJSON_AddItemToObject(root, "centroid_error", cli_json_vector(st->props.centroid_err, 3));
+    cJSON *inertia = cJSON_AddArrayToObject(root, "inertia");
+    for (int i = 0; i < 3; i++) cJSON_AddItemToArray(inertia, cli_json_vector(st->props.inertia[i], 3));
+    cli_json_add(root, "L", st->props.L);
+    cli_json_add(root, "L_error", st->props.L_err);
+    cli_json_add(root, "curvature_min", st->survey.K_min);
+    cJSON_AddItemToObject(root, "curvature_min_at", cli_json_vector((double[]){st->survey.K_min_phi, st->survey.K_min_theta}, 2));
+    cli_json_add(root, "principal_curvature_min", st->survey.kappa_min);
+    cJSON_AddItemToObject(root, "principal_curvature_min_at",
+                          cli_json_vector((double[]){st->survey.kappa_min_phi, st->survey.kappa_min_theta}, 2));
+    cli_json_add(root, "negative_curvature_fraction", st->survey.negative_fraction);
+    cli_json_add(root, "convexity_beta_limit", st->beta_limit);
+    cJSON_AddItemToObject(root, "convexity_lost_at", cli_json_vector((double[]){st->limit_phi, st->limit_theta}, 2));
+    cJSON_AddBoolToObject(root, "convex", st->convex);
+    cJSON *eqs = cJSON_AddArrayToObject(root, "equilibria");
+    for (size_t k = 0; k < st->equilibria.count; k++) {
+        cJSON *e = cJSON_CreateObject();
+        cJSON_AddStringToObject(e, "type", gb_shape_equilibrium_name(st->equilibria.points[k].type));
+        cli_json_add(e, "phi", st->equilibria.points[k].phi);
+        cli_json_add(e, "theta", st->equilibria.points[k].theta);
+        cli_json_add(e, "r", st->equilibria.points[k].r);
+        cJSON_AddItemToArray(eqs, e);
+    }
+    cli_json_add(root, "polar_cap_gradient_min", st->equilibria.polar_gradient_min);
+    cJSON *h = cJSON_AddObjectToObject(root, "hull_equilibria");
+    cJSON_AddItemToObject(h, "sample", cli_json_vector((double[]){(double)st->sdef.hull_phi, (double)st->sdef.hull_theta}, 2));
+    cli_json_add(h, "neighbourhood_rad", st->sdef.hull_neighbourhood);
+    cli_json_add(h, "vertices", (double)st->hull.vertices);
+    cli_json_add(h, "sampled_fraction_on_hull", st->hull.sampled_fraction_on_hull);
+    cli_json_add(h, "raw_stable", (double)st->hull.raw_stable);
+    cli_json_add(h, "raw_unstable", (double)st->hull.raw_unstable);
+    cli_json_add(h, "stable", (double)st->hull.stable);
+    cli_json_add(h, "unstable", (double)st->hull.unstable);
+    cJSON *rests = cJSON_AddArrayToObject(h, "rests");
+    for (size_t k = 0; k < st->hull.stable; k++) {
+        cJSON *r = cJSON_CreateObject();
+        cJSON_AddItemToObject(r, "normal", cli_json_vector(st->hull.rests[k].normal, 3));
+        cli_json_add(r, "height", st->hull.rests[k].height);
+        cJSON_AddItemToArray(rests, r);
+    }
+    cJSON *tops = cJSON_AddArrayToObject(h, "unstable_points");
+    for (size_t k = 0; k < st->hull.unstable; k++) cJSON_AddItemToArray(tops, cli_json_vector(st->hull.unstable_points[k], 3));
+    cJSON_AddBoolToObject(root, "mono_monostatic", st->mono);
+
+    return root;
+}
+
+static void print_shape(const shape_study *st)
+{
+    printf("body             morphology %s (chi = %s), beta = %.17g, mass = %g\n",
+           st->surface.morphology->name, st->surface.morphology->chi_formula, st->beta, st->mass);
+    printf("volume           %.15g  (+- %.1e)\n", st->props.volume, st->props.volume_err);
+    printf("centroid         %.3e %.3e %.3e  (+- %.1e)\n", st->props.centroid[0], st->props.centroid[1],
+           st->props.centroid[2], st->props.centroid_err[0]);
+    for (int i = 0; i < 3; i++)
+        printf("%s %15.12f %15.12f %15.12f\n", i ? "                " : "inertia (I_C)   ",
+               st->props.inertia[i][0], st->props.inertia[i][1], st->props.inertia[i][2]);
+    printf("L (eq 53)        %.15g  (+- %.1e)\n", st->props.L, st->props.L_err);
+    printf("curvature min    K = %.10g at (phi, theta) = (%.8f, %.8f)\n", st->survey.K_min, st->survey.K_min_phi, st->survey.K_min_theta);
+    printf("                 kappa_1 = %.10g at (%.8f, %.8f)\n", st->survey.kappa_min, st->survey.kappa_min_phi, st->survey.kappa_min_theta);
+    printf("negative K       %.6f of the area\n", st->survey.negative_fraction);
+    printf("convex up to     beta = %.12g (lost at phi = %.8f, theta = %.8f)\n", st->beta_limit, st->limit_phi, st->limit_theta);
+    printf("convex           %s\n", st->convex ? "yes" : "no");
+    printf("critical points of r: %d stable, %d saddle, %d unstable (min |grad r| in polar caps %.3g)\n",
+           st->equilibria.stable, st->equilibria.saddle, st->equilibria.unstable, st->equilibria.polar_gradient_min);
+    for (size_t k = 0; k < st->equilibria.count; k++)
+        printf("  %-8s phi = %.10f theta = %.10f r = %.12f\n", gb_shape_equilibrium_name(st->equilibria.points[k].type),
+               st->equilibria.points[k].phi, st->equilibria.points[k].theta, st->equilibria.points[k].r);
+    printf("convex hull      %zux%zu sample, %zu vertices (%.4f of the sample)\n", st->sdef.hull_phi, st->sdef.hull_theta,
+           st->hull.vertices, st->hull.sampled_fraction_on_hull);
+    printf("  raw polyhedral equilibria: %zu resting faces, %zu unstable vertices\n", st->hull.raw_stable, st->hull.raw_unstable);
+    printf("  robust within %.2f rad:    %zu resting faces, %zu unstable vertices\n", st->sdef.hull_neighbourhood,
+           st->hull.stable, st->hull.unstable);
+    for (size_t k = 0; k < st->hull.stable; k++)
+        printf("    rest on normal (%.5f, %.5f, %.5f), centroid height %.8f\n", st->hull.rests[k].normal[0],
+               st->hull.rests[k].normal[1], st->hull.rests[k].normal[2], st->hull.rests[k].height);
+    printf("mono-monostatic  %s\n", st->mono ? "yes" : "no");
+}
+
 int command_shape(int argc, char **argv)
 {
     const char *radial_map = NULL;
@@ -94,93 +195,14 @@ int command_shape(int argc, char **argv)
     if (!status) status = gb_shape_hull_equilibria(&surface, &sdef, &hull);
     if (!status && radial_map) status = write_radial_map(&surface, radial_map);
     if (status) return cli_failure("shape", status);
-    const int convex = survey.kappa_min > 0.0;
-    const int mono = convex ? equilibria.stable == 1 && equilibria.unstable == 1
-                            : hull.stable == 1 && hull.unstable == 1;
-
-    cJSON *root = cJSON_CreateObject();
-    cJSON_AddStringToObject(root, "morphology", surface.morphology->name);
-    cli_json_add(root, "beta", beta);
-    cli_json_add(root, "mass", mass);
-    cli_json_add(root, "volume", props.volume);
-    cli_json_add(root, "volume_error", props.volume_err);
-    cJSON_AddItemToObject(root, "centroid", cli_json_vector(props.centroid, 3));
-    cJSON_AddItemToObject(root, "centroid_error", cli_json_vector(props.centroid_err, 3));
-    cJSON *inertia = cJSON_AddArrayToObject(root, "inertia");
-    for (int i = 0; i < 3; i++) cJSON_AddItemToArray(inertia, cli_json_vector(props.inertia[i], 3));
-    cli_json_add(root, "L", props.L);
-    cli_json_add(root, "L_error", props.L_err);
-    cli_json_add(root, "curvature_min", survey.K_min);
-    cJSON_AddItemToObject(root, "curvature_min_at", cli_json_vector((double[]){survey.K_min_phi, survey.K_min_theta}, 2));
-    cli_json_add(root, "principal_curvature_min", survey.kappa_min);
-    cJSON_AddItemToObject(root, "principal_curvature_min_at",
-                          cli_json_vector((double[]){survey.kappa_min_phi, survey.kappa_min_theta}, 2));
-    cli_json_add(root, "negative_curvature_fraction", survey.negative_fraction);
-    cli_json_add(root, "convexity_beta_limit", beta_limit);
-    cJSON_AddItemToObject(root, "convexity_lost_at", cli_json_vector((double[]){limit_phi, limit_theta}, 2));
-    cJSON_AddBoolToObject(root, "convex", convex);
-    cJSON *eqs = cJSON_AddArrayToObject(root, "equilibria");
-    for (size_t k = 0; k < equilibria.count; k++) {
-        cJSON *e = cJSON_CreateObject();
-        cJSON_AddStringToObject(e, "type", gb_shape_equilibrium_name(equilibria.points[k].type));
-        cli_json_add(e, "phi", equilibria.points[k].phi);
-        cli_json_add(e, "theta", equilibria.points[k].theta);
-        cli_json_add(e, "r", equilibria.points[k].r);
-        cJSON_AddItemToArray(eqs, e);
-    }
-    cli_json_add(root, "polar_cap_gradient_min", equilibria.polar_gradient_min);
-    cJSON *h = cJSON_AddObjectToObject(root, "hull_equilibria");
-    cJSON_AddItemToObject(h, "sample", cli_json_vector((double[]){(double)sdef.hull_phi, (double)sdef.hull_theta}, 2));
-    cli_json_add(h, "neighbourhood_rad", sdef.hull_neighbourhood);
-    cli_json_add(h, "vertices", (double)hull.vertices);
-    cli_json_add(h, "sampled_fraction_on_hull", hull.sampled_fraction_on_hull);
-    cli_json_add(h, "raw_stable", (double)hull.raw_stable);
-    cli_json_add(h, "raw_unstable", (double)hull.raw_unstable);
-    cli_json_add(h, "stable", (double)hull.stable);
-    cli_json_add(h, "unstable", (double)hull.unstable);
-    cJSON *rests = cJSON_AddArrayToObject(h, "rests");
-    for (size_t k = 0; k < hull.stable; k++) {
-        cJSON *r = cJSON_CreateObject();
-        cJSON_AddItemToObject(r, "normal", cli_json_vector(hull.rests[k].normal, 3));
-        cli_json_add(r, "height", hull.rests[k].height);
-        cJSON_AddItemToArray(rests, r);
-    }
-    cJSON *tops = cJSON_AddArrayToObject(h, "unstable_points");
-    for (size_t k = 0; k < hull.unstable; k++) cJSON_AddItemToArray(tops, cli_json_vector(hull.unstable_points[k], 3));
-    cJSON_AddBoolToObject(root, "mono_monostatic", mono);
-
-    if (json) {
-        cli_print_json(root);
-    } else {
-        printf("body             morphology %s (chi = %s), beta = %.17g, mass = %g\n",
-               surface.morphology->name, surface.morphology->chi_formula, beta, mass);
-        printf("volume           %.15g  (+- %.1e)\n", props.volume, props.volume_err);
-        printf("centroid         %.3e %.3e %.3e  (+- %.1e)\n", props.centroid[0], props.centroid[1],
-               props.centroid[2], props.centroid_err[0]);
-        for (int i = 0; i < 3; i++)
-            printf("%s %15.12f %15.12f %15.12f\n", i ? "                " : "inertia (I_C)   ",
-                   props.inertia[i][0], props.inertia[i][1], props.inertia[i][2]);
-        printf("L (eq 53)        %.15g  (+- %.1e)\n", props.L, props.L_err);
-        printf("curvature min    K = %.10g at (phi, theta) = (%.8f, %.8f)\n", survey.K_min, survey.K_min_phi, survey.K_min_theta);
-        printf("                 kappa_1 = %.10g at (%.8f, %.8f)\n", survey.kappa_min, survey.kappa_min_phi, survey.kappa_min_theta);
-        printf("negative K       %.6f of the area\n", survey.negative_fraction);
-        printf("convex up to     beta = %.12g (lost at phi = %.8f, theta = %.8f)\n", beta_limit, limit_phi, limit_theta);
-        printf("convex           %s\n", convex ? "yes" : "no");
-        printf("critical points of r: %d stable, %d saddle, %d unstable (min |grad r| in polar caps %.3g)\n",
-               equilibria.stable, equilibria.saddle, equilibria.unstable, equilibria.polar_gradient_min);
-        for (size_t k = 0; k < equilibria.count; k++)
-            printf("  %-8s phi = %.10f theta = %.10f r = %.12f\n", gb_shape_equilibrium_name(equilibria.points[k].type),
-                   equilibria.points[k].phi, equilibria.points[k].theta, equilibria.points[k].r);
-        printf("convex hull      %zux%zu sample, %zu vertices (%.4f of the sample)\n", sdef.hull_phi, sdef.hull_theta,
-               hull.vertices, hull.sampled_fraction_on_hull);
-        printf("  raw polyhedral equilibria: %zu resting faces, %zu unstable vertices\n", hull.raw_stable, hull.raw_unstable);
-        printf("  robust within %.2f rad:    %zu resting faces, %zu unstable vertices\n", sdef.hull_neighbourhood,
-               hull.stable, hull.unstable);
-        for (size_t k = 0; k < hull.stable; k++)
-            printf("    rest on normal (%.5f, %.5f, %.5f), centroid height %.8f\n", hull.rests[k].normal[0],
-                   hull.rests[k].normal[1], hull.rests[k].normal[2], hull.rests[k].height);
-        printf("mono-monostatic  %s\n", mono ? "yes" : "no");
-    }
+    shape_study study = {.surface = surface, .beta = beta, .mass = mass, .props = props, .sdef = sdef, .survey = survey,
+                         .equilibria = equilibria, .hull = hull, .beta_limit = beta_limit, .limit_phi = limit_phi,
+                         .limit_theta = limit_theta};
+    study.convex = survey.kappa_min > 0.0;
+    study.mono = study.convex ? equilibria.stable == 1 && equilibria.unstable == 1 : hull.stable == 1 && hull.unstable == 1;
+    cJSON *root = shape_json(&study);
+    if (json) cli_print_json(root);
+    else print_shape(&study);
     cJSON_Delete(root);
     return 0;
 }
