@@ -9,6 +9,7 @@ usage: make_report.py OUT CC CFLAGS
 import datetime
 import os
 import platform
+import re
 import shutil
 import subprocess
 import sys
@@ -187,8 +188,10 @@ def error_vs_time(out, rows):
 
 
 def spell(text):
-    """One spelling in the report: the harness records ASCII names; the report writes the paper's."""
-    return text.replace("Gomboc", "Gömböc").replace("lambda_max", "λ_max").replace("m/s^2", "m/s²")
+    """One spelling in the report: the harness records ASCII names; the report writes the paper's (names in
+    backticks, such as a CSV column `lambda_max`, stay as they are)."""
+    text = text.replace("Gomboc", "Gömböc").replace("m/s^2", "m/s²")
+    return re.sub(r"(?<![`\w])lambda_max(?![`\w])", "λ_max", text)
 
 
 CENTRAL = "lambda_max > 0 after convergence at baseline"
@@ -240,7 +243,7 @@ def main():
                  "**No checks in this checkout: `make verify` has not run here.** This report holds only what the "
                  "gates below made; `make verify` writes the whole report.", ""]
         lines += gate_lines(out) + [""] + study_section(out) + scan_section(out)
-        write_atomically(os.path.join(out, "verification.md"), "\n".join(lines))
+        write_atomically(os.path.join(out, "verification.md"), spell("\n".join(lines)))
         return
     rows, tests = load_checks(os.path.join(out, "checks.json"))
     shapes = [(n, load_json(os.path.join(out, f"shape-{n}.json"))) for n in ("I", "II")]
@@ -347,7 +350,7 @@ def main():
             where[r["suite"]].append(r["file"])
     lines += ["", "## Where the checks live", ""] + \
              [f"- {suite}: " + ", ".join(f"`{f}`" for f in files) for suite, files in where.items()] + [""]
-    write_atomically(os.path.join(out, "verification.md"), "\n".join(lines))
+    write_atomically(os.path.join(out, "verification.md"), spell("\n".join(lines)))
 
 
 if __name__ == "__main__":
