@@ -175,6 +175,18 @@ def dynamics_section(out, rows):
                                         f"{r['continuous_setup_seconds']:.3f}",
                                         f"{(r['baseline_seconds'] + r['baseline_setup_seconds']) / (r['fast_seconds'] + r['fast_setup_seconds']):.1f}×",
                                         f"{(r['baseline_seconds'] + r['baseline_setup_seconds']) / (r['continuous_seconds'] + r['continuous_setup_seconds']):.1f}×"])
+        lines += bench_table(records, "whole_process_body",
+                             "What a user waits for: the whole `gomboc run` process of Table 1 with the paper's model and the "
+                             "fast grid (the trajectory and its summary; no history or diagnostics) against the plain loop's "
+                             "whole process (its own program, built with -O3 -march=native), both timed from outside in the "
+                             "same `make bench` run, best of 3; the command's start-up is the whole process of a one-period "
+                             "run. Target (issue 30): ≥ 30×.",
+                             ["body", "plain loop, whole process [s]", "gomboc run, whole process [s]", "ratio",
+                              "start-up (1 period) [s]", "the 300 periods after it [s]"],
+                             lambda r: [r["whole_process_body"], f"{r['plain_process_seconds']:.3f}",
+                                        f"{r['gomboc_process_seconds']:.3f}", f"{r['process_ratio']:.1f}×",
+                                        f"{r['startup_process_seconds']:.3f}",
+                                        f"{r['gomboc_process_seconds'] - r['startup_process_seconds']:.3f}"])
         lines += bench_table(records, "scan_model",
                              "Scans through `gomboc scan` (4 × 4 points of 50 periods around Table 1, λ included; the Melnikov "
                              "margins apart, a scan of them alone over the same points: one reduced model, the integrals "

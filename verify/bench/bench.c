@@ -243,6 +243,80 @@ static int plain_only(void)
     return 0;
 }
 
+/* `bench-gomboc-native --plain-process BODY`: the plain loop's whole job as a process of its own (the body's
+ * grid, its copy of the nodes, the Table 1 run of 300 periods), for bench_whole_process to time from outside. */
+static int plain_process(const char *name)
+{
+    const gb_dynamics_def def = gb_dynamics_default_def();
+    gb_contact_grid *grid;
+    plain_grid plain;
+    if (gb_contact_grid_create(bench_body(name, 0.12), &def.grid, &grid) || plain_grid_create(grid, &plain)) return 1;
+    double y[GB_STATE_SIZE];
+    size_t switches;
+    run_lowest = plain_lowest, run_lowest_context = &plain;
+    time_run(name, GB_CONTACT_MODEL_GRID, GB_VARIANT_PAPER, 1, y, &switches);
+    printf("%016llx\n", (unsigned long long)state_hash(y));
+    plain_grid_free(&plain);
+    gb_contact_grid_free(grid);
+    return 0;
+}
+
+/* Best of `repeats` wall seconds of a shell command (its output discarded); INFINITY if it fails. */
+static double time_command(const char *command, int repeats)
+{
+    double best = INFINITY;
+    for (int r = 0; r < repeats; r++) {
+        const double start = now();
+        if (system(command) != 0) return INFINITY;
+        best = fmin(best, now() - start);
+    }
+    return best;
+}
+
+/* What a user waits for: the whole `gomboc run` process of Table 1 with the paper's model and the fast grid
+ * (the trajectory and its summary, no history or diagnostics) against the plain loop's whole process (built
+ * with -O3 -march=native), both timed from outside, best of 3; and the command's start-up, the whole process
+ * of a one-period run. */
+static int bench_whole_process(const char *native, const char *gomboc, FILE *out)
+{
+    char dir[] = "/tmp/gomboc-bench-XXXXXX";
+    if (!mkdtemp(dir)) return 1;
+    printf("\nbench: whole processes, Table 1, paper model (eq 44), fast grid 90x180, 300 periods, summary only; "
+           "timed from outside, best of 3\n\n");
+    printf("%-4s %16s %18s %10s %20s %18s\n", "body", "plain loop [s]", "gomboc run [s]", "ratio", "start-up (1 period) [s]",
+           "the rest [s]");
+    int failures = 0;
+    for (int m = 0; m < 2; m++) {
+        const char *name = m ? "II" : "I";
+        char scene[2][256], command[2048];
+        for (int k = 0; k < 2; k++) {
+            snprintf(scene[k], sizeof scene[k], "%s/table1-%s-%d.ini", dir, name, k ? 300 : 1);
+            FILE *f = fopen(scene[k], "w");
+            if (!f) return 1;
+            fprintf(f, "[body]\nmorphology = %s\nbeta = 0.12\n[forcing]\nA1 = 2.0\nA2 = 1.0\nomega = 18\npsi = pi/3\n"
+                       "[model]\nequation = paper\ncontact = fast-grid\ngrid = 90x180\n[integrator]\nmethod = rk4\n"
+                       "steps_per_period = 160\nperiods = %d\n[output]\nhistory = no\nsummary = yes\n", name, k ? 300 : 1);
+            fclose(f);
+        }
+        snprintf(command, sizeof command, "'%s' --plain-process %s > /dev/null", native, name);
+        const double plain = time_command(command, 3);
+        snprintf(command, sizeof command, "'%s' run '%s' --out '%s' 2>/dev/null", gomboc, scene[1], dir);
+        const double whole = time_command(command, 3);
+        snprintf(command, sizeof command, "'%s' run '%s' --out '%s' 2>/dev/null", gomboc, scene[0], dir);
+        const double start = time_command(command, 3);
+        failures += !isfinite(plain) || !isfinite(whole) || !isfinite(start);
+        printf("%-4s %16.3f %18.3f %9.1fx %20.3f %18.3f\n", name, plain, whole, plain / whole, start, whole - start);
+        if (out)
+            fprintf(out, ",\n  {\"whole_process_body\": \"%s\", \"plain_process_seconds\": %.6f, \"gomboc_process_seconds\": %.6f, "
+                         "\"process_ratio\": %.4f, \"startup_process_seconds\": %.6f}", name, plain, whole, plain / whole, start);
+    }
+    printf("\n(target, issue 30: the whole gomboc run process >= 30x the plain loop's whole process)\n");
+    char cleanup[128];
+    snprintf(cleanup, sizeof cleanup, "rm -rf '%s'", dir);
+    if (system(cleanup) != 0) fprintf(stderr, "bench: cannot remove %s\n", dir);
+    return failures;
+}
+
 /* The native baseline's seconds, state hashes, node mismatches and the library loop's seconds in the
  * same build; 0 seconds when it could not be run. */
 static double native_seconds[2], native_library_seconds[2], native_setup[2];
@@ -694,6 +768,7 @@ int main(int argc, char **argv)
     char tmp[1024] = "";
     gb_error_init_gsl();
     if (argc > 1 && !strcmp(argv[1], "--plain-only")) return plain_only();
+    if (argc > 2 && !strcmp(argv[1], "--plain-process")) return plain_process(!strcmp(argv[2], "II") ? "II" : "I");
     if (argc > 2) run_native(argv[2]);
     if (argc > 1) {
         snprintf(tmp, sizeof tmp, "%s.tmp", argv[1]);
@@ -778,6 +853,7 @@ int main(int argc, char **argv)
     bench_unilateral();
     bench_flight();
     bench_headroom();
+    if (argc > 3) failures += bench_whole_process(argv[2], argv[3], record);
     if (argc > 3) failures += bench_scans(argv[3], record);
     if (record) {
         fputs("\n]\n", record);
