@@ -5,10 +5,12 @@
  * and the continuous minimiser, both as a full branch search and as a Newton polish from the fast
  * grid's node (the way a time-stepper would use it). Each timing is the best of REPEATS passes over
  * the verticals, which removes most scheduling noise; the nodes are checked equal as a sanity test. */
+#include "gb_case.h"
 #include "gb_contact.h"
 #include "gb_error.h"
 #include "gb_integrate.h"
 #include "gb_lyapunov_body.h"
+#include "gb_massprops.h"
 #include "gb_surface_internal.h"
 #include "plain.h"
 
@@ -311,6 +313,62 @@ static int bench_whole_process(const char *native, const char *gomboc, FILE *out
                          "\"process_ratio\": %.4f, \"startup_process_seconds\": %.6f}", name, plain, whole, plain / whole, start);
     }
     printf("\n(target, issue 30: the whole gomboc run process >= 30x the plain loop's whole process)\n");
+    /* Where the start-up goes: the stages of a fast-grid run's set-up, each timed alone in this process (best
+     * of 5), and the process that does nothing (gomboc --version) for the cost of starting one. */
+    char command[2048];
+    snprintf(command, sizeof command, "'%s' --version > /dev/null", gomboc);
+    const double process = time_command(command, 5);
+    printf("\nbench: the start-up of a fast-grid run by stage, best of 5 [ms] (a process that only prints its version: "
+           "%.1f ms)\n\n", 1e3 * process);
+    printf("%-4s %14s %18s %22s %20s %16s\n", "body", "scene read", "mass properties", "grid nodes, patch tree",
+           "hull (Qhull) + graph", "first period");
+    for (int m = 0; m < 2; m++) {
+        const char *name = m ? "II" : "I";
+        char scene_path[256];
+        snprintf(scene_path, sizeof scene_path, "%s/table1-%s-1.ini", dir, name);
+        double best[5] = {INFINITY, INFINITY, INFINITY, INFINITY, INFINITY};
+        for (int r = 0; r < 5; r++) {
+            gb_case scene;
+            gb_massprops props;
+            gb_massprops_def mdef = gb_massprops_default_def();
+            gb_contact_grid *grid = NULL;
+            gb_contact_tracker *tracker = NULL;
+            double t[7];
+            t[0] = now();
+            int status = gb_case_load(scene_path, &scene);
+            t[1] = now();
+            if (!status) status = gb_massprops_compute(&scene.body, &mdef, &props);
+            t[2] = now();
+            if (!status) status = gb_contact_grid_create(&scene.body, &scene.dynamics.grid, &grid);
+            t[3] = now();
+            if (!status) status = gb_contact_tracker_create(grid, &tracker);
+            t[4] = now();
+            gb_dynamics *d = NULL;
+            gb_integrate_stats stats;
+            double y[GB_STATE_SIZE];
+            if (!status) status = gb_dynamics_start(&scene.body, &scene.dynamics, scene.attitude, scene.omega0, &d, y);
+            t[5] = now();
+            if (!status) status = gb_integrate_run(d, &scene.integrate, 0.0, y, NULL, NULL, &stats);
+            t[6] = now();
+            gb_dynamics_free(d);
+            gb_contact_tracker_free(tracker);
+            gb_contact_grid_free(grid);
+            if (status) {
+                fprintf(stderr, "bench: %s\n", gb_error_message());
+                failures++;
+                break;
+            }
+            for (int k = 0; k < 4; k++) best[k] = fmin(best[k], t[k + 1] - t[k]);
+            best[4] = fmin(best[4], t[6] - t[5]); /* the period alone (gb_dynamics_start built the same again) */
+        }
+        const double first = best[4];
+        printf("%-4s %14.2f %18.2f %22.2f %20.2f %16.2f\n", name, 1e3 * best[0], 1e3 * best[1], 1e3 * best[2], 1e3 * best[3],
+               1e3 * first);
+        if (out)
+            fprintf(out, ",\n  {\"startup_body\": \"%s\", \"process_ms\": %.3f, \"scene_ms\": %.3f, \"massprops_ms\": %.3f, "
+                         "\"grid_ms\": %.3f, \"hull_ms\": %.3f, \"first_period_ms\": %.3f}",
+                    name, 1e3 * process, 1e3 * best[0], 1e3 * best[1], 1e3 * best[2], 1e3 * best[3], 1e3 * first);
+    }
     char cleanup[128];
     snprintf(cleanup, sizeof cleanup, "rm -rf '%s'", dir);
     if (system(cleanup) != 0) fprintf(stderr, "bench: cannot remove %s\n", dir);
