@@ -453,35 +453,88 @@ static const basin *basin_around(const gb_certify *c, const node *n)
     return NULL;
 }
 
-static int visit(gb_certify *c, node *n, pass *p, int *status)
+/* The box's kept verdict, if it still holds at this vertical: its answer, or −1 when the box must be tested
+ * again. A split box whose own test lapsed recently goes to its children. */
+static int kept_verdict(gb_certify *c, node *n, pass *p, int *status)
 {
-    if (n->epoch == c->epoch) {
-        switch ((reason)n->verdict) {
-        case R_FAR:
-            if (far_holds(c, p, n->anchor, n->far_s, n->far_d)) return SETTLED;
-            break;
-        case R_SLOPE:
-        case R_NOMIN:
-            if (c->path <= n->due) return SETTLED;
-            break;
-        case R_BASIN: {
-            const int r = basin_verdict(c, p, n->basin_serial);
+    if (n->epoch != c->epoch) return -1;
+    switch ((reason)n->verdict) {
+    case R_FAR:
+        if (far_holds(c, p, n->anchor, n->far_s, n->far_d)) return SETTLED;
+        break;
+    case R_SLOPE:
+    case R_NOMIN:
+        if (c->path <= n->due) return SETTLED;
+        break;
+    case R_BASIN: {
+        const int r = basin_verdict(c, p, n->basin_serial);
+        if (r >= 0) return r;
+        break;
+    }
+    case R_SPLIT:
+        if (c->path <= n->due && (!isfinite(n->far_s) || far_holds(c, p, n->anchor, n->far_s, n->far_d))) {
+            const int r = n->basin_serial ? basin_verdict(c, p, n->basin_serial) : SETTLED;
             if (r >= 0) return r;
-            break;
         }
-        case R_SPLIT:
-            if (c->path <= n->due && (!isfinite(n->far_s) || far_holds(c, p, n->anchor, n->far_s, n->far_d))) {
-                const int r = n->basin_serial ? basin_verdict(c, p, n->basin_serial) : SETTLED;
-                if (r >= 0) return r;
+        /* tested again as a whole first (a coarse verdict may hold where its children lapsed), unless its
+         * last such test missed by more than the vertical can have moved its bound since */
+        if (c->path < n->retest) return visit_children(c, n, p, status);
+        break;
+    case R_NONE:
+        break;
+    }
+    return -1;
+}
+
+/* A box whose interval Hessian is positive definite holds at most one critical point, a strict minimum: the
+ * checked minimum itself, another known one (with a basin), or one Newton finds in it (then kept with a
+ * basin). Its answer, or −1 when none of them settles it. */
+static int definite_box(gb_certify *c, node *n, pass *p)
+{
+    const double *d = p->d;
+    const gb_surface_chart chart = gb_region_chart(n->region);
+    if (point_in_node(n, p->ab[chart])) return SETTLED; /* its one critical point is the minimum */
+    for (int k = 0; k < BASIN_SLOTS; k++) {
+        /* ... or another minimum already known (with a basin, continued to this vertical) */
+        basin *o = &c->basins[k];
+        double qab[2];
+        if (!o->valid || o->owner != OWNER_OTHER || o->chart != chart) continue;
+        basin_coordinates(o, &o->point, qab);
+        if (!point_in_node(n, qab)) continue;
+        o->used = 1;
+        return o->point.height >= p->H - p->eta ? SETTLED : lower_found(p, &o->point);
+    }
+    if (n->depth >= 1 && !(n->child && !n->has_hint)) { /* a box split before without a point found: its children */
+        double phi, theta;
+        if (n->has_hint) {
+            phi = n->hint_phi, theta = n->hint_theta;
+        } else {
+            gb_surface_chart_angles(chart, 0.5 * (n->a_lo + n->a_hi), 0.5 * (n->b_lo + n->b_hi), &phi, &theta);
+        }
+        gb_contact_point q;
+        p->out->newton_runs++;
+        if (gb_contact_refine(&c->surface, d, phi, theta, p->refine, &q) == GB_OK && q.is_minimum) {
+            double qab[2];
+            gb_surface_chart_coordinates(chart, q.phi, q.theta, &qab[0], &qab[1]);
+            if (point_in_node(n, qab)) {
+                n->has_hint = 1;
+                n->hint_phi = q.phi, n->hint_theta = q.theta;
+                if (q.height < p->H - p->eta) return lower_found(p, &q);
+                /* keep a basin for it, so the next checks settle the box without Newton */
+                basin_build(c, basin_slot(c), chart, qab, d, &q, OWNER_OTHER, c->last_half_width);
+                return SETTLED;
             }
-            /* tested again as a whole first (a coarse verdict may hold where its children lapsed), unless its
-             * last such test missed by more than the vertical can have moved its bound since */
-            if (c->path < n->retest) return visit_children(c, n, p, status);
-            break;
-        case R_NONE:
-            break;
         }
     }
+    return -1;
+}
+
+/* One box at this vertical: its kept verdict if it holds, else its tests (FAR, BASIN, SLOPE, NO-MIN, a
+ * definite Hessian) in that order, else its children. */
+static int visit(gb_certify *c, node *n, pass *p, int *status)
+{
+    const int kept = kept_verdict(c, n, p, status);
+    if (kept >= 0) return kept;
     p->out->boxes_tested++;
     n->epoch = c->epoch;
     n->verdict = R_NONE;
@@ -545,40 +598,8 @@ static int visit(gb_certify *c, node *n, pass *p, int *status)
     const int definite = Haa.lo > GB_CERTIFY_HESSIAN_ROUNDING && Hbb.lo > GB_CERTIFY_HESSIAN_ROUNDING &&
                          Haa.lo * Hbb.lo - hab_max * hab_max > GB_CERTIFY_HESSIAN_ROUNDING;
     if (definite) {
-        const gb_surface_chart chart = gb_region_chart(n->region);
-        if (point_in_node(n, p->ab[chart])) return SETTLED; /* its one critical point is the minimum */
-        for (int k = 0; k < BASIN_SLOTS; k++) {
-            /* ... or another minimum already known (with a basin, continued to this vertical) */
-            basin *o = &c->basins[k];
-            double qab[2];
-            if (!o->valid || o->owner != OWNER_OTHER || o->chart != chart) continue;
-            basin_coordinates(o, &o->point, qab);
-            if (!point_in_node(n, qab)) continue;
-            o->used = 1;
-            return o->point.height >= p->H - p->eta ? SETTLED : lower_found(p, &o->point);
-        }
-        if (n->depth >= 1 && !(n->child && !n->has_hint)) { /* a box split before without a point found: its children */
-            double phi, theta;
-            if (n->has_hint) {
-                phi = n->hint_phi, theta = n->hint_theta;
-            } else {
-                gb_surface_chart_angles(chart, 0.5 * (n->a_lo + n->a_hi), 0.5 * (n->b_lo + n->b_hi), &phi, &theta);
-            }
-            gb_contact_point q;
-            p->out->newton_runs++;
-            if (gb_contact_refine(&c->surface, d, phi, theta, p->refine, &q) == GB_OK && q.is_minimum) {
-                double qab[2];
-                gb_surface_chart_coordinates(chart, q.phi, q.theta, &qab[0], &qab[1]);
-                if (point_in_node(n, qab)) {
-                    n->has_hint = 1;
-                    n->hint_phi = q.phi, n->hint_theta = q.theta;
-                    if (q.height < p->H - p->eta) return lower_found(p, &q);
-                    /* keep a basin for it, so the next checks settle the box without Newton */
-                    basin_build(c, basin_slot(c), chart, qab, d, &q, OWNER_OTHER, c->last_half_width);
-                    return SETTLED;
-                }
-            }
-        }
+        const int r = definite_box(c, n, p);
+        if (r >= 0) return r;
     }
     if (n->depth >= c->def.max_depth) return UNDECIDED;
     /* FAR missed by −slack; d·x moves by at most |x| ≤ SURFACE_RADIUS_BOUND per unit of path, and so does H */
