@@ -561,6 +561,7 @@ int gb_scan_point_run(const gb_scan *scan, const gb_scan_melnikov *melnikov, siz
     gb_case scene;
     int status = gb_scan_point_case(scan, index, &scene);
     if (status) return status;
+    if (scan->atlas_file && scene.dynamics.certificate == GB_CERTIFICATE_ATLAS) scene.dynamics.atlas_file = scan->atlas_file;
     gb_scan_metrics m = {.omega_rms = NAN, .switch_rate = NAN, .mean_height = NAN, .lambda = NAN, .lambda_error = NAN,
                          .strobe_sd = NAN, .geff_nonpositive = NAN, .lift_off = NAN, .lambda_early = NAN,
                          .lambda_late = NAN, .chaos_lifetime = NAN, .melnikov_margin = NAN, .melnikov_margin_eq93 = NAN};

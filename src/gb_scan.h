@@ -70,6 +70,10 @@ typedef struct gb_scan {
     int base_line;                     /* the scan file's line of `base`, for messages */
     char *base_text;                   /* the base scene as read once (every point starts from it) */
     size_t base_size;
+    /* `gomboc scan --atlas FILE` (NULL: none): every point of a base scene with [model] certificate = atlas
+     * starts its atlas of verticals from FILE and writes it back with the cells it added (as `gomboc run
+     * --atlas`), so that the points share one atlas; the results are those of the per-vertical certificate. */
+    const char *atlas_file;
 } gb_scan;
 
 /* Read a scan file and its base scene, and check every point's scene (each point loads: a bad range is

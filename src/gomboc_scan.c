@@ -25,7 +25,7 @@
 #endif
 
 static const char *usage_scan =
-    "usage: gomboc scan SCAN [--out DIR] [--resume] [--threads N]\n"
+    "usage: gomboc scan SCAN [--out DIR] [--resume] [--threads N] [--atlas FILE]\n"
     "\n"
     "  SCAN         a scan file (INI; cases/README.md, \"Scan files\"): a base scene, two of its keys with\n"
     "               their ranges and counts, the periods and transient per point, the metrics\n"
@@ -36,6 +36,10 @@ static const char *usage_scan =
     "               it holds are not run again, and the CSV is byte for byte that of an uninterrupted run\n"
     "  --threads N  points run in parallel on N threads (1 ... 256; default: OpenMP's own choice);\n"
     "               the results do not depend on N\n"
+    "  --atlas FILE ([model] certificate = atlas in the base scene) every point starts its atlas of\n"
+    "               verticals from FILE (built by the first points when FILE is missing, stale or damaged)\n"
+    "               and writes it back with the cells it added: one atlas for the whole scan; the results\n"
+    "               are those of the per-vertical certificate, bit for bit\n"
     "\n"
     "Every finished point is appended to the journal and flushed; the journal is removed when the scan\n"
     "is complete and its outputs are written. Progress goes to standard error.\n"
@@ -446,16 +450,16 @@ static void run_points(scan_state *st, const ranks *r)
 
 /* The options of `gomboc scan`, read and checked (--threads as a count, 0 for OpenMP's own choice). */
 typedef struct scan_options {
-    const char *scan_path, *dir;
+    const char *scan_path, *dir, *atlas;
     int resume, threads;
 } scan_options;
 
 /* Read the options into *o: -1 to go on, else the exit status (0 for --help). */
 static int scan_options_read(int argc, char **argv, scan_options *o)
 {
-    *o = (scan_options){NULL, ".", 0, 0};
+    *o = (scan_options){NULL, ".", NULL, 0, 0};
     const char *threads_text = NULL;
-    static const char *const valued[] = {"--out", "--threads", NULL};
+    static const char *const valued[] = {"--out", "--threads", "--atlas", NULL};
     for (int i = 0; i < argc; i++) {
         const char *opt = argv[i], *value = NULL;
         const int positional = cli_positional("scan", opt, &o->scan_path, "scan file", "SCAN");
@@ -468,12 +472,13 @@ static int scan_options_read(int argc, char **argv, scan_options *o)
             continue;
         }
         const int kind = cli_next_option("scan", argc, argv, &i, usage_scan, valued,
-                                         " (allowed: --out, --resume, --threads, --help)", NULL, NULL, &value);
+                                         " (allowed: --out, --resume, --threads, --atlas, --help)", NULL, NULL, &value);
         if (kind != CLI_VALUE) {
             if (kind == CLI_NEXT) continue;
             return kind == CLI_HELP ? 0 : kind;
         }
         if (!strcmp(opt, "--out")) o->dir = value;
+        else if (!strcmp(opt, "--atlas")) o->atlas = value;
         else threads_text = value;
     }
     if (!o->scan_path) return cli_input_error("scan", "missing %s%s", "SCAN", " (allowed: a scan file, e.g. cases/scans/fig10-gomboc-I-omega-A1.ini)");
@@ -503,11 +508,24 @@ static int scan_command(int argc, char **argv, const ranks *r)
     }
     gb_scan scan;
     int status = gb_scan_load(scan_path, &scan);
+    if (!status && options.atlas) {
+        /* as gomboc run --atlas: only for a base scene whose certificate is the atlas */
+        gb_case first;
+        status = gb_scan_point_case(&scan, 0, &first);
+        if (!status && first.dynamics.certificate != GB_CERTIFICATE_ATLAS) {
+            gb_scan_free(&scan);
+            free(j.path);
+            return cli_input_error("scan", "--atlas %s: the base scene %s has no atlas (allowed: a base scene with "
+                                   "[model] certificate = atlas)", options.atlas, scan.base);
+        }
+        scan.atlas_file = options.atlas;
+    }
     if (!status && r->rank == 0) {
         char *csv_path = cli_output_name(dir, scan_path, "scan.csv"), *json_path = cli_output_name(dir, scan_path, "scan.json");
         const gb_file_use uses[] = {{scan_path, "SCAN", GB_FILE_INPUT}, {scan.base, "[scan] base", GB_FILE_INPUT},
                                     {csv_path, "--out", GB_FILE_OUTPUT}, {json_path, "--out", GB_FILE_OUTPUT},
-                                    {j.path, "--out (the journal)", GB_FILE_INPUT | GB_FILE_OUTPUT}};
+                                    {j.path, "--out (the journal)", GB_FILE_INPUT | GB_FILE_OUTPUT},
+                                    {options.atlas, "--atlas", GB_FILE_INPUT | GB_FILE_OUTPUT}};
         bad = !csv_path || !json_path || cli_files_check("scan", uses, sizeof uses / sizeof uses[0]);
         free(csv_path);
         free(json_path);

@@ -1047,6 +1047,67 @@ static void test_shipped_scans(void)
         }
 }
 
+/* ---- one atlas of verticals for a whole scan ------------------------------------------------------- */
+
+/* A rolling-model scan of 2 x 2 points with the per-vertical certificate, and the same with the atlas shared
+ * through --atlas FILE (made by the first points, then loaded): the same CSV bytes, and the file written. */
+static void test_scan_atlas(void)
+{
+    scan_dir d;
+    gb_check cs = {"4, 8.3", "29", "gomboc scan --atlas FILE: a rolling-model scan (2 x 2 points, 4 periods, continuous "
+                   "contact) with one atlas of verticals for every point, made by the first points, then loaded",
+                   "the CSV of the per-vertical certificate, byte for byte; the atlas file written", "exact"};
+    snprintf(d.path, sizeof d.path, "/tmp/gomboc-scan-XXXXXX");
+    if (!mkdtemp(d.path)) {
+        gb_check_true(&cs, 0, "cannot make a directory: %s", strerror(errno));
+        return;
+    }
+    static const char base[] = "[body]\nmorphology = I\nbeta = 0.12\n[forcing]\nA1 = 2.0\nA2 = 1.0\nomega = 18\npsi = pi/3\n"
+                               "[model]\nequation = rolling\ncontact = continuous\ncertificate = %s\ndamping = 0.02\n"
+                               "[integrator]\nmethod = rk4\nsteps_per_period = 160\nlocate_switches = yes\n";
+    static const char scan[] = "[scan]\nbase = %s.ini\nperiods = 4\ntransient_periods = 1\nmetrics = omega_rms, switch_rate\n"
+                               "[x]\nkey = forcing.omega\nfrom = 17\nto = 19\ncount = 2\n[y]\nkey = forcing.A1\nfrom = 1.5\nto = 2\n"
+                               "count = 2\n";
+    char text[1024], path[200], atlas[200], args[1024], out[1 << 14], *csv[3] = {NULL, NULL, NULL};
+    int codes[3] = {-1, -1, -1};
+    static const char *const names[2] = {"per-vertical", "atlas"};
+    for (int k = 0; k < 2; k++) {
+        snprintf(text, sizeof text, base, names[k]);
+        snprintf(path, sizeof path, "%s/%s.ini", d.path, names[k]);
+        spill(path, text);
+        snprintf(text, sizeof text, scan, names[k]);
+        snprintf(path, sizeof path, "%s/scan-%s.ini", d.path, names[k]);
+        spill(path, text);
+    }
+    snprintf(atlas, sizeof atlas, "%s/shared.atlas", d.path);
+    for (int k = 0; k < 3; k++) {
+        const int shared = k > 0;
+        snprintf(args, sizeof args, "scan '%s/scan-%s.ini' --out '%s' --threads 2%s%s%s", d.path, names[shared], d.path,
+                 shared ? " --atlas '" : "", shared ? atlas : "", shared ? "'" : "");
+        codes[k] = run(args, out, sizeof out);
+        snprintf(path, sizeof path, "%s/scan-%s-scan.csv", d.path, names[shared]);
+        csv[k] = slurp(path);
+    }
+    struct stat st;
+    const int written = stat(atlas, &st) == 0 && st.st_size > 0;
+    /* the CSVs differ only in nothing: the same axes, metrics and fingerprints */
+    const int same = csv[0] && csv[1] && csv[2] && !strcmp(csv[0], csv[1]) && !strcmp(csv[0], csv[2]);
+    gb_check_true(&cs, codes[0] == 0 && codes[1] == 0 && codes[2] == 0 && same && written,
+                  "exits %d, %d, %d; CSVs %s; atlas file %s: %.200s", codes[0], codes[1], codes[2], same ? "equal" : "DIFFER",
+                  written ? "written" : "MISSING", out);
+    for (int k = 0; k < 3; k++) free(csv[k]);
+    /* --atlas with a base scene that certifies per vertical: refused before any run, as gomboc run's */
+    snprintf(args, sizeof args, "scan '%s/scan-per-vertical.ini' --out '%s' --atlas '%s/other.atlas'", d.path, d.path, d.path);
+    const int refused = run(args, out, sizeof out);
+    snprintf(path, sizeof path, "%s/other.atlas", d.path);
+    gb_check cr = {"8.3", "-", "gomboc scan --atlas FILE with a base scene whose certificate is per vertical",
+                   "exit 2 naming --atlas, the base scene and the allowed value; no atlas written", "exact"};
+    gb_check_true(&cr, refused == 2 && strstr(out, "--atlas") && strstr(out, "has no atlas") &&
+                       strstr(out, "certificate = atlas") && stat(path, &st) != 0,
+                  "exit %d: %.300s", refused, out);
+    remove_scan_dir(&d);
+}
+
 int verify_register_s8_scan(void)
 {
     static const verify_test tests[] = {
@@ -1060,6 +1121,8 @@ int verify_register_s8_scan(void)
         {"section 8.3: a journal is verified line by line, never trusted", test_journal_verified,
          "a resumed scan takes from its journal only rows it can verify"},
         {"section 8.3: a point out of its key's range is refused before any run", test_point_out_of_range, NULL},
+        {"sections 4, 8.3: one atlas of verticals for a whole scan", test_scan_atlas,
+         "the points of a scan can share one atlas of verticals through its file, with the per-vertical certificate's results"},
         {"section 8.3: a disk that fills stops the scan, and --resume finishes it", test_disk_full,
          "a scan that cannot write its journal stops, names it, and loses none of the points it wrote"},
         {"Figs 10-13: the shipped maps read, and hold Table 1's point", test_shipped_scans, NULL},
