@@ -109,12 +109,12 @@ void gb_contact_tracker_free(gb_contact_tracker *tracker);
 size_t gb_contact_tracker_vertices(const gb_contact_tracker *tracker);
 int gb_contact_tracker_find(gb_contact_tracker *tracker, const double zb[3], gb_contact_node *out);
 
-/* A stationary point of h polished by the continuous minimiser. */
-/* Derivatives are taken in the point's chart: (φ, θ) itself (GB_SURFACE_CHART_POLAR_Z, the paper's
+#define GB_CONTACT_POLAR_CAP 1e-2 /* sin φ below which Newton works in the POLAR_X chart */
+
+/* A stationary point of h polished by the continuous minimiser. Derivatives are taken in the point's chart: (φ, θ) itself (GB_SURFACE_CHART_POLAR_Z, the paper's
  * eqs), or, within GB_CONTACT_POLAR_CAP of the poles ±e_z where ∂θx vanishes, the chart
  * GB_SURFACE_CHART_POLAR_X (coordinates (a, b) = chart_a, chart_b, poles ±e_x); then the fields named
  * after φ and θ hold the derivatives by a and b, and sensitivities and rates (eqs 70–72) are in (a, b). */
-#define GB_CONTACT_POLAR_CAP 1e-2 /* sin φ below which Newton works in the POLAR_X chart */
 typedef struct gb_contact_point {
     double phi, theta;
     double height;          /* h = ẑ_b·x (eq 28) */

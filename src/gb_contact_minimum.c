@@ -273,10 +273,7 @@ static gb_surface_chart chart_for(double phi)
     return sin(phi) < GB_CONTACT_POLAR_CAP ? GB_SURFACE_CHART_POLAR_X : GB_SURFACE_CHART_POLAR_Z;
 }
 
-/* Newton from (φ, θ) in the chart chart_for picks, and once more in POLAR_X when the (φ, θ) chart's
- * iterates run into its pole. A minimum found in one chart but lying in the other's domain is polished
- * there (one or two iterations), so that the chart of a point returned is chart_for(φ) of the point itself;
- * if that polish fails, the first answer stands. On success (φ, θ) is the minimum and (*chart, *a, *b) its chart. */
+/* Newton in `chart` from (φ, θ): on success (φ, θ) is the minimum and (*a, *b) its chart coordinates. */
 static int newton_in(const gb_surface *surface, gb_surface_chart chart, const double d[3], double *phi, double *theta,
                      const gb_contact_refine_def *def, int *iterations, gb_surface_point *p, double *a, double *b)
 {
@@ -290,6 +287,10 @@ static int newton_in(const gb_surface *surface, gb_surface_chart chart, const do
     return 0;
 }
 
+/* Newton from (φ, θ) in the chart chart_for picks, and once more in POLAR_X when the (φ, θ) chart's
+ * iterates run into its pole. A minimum found in one chart but lying in the other's domain is polished
+ * there (one or two iterations), so that the chart of a point returned is chart_for(φ) of the point itself;
+ * if that polish fails, the first answer stands. On success (φ, θ) is the minimum and (*chart, *a, *b) its chart. */
 static int newton_charted(const gb_surface *surface, const double d[3], double *phi, double *theta,
                           const gb_contact_refine_def *def, int *iterations, gb_surface_point *p,
                           gb_surface_chart *chart, double *a, double *b)

@@ -136,7 +136,6 @@ static int journal_create(journal *j)
     return 0;
 }
 
-
 static cJSON *axis_json(const gb_scan_axis *a)
 {
     cJSON *o = cJSON_CreateObject();
