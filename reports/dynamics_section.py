@@ -204,6 +204,19 @@ def dynamics_section(out, rows):
                              ["model", "points/s, 1 thread", "points/s, 2 threads", "efficiency"],
                              lambda r: [r["scan_model"], f"{r['points_per_second_1']:.2f}", f"{r['points_per_second_2']:.2f}",
                                         f"{r['parallel_efficiency']:.0%}"])
+        lines += bench_table(records, "melnikov_body",
+                             "A scan's Melnikov plan: one body's reduced model, then its integrals at the 25 frequencies of the "
+                             "(ω, A1) maps (12 to 24 rad/s) from the separatrix tables (what `gomboc scan` and `gomboc "
+                             "melnikov` do; best of 2) and, side by side in the same run, by adaptive quadrature at every "
+                             "frequency; the largest difference of the integrals relative to the largest. Target (issue 30): "
+                             "the reduced model and the 25 frequencies ≤ 1 s.",
+                             ["body", "reduced model [s]", "tables, 25 ω [s]", "plan [s]", "adaptive, 25 ω [s]", "speed-up",
+                              "max difference"],
+                             lambda r: [r["melnikov_body"], f"{r['reduced_model_seconds']:.3f}", f"{r['tables_seconds']:.4f}",
+                                        f"{r['reduced_model_seconds'] + r['tables_seconds']:.3f}",
+                                        f"{r['adaptive_seconds']:.2f}",
+                                        f"{r['adaptive_seconds'] / r['tables_seconds']:.0f}×",
+                                        f"{r['max_relative_difference']:.2g}"])
         baseline = {r["body"]: r.get("baseline_seconds") or r["plain_seconds"] for r in records if "plain_seconds" in r}
         lines += bench_table(records, "atlas_cached_seconds",
                              "Certified continuous contact three ways on the same Table 1 rolling runs (the same `make bench` "

@@ -10,6 +10,7 @@
 #include <gsl/gsl_roots.h>
 #include <float.h>
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 enum { WORK = 2000 };
@@ -504,6 +505,194 @@ int gb_melnikov_integrals_in_pieces(const gb_melnikov_model *m, const gb_melniko
     return integrals(m, o, omega, weight, 1, out);
 }
 
+/* ---- the separatrix tabulated once for many frequencies ------------------------------------------ */
+
+enum { TABLE_ORDER = 12, TABLE_DEPTH = 40 };
+#define TABLE_WIDTH 0.5    /* the widest panel in u: where dt/du → 1/λ the phase is then bounded too */
+#define TABLE_PHASE 1.5    /* the largest phase 2 ω_max |Δt| over one panel: the 12-point rule's error on
+                              cos of it is below (Φ/2)^24/24! ≈ 1e-27 of the panel's weight */
+#define TABLE_OMEGA_MAX 1e4
+
+typedef struct table_node {
+    double weight; /* the Gauss–Legendre weight × e^{−u} (|dq| = e^{−u} du) */
+    double q, t, mom;
+    gb_melnikov_values v;
+} table_node;
+
+/* A saddle segment's tail beyond u_cut, as saddle_segment leaves it. */
+typedef struct table_tail {
+    double q, u, t, mom;
+    int sign_t;
+    gb_melnikov_values v;
+} table_tail;
+
+struct gb_melnikov_table {
+    gb_melnikov_model model;
+    gb_melnikov_orbit orbit;
+    gb_melnikov_weight weight;
+    double omega_max;
+    table_node *node;
+    size_t n, capacity;
+    table_tail tail[2];
+};
+
+static int table_push(gb_melnikov_table *T, const table_node *n)
+{
+    if (T->n == T->capacity) {
+        const size_t cap = T->capacity ? 2 * T->capacity : 4096;
+        table_node *grown = realloc(T->node, cap * sizeof *grown);
+        if (!grown) return gb_error_set(GB_ENOMEM, "out of memory for the separatrix table");
+        T->node = grown, T->capacity = cap;
+    }
+    T->node[T->n++] = *n;
+    return GB_OK;
+}
+
+/* ∫_a^b dt/du du by the fixed rule (smooth within a panel). */
+static double panel_time(path *P, const gsl_integration_glfixed_table *gl, double a, double b)
+{
+    gsl_function F = {dtdu, P};
+    return gsl_integration_glfixed(&F, a, b, gl);
+}
+
+/* The panel [a, b] of the current segment, τ_a = ∫_{u_r}^{a} dt/du: halved until it is narrow enough
+ * in u and in phase, then its nodes added. Returns ∫_a^b dt/du. */
+static double table_panel(gb_melnikov_table *T, path *P, const gsl_integration_glfixed_table *gl, double a, double b,
+                          double tau_a, int depth)
+{
+    const double span = panel_time(P, gl, a, b);
+    if (P->status) return 0.0;
+    if (depth < TABLE_DEPTH && (b - a > TABLE_WIDTH || 2.0 * T->omega_max * span > TABLE_PHASE)) {
+        const double mid = 0.5 * (a + b), left = table_panel(T, P, gl, a, mid, tau_a, depth + 1);
+        return left + table_panel(T, P, gl, mid, b, tau_a + left, depth + 1);
+    }
+    for (size_t i = 0; i < TABLE_ORDER && !P->status; i++) {
+        double x, w;
+        gsl_integration_glfixed_point(a, b, i, &x, &w, gl);
+        const double e = exp(-x);
+        table_node n = {.weight = w * e, .q = P->s + P->sigma * e};
+        n.t = P->t_r + P->sign_t * (tau_a + panel_time(P, gl, a, x));
+        n.mom = momentum(P, P->base + P->sigma * e, &n.v);
+        if (!P->status) fail(P, table_push(T, &n));
+    }
+    return span;
+}
+
+static int ascending(const void *a, const void *b)
+{
+    const double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* One saddle segment, as saddle_segment integrates it: panels between u_r, the knots and u_cut. */
+static void table_segment(gb_melnikov_table *T, path *P, const gsl_integration_glfixed_table *gl, double s, double r,
+                          int sign_t, table_tail *tail)
+{
+    enter_segment(P, s, r, 0.0, sign_t);
+    const double u_cut = fmax(P->u_r, -log(CUT_RELATIVE * fmax(1.0, fabs(P->base)))), reach = fabs(r - s);
+    const double period = P->m->period;
+    double *cuts = malloc((P->m->n_knots + 2) * sizeof *cuts);
+    if (!cuts) {
+        fail(P, gb_error_set(GB_ENOMEM, "out of memory for the separatrix table"));
+        return;
+    }
+    size_t n = 0;
+    cuts[n++] = P->u_r;
+    for (size_t k = 0; k < P->m->n_knots; k++) {
+        /* the knot's distance from the saddle on this segment's side, through the period */
+        double d = fmod(P->sigma * (P->m->knots[k] - P->base), period);
+        if (d < 0.0) d += period;
+        const double u = d > 0.0 && d < reach ? -log(d) : NAN;
+        if (u > P->u_r && u < u_cut) cuts[n++] = u;
+    }
+    qsort(cuts + 1, n - 1, sizeof *cuts, ascending);
+    cuts[n++] = u_cut;
+    double tau = 0.0;
+    for (size_t k = 0; k + 1 < n && !P->status; k++)
+        if (cuts[k + 1] > cuts[k]) tau += table_panel(T, P, gl, cuts[k], cuts[k + 1], tau, 0);
+    free(cuts);
+    *tail = (table_tail){.q = s + P->sigma * exp(-u_cut), .u = u_cut, .t = P->t_r + sign_t * tau, .sign_t = sign_t};
+    tail->mom = momentum(P, P->base + P->sigma * exp(-u_cut), &tail->v);
+}
+
+int gb_melnikov_table_create(const gb_melnikov_model *m, const gb_melnikov_orbit *o, gb_melnikov_weight weight,
+                             double omega_max, gb_melnikov_table **out)
+{
+    *out = NULL;
+    if (!(m->period > 0.0))
+        return gb_error_set(GB_EDOM, "a separatrix table needs a rotation (period > 0; a loop is integrated adaptively)");
+    if (!(omega_max > 0.0 && omega_max <= TABLE_OMEGA_MAX))
+        return gb_error_set(GB_EDOM, "omega_max = %g (allowed: 0 < omega_max <= %g rad/s)", omega_max, TABLE_OMEGA_MAX);
+    gb_melnikov_table *T = calloc(1, sizeof *T);
+    gsl_integration_glfixed_table *gl = gsl_integration_glfixed_table_alloc(TABLE_ORDER);
+    path P;
+    int status = path_open(&P, m, o);
+    if (!status && (!T || !gl)) status = gb_error_set(GB_ENOMEM, "out of memory for the separatrix table");
+    if (!status) {
+        T->model = *m, T->orbit = *o, T->weight = weight, T->omega_max = omega_max;
+        P.m = &T->model, P.o = &T->orbit;
+        table_segment(T, &P, gl, T->orbit.q_u, T->orbit.q0, -1, &T->tail[0]);
+        if (!P.status) table_segment(T, &P, gl, T->orbit.q_end, T->orbit.q0, +1, &T->tail[1]);
+        status = P.status;
+    }
+    path_close(&P);
+    if (gl) gsl_integration_glfixed_table_free(gl);
+    if (status) {
+        gb_melnikov_table_free(T);
+        return status;
+    }
+    *out = T;
+    return GB_OK;
+}
+
+size_t gb_melnikov_table_nodes(const gb_melnikov_table *T) { return T->n; }
+
+void gb_melnikov_table_free(gb_melnikov_table *T)
+{
+    if (!T) return;
+    free(T->node);
+    free(T);
+}
+
+int gb_melnikov_table_integrals(const gb_melnikov_table *T, double omega, gb_melnikov_integrals *out)
+{
+    memset(out, 0, sizeof *out);
+    out->omega = omega;
+    if (!(omega > 0.0 && omega <= T->omega_max))
+        return gb_error_set(GB_EDOM, "omega = %g (allowed: 0 < omega <= %g, the table's omega_max)", omega, T->omega_max);
+    path P;
+    memset(&P, 0, sizeof P);
+    P.m = &T->model, P.o = &T->orbit, P.weight = T->weight, P.F = harmonic_F;
+    P.outer = gsl_integration_workspace_alloc(WORK);
+    if (!P.outer) return gb_error_set(GB_ENOMEM, "out of memory for quadrature");
+    harmonic h[6] = {{omega, 0}, {omega, 1}, {omega, 2}, {2 * omega, 1}, {2 * omega, 2}, {omega, 3}};
+    double *slot[6] = {&out->D, &out->C1, &out->S1, &out->C2, &out->S2, &out->D_mass};
+    for (int k = 0; k < 6 && !P.status; k++) {
+        P.context = &h[k];
+        double sum = 0.0;
+        for (size_t i = 0; i < T->n; i++) {
+            const table_node *n = &T->node[i];
+            sum += n->weight * along(&P, n->q, n->t, n->mom, &n->v);
+        }
+        for (int s = 0; s < 2; s++) {
+            const table_tail *L = &T->tail[s];
+            P.sign_t = L->sign_t;
+            tail tl = {.P = &P, .q = L->q, .u = L->u, .t = L->t, .mom = L->mom, .v = L->v};
+            gsl_function F = {tail_integrand, &tl};
+            double rest = 0.0, error = 0.0;
+            const int st = gsl_integration_qagiu(&F, L->u, 1e-13, 1e-10, WORK, P.outer, &rest, &error);
+            if (st != GSL_SUCCESS && st != GSL_EROUND)
+                fail(&P, gb_error_set(GB_ENUMERIC, "the saddle tail's quadrature failed: %s", gsl_strerror(st)));
+            sum += rest;
+        }
+        *slot[k] = sum;
+    }
+    gsl_integration_workspace_free(P.outer);
+    out->A1 = hypot(out->C1, out->S1);
+    out->A2 = hypot(out->C2, out->S2);
+    return P.status;
+}
+
 double gb_melnikov_function(const gb_melnikov_integrals *I, const gb_melnikov_forcing *f, double t0)
 {
     const double a = f->omega * t0, b = 2.0 * f->omega * t0 + f->psi;
@@ -852,4 +1041,60 @@ int gb_melnikov_split_forced(const gb_melnikov_model *m, const gb_melnikov_orbit
     const double n[2] = {-f0[1] / *flow_speed, f0[0] / *flow_speed};
     *measured = (yu[0] - ys[0]) * n[0] + (yu[1] - ys[1]) * n[1];
     return GB_OK;
+}
+
+/* ---- tables per octave of ω ---------------------------------------------------------------------- */
+
+enum { OCTAVES = 5 }; /* ω_max = 16 · 2^k, k < OCTAVES: up to GB_MELNIKOV_TABLES_OMEGA */
+
+struct gb_melnikov_tables {
+    gb_melnikov_model model;
+    gb_melnikov_orbit orbit;
+    gb_melnikov_weight weight;
+    gb_melnikov_table *table[OCTAVES];
+};
+
+/* The octave that serves ω (−1: above the tables, the adaptive path). */
+static int octave(double omega)
+{
+    for (int k = 0; k < OCTAVES; k++)
+        if (omega <= ldexp(16.0, k)) return k;
+    return -1;
+}
+
+int gb_melnikov_tables_create(const gb_melnikov_model *m, const gb_melnikov_orbit *o, gb_melnikov_weight weight,
+                              gb_melnikov_tables **out)
+{
+    *out = NULL;
+    if (!(m->period > 0.0))
+        return gb_error_set(GB_EDOM, "tables need a rotation (period > 0; a loop is integrated adaptively)");
+    gb_melnikov_tables *T = calloc(1, sizeof *T);
+    if (!T) return gb_error_set(GB_ENOMEM, "out of memory for the separatrix tables");
+    T->model = *m, T->orbit = *o, T->weight = weight;
+    *out = T;
+    return GB_OK;
+}
+
+int gb_melnikov_tables_prepare(gb_melnikov_tables *T, double omega)
+{
+    if (!(isfinite(omega) && omega > 0.0)) return gb_error_set(GB_EDOM, "omega = %g (allowed: > 0)", omega);
+    const int k = octave(omega);
+    if (k < 0 || T->table[k]) return GB_OK;
+    return gb_melnikov_table_create(&T->model, &T->orbit, T->weight, ldexp(16.0, k), &T->table[k]);
+}
+
+int gb_melnikov_tables_integrals(const gb_melnikov_tables *T, double omega, gb_melnikov_integrals *out)
+{
+    if (!(isfinite(omega) && omega > 0.0)) return gb_error_set(GB_EDOM, "omega = %g (allowed: > 0)", omega);
+    const int k = octave(omega);
+    if (k < 0) return gb_melnikov_integrals_compute(&T->model, &T->orbit, omega, T->weight, out);
+    if (!T->table[k]) return gb_error_set(GB_EINVAL, "the separatrix table for omega = %g was not prepared", omega);
+    return gb_melnikov_table_integrals(T->table[k], omega, out);
+}
+
+void gb_melnikov_tables_free(gb_melnikov_tables *T)
+{
+    if (!T) return;
+    for (int k = 0; k < OCTAVES; k++) gb_melnikov_table_free(T->table[k]);
+    free(T);
 }

@@ -43,6 +43,9 @@ typedef struct gb_melnikov_model {
     double reach;                /* a loop's turning point lies within |q − q_u| < reach */
     double origin;               /* a rotation's t = 0 point (NAN: where U is lowest); keep it where U
                                     is smooth: the splitting is measured on the normal to the flow there */
+    const double *knots;         /* optional: the q in [0, period) where eval's pieces join (its
+                                    interpolation nodes and ties), ascending; a table's panels end there */
+    size_t n_knots;
 } gb_melnikov_model;
 
 typedef struct gb_melnikov_orbit {
@@ -99,6 +102,36 @@ void gb_melnikov_judge(const gb_melnikov_integrals *integrals, const gb_melnikov
  * eq 93 (s = μD/(ν₁A₁* + ν₂A₂*)) and exactly (s = μD / max oscillatory part at s = 1). */
 void gb_melnikov_threshold(const gb_melnikov_integrals *integrals, const gb_melnikov_forcing *forcing, double *by_eq93,
                            double *exact);
+
+/* The separatrix of a rotation (period > 0) tabulated once for every frequency up to omega_max: the
+ * path of gb_melnikov_integrals_compute cut into panels in u (ending at the model's knots, each at
+ * most 0.5 wide and spanning a phase 2 omega_max |dt| of at most 1.5 rad), with t, q, |p|
+ * and the model's values at each panel's Gauss–Legendre nodes (t itself by Gauss–Legendre from the
+ * panel's start). The integrals at a frequency are then sums over the nodes plus the saddle tails: the
+ * same integrals as gb_melnikov_integrals_compute, to its tolerance (the harness compares the two).
+ * GB_EDOM for a loop (period 0) and for omega_max outside (0, 10⁴]. */
+typedef struct gb_melnikov_table gb_melnikov_table;
+
+int gb_melnikov_table_create(const gb_melnikov_model *model, const gb_melnikov_orbit *orbit, gb_melnikov_weight weight,
+                             double omega_max, gb_melnikov_table **out);
+/* GB_EDOM for omega outside (0, omega_max]. */
+int gb_melnikov_table_integrals(const gb_melnikov_table *table, double omega, gb_melnikov_integrals *out);
+size_t gb_melnikov_table_nodes(const gb_melnikov_table *table);
+void gb_melnikov_table_free(gb_melnikov_table *table);
+
+/* The integrals at any ω from tables kept per octave of ω (a table of ω_max = 16, 32, 64, 128 or
+ * 256 rad/s serves the ω above the octave below: 16 serves every ω ≤ 16), so that an ω's integrals do
+ * not depend on which other ω were asked for: a scan's margins and `gomboc melnikov`'s agree bit for
+ * bit. Above 256 rad/s the adaptive path (gb_melnikov_integrals_compute). `prepare` builds the octave's
+ * table if missing (not thread-safe); `integrals` only reads (thread-safe), GB_EINVAL if unprepared. */
+#define GB_MELNIKOV_TABLES_OMEGA 256.0
+typedef struct gb_melnikov_tables gb_melnikov_tables;
+
+int gb_melnikov_tables_create(const gb_melnikov_model *model, const gb_melnikov_orbit *orbit, gb_melnikov_weight weight,
+                              gb_melnikov_tables **out);
+int gb_melnikov_tables_prepare(gb_melnikov_tables *tables, double omega);
+int gb_melnikov_tables_integrals(const gb_melnikov_tables *tables, double omega, gb_melnikov_integrals *out);
+void gb_melnikov_tables_free(gb_melnikov_tables *tables);
 
 /* The first-order splitting distance ε M(t₀)/|f(x_h(0))| predicted at the orbit's t = 0 point, and its
  * direct measurement for a perturbation of damping alone (G = −μp; the saddle stays put): the unstable

@@ -39,6 +39,8 @@ struct gb_melnikov_body {
     gb_certify *certify;
     size_t pieces;
     piece piece[KINKS_MAX + 1];
+    double *knots;          /* every piece's nodes but its last, ascending: the model's knots */
+    size_t n_knots;
 };
 
 static double dot(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
@@ -193,6 +195,7 @@ void gb_melnikov_body_free(gb_melnikov_body *b)
 {
     if (!b) return;
     for (size_t k = 0; k < b->pieces; k++) free(b->piece[k].nodes);
+    free(b->knots);
     gb_certify_free(b->certify);
     free(b);
 }
@@ -280,6 +283,12 @@ int gb_melnikov_body_create(const gb_surface *surface, double mass, double g, si
         b->pieces = k + 1;
         status = tabulate(b, P, per_radian, starts[k][0], starts[k][1]);
     }
+    if (!status && !(b->knots = malloc(b->info.table_nodes * sizeof *b->knots)))
+        status = gb_error_set(GB_ENOMEM, "out of memory for the reduced model");
+    for (size_t k = 0; !status && k < b->pieces; k++) {
+        const piece *P = &b->piece[k];
+        for (size_t j = 0; j < P->n; j++) b->knots[b->n_knots++] = P->start + P->length * (double)j / (double)P->n;
+    }
     if (status) {
         gb_melnikov_body_free(b);
         return status;
@@ -349,7 +358,7 @@ gb_melnikov_model gb_melnikov_body_model(gb_melnikov_body *b, gb_melnikov_body_m
     for (size_t k = 1; k < b->pieces; k++)
         if (b->piece[k].length > b->piece[longest].length) longest = k;
     const double origin = b->piece[longest].start + 0.5 * b->piece[longest].length;
-    return (gb_melnikov_model){body_eval, r, -0.05, 0.05, 1, 2 * M_PI, 0.0, origin};
+    return (gb_melnikov_model){body_eval, r, -0.05, 0.05, 1, 2 * M_PI, 0.0, origin, b->knots, b->n_knots};
 }
 
 int gb_melnikov_body_direct(gb_melnikov_body *b, double q, double *H, double *dH, double *M)

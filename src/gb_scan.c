@@ -402,6 +402,7 @@ typedef struct melnikov_body {
     gb_melnikov_model model;
     gb_melnikov_orbit orbit;
     double M_u;                 /* M(q_u): μ = c / M_u */
+    gb_melnikov_tables *tables; /* its separatrix tabulated once for the planned ω */
 } melnikov_body;
 
 /* The integrals of one body at one ω. */
@@ -495,6 +496,9 @@ int gb_scan_melnikov_body(gb_scan_melnikov *plan, size_t i)
     gb_melnikov_values top;
     if (!status) status = b->model.eval(b->model.context, b->orbit.q_u, &top);
     if (!status) b->M_u = top.M;
+    if (!status) status = gb_melnikov_tables_create(&b->model, &b->orbit, GB_MELNIKOV_EXACT, &b->tables);
+    for (size_t k = 0; !status && k < plan->n_frequencies; k++)
+        if (plan->frequencies[k].body == i) status = gb_melnikov_tables_prepare(b->tables, plan->frequencies[k].omega);
     b->status = status, b->computed = 1;
     return status == GB_EDOM ? GB_OK : status; /* not defined for this body: its margins are NAN */
 }
@@ -504,8 +508,7 @@ int gb_scan_melnikov_frequency(gb_scan_melnikov *plan, size_t i)
     melnikov_frequency *f = &plan->frequencies[i];
     const melnikov_body *b = &plan->bodies[f->body];
     if (!b->computed) return gb_error_set(GB_EINVAL, "the Melnikov integrals at omega = %g before their body", f->omega);
-    f->status = b->status ? b->status
-                          : gb_melnikov_integrals_compute(&b->model, &b->orbit, f->omega, GB_MELNIKOV_EXACT, &f->integrals);
+    f->status = b->status ? b->status : gb_melnikov_tables_integrals(b->tables, f->omega, &f->integrals);
     f->computed = 1;
     return f->status == GB_EDOM ? GB_OK : f->status;
 }
@@ -513,7 +516,10 @@ int gb_scan_melnikov_frequency(gb_scan_melnikov *plan, size_t i)
 void gb_scan_melnikov_free(gb_scan_melnikov *plan)
 {
     if (!plan) return;
-    for (size_t k = 0; k < plan->n_bodies; k++) gb_melnikov_body_free(plan->bodies[k].body);
+    for (size_t k = 0; k < plan->n_bodies; k++) {
+        gb_melnikov_tables_free(plan->bodies[k].tables);
+        gb_melnikov_body_free(plan->bodies[k].body);
+    }
     free(plan->bodies);
     free(plan->frequencies);
     free(plan);
@@ -548,7 +554,10 @@ int gb_scan_melnikov_margins(const gb_case *scene, double *margin, double *margi
     for (size_t k = 0; !status && k < p.n_bodies; k++) status = gb_scan_melnikov_body(&p, k);
     for (size_t k = 0; !status && k < p.n_frequencies; k++) status = gb_scan_melnikov_frequency(&p, k);
     if (!status) status = plan_margins(&p, scene, margin, margin_eq93);
-    for (size_t k = 0; k < p.n_bodies; k++) gb_melnikov_body_free(p.bodies[k].body);
+    for (size_t k = 0; k < p.n_bodies; k++) {
+        gb_melnikov_tables_free(p.bodies[k].tables);
+        gb_melnikov_body_free(p.bodies[k].body);
+    }
     free(p.bodies);
     free(p.frequencies);
     return status;

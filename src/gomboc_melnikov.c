@@ -41,13 +41,15 @@ typedef struct melnikov_run {
     double mu;            /* c / M(q_u), or c for the exact damping */
     int damping_exact;
     double psi;           /* of the scene */
+    gb_melnikov_tables *tables; /* the separatrix tabulated per octave of omega, as a scan's */
 } melnikov_run;
 
 /* The integrals at omega and the critical A1 by both conditions (A2 scaled with it). */
-static int threshold_at(const melnikov_run *r, double omega, double A1, double A2, gb_melnikov_integrals *I,
+static int threshold_at(melnikov_run *r, double omega, double A1, double A2, gb_melnikov_integrals *I,
                         double *by_eq93, double *exact)
 {
-    int status = gb_melnikov_integrals_compute(&r->model, &r->orbit, omega, r->weight, I);
+    int status = gb_melnikov_tables_prepare(r->tables, omega);
+    if (!status) status = gb_melnikov_tables_integrals(r->tables, omega, I);
     if (status) return status;
     *by_eq93 = *exact = NAN; /* no fundamental to scale */
     if (A1 == 0.0) return GB_OK;
@@ -134,6 +136,7 @@ int command_melnikov(int argc, char **argv)
     status = gb_melnikov_orbit_find(&r.model, &r.orbit);
     gb_melnikov_values top;
     if (!status) status = r.model.eval(r.model.context, r.orbit.q_u, &top);
+    if (!status) status = gb_melnikov_tables_create(&r.model, &r.orbit, r.weight, &r.tables);
     gb_melnikov_integrals I;
     double t93 = NAN, tx = NAN;
     gb_melnikov_criterion c = {0};
@@ -207,6 +210,7 @@ int command_melnikov(int argc, char **argv)
         cJSON_AddItemToObject(b, "tie_q", cli_json_vector(info.kink_q, (int)shown));
         cJSON_AddItemToObject(b, "tie_dH_jump", cli_json_vector(info.kink_jump, (int)shown));
     }
+    gb_melnikov_tables_free(r.tables);
     gb_melnikov_body_free(body);
     if (status) {
         cJSON_Delete(root);

@@ -11,6 +11,7 @@
 #include "gb_integrate.h"
 #include "gb_lyapunov_body.h"
 #include "gb_massprops.h"
+#include "gb_melnikov_body.h"
 #include "gb_surface_internal.h"
 #include "plain.h"
 
@@ -772,6 +773,69 @@ static void bench_headroom(void)
     printf("\n(target, issue 4: >= 50x; the budget is the plain loop's time / 50 for the whole run)\n");
 }
 
+/* A scan's Melnikov plan (section 7): one body's reduced model and its integrals at the 25 frequencies of
+ * the (omega, A1) maps (12 to 24 rad/s), from the separatrix tables (what gomboc scan and gomboc melnikov
+ * do) and, side by side, by the adaptive quadrature at every frequency; the largest difference of the
+ * integrals between the two, relative to the largest integral. Best of 2 for the tables, one adaptive run. */
+static int bench_melnikov(void)
+{
+    printf("\nbench: a scan's Melnikov plan, 25 frequencies 12 ... 24 rad/s, Table 1's g and mass\n\n");
+    printf("%-4s %16s %16s %18s %10s %16s\n", "body", "reduced model [s]", "tables, 25 w [s]", "adaptive, 25 w [s]", "speed-up",
+           "max difference");
+    const gb_forcing F = gb_dynamics_default_def().forcing;
+    int failures = 0;
+    for (int k = 0; k < 2; k++) {
+        const char *name = k ? "II" : "I";
+        double body_seconds = INFINITY, tables_seconds = INFINITY, adaptive_seconds = NAN, worst = 0.0, scale = 0.0;
+        gb_melnikov_integrals tabulated[25];
+        int status = 0;
+        for (int repeat = 0; repeat < 2 && !status; repeat++) {
+            gb_melnikov_body *b = NULL;
+            gb_melnikov_tables *tables = NULL;
+            gb_melnikov_orbit o;
+            double start = now();
+            status = gb_melnikov_body_create(bench_body(name, 0.12), gb_dynamics_default_def().mass, F.g, GB_MELNIKOV_BODY_NODES, &b);
+            gb_melnikov_model m = {0};
+            if (!status) m = gb_melnikov_body_model(b, GB_MELNIKOV_MASS_AT_TOP), status = gb_melnikov_orbit_find(&m, &o);
+            body_seconds = fmin(body_seconds, now() - start);
+            start = now();
+            if (!status) status = gb_melnikov_tables_create(&m, &o, GB_MELNIKOV_EXACT, &tables);
+            for (int j = 0; j < 25 && !status; j++) {
+                const double omega = 12.0 + 0.5 * j;
+                status = gb_melnikov_tables_prepare(tables, omega);
+                if (!status) status = gb_melnikov_tables_integrals(tables, omega, &tabulated[j]);
+            }
+            tables_seconds = fmin(tables_seconds, now() - start);
+            if (repeat == 1 && !status) {
+                start = now();
+                for (int j = 0; j < 25 && !status; j++) {
+                    gb_melnikov_integrals a;
+                    status = gb_melnikov_integrals_compute(&m, &o, 12.0 + 0.5 * j, GB_MELNIKOV_EXACT, &a);
+                    const double x[] = {a.D, a.C1, a.S1, a.C2, a.S2, a.D_mass}, y[] = {tabulated[j].D, tabulated[j].C1,
+                        tabulated[j].S1, tabulated[j].C2, tabulated[j].S2, tabulated[j].D_mass};
+                    for (int i = 0; i < 6; i++) worst = fmax(worst, fabs(x[i] - y[i])), scale = fmax(scale, fabs(x[i]));
+                }
+                adaptive_seconds = now() - start;
+            }
+            gb_melnikov_tables_free(tables);
+            gb_melnikov_body_free(b);
+        }
+        if (status) {
+            fprintf(stderr, "bench: the Melnikov plan of Gomboc %s: %s\n", name, gb_error_message());
+            failures++;
+            continue;
+        }
+        printf("%-4s %16.3f %16.4f %18.2f %9.0fx %16.2g\n", name, body_seconds, tables_seconds, adaptive_seconds,
+               adaptive_seconds / tables_seconds, worst / scale);
+        if (record)
+            fprintf(record, ",\n  {\"melnikov_body\": \"%s\", \"reduced_model_seconds\": %.6f, \"tables_seconds\": %.6f, "
+                            "\"adaptive_seconds\": %.6f, \"max_relative_difference\": %.3g}",
+                    name, body_seconds, tables_seconds, adaptive_seconds, worst / scale);
+    }
+    printf("\n(target, issue 30: the reduced model and 25 frequencies <= 1 s)\n");
+    return failures;
+}
+
 /* Scans (section 8.3) through the command: points per second for each model on 1 and 2 threads, and the
  * parallel efficiency t1 / (2 t2), each the best of 2. The scan is 4 x 4 points of 50 periods around Table 1, lambda included;
  * the Melnikov margins apart (a scan of them alone: the reduced model once, the integrals at the 4 ω). */
@@ -911,6 +975,7 @@ int main(int argc, char **argv)
     bench_unilateral();
     bench_flight();
     bench_headroom();
+    failures += bench_melnikov();
     if (argc > 3) failures += bench_whole_process(argv[2], argv[3], record);
     if (argc > 3) failures += bench_scans(argv[3], record);
     if (record) {
