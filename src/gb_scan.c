@@ -142,8 +142,9 @@ static int scan_handler(gb_ini_reader *ini, void *user, const char *section, con
     scan_reader *r = user;
     gb_scan *scan = r->scan;
     if (!strcmp(section, "scan")) {
-        static const char *const names[] = {"description", "base", "periods", "transient_periods", "metrics", "failed_points"};
-        for (int k = 0; k < 6; k++) {
+        static const char *const names[] = {"description", "base",          "periods", "transient_periods",
+                                            "metrics",     "failed_points", "atlas"};
+        for (int k = 0; k < 7; k++) {
             if (strcmp(key, names[k])) continue;
             if (!once(ini, r, 0, k, section, key, value)) return 0;
             switch (k) {
@@ -156,6 +157,11 @@ static int scan_handler(gb_ini_reader *ini, void *user, const char *section, con
             case 2: return number(ini, section, key, value, 1.0, 1e7, &scan->periods);
             case 3: return count(ini, section, key, value, 0, 10000000, &scan->transient_periods);
             case 4: return parse_metrics(ini, value, &scan->metrics);
+            case 6:
+                if (strcmp(value, "none") && strcmp(value, "shared"))
+                    return gb_ini_fail(ini, "[scan] atlas = %s: unknown (allowed: none, shared)", value);
+                scan->atlas_shared = !strcmp(value, "shared"), scan->atlas_line = gb_ini_line(ini);
+                return 1;
             default:
                 if (strcmp(value, "stop") && strcmp(value, "record"))
                     return gb_ini_fail(ini, "[scan] failed_points = %s: unknown (allowed: stop, record)", value);
@@ -164,7 +170,7 @@ static int scan_handler(gb_ini_reader *ini, void *user, const char *section, con
             }
         }
         return gb_ini_fail(ini, "[scan] %s = %s: unknown key (allowed in [scan]: description, base, periods, "
-                           "transient_periods, metrics, failed_points)", key, value);
+                           "transient_periods, metrics, failed_points, atlas)", key, value);
     }
     const int s = !strcmp(section, "x") ? 1 : 2;
     gb_scan_axis *a = &scan->axis[s - 1];
@@ -215,7 +221,7 @@ int gb_scan_point_case(const gb_scan *scan, size_t index, gb_case *out)
     double x, y;
     gb_scan_coordinates(scan, index, &x, &y);
     char xv[160], yv[160], periods[40], transient[24], origin_x[GB_SCAN_PATH_MAX + 48], origin_y[GB_SCAN_PATH_MAX + 48],
-        origin[GB_SCAN_PATH_MAX + 16];
+        origin[GB_SCAN_PATH_MAX + 16], origin_atlas[GB_SCAN_PATH_MAX + 48];
     if (scan->axis[0].scale == GB_SCAN_RANDOM) gb_scan_random_attitude(scan->axis[0].seed, (size_t)x, xv, sizeof xv);
     else snprintf(xv, sizeof xv, "%.17g", x);
     if (scan->axis[1].scale == GB_SCAN_RANDOM) gb_scan_random_attitude(scan->axis[1].seed, (size_t)y, yv, sizeof yv);
@@ -225,6 +231,7 @@ int gb_scan_point_case(const gb_scan *scan, size_t index, gb_case *out)
     snprintf(origin_x, sizeof origin_x, "%s:%d (point %zu)", scan->path, scan->axis[0].line, index);
     snprintf(origin_y, sizeof origin_y, "%s:%d (point %zu)", scan->path, scan->axis[1].line, index);
     snprintf(origin, sizeof origin, "%s [scan]", scan->path);
+    snprintf(origin_atlas, sizeof origin_atlas, "%s:%d [scan] atlas = shared", scan->path, scan->atlas_line);
     const int strobe = (scan->metrics & GB_SCAN_STROBE_SD) != 0, lambda = (scan->metrics & GB_SCAN_LAMBDA) != 0;
     const gb_case_override o[] = {
         {scan->axis[0].section, scan->axis[0].key, xv, origin_x},
@@ -240,8 +247,10 @@ int gb_scan_point_case(const gb_scan *scan, size_t index, gb_case *out)
         {"lyapunov", "transient_periods", transient, origin},
         {"lyapunov", "interval_periods", "1", origin},
         {"lyapunov", "window_periods", "0", origin}, /* a file of gomboc run; the scan has its own windows */
+        {"model", "certificate", "atlas", origin_atlas}, /* the last: only with atlas = shared */
     };
-    return gb_case_load_text_with(scan->base, scan->base_text, scan->base_size, o, sizeof o / sizeof o[0], out);
+    const size_t n = sizeof o / sizeof o[0] - !scan->atlas_shared;
+    return gb_case_load_text_with(scan->base, scan->base_text, scan->base_size, o, n, out);
 }
 
 void gb_scan_free(gb_scan *scan)
@@ -333,8 +342,17 @@ int gb_scan_load(const char *path, gb_scan *out)
                             slash ? (int)(slash - path + (slash == path)) : 1, slash ? path : ".");
     }
     out->fingerprint = gb_hash_add(out->fingerprint, out->base_text, out->base_size);
-    /* Every point's scene, before any run. */
+    /* Every point's scene, before any run; a shared atlas only where the contact is continuous. */
     gb_case scene;
+    if (out->atlas_shared) {
+        out->atlas_shared = 0;
+        status = gb_scan_point_case(out, 0, &scene);
+        out->atlas_shared = 1;
+        if (!status && scene.dynamics.contact != GB_CONTACT_MODEL_CONTINUOUS)
+            status = gb_error_set(GB_EINVAL, "%s:%d: [scan] atlas = shared: the base scene %s has no continuous contact "
+                                  "(allowed: shared with [model] contact = continuous, which the atlas certifies; none)",
+                                  path, out->atlas_line, out->base);
+    }
     for (size_t k = 0; k < gb_scan_points(out) && !status; k++) status = gb_scan_point_case(out, k, &scene);
     if (status) gb_scan_free(out);
     return status;

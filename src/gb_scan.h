@@ -66,13 +66,20 @@ typedef struct gb_scan {
                                         * status 1 of its run: a contact lost, an impact the model cannot take)
                                         * is a row of NaN metrics and zero fingerprints, and the scan goes on;
                                         * stop (0, the default): the scan stops there */
+    int atlas_shared;                  /* [scan] atlas = shared: every point's scene certifies its contact with
+                                        * the atlas of verticals ([model] certificate = atlas), and the points
+                                        * share one atlas through atlas_file (`gomboc scan` sets it: --atlas
+                                        * FILE, or NAME-scan.atlas in the output directory); the results are
+                                        * those of the per-vertical certificate, bit for bit. none (0): the
+                                        * base scene's certificate */
+    int atlas_line;                    /* its line, for messages */
     uint64_t fingerprint;              /* FNV-1a of the scan file's and the base scene's bytes */
     int base_line;                     /* the scan file's line of `base`, for messages */
     char *base_text;                   /* the base scene as read once (every point starts from it) */
     size_t base_size;
-    /* `gomboc scan --atlas FILE` (NULL: none): every point of a base scene with [model] certificate = atlas
-     * starts its atlas of verticals from FILE and writes it back with the cells it added (as `gomboc run
-     * --atlas`), so that the points share one atlas; the results are those of the per-vertical certificate. */
+    /* The atlas file (NULL: none): every point whose scene has [model] certificate = atlas starts its atlas
+     * of verticals from FILE and writes it back with the cells it added (as `gomboc run --atlas`), so that
+     * the points share one atlas; the results are those of the per-vertical certificate. */
     const char *atlas_file;
 } gb_scan;
 

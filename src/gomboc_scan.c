@@ -36,10 +36,11 @@ static const char *usage_scan =
     "               it holds are not run again, and the CSV is byte for byte that of an uninterrupted run\n"
     "  --threads N  points run in parallel on N threads (1 ... 256; default: OpenMP's own choice);\n"
     "               the results do not depend on N\n"
-    "  --atlas FILE ([model] certificate = atlas in the base scene) every point starts its atlas of\n"
-    "               verticals from FILE (built by the first points when FILE is missing, stale or damaged)\n"
-    "               and writes it back with the cells it added: one atlas for the whole scan; the results\n"
-    "               are those of the per-vertical certificate, bit for bit\n"
+    "  --atlas FILE ([model] certificate = atlas in the base scene, or [scan] atlas = shared) every point\n"
+    "               starts its atlas of verticals from FILE (built by the first points when FILE is missing,\n"
+    "               stale or damaged) and writes it back with the cells it added: one atlas for the whole\n"
+    "               scan; the results are those of the per-vertical certificate, bit for bit. A scan file\n"
+    "               with atlas = shared keeps it in NAME-scan.atlas in DIR without this option\n"
     "\n"
     "Every finished point is appended to the journal and flushed; the journal is removed when the scan\n"
     "is complete and its outputs are written. Progress goes to standard error.\n"
@@ -519,12 +520,21 @@ static int scan_command(int argc, char **argv, const ranks *r)
         }
         scan.atlas_file = options.atlas;
     }
+    /* [scan] atlas = shared without --atlas: the atlas beside the outputs, kept for a rerun or --resume */
+    char own_atlas[2 * GB_SCAN_PATH_MAX];
+    if (!status && scan.atlas_shared && !options.atlas) {
+        char *name = cli_output_name(dir, scan_path, "scan.atlas");
+        if (!name || strlen(name) >= sizeof own_atlas) status = gb_error_set(GB_EINVAL, "the atlas file's name is too long");
+        else snprintf(own_atlas, sizeof own_atlas, "%s", name), scan.atlas_file = own_atlas;
+        free(name);
+    }
     if (!status && r->rank == 0) {
         char *csv_path = cli_output_name(dir, scan_path, "scan.csv"), *json_path = cli_output_name(dir, scan_path, "scan.json");
         const gb_file_use uses[] = {{scan_path, "SCAN", GB_FILE_INPUT}, {scan.base, "[scan] base", GB_FILE_INPUT},
                                     {csv_path, "--out", GB_FILE_OUTPUT}, {json_path, "--out", GB_FILE_OUTPUT},
                                     {j.path, "--out (the journal)", GB_FILE_INPUT | GB_FILE_OUTPUT},
-                                    {options.atlas, "--atlas", GB_FILE_INPUT | GB_FILE_OUTPUT}};
+                                    {scan.atlas_file, options.atlas ? "--atlas" : "--out (the atlas)",
+                                     GB_FILE_INPUT | GB_FILE_OUTPUT}};
         bad = !csv_path || !json_path || cli_files_check("scan", uses, sizeof uses / sizeof uses[0]);
         free(csv_path);
         free(json_path);

@@ -1051,6 +1051,16 @@ static void test_shipped_scans(void)
 
 /* A rolling-model scan of 2 x 2 points with the per-vertical certificate, and the same with the atlas shared
  * through --atlas FILE (made by the first points, then loaded): the same CSV bytes, and the file written. */
+/* Write the scan file DIR/NAME.ini with `text` and run `gomboc scan` on it into DIR with `options`: its exit. */
+static int scan_file_run(const char *dir, const char *name, const char *text, const char *options, char *out, size_t size)
+{
+    char path[300], args[700];
+    snprintf(path, sizeof path, "%s/%s.ini", dir, name);
+    spill(path, text);
+    snprintf(args, sizeof args, "scan '%s' --out '%s'%s", path, dir, options);
+    return run(args, out, size);
+}
+
 static void test_scan_atlas(void)
 {
     scan_dir d;
@@ -1105,6 +1115,36 @@ static void test_scan_atlas(void)
     gb_check_true(&cr, refused == 2 && strstr(out, "--atlas") && strstr(out, "has no atlas") &&
                        strstr(out, "certificate = atlas") && stat(path, &st) != 0,
                   "exit %d: %.300s", refused, out);
+    /* [scan] atlas = shared over the per-vertical base: the atlas beside the outputs, the same CSV */
+    snprintf(text, sizeof text, "[scan]\nbase = per-vertical.ini\natlas = shared\nperiods = 4\ntransient_periods = 1\n"
+             "metrics = omega_rms, switch_rate\n[x]\nkey = forcing.omega\nfrom = 17\nto = 19\ncount = 2\n[y]\n"
+             "key = forcing.A1\nfrom = 1.5\nto = 2\ncount = 2\n");
+    const int code = scan_file_run(d.path, "scan-shared", text, " --threads 2", out, sizeof out);
+    snprintf(path, sizeof path, "%s/scan-per-vertical-scan.csv", d.path);
+    char *reference = slurp(path);
+    snprintf(path, sizeof path, "%s/scan-shared-scan.csv", d.path);
+    char *shared_csv = slurp(path);
+    snprintf(path, sizeof path, "%s/scan-shared-scan.atlas", d.path);
+    const int own = stat(path, &st) == 0 && st.st_size > 0;
+    gb_check ck = {"4, 8.3", "29", "[scan] atlas = shared over a base scene that certifies per vertical (2 x 2 points, 2 threads)",
+                   "the per-vertical scan's CSV, byte for byte; NAME-scan.atlas written beside it", "exact"};
+    const int equal = reference && shared_csv && !strcmp(reference, shared_csv);
+    gb_check_true(&ck, code == 0 && equal && own, "exit %d; CSV %s; atlas %s: %.200s", code, equal ? "equal" : "DIFFERS",
+                  own ? "written" : "MISSING", out);
+    free(reference);
+    free(shared_csv);
+    /* ... and over a base without continuous contact: refused, naming the scan file's line */
+    snprintf(path, sizeof path, "%s/grid.ini", d.path);
+    spill(path, "[body]\nmorphology = I\nbeta = 0.12\n[model]\ncontact = fast-grid\n");
+    snprintf(text, sizeof text, "[scan]\nbase = grid.ini\nperiods = 4\ntransient_periods = 1\natlas = shared\n[x]\n"
+             "key = forcing.omega\nfrom = 17\nto = 19\ncount = 2\n[y]\nkey = forcing.A1\nfrom = 1.5\nto = 2\ncount = 2\n");
+    const int grid_code = scan_file_run(d.path, "scan-grid", text, "", out, sizeof out);
+    snprintf(path, sizeof path, "%s/scan-grid-scan.csv", d.path);
+    gb_check cg = {"8.3", "-", "[scan] atlas = shared with a base scene of fast-grid contact",
+                   "exit 2 naming the scan file's line 5, the key and the allowed values; no output", "exact"};
+    gb_check_true(&cg, grid_code == 2 && strstr(out, "scan-grid.ini:5: [scan] atlas = shared") && strstr(out, "allowed") &&
+                       stat(path, &st) != 0,
+                  "exit %d: %.300s", grid_code, out);
     remove_scan_dir(&d);
 }
 
