@@ -736,24 +736,68 @@ int gb_atlas_load(gb_atlas *A, const char *path)
     return parsed;
 }
 
+/* The file's cells merged into c: where c is unbuilt the file's cell (and its subtree) is taken; where
+ * both are split, their children are merged; elsewhere c is kept and the file's cell passed over (a
+ * cell's proof does not depend on who made it: the two are the same). 0 when the bytes do not parse. */
+static int merge_cell(gb_atlas *A, reader *r, cell *c)
+{
+    if (c->state == CELL_UNBUILT) return take_cell(A, r, c);
+    if (r->p == r->end) return 0;
+    if (c->state == CELL_SPLIT && *r->p == CELL_SPLIT) {
+        r->p++;
+        for (int k = 0; k < 4; k++)
+            if (!merge_cell(A, r, &c->child[k])) return 0;
+        return 1;
+    }
+    cell scratch = {.u_lo = c->u_lo, .u_hi = c->u_hi, .v_lo = c->v_lo, .v_hi = c->v_hi, .face = c->face, .level = c->level};
+    const gb_atlas_stats kept = A->stats;
+    const int ok = take_cell(A, r, &scratch);
+    A->stats = kept;
+    return ok;
+}
+
+/* The header and checksum of an atlas file's bytes: NULL when they are this atlas's, else why not. */
+static const char *refused(const gb_atlas *A, const unsigned char *data, size_t size)
+{
+    header want, have;
+    header_of(A, &want);
+    if (size < sizeof have + sizeof(uint64_t)) return "it is not an atlas of this body, beta, eta and build, or it is damaged";
+    memcpy(&have, data, sizeof have);
+    uint64_t sum;
+    memcpy(&sum, data + size - sizeof sum, sizeof sum);
+    if (memcmp(&want, &have, sizeof want) || gb_hash_add(GB_HASH_OFFSET, data, size - sizeof sum) != sum)
+        return "it is not an atlas of this body, beta, eta and build, or it is damaged";
+    return NULL;
+}
+
+int gb_atlas_merge(gb_atlas *A, const char *path)
+{
+    char *data;
+    size_t size;
+    int status = gb_file_read(path, gb_atlas_file_limit(A), "atlas file", "an atlas file this command wrote", &data, &size);
+    if (status) return gb_error_set(GB_EIO, "atlas file refused: %s", gb_error_message());
+    const char *why = refused(A, (const unsigned char *)data, size);
+    if (!why) {
+        reader r = {(const unsigned char *)data + sizeof(header), (const unsigned char *)data + size - sizeof(uint64_t)};
+        int ok = 1;
+        for (int face = 0; face < 6 && ok; face++) ok = merge_cell(A, &r, &A->faces[face]);
+        if (!ok || r.p != r.end) why = "its cells do not parse (the cells read before the fault are kept)";
+    }
+    free(data);
+    if (why) return gb_error_set(GB_EIO, "atlas file %s is not merged: %s", path, why);
+    return GB_OK;
+}
+
 int gb_atlas_load_buffer(gb_atlas *A, const unsigned char *data, size_t size, const char *name)
 {
     const char *path = name;
-    header want, have;
-    header_of(A, &want);
-    int ok = size >= sizeof have + sizeof(uint64_t);
-    if (ok) {
-        memcpy(&have, data, sizeof have);
-        uint64_t sum;
-        memcpy(&sum, data + size - sizeof sum, sizeof sum);
-        ok = memcmp(&want, &have, sizeof want) == 0 && gb_hash_add(GB_HASH_OFFSET, data, size - sizeof sum) == sum;
-    }
-    const char *why = ok ? NULL : "it is not an atlas of this body, beta, eta and build, or it is damaged";
+    const char *why = refused(A, data, size);
+    int ok = !why;
     if (ok) {
         const gb_atlas_stats kept = A->stats;
         faces_reset(A);
         A->stats.cells = A->stats.two_site_cells = A->stats.cells_failed = 0;
-        reader r = {data + sizeof have, data + size - sizeof(uint64_t)};
+        reader r = {data + sizeof(header), data + size - sizeof(uint64_t)};
         for (int face = 0; face < 6 && ok; face++) ok = take_cell(A, &r, &A->faces[face]);
         ok = ok && r.p == r.end;
         if (!ok) {

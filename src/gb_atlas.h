@@ -102,7 +102,8 @@ void gb_atlas_cells(const gb_atlas *atlas, gb_atlas_cell_info *out, size_t max, 
 
 /* Save the cells built so far (with those that have no certificate, so that they are not proved
  * again) as a gb_file set of one: a unique temporary renamed into place, so that concurrent writers of
- * one file never cost each other their outputs (the last complete one wins). Load a saved atlas (its
+ * one file never cost each other their outputs (the last complete one wins; gb_dynamics_save_atlas
+ * merges the file's cells first, gb_atlas_merge, so that they add up). Load a saved atlas (its
  * cells replace the ones held): GB_EIO for a file that is not a regular file, is larger than
  * gb_atlas_file_limit, is not an atlas of this body, β, η and build parameters, or is damaged (its
  * checksum): the caller then builds anew. */
@@ -112,6 +113,12 @@ int gb_atlas_load(gb_atlas *atlas, const char *path);
  * certified with two sites), and never more than GB_ATLAS_FILE_MAX: a larger file is refused unread. */
 #define GB_ATLAS_FILE_MAX ((size_t)64 << 20)
 size_t gb_atlas_file_limit(const gb_atlas *atlas);
+/* The cells of the atlas file at `path` that this atlas lacks, added to it (a cell both hold is kept as
+ * it is: its proof does not depend on the run that made it). What gb_dynamics_save_atlas does before it
+ * writes, so that concurrent runs sharing one file add up their cells. GB_EIO when the file is missing,
+ * of another atlas or damaged (the atlas is then unchanged, or holds the cells read before the fault). */
+int gb_atlas_merge(gb_atlas *atlas, const char *path);
+
 /* gb_atlas_load on the bytes of a file already read (`name` for messages). */
 int gb_atlas_load_buffer(gb_atlas *atlas, const unsigned char *data, size_t size, const char *name);
 

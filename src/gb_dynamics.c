@@ -937,6 +937,8 @@ void gb_dynamics_share_atlas(gb_dynamics *to, const gb_dynamics *from)
 int gb_dynamics_save_atlas(const gb_dynamics *d)
 {
     if (!d->atlas || !d->def.atlas_file) return GB_OK;
+    /* the cells another run wrote there since this one loaded it are kept (missing or stale: replaced) */
+    if (gb_atlas_merge(d->atlas, d->def.atlas_file)) gb_error_clear();
     return gb_atlas_save(d->atlas, d->def.atlas_file);
 }
 

@@ -263,6 +263,66 @@ static void test_table1_runs(void)
                   "beta 0.11: status %d; eta 1e-11: status %d; same body: status %d", beta, eta, same);
 }
 
+/* Two runs that share one atlas file at once (both started before either wrote it): each merges the
+ * file's cells before it writes, so that the file ends with the cells of both, and a third atlas loaded
+ * from it holds them all and builds nothing for the verticals of either. */
+static void test_merged_writers(void)
+{
+    char path[64];
+    snprintf(path, sizeof path, "/tmp/gomboc-atlas-merge-%ld.atlas", (long)getpid());
+    remove(path);
+    gb_atlas *a[3] = {NULL, NULL, NULL};
+    gb_atlas_def ad = gb_atlas_default_def();
+    int status = GB_OK;
+    for (int k = 0; k < 3 && !status; k++) status = gb_atlas_create(gb_check_body("I", 0.12), &ad, &a[k]);
+    /* a[0] around +z, a[1] around +x: two faces of the cube of verticals, no cell in common */
+    double z[2][8][3];
+    for (int j = 0; j < 8; j++) {
+        const double t = 0.8 * j, r = 0.1 + 0.08 * j, c = r * cos(t), s = r * sin(t), n = sqrt(1.0 + r * r);
+        const double up[3] = {c, s, 1.0}, side[3] = {1.0, c, s};
+        for (int i = 0; i < 3; i++) z[0][j][i] = up[i] / n, z[1][j][i] = side[i] / n;
+    }
+    size_t count[3] = {0, 0, 0};
+    gb_atlas_cell_info info;
+    for (int k = 0; k < 2 && !status; k++)
+        for (int j = 0; j < 8 && !status; j++) status = gb_atlas_cell(a[k], z[k][j], &info);
+    for (int k = 0; k < 2 && !status; k++) gb_atlas_cells(a[k], NULL, 0, &count[k]);
+    if (!status) status = gb_atlas_save(a[0], path);
+    int merged = status ? status : gb_atlas_merge(a[1], path);
+    if (!status && !merged) status = gb_atlas_save(a[1], path);
+    if (!status && !merged) status = gb_atlas_load(a[2], path);
+    gb_atlas_stats before = {0}, after = {0};
+    if (!status && !merged) {
+        gb_atlas_cells(a[2], NULL, 0, &count[2]);
+        gb_atlas_get_stats(a[2], &before);
+        for (int k = 0; k < 2 && !status; k++)
+            for (int j = 0; j < 8 && !status; j++) status = gb_atlas_cell(a[2], z[k][j], &info);
+        gb_atlas_get_stats(a[2], &after);
+    }
+    /* a file of another atlas is not merged, and leaves the atlas as it was */
+    gb_atlas *other = NULL;
+    size_t kept = 0;
+    int refused = GB_OK;
+    if (!status && !gb_atlas_create(gb_check_body("II", 0.12), &ad, &other)) {
+        refused = gb_atlas_merge(other, path);
+        gb_atlas_cells(other, NULL, 0, &kept);
+    }
+    gb_atlas_free(other);
+    for (int k = 0; k < 3; k++) gb_atlas_free(a[k]);
+    remove(path);
+    gb_check c = {"4", "29", "two atlases of Gomboc I built apart (8 verticals within 0.6 rad of +z, 8 of +x), written to one "
+                  "file in turn, the second merging the first's cells",
+                  "the file holds both: its cells are the sum, and no cell is built for the 16 verticals", "exact"};
+    gb_check_true(&c, !status && !merged && count[0] > 0 && count[1] > 0 && count[2] == count[0] + count[1] &&
+                      after.build_seconds == before.build_seconds && after.cells == before.cells,
+                  "%s; cells %zu + %zu, the merged file %zu; built after loading it: %zu cells in %.3g s",
+                  status || merged ? gb_error_message() : "ran", count[0], count[1], count[2], after.cells - before.cells,
+                  after.build_seconds - before.build_seconds);
+    gb_check r = {"4", "29", "an atlas file of Gomboc I merged into an atlas of Gomboc II", "refused (GB_EIO), no cell taken",
+                  "exact"};
+    gb_check_true(&r, refused == GB_EIO && kept == 0, "status %d, %zu cells: %s", refused, kept, gb_error_message());
+}
+
 /* A bad atlas definition is refused with its allowed range. */
 static void test_bad_definition(void)
 {
@@ -280,6 +340,7 @@ int verify_register_s4_atlas(void)
     static const verify_test tests[] = {
         {"eq 29: atlas verdicts and cells against an exhaustive search", test_random_verticals, NULL},
         {"eq 29: the atlas's Table 1 runs are the per-vertical certificate's runs; its file", test_table1_runs, NULL},
+        {"eq 29: runs sharing one atlas file add up their cells", test_merged_writers, NULL},
         {"eq 29: atlas definition out of range", test_bad_definition, NULL},
         {NULL, NULL, NULL},
     };
