@@ -119,7 +119,7 @@ bench: deps
 
 bench-only: $(BENCH_BIN) $(BENCH_NATIVE) $(BIN)
 	@mkdir -p $(OUT)
-	status=0; $(BENCH_BIN) $(OUT)/bench.json $(BENCH_NATIVE) $(BIN) || status=$$?; \
+	status=0; PYTHON=$(PYTHON) $(BENCH_BIN) $(OUT)/bench.json $(BENCH_NATIVE) $(BIN) || status=$$?; \
 	sh scripts/gate-stamp.sh $(GATES) bench $$status "speed ratios measured side by side in one run"; exit $$status
 
 # Everything `make verify` does, plus the long studies (harness --full): continuous rolling over 10000

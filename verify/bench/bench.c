@@ -14,6 +14,7 @@
 #include "gb_melnikov_body.h"
 #include "gb_surface_internal.h"
 #include "plain.h"
+#include <cjson/cJSON.h>
 
 #include <gsl/gsl_randist.h>
 #include <gsl/gsl_rng.h>
@@ -773,6 +774,230 @@ static void bench_headroom(void)
     printf("\n(target, issue 4: >= 50x; the budget is the plain loop's time / 50 for the whole run)\n");
 }
 
+/* ---- work–precision through branch switches ------------------------------------------------------ */
+
+enum { WP_PERIODS = 20 };
+
+/* One 20-period Table 1 rolling run of body `m` (R0 = I, ω0 = 0, continuous contact certified per
+ * vertical, every switch located) under `law` with `method` at `setting` (RK4: steps a period; the
+ * adaptive steppers: rtol, atol = rtol/100, steps up to T/16; the reference, rtol 1e-13, up to T/160): the integration's seconds (best of `repeats`; set-up not
+ * counted, as on scipy's side) and the final state. Returns NAN when the run fails. */
+static double wp_run(const char *m, gb_contact_law law, gb_integrator method, double setting, int repeats,
+                     double y[GB_STATE_SIZE], size_t *switches)
+{
+    double best = INFINITY;
+    for (int r = 0; r < repeats; r++) {
+        gb_surface s;
+        gb_surface_init(&s, m, 0.12);
+        gb_dynamics_def def = gb_dynamics_default_def();
+        def.contact = GB_CONTACT_MODEL_CONTINUOUS, def.variant = GB_VARIANT_ROLLING, def.contact_law = law;
+        if (law == GB_CONTACT_LAW_UNILATERAL)
+            def.settle_time = gb_forcing_period(&def.forcing) / (double)gb_integrate_default_def().steps_per_period;
+        gb_dynamics *d = NULL;
+        const double R0[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1}, w0[3] = {0, 0, 0};
+        if (gb_dynamics_create(&s, &def, &d) || gb_dynamics_init_state(d, 0.0, R0, w0, y)) {
+            gb_dynamics_free(d);
+            return NAN;
+        }
+        gb_integrate_def idef = gb_integrate_default_def();
+        idef.method = method, idef.periods = WP_PERIODS, idef.locate_switches = 1;
+        /* the adaptive steppers choose their steps up to T/16 (at T/160 one step a nominal step is already
+         * tighter than every tolerance tried, and the tolerance would not show) */
+        if (method == GB_INTEGRATOR_RK4) idef.steps_per_period = (size_t)setting;
+        else idef.rtol = setting, idef.atol = setting / 100, idef.steps_per_period = setting < 1e-12 ? 160 : 16;
+        idef.sample_every = idef.steps_per_period;
+        gb_integrate_stats stats;
+        const double start = now();
+        const int status = gb_integrate_run(d, &idef, 0.0, y, NULL, NULL, &stats);
+        const double t = now() - start;
+        gb_dynamics_observables o = {0};
+        if (!status) gb_dynamics_observe(d, WP_PERIODS * gb_forcing_period(&def.forcing), y, &o);
+        *switches = o.branch_switches;
+        gb_dynamics_free(d);
+        if (status) return NAN;
+        best = fmin(best, t);
+    }
+    return best;
+}
+
+/* max |y - reference| over the quaternion (up to its sign) and ω */
+static double wp_error(const double y[7], const double ref[7])
+{
+    double plus = 0.0, minus = 0.0;
+    for (int i = 0; i < 7; i++) {
+        plus = fmax(plus, fabs(y[i] - ref[i]));
+        minus = fmax(minus, fabs((i < 4 ? -y[i] : y[i]) - ref[i]));
+    }
+    return fmin(plus, minus);
+}
+
+typedef struct wp_point {
+    double error, seconds;
+} wp_point;
+
+/* The seconds the curve (points of one stepper, any order) needs for `error`: log-log interpolation
+ * between the two points that bracket it; NAN when no point of the curve is that accurate. */
+static double wp_seconds_at(const wp_point *p, size_t n, double error)
+{
+    double best = NAN;
+    for (size_t i = 0; i < n; i++)
+        for (size_t j = 0; j < n; j++) {
+            if (!(p[i].error >= error && p[j].error <= error && p[i].error > p[j].error)) continue;
+            const double u = (log(error) - log(p[i].error)) / (log(p[j].error) - log(p[i].error));
+            const double t = exp(log(p[i].seconds) + u * (log(p[j].seconds) - log(p[i].seconds)));
+            if (!(t >= best)) best = t;
+        }
+    for (size_t i = 0; i < n; i++) /* a point at least as accurate costs at most its own time */
+        if (p[i].error <= error && !(p[i].seconds >= best)) best = p[i].seconds;
+    return best;
+}
+
+/* Error against run time over 20 Table 1 periods of the rolling model with its branch switches located:
+ * gomboc's RK4 and adaptive steppers, and scipy's DOP853 and Radau through references/switching.py's own
+ * switch handling (a grid scan for a lower minimum after every nominal step, brentq on the dense output),
+ * in the same run; errors against gomboc's rk8pd at rtol 1e-13, itself compared with switching.json.
+ * Then the same diagram under the unilateral law (impacts, two-point rolling) for gomboc alone. */
+static int bench_work_precision(const char *python)
+{
+    printf("\nbench: work-precision over %d Table 1 periods of the rolling model, Gomboc I, every branch switch located\n"
+           "(integration time only, set-up not counted on either side; errors: max |final state - reference|)\n\n",
+           WP_PERIODS);
+    static const struct {
+        gb_integrator method;
+        double settings[5];
+    } steppers[] = {{GB_INTEGRATOR_RK4, {80, 160, 320, 640, 1280}},
+                    {GB_INTEGRATOR_RK8PD, {1e-5, 1e-7, 1e-9, 1e-11, 1e-12}},
+                    {GB_INTEGRATOR_RKF45, {1e-4, 1e-6, 1e-8, 1e-10, 0}},
+                    {GB_INTEGRATOR_RK4IMP, {1e-4, 1e-6, 1e-8, 0, 0}}};
+    int failures = 0;
+    for (int law = 0; law < 2; law++) {
+        const gb_contact_law L = law ? GB_CONTACT_LAW_UNILATERAL : GB_CONTACT_LAW_HELD;
+        const char *law_name = law ? "unilateral" : "held";
+        double ref[GB_STATE_SIZE];
+        size_t ref_switches;
+        const double ref_seconds = wp_run("I", L, GB_INTEGRATOR_RK8PD, 1e-13, 1, ref, &ref_switches);
+        if (!isfinite(ref_seconds)) {
+            fprintf(stderr, "bench: the %s reference run failed: %s\n", law_name, gb_error_message());
+            failures++;
+            continue;
+        }
+        printf("contact law %s: reference rk8pd rtol 1e-13, %zu branch switches, %.3f s\n", law_name, ref_switches, ref_seconds);
+        if (!law) { /* the reference against the stored scipy trajectory (DOP853, rtol 1e-12) at the last period's end */
+            FILE *f = fopen("references/switching.json", "r");
+            char *text = f ? malloc(1 << 22) : NULL;
+            const size_t size = text ? fread(text, 1, (1 << 22) - 1, f) : 0;
+            if (f) fclose(f);
+            if (text) text[size] = 0;
+            cJSON *root = text ? cJSON_Parse(text) : NULL, *c;
+            double stored = NAN;
+            cJSON_ArrayForEach(c, cJSON_GetObjectItem(root, "cases")) {
+                const cJSON *periods = cJSON_GetObjectItem(c, "periods");
+                const cJSON *last = cJSON_GetArrayItem(periods, cJSON_GetArraySize(periods) - 1);
+                const cJSON *st = cJSON_GetObjectItem(last, "state");
+                if (strcmp(cJSON_GetStringValue(cJSON_GetObjectItem(c, "morphology")), "I") || cJSON_GetArraySize(periods) != WP_PERIODS ||
+                    cJSON_GetArraySize(st) != 7)
+                    continue;
+                double y[7];
+                for (int i = 0; i < 7; i++) y[i] = cJSON_GetArrayItem(st, i)->valuedouble;
+                stored = wp_error(y, ref);
+            }
+            cJSON_Delete(root);
+            free(text);
+            printf("the reference against references/switching.json (scipy DOP853 rtol 1e-12) at period %d: %.3g\n", WP_PERIODS,
+                   stored);
+            if (record) fprintf(record, ",\n  {\"wp_reference_against_stored\": %.6g}", stored);
+        }
+        printf("%-8s %-10s %12s %12s %10s\n", "tool", "stepper", "setting", "error", "seconds");
+        wp_point best_curve[4][5];
+        size_t best_n[4] = {0, 0, 0, 0};
+        for (size_t k = 0; k < sizeof steppers / sizeof steppers[0]; k++)
+            for (int j = 0; j < 5 && steppers[k].settings[j] > 0; j++) {
+                double y[GB_STATE_SIZE];
+                size_t sw;
+                const double t = wp_run("I", L, steppers[k].method, steppers[k].settings[j], 2, y, &sw);
+                const double e = isfinite(t) ? wp_error(y, ref) : NAN;
+                printf("%-8s %-10s %12.3g %12.3g %10.4f%s\n", "gomboc", gb_integrate_name(steppers[k].method),
+                       steppers[k].settings[j], e, t, isfinite(t) ? "" : "  (failed)");
+                if (isfinite(t)) best_curve[k][best_n[k]++] = (wp_point){e, t};
+                if (record)
+                    fprintf(record, ",\n  {\"wp_law\": \"%s\", \"wp_tool\": \"gomboc\", \"wp_stepper\": \"%s\", \"wp_setting\": %.6g, "
+                                    "\"wp_error\": %.6g, \"wp_seconds\": %.6g, \"wp_switches\": %zu}",
+                            law_name, gb_integrate_name(steppers[k].method), steppers[k].settings[j], e, t, sw);
+            }
+        if (law) continue; /* scipy's reference model has no impacts */
+        /* the reference against the stored scipy trajectory (DOP853 rtol 1e-12) */
+        {
+            static const struct {
+                const char *method;
+                double rtol;
+            } scipy[] = {{"DOP853", 1e-6}, {"DOP853", 1e-10}, {"Radau", 1e-6}, {"Radau", 1e-9}};
+            enum { SCIPY_RUNS = sizeof scipy / sizeof scipy[0] };
+            char lines[SCIPY_RUNS][4096];
+            int closed[SCIPY_RUNS];
+            /* two at a time, one on each core (each single-threaded: OPENBLAS_NUM_THREADS=1), each timing itself */
+            for (size_t k = 0; k < SCIPY_RUNS; k += 2) {
+                FILE *p[2] = {NULL, NULL};
+                for (size_t i = 0; i < 2 && k + i < SCIPY_RUNS; i++) {
+                    char command[1024];
+                    snprintf(command, sizeof command,
+                             "OPENBLAS_NUM_THREADS=1 SWITCHING_FINAL=1 SWITCHING_PERIODS=%d SWITCHING_METHOD=%s SWITCHING_RTOL=%g "
+                             "%s references/switching.py I",
+                             WP_PERIODS, scipy[k + i].method, scipy[k + i].rtol, python);
+                    p[i] = popen(command, "r");
+                }
+                for (size_t i = 0; i < 2 && k + i < SCIPY_RUNS; i++) {
+                    lines[k + i][0] = 0;
+                    if (!p[i] || !fgets(lines[k + i], sizeof lines[k + i], p[i])) lines[k + i][0] = 0;
+                    closed[k + i] = p[i] ? pclose(p[i]) : -1;
+                }
+            }
+            double worst_ratio = INFINITY;
+            for (size_t k = 0; k < SCIPY_RUNS; k++) {
+                const char *line = lines[k];
+                double y[7] = {0}, seconds = NAN;
+                int switches = -1, parsed = 0;
+                const char *state = strstr(line, "\"state\": ["), *sec = strstr(line, "\"seconds\": "),
+                           *swp = strstr(line, "\"switches\": ");
+                if (state && sec && swp) {
+                    const char *c = state + 10;
+                    char *end;
+                    for (parsed = 0; parsed < 7; parsed++) {
+                        y[parsed] = strtod(c, &end);
+                        if (end == c) break;
+                        c = end + (*end == ',' ? 1 : 0);
+                    }
+                    seconds = strtod(sec + 11, NULL), switches = atoi(swp + 12);
+                }
+                if (closed[k] != 0 || parsed != 7 || !isfinite(seconds)) {
+                    fprintf(stderr, "bench: scipy %s rtol %g: no result (%s)\n", scipy[k].method, scipy[k].rtol, line);
+                    failures++;
+                    continue;
+                }
+                const double e = wp_error(y, ref);
+                /* gomboc's best stepper at this error: the least time any of its curves needs */
+                double fastest = NAN;
+                const char *which = "-";
+                for (size_t c2 = 0; c2 < 4; c2++) {
+                    const double t = wp_seconds_at(best_curve[c2], best_n[c2], e);
+                    if (isfinite(t) && !(t >= fastest)) fastest = t, which = gb_integrate_name(steppers[c2].method);
+                }
+                const double ratio = seconds / fastest;
+                if (ratio < worst_ratio) worst_ratio = ratio;
+                printf("%-8s %-10s %12.3g %12.3g %10.4f   %d switches; gomboc's best at this error: %s, %.4f s = %.0fx\n",
+                       "scipy", scipy[k].method, scipy[k].rtol, e, seconds, switches, which, fastest, ratio);
+                if (record)
+                    fprintf(record, ",\n  {\"wp_law\": \"held\", \"wp_tool\": \"scipy\", \"wp_stepper\": \"%s\", \"wp_setting\": %.6g, "
+                                    "\"wp_error\": %.6g, \"wp_seconds\": %.6g, \"wp_switches\": %d, \"wp_gomboc_best\": \"%s\", "
+                                    "\"wp_gomboc_seconds\": %.6g, \"wp_ratio\": %.6g}",
+                            scipy[k].method, scipy[k].rtol, e, seconds, switches, which, fastest, ratio);
+            }
+            printf("\n(target, issue 30: gomboc's best stepper >= 50x scipy's at equal error; least ratio measured: %.0fx)\n\n",
+                   worst_ratio);
+        }
+    }
+    return failures;
+}
+
 /* A scan's Melnikov plan (section 7): one body's reduced model and its integrals at the 25 frequencies of
  * the (omega, A1) maps (12 to 24 rad/s), from the separatrix tables (what gomboc scan and gomboc melnikov
  * do) and, side by side, by the adaptive quadrature at every frequency; the largest difference of the
@@ -890,6 +1115,8 @@ int main(int argc, char **argv)
     char tmp[1024] = "";
     gb_error_init_gsl();
     if (argc > 1 && !strcmp(argv[1], "--plain-only")) return plain_only();
+    if (argc > 1 && !strcmp(argv[1], "--work-precision")) /* that section alone, for development */
+        return bench_work_precision(getenv("PYTHON") ? getenv("PYTHON") : "python3") ? 1 : 0;
     if (argc > 2 && !strcmp(argv[1], "--plain-process")) return plain_process(!strcmp(argv[2], "II") ? "II" : "I");
     if (argc > 2) run_native(argv[2]);
     if (argc > 1) {
@@ -976,6 +1203,7 @@ int main(int argc, char **argv)
     bench_flight();
     bench_headroom();
     failures += bench_melnikov();
+    failures += bench_work_precision(getenv("PYTHON") ? getenv("PYTHON") : "python3");
     if (argc > 3) failures += bench_whole_process(argv[2], argv[3], record);
     if (argc > 3) failures += bench_scans(argv[3], record);
     if (record) {
