@@ -937,6 +937,10 @@ void gb_dynamics_share_atlas(gb_dynamics *to, const gb_dynamics *from)
 int gb_dynamics_save_atlas(const gb_dynamics *d)
 {
     if (!d->atlas || !d->def.atlas_file) return GB_OK;
+    /* loaded from the file and no cell proved since: the file holds everything this run has */
+    gb_atlas_stats st;
+    gb_atlas_get_stats(d->atlas, &st);
+    if (d->atlas_loaded && st.build_seconds == 0.0) return GB_OK;
     /* the cells another run wrote there since this one loaded it are kept (missing or stale: replaced) */
     if (gb_atlas_merge(d->atlas, d->def.atlas_file)) gb_error_clear();
     return gb_atlas_save(d->atlas, d->def.atlas_file);

@@ -212,7 +212,8 @@ int gb_dynamics_atlas_stats(const gb_dynamics *dynamics, gb_atlas_stats *out, si
  * `from` freed last): a Lyapunov pair's two trajectories then build each cell once. */
 void gb_dynamics_share_atlas(gb_dynamics *to, const gb_dynamics *from);
 /* certificate = atlas with an atlas_file: write the atlas's cells there with those the file holds that
- * it lacks (gb_atlas_merge, then gb_atlas_save): runs that share one file add up their cells. */
+ * it lacks (gb_atlas_merge, then gb_atlas_save): runs that share one file add up their cells. Nothing
+ * is written when the atlas was loaded from that file and no cell was proved since. */
 int gb_dynamics_save_atlas(const gb_dynamics *dynamics);
 
 /* The initial state: attitude R0 (row-major 3 × 3, orthonormal), ω0; W = 0. Establishes the

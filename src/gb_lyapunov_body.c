@@ -41,8 +41,11 @@ int gb_lyapunov_body_create(const gb_surface *surface, const gb_dynamics_def *dy
     b->omega_scale = omega_scale;
     b->translation = dynamics->contact_law == GB_CONTACT_LAW_UNILATERAL;
     int status = GB_OK;
+    /* the partner takes the reference's atlas (below): it need not read the atlas file itself */
+    gb_dynamics_def partner = *dynamics;
+    partner.atlas_file = NULL;
     for (int k = 0; k < 2 && !status; k++) {
-        status = gb_dynamics_start(surface, dynamics, R0, omega0, &b->dynamics[k], b->y[k]);
+        status = gb_dynamics_start(surface, k ? &partner : dynamics, R0, omega0, &b->dynamics[k], b->y[k]);
         if (!status) status = gb_integrate_begin(b->dynamics[k], integrate, 0.0, &b->session[k]);
     }
     if (!status) gb_dynamics_share_atlas(b->dynamics[1], b->dynamics[0]);
