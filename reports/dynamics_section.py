@@ -65,7 +65,7 @@ def switching_work_precision(out, records):
             steppers = sorted({r["wp_stepper"] for r in chosen if r["wp_law"] == law and r["wp_tool"] == tool})
             for stepper in steppers:
                 pts = [r for r in chosen if r["wp_law"] == law and r["wp_tool"] == tool and r["wp_stepper"] == stepper
-                       and r["wp_seconds"] == r["wp_seconds"]]
+                       and not r.get("wp_failed")]
                 ax.loglog([r["wp_seconds"] for r in pts], [max(r["wp_error"], 1e-17) for r in pts],
                           marker="o" if tool == "gomboc" else "s", ls="-" if tool == "gomboc" else "--",
                           label=f"{tool} {stepper}")
@@ -93,7 +93,13 @@ def switching_work_precision(out, records):
     for r in chosen:
         if r["wp_tool"] == "scipy":
             lines.append(f"| {r['wp_stepper']} | {r['wp_setting']:g} | {r['wp_error']:.2g} | {r['wp_seconds']:.2f} | "
-                         f"{r['wp_gomboc_best']} | {r['wp_gomboc_seconds']:.4f} | {r['wp_ratio']:.0f}× |")
+                         f"{r['wp_gomboc_best']} | {r['wp_gomboc_seconds']:.4f} | "
+                         f"{format(r['wp_ratio'], '.0f') + '×' if r['wp_ratio'] > 0 else '—'} |")
+    failed = [r for r in chosen if r.get("wp_failed")]
+    if failed:
+        lines += ["", "Runs that failed (the computation stopped with an error; not drawn): " +
+                  ", ".join(f"{r['wp_tool']} {r['wp_stepper']} at {r['wp_setting']:g} under the {r['wp_law']} law"
+                            for r in failed) + "."]
     lines += ["", "![work-precision through switches](work-precision-switching.png)"]
     return lines
 

@@ -905,7 +905,7 @@ static int bench_work_precision(const char *python)
             free(text);
             printf("the reference against references/switching.json (scipy DOP853 rtol 1e-12) at period %d: %.3g\n", WP_PERIODS,
                    stored);
-            if (record) fprintf(record, ",\n  {\"wp_reference_against_stored\": %.6g}", stored);
+            if (record && isfinite(stored)) fprintf(record, ",\n  {\"wp_reference_against_stored\": %.6g}", stored);
         }
         printf("%-8s %-10s %12s %12s %10s\n", "tool", "stepper", "setting", "error", "seconds");
         wp_point best_curve[4][5];
@@ -919,10 +919,14 @@ static int bench_work_precision(const char *python)
                 printf("%-8s %-10s %12.3g %12.3g %10.4f%s\n", "gomboc", gb_integrate_name(steppers[k].method),
                        steppers[k].settings[j], e, t, isfinite(t) ? "" : "  (failed)");
                 if (isfinite(t)) best_curve[k][best_n[k]++] = (wp_point){e, t};
-                if (record)
+                if (record && isfinite(t))
                     fprintf(record, ",\n  {\"wp_law\": \"%s\", \"wp_tool\": \"gomboc\", \"wp_stepper\": \"%s\", \"wp_setting\": %.6g, "
                                     "\"wp_error\": %.6g, \"wp_seconds\": %.6g, \"wp_switches\": %zu}",
                             law_name, gb_integrate_name(steppers[k].method), steppers[k].settings[j], e, t, sw);
+                else if (record) /* a run that failed: JSON has no NaN */
+                    fprintf(record, ",\n  {\"wp_law\": \"%s\", \"wp_tool\": \"gomboc\", \"wp_stepper\": \"%s\", \"wp_setting\": %.6g, "
+                                    "\"wp_failed\": true}",
+                            law_name, gb_integrate_name(steppers[k].method), steppers[k].settings[j]);
             }
         if (law) continue; /* scipy's reference model has no impacts */
         /* the reference against the stored scipy trajectory (DOP853 rtol 1e-12) */
@@ -981,10 +985,14 @@ static int bench_work_precision(const char *python)
                     const double t = wp_seconds_at(best_curve[c2], best_n[c2], e);
                     if (isfinite(t) && !(t >= fastest)) fastest = t, which = gb_integrate_name(steppers[c2].method);
                 }
-                const double ratio = seconds / fastest;
+                double ratio = seconds / fastest;
                 if (ratio < worst_ratio) worst_ratio = ratio;
                 printf("%-8s %-10s %12.3g %12.3g %10.4f   %d switches; gomboc's best at this error: %s, %.4f s = %.0fx\n",
                        "scipy", scipy[k].method, scipy[k].rtol, e, seconds, switches, which, fastest, ratio);
+                if (!isfinite(ratio)) { /* no gomboc curve reaches this error: nothing to compare */
+                    fastest = ratio = 0.0;
+                    which = "none as accurate";
+                }
                 if (record)
                     fprintf(record, ",\n  {\"wp_law\": \"held\", \"wp_tool\": \"scipy\", \"wp_stepper\": \"%s\", \"wp_setting\": %.6g, "
                                     "\"wp_error\": %.6g, \"wp_seconds\": %.6g, \"wp_switches\": %d, \"wp_gomboc_best\": \"%s\", "
