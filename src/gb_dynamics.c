@@ -202,7 +202,10 @@ int gb_dynamics_create(const gb_surface *surface, const gb_dynamics_def *def, gb
         /* Only what the contact model needs: a grid (and its tracker) or the certificate. */
         if (def->contact == GB_CONTACT_MODEL_CONTINUOUS) {
             status = gb_certify_create(surface, &def->certify, &d->certify);
-            if (!status && def->certificate == GB_CERTIFICATE_ATLAS) {
+            if (!status && def->certificate == GB_CERTIFICATE_ATLAS && def->atlas_shared) {
+                d->atlas = def->atlas_shared;
+                d->atlas_borrowed = 1;
+            } else if (!status && def->certificate == GB_CERTIFICATE_ATLAS) {
                 gb_atlas_def adef = def->atlas;
                 adef.height_tol = def->certify.height_tol;
                 status = gb_atlas_create(surface, &adef, &d->atlas);

@@ -175,6 +175,9 @@ typedef struct gb_dynamics_def {
     gb_atlas_def atlas;            /* certificate = atlas: its cells (its height_tol is certify's) */
     const char *atlas_file;        /* certificate = atlas: load the atlas from here when the file matches the
                                     * body (else build it), and gb_dynamics_save_atlas writes it (NULL: none) */
+    gb_atlas *atlas_shared;        /* certificate = atlas: use this atlas of the same body and definition,
+                                    * which the caller keeps across runs (not loaded, saved or freed here; one
+                                    * thread at a time), instead of an own one (NULL: own) */
     gb_dynamics_lowest_node grid_lowest; /* contact = grid: this search instead of brute force (NULL) */
     void *grid_lowest_context;
 } gb_dynamics_def;

@@ -583,12 +583,33 @@ int gb_scan_melnikov_margins(const gb_case *scene, double *margin, double *margi
 
 /* ---- a point's run ------------------------------------------------------------------------------ */
 
+int gb_scan_atlas_create(const gb_scan *scan, gb_atlas **out)
+{
+    *out = NULL;
+    gb_case scene;
+    int status = gb_scan_point_case(scan, 0, &scene);
+    if (status || scene.dynamics.certificate != GB_CERTIFICATE_ATLAS || scene.dynamics.contact != GB_CONTACT_MODEL_CONTINUOUS)
+        return status;
+    gb_atlas_def adef = scene.dynamics.atlas;
+    adef.height_tol = scene.dynamics.certify.height_tol; /* as gb_dynamics_create builds its own */
+    status = gb_atlas_create(&scene.body, &adef, out);
+    if (!status && scan->atlas_file && gb_atlas_load(*out, scan->atlas_file)) gb_error_clear(); /* missing or stale: empty */
+    return status;
+}
+
 int gb_scan_point_run(const gb_scan *scan, const gb_scan_melnikov *melnikov, size_t index, gb_scan_metrics *out)
+{
+    return gb_scan_point_run_atlas(scan, melnikov, index, NULL, out);
+}
+
+int gb_scan_point_run_atlas(const gb_scan *scan, const gb_scan_melnikov *melnikov, size_t index, gb_atlas *atlas,
+                            gb_scan_metrics *out)
 {
     gb_case scene;
     int status = gb_scan_point_case(scan, index, &scene);
     if (status) return status;
-    if (scan->atlas_file && scene.dynamics.certificate == GB_CERTIFICATE_ATLAS) scene.dynamics.atlas_file = scan->atlas_file;
+    if (scene.dynamics.certificate == GB_CERTIFICATE_ATLAS && atlas) scene.dynamics.atlas_shared = atlas;
+    else if (scan->atlas_file && scene.dynamics.certificate == GB_CERTIFICATE_ATLAS) scene.dynamics.atlas_file = scan->atlas_file;
     gb_scan_metrics m = {.omega_rms = NAN, .switch_rate = NAN, .mean_height = NAN, .lambda = NAN, .lambda_error = NAN,
                          .strobe_sd = NAN, .geff_nonpositive = NAN, .lift_off = NAN, .lambda_early = NAN,
                          .lambda_late = NAN, .chaos_lifetime = NAN, .melnikov_margin = NAN, .melnikov_margin_eq93 = NAN};

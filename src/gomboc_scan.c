@@ -385,6 +385,27 @@ static gb_scan_melnikov *prepare_melnikov(scan_state *st, const ranks *r, const 
     return plan;
 }
 
+enum { ATLAS_SAVE_POINTS = 8 };
+/* A thread's atlas beyond this memory (the enclosures its proofs kept) is written and read back anew:
+ * the file holds its cells, not the enclosures. */
+#define ATLAS_MEMORY ((size_t)256 << 20)
+
+/* The thread's atlas merged with its file and written back, when it proved a cell since the last time
+ * (a file that cannot be written costs the sharing, not the scan: the points' results do not depend on
+ * the atlas). */
+static void save_atlas(const gb_scan *scan, gb_atlas *atlas, double *built_at_save)
+{
+    gb_atlas_stats stats;
+    gb_atlas_get_stats(atlas, &stats);
+    if (stats.build_seconds == *built_at_save) return;
+    *built_at_save = stats.build_seconds;
+    if (gb_atlas_merge(atlas, scan->atlas_file)) gb_error_clear();
+    if (gb_atlas_save(atlas, scan->atlas_file)) {
+        fprintf(stderr, "gomboc scan: the shared atlas was not written: %s\n", gb_error_message());
+        gb_error_clear();
+    }
+}
+
 /* Run this rank's share of the points not yet done: the i-th of them for i ≡ rank (mod ranks), on the
  * rank's threads; rank 0 journals its own points and those the other ranks send. */
 static void run_points(scan_state *st, const ranks *r)
@@ -397,7 +418,21 @@ static void run_points(scan_state *st, const ranks *r)
     gb_scan_melnikov *melnikov = todo ? prepare_melnikov(st, r, todo, left) : NULL;
     st->points_start = st->last_report = gb_wall_seconds();
 #ifdef _OPENMP
-#pragma omp parallel for schedule(dynamic, 1)
+#pragma omp parallel
+#endif
+    {
+    /* A shared atlas stays in each thread's memory from point to point; the thread merges it with the
+     * file and writes it back every ATLAS_SAVE_POINTS points it ran and at its end, so that the threads
+     * and the ranks still share their cells through the file. */
+    gb_atlas *atlas = NULL;
+    double built_at_save = 0.0;
+    size_t since_save = 0;
+    if (st->scan->atlas_file && gb_scan_atlas_create(st->scan, &atlas)) {
+        gb_error_clear(); /* the points then read and write the file themselves */
+        atlas = NULL;
+    }
+#ifdef _OPENMP
+#pragma omp for schedule(dynamic, 1)
 #endif
     for (size_t i = (size_t)r->rank; i < left; i += step) {
         int skip;
@@ -408,7 +443,17 @@ static void run_points(scan_state *st, const ranks *r)
         if (skip) continue;
         const size_t k = todo[i];
         gb_scan_metrics m;
-        int s = gb_scan_point_run(st->scan, melnikov, k, &m);
+        int s = gb_scan_point_run_atlas(st->scan, melnikov, k, atlas, &m);
+        if (atlas && ++since_save == ATLAS_SAVE_POINTS) {
+            save_atlas(st->scan, atlas, &built_at_save), since_save = 0;
+            gb_atlas_stats held;
+            gb_atlas_get_stats(atlas, &held);
+            if (held.bytes > ATLAS_MEMORY) {
+                gb_atlas_free(atlas);
+                if (gb_scan_atlas_create(st->scan, &atlas)) gb_error_clear(), atlas = NULL;
+                built_at_save = 0.0;
+            }
+        }
         if (s && st->scan->record_failures && s != GB_ENOMEM && s != GB_EIO && s != GB_EINVAL && s != GB_EDOM) {
             /* failed_points = record: the computation failed (the model cannot follow this point); a row of NaN */
             double x, y;
@@ -438,6 +483,9 @@ static void run_points(scan_state *st, const ranks *r)
             else send_to_root(row, TAG_ROW);
 #endif
         }
+    }
+    if (atlas) save_atlas(st->scan, atlas, &built_at_save);
+    gb_atlas_free(atlas);
     }
     free(todo);
     gb_scan_melnikov_free(melnikov);
