@@ -267,7 +267,9 @@ valgrind-only: $(BIN)
 	$(VALGRIND) $(BIN) check $(BUILD)/valgrind/paper-grid-summary.json > /dev/null || { status=1; echo "valgrind: check FAILED"; }; \
 	rm -f $(BUILD)/valgrind/small-scan.*; \
 	$(VALGRIND) $(BIN) scan verify/valgrind/scan/small.ini --out $(BUILD)/valgrind --threads 1 || { status=1; echo "valgrind: scan FAILED"; }; \
-	sh scripts/gate-stamp.sh $(GATES) valgrind $$status "memcheck: $$n scenes (verify/valgrind), an atlas file written and loaded, shape, contact, a scan, a set checked and a refused input"; \
+	rm -f $(BUILD)/valgrind/shared-atlas-scan.*; \
+	$(VALGRIND) $(BIN) scan verify/valgrind/scan/shared-atlas.ini --out $(BUILD)/valgrind --threads 1 || { status=1; echo "valgrind: shared-atlas scan FAILED"; }; \
+	sh scripts/gate-stamp.sh $(GATES) valgrind $$status "memcheck: $$n scenes (verify/valgrind), an atlas file written and loaded, shape, contact, a scan, a scan sharing an atlas, a set checked and a refused input"; \
 	echo "valgrind: $$( [ $$status -eq 0 ] && echo 'no errors, no leaks' || echo FAILED)"; \
 	exit $$status
 
