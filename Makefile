@@ -180,7 +180,7 @@ mpi-only: $(BIN) $(VERIFY_BIN)
 # --- quality gates on bad input and memory; each writes $(OUT)/gates/GATE.json for the report ----------
 GATES := $(OUT)/gates
 
-# The scene reader, the option parser, and the atlas file, scan file and scan journal readers under
+# The scene reader, the option parser, and the atlas file, hull file, scan file and scan journal readers under
 # libFuzzer (clang, with ASan and UBSan), FUZZ_SECONDS each, seeded from cases/, cases/scans and
 # verify/fuzz/options.seeds, with dictionaries of the keys and options.
 # A crash or a broken invariant stops it and leaves build-fuzz/crash-*; add such an input to
@@ -193,11 +193,12 @@ fuzz: deps
 	@sh scripts/install-deps.sh fuzz
 	@$(MAKE) --no-print-directory fuzz-only
 
-FUZZ_TARGETS := case options atlas scan journal
+FUZZ_TARGETS := case options atlas hull scan journal
 fuzz-only: $(FUZZ_TARGETS:%=$(FUZZ_DIR)/fuzz-%)
 	@mkdir -p $(FUZZ_TARGETS:%=$(FUZZ_DIR)/corpus-%)
 	@n=0; while IFS= read -r line; do n=$$((n+1)); printf '%s' "$$line" | tr ' ' '\000' > $(FUZZ_DIR)/corpus-options/seed-$$n; \
 	  done < verify/fuzz/options.seeds
+	@cp verify/fuzz/hull.seed $(FUZZ_DIR)/corpus-hull/seed
 	status=0; \
 	$(FUZZ_DIR)/fuzz-case -max_total_time=$(FUZZ_SECONDS) -dict=verify/fuzz/case.dict -close_fd_mask=3 \
 	  -artifact_prefix=$(FUZZ_DIR)/crash-case- $(FUZZ_DIR)/corpus-case cases > $(FUZZ_DIR)/fuzz-case.log 2>&1 || status=1; \
@@ -205,17 +206,19 @@ fuzz-only: $(FUZZ_TARGETS:%=$(FUZZ_DIR)/fuzz-%)
 	  -artifact_prefix=$(FUZZ_DIR)/crash-options- $(FUZZ_DIR)/corpus-options > $(FUZZ_DIR)/fuzz-options.log 2>&1 || status=1; \
 	$(FUZZ_DIR)/fuzz-atlas -max_total_time=$(FUZZ_SECONDS) -close_fd_mask=3 \
 	  -artifact_prefix=$(FUZZ_DIR)/crash-atlas- $(FUZZ_DIR)/corpus-atlas > $(FUZZ_DIR)/fuzz-atlas.log 2>&1 || status=1; \
+	$(FUZZ_DIR)/fuzz-hull -max_total_time=$(FUZZ_SECONDS) -use_value_profile=1 -close_fd_mask=3 \
+	  -artifact_prefix=$(FUZZ_DIR)/crash-hull- $(FUZZ_DIR)/corpus-hull > $(FUZZ_DIR)/fuzz-hull.log 2>&1 || status=1; \
 	$(FUZZ_DIR)/fuzz-scan -max_total_time=$(FUZZ_SECONDS) -dict=verify/fuzz/scan.dict -close_fd_mask=3 \
 	  -artifact_prefix=$(FUZZ_DIR)/crash-scan- $(FUZZ_DIR)/corpus-scan cases/scans > $(FUZZ_DIR)/fuzz-scan.log 2>&1 || status=1; \
 	$(FUZZ_DIR)/fuzz-journal -max_total_time=$(FUZZ_SECONDS) -close_fd_mask=3 \
 	  -artifact_prefix=$(FUZZ_DIR)/crash-journal- $(FUZZ_DIR)/corpus-journal > $(FUZZ_DIR)/fuzz-journal.log 2>&1 || status=1; \
 	runs="$$(grep -h '^Done' $(FUZZ_TARGETS:%=$(FUZZ_DIR)/fuzz-%.log) | tr '\n' ';')"; \
 	tail -n 3 $(FUZZ_TARGETS:%=$(FUZZ_DIR)/fuzz-%.log); \
-	sh scripts/gate-stamp.sh $(GATES) fuzz $$status "$(FUZZ_SECONDS) s per target (case reader; option parser; atlas file reader; scan file reader; scan journal reader): $$runs"; \
+	sh scripts/gate-stamp.sh $(GATES) fuzz $$status "$(FUZZ_SECONDS) s per target (case reader; option parser; atlas file reader; hull file reader; scan file reader; scan journal reader): $$runs"; \
 	echo "fuzz: $$( [ $$status -eq 0 ] && echo 'no crash' || echo 'FAILED: see build-fuzz/*.log and build-fuzz/crash-*')"; \
 	exit $$status
 
-$(FUZZ_DIR)/fuzz-case $(FUZZ_DIR)/fuzz-atlas $(FUZZ_DIR)/fuzz-scan $(FUZZ_DIR)/fuzz-journal: $(FUZZ_DIR)/fuzz-%: verify/fuzz/fuzz_%.c $(CORE_SRC) $(wildcard src/*.h)
+$(FUZZ_DIR)/fuzz-case $(FUZZ_DIR)/fuzz-atlas $(FUZZ_DIR)/fuzz-hull $(FUZZ_DIR)/fuzz-scan $(FUZZ_DIR)/fuzz-journal: $(FUZZ_DIR)/fuzz-%: verify/fuzz/fuzz_%.c $(CORE_SRC) $(wildcard src/*.h verify/fuzz/*.h)
 	@mkdir -p $(FUZZ_DIR)
 	clang $(FUZZ_CFLAGS) -fsanitize=fuzzer $(shell pkg-config --cflags $(PKGS)) -Isrc -o $@ $< $(CORE_SRC) $(CORE_LIBS)
 
@@ -263,13 +266,16 @@ valgrind-only: $(BIN)
 	rm -f $(BUILD)/valgrind/atlas.bin; for k in 1 2; do \
 	  $(VALGRIND) $(BIN) run verify/valgrind/rolling-atlas.ini --out $(BUILD)/valgrind --atlas $(BUILD)/valgrind/atlas.bin \
 	    || { status=1; echo "valgrind: atlas file FAILED"; }; done; \
+	rm -f $(BUILD)/valgrind/hull.bin; for k in 1 2; do \
+	  $(VALGRIND) $(BIN) run verify/valgrind/paper-fast-grid.ini --out $(BUILD)/valgrind --hull $(BUILD)/valgrind/hull.bin \
+	    || { status=1; echo "valgrind: hull file FAILED"; }; done; \
 	$(VALGRIND) $(BIN) run verify/valgrind/missing.ini 2> /dev/null; [ $$? -eq 2 ] || { status=1; echo "valgrind: bad input FAILED"; }; \
 	$(VALGRIND) $(BIN) check $(BUILD)/valgrind/paper-grid-summary.json > /dev/null || { status=1; echo "valgrind: check FAILED"; }; \
 	rm -f $(BUILD)/valgrind/small-scan.*; \
 	$(VALGRIND) $(BIN) scan verify/valgrind/scan/small.ini --out $(BUILD)/valgrind --threads 1 || { status=1; echo "valgrind: scan FAILED"; }; \
 	rm -f $(BUILD)/valgrind/shared-atlas-scan.*; \
 	$(VALGRIND) $(BIN) scan verify/valgrind/scan/shared-atlas.ini --out $(BUILD)/valgrind --threads 1 || { status=1; echo "valgrind: shared-atlas scan FAILED"; }; \
-	sh scripts/gate-stamp.sh $(GATES) valgrind $$status "memcheck: $$n scenes (verify/valgrind), an atlas file written and loaded, shape, contact, a scan, a scan sharing an atlas, a set checked and a refused input"; \
+	sh scripts/gate-stamp.sh $(GATES) valgrind $$status "memcheck: $$n scenes (verify/valgrind), an atlas file and a hull file written and loaded, shape, contact, a scan, a scan sharing an atlas, a set checked and a refused input"; \
 	echo "valgrind: $$( [ $$status -eq 0 ] && echo 'no errors, no leaks' || echo FAILED)"; \
 	exit $$status
 

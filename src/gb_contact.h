@@ -107,6 +107,16 @@ int gb_contact_tracker_create(const gb_contact_grid *grid, gb_contact_tracker **
 void gb_contact_tracker_free(gb_contact_tracker *tracker);
 /* The hull's vertices (0 when the tracker fell back to the patch-tree search). */
 size_t gb_contact_tracker_vertices(const gb_contact_tracker *tracker);
+/* The hull as a file, a cache per grid: gb_contact_tracker_save writes the tracker's hull graph
+ * atomically (GB_EINVAL when it has none); gb_contact_tracker_load makes a tracker from a file written
+ * for this very grid (the bits of its nodes, Qhull's release) and refuses any other with GB_EIO and why.
+ * A loaded tracker answers every query as the one Qhull built, bit for bit. */
+int gb_contact_tracker_save(const gb_contact_tracker *tracker, const char *path);
+int gb_contact_tracker_load(const gb_contact_grid *grid, const char *path, gb_contact_tracker **out);
+/* The same from a file's bytes (`name` for the message), and the largest file of this grid's hull. */
+int gb_contact_tracker_load_buffer(const gb_contact_grid *grid, const unsigned char *data, size_t size, const char *name,
+                                   gb_contact_tracker **out);
+size_t gb_contact_tracker_file_limit(const gb_contact_grid *grid);
 int gb_contact_tracker_find(gb_contact_tracker *tracker, const double zb[3], gb_contact_node *out);
 
 #define GB_CONTACT_POLAR_CAP 1e-2 /* sin φ below which Newton works in the POLAR_X chart */

@@ -30,6 +30,8 @@
 #include "gb_contact_internal.h"
 
 #include "gb_error.h"
+#include "gb_file.h"
+#include "gb_hash.h"
 
 #include <libqhull_r/qhull_ra.h>
 #include <stdint.h>
@@ -254,4 +256,154 @@ int gb_contact_tracker_find(gb_contact_tracker *t, const double zb[3], gb_contac
     t->last_index = best_index;
     gb_contact_grid_fill_node(t->grid, best_index, best, visited, out);
     return GB_OK;
+}
+
+/* The hull file: a header, the graph's arrays and an FNV-1a checksum of everything before it. The header
+ * names what the graph was built from (the nodes' bits, their count, COPLANAR and the Qhull release), so
+ * that a file is taken only for the very grid it describes. */
+enum { HULL_FILE_VERSION = 1 };
+static const char hull_magic[8] = {'G', 'B', 'H', 'U', 'L', 'L', '\0', '\0'};
+typedef struct hull_header {
+    char magic[8];
+    uint64_t version, nodes, nodes_hash, coplanar_bits, qhull_hash;
+    uint64_t vertices, edges, coplanar;
+} hull_header;
+
+/* The fingerprint of the nodes' coordinates: FNV-1a over their 64-bit words (the file only has to tell
+ * this grid from any other one, not resist a forger). */
+static uint64_t nodes_hash(const gb_contact_grid *g)
+{
+    uint64_t h = GB_HASH_OFFSET;
+    for (size_t k = 0; k < 3 * g->size; k++) {
+        uint64_t w;
+        memcpy(&w, &g->x[k], sizeof w);
+        h = (h ^ w) * 1099511628211ull;
+        h ^= h >> 29;
+    }
+    return h;
+}
+
+static void hull_header_of(const gb_contact_grid *g, hull_header *h)
+{
+    memset(h, 0, sizeof *h);
+    memcpy(h->magic, hull_magic, sizeof h->magic);
+    h->version = HULL_FILE_VERSION;
+    h->nodes = g->size;
+    h->nodes_hash = nodes_hash(g);
+    memcpy(&h->coplanar_bits, &COPLANAR, sizeof h->coplanar_bits);
+    h->qhull_hash = gb_hash_add(GB_HASH_OFFSET, qh_version, strlen(qh_version));
+}
+
+int gb_contact_tracker_save(const gb_contact_tracker *t, const char *path)
+{
+    if (!t->vertices) return gb_error_set(GB_EINVAL, "the contact tracker has no hull to save (Qhull could not build it)");
+    hull_header h;
+    hull_header_of(t->grid, &h);
+    h.vertices = t->vertices, h.edges = t->edge_start[t->vertices], h.coplanar = t->coplanar;
+    const size_t words = t->vertices + (t->vertices + 1) + h.edges + t->coplanar;
+    const size_t size = sizeof h + words * sizeof(uint32_t) + sizeof(uint64_t);
+    unsigned char *bytes = malloc(size), *p = bytes;
+    if (!bytes) return gb_error_set(GB_ENOMEM, "out of memory for the hull file");
+    memcpy(p, &h, sizeof h), p += sizeof h;
+    memcpy(p, t->node, t->vertices * sizeof(uint32_t)), p += t->vertices * sizeof(uint32_t);
+    memcpy(p, t->edge_start, (t->vertices + 1) * sizeof(uint32_t)), p += (t->vertices + 1) * sizeof(uint32_t);
+    memcpy(p, t->edge, h.edges * sizeof(uint32_t)), p += h.edges * sizeof(uint32_t);
+    if (t->coplanar) memcpy(p, t->near, t->coplanar * sizeof(uint32_t)), p += t->coplanar * sizeof(uint32_t);
+    const uint64_t sum = gb_hash_add(GB_HASH_OFFSET, bytes, (size_t)(p - bytes));
+    memcpy(p, &sum, sizeof sum);
+    const int status = gb_file_write_atomically(path, bytes, size);
+    free(bytes);
+    return status;
+}
+
+/* Copy `count` 32-bit words from the file's bytes into a new array (at least one element). */
+static uint32_t *take_words(const unsigned char **p, size_t count)
+{
+    uint32_t *a = malloc((count ? count : 1) * sizeof *a);
+    if (a && count) memcpy(a, *p, count * sizeof *a);
+    *p += count * sizeof *a;
+    return a;
+}
+
+/* Why the bytes are not a hull of this grid (NULL when they are): header, checksum, sizes, and every
+ * index within its range (a vertex a node, an edge's end a vertex, the CSR's starts in order). */
+static const char *hull_refused(const gb_contact_grid *g, const unsigned char *data, size_t size, hull_header *have)
+{
+    hull_header want;
+    hull_header_of(g, &want);
+    if (size < sizeof *have + sizeof(uint64_t)) return "it is too short to be a hull file";
+    memcpy(have, data, sizeof *have);
+    if (memcmp(have->magic, want.magic, sizeof want.magic) || have->version != want.version) return "it is not a hull file of this build";
+    if (have->nodes != want.nodes || have->nodes_hash != want.nodes_hash || have->coplanar_bits != want.coplanar_bits)
+        return "it was built for other grid nodes (another body, beta, grid or placement)";
+    if (have->qhull_hash != want.qhull_hash) return "it was built by another release of Qhull";
+    if (!have->vertices || have->vertices > g->size || have->coplanar > g->size || have->edges > 6 * have->vertices)
+        return "its sizes are out of range";
+    const uint64_t words = 2 * have->vertices + 1 + have->edges + have->coplanar;
+    if (size != sizeof *have + words * sizeof(uint32_t) + sizeof(uint64_t)) return "its size does not match its header";
+    uint64_t sum;
+    memcpy(&sum, data + size - sizeof sum, sizeof sum);
+    if (gb_hash_add(GB_HASH_OFFSET, data, size - sizeof sum) != sum) return "its checksum does not match (damaged)";
+    return NULL;
+}
+
+int gb_contact_tracker_load_buffer(const gb_contact_grid *grid, const unsigned char *data, size_t size, const char *name,
+                                   gb_contact_tracker **out)
+{
+    *out = NULL;
+    hull_header h;
+    const char *why = hull_refused(grid, data, size, &h);
+    gb_contact_tracker *t = NULL;
+    if (!why) {
+        t = calloc(1, sizeof *t);
+        if (!t) return gb_error_set(GB_ENOMEM, "out of memory for the contact tracker");
+        t->grid = grid;
+        t->last_index = SIZE_MAX;
+        const unsigned char *p = data + sizeof h;
+        t->node = take_words(&p, h.vertices);
+        t->edge_start = take_words(&p, h.vertices + 1);
+        t->edge = take_words(&p, h.edges);
+        t->near = take_words(&p, h.coplanar);
+        t->mark = calloc(h.vertices, sizeof *t->mark);
+        t->queue = malloc(h.vertices * sizeof *t->queue);
+        if (!t->node || !t->edge_start || !t->edge || !t->near || !t->mark || !t->queue) {
+            gb_contact_tracker_free(t);
+            return gb_error_set(GB_ENOMEM, "out of memory for the contact tracker");
+        }
+        t->vertices = h.vertices, t->coplanar = h.coplanar;
+        for (size_t k = 0; !why && k < h.vertices; k++)
+            if (t->node[k] >= grid->size) why = "a vertex is not a node";
+        if (!why && (t->edge_start[0] != 0 || t->edge_start[h.vertices] != h.edges)) why = "its edge lists do not add up";
+        for (size_t k = 0; !why && k < h.vertices; k++)
+            if (t->edge_start[k] > t->edge_start[k + 1]) why = "its edge lists are out of order";
+        for (size_t k = 0; !why && k < h.edges; k++)
+            if (t->edge[k] >= h.vertices) why = "an edge ends outside the hull";
+        for (size_t k = 0; !why && k < h.coplanar; k++)
+            if (t->near[k] >= grid->size) why = "a coplanar node is not a node";
+    }
+    if (why) {
+        gb_contact_tracker_free(t);
+        return gb_error_set(GB_EIO, "hull file %s is refused: %s", name, why);
+    }
+    *out = t;
+    return GB_OK;
+}
+
+size_t gb_contact_tracker_file_limit(const gb_contact_grid *grid)
+{
+    /* no hull of this grid is larger: every node a vertex and coplanar, fewer than 6 directed edges a vertex */
+    return sizeof(hull_header) + (9 * grid->size + 1) * sizeof(uint32_t) + sizeof(uint64_t);
+}
+
+int gb_contact_tracker_load(const gb_contact_grid *grid, const char *path, gb_contact_tracker **out)
+{
+    *out = NULL;
+    char *data;
+    size_t size;
+    const int status = gb_file_read(path, gb_contact_tracker_file_limit(grid), "hull file", "a hull file this command wrote",
+                                    &data, &size);
+    if (status) return gb_error_set(GB_EIO, "hull file refused: %s", gb_error_message());
+    const int loaded = gb_contact_tracker_load_buffer(grid, (const unsigned char *)data, size, path, out);
+    free(data);
+    return loaded;
 }

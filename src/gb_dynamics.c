@@ -82,6 +82,7 @@ struct gb_dynamics {
     int atlas_borrowed;          /* the atlas belongs to another gb_dynamics (gb_dynamics_share_atlas) */
     size_t atlas_fallbacks;      /* checks the atlas left to gb_certify */
     int atlas_loaded;
+    int hull_loaded;             /* 1: the tracker's hull came from def.hull_file */
     gb_contact_refine_def refine;
     /* The contact at the last accepted state. */
     size_t index;
@@ -218,8 +219,14 @@ int gb_dynamics_create(const gb_surface *surface, const gb_dynamics_def *def, gb
         } else
             status = gb_contact_grid_create(surface, &def->grid, &d->grid);
     }
-    if (!status && def->contact == GB_CONTACT_MODEL_FAST_GRID)
-        status = gb_contact_tracker_create(d->grid, &d->tracker);
+    if (!status && def->contact == GB_CONTACT_MODEL_FAST_GRID) {
+        /* a hull file that is missing, stale or damaged is built anew by Qhull (and replaced when saved) */
+        d->hull_loaded = def->hull_file && gb_contact_tracker_load(d->grid, def->hull_file, &d->tracker) == GB_OK;
+        if (!d->hull_loaded) {
+            gb_error_clear();
+            status = gb_contact_tracker_create(d->grid, &d->tracker);
+        }
+    }
     if (status) {
         gb_dynamics_free(d);
         return status;
@@ -935,6 +942,21 @@ void gb_dynamics_share_atlas(gb_dynamics *to, const gb_dynamics *from)
     if (!to->atlas_borrowed) gb_atlas_free(to->atlas);
     to->atlas = from->atlas;
     to->atlas_borrowed = 1;
+}
+
+int gb_dynamics_hull_stats(const gb_dynamics *d, size_t *vertices, int *loaded)
+{
+    if (!d->tracker) return gb_error_set(GB_EINVAL, "the contact model %s has no hull (allowed: fast-grid)",
+                                         gb_contact_model_name(d->def.contact));
+    *vertices = gb_contact_tracker_vertices(d->tracker);
+    *loaded = d->hull_loaded;
+    return GB_OK;
+}
+
+int gb_dynamics_save_hull(const gb_dynamics *d)
+{
+    if (!d->tracker || !d->def.hull_file || d->hull_loaded || !gb_contact_tracker_vertices(d->tracker)) return GB_OK;
+    return gb_contact_tracker_save(d->tracker, d->def.hull_file);
 }
 
 int gb_dynamics_save_atlas(const gb_dynamics *d)

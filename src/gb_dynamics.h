@@ -178,6 +178,9 @@ typedef struct gb_dynamics_def {
     gb_atlas *atlas_shared;        /* certificate = atlas: use this atlas of the same body and definition,
                                     * which the caller keeps across runs (not loaded, saved or freed here; one
                                     * thread at a time), instead of an own one (NULL: own) */
+    const char *hull_file;         /* contact = fast-grid: load the tracker's hull from here when the file was
+                                    * written for this grid (else build it with Qhull), and
+                                    * gb_dynamics_save_hull writes it when built (NULL: none) */
     gb_dynamics_lowest_node grid_lowest; /* contact = grid: this search instead of brute force (NULL) */
     void *grid_lowest_context;
 } gb_dynamics_def;
@@ -218,6 +221,12 @@ void gb_dynamics_share_atlas(gb_dynamics *to, const gb_dynamics *from);
  * it lacks (gb_atlas_merge, then gb_atlas_save): runs that share one file add up their cells. Nothing
  * is written when the atlas was loaded from that file and no cell was proved since. */
 int gb_dynamics_save_atlas(const gb_dynamics *dynamics);
+/* contact = fast-grid: the tracker's hull vertices (0: no hull, the patch-tree search) and whether the hull
+ * came from def.hull_file (1) or Qhull (0); GB_EINVAL for another model. */
+int gb_dynamics_hull_stats(const gb_dynamics *dynamics, size_t *vertices, int *loaded);
+/* contact = fast-grid with a hull_file: write the hull there when Qhull built it (nothing when it was
+ * loaded from that file, or when Qhull could not build one). */
+int gb_dynamics_save_hull(const gb_dynamics *dynamics);
 
 /* The initial state: attitude R0 (row-major 3 × 3, orthonormal), ω0; W = 0. Establishes the
  * initial contact (the global minimum) and E(0). */

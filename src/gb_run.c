@@ -175,7 +175,10 @@ int gb_run(const gb_case *scene, const gb_run_sinks *sinks, gb_run_result *out)
         gb_error_clear(); /* a grid model has no certificate: not an error of the run */
         out->has_atlas = gb_dynamics_atlas_stats(dynamics, &out->atlas, &out->atlas_fallbacks, &out->atlas_loaded) == GB_OK;
         gb_error_clear();
+        out->has_hull = gb_dynamics_hull_stats(dynamics, &out->hull_vertices, &out->hull_loaded) == GB_OK;
+        gb_error_clear();
         status = gb_dynamics_save_atlas(dynamics);
+        if (!status) status = gb_dynamics_save_hull(dynamics);
     }
     if (body) gb_lyapunov_body_free(body);
     else gb_dynamics_free(dynamics);

@@ -65,6 +65,9 @@ typedef struct gb_run_result {
     gb_atlas_stats atlas;
     size_t atlas_fallbacks;              /* checks the atlas left to the per-vertical certificate */
     int atlas_loaded;                    /* 1: the atlas came from the scene's atlas_file */
+    int has_hull;                        /* contact = fast-grid */
+    size_t hull_vertices;                /* the tracker's hull (0: the patch-tree search) */
+    int hull_loaded;                     /* 1: the hull came from the scene's hull_file */
     size_t impacts;                      /* the unilateral law: impacts, the kinetic energy they took (L of */
     double impact_energy_lost;           /* the ledger; energy_residual is E − E0 − W + L) and the largest */
     double impact_friction_max;          /* friction coefficient an impact needed */

@@ -17,7 +17,7 @@
 #include <unistd.h>
 
 static const char *usage_run =
-    "usage: gomboc run CASE [--out DIR] [--atlas FILE] [--json]\n"
+    "usage: gomboc run CASE [--out DIR] [--atlas FILE] [--hull FILE] [--json]\n"
     "\n"
     "  CASE       a scene file (INI; see cases/README.md for every key and its allowed values)\n"
     "  --out DIR  where to write the outputs the scene asks for (default: the current directory):\n"
@@ -27,6 +27,8 @@ static const char *usage_run =
     "             switch counts, energy residual and validity monitors. NAME is CASE without .ini.\n"
     "  --atlas FILE  ([model] certificate = atlas) load the atlas of verticals from FILE when it was\n"
     "             built for this body, beta and certificate (else build it), and write it back after the run\n"
+    "  --hull FILE  ([model] contact = fast-grid) load the tracker's hull of the grid nodes from FILE when it\n"
+    "             was written for these very nodes (else build it with Qhull and write it there after the run)\n"
     "  --json     also print the summary on standard output\n";
 
 /* The history file: one row a sample. */
@@ -198,19 +200,21 @@ static int asks_for(const gb_case *scene, int which)
 }
 
 /* Every file of the run by the rule of gb_file, before the run: the scene file, the outputs it asks
- * for, the atlas (read, then written back). */
-static int check_files(const gb_case *scene, const char *case_path, const char *dir, const char *atlas)
+ * for, the atlas and the hull (each read, then written back). */
+static int check_files(const gb_case *scene, const char *case_path, const char *dir, const char *atlas, const char *hull)
 {
-    gb_file_use uses[OUT_COUNT + 2] = {{case_path, "CASE", GB_FILE_INPUT}, {atlas, "--atlas", GB_FILE_INPUT | GB_FILE_OUTPUT}};
+    gb_file_use uses[OUT_COUNT + 3] = {{case_path, "CASE", GB_FILE_INPUT},
+                                       {atlas, "--atlas", GB_FILE_INPUT | GB_FILE_OUTPUT},
+                                       {hull, "--hull", GB_FILE_INPUT | GB_FILE_OUTPUT}};
     char *names[OUT_COUNT] = {NULL};
     int bad = 0;
     for (int k = 0; k < OUT_COUNT; k++) {
         if (!asks_for(scene, k)) continue;
         names[k] = cli_output_name(dir, case_path, cli_run_suffixes[k]);
         if (!names[k]) bad = cli_input_error("run", "out of memory for an output name");
-        uses[2 + k] = (gb_file_use){names[k], "--out", GB_FILE_OUTPUT};
+        uses[3 + k] = (gb_file_use){names[k], "--out", GB_FILE_OUTPUT};
     }
-    if (!bad) bad = cli_files_check("run", uses, OUT_COUNT + 2);
+    if (!bad) bad = cli_files_check("run", uses, OUT_COUNT + 3);
     for (int k = 0; k < OUT_COUNT; k++) free(names[k]);
     return bad;
 }
@@ -400,6 +404,11 @@ static cJSON *summary_json(const gb_case *scene, const gb_run_result *r, const w
             {"build_seconds", as->build_seconds},        {"bytes", (double)as->bytes}};
         add_values(cJSON_AddObjectToObject(root, "atlas"), atlas, sizeof atlas / sizeof atlas[0]);
     }
+    if (r->has_hull) {
+        cJSON *h = cJSON_AddObjectToObject(root, "hull");
+        cli_json_add(h, "vertices", (double)r->hull_vertices);
+        cli_json_add(h, "loaded", r->hull_loaded);
+    }
     if (scene->dynamics.contact_law == GB_CONTACT_LAW_UNILATERAL) {
         /* energy_residual_* above is the ledger E − E0 − W + L, L the energy the impacts took */
         cJSON *m = cJSON_AddObjectToObject(root, "impacts");
@@ -437,9 +446,9 @@ static cJSON *summary_json(const gb_case *scene, const gb_run_result *r, const w
 
 int command_run(int argc, char **argv)
 {
-    const char *case_path = NULL, *dir = ".", *atlas = NULL;
+    const char *case_path = NULL, *dir = ".", *atlas = NULL, *hull = NULL;
     int json = 0;
-    static const char *const valued[] = {"--out", "--atlas", NULL};
+    static const char *const valued[] = {"--out", "--atlas", "--hull", NULL};
     for (int i = 0; i < argc; i++) {
         const char *opt = argv[i], *value = NULL;
         const int positional = cli_positional("run", opt, &case_path, "case file", "CASE");
@@ -447,13 +456,14 @@ int command_run(int argc, char **argv)
             if (positional == 1) continue;
             return positional;
         }
-        const int kind = cli_next_option("run", argc, argv, &i, usage_run, valued, " (allowed: --out, --atlas, --json, --help)",
+        const int kind = cli_next_option("run", argc, argv, &i, usage_run, valued, " (allowed: --out, --atlas, --hull, --json, --help)",
                                          NULL, &json, &value);
         if (kind != CLI_VALUE) {
             if (kind == CLI_NEXT) continue;
             return kind == CLI_HELP ? 0 : kind;
         }
         if (strcmp(opt, "--atlas") == 0) atlas = value;
+        else if (strcmp(opt, "--hull") == 0) hull = value;
         else dir = value;
     }
     if (!case_path) return cli_input_error("run", "missing %s%s", "CASE", " (allowed: a scene file, e.g. cases/table1-gomboc-I.ini)");
@@ -464,8 +474,12 @@ int command_run(int argc, char **argv)
     if (atlas && scene.dynamics.certificate != GB_CERTIFICATE_ATLAS)
         return cli_input_error("run", "--atlas %s: %s has no atlas (allowed: a scene with [model] certificate = atlas)",
                                atlas, case_path);
+    if (hull && scene.dynamics.contact != GB_CONTACT_MODEL_FAST_GRID)
+        return cli_input_error("run", "--hull %s: %s has no hull (allowed: a scene with [model] contact = fast-grid)", hull,
+                               case_path);
     scene.dynamics.atlas_file = atlas;
-    if (check_files(&scene, case_path, dir, atlas)) return EXIT_INPUT;
+    scene.dynamics.hull_file = hull;
+    if (check_files(&scene, case_path, dir, atlas, hull)) return EXIT_INPUT;
     if (cli_parse_only) return 0;
 
     run_outputs files = {.dir = dir, .case_path = case_path};

@@ -117,6 +117,7 @@ typedef struct bad_row {
 } bad_row;
 
 #define RUN "run @CASE@ --out @D@"
+#define HULL_SCENE "[model]\ncontact = fast-grid\n[integrator]\nperiods = 1\n"
 #define ATLAS_SCENE "[model]\nequation = rolling\ncontact = continuous\ncertificate = atlas\n[integrator]\nperiods = 1\n"
 #define BYTES(s) s, sizeof(s) - 1
 
@@ -234,6 +235,7 @@ static const bad_row rows[] = {
     {"lyapunov @D@", NULL, 0, 2, {"not a regular file", "allowed: a scene file", ""}},
     {"run @D@/missing.ini", NULL, 0, 2, {"missing.ini: cannot open the case file", "No such file", ""}},
     {"run @CASE@ --atlas @D@/a.atlas", "[body]\nbeta = 0.1\n", 0, 2, {"--atlas", "has no atlas", "allowed: a scene with [model] certificate = atlas"}},
+    {"run @CASE@ --hull @D@/a.hull", "[model]\ncontact = grid\n", 0, 2, {"--hull", "has no hull", "allowed: a scene with [model] contact = fast-grid"}},
     {"run @CASE@ --out @D@/missing", "[body]\nbeta = 0.1\n", 0, 2, {"--out", "missing' does not exist", "allowed: an existing, writable directory"}},
     {"run @CASE@ --out @D@/keep.txt", "[body]\nbeta = 0.1\n", 0, 2, {"--out", "is not a directory", "allowed: an existing, writable directory"}},
     {"run @CASE@ --out", "[body]\nbeta = 0.1\n", 0, 2, {"option '--out' needs a value", "", ""}},
@@ -296,6 +298,10 @@ static const bad_row rows[] = {
     {"run @CASE@ --atlas ''", ATLAS_SCENE, 0, 2, {"--atlas '' is empty", "allowed: a new or regular file", ""}},
     {"run @CASE@ --atlas @D@/sub", ATLAS_SCENE, 0, 2, {"--atlas '", "sub' exists and is not a regular file", "directory"}},
     {"run @CASE@ --atlas @D@/missing/a.atlas", ATLAS_SCENE, 0, 2, {"--atlas '", "its directory does not exist", "writable directory"}},
+    {"run @CASE@ --hull @CASE@", HULL_SCENE, 0, 2, {"--hull '", "is also the CASE file", "not an input or another output of this run"}},
+    {"run @CASE@ --hull @D@/device", HULL_SCENE, 0, 2, {"--hull '", "device' exists and is not a regular file", "a new or regular file"}},
+    {"run @CASE@ --hull @D@/sub", HULL_SCENE, 0, 2, {"--hull '", "sub' exists and is not a regular file", "directory"}},
+    {"run @CASE@ --hull @D@/a --atlas @D@/a", ATLAS_SCENE, 0, 2, {"--hull", "has no hull", "allowed: a scene with [model] contact = fast-grid"}},
     /* smaller: options given twice, --curve-points alone */
     {RUN, "[model]\ncontact_law = bouncy\n", 0, 2, {"case.ini:2: [model] contact_law = bouncy", "unknown", "allowed: held, unilateral"}},
     {RUN, "[model]\ncontact = continuous\ncontact_law = unilateral\n", 0, 2, {"case.ini:3: [model] contact_law: = unilateral with [model] contact = continuous, equation = paper", "eq 44 makes and takes energy", "allowed: held with any model; unilateral with equation = rolling, or with a grid model"}},
@@ -313,6 +319,7 @@ static const bad_row rows[] = {
      {"t = 0.698131701: the state is no longer finite", "the integration diverged", "damping c over the inertia"}},
     {"run @CASE@ --out @D@ --out @D@", "[body]\nbeta = 0.1\n", 0, 2, {"option '--out' is given twice", "allowed: each option once", ""}},
     {"run @CASE@ --atlas @D@/a --atlas @D@/b", ATLAS_SCENE, 0, 2, {"option '--atlas' is given twice", "each option once", ""}},
+    {"run @CASE@ --hull @D@/a --hull @D@/b", HULL_SCENE, 0, 2, {"option '--hull' is given twice", "each option once", ""}},
     {"melnikov @CASE@ --curve-points 5", "[body]\nbeta = 0.1\n", 0, 2, {"--curve-points 5 without --curve", "allowed: --curve-points with --curve FILE", ""}},
     {"melnikov @CASE@ --curve @D@/a.csv --curve @D@/b.csv", "[body]\nbeta = 0.1\n", 0, 2, {"option '--curve' is given twice", "", ""}},
     /* (7) */

@@ -27,6 +27,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <unistd.h>
 
 enum { SAMPLE_SIZE = 10000, CASE_COUNT = 4 };
 static const unsigned long SAMPLE_SEED = 20261122UL;
@@ -400,6 +401,110 @@ static void test_fast_equals_brute(void)
     gb_check ct = {"8", "29", "exact ties (sphere, vertical along the axis): fast search and tracker pick brute force's first node",
                    "brute force", "exact"};
     gb_check_true(&ct, ties_ok, "indices centred %zu %zu, linspace %zu %zu", tie_index[0], tie_index[1], tie_index[2], tie_index[3]);
+}
+
+/* The tracker read from its hull file against the one Qhull built, on one grid: the node, the height
+ * bits and the nodes visited of every sample vertical (equal visits: the same graph, walked the same way).
+ * 1 when they all agree. */
+static int hull_file_agrees(const gb_contact_grid *g, gb_contact_tracker *built, const char *path, size_t *vertices)
+{
+    gb_contact_tracker *loaded = NULL;
+    if (gb_contact_tracker_save(built, path) || gb_contact_tracker_load(g, path, &loaded)) return 0;
+    *vertices = gb_contact_tracker_vertices(loaded);
+    int same = *vertices == gb_contact_tracker_vertices(built);
+    for (int k = 0; same && k < SAMPLE_SIZE; k++) {
+        gb_contact_node a, b;
+        same = !gb_contact_tracker_find(built, sample_zb[k], &a) && !gb_contact_tracker_find(loaded, sample_zb[k], &b) &&
+               a.index == b.index && !memcmp(&a.height, &b.height, sizeof a.height) && a.visited == b.visited;
+    }
+    gb_contact_tracker_free(loaded);
+    return same;
+}
+
+/* 1 when loading `path` for grid g is refused with GB_EIO and a message containing `why`. */
+static int hull_file_refused(const gb_contact_grid *g, const char *path, const char *why)
+{
+    gb_contact_tracker *t = NULL;
+    const int status = gb_contact_tracker_load(g, path, &t);
+    const int refused = status == GB_EIO && !t && strstr(gb_error_message(), why) != NULL;
+    gb_error_clear();
+    gb_contact_tracker_free(t);
+    return refused;
+}
+
+static void test_hull_file(void)
+{
+    draw_sample();
+    char dir[] = "/tmp/gomboc-hull-XXXXXX";
+    if (!mkdtemp(dir)) return;
+    char path[128], other[128];
+    snprintf(path, sizeof path, "%s/hull", dir);
+    snprintf(other, sizeof other, "%s/hull-II", dir);
+    /* Table 1's grids (centred) and the linspace placement, whose hull keeps coplanar nodes */
+    for (int c = 0; c < 2; c++)
+        for (int placement = 0; placement < 2; placement++) {
+            gb_contact_grid_def def = gb_contact_grid_default_def();
+            def.nodes = (gb_contact_nodes)placement;
+            gb_contact_grid *g = NULL;
+            gb_contact_tracker *t = NULL;
+            size_t vertices = 0;
+            const int same = !gb_contact_grid_create(gb_check_body(cases[c].morphology, cases[c].beta), &def, &g) &&
+                             !gb_contact_tracker_create(g, &t) && hull_file_agrees(g, t, path, &vertices);
+            char label[64], q[256];
+            case_label(c, label, sizeof label);
+            snprintf(q, sizeof q, "tracker from its hull file == tracker Qhull built, 90 x 180 %s, %s, %d verticals",
+                     gb_contact_nodes_name(def.nodes), label, SAMPLE_SIZE);
+            gb_check check = {"8", "29", q, "the tracker Qhull built in the same process",
+                              "exact: node, height bits and nodes visited of every vertical"};
+            gb_check_true(&check, same, "%s; %zu hull vertices read", same ? "the same answers" : "DIFFERENT answers", vertices);
+            gb_contact_tracker_free(t);
+            gb_contact_grid_free(g);
+        }
+    /* A file is taken only for the grid it was written for, and whole */
+    gb_contact_grid_def def = gb_contact_grid_default_def();
+    gb_contact_grid *g1 = NULL, *g2 = NULL, *gb = NULL;
+    gb_contact_tracker *t1 = NULL, *t2 = NULL;
+    int refusals_ok = !gb_contact_grid_create(gb_check_body("I", 0.12), &def, &g1) &&
+                      !gb_contact_grid_create(gb_check_body("II", 0.12), &def, &g2) &&
+                      !gb_contact_grid_create(gb_check_body("I", 0.02), &def, &gb) && !gb_contact_tracker_create(g1, &t1) &&
+                      !gb_contact_tracker_save(t1, path) && !gb_contact_tracker_create(g2, &t2) &&
+                      !gb_contact_tracker_save(t2, other);
+    const int other_body = refusals_ok && hull_file_refused(g2, path, "other grid nodes");
+    const int other_beta = refusals_ok && hull_file_refused(gb, path, "other grid nodes");
+    size_t bytes = 0;
+    unsigned char *data = NULL;
+    FILE *f = refusals_ok ? fopen(other, "rb") : NULL;
+    if (f && !fseek(f, 0, SEEK_END) && (bytes = (size_t)ftell(f)) > 0 && !fseek(f, 0, SEEK_SET) && (data = malloc(bytes)))
+        refusals_ok = fread(data, 1, bytes, f) == bytes;
+    else
+        refusals_ok = 0;
+    if (f) fclose(f);
+    int flipped = 0, truncated = 0;
+    if (refusals_ok) {
+        data[bytes / 2] ^= 0x10; /* one bit in the edge lists */
+        f = fopen(other, "wb");
+        refusals_ok = f && fwrite(data, 1, bytes, f) == bytes;
+        if (f) fclose(f);
+        flipped = refusals_ok && hull_file_refused(g2, other, "checksum");
+        data[bytes / 2] ^= 0x10;
+        f = fopen(other, "wb");
+        refusals_ok = refusals_ok && f && fwrite(data, 1, bytes - 4, f) == bytes - 4;
+        if (f) fclose(f);
+        truncated = refusals_ok && hull_file_refused(g2, other, "does not match");
+    }
+    free(data);
+    char absent[160];
+    snprintf(absent, sizeof absent, "%s/absent", dir);
+    const int missing = hull_file_refused(g2, dir, "hull file refused") && hull_file_refused(g2, absent, "hull file refused");
+    gb_check cr = {"8", "29", "a hull file is refused for another body or beta, with one bit flipped, cut short, a directory or missing",
+                   "the grid the file was written for; its checksum and size", "exact: every one refused with its reason"};
+    gb_check_true(&cr, other_body && other_beta && flipped && truncated && missing,
+                  "other body %s, other beta %s, a bit flipped %s, 4 bytes short %s, a directory and a missing file %s",
+                  other_body ? "refused" : "TAKEN", other_beta ? "refused" : "TAKEN", flipped ? "refused" : "TAKEN",
+                  truncated ? "refused" : "TAKEN", missing ? "refused" : "TAKEN");
+    gb_contact_tracker_free(t1), gb_contact_tracker_free(t2);
+    gb_contact_grid_free(g1), gb_contact_grid_free(g2), gb_contact_grid_free(gb);
+    remove(path), remove(other), rmdir(dir);
 }
 
 /* ------------------------------------------------------------ continuous minimiser */
@@ -964,6 +1069,9 @@ int verify_register_s4_contact(void)
         {"eq 29: the exact fast grid search returns the brute-force node", test_fast_equals_brute,
          "the fast grid search returns the paper's brute-force node, bit for bit and with the same "
          "tie-break, for 10⁴ random verticals per body, β and node placement"},
+        {"eq 29: the tracker's hull file gives the tracker Qhull builds", test_hull_file,
+         "a hull read from its file (gomboc run --hull) answers every vertical as the hull Qhull builds, and a "
+         "file written for any other grid, damaged or cut short is refused"},
         {"eq 31-35: continuous minima are stationary (eq 33) and strict (eq 35)", test_continuous_minima,
          "every continuous minimum satisfies eq 33 to 1e-12 and eq 35; at β = 0.02 every vertical has "
          "exactly one minimum, as strict convexity demands"},

@@ -7,7 +7,7 @@
  * known chart. A refused input must say why and leave the atlas usable. */
 #include "gb_atlas.h"
 #include "gb_error.h"
-#include "gb_hash.h"
+#include "fuzz_wrap.h"
 
 #include <stdint.h>
 #include <stdio.h>
@@ -51,13 +51,9 @@ int LLVMFuzzerInitialize(int *argc, char ***argv)
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-    unsigned char *file = malloc(header_size + size + sizeof(uint64_t));
-    require(file != NULL);
-    memcpy(file, header, header_size);
-    if (size) memcpy(file + header_size, data, size);
-    const uint64_t sum = gb_hash_add(GB_HASH_OFFSET, file, header_size + size);
-    memcpy(file + header_size + size, &sum, sizeof sum);
-    const int status = gb_atlas_load_buffer(atlas, file, header_size + size + sizeof sum, "fuzz.atlas");
+    size_t total;
+    unsigned char *file = fuzz_wrap(header, header_size, data, size, &total);
+    const int status = gb_atlas_load_buffer(atlas, file, total, "fuzz.atlas");
     free(file);
     if (status) {
         require(status == GB_EIO && gb_error_message()[0] != '\0');
