@@ -9,12 +9,15 @@
 #include "gb_vec.h"
 
 #include <errno.h>
+#include <fcntl.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/file.h>
 #include <time.h>
+#include <unistd.h>
 
 /* Site boxes are built where the minimum lies within this distance of a chart's root boxes [rad]
  * (as gb_certify's basins). */
@@ -786,6 +789,26 @@ int gb_atlas_merge(gb_atlas *A, const char *path)
     free(data);
     if (why) return gb_error_set(GB_EIO, "atlas file %s is not merged: %s", path, why);
     return GB_OK;
+}
+
+int gb_atlas_merge_save(gb_atlas *A, const char *path)
+{
+    /* The lock: an exclusive flock on the file's directory (the file itself is replaced by a rename, so a
+     * lock on it would not be held by the next writer). Without one (a directory that cannot be opened or
+     * locked) the writers are still safe, and a cell can only be lost, to be proved again when needed. */
+    const char *slash = strrchr(path, '/');
+    char dir[4096];
+    if (!slash) snprintf(dir, sizeof dir, ".");
+    else snprintf(dir, sizeof dir, "%.*s", slash == path ? 1 : (int)(slash - path), path);
+    const int fd = open(dir, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    int locked = 0;
+    if (fd >= 0)
+        while (!(locked = flock(fd, LOCK_EX) == 0) && errno == EINTR) continue;
+    if (gb_atlas_merge(A, path)) gb_error_clear(); /* missing, stale or damaged: replaced */
+    const int status = gb_atlas_save(A, path);
+    if (locked) flock(fd, LOCK_UN);
+    if (fd >= 0) close(fd);
+    return status;
 }
 
 int gb_atlas_load_buffer(gb_atlas *A, const unsigned char *data, size_t size, const char *name)

@@ -102,8 +102,8 @@ void gb_atlas_cells(const gb_atlas *atlas, gb_atlas_cell_info *out, size_t max, 
 
 /* Save the cells built so far (with those that have no certificate, so that they are not proved
  * again) as a gb_file set of one: a unique temporary renamed into place, so that concurrent writers of
- * one file never cost each other their outputs (the last complete one wins; gb_dynamics_save_atlas
- * merges the file's cells first, gb_atlas_merge, so that they add up). Load a saved atlas (its
+ * one file never cost each other their outputs (the last complete one wins; gb_atlas_merge_save
+ * merges the file's cells first, under a lock, so that they add up). Load a saved atlas (its
  * cells replace the ones held): GB_EIO for a file that is not a regular file, is larger than
  * gb_atlas_file_limit, is not an atlas of this body, β, η and build parameters, or is damaged (its
  * checksum): the caller then builds anew. */
@@ -118,6 +118,10 @@ size_t gb_atlas_file_limit(const gb_atlas *atlas);
  * writes, so that concurrent runs sharing one file add up their cells. GB_EIO when the file is missing,
  * of another atlas or damaged (the atlas is then unchanged, or holds the cells read before the fault). */
 int gb_atlas_merge(gb_atlas *atlas, const char *path);
+/* gb_atlas_merge, then gb_atlas_save, with the file's directory locked (flock) in between, so that
+ * writers of one file, threads or processes, take turns and every cell any of them proved stays in it.
+ * A file that is missing, of another atlas or damaged is replaced. */
+int gb_atlas_merge_save(gb_atlas *atlas, const char *path);
 
 /* gb_atlas_load on the bytes of a file already read (`name` for messages). */
 int gb_atlas_load_buffer(gb_atlas *atlas, const unsigned char *data, size_t size, const char *name);

@@ -967,8 +967,7 @@ int gb_dynamics_save_atlas(const gb_dynamics *d)
     gb_atlas_get_stats(d->atlas, &st);
     if (d->atlas_loaded && st.build_seconds == 0.0) return GB_OK;
     /* the cells another run wrote there since this one loaded it are kept (missing or stale: replaced) */
-    if (gb_atlas_merge(d->atlas, d->def.atlas_file)) gb_error_clear();
-    return gb_atlas_save(d->atlas, d->def.atlas_file);
+    return gb_atlas_merge_save(d->atlas, d->def.atlas_file);
 }
 
 static const char *const impact_kind_names[] = {"switch", "two-point", "lift", "third-point", "lift-off", "landing", "bounce",

@@ -143,8 +143,8 @@ static int scan_handler(gb_ini_reader *ini, void *user, const char *section, con
     gb_scan *scan = r->scan;
     if (!strcmp(section, "scan")) {
         static const char *const names[] = {"description", "base",          "periods", "transient_periods",
-                                            "metrics",     "failed_points", "atlas"};
-        for (int k = 0; k < 7; k++) {
+                                            "metrics",     "failed_points", "atlas",   "atlas_file"};
+        for (int k = 0; k < 8; k++) {
             if (strcmp(key, names[k])) continue;
             if (!once(ini, r, 0, k, section, key, value)) return 0;
             switch (k) {
@@ -162,6 +162,14 @@ static int scan_handler(gb_ini_reader *ini, void *user, const char *section, con
                     return gb_ini_fail(ini, "[scan] atlas = %s: unknown (allowed: none, shared)", value);
                 scan->atlas_shared = !strcmp(value, "shared"), scan->atlas_line = gb_ini_line(ini);
                 return 1;
+            case 7:
+                /* a plain name: the file lies in the output directory, beside the outputs */
+                if (!value[0] || strchr(value, '/') || !strcmp(value, ".") || !strcmp(value, "..") ||
+                    strlen(value) >= sizeof scan->atlas_name)
+                    return gb_ini_fail(ini, "[scan] atlas_file = %s: not a file name (allowed: a name without '/', up to "
+                                       "%zu characters, of a file in the output directory)", value, sizeof scan->atlas_name - 1);
+                snprintf(scan->atlas_name, sizeof scan->atlas_name, "%s", value), scan->atlas_name_line = gb_ini_line(ini);
+                return 1;
             default:
                 if (strcmp(value, "stop") && strcmp(value, "record"))
                     return gb_ini_fail(ini, "[scan] failed_points = %s: unknown (allowed: stop, record)", value);
@@ -170,7 +178,7 @@ static int scan_handler(gb_ini_reader *ini, void *user, const char *section, con
             }
         }
         return gb_ini_fail(ini, "[scan] %s = %s: unknown key (allowed in [scan]: description, base, periods, "
-                           "transient_periods, metrics, failed_points, atlas)", key, value);
+                           "transient_periods, metrics, failed_points, atlas, atlas_file)", key, value);
     }
     const int s = !strcmp(section, "x") ? 1 : 2;
     gb_scan_axis *a = &scan->axis[s - 1];
@@ -344,6 +352,12 @@ int gb_scan_load(const char *path, gb_scan *out)
     out->fingerprint = gb_hash_add(out->fingerprint, out->base_text, out->base_size);
     /* Every point's scene, before any run; a shared atlas only where the contact is continuous. */
     gb_case scene;
+    if (out->atlas_name[0] && !out->atlas_shared) {
+        status = gb_error_set(GB_EINVAL, "%s:%d: [scan] atlas_file = %s without atlas = shared (allowed: atlas_file with "
+                              "[scan] atlas = shared)", path, out->atlas_name_line, out->atlas_name);
+        gb_scan_free(out);
+        return status;
+    }
     if (out->atlas_shared) {
         out->atlas_shared = 0;
         status = gb_scan_point_case(out, 0, &scene);

@@ -73,6 +73,10 @@ typedef struct gb_scan {
                                         * those of the per-vertical certificate, bit for bit. none (0): the
                                         * base scene's certificate */
     int atlas_line;                    /* its line, for messages */
+    char atlas_name[256];              /* [scan] atlas_file (with atlas = shared): the shared atlas's file name in
+                                        * the output directory, so that scans of one body share it ("": the
+                                        * scan's own NAME-scan.atlas) */
+    int atlas_name_line;
     uint64_t fingerprint;              /* FNV-1a of the scan file's and the base scene's bytes */
     int base_line;                     /* the scan file's line of `base`, for messages */
     char *base_text;                   /* the base scene as read once (every point starts from it) */

@@ -41,6 +41,7 @@ static const char *usage_scan =
     "               missing, stale or damaged): each thread keeps it in memory and merges it with FILE every\n"
     "               8 points and at its end; the results are those of the per-vertical certificate, bit for\n"
     "               bit. A scan file with atlas = shared keeps it in NAME-scan.atlas in DIR without this option\n"
+    "               (or in the file of DIR its [scan] atlas_file names, which other scans of the body may share)\n"
     "\n"
     "Every finished point is appended to the journal and flushed; the journal is removed when the scan\n"
     "is complete and its outputs are written. Progress goes to standard error.\n"
@@ -392,15 +393,15 @@ enum { ATLAS_SAVE_POINTS = 8 };
 
 /* The thread's atlas merged with its file and written back, when it proved a cell since the last time
  * (a file that cannot be written costs the sharing, not the scan: the points' results do not depend on
- * the atlas). */
+ * the atlas). gb_atlas_merge_save lets the writers take turns, threads and processes alike: two
+ * merging before either wrote would each write a file without the other's cells. */
 static void save_atlas(const gb_scan *scan, gb_atlas *atlas, double *built_at_save)
 {
     gb_atlas_stats stats;
     gb_atlas_get_stats(atlas, &stats);
     if (stats.build_seconds == *built_at_save) return;
     *built_at_save = stats.build_seconds;
-    if (gb_atlas_merge(atlas, scan->atlas_file)) gb_error_clear();
-    if (gb_atlas_save(atlas, scan->atlas_file)) {
+    if (gb_atlas_merge_save(atlas, scan->atlas_file)) {
         fprintf(stderr, "gomboc scan: the shared atlas was not written: %s\n", gb_error_message());
         gb_error_clear();
     }
@@ -568,9 +569,15 @@ static int scan_command(int argc, char **argv, const ranks *r)
         }
         scan.atlas_file = options.atlas;
     }
-    /* [scan] atlas = shared without --atlas: the atlas beside the outputs, kept for a rerun or --resume */
+    /* [scan] atlas = shared without --atlas: the atlas beside the outputs (NAME-scan.atlas, or the name
+     * [scan] atlas_file gives it), kept for a rerun or --resume */
     char own_atlas[2 * GB_SCAN_PATH_MAX];
-    if (!status && scan.atlas_shared && !options.atlas) {
+    if (!status && scan.atlas_shared && !options.atlas && scan.atlas_name[0]) {
+        if ((size_t)snprintf(own_atlas, sizeof own_atlas, "%s/%s", dir, scan.atlas_name) >= sizeof own_atlas)
+            status = gb_error_set(GB_EINVAL, "the atlas file's name is too long");
+        else
+            scan.atlas_file = own_atlas;
+    } else if (!status && scan.atlas_shared && !options.atlas) {
         char *name = cli_output_name(dir, scan_path, "scan.atlas");
         if (!name || strlen(name) >= sizeof own_atlas) status = gb_error_set(GB_EINVAL, "the atlas file's name is too long");
         else snprintf(own_atlas, sizeof own_atlas, "%s", name), scan.atlas_file = own_atlas;

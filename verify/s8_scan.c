@@ -1131,6 +1131,50 @@ static void test_scan_atlas(void)
     const int equal = reference && shared_csv && !strcmp(reference, shared_csv);
     gb_check_true(&ck, code == 0 && equal && own, "exit %d; CSV %s; atlas %s: %.200s", code, equal ? "equal" : "DIFFERS",
                   own ? "written" : "MISSING", out);
+    /* [scan] atlas_file: two scans name one atlas in the output directory (as the ensembles of one body do);
+     * the second takes every cell from it (none proved: the file is not written again) */
+    char named_path[2][512];
+    struct stat named_st[2];
+    int named_code[2], named_equal = 1;
+    for (int k = 0; k < 2; k++) {
+        snprintf(text, sizeof text, "[scan]\nbase = per-vertical.ini\natlas = shared\natlas_file = body.atlas\nperiods = 4\n"
+                 "transient_periods = 1\nmetrics = omega_rms, switch_rate\n[x]\nkey = forcing.omega\nfrom = 17\nto = 19\n"
+                 "count = 2\n[y]\nkey = forcing.A1\nfrom = 1.5\nto = 2\ncount = 2\n");
+        named_code[k] = scan_file_run(d.path, k ? "named-again" : "named", text, k ? " --threads 1" : " --threads 2", out, sizeof out);
+        snprintf(path, sizeof path, "%s/%s-scan.csv", d.path, k ? "named-again" : "named");
+        char *csv = slurp(path);
+        named_equal &= reference && csv && !strcmp(reference, csv);
+        free(csv);
+        snprintf(named_path[k], sizeof named_path[k], "%s/body.atlas", d.path);
+        if (stat(named_path[k], &named_st[k])) named_st[k].st_ino = 0, named_st[k].st_size = 0;
+    }
+    snprintf(path, sizeof path, "%s/named-scan.atlas", d.path);
+    const int no_own = stat(path, &st) != 0;
+    gb_check ca = {"4, 8.3", "29", "[scan] atlas_file = body.atlas in two scans (2 x 2 points each)",
+                   "the per-vertical scan's CSV, byte for byte, twice; one atlas file, not written again by the second scan",
+                   "exact"};
+    const int kept = named_st[0].st_size > 0 && named_st[0].st_ino == named_st[1].st_ino &&
+                     named_st[0].st_mtim.tv_sec == named_st[1].st_mtim.tv_sec &&
+                     named_st[0].st_mtim.tv_nsec == named_st[1].st_mtim.tv_nsec;
+    gb_check_true(&ca, named_code[0] == 0 && named_code[1] == 0 && named_equal && kept && no_own,
+                  "exits %d, %d; CSVs %s; body.atlas %s (%lld bytes); NAME-scan.atlas %s", named_code[0], named_code[1],
+                  named_equal ? "equal" : "DIFFER", kept ? "read, not rewritten" : "REWRITTEN OR MISSING",
+                  (long long)named_st[0].st_size, no_own ? "not written" : "WRITTEN");
+    /* ... a name with a directory, or without atlas = shared: refused before any run */
+    snprintf(text, sizeof text, "[scan]\nbase = per-vertical.ini\natlas = shared\natlas_file = ../body.atlas\nperiods = 4\n"
+             "transient_periods = 1\n[x]\nkey = forcing.omega\nfrom = 17\nto = 19\ncount = 2\n[y]\nkey = forcing.A1\nfrom = 1.5\n"
+             "to = 2\ncount = 2\n");
+    const int slash_code = scan_file_run(d.path, "named-slash", text, "", out, sizeof out);
+    const int slash_named = strstr(out, "named-slash.ini:4: [scan] atlas_file = ../body.atlas: not a file name") != NULL;
+    snprintf(text, sizeof text, "[scan]\nbase = per-vertical.ini\natlas_file = body.atlas\nperiods = 4\n"
+             "transient_periods = 1\n[x]\nkey = forcing.omega\nfrom = 17\nto = 19\ncount = 2\n[y]\nkey = forcing.A1\nfrom = 1.5\n"
+             "to = 2\ncount = 2\n");
+    const int alone_code = scan_file_run(d.path, "named-alone", text, "", out, sizeof out);
+    const int alone_named = strstr(out, "named-alone.ini:3: [scan] atlas_file = body.atlas without atlas = shared") != NULL;
+    gb_check cb = {"8.3", "-", "[scan] atlas_file = ../body.atlas, and atlas_file without atlas = shared",
+                   "exit 2 naming the file, line, key and what is allowed", "exact"};
+    gb_check_true(&cb, slash_code == 2 && slash_named && alone_code == 2 && alone_named, "exits %d, %d: %.300s", slash_code,
+                  alone_code, out);
     free(reference);
     free(shared_csv);
     /* 3 x 3 points on one thread: the thread's atlas is merged with the file and written back after its
