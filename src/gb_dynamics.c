@@ -77,6 +77,7 @@ struct gb_dynamics {
     double mean_radius;   /* L [m] (eq 53) */
     gb_contact_grid *grid;
     gb_contact_tracker *tracker; /* exact grid search along the trajectory (fast-grid) */
+    int grid_borrowed;           /* grid (and tracker) belong to def.cache */
     gb_certify *certify;         /* the global-minimum certificate (continuous) */
     gb_atlas *atlas;             /* certificate = atlas */
     int atlas_borrowed;          /* the atlas belongs to another gb_dynamics (gb_dynamics_share_atlas) */
@@ -147,6 +148,90 @@ struct gb_dynamics {
 
 const gb_dynamics_def *gb_dynamics_get_def(const gb_dynamics *d) { return &d->def; }
 double gb_dynamics_mean_radius(const gb_dynamics *d) { return d->mean_radius; }
+struct gb_dynamics_cache {
+    gb_surface props_surface; /* the body and mass of `props` (has_props) */
+    double props_mass;
+    gb_massprops props;
+    int has_props;
+    gb_surface grid_surface;  /* the body and definition of `grid` (and `tracker`) */
+    gb_contact_grid_def grid_def;
+    gb_contact_grid *grid;
+    gb_contact_tracker *tracker;
+    int hull_loaded;          /* the tracker came from a hull file */
+};
+
+int gb_dynamics_cache_create(gb_dynamics_cache **out)
+{
+    *out = calloc(1, sizeof **out);
+    return *out ? GB_OK : gb_error_set(GB_ENOMEM, "out of memory for the dynamics cache");
+}
+
+void gb_dynamics_cache_free(gb_dynamics_cache *c)
+{
+    if (!c) return;
+    gb_contact_tracker_free(c->tracker);
+    gb_contact_grid_free(c->grid);
+    free(c);
+}
+
+static int same_body(const gb_surface *a, const gb_surface *b)
+{
+    return a->morphology == b->morphology && !memcmp(&a->beta, &b->beta, sizeof a->beta);
+}
+
+static int same_grid(const gb_contact_grid_def *a, const gb_contact_grid_def *b)
+{
+    return a->n_phi == b->n_phi && a->n_theta == b->n_theta && a->nodes == b->nodes && a->leaf_size == b->leaf_size;
+}
+
+/* The body's mass properties: from the cache when it holds this body's and mass's, else computed (and
+ * kept there). */
+static int body_massprops(const gb_surface *surface, const gb_dynamics_def *def, gb_massprops *props)
+{
+    gb_dynamics_cache *c = def->cache;
+    if (c && c->has_props && same_body(&c->props_surface, surface) && !memcmp(&c->props_mass, &def->mass, sizeof def->mass)) {
+        *props = c->props;
+        return GB_OK;
+    }
+    gb_massprops_def mdef = gb_massprops_default_def();
+    mdef.mass = def->mass;
+    const int status = gb_massprops_compute(surface, &mdef, props);
+    if (!status && c) c->props_surface = *surface, c->props_mass = def->mass, c->props = *props, c->has_props = 1;
+    return status;
+}
+
+/* The grid, and for the fast grid its tracker (from def.hull_file when it holds this grid's hull, else
+ * by Qhull): borrowed from the cache when it holds this body's and grid's, else built, and kept in an
+ * empty cache. */
+static int body_grid(gb_dynamics *d, const gb_surface *surface, const gb_dynamics_def *def)
+{
+    gb_dynamics_cache *c = def->cache;
+    const int fast = def->contact == GB_CONTACT_MODEL_FAST_GRID;
+    const int cached = c && c->grid && same_body(&c->grid_surface, surface) && same_grid(&c->grid_def, &def->grid);
+    int status = GB_OK;
+    if (cached) {
+        d->grid = c->grid, d->grid_borrowed = 1;
+        if (!fast) return GB_OK;
+        if (c->tracker) {
+            d->tracker = c->tracker, d->hull_loaded = c->hull_loaded;
+            return GB_OK;
+        }
+    } else {
+        status = gb_contact_grid_create(surface, &def->grid, &d->grid);
+        if (status) return status;
+        if (c && !c->grid) c->grid = d->grid, c->grid_surface = *surface, c->grid_def = def->grid, d->grid_borrowed = 1;
+        if (!fast) return GB_OK;
+    }
+    /* a hull file that is missing, stale or damaged is built anew by Qhull (and replaced when saved) */
+    d->hull_loaded = def->hull_file && gb_contact_tracker_load(d->grid, def->hull_file, &d->tracker) == GB_OK;
+    if (!d->hull_loaded) {
+        gb_error_clear();
+        status = gb_contact_tracker_create(d->grid, &d->tracker);
+    }
+    if (!status && d->grid_borrowed) c->tracker = d->tracker, c->hull_loaded = d->hull_loaded;
+    return status;
+}
+
 size_t gb_dynamics_grid_size(const gb_dynamics *d) { return d->grid ? gb_contact_grid_size(d->grid) : 0; }
 
 int gb_dynamics_create(const gb_surface *surface, const gb_dynamics_def *def, gb_dynamics **out)
@@ -191,10 +276,8 @@ int gb_dynamics_create(const gb_surface *surface, const gb_dynamics_def *def, gb
     d->surface = *surface;
     d->def = *def;
     d->refine = gb_contact_refine_default_def();
-    gb_massprops_def mdef = gb_massprops_default_def();
-    mdef.mass = def->mass;
     gb_massprops props;
-    status = gb_massprops_compute(surface, &mdef, &props);
+    status = body_massprops(surface, def, &props);
     if (!status) {
         const double l2 = def->length * def->length;
         for (int i = 0; i < 3; i++)
@@ -217,15 +300,7 @@ int gb_dynamics_create(const gb_surface *surface, const gb_dynamics_def *def, gb
                 }
             }
         } else
-            status = gb_contact_grid_create(surface, &def->grid, &d->grid);
-    }
-    if (!status && def->contact == GB_CONTACT_MODEL_FAST_GRID) {
-        /* a hull file that is missing, stale or damaged is built anew by Qhull (and replaced when saved) */
-        d->hull_loaded = def->hull_file && gb_contact_tracker_load(d->grid, def->hull_file, &d->tracker) == GB_OK;
-        if (!d->hull_loaded) {
-            gb_error_clear();
-            status = gb_contact_tracker_create(d->grid, &d->tracker);
-        }
+            status = body_grid(d, surface, def);
     }
     if (status) {
         gb_dynamics_free(d);
@@ -238,8 +313,10 @@ int gb_dynamics_create(const gb_surface *surface, const gb_dynamics_def *def, gb
 void gb_dynamics_free(gb_dynamics *d)
 {
     if (!d) return;
-    gb_contact_tracker_free(d->tracker);
-    gb_contact_grid_free(d->grid);
+    if (!d->grid_borrowed) {
+        gb_contact_tracker_free(d->tracker);
+        gb_contact_grid_free(d->grid);
+    }
     gb_certify_free(d->certify);
     if (!d->atlas_borrowed) gb_atlas_free(d->atlas);
     free(d);

@@ -142,6 +142,18 @@ typedef struct gb_dynamics_impact {
 /* Called with every impact (the run's impacts file); a non-zero return stops the run with that status. */
 typedef int (*gb_dynamics_impact_sink)(void *context, const gb_dynamics_impact *impact);
 
+/* What the runs of one body share: its mass properties, its grid of nodes and, for the fast grid, the
+ * tracker's hull. A caller that runs many scenes on one thread (a scan's thread, a Lyapunov pair) keeps
+ * one and names it in gb_dynamics_def.cache: a run takes from it what was built for its body (the same
+ * morphology, β and mass; the same grid) and stores there what it builds. The first body's grid and
+ * tracker stay (a run of another body builds its own), so a run never loses what another run uses; the
+ * mass properties follow the last body. The results are those without the cache, bit for bit (the
+ * tracker returns brute force's node from any warm start). One thread at a time; free it after the last
+ * run that used it. */
+typedef struct gb_dynamics_cache gb_dynamics_cache;
+int gb_dynamics_cache_create(gb_dynamics_cache **out);
+void gb_dynamics_cache_free(gb_dynamics_cache *cache);
+
 typedef struct gb_dynamics_def {
     gb_dynamics_variant variant;
     gb_contact_model contact;
@@ -178,6 +190,7 @@ typedef struct gb_dynamics_def {
     gb_atlas *atlas_shared;        /* certificate = atlas: use this atlas of the same body and definition,
                                     * which the caller keeps across runs (not loaded, saved or freed here; one
                                     * thread at a time), instead of an own one (NULL: own) */
+    gb_dynamics_cache *cache;      /* what runs of one body share (gb_dynamics_cache; NULL: none) */
     const char *hull_file;         /* contact = fast-grid: load the tracker's hull from here when the file was
                                     * written for this grid (else build it with Qhull), and
                                     * gb_dynamics_save_hull writes it when built (NULL: none) */

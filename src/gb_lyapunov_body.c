@@ -24,6 +24,7 @@ struct gb_lyapunov_body {
     gb_integrator method;
     size_t steps_per_period, tangent_steps;
     size_t saltations, unlocated, grazing, jumps;
+    gb_dynamics_cache *cache; /* the pair's own, when the caller named none */
 };
 
 int gb_lyapunov_body_create(const gb_surface *surface, const gb_dynamics_def *dynamics,
@@ -41,11 +42,14 @@ int gb_lyapunov_body_create(const gb_surface *surface, const gb_dynamics_def *dy
     b->omega_scale = omega_scale;
     b->translation = dynamics->contact_law == GB_CONTACT_LAW_UNILATERAL;
     int status = GB_OK;
-    /* the partner takes the reference's atlas (below): it need not read the atlas file itself */
-    gb_dynamics_def partner = *dynamics;
+    /* the partner takes the reference's atlas (below): it need not read the atlas file itself; and the
+     * two share one body (mass properties, grid, hull) through the caller's cache or their own */
+    gb_dynamics_def reference = *dynamics;
+    if (!reference.cache) status = gb_dynamics_cache_create(&b->cache), reference.cache = b->cache;
+    gb_dynamics_def partner = reference;
     partner.atlas_file = NULL;
     for (int k = 0; k < 2 && !status; k++) {
-        status = gb_dynamics_start(surface, k ? &partner : dynamics, R0, omega0, &b->dynamics[k], b->y[k]);
+        status = gb_dynamics_start(surface, k ? &partner : &reference, R0, omega0, &b->dynamics[k], b->y[k]);
         if (!status) status = gb_integrate_begin(b->dynamics[k], integrate, 0.0, &b->session[k]);
     }
     if (!status) gb_dynamics_share_atlas(b->dynamics[1], b->dynamics[0]);
@@ -64,6 +68,7 @@ void gb_lyapunov_body_free(gb_lyapunov_body *body)
     gb_integrate_end(body->session[1]);
     gb_dynamics_free(body->dynamics[1]); /* first: it may use the atlas of dynamics[0] */
     gb_dynamics_free(body->dynamics[0]);
+    gb_dynamics_cache_free(body->cache); /* last: both may use what it holds */
     free(body);
 }
 

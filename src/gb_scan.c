@@ -613,15 +613,16 @@ int gb_scan_atlas_create(const gb_scan *scan, gb_atlas **out)
 
 int gb_scan_point_run(const gb_scan *scan, const gb_scan_melnikov *melnikov, size_t index, gb_scan_metrics *out)
 {
-    return gb_scan_point_run_atlas(scan, melnikov, index, NULL, out);
+    return gb_scan_point_run_shared(scan, melnikov, index, NULL, NULL, out);
 }
 
-int gb_scan_point_run_atlas(const gb_scan *scan, const gb_scan_melnikov *melnikov, size_t index, gb_atlas *atlas,
-                            gb_scan_metrics *out)
+int gb_scan_point_run_shared(const gb_scan *scan, const gb_scan_melnikov *melnikov, size_t index, gb_atlas *atlas,
+                             gb_dynamics_cache *cache, gb_scan_metrics *out)
 {
     gb_case scene;
     int status = gb_scan_point_case(scan, index, &scene);
     if (status) return status;
+    scene.dynamics.cache = cache;
     if (scene.dynamics.certificate == GB_CERTIFICATE_ATLAS && atlas) scene.dynamics.atlas_shared = atlas;
     else if (scan->atlas_file && scene.dynamics.certificate == GB_CERTIFICATE_ATLAS) scene.dynamics.atlas_file = scan->atlas_file;
     gb_scan_metrics m = {.omega_rms = NAN, .switch_rate = NAN, .mean_height = NAN, .lambda = NAN, .lambda_error = NAN,

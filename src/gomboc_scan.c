@@ -426,6 +426,8 @@ static void run_points(scan_state *st, const ranks *r)
      * file and writes it back every ATLAS_SAVE_POINTS points it ran and at its end, so that the threads
      * and the ranks still share their cells through the file. */
     gb_atlas *atlas = NULL;
+    gb_dynamics_cache *cache = NULL; /* the body's mass properties, grid and hull, kept between points */
+    if (gb_dynamics_cache_create(&cache)) gb_error_clear(); /* none: each point builds its own */
     double built_at_save = 0.0;
     size_t since_save = 0;
     if (st->scan->atlas_file && gb_scan_atlas_create(st->scan, &atlas)) {
@@ -444,7 +446,7 @@ static void run_points(scan_state *st, const ranks *r)
         if (skip) continue;
         const size_t k = todo[i];
         gb_scan_metrics m;
-        int s = gb_scan_point_run_atlas(st->scan, melnikov, k, atlas, &m);
+        int s = gb_scan_point_run_shared(st->scan, melnikov, k, atlas, cache, &m);
         if (atlas && ++since_save == ATLAS_SAVE_POINTS) {
             save_atlas(st->scan, atlas, &built_at_save), since_save = 0;
             gb_atlas_stats held;
@@ -487,6 +489,7 @@ static void run_points(scan_state *st, const ranks *r)
     }
     if (atlas) save_atlas(st->scan, atlas, &built_at_save);
     gb_atlas_free(atlas);
+    gb_dynamics_cache_free(cache);
     }
     free(todo);
     gb_scan_melnikov_free(melnikov);

@@ -13,6 +13,7 @@
 #include "gb_error.h"
 #include "gb_integrate.h"
 #include "gb_nondim.h"
+#include "gb_run.h"
 #include "verify_sections.h"
 
 #include <cjson/cJSON.h>
@@ -20,7 +21,9 @@
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
+#include <stdlib.h>
 #include <time.h>
+#include <unistd.h>
 
 static const double IDENTITY[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
 
@@ -323,6 +326,69 @@ static void test_tracker_equals_brute_force(void)
                       "%zu and %zu grid-index changes; final omega_x %.17g and %.17g", a.grid_switches, b.grid_switches,
                       a.y[GB_STATE_OMEGA], b.y[GB_STATE_OMEGA]);
     }
+}
+
+/* A scene of 12 Table 1 periods with λ, written to dir and read back. */
+static int cache_scene(const char *dir, const char *name, const char *morphology, const char *model, gb_case *out)
+{
+    char path[256];
+    snprintf(path, sizeof path, "%s/%s.ini", dir, name);
+    FILE *f = fopen(path, "w");
+    if (!f) return GB_EIO;
+    fprintf(f, "[body]\nmorphology = %s\nbeta = 0.12\n[model]\n%s\n[integrator]\nperiods = 12\n[output]\nhistory = no\n"
+               "summary = no\n[diagnostics]\nlyapunov = yes\n[lyapunov]\nbatches = 4\n",
+            morphology, model);
+    fclose(f);
+    const int status = gb_case_load(path, out);
+    remove(path);
+    return status;
+}
+
+/* Runs that share a gb_dynamics_cache (as a scan's thread does) against the same runs each on its own:
+ * Gömböc II, I, II again and II rolling with continuous contact, every one a Lyapunov pair; and the pair
+ * on the fast grid (reference and partner on one tracker) against the brute-force grid. */
+static void test_dynamics_cache(void)
+{
+    char dir[] = "/tmp/gomboc-cache-XXXXXX";
+    if (!mkdtemp(dir)) return;
+    static const struct { const char *morphology, *model; } runs[] = {
+        {"II", "equation = paper\ncontact = fast-grid"},
+        {"I", "equation = paper\ncontact = fast-grid"},
+        {"II", "equation = paper\ncontact = fast-grid"},
+        {"II", "equation = rolling\ncontact = continuous"},
+        {"II", "equation = paper\ncontact = grid"},
+    };
+    enum { RUNS = sizeof runs / sizeof runs[0] };
+    gb_dynamics_cache *cache = NULL;
+    int status = gb_dynamics_cache_create(&cache), same = 0;
+    gb_run_result alone[RUNS], shared[RUNS];
+    memset(alone, 0, sizeof alone), memset(shared, 0, sizeof shared);
+    for (int k = 0; k < RUNS && !status; k++) {
+        gb_case scene;
+        status = cache_scene(dir, "cache", runs[k].morphology, runs[k].model, &scene);
+        if (!status) status = gb_run(&scene, NULL, &alone[k]);
+        scene.dynamics.cache = cache;
+        if (!status) status = gb_run(&scene, NULL, &shared[k]);
+        same += !status && alone[k].state_fingerprint == shared[k].state_fingerprint &&
+                alone[k].switch_fingerprint == shared[k].switch_fingerprint &&
+                !memcmp(&alone[k].lyapunov.lambda_max, &shared[k].lyapunov.lambda_max, sizeof(double));
+    }
+    gb_check c = {"6, 8.3", "44, 77", "runs sharing one dynamics cache (II, I, II fast grid; II rolling, continuous), each a Lyapunov pair",
+                  "the same runs without a shared cache", "exact: state and switch fingerprints, lambda_max bits"};
+    gb_check_true(&c, !status && same == RUNS, "%d of %d the same; lambda_max %.17g and %.17g (the first)", same, RUNS,
+                  alone[0].lyapunov.lambda_max, shared[0].lyapunov.lambda_max);
+    gb_check cb = {"6", "29, 77", "Table 1 paper model, Gomboc II, 12 periods: the Lyapunov pair on the fast grid (one tracker for both) == on the brute-force grid",
+                   "the paper's plain loop over every node", "exact: state and switch fingerprints, lambda_max bits"};
+    gb_check_true(&cb, !status && alone[0].state_fingerprint == alone[4].state_fingerprint &&
+                           alone[0].switch_fingerprint == alone[4].switch_fingerprint &&
+                           !memcmp(&alone[0].lyapunov.lambda_max, &alone[4].lyapunov.lambda_max, sizeof(double)),
+                  "lambda_max %.17g and %.17g; fingerprints %016llx and %016llx", alone[0].lyapunov.lambda_max,
+                  alone[4].lyapunov.lambda_max, (unsigned long long)alone[0].state_fingerprint,
+                  (unsigned long long)alone[4].state_fingerprint);
+    if (status) gb_error_clear();
+    for (int k = 0; k < RUNS; k++) gb_run_result_free(&alone[k]), gb_run_result_free(&shared[k]);
+    gb_dynamics_cache_free(cache);
+    rmdir(dir);
 }
 
 /* The dimensionless run (eqs 53–65) equals the dimensional one after rescaling: Ω(τ) = ω(τ/ω_f)/ω_f,
@@ -837,6 +903,9 @@ int verify_register_s5_dynamics(void)
         {"eq 23, 44: GSL adaptive steppers against the reference", test_adaptive_steppers, NULL},
         {"eq 29, 44: the trajectory tracker reproduces the brute-force grid run", test_tracker_equals_brute_force,
          "the fast-grid run of the paper's model equals the paper's brute-force run bit for bit"},
+        {"eq 44, 77: runs sharing a dynamics cache", test_dynamics_cache,
+         "runs that share one body's mass properties, grid and hull (a scan's thread, a Lyapunov pair) give the "
+         "bits of runs that build their own"},
         {"eq 53-65: the dimensionless run equals the dimensional one", test_nondimensional,
          "the nondimensional form (eqs 53–65) reproduces the dimensional run after rescaling"},
         {"eq 40-44: the paper's grid model against an independent numpy implementation", test_numpy_grid_model,
