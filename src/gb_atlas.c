@@ -797,10 +797,9 @@ int gb_atlas_merge_save(gb_atlas *A, const char *path)
      * lock on it would not be held by the next writer). Without one (a directory that cannot be opened or
      * locked) the writers are still safe, and a cell can only be lost, to be proved again when needed. */
     const char *slash = strrchr(path, '/');
-    char dir[4096];
-    if (!slash) snprintf(dir, sizeof dir, ".");
-    else snprintf(dir, sizeof dir, "%.*s", slash == path ? 1 : (int)(slash - path), path);
-    const int fd = open(dir, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    char *dir = slash ? strndup(path, slash == path ? 1 : (size_t)(slash - path)) : strdup(".");
+    const int fd = dir ? open(dir, O_RDONLY | O_DIRECTORY | O_CLOEXEC) : -1;
+    free(dir);
     int locked = 0;
     if (fd >= 0)
         while (!(locked = flock(fd, LOCK_EX) == 0) && errno == EINTR) continue;

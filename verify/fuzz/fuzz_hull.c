@@ -42,6 +42,13 @@ int LLVMFuzzerInitialize(int *argc, char ***argv)
     gb_contact_tracker_free(t);
     FILE *f = fopen(path, "rb");
     require(f != NULL && fread(header, 1, sizeof header, f) == sizeof header);
+    /* the counts follow BUILT_FROM: vertices, edges, coplanar nodes, and they size the file (2V + 1 + E + C
+     * words after them, then the checksum); a header laid out otherwise stops the target here */
+    uint64_t counts[3];
+    require(fread(counts, sizeof counts[0], 3, f) == 3 && counts[0] > 0 && !fseek(f, 0, SEEK_END));
+    const long size = ftell(f);
+    require(size == (long)(BUILT_FROM + sizeof counts + (2 * counts[0] + 1 + counts[1] + counts[2]) * sizeof(uint32_t) +
+                           sizeof(uint64_t)));
     fclose(f);
     remove(path);
     return 0;
