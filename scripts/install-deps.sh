@@ -6,7 +6,7 @@
 #   install-deps.sh valgrind   and valgrind (make valgrind)
 #   install-deps.sh mpi        and OpenMPI (make mpi)
 set -eu
-packages="build-essential pkg-config libgsl-dev libcunit1-dev libinih-dev libcjson-dev libqhull-dev
+packages="build-essential pkg-config libgsl-dev libcunit1-dev libinih-dev libcjson-dev libqhull-dev libsodium-dev
 python3 python3-numpy python3-scipy python3-sympy python3-matplotlib groff-base"
 for extra in "$@"; do
     case "$extra" in

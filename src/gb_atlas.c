@@ -5,7 +5,7 @@
 #include "gb_file.h"
 #include "gb_certify_internal.h"
 #include "gb_error.h"
-#include "gb_hash.h"
+#include "gb_seal.h"
 #include "gb_vec.h"
 
 #include <errno.h>
@@ -594,10 +594,10 @@ void gb_atlas_get_stats(const gb_atlas *A, gb_atlas_stats *out)
 /* ---------------------------------------------------------------- the file */
 
 /* The file: a header (magic, format, morphology, β, η, levels, depth, site build constants), the cells
- * of the six faces in preorder (state; for a certified cell its sites), and an FNV-1a 64 checksum of
- * everything before it. Written to NAME.tmp and renamed, so a reader never sees half a file. */
-#define ATLAS_MAGIC "gomboc-atlas"
-#define ATLAS_FORMAT 2u
+ * of the six faces in preorder (state; for a certified cell its sites), and the seal (gb_seal) of
+ * everything before it. Written as a gb_file set of one, so a reader never sees half a file. */
+#define ATLAS_MAGIC GB_ATLAS_FILE_MAGIC
+#define ATLAS_FORMAT 3u
 
 typedef struct header {
     char magic[16];
@@ -623,13 +623,13 @@ static void header_of(const gb_atlas *A, header *h)
 
 typedef struct writer {
     FILE *f;
-    uint64_t hash;
+    gb_seal_state seal;
     int failed;
 } writer;
 
 static void put(writer *w, const void *bytes, size_t size)
 {
-    w->hash = gb_hash_add(w->hash, bytes, size);
+    gb_seal_add(&w->seal, bytes, size);
     if (fwrite(bytes, 1, size, w->f) != size) w->failed = 1;
 }
 
@@ -645,21 +645,27 @@ static void put_cell(writer *w, const cell *c)
     }
 }
 
-int gb_atlas_save(const gb_atlas *A, const char *path)
+/* Write the atlas to `path` as a set of one; `locked`: the caller holds the lock of its directory. */
+static int atlas_save(const gb_atlas *A, const char *path, int locked)
 {
-    gb_file_set set = {0};
-    int status = GB_OK;
-    writer w = {.f = gb_file_set_open(&set, path, &status), .hash = GB_HASH_OFFSET};
+    gb_file_set set = {.directory_locked = locked};
+    writer w = {0};
+    int status = gb_seal_begin(&w.seal);
+    if (status) return gb_error_set(status, "cannot seal the atlas file %s: %s", path, gb_error_message());
+    w.f = gb_file_set_open(&set, path, &status);
     if (!w.f) return gb_error_set(status, "cannot write the atlas file: %s", gb_error_message());
     header h;
     header_of(A, &h);
     put(&w, &h, sizeof h);
     for (int f = 0; f < 6; f++) put_cell(&w, &A->faces[f]);
-    const uint64_t sum = w.hash;
-    if (fwrite(&sum, sizeof sum, 1, w.f) != 1) w.failed = 1;
+    unsigned char seal[GB_SEAL_BYTES];
+    gb_seal_end(&w.seal, seal);
+    if (fwrite(seal, sizeof seal, 1, w.f) != 1) w.failed = 1;
     if (w.failed) status = gb_error_set(GB_EIO, "cannot write the atlas file %s: %s", path, strerror(errno ? errno : EIO));
     return gb_file_set_commit(&set, status);
 }
+
+int gb_atlas_save(const gb_atlas *A, const char *path) { return atlas_save(A, path, 0); }
 
 typedef struct reader {
     const unsigned char *p, *end;
@@ -722,7 +728,7 @@ size_t gb_atlas_file_limit(const gb_atlas *A)
 {
     /* Every cell of every face split down to max_level, each leaf certified with two sites: no file of
      * these levels is larger; and none beyond GB_ATLAS_FILE_MAX, whatever its levels declare. */
-    double bytes = (double)sizeof(header) + sizeof(uint64_t);
+    double bytes = (double)sizeof(header) + GB_SEAL_BYTES;
     for (int level = 0; level <= A->def.max_level && bytes <= (double)GB_ATLAS_FILE_MAX; level++)
         bytes += 6.0 * pow(4.0, level) * (level < A->def.max_level ? 1.0 : 2.0 + 2.0 * sizeof(site));
     return bytes < (double)GB_ATLAS_FILE_MAX ? (size_t)bytes : (size_t)GB_ATLAS_FILE_MAX;
@@ -739,9 +745,43 @@ int gb_atlas_load(gb_atlas *A, const char *path)
     return parsed;
 }
 
-/* The file's cells merged into c: where c is unbuilt the file's cell (and its subtree) is taken; where
- * both are split, their children are merged; elsewhere c is kept and the file's cell passed over (a
- * cell's proof does not depend on who made it: the two are the same). 0 when the bytes do not parse. */
+/* The counters of the cells of a subtree read apart (merge_cell's scratch), now taken into the atlas. */
+static void count_subtree(gb_atlas *A, const cell *c)
+{
+    if (c->state == CELL_SPLIT)
+        for (int k = 0; k < 4; k++) count_subtree(A, &c->child[k]);
+    A->stats.cells += c->state == CELL_CERTIFIED;
+    A->stats.two_site_cells += c->state == CELL_CERTIFIED && c->sites == 2;
+    A->stats.cells_failed += c->state == CELL_FAILED;
+    if (c->level > A->stats.deepest_level) A->stats.deepest_level = c->level;
+}
+
+/* A certificate holds for every vertical of its cell (gb_atlas.h), so for every vertical of a cell inside
+ * it: every cell of c's subtree that has none (unbuilt, or failed) takes a copy of `from`'s sites. */
+static void inherit(gb_atlas *A, cell *c, const cell *from)
+{
+    if (c->state == CELL_SPLIT) {
+        for (int k = 0; k < 4; k++) inherit(A, &c->child[k], from);
+        return;
+    }
+    if (c->state == CELL_CERTIFIED) return;
+    if (c->state == CELL_FAILED) A->stats.cells_failed--;
+    c->state = CELL_CERTIFIED;
+    c->sites = from->sites;
+    memcpy(c->site, from->site, sizeof c->site);
+    A->stats.cells++;
+    A->stats.two_site_cells += from->sites == 2;
+}
+
+/* The file's cells merged into c, so that nothing either side proved is lost:
+ *  - c unbuilt: the file's cell (and its subtree) is taken;
+ *  - both split: their children are merged;
+ *  - one side split, the other certified (a cell's fate depends on the verticals that first needed it, so
+ *    two runs can decompose one cell differently): the finer decomposition is kept, its cells without a
+ *    certificate taking the coarser certificate (inherit);
+ *  - c failed, the file's certified: the file's certificate;
+ *  - elsewhere c is kept (the same cell, proved either way).
+ * 0 when the bytes do not parse. */
 static int merge_cell(gb_atlas *A, reader *r, cell *c)
 {
     if (c->state == CELL_UNBUILT) return take_cell(A, r, c);
@@ -756,7 +796,22 @@ static int merge_cell(gb_atlas *A, reader *r, cell *c)
     const gb_atlas_stats kept = A->stats;
     const int ok = take_cell(A, r, &scratch);
     A->stats = kept;
-    return ok;
+    if (!ok) return 0;
+    if (c->state == CELL_SPLIT && scratch.state == CELL_CERTIFIED) {
+        inherit(A, c, &scratch);
+    } else if (c->state == CELL_CERTIFIED && scratch.state == CELL_SPLIT) {
+        const cell coarse = *c;
+        c->state = CELL_SPLIT;
+        c->child = scratch.child; /* the file's subtree, from this atlas's arena */
+        A->stats.cells--, A->stats.two_site_cells -= coarse.sites == 2;
+        for (int k = 0; k < 4; k++) count_subtree(A, &c->child[k]);
+        inherit(A, c, &coarse);
+    } else if (c->state == CELL_FAILED && scratch.state == CELL_CERTIFIED) {
+        A->stats.cells_failed--;
+        *c = scratch;
+        A->stats.cells++, A->stats.two_site_cells += scratch.sites == 2;
+    }
+    return 1;
 }
 
 /* The header and checksum of an atlas file's bytes: NULL when they are this atlas's, else why not. */
@@ -764,12 +819,13 @@ static const char *refused(const gb_atlas *A, const unsigned char *data, size_t 
 {
     header want, have;
     header_of(A, &want);
-    if (size < sizeof have + sizeof(uint64_t)) return "it is not an atlas of this body, beta, eta and build, or it is damaged";
+    if (size < sizeof have + GB_SEAL_BYTES) return "it is not an atlas of this body, beta, eta and build, or it is damaged";
     memcpy(&have, data, sizeof have);
-    uint64_t sum;
-    memcpy(&sum, data + size - sizeof sum, sizeof sum);
-    if (memcmp(&want, &have, sizeof want) || gb_hash_add(GB_HASH_OFFSET, data, size - sizeof sum) != sum)
-        return "it is not an atlas of this body, beta, eta and build, or it is damaged";
+    if (memcmp(&want, &have, sizeof want)) return "it is not an atlas of this body, beta, eta and build";
+    const gb_seal_piece content = {data, size - GB_SEAL_BYTES};
+    if (!gb_seal_verify(&content, 1, data + size - GB_SEAL_BYTES))
+        return "its seal does not verify: damaged, changed since it was written, or written under another key "
+               "(see GOMBOC_KEY)";
     return NULL;
 }
 
@@ -781,7 +837,7 @@ int gb_atlas_merge(gb_atlas *A, const char *path)
     if (status) return gb_error_set(GB_EIO, "atlas file refused: %s", gb_error_message());
     const char *why = refused(A, (const unsigned char *)data, size);
     if (!why) {
-        reader r = {(const unsigned char *)data + sizeof(header), (const unsigned char *)data + size - sizeof(uint64_t)};
+        reader r = {(const unsigned char *)data + sizeof(header), (const unsigned char *)data + size - GB_SEAL_BYTES};
         int ok = 1;
         for (int face = 0; face < 6 && ok; face++) ok = merge_cell(A, &r, &A->faces[face]);
         if (!ok || r.p != r.end) why = "its cells do not parse (the cells read before the fault are kept)";
@@ -793,20 +849,16 @@ int gb_atlas_merge(gb_atlas *A, const char *path)
 
 int gb_atlas_merge_save(gb_atlas *A, const char *path)
 {
-    /* The lock: an exclusive flock on the file's directory (the file itself is replaced by a rename, so a
-     * lock on it would not be held by the next writer). Without one (a directory that cannot be opened or
-     * locked) the writers are still safe, and a cell can only be lost, to be proved again when needed. */
-    const char *slash = strrchr(path, '/');
-    char *dir = slash ? strndup(path, slash == path ? 1 : (size_t)(slash - path)) : strdup(".");
-    const int fd = dir ? open(dir, O_RDONLY | O_DIRECTORY | O_CLOEXEC) : -1;
-    free(dir);
-    int locked = 0;
-    if (fd >= 0)
-        while (!(locked = flock(fd, LOCK_EX) == 0) && errno == EINTR) continue;
+    /* The lock: gb_file_lock's, on the file's directory (the file itself is replaced by a rename, so a
+     * lock on it would not be held by the next writer), waited for a bounded time. Without one (a
+     * directory that cannot be locked) the writers are still safe, and a cell can only be lost, to be
+     * proved again when needed. */
+    int lock;
+    int status = gb_file_lock(path, "merging the shared atlas of verticals", &lock);
+    if (status) return status;
     if (gb_atlas_merge(A, path)) gb_error_clear(); /* missing, stale or damaged: replaced */
-    const int status = gb_atlas_save(A, path);
-    if (locked) flock(fd, LOCK_UN);
-    if (fd >= 0) close(fd);
+    status = atlas_save(A, path, lock >= 0);
+    gb_file_unlock(lock);
     return status;
 }
 
@@ -819,7 +871,7 @@ int gb_atlas_load_buffer(gb_atlas *A, const unsigned char *data, size_t size, co
         const gb_atlas_stats kept = A->stats;
         faces_reset(A);
         A->stats.cells = A->stats.two_site_cells = A->stats.cells_failed = 0;
-        reader r = {data + sizeof(header), data + size - sizeof(uint64_t)};
+        reader r = {data + sizeof(header), data + size - GB_SEAL_BYTES};
         for (int face = 0; face < 6 && ok; face++) ok = take_cell(A, &r, &A->faces[face]);
         ok = ok && r.p == r.end;
         if (!ok) {

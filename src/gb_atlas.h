@@ -29,7 +29,8 @@
  * Newton solve fails, or whose contact lies in only some of its site's looked-up boxes, is UNDECIDED too.
  *
  * The atlas can be saved to and loaded from a file keyed by morphology, β, η, the build parameters and
- * the library's atlas format; a file that does not match, or fails its checksum, is refused. */
+ * the library's atlas format and sealed (gb_seal: a keyed BLAKE2b-256 of its bytes); a file that does not
+ * match, or whose seal does not verify, is refused. */
 #ifndef GB_ATLAS_H
 #define GB_ATLAS_H
 
@@ -105,9 +106,12 @@ void gb_atlas_cells(const gb_atlas *atlas, gb_atlas_cell_info *out, size_t max, 
  * one file never cost each other their outputs (the last complete one wins; gb_atlas_merge_save
  * merges the file's cells first, under a lock, so that they add up). Load a saved atlas (its
  * cells replace the ones held): GB_EIO for a file that is not a regular file, is larger than
- * gb_atlas_file_limit, is not an atlas of this body, β, η and build parameters, or is damaged (its
- * checksum): the caller then builds anew. */
+ * gb_atlas_file_limit, is not an atlas of this body, β, η and build parameters, or whose seal does not
+ * verify (damaged, edited, or sealed under another key): the caller then builds anew. GB_EIO too when the
+ * file cannot be sealed (no key: gb_seal_key_ready). */
 int gb_atlas_save(const gb_atlas *atlas, const char *path);
+/* Every atlas file starts with these bytes (the string with its NUL). */
+#define GB_ATLAS_FILE_MAGIC "gomboc-atlas"
 int gb_atlas_load(gb_atlas *atlas, const char *path);
 /* The largest file an atlas of these levels can be (every cell split down to max_level, every leaf
  * certified with two sites), and never more than GB_ATLAS_FILE_MAX: a larger file is refused unread. */
@@ -118,9 +122,10 @@ size_t gb_atlas_file_limit(const gb_atlas *atlas);
  * writes, so that concurrent runs sharing one file add up their cells. GB_EIO when the file is missing,
  * of another atlas or damaged (the atlas is then unchanged, or holds the cells read before the fault). */
 int gb_atlas_merge(gb_atlas *atlas, const char *path);
-/* gb_atlas_merge, then gb_atlas_save, with the file's directory locked (flock) in between, so that
- * writers of one file, threads or processes, take turns and every cell any of them proved stays in it.
- * A file that is missing, of another atlas or damaged is replaced. */
+/* gb_atlas_merge, then gb_atlas_save, with the file's directory locked (gb_file_lock) in between, so
+ * that writers of one file, threads or processes, take turns and every cell any of them proved stays in
+ * it. A file that is missing, of another atlas or damaged is replaced. GB_EIO when the lock stays held
+ * beyond gb_file_lock_seconds (nothing is written then). */
 int gb_atlas_merge_save(gb_atlas *atlas, const char *path);
 
 /* gb_atlas_load on the bytes of a file already read (`name` for messages). */

@@ -196,7 +196,10 @@ int gb_case_key_allowed(size_t index, const char **section, const char **name, c
     *name = k->name;
     char range[160];
     switch (k->kind) {
-    case KEY_TEXT: snprintf(allowed, size, "text of at most %d bytes, UTF-8 without control characters", GB_CASE_TEXT_MAX - 1); break;
+    case KEY_TEXT: /* what fits on its line beside "key = " */
+        snprintf(allowed, size, "text of at most %d bytes (a line holds %d), UTF-8 without control characters",
+                 GB_INI_LINE_MAX - (int)strlen(k->name) - 3, GB_INI_LINE_MAX);
+        break;
     case KEY_FLAG: snprintf(allowed, size, "yes, no"); break;
     case KEY_GRID: snprintf(allowed, size, "NPxNT with NP >= 2, NT >= 3, NP*NT <= %zu", GB_CONTACT_GRID_MAX_NODES); break;
     case KEY_ATTITUDE:
@@ -296,11 +299,24 @@ static int set_attitude(reader *r, const key_def *k, size_t index, const char *v
         double v[4];
         const gb_parse_result p = strncmp(value, "axis-angle ", 11) ? GB_PARSE_SYNTAX : gb_parse_list(value + 11, v, 4);
         if (p) return value_fail(r, k, index, value, p);
-        const double n = hypot(hypot(v[0], v[1]), v[2]);
-        if (!(fabs(v[0]) <= 1e6 && fabs(v[1]) <= 1e6 && fabs(v[2]) <= 1e6 && n > 0.0 && fabs(v[3]) <= 1000.0))
+        if (!(fabs(v[0]) <= 1e6 && fabs(v[1]) <= 1e6 && fabs(v[2]) <= 1e6 && fabs(v[3]) <= 1000.0))
             return value_fail(r, k, index, value, GB_PARSE_OK);
+        /* An axis of tiny components (subnormal ones carry few bits, and their squares vanish) is scaled by its
+         * largest first; any other is normalised as written, so that its bits are those it always had. */
+        const double largest = fmax(fabs(v[0]), fmax(fabs(v[1]), fabs(v[2])));
+        if (largest > 0.0 && largest < 1e-100)
+            for (int i = 0; i < 3; i++) v[i] /= largest;
+        const double n = hypot(hypot(v[0], v[1]), v[2]);
+        if (!(n > 0.0)) return value_fail(r, k, index, value, GB_PARSE_OK);
         const double axis[3] = {v[0] / n, v[1] / n, v[2] / n};
         axis_angle(axis, v[3], c->attitude);
+        double worst = 0.0; /* as gb_dynamics_init_state will judge it */
+        for (int i = 0; i < 3; i++)
+            for (int j = 0; j < 3; j++) {
+                const double *R = c->attitude, dot = R[i] * R[j] + R[3 + i] * R[3 + j] + R[6 + i] * R[6 + j];
+                worst = fmax(worst, fabs(dot - (i == j)));
+            }
+        if (!(worst < 1e-12)) return value_fail(r, k, index, value, GB_PARSE_OK);
     }
     snprintf(c->attitude_text, sizeof c->attitude_text, "%s", value);
     return 1;
@@ -399,9 +415,14 @@ static int cross_fail(const char *path, const gb_case *c, const char *section, c
     va_start(ap, fmt);
     vsnprintf(reason, sizeof reason, fmt, ap);
     va_end(ap);
+    /* "[s] k = v with …" when the reason starts with the value, else "[s] k: reason"; a key another file set
+     * over the scene (a scan's axis) is named by that file's line */
+    const char *joint = strncmp(reason, "= ", 2) ? ": " : " ";
     const int index = key_index(section, key), line = index >= 0 ? c->key_line[index] : 0;
-    if (line) return gb_error_set(GB_EDOM, "%s:%d: [%s] %s: %s", path, line, section, key, reason);
-    return gb_error_set(GB_EDOM, "%s: [%s] %s (default): %s", path, section, key, reason);
+    const char *origin = index >= 0 ? c->key_origin[index] : NULL;
+    if (origin) return gb_error_set(GB_EDOM, "%s: [%s] %s%s%s (in the scene %s)", origin, section, key, joint, reason, path);
+    if (line) return gb_error_set(GB_EDOM, "%s:%d: [%s] %s%s%s", path, line, section, key, joint, reason);
+    return gb_error_set(GB_EDOM, "%s: [%s] %s (default)%s%s", path, section, key, joint, reason);
 }
 
 static int cross_check(const char *path, gb_case *c)
@@ -519,6 +540,7 @@ static int apply_override(gb_case *scene, const gb_case_override *o)
     reader r = {.scene = scene};
     if (!set_value(&r, &keys[index], (size_t)index, o->value)) return gb_error_set(GB_EINVAL, "%s: %s", o->origin, r.message);
     scene->key_line[index] = 0; /* no line of the scene file */
+    scene->key_origin[index] = o->origin;
     return GB_OK;
 }
 
@@ -529,6 +551,7 @@ int gb_case_load_text_with(const char *name, const char *text, size_t size, cons
     int status = gb_ini_read(name, text, size, sections, SECTION_TOTAL, handler, &scene);
     for (size_t k = 0; k < count && !status; k++) status = apply_override(&scene, &overrides[k]);
     if (!status) status = cross_check(name, &scene);
+    memset(scene.key_origin, 0, sizeof scene.key_origin); /* the overrides' texts are the caller's */
     if (status) return status;
     /* Amplitudes in m/s² for the dynamics. */
     const double unit = scene.amplitudes_in_g ? scene.dynamics.forcing.g : 1.0;

@@ -54,6 +54,8 @@ typedef struct gb_case {
     size_t lyapunov_window_periods;   /* windowed exponents over this many periods; 0: none */
     double omega_scale;               /* [rad/s]; the forcing omega unless given */
     int key_line[GB_CASE_KEY_MAX];    /* the line each key was read from (0: the default), by key index */
+    const char *key_origin[GB_CASE_KEY_MAX]; /* while the scene is read: who set a key over the file (an
+                                               * override's origin, for messages), else NULL; all NULL after */
 } gb_case;
 
 /* The defaults: Table 1 with the paper's model (m/s² reading of A1, A2; R0 = I; ω0 = 0). */

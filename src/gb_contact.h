@@ -108,9 +108,12 @@ void gb_contact_tracker_free(gb_contact_tracker *tracker);
 /* The hull's vertices (0 when the tracker fell back to the patch-tree search). */
 size_t gb_contact_tracker_vertices(const gb_contact_tracker *tracker);
 /* The hull as a file, a cache per grid: gb_contact_tracker_save writes the tracker's hull graph
- * atomically (GB_EINVAL when it has none); gb_contact_tracker_load makes a tracker from a file written
- * for this very grid (the bits of its nodes, Qhull's release) and refuses any other with GB_EIO and why.
- * A loaded tracker answers every query as the one Qhull built, bit for bit. */
+ * atomically and sealed (gb_seal: a keyed BLAKE2b-256 of its bytes; GB_EINVAL when it has no hull, GB_EIO
+ * when there is no key); gb_contact_tracker_load makes a tracker from a file written for this very grid
+ * (the bits of its nodes, Qhull's release) whose seal verifies, and refuses any other with GB_EIO and
+ * why. A loaded tracker answers every query as the one Qhull built, bit for bit. Every hull file starts
+ * with the 8 bytes GB_CONTACT_HULL_MAGIC. */
+#define GB_CONTACT_HULL_MAGIC {'G', 'B', 'H', 'U', 'L', 'L', '\0', '\0'}
 int gb_contact_tracker_save(const gb_contact_tracker *tracker, const char *path);
 int gb_contact_tracker_load(const gb_contact_grid *grid, const char *path, gb_contact_tracker **out);
 /* The same from a file's bytes (`name` for the message), and the largest file of this grid's hull. */

@@ -32,6 +32,7 @@
 #include "gb_error.h"
 #include "gb_file.h"
 #include "gb_hash.h"
+#include "gb_seal.h"
 
 #include <libqhull_r/qhull_ra.h>
 #include <stdint.h>
@@ -261,8 +262,8 @@ int gb_contact_tracker_find(gb_contact_tracker *t, const double zb[3], gb_contac
 /* The hull file: a header, the graph's arrays and an FNV-1a checksum of everything before it. The header
  * names what the graph was built from (the nodes' bits, their count, COPLANAR and the Qhull release), so
  * that a file is taken only for the very grid it describes. */
-enum { HULL_FILE_VERSION = 1 };
-static const char hull_magic[8] = {'G', 'B', 'H', 'U', 'L', 'L', '\0', '\0'};
+enum { HULL_FILE_VERSION = 2 };
+static const char hull_magic[8] = GB_CONTACT_HULL_MAGIC;
 typedef struct hull_header {
     char magic[8];
     uint64_t version, nodes, nodes_hash, coplanar_bits, qhull_hash;
@@ -301,7 +302,7 @@ int gb_contact_tracker_save(const gb_contact_tracker *t, const char *path)
     hull_header_of(t->grid, &h);
     h.vertices = t->vertices, h.edges = t->edge_start[t->vertices], h.coplanar = t->coplanar;
     const size_t words = t->vertices + (t->vertices + 1) + h.edges + t->coplanar;
-    const size_t size = sizeof h + words * sizeof(uint32_t) + sizeof(uint64_t);
+    const size_t size = sizeof h + words * sizeof(uint32_t) + GB_SEAL_BYTES;
     unsigned char *bytes = malloc(size), *p = bytes;
     if (!bytes) return gb_error_set(GB_ENOMEM, "out of memory for the hull file");
     memcpy(p, &h, sizeof h), p += sizeof h;
@@ -309,9 +310,9 @@ int gb_contact_tracker_save(const gb_contact_tracker *t, const char *path)
     memcpy(p, t->edge_start, (t->vertices + 1) * sizeof(uint32_t)), p += (t->vertices + 1) * sizeof(uint32_t);
     memcpy(p, t->edge, h.edges * sizeof(uint32_t)), p += h.edges * sizeof(uint32_t);
     if (t->coplanar) memcpy(p, t->near, t->coplanar * sizeof(uint32_t)), p += t->coplanar * sizeof(uint32_t);
-    const uint64_t sum = gb_hash_add(GB_HASH_OFFSET, bytes, (size_t)(p - bytes));
-    memcpy(p, &sum, sizeof sum);
-    const int status = gb_file_write_atomically(path, bytes, size);
+    int status = gb_seal_compute(&(gb_seal_piece){bytes, (size_t)(p - bytes)}, 1, p);
+    if (status) status = gb_error_set(status, "cannot seal the hull file %s: %s", path, gb_error_message());
+    else status = gb_file_write_atomically(path, bytes, size);
     free(bytes);
     return status;
 }
@@ -325,13 +326,13 @@ static uint32_t *take_words(const unsigned char **p, size_t count)
     return a;
 }
 
-/* Why the bytes are not a hull of this grid (NULL when they are): header, checksum, sizes, and every
+/* Why the bytes are not a hull of this grid (NULL when they are): header, seal, sizes, and every
  * index within its range (a vertex a node, an edge's end a vertex, the CSR's starts in order). */
 static const char *hull_refused(const gb_contact_grid *g, const unsigned char *data, size_t size, hull_header *have)
 {
     hull_header want;
     hull_header_of(g, &want);
-    if (size < sizeof *have + sizeof(uint64_t)) return "it is too short to be a hull file";
+    if (size < sizeof *have + GB_SEAL_BYTES) return "it is too short to be a hull file";
     memcpy(have, data, sizeof *have);
     if (memcmp(have->magic, want.magic, sizeof want.magic) || have->version != want.version) return "it is not a hull file of this build";
     if (have->nodes != want.nodes || have->nodes_hash != want.nodes_hash || have->coplanar_bits != want.coplanar_bits)
@@ -340,10 +341,10 @@ static const char *hull_refused(const gb_contact_grid *g, const unsigned char *d
     if (!have->vertices || have->vertices > g->size || have->coplanar > g->size || have->edges > 6 * have->vertices)
         return "its sizes are out of range";
     const uint64_t words = 2 * have->vertices + 1 + have->edges + have->coplanar;
-    if (size != sizeof *have + words * sizeof(uint32_t) + sizeof(uint64_t)) return "its size does not match its header";
-    uint64_t sum;
-    memcpy(&sum, data + size - sizeof sum, sizeof sum);
-    if (gb_hash_add(GB_HASH_OFFSET, data, size - sizeof sum) != sum) return "its checksum does not match (damaged)";
+    if (size != sizeof *have + words * sizeof(uint32_t) + GB_SEAL_BYTES) return "its size does not match its header";
+    if (!gb_seal_verify(&(gb_seal_piece){data, size - GB_SEAL_BYTES}, 1, data + size - GB_SEAL_BYTES))
+        return "its seal does not verify: damaged, changed since it was written, or written under another key (see "
+               "GOMBOC_KEY)";
     return NULL;
 }
 
@@ -392,7 +393,7 @@ int gb_contact_tracker_load_buffer(const gb_contact_grid *grid, const unsigned c
 size_t gb_contact_tracker_file_limit(const gb_contact_grid *grid)
 {
     /* no hull of this grid is larger: every node a vertex and coplanar, fewer than 6 directed edges a vertex */
-    return sizeof(hull_header) + (9 * grid->size + 1) * sizeof(uint32_t) + sizeof(uint64_t);
+    return sizeof(hull_header) + (9 * grid->size + 1) * sizeof(uint32_t) + GB_SEAL_BYTES;
 }
 
 int gb_contact_tracker_load(const gb_contact_grid *grid, const char *path, gb_contact_tracker **out)

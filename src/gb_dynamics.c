@@ -1069,6 +1069,40 @@ static int impact_solve(const gb_dynamics *d, double t, const double y[GB_STATE_
     return GB_OK;
 }
 
+/* The plane can only push. The normal impulse at every point of an impact is at least −(rounding: 1e-9
+ * of the momentum m (|v_G| + |ω| ℓ) the impact acts on, ℓ the farthest point); of an impact the settle rule
+ * lumped (`settled`), the points it holds that were already on the plane may pull by the weight's impulse
+ * over the return the rule removes, at most m g_max settle_time (g_max the largest g_eff; the Table 1 runs
+ * pull by at most 0.4 of it). Beyond, the plane would have to pull: GB_ENUMERIC, "the plane cannot absorb
+ * the impact". The new point is `arriving` (its impulse is never a pull). */
+static int pulling_point(const gb_dynamics *d, const gb_impact_result *r, const double (*points)[3], int count,
+                         int arriving, int settled, const double v_before[3], const double omega_before[3], double *allowed)
+{
+    const gb_forcing *f = &d->def.forcing;
+    double reach = 0.0;
+    for (int k = 0; k < count; k++) reach = fmax(reach, gb_vec_norm(points[k]));
+    const double m = d->def.mass, rounding = 1e-9 * m * (gb_vec_norm(v_before) + gb_vec_norm(omega_before) * reach);
+    const double lumped = settled ? m * (f->g + fabs(f->a1) + fabs(f->a2)) * d->def.settle_time : 0.0;
+    for (int k = 0; k < count; k++) {
+        *allowed = rounding + (k == arriving ? 0.0 : lumped);
+        if (r->normal_impulse[k] < -*allowed) return k;
+    }
+    return -1;
+}
+
+static int plane_pushes(const gb_dynamics *d, double t, const gb_impact_result *r, const double (*points)[3], int count,
+                        int arriving, int settled, const double v_before[3], const double omega_before[3])
+{
+    double allowed;
+    const int k = pulling_point(d, r, points, count, arriving, settled, v_before, omega_before, &allowed);
+    if (k < 0) return GB_OK;
+    return gb_error_set(GB_ENUMERIC, "unilateral contact at t = %.9g: the plane cannot absorb the impact: it would have to "
+                        "pull with a normal impulse of %.3g N s at point (%.6g, %.6g, %.6g) m (allowed: pushes, or a pull of "
+                        "at most %.3g N s where the settle rule holds a point already on the plane) (the body moves at %.3g "
+                        "m/s and turns at %.3g rad/s)", t, r->normal_impulse[k], points[k][0], points[k][1], points[k][2],
+                        allowed, gb_vec_norm(v_before), gb_vec_norm(omega_before));
+}
+
 /* Book a change of contact: an impact's loss (a lift has none) and the sink. */
 static int book(gb_dynamics *d, const gb_dynamics_impact *e)
 {
@@ -1119,6 +1153,20 @@ static void hold_both(const gb_dynamics *d, const double y[GB_STATE_SIZE], const
     vertical_of(y, zb);
     for (int k = 0; k < 3; k++) dvec[k] = rp[k] - rq[k];
     const double dist = gb_vec_norm(dvec);
+    if (dist <= GB_IMPACT_SAME_POINT * fmax(gb_vec_norm(rp), gb_vec_norm(rq))) {
+        /* P and Q are one point (GB_IMPACT_SAME_POINT): it is held at rest, and the impulse is Q's */
+        const double both[2][3] = {{rp[0], rp[1], rp[2]}, {rq[0], rq[1], rq[2]}};
+        gb_impact_body body = {m, {{0}}};
+        memcpy(body.inertia, d->inertia, sizeof body.inertia);
+        if (gb_impact_hold_all(&body, zb, both, 2, v_before, omega, r) == GB_OK) {
+            r->normal_impulse[1] = r->normal_impulse[0], r->tangential_impulse[1] = r->tangential_impulse[0];
+            r->normal_impulse[0] = r->tangential_impulse[0] = 0.0;
+            memcpy(r->impulse[1], r->impulse[0], sizeof r->impulse[1]);
+            memset(r->impulse[0], 0, sizeof r->impulse[0]);
+        }
+        gb_error_clear();
+        return;
+    }
     for (int k = 0; k < 3; k++) u[k] = dvec[k] / dist;
     mat_vec((double (*)[3])d->inertia, omega, Iw);
     gb_vec_cross((const double[3]){-rp[0], -rp[1], -rp[2]}, v_before, gp);
@@ -1284,8 +1332,14 @@ static int impact_outcome(gb_dynamics *d, double t, const double y[GB_STATE_SIZE
         memcpy(yafter + GB_STATE_OMEGA, r->omega, sizeof r->omega);
         *back = return_time(d, t, yafter, to, r->v, points[0]);
         if (*back < d->def.settle_time) {
-            hold_both(d, y, points[0], points[1], v, r);
-            *both = 1;
+            /* the settle rule lumps the chatter, unless the lumped impact would need the plane to pull beyond
+             * the weight's impulse it stands for (P and Q close together, a couple with a short arm): then
+             * Moreau's impact stands, and P's return is an impact of its own */
+            gb_impact_result lumped;
+            double allowed;
+            hold_both(d, y, points[0], points[1], v, &lumped);
+            if (pulling_point(d, &lumped, (const double(*)[3])points, 2, 1, 1, v, y + GB_STATE_OMEGA, &allowed) < 0)
+                *r = lumped, *both = 1;
         }
     }
     return GB_OK;
@@ -1297,7 +1351,8 @@ static int impact(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const gb_co
 {
     double points[2][3], v[3], back;
     gb_impact_result r;
-    const int status = impact_outcome(d, t, y, from, to, points, v, &r, &back, both, bounce);
+    int status = impact_outcome(d, t, y, from, to, points, v, &r, &back, both, bounce);
+    if (!status) status = plane_pushes(d, t, &r, (const double(*)[3])points, 2, 1, *both && isfinite(back), v, y + GB_STATE_OMEGA);
     if (status) return status;
     gb_dynamics_impact e = {.t = t, .located = located, .kind = *both ? GB_IMPACT_TWO_POINT : GB_IMPACT_SWITCH,
                             .contacts_after = 1 + *both, .settled = *both && isfinite(back), .return_time = back};
@@ -1367,10 +1422,12 @@ static int lift_off_consistent(gb_dynamics *d, double t, const double y[GB_STATE
     const double b = -n2 / (delta * m), dip = b > 0.0 ? 2.0 / 3.0 * drop * drop * drop / (b * b) : INFINITY;
     if (dip > LIFT_OFF_DIP_MAX * d->def.length) {
         const double fn = gb_vec_dot(zb, F), ft[3] = {F[0] - fn * zb[0], F[1] - fn * zb[1], F[2] - fn * zb[2]};
+        char depth[96] = "into the plane and kept below it (the normal force reaches 0 without falling through)";
+        if (isfinite(dip)) snprintf(depth, sizeof depth, "%.3g m into the plane", dip);
         return gb_error_set(GB_ENUMERIC, "lift-off at t = %.9g: the normal force reaches 0 while rolling still needs a "
-                            "friction force of %.3g N, without which the contact point is driven %.3g m into the plane: "
-                            "on a plane of finite friction the body slides before it lifts, which this rough-plane model "
-                            "does not follow (sliding is not built)", t, gb_vec_norm(ft), dip);
+                            "friction force of %.3g N, without which the contact point is driven %s: on a plane of finite "
+                            "friction the body slides before it lifts, which this rough-plane model does not follow "
+                            "(sliding is not built)", t, gb_vec_norm(ft), depth);
     }
     /* the flight's landing waits below the dip (twice the estimate) until the gap has opened */
     d->gap_allow = fmax(d->gap_allow, FLIGHT_GAP_TOL + 2.0 * dip / d->def.length);
@@ -1426,6 +1483,8 @@ static int landing(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const gb_c
     gb_impact_result r;
     if (gb_impact_rough_point(&body, zb, e, rq, v, y + GB_STATE_OMEGA, &r))
         return gb_error_set(GB_ENUMERIC, "landing at t = %.9g: %s", t, gb_error_message());
+    const int pushes = plane_pushes(d, t, &r, (const double(*)[3])&rq, 1, 0, 0, v, y + GB_STATE_OMEGA);
+    if (pushes) return pushes;
     gb_dynamics_impact rec = {.t = t, .located = 1, .kind = GB_IMPACT_LANDING, .rebound = e > 0.0 && r.holds[0],
                               .return_time = INFINITY};
     record(&rec, y, rq, rq, v, &r, 0, -1);
@@ -1571,28 +1630,37 @@ static int third_point_outcome(gb_dynamics *d, double t, const double y[GB_STATE
         const double back_q = return_time(d, t, yafter, third, r->v, points[1]);
         const int k = back_q < back_p;
         *back = fmin(back_p, back_q);
+        /* A lumped impact is taken only where it pushes within the weight's impulse it stands for
+         * (pulling_point): a thin triangle or a short edge would need a couple the plane cannot give, and
+         * then the next lumping is tried, and last Moreau's impact stands. */
+        double allowed;
         if (fmax(back_p, back_q) < d->def.settle_time) {
             /* both would fall back within it: the body stops on the three points (the chatter's limit) */
             double zb[3];
             vertical_of(y, zb);
             gb_impact_body body = {d->def.mass, {{0}}};
             memcpy(body.inertia, d->inertia, sizeof body.inertia);
-            status = gb_impact_hold_all(&body, zb, points, 3, v, y + GB_STATE_OMEGA, r);
+            gb_impact_result all;
+            status = gb_impact_hold_all(&body, zb, points, 3, v, y + GB_STATE_OMEGA, &all);
             if (status) return status;
-            *held = 3, *settled = 1;
-        } else if (*back < d->def.settle_time) {
+            if (pulling_point(d, &all, points, 3, 2, 1, v, y + GB_STATE_OMEGA, &allowed) < 0) {
+                *r = all, *held = 3, *settled = 1;
+                return GB_OK;
+            }
+        }
+        if (*back < d->def.settle_time) {
             gb_impact_result h; /* its slots: 0 the third point, 1 the one held with it */
             hold_both(d, y, points[2], points[k], v, &h);
-            *r = h;
+            gb_impact_result two = h;
             for (int j = 0; j < 3; j++) {
                 const int from = j == 2 ? 0 : j == k ? 1 : -1;
-                r->holds[j] = from >= 0;
-                r->normal_impulse[j] = from >= 0 ? h.normal_impulse[from] : 0.0;
-                r->tangential_impulse[j] = from >= 0 ? h.tangential_impulse[from] : 0.0;
+                two.holds[j] = from >= 0;
+                two.normal_impulse[j] = from >= 0 ? h.normal_impulse[from] : 0.0;
+                two.tangential_impulse[j] = from >= 0 ? h.tangential_impulse[from] : 0.0;
             }
             /* at the third point, which lands (the one held with it may pull, as P in the settle rule) */
-            r->friction_needed = r->normal_impulse[2] > 0.0 ? r->tangential_impulse[2] / r->normal_impulse[2] : INFINITY;
-            *held = 2, *settled = 1;
+            two.friction_needed = two.normal_impulse[2] > 0.0 ? two.tangential_impulse[2] / two.normal_impulse[2] : INFINITY;
+            if (pulling_point(d, &two, points, 3, 2, 1, v, y + GB_STATE_OMEGA, &allowed) < 0) *r = two, *held = 2, *settled = 1;
         }
     }
     return GB_OK;
@@ -1633,6 +1701,7 @@ static int two_point_event(gb_dynamics *d, double t, double y[GB_STATE_SIZE], co
     gb_impact_result r;
     int held, settled;
     status = third_point_outcome(d, t, y, third, points, v, &r, &held, &back, &settled);
+    if (!status) status = plane_pushes(d, t, &r, points, 3, 2, settled, v, y + GB_STATE_OMEGA);
     if (status) return status;
     gb_dynamics_impact e = {.t = t, .located = 1, .kind = GB_IMPACT_THIRD, .contacts_after = held,
                             .settled = settled, .return_time = back};

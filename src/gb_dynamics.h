@@ -168,9 +168,11 @@ typedef struct gb_dynamics_def {
     double settle_time;            /* unilateral: the end to chatter [s] (0: none). At an impact after which P
                                     * lifts, if P would fall back onto the plane within this time (its normal
                                     * separation speed v_n and acceleration a_n < 0 after: 2 v_n / |a_n|), both
-                                    * points are taken as held instead: the impact that stops P and Q at once.
-                                    * gb_case sets it to the integrator's step T / steps_per_period, so that the
-                                    * return the rule removes would fall inside one step. */
+                                    * points are taken as held instead: the impact that stops P and Q at once, unless
+                                    * it would need the plane to pull by more than m g_max settle_time (the weight's
+                                    * impulse it stands for): then Moreau's impact stands. gb_case sets it to the
+                                    * integrator's step T / steps_per_period, so that the return the rule removes
+                                    * would fall inside one step. */
     double friction;               /* μ of the plane, for the monitors only (INFINITY, the default: none). The
                                     * model's plane is perfectly rough; impacts that need more friction than μ
                                     * are counted (gb_dynamics_impact_stats), where a plane of that μ would let

@@ -7,10 +7,13 @@
 #include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
+#include <math.h>
 #include <signal.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/file.h>
 #include <sys/stat.h>
+#include <time.h>
 #include <unistd.h>
 
 /* ---- inputs ------------------------------------------------------------------------------------- */
@@ -149,9 +152,30 @@ static int same_file(const identity *a, const identity *b)
     return a->exists || strcmp(a->name, b->name) == 0;
 }
 
+int gb_file_reserved_name(const char *name) { return strncmp(name, ".gomboc-", 8) == 0; }
+
+/* An existing cache: does it start with its kind's magic? */
+static int holds_magic(const gb_file_use *u)
+{
+    struct stat st;
+    const int fd = open_regular(u->path, u->kind, "a regular file", &st);
+    if (fd < 0) {
+        gb_error_clear();
+        return 0;
+    }
+    unsigned char head[64];
+    const ssize_t got = u->magic_size <= sizeof head ? read(fd, head, u->magic_size) : -1;
+    close(fd);
+    return got == (ssize_t)u->magic_size && !memcmp(head, u->magic, u->magic_size);
+}
+
 static int check_output(const gb_file_use *u)
 {
     if (!u->path[0]) return gb_error_set(GB_EINVAL, "%s '' is empty%s", u->what, output_allowed);
+    const char *slash = strrchr(u->path, '/'), *base = slash ? slash + 1 : u->path;
+    if (gb_file_reserved_name(base))
+        return gb_error_set(GB_EINVAL, "%s '%s' is named like a temporary of this program ('.gomboc-...'), which a later "
+                            "run may remove%s", u->what, u->path, output_allowed);
     char *dir = directory_of(u->path);
     if (!dir) return gb_error_set(GB_ENOMEM, "%s '%s': out of memory", u->what, u->path);
     struct stat st;
@@ -163,30 +187,101 @@ static int check_output(const gb_file_use *u)
     else if (lstat(u->path, &st) == 0 && !S_ISREG(st.st_mode))
         status = gb_error_set(GB_EINVAL, "%s '%s' exists and is not a regular file (a directory, link, device or FIFO)%s",
                               u->what, u->path, output_allowed);
+    else if ((u->role & GB_FILE_CACHE) && lstat(u->path, &st) == 0 && !holds_magic(u))
+        status = gb_error_set(GB_EINVAL, "%s '%s' exists and is not %s (it lacks the first bytes every one has): it is left "
+                              "alone (allowed: a new file, or %s this command wrote)", u->what, u->path, u->kind, u->kind);
     free(dir);
     return status;
 }
 
 int gb_file_check(const gb_file_use *uses, size_t count)
 {
+    for (size_t k = 0; k < count; k++) /* its own path first (an empty one cannot be compared) */
+        if (uses[k].path && (uses[k].role & GB_FILE_OUTPUT) && !uses[k].path[0]) return check_output(&uses[k]);
+    /* Each pair once, the later use named first (inputs come first in a command's list); a name the run
+     * sweeps (SWEPT) is compared with every other use. A file that is two uses at once is said first,
+     * before what either use makes of it. */
+    for (size_t j = 0; j < count; j++) {
+        if (!uses[j].path) continue;
+        const identity later = identity_of(uses[j].path);
+        for (size_t k = 0; k < j; k++) {
+            if (!uses[k].path || !((uses[j].role | uses[k].role) & (GB_FILE_OUTPUT | GB_FILE_SWEPT))) continue;
+            const identity earlier = identity_of(uses[k].path);
+            if (!same_file(&later, &earlier)) continue;
+            const gb_file_use *named = &uses[j], *other = &uses[k];
+            if (named->role & GB_FILE_SWEPT) named = &uses[k], other = &uses[j];
+            return gb_error_set(GB_EINVAL, "%s '%s' is also the %s file '%s'%s%s", named->what, named->path, other->what,
+                                other->path, other->role & GB_FILE_SWEPT ? " (a name this run removes as a stale output "
+                                "of an earlier run)" : "", output_allowed);
+        }
+    }
     for (size_t k = 0; k < count; k++)
         if (uses[k].path && (uses[k].role & GB_FILE_OUTPUT)) {
             const int status = check_output(&uses[k]);
             if (status) return status;
         }
-    /* Each pair once, the later use named first (inputs come first in a command's list). */
-    for (size_t j = 0; j < count; j++) {
-        if (!uses[j].path) continue;
-        const identity later = identity_of(uses[j].path);
-        for (size_t k = 0; k < j; k++) {
-            if (!uses[k].path || !((uses[j].role | uses[k].role) & GB_FILE_OUTPUT)) continue;
-            const identity earlier = identity_of(uses[k].path);
-            if (same_file(&later, &earlier))
-                return gb_error_set(GB_EINVAL, "%s '%s' is also the %s file '%s'%s", uses[j].what, uses[j].path, uses[k].what,
-                                    uses[k].path, output_allowed);
-        }
-    }
     return GB_OK;
+}
+
+/* ---- locks -------------------------------------------------------------------------------------- */
+
+double gb_file_lock_seconds(void)
+{
+    const char *text = getenv("GOMBOC_LOCK_SECONDS");
+    char *end;
+    const double s = text ? strtod(text, &end) : NAN;
+    return text && end != text && !*end && s >= 0.0 && s <= 86400.0 ? s : GB_FILE_LOCK_SECONDS;
+}
+
+static double monotonic_seconds(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+int gb_file_lock(const char *path, const char *what, int *fd)
+{
+    *fd = -1;
+    char *dir = directory_of(path);
+    if (!dir) return gb_error_set(GB_ENOMEM, "out of memory for a directory name");
+    const int d = open(dir, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (d < 0) {
+        free(dir);
+        return GB_OK; /* not lockable here: written as by a single writer */
+    }
+    const double limit = gb_file_lock_seconds(), start = monotonic_seconds();
+    for (;;) {
+        if (flock(d, LOCK_EX | LOCK_NB) == 0) {
+            free(dir);
+            *fd = d;
+            return GB_OK;
+        }
+        if (errno != EWOULDBLOCK && errno != EINTR) { /* no locks on this file system */
+            close(d);
+            free(dir);
+            return GB_OK;
+        }
+        if (monotonic_seconds() - start >= limit) {
+            close(d);
+            char *whole = realpath(dir, NULL); /* named whole: "." says nothing in a message */
+            const int status = gb_error_set(GB_EIO, "the directory '%s' stayed locked for %g s while %s: another gomboc "
+                                            "writes there (one stopped with Ctrl-Z holds the lock until it goes on) "
+                                            "(allowed: a wait of GOMBOC_LOCK_SECONDS = %g s, 0 to 86400)",
+                                            whole ? whole : dir, limit, what, limit);
+            free(whole);
+            free(dir);
+            return status;
+        }
+        nanosleep(&(struct timespec){0, 10000000}, NULL); /* 10 ms */
+    }
+}
+
+void gb_file_unlock(int fd)
+{
+    if (fd < 0) return;
+    flock(fd, LOCK_UN);
+    close(fd);
 }
 
 int gb_file_check_directory(const char *dir, const char *what)
@@ -218,7 +313,10 @@ static void temp_forget(const char *path)
         if (temp_paths[k] == path) temp_paths[k] = NULL;
 }
 
-/* Remove the temporaries ".gomboc-PID-XXXXXX" that a process no longer alive left in `dir`. */
+/* Remove the temporaries ".gomboc-PID-XXXXXX" in `dir` whose writers are gone: those whose lock can be
+ * taken (a live writer holds it from the moment it made the file to the moment it renames or removes
+ * it, on this machine or another, in this PID namespace or another). A regular file of that name whose
+ * lock cannot be tested (no locks on this file system) is left. */
 static void sweep_stale_temporaries(const char *dir)
 {
     DIR *d = opendir(dir);
@@ -228,17 +326,48 @@ static void sweep_stale_temporaries(const char *dir)
         char tail[8];
         int used = 0;
         if (sscanf(e->d_name, ".gomboc-%ld-%6[A-Za-z0-9]%n", &pid, tail, &used) != 2 || e->d_name[used] != '\0' ||
-            strlen(tail) != 6 || pid <= 0 || pid == (long)getpid())
+            strlen(tail) != 6)
             continue;
-        if (kill((pid_t)pid, 0) == 0 || errno != ESRCH) continue; /* alive, or not ours to judge */
         char *path = malloc(strlen(dir) + strlen(e->d_name) + 2);
         if (!path) break;
         sprintf(path, "%s/%s", dir, e->d_name);
-        struct stat st;
-        if (lstat(path, &st) == 0 && S_ISREG(st.st_mode)) unlink(path);
+        const int fd = open(path, O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_NOCTTY | O_CLOEXEC);
+        struct stat held, named;
+        if (fd >= 0 && fstat(fd, &held) == 0 && S_ISREG(held.st_mode) && flock(fd, LOCK_EX | LOCK_NB) == 0 &&
+            lstat(path, &named) == 0 && named.st_dev == held.st_dev && named.st_ino == held.st_ino)
+            unlink(path); /* its writer is gone; one that made it an instant ago finds it unlinked and makes another */
+        if (fd >= 0) close(fd);
         free(path);
     }
     closedir(d);
+}
+
+/* A new temporary beside `dir`'s members, locked: its descriptor (its path in tmp), or -1 with errno. */
+static int temporary_create(const char *dir, char *tmp, int *lock_fd)
+{
+    for (int attempt = 0; attempt < 16; attempt++) {
+        sprintf(tmp, "%s/.gomboc-%ld-XXXXXX", dir, (long)getpid());
+        const int fd = mkostemp(tmp, O_CLOEXEC); /* O_CREAT | O_EXCL: a new file, never a link's target */
+        if (fd < 0) return -1;
+        int locked;
+        while (!(locked = flock(fd, LOCK_EX) == 0) && errno == EINTR) continue;
+        struct stat st;
+        if (locked && fstat(fd, &st) == 0 && st.st_nlink == 0) { /* swept between mkstemp and flock */
+            close(fd);
+            continue;
+        }
+        *lock_fd = locked ? dup(fd) : -1; /* the lock lives while this descriptor does (fclose closes fd) */
+        if (locked && *lock_fd < 0) {
+            const int err = errno;
+            close(fd);
+            unlink(tmp);
+            errno = err;
+            return -1;
+        }
+        return fd;
+    }
+    errno = EAGAIN;
+    return -1;
 }
 
 FILE *gb_file_set_open(gb_file_set *set, const char *path, int *status)
@@ -257,6 +386,7 @@ FILE *gb_file_set_open(gb_file_set *set, const char *path, int *status)
     }
     gb_file_member *m = &set->member[set->count];
     memset(m, 0, sizeof *m);
+    m->lock_fd = -1;
     char *dir = directory_of(path);
     m->path = strdup(path);
     m->tmp = dir ? malloc(strlen(dir) + 40) : NULL;
@@ -266,9 +396,8 @@ FILE *gb_file_set_open(gb_file_set *set, const char *path, int *status)
         return NULL;
     }
     sweep_stale_temporaries(dir);
-    sprintf(m->tmp, "%s/.gomboc-%ld-XXXXXX", dir, (long)getpid());
+    const int fd = temporary_create(dir, m->tmp, &m->lock_fd);
     free(dir);
-    const int fd = mkostemp(m->tmp, O_CLOEXEC); /* O_CREAT | O_EXCL: a new file, never a link's target */
     if (fd >= 0) {
         temp_paths[slot] = m->tmp;
         if (slot == temp_count) temp_count = temp_count + 1;
@@ -281,6 +410,7 @@ FILE *gb_file_set_open(gb_file_set *set, const char *path, int *status)
     if (!m->file) {
         *status = gb_error_set(GB_EIO, "cannot write '%s': %s", path, strerror(errno));
         temp_forget(m->tmp);
+        if (m->lock_fd >= 0) close(m->lock_fd);
         free(m->path), free(m->tmp);
         return NULL;
     }
@@ -312,6 +442,10 @@ int gb_file_set_commit(gb_file_set *set, int status)
         }
         status = gb_file_set_seal(set, k);
     }
+    /* The directory's lock over the renames: two sets of one directory are renamed one after the other. */
+    int lock = -1;
+    if (!status && set->count && !set->directory_locked)
+        status = gb_file_lock(set->member[set->count - 1].path, "renaming a finished set of outputs into place", &lock);
     int renamed = 0; /* members [0, renamed) are in place */
     for (; !status && renamed < set->count; renamed++) {
         gb_file_member *m = &set->member[renamed];
@@ -328,10 +462,12 @@ int gb_file_set_commit(gb_file_set *set, int status)
             unlink(m->tmp);
             if (k < renamed) unlink(m->path); /* the set would be mixed */
         }
+        if (m->lock_fd >= 0) close(m->lock_fd);
         temp_forget(m->tmp);
         free(m->path);
         free(m->tmp);
     }
+    gb_file_unlock(lock);
     set->count = 0;
     return status;
 }
@@ -344,4 +480,22 @@ int gb_file_write_atomically(const char *path, const void *bytes, size_t size)
     if (f && size && fwrite(bytes, 1, size, f) != size)
         status = gb_error_set(GB_EIO, "cannot write '%s': %s", path, strerror(errno));
     return gb_file_set_commit(&set, status);
+}
+
+int gb_file_write_new(const char *path, const void *bytes, size_t size)
+{
+    gb_file_set set = {0};
+    int status = GB_OK;
+    FILE *f = gb_file_set_open(&set, path, &status);
+    if (!f) return status;
+    gb_file_member *m = &set.member[0];
+    if (size && fwrite(bytes, 1, size, f) != size) status = gb_error_set(GB_EIO, "cannot write '%s': %s", path, strerror(errno));
+    if (!status) status = gb_file_set_seal(&set, 0);
+    if (!status && link(m->tmp, path) != 0)
+        status = errno == EEXIST ? gb_error_set(GB_EINVAL, "'%s' exists already (allowed: a new file)", path)
+                                 : gb_error_set(GB_EIO, "cannot write '%s': %s", path, strerror(errno));
+    /* the temporary goes either way (a failed commit removes it): linked, the file stands under its name;
+     * else nothing was written */
+    gb_file_set_commit(&set, GB_EIO);
+    return status;
 }

@@ -155,8 +155,75 @@ static void fill_impulses(const double normal[3], int count, unsigned mask, cons
     }
 }
 
+/* The distinct points of `points` (GB_IMPACT_SAME_POINT): their number, the points in `unique`, and for each
+ * point the index of its first twin in `unique`. */
+static int distinct_points(const double (*points)[3], int count, double (*unique)[3], int *twin)
+{
+    double reach = 0.0;
+    for (int k = 0; k < count; k++) reach = fmax(reach, gb_vec_norm(points[k]));
+    int n = 0;
+    for (int k = 0; k < count; k++) {
+        twin[k] = -1;
+        for (int j = 0; j < n && twin[k] < 0; j++) {
+            const double d[3] = {points[k][0] - unique[j][0], points[k][1] - unique[j][1], points[k][2] - unique[j][2]};
+            if (gb_vec_norm(d) <= GB_IMPACT_SAME_POINT * reach) twin[k] = j;
+        }
+        if (twin[k] < 0) memcpy(unique[n], points[k], sizeof unique[n]), twin[k] = n++;
+    }
+    return n;
+}
+
+/* A result over the distinct points spread back over all of them: a point's first twin carries the
+ * impulse, every later twin holds as it does with none of its own. */
+static void spread(const gb_impact_result *reduced, const int *twin, int count, gb_impact_result *out)
+{
+    *out = *reduced;
+    int seen[GB_IMPACT_CONTACTS_MAX] = {0};
+    for (int k = 0; k < count; k++) {
+        const int j = twin[k], first = !seen[j];
+        seen[j] = 1;
+        out->holds[k] = reduced->holds[j];
+        for (int i = 0; i < 3; i++) out->impulse[k][i] = first ? reduced->impulse[j][i] : 0.0;
+        out->normal_impulse[k] = first ? reduced->normal_impulse[j] : 0.0;
+        out->tangential_impulse[k] = first ? reduced->tangential_impulse[j] : 0.0;
+    }
+}
+
+static int hold_all_distinct(const gb_impact_body *body, const double normal[3], const double (*points)[3], int count,
+                             const double v[3], const double omega[3], gb_impact_result *out);
+static int solve_distinct(const gb_impact_body *body, const double normal[3], double e, const double (*points)[3], int count,
+                          const double v[3], const double omega[3], gb_impact_result *out);
+
 int gb_impact_hold_all(const gb_impact_body *body, const double normal[3], const double (*points)[3], int count,
                        const double v[3], const double omega[3], gb_impact_result *out)
+{
+    double unique[GB_IMPACT_CONTACTS_MAX][3];
+    int twin[GB_IMPACT_CONTACTS_MAX];
+    if (count < 1 || count > GB_IMPACT_CONTACTS_MAX) return hold_all_distinct(body, normal, points, count, v, omega, out);
+    const int n = distinct_points(points, count, unique, twin);
+    if (n == count) return hold_all_distinct(body, normal, points, count, v, omega, out);
+    gb_impact_result reduced;
+    const int status = hold_all_distinct(body, normal, (const double(*)[3])unique, n, v, omega, &reduced);
+    if (!status) spread(&reduced, twin, count, out);
+    return status;
+}
+
+int gb_impact_solve(const gb_impact_body *body, const double normal[3], double e, const double (*points)[3], int count,
+                    const double v[3], const double omega[3], gb_impact_result *out)
+{
+    double unique[GB_IMPACT_CONTACTS_MAX][3];
+    int twin[GB_IMPACT_CONTACTS_MAX];
+    if (count < 1 || count > GB_IMPACT_CONTACTS_MAX) return solve_distinct(body, normal, e, points, count, v, omega, out);
+    const int n = distinct_points(points, count, unique, twin);
+    if (n == count) return solve_distinct(body, normal, e, points, count, v, omega, out);
+    gb_impact_result reduced;
+    const int status = solve_distinct(body, normal, e, (const double(*)[3])unique, n, v, omega, &reduced);
+    if (!status) spread(&reduced, twin, count, out);
+    return status;
+}
+
+static int hold_all_distinct(const gb_impact_body *body, const double normal[3], const double (*points)[3], int count,
+                             const double v[3], const double omega[3], gb_impact_result *out)
 {
     memset(out, 0, sizeof *out);
     double inv[3][3], rhs[GB_IMPACT_CONTACTS_MAX][3], speed = 0.0;
@@ -179,8 +246,8 @@ int gb_impact_hold_all(const gb_impact_body *body, const double normal[3], const
     return GB_OK;
 }
 
-int gb_impact_solve(const gb_impact_body *body, const double normal[3], double e, const double (*points)[3], int count,
-                    const double v[3], const double omega[3], gb_impact_result *out)
+static int solve_distinct(const gb_impact_body *body, const double normal[3], double e, const double (*points)[3], int count,
+                          const double v[3], const double omega[3], gb_impact_result *out)
 {
     memset(out, 0, sizeof *out);
     double inv[3][3];

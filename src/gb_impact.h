@@ -26,6 +26,12 @@ extern "C" {
 
 enum { GB_IMPACT_CONTACTS_MAX = 4 };
 
+/* Points closer than this fraction of the farthest point's distance from the centroid are one point: the
+ * impulses of coincident points are not determined, and a law that divides by their distance would make
+ * them any size. gb_impact_solve and gb_impact_hold_all solve for the distinct points and give each
+ * coincident one the state of the first of its kind, with no impulse of its own. */
+#define GB_IMPACT_SAME_POINT 1e-9
+
 typedef struct gb_impact_body {
     double mass;          /* > 0 */
     double inertia[3][3]; /* about the centroid, symmetric positive definite */

@@ -22,6 +22,7 @@ struct gb_ini_reader {
     const char *const *sections;
     size_t section_count;
     int section_line[SECTIONS_MAX];
+    int sections_seen;         /* section headers read */
     int line;                  /* the line last handed to libinih */
     int error_line;            /* the first error found by the reader or the handler (0: none) */
     char message[768];         /* its text, without the file and line */
@@ -109,6 +110,7 @@ static int check_section(gb_ini_reader *r, const char *p, size_t n)
     if (r->section_line[k])
         return gb_ini_fail(r, "[%s] again (first at line %d; allowed: each section once)", r->sections[k], r->section_line[k]);
     r->section_line[k] = r->line;
+    r->sections_seen++;
     return 1;
 }
 
@@ -139,6 +141,12 @@ static char *next_line(char *out, int capacity, void *stream)
             return NULL;
         }
         if (start[0] == '[' && !check_section(r, start, n)) return NULL;
+        /* libinih also takes "key : value"; the formats are documented, and read, as "key = value" only */
+        const char *colon = memchr(start, ':', n), *equals = memchr(start, '=', n);
+        if (start[0] != '[' && colon && (!equals || colon < equals)) {
+            gb_ini_fail(r, "'%.*s': a key and its value separated by ':' (allowed: key = value)", (int)n, start);
+            return NULL;
+        }
     }
     memcpy(out, start, n);
     out[n] = '\n';
@@ -182,5 +190,10 @@ int gb_ini_read(const char *name, const char *text, size_t size, const char *con
         return gb_error_set(GB_EINVAL, "%s:%d: malformed line '%s' (allowed: [section], key = value, ; comment)", name, ret, bad);
     }
     if (r.error_line) return gb_error_set(GB_EINVAL, "%s:%d: %s", name, r.error_line, r.message);
+    /* A file with no section says nothing: an empty file (a copy that failed, a truncated write) is not
+     * read as "all defaults". */
+    if (!r.sections_seen)
+        return gb_error_set(GB_EINVAL, "%s: no [section] in %zu bytes: an empty file, or only blank lines and comments "
+                            "(allowed: at least one [section], e.g. [scene] alone for every default)", name, size);
     return GB_OK;
 }

@@ -4,7 +4,8 @@
  * A file is read whole (a regular file of at most `max_bytes`), then handed to libinih one checked line
  * at a time: at most GB_INI_LINE_MAX bytes (libinih's buffer, less the newline and the NUL), UTF-8 with
  * no NUL and no control character but TAB, no indented (continuation) line, a section header alone on
- * its line, only the format's sections, each once, and no key before the first section. Every error
+ * its line, only the format's sections, each once, no key before the first section, "key = value" (not
+ * libinih's "key : value"), and at least one section (an empty file is refused). Every error
  * names the file and the line: "FILE:LINE: reason (allowed: ...)", status GB_EINVAL. What a key means,
  * its range and whether it was given twice is the format's handler's to say (gb_ini_fail). */
 #ifndef GB_INI_H

@@ -45,6 +45,15 @@ static void note_drift(gb_integrate_stats *stats, double drift)
     if (fabs(drift) > stats->max_norm_drift) stats->max_norm_drift = fabs(drift);
 }
 
+/* The angle |ω| h the body turned through in an accepted step of length h, at its end (`fixed`: a step of
+ * the fixed-step RK4, which is counted when it exceeds GB_INTEGRATE_ROTATION_MAX). */
+static void note_rotation(gb_integrate_stats *stats, const double y[GB_STATE_SIZE], double h, int fixed)
+{
+    const double *w = y + GB_STATE_OMEGA, angle = sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]) * h;
+    if (angle > stats->max_step_rotation) stats->max_step_rotation = angle;
+    stats->coarse_steps += fixed && angle > GB_INTEGRATE_ROTATION_MAX;
+}
+
 int gb_integrate_rk4_step(gb_dynamics *d, double t, double h, const double y[GB_STATE_SIZE], double out[GB_STATE_SIZE],
                           size_t k, double *Y, gb_integrate_tangent tangent, void *context, gb_integrate_stats *stats)
 {
@@ -243,6 +252,7 @@ static int advance_rk4(gb_integrate_session *s, size_t steps, double y[], gb_int
         status = gb_dynamics_accept(d, t_next, y, &drift);
         if (status) return status;
         note_drift(&s->stats, drift);
+        note_rotation(&s->stats, y, h, 1);
         if ((s->n + 1) % s->def.sample_every == 0 && sample && sample(context, t_next, y)) {
             s->n++;
             s->stopped = 1;
@@ -363,6 +373,7 @@ static int advance_adaptive(gb_integrate_session *s, size_t steps, double y[], g
             double drift;
             status = gb_dynamics_accept(d, s->t, y, &drift);
             note_drift(&s->stats, drift);
+            note_rotation(&s->stats, y, s->t - before, 0);
             /* y was renormalised and the contact may have changed: the stepper must not reuse derivatives. */
             gsl_odeiv2_evolve_reset(evolve);
             gsl_odeiv2_step_reset(step);

@@ -26,7 +26,22 @@ typedef struct observer {
     double *spectrum_x;
     size_t spectrum_capacity, spectrum_first_step;
     int status;
+    char *failure; /* the message of the status that stopped the sampling (malloc'd) */
 } observer;
+
+/* The sample's failure, kept: whoever stopped the run after it (the Lyapunov pair) reports it, not its own
+ * "stopped" message. Returns 1, what a sampler returns to stop. */
+static int stopped(observer *s)
+{
+    if (!s->failure) s->failure = strdup(gb_error_message());
+    return 1;
+}
+
+/* The status of the sampling's failure with its own message (for a caller whose message came after). */
+static int sampling_failure(const observer *s)
+{
+    return gb_error_set(s->status, "%s", s->failure ? s->failure : "the sampling failed");
+}
 
 static int collect_spectrum(observer *s, double t, double omega_x)
 {
@@ -49,7 +64,7 @@ static int observe(void *context, double t, const double y[GB_STATE_SIZE])
     gb_run_result *r = s->out;
     gb_dynamics_observables o;
     s->status = gb_dynamics_observe(s->dynamics, t, y, &o);
-    if (s->status) return 1;
+    if (s->status) return stopped(s);
     const size_t switches = o.grid_switches + o.branch_switches;
     const int grid_switch = o.grid_switches != s->last_grid, branch_switch = o.branch_switches != s->last_branch;
     s->last_grid = o.grid_switches;
@@ -67,8 +82,8 @@ static int observe(void *context, double t, const double y[GB_STATE_SIZE])
     s->window_next = (s->window_next + 1) % s->window_size;
     if (s->window_fill < s->window_size) s->window_fill++;
     r->samples++;
-    if (s->scene->strobe && (s->status = gb_strobe_offer(&r->strobe, t, o.omega, NULL))) return 1;
-    if (s->scene->spectrum && (s->status = collect_spectrum(s, t, o.omega[0]))) return 1;
+    if (s->scene->strobe && (s->status = gb_strobe_offer(&r->strobe, t, o.omega, NULL))) return stopped(s);
+    if (s->scene->spectrum && (s->status = collect_spectrum(s, t, o.omega[0]))) return stopped(s);
     r->residual_max = fmax(r->residual_max, fabs(o.residual));
     r->orthonormality_max = fmax(r->orthonormality_max, o.orthonormality);
     if (s->scene->monitors) {
@@ -83,7 +98,7 @@ static int observe(void *context, double t, const double y[GB_STATE_SIZE])
     }
     if (s->sinks && s->sinks->sample) {
         const gb_run_sample sample = {t, y, &o, grid_switch, branch_switch, rate};
-        if ((s->status = s->sinks->sample(s->sinks->context, &sample))) return 1;
+        if ((s->status = s->sinks->sample(s->sinks->context, &sample))) return stopped(s);
     }
     return 0;
 }
@@ -108,11 +123,11 @@ static int run_with_lyapunov(const gb_case *scene, observer *s, gb_dynamics **dy
     if (s->sinks && s->sinks->impact) gb_dynamics_set_impact_sink(*dynamics, s->sinks->impact, s->sinks->context);
     /* The sample at t = 0 is ours; the reference delivers the rest as a plain run would. */
     if (observe(s, 0.0, gb_lyapunov_body_state(*body)))
-        return s->status ? s->status : gb_error_set(GB_EINVAL, "the sampler stopped the run at t = 0");
+        return s->status ? sampling_failure(s) : gb_error_set(GB_EINVAL, "the sampler stopped the run at t = 0");
     gb_lyapunov_body_observe(*body, observe, s);
     const gb_lyapunov_pair_system system = gb_lyapunov_body_pair(*body);
     status = gb_lyapunov_pair(&system, *body, &scene->lyapunov_def, 0.0, NULL, &r->lyapunov);
-    if (status) return s->status ? s->status : status;
+    if (status) return s->status ? sampling_failure(s) : status;
     r->has_lyapunov = 1;
     memcpy(r->y, gb_lyapunov_body_state(*body), sizeof r->y);
     r->stats = *gb_lyapunov_body_stats(*body, 0);
@@ -154,6 +169,7 @@ int gb_run(const gb_case *scene, const gb_run_sinks *sinks, gb_run_result *out)
     }
     out->seconds = (double)(clock() - start) / CLOCKS_PER_SEC;
     free(s.window);
+    free(s.failure);
 
     if (!status && scene->spectrum) {
         status = gb_spectrum_compute(s.spectrum_x, out->spectrum_samples, s.step * (double)scene->integrate.sample_every,

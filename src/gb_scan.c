@@ -7,6 +7,7 @@
 #include "gb_ini.h"
 #include "gb_melnikov_body.h"
 #include "gb_parse.h"
+#include "gb_seal.h"
 #include "gb_run.h"
 
 #include <gsl/gsl_rng.h>
@@ -61,7 +62,7 @@ static int number(gb_ini_reader *ini, const char *s, const char *k, const char *
     const gb_parse_result p = gb_parse_double(value, &x);
     if (p || !(x >= lo && x <= hi))
         return gb_ini_fail(ini, "[%s] %s = %s: %s (allowed: %.15g <= %s <= %.15g)", s, k, value,
-                           p ? gb_parse_describe(p, "a number") : "out of range", lo, k, hi);
+                           p ? gb_parse_describe(p, "not a number") : "out of range", lo, k, hi);
     *out = x;
     return 1;
 }
@@ -163,11 +164,12 @@ static int scan_handler(gb_ini_reader *ini, void *user, const char *section, con
                 scan->atlas_shared = !strcmp(value, "shared"), scan->atlas_line = gb_ini_line(ini);
                 return 1;
             case 7:
-                /* a plain name: the file lies in the output directory, beside the outputs */
-                if (!value[0] || strchr(value, '/') || !strcmp(value, ".") || !strcmp(value, "..") ||
-                    strlen(value) >= sizeof scan->atlas_name)
-                    return gb_ini_fail(ini, "[scan] atlas_file = %s: not a file name (allowed: a name without '/', up to "
-                                       "%zu characters, of a file in the output directory)", value, sizeof scan->atlas_name - 1);
+                /* a plain name: the file lies in the output directory, beside the outputs (its length is bounded
+                 * by the line: GB_INI_LINE_MAX less "atlas_file = ") */
+                if (!value[0] || strchr(value, '/') || !strcmp(value, ".") || !strcmp(value, "..") || gb_file_reserved_name(value))
+                    return gb_ini_fail(ini, "[scan] atlas_file = %s: not a file name (allowed: a name without '/', of at "
+                                       "most %d bytes, of a file in the output directory, not named like the program's "
+                                       "temporaries '.gomboc-...')", value, GB_SCAN_ATLAS_NAME_MAX);
                 snprintf(scan->atlas_name, sizeof scan->atlas_name, "%s", value), scan->atlas_name_line = gb_ini_line(ini);
                 return 1;
             default:
@@ -312,9 +314,13 @@ int gb_scan_parse(const char *path, const char *text, size_t size, gb_scan *out)
     if (out->axis[0].count > GB_SCAN_POINTS_MAX / out->axis[1].count)
         return gb_error_set(GB_EINVAL, "%s:%d: [y] count = %zu: %zu x %zu points (allowed: at most %d points in all)", path,
                             r.seen[2][3], out->axis[1].count, out->axis[0].count, out->axis[1].count, GB_SCAN_POINTS_MAX);
-    if (!((double)out->transient_periods + 1.0 <= out->periods))
-        return gb_error_set(GB_EINVAL, "%s:%d: [scan] transient_periods = %zu leaves less than one period (allowed: <= "
-                            "periods - 1 = %g)", path, r.seen[0][3], out->transient_periods, out->periods - 1.0);
+    if (!((double)out->transient_periods + 1.0 <= out->periods)) {
+        char at[24] = "";
+        if (r.seen[0][3]) snprintf(at, sizeof at, ":%d", r.seen[0][3]);
+        return gb_error_set(GB_EINVAL, "%s%s: [scan] transient_periods%s = %zu leaves less than one period (allowed: <= "
+                            "periods - 1 = %g)", path, at, r.seen[0][3] ? "" : " (default)", out->transient_periods,
+                            out->periods - 1.0);
+    }
     if (!out->metrics)
         return gb_error_set(GB_EINVAL, "%s:%d: [scan] metrics: none (allowed: " METRIC_LIST ")", path, r.seen[0][4]);
     /* The base scene, relative to the scan file's directory. */
@@ -339,10 +345,18 @@ int gb_scan_load(const char *path, gb_scan *out)
     int status = gb_file_read(path, GB_SCAN_FILE_MAX, "scan file", "a scan file, see cases/README.md", &text, &size);
     if (status) return status;
     status = gb_scan_parse(path, text, size, out);
-    free(text);
-    if (status) return status;
+    if (status) {
+        free(text);
+        return status;
+    }
     status = gb_file_read(out->base, GB_CASE_FILE_MAX, "case file", "a scene file, see cases/README.md", &out->base_text,
                           &out->base_size);
+    if (!status) { /* the scan's name: no other scan file and base scene can be made to carry it */
+        const uint64_t sizes[2] = {size, out->base_size};
+        const gb_seal_piece pieces[3] = {{sizes, sizeof sizes}, {text, size}, {out->base_text, out->base_size}};
+        gb_seal_digest(pieces, 3, out->identity);
+    }
+    free(text);
     if (status) {
         const char *slash = strrchr(path, '/');
         return gb_error_set(status, "%s:%d: [scan] base = %s: %s (a relative base is read from the scan file's directory, "
@@ -755,6 +769,7 @@ int gb_scan_csv_parse(const char *line, size_t *index, gb_scan_metrics *out)
     for (size_t k = 0; k < COLUMN_COUNT; k++) fields[2 + k] = column(&m, k);
     char *end;
     const char *p = line;
+    if (*p < '0' || *p > '9') return GB_EINVAL; /* digits only: strtoull would take "-1" or " 7" */
     const unsigned long long i = strtoull(p, &end, 10);
     if (end == p || *end != ',') return GB_EINVAL;
     for (size_t k = 0; k < sizeof fields / sizeof fields[0]; k++) {
@@ -763,6 +778,7 @@ int gb_scan_csv_parse(const char *line, size_t *index, gb_scan_metrics *out)
         if (end == p || *end != ',') return GB_EINVAL;
     }
     p = end + 1;
+    if (*p < '0' || *p > '9') return GB_EINVAL;
     m.certificate_undecided = (size_t)strtoull(p, &end, 10);
     if (end == p || *end != ',') return GB_EINVAL;
     p = end + 1;
@@ -780,20 +796,28 @@ int gb_scan_csv_parse(const char *line, size_t *index, gb_scan_metrics *out)
 
 void gb_scan_journal_header(const gb_scan *scan, uint64_t binary, char *out, size_t size)
 {
-    snprintf(out, size, "gomboc scan journal 2: scan %016" PRIx64 ", binary %016" PRIx64 ", %zu points\n", scan->fingerprint,
-             binary, gb_scan_points(scan));
+    char identity[GB_SEAL_HEX];
+    gb_seal_hex(scan->identity, identity);
+    snprintf(out, size, "gomboc scan journal 3: scan %s, binary %016" PRIx64 ", %zu points\n", identity, binary,
+             gb_scan_points(scan));
 }
 
-/* The checksum of a row: FNV-1a 64 of the header and the row (without its '\n'). */
-static uint64_t row_checksum(const char *header, const char *row, size_t length)
+/* The seal of a row: gb_seal of the header and the row (without its '\n'). */
+static int row_seal(const char *header, const char *row, size_t length, unsigned char seal[GB_SEAL_BYTES])
 {
-    return gb_hash_add(gb_hash_add(GB_HASH_OFFSET, header, strlen(header)), row, length);
+    const gb_seal_piece pieces[2] = {{header, strlen(header)}, {row, length}};
+    return gb_seal_compute(pieces, 2, seal);
 }
 
 int gb_scan_journal_line(const char *header, const char *row, char *out, size_t size)
 {
     const size_t length = strcspn(row, "\n");
-    const int n = snprintf(out, size, "%.*s,%016" PRIx64 "\n", (int)length, row, row_checksum(header, row, length));
+    unsigned char seal[GB_SEAL_BYTES];
+    char hex[GB_SEAL_HEX];
+    const int status = row_seal(header, row, length, seal);
+    if (status) return gb_error_set(status, "cannot seal a journal line: %s", gb_error_message());
+    gb_seal_hex(seal, hex);
+    const int n = snprintf(out, size, "%.*s,%s\n", (int)length, row, hex);
     return n > 0 && (size_t)n < size ? GB_OK : gb_error_set(GB_EINVAL, "a journal line does not fit %zu bytes", size);
 }
 
@@ -815,15 +839,14 @@ static int journal_row(const gb_scan *scan, const char *header, const char *line
     if (memchr(line, '\0', length)) return gb_error_set(GB_EINVAL, "a NUL byte");
     if (length > GB_SCAN_JOURNAL_LINE_MAX) return gb_error_set(GB_EINVAL, "%zu bytes long", length);
     char row[GB_SCAN_JOURNAL_LINE_MAX + 2];
-    if (length < 18 || line[length - 17] != ',') return gb_error_set(GB_EINVAL, "no checksum at its end");
-    const size_t row_length = length - 17;
-    char *end;
-    char sum_text[17];
-    memcpy(sum_text, line + row_length + 1, 16);
-    sum_text[16] = '\0';
-    const uint64_t sum = strtoull(sum_text, &end, 16);
-    if (end != sum_text + 16 || sum != row_checksum(header, line, row_length))
-        return gb_error_set(GB_EINVAL, "its checksum does not match its values (edited or damaged)");
+    const size_t tail = 2 * GB_SEAL_BYTES + 1; /* ",<64 hexadecimal digits>" */
+    if (length < tail + 1 || line[length - tail] != ',') return gb_error_set(GB_EINVAL, "no seal at its end");
+    const size_t row_length = length - tail;
+    unsigned char seal[GB_SEAL_BYTES];
+    if (!gb_seal_from_hex(line + row_length + 1, seal) ||
+        !gb_seal_verify((const gb_seal_piece[2]){{header, strlen(header)}, {line, row_length}}, 2, seal))
+        return gb_error_set(GB_EINVAL, "its seal does not verify: edited, damaged, or written under another key (see "
+                            "GOMBOC_KEY)");
     memcpy(row, line, row_length);
     row[row_length] = '\n', row[row_length + 1] = '\0';
     if (gb_scan_csv_parse(row, index, m)) return gb_error_set(GB_EINVAL, "not a row of this command");
@@ -848,7 +871,8 @@ int gb_scan_journal_read(const gb_scan *scan, const char *name, const char *head
     *count = 0, *keep = 0;
     const char *newline = memchr(text, '\n', size);
     const size_t header_length = strlen(header);
-    if (!newline) return gb_error_set(GB_EINVAL, "%s: %s %s", name, size ? "an incomplete first line" : "empty", allowed);
+    if (!size) return GB_OK; /* an empty journal (from a kill before its header): no points, the header written anew */
+    if (!newline) return gb_error_set(GB_EINVAL, "%s: %s %s", name, "an incomplete first line", allowed);
     if ((size_t)(newline - text) + 1 != header_length || memcmp(text, header, header_length)) {
         char have[128], want[128];
         quoted(text, (size_t)(newline - text), have, sizeof have);

@@ -23,6 +23,8 @@ extern "C" {
 #define GB_SCAN_AXIS_MAX 10000
 #define GB_SCAN_POINTS_MAX 1000000 /* points in all: a scan's results are held in memory */
 #define GB_SCAN_PATH_MAX 4096
+/* [scan] atlas_file: what fits on its line (GB_INI_LINE_MAX = 198 bytes, less "atlas_file = ") */
+#define GB_SCAN_ATLAS_NAME_MAX 185
 
 /* linear: from … to; pi: from … to times π; random: `count` attitudes drawn uniformly on the rotations
  * (initial.attitude only), the k-th from a generator seeded with `seed` and k (the column holds k). */
@@ -73,11 +75,13 @@ typedef struct gb_scan {
                                         * those of the per-vertical certificate, bit for bit. none (0): the
                                         * base scene's certificate */
     int atlas_line;                    /* its line, for messages */
-    char atlas_name[256];              /* [scan] atlas_file (with atlas = shared): the shared atlas's file name in
+    char atlas_name[GB_SCAN_ATLAS_NAME_MAX + 1];              /* [scan] atlas_file (with atlas = shared): the shared atlas's file name in
                                         * the output directory, so that scans of one body share it ("": the
                                         * scan's own NAME-scan.atlas) */
     int atlas_name_line;
     uint64_t fingerprint;              /* FNV-1a of the scan file's and the base scene's bytes */
+    unsigned char identity[32];        /* BLAKE2b-256 of the same bytes (gb_seal_digest, gb_scan_load): the name a
+                                        * journal carries, which no other scan file and base can be made to carry */
     int base_line;                     /* the scan file's line of `base`, for messages */
     char *base_text;                   /* the base scene as read once (every point starts from it) */
     size_t base_size;
@@ -198,14 +202,16 @@ void gb_scan_failed_metrics(const gb_scan *scan, size_t index, gb_scan_metrics *
 int gb_scan_csv_parse(const char *line, size_t *index, gb_scan_metrics *out);
 
 /* ---- the journal of an interrupted scan ----
- * Its first line names the scan (the fingerprint of the scan file and base scene), the binary and the
- * number of points; each further line is one finished point: its CSV row (gb_scan_csv_row) and the
- * FNV-1a 64 checksum of the header and the row. A journal is verified, never trusted: every line must
- * carry its checksum, read back to the same row, hold the point's own coordinates, and name a point of
- * the scan; a point twice must be the same twice. Only a half-written last line (no '\n') may go. */
+ * Its first line names the scan (the BLAKE2b-256 identity of the scan file and base scene), the binary
+ * and the number of points; each further line is one finished point: its CSV row (gb_scan_csv_row) and
+ * the seal (gb_seal: keyed BLAKE2b-256) of the header and the row. A journal is verified, never trusted:
+ * every line must carry a seal that verifies under this user's key (so an edited value is refused even
+ * when whoever edited it recomputed a checksum), read back to the same row, hold the point's own
+ * coordinates, and name a point of the scan; a point twice must be the same twice. Only a half-written
+ * last line (no '\n') may go; an empty journal holds no points. */
 #define GB_SCAN_JOURNAL_LINE_MAX 1200
 void gb_scan_journal_header(const gb_scan *scan, uint64_t binary, char *out, size_t size);
-/* The journal line of a CSV row. */
+/* The journal line of a CSV row (GB_EIO when there is no key to seal it). */
 int gb_scan_journal_line(const char *header, const char *row, char *out, size_t size);
 /* Read a journal's bytes (`name` for messages) into results/done (each of gb_scan_points entries,
  * done zeroed by the caller): GB_OK with the points read in *count and in *keep the bytes to keep

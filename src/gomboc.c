@@ -56,24 +56,31 @@ static int stdout_written(const char *command, int status)
 }
 
 /* The subcommand's words with every "--name=value" split into "--name" "value" (malloc'd; NULL when out of
- * memory), so that each command's parser sees one form. */
+ * memory), so that each command's parser sees one form; the values so attached are recorded
+ * (cli_value_attached: such a value may start with "--"). */
 static char **split_equals(int argc, char **argv, int *out_argc)
 {
     char **words = malloc((size_t)(2 * argc + 1) * sizeof *words);
-    if (!words) return NULL;
-    int n = 0;
+    const char **attached = malloc((size_t)(argc + 1) * sizeof *attached);
+    if (!words || !attached) {
+        free(words), free(attached);
+        return NULL;
+    }
+    int n = 0, values = 0;
     for (int k = 0; k < argc; k++) {
         char *eq = strncmp(argv[k], "--", 2) ? NULL : strchr(argv[k], '=');
         if (eq && eq > argv[k] + 2) {
             *eq = '\0'; /* argv's strings are ours to modify */
             words[n++] = argv[k];
             words[n++] = eq + 1;
+            attached[values++] = eq + 1;
         } else {
             words[n++] = argv[k];
         }
     }
     words[n] = NULL;
     *out_argc = n;
+    cli_attached_values(attached, values);
     return words;
 }
 
@@ -110,6 +117,7 @@ int gomboc_main(int argc, char **argv)
                 return EXIT_COMPUTE;
             }
             const int status = stdout_written(name, commands[k].run(n, words));
+            cli_attached_values(NULL, 0);
             free(words);
             return status;
         }

@@ -75,6 +75,30 @@ static int body_option(const char *command, const char *opt, const char *value, 
     return 1;
 }
 
+/* The values written "--name=value" (split_equals), which alone may start with "--". */
+static const char **attached_values;
+static int attached_count;
+
+void cli_attached_values(const char **values, int count)
+{
+    free(attached_values);
+    attached_values = values, attached_count = count;
+}
+
+static int attached(const char *value)
+{
+    for (int k = 0; k < attached_count; k++)
+        if (attached_values[k] == value) return 1;
+    return 0;
+}
+
+int cli_flag(const char *command, const char *opt, int *flag)
+{
+    if (*flag) return cli_input_error(command, "option '%s' is given twice (allowed: each option once)", opt);
+    *flag = 1;
+    return 0;
+}
+
 int cli_next_option(const char *command, int argc, char **argv, int *i, const char *usage,
                     const char *const *valued, const char *allowed, cli_body *body, int *json,
                     const char **value)
@@ -84,13 +108,13 @@ int cli_next_option(const char *command, int argc, char **argv, int *i, const ch
         fputs(usage, stdout);
         return CLI_HELP;
     }
-    if (json && !strcmp(opt, "--json")) {
-        *json = 1;
-        return CLI_NEXT;
-    }
+    if (json && !strcmp(opt, "--json")) return cli_flag(command, opt, json) ? EXIT_INPUT : CLI_NEXT;
     const int is_body = body && (!strcmp(opt, "--morphology") || !strcmp(opt, "--beta"));
     if (!is_body && !listed(opt, valued)) return cli_input_error(command, "unknown option '%s'%s", opt, allowed);
     if (*i + 1 >= argc) return cli_input_error(command, "option '%s' needs a value%s", opt, "");
+    if (!strncmp(argv[*i + 1], "--", 2) && !attached(argv[*i + 1]))
+        return cli_input_error(command, "option '%s' needs a value, and '%s' is an option (allowed: %s VALUE, or %s=VALUE "
+                               "for a value that starts with --)", opt, argv[*i + 1], opt, opt);
     /* Given before? The words before it, read as this parser reads them (a valued option takes the next). */
     for (int j = 0; j < *i; j++) {
         const int takes = listed(argv[j], valued) || (body && (!strcmp(argv[j], "--morphology") || !strcmp(argv[j], "--beta")));
@@ -122,15 +146,38 @@ static void remove_temporaries(int sig)
     raise(sig);
 }
 
-void cli_install_cleanup(void)
+void cli_catch_signals(void (*handler)(int))
 {
     static const int signals[] = {SIGINT, SIGTERM, SIGHUP};
-    for (size_t k = 0; k < sizeof signals / sizeof signals[0]; k++) signal(signals[k], remove_temporaries);
+    for (size_t k = 0; k < sizeof signals / sizeof signals[0]; k++) {
+        struct sigaction now;
+        if (sigaction(signals[k], NULL, &now) == 0 && now.sa_handler == SIG_IGN) continue; /* ignored by the parent */
+        signal(signals[k], handler);
+    }
+}
+
+void cli_install_cleanup(void)
+{
+    cli_catch_signals(remove_temporaries);
+    /* A write beyond the file-size limit (ulimit -f) fails with EFBIG, reported as any failed write, its
+     * temporaries removed, instead of killing the process with them left behind. */
+    signal(SIGXFSZ, SIG_IGN);
 }
 
 int cli_files_check(const char *command, const gb_file_use *uses, size_t count)
 {
     if (gb_file_check(uses, count)) return cli_input_error(command, "%s", gb_error_message());
+    return 0;
+}
+
+int cli_lock_probe(const char *command, const char *path, const char *what)
+{
+    int lock;
+    if (gb_file_lock(path, what, &lock)) {
+        fprintf(stderr, "gomboc %s: %s\n", command, gb_error_message());
+        return EXIT_COMPUTE;
+    }
+    gb_file_unlock(lock);
     return 0;
 }
 

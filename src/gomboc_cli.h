@@ -40,6 +40,12 @@ int cli_next_option(const char *command, int argc, char **argv, int *i, const ch
                     const char *const *valued, const char *allowed, cli_body *body, int *json,
                     const char **value);
 
+/* Options' values: one that starts with "--" is taken only when written --name=value (cli_attached_values
+ * records those values for the command's run; gomboc_main calls it). A flag given twice is refused:
+ * cli_flag sets *flag, or returns EXIT_INPUT after an error when it is set already. */
+void cli_attached_values(const char **values, int count);
+int cli_flag(const char *command, const char *opt, int *flag);
+
 /* For the option fuzzer (verify/fuzz): when set, a command returns 0 as soon as all its input (options,
  * output targets, the scene file) has been read and judged, before any computation or output. */
 extern int cli_parse_only;
@@ -58,12 +64,20 @@ int cli_body_required(const char *command, const cli_body *body);
 /* Files. Before any work, a command lists every path it reads and writes (gb_file_use) and checks
  * them by gb_file's one rule (cli_files_check), and --out DIR by cli_output_dir_check: both print the
  * error, naming the option, and return EXIT_INPUT, or 0. Outputs are then written as gb_file sets.
- * cli_install_cleanup removes this process's temporaries on SIGINT, SIGTERM and SIGHUP. */
+ * cli_install_cleanup removes this process's temporaries on SIGINT, SIGTERM and SIGHUP, except for a
+ * signal the parent process ignored, which stays ignored (nohup, a background job), and ignores SIGXFSZ
+ * (a write past `ulimit -f` then fails like any other); cli_catch_signals(handler) installs `handler`
+ * by the same rule. */
 int cli_files_check(const char *command, const gb_file_use *uses, size_t count);
 int cli_output_dir_check(const char *command, const char *option, const char *dir);
+/* Before the work: can the lock of the directory holding `path` be taken (gb_file_lock's bounded wait)?
+ * A lock held by another process is reported before the computation rather than after it: 0, or
+ * EXIT_COMPUTE after printing the error. */
+int cli_lock_probe(const char *command, const char *path, const char *what);
 /* "DIR/NAME-suffix", NAME the input file's base name without ".ini" (malloc'd; NULL when out of memory). */
 char *cli_output_name(const char *dir, const char *input, const char *suffix);
 void cli_install_cleanup(void);
+void cli_catch_signals(void (*handler)(int));
 
 /* A sealed member of a set as a manifest entry {name (its base name), bytes, fnv1a64 (16 hex digits)},
  * appended to `list`. The manifest (a run's summary, a scan's JSON) is the set's last member. */

@@ -193,7 +193,8 @@ int command_contact(int argc, char **argv)
             return kind == CLI_HELP ? 0 : kind;
         }
         if (!strcmp(opt, "--zb")) {
-            static const char *const zb_allowed = " (allowed: X,Y,Z, each -1e100 <= component <= 1e100, not all zero)";
+            static const char *const zb_allowed = " (allowed: X,Y,Z, each -1e100 <= component <= 1e100, not all zero, of "
+                                                  "length at least 1e-100)";
             const gb_parse_result p = gb_parse_list(value, zb, 3);
             if (p == GB_PARSE_OVERFLOW) return cli_input_error("contact", "--zb '%s' is beyond the range of a double%s", value, zb_allowed);
             if (p) return cli_input_error("contact", "--zb '%s' is not three numbers%s", value, zb_allowed);
@@ -201,6 +202,9 @@ int command_contact(int argc, char **argv)
                 return cli_input_error("contact", "--zb '%s' is out of range%s", value, zb_allowed);
             if (zb[0] == 0.0 && zb[1] == 0.0 && zb[2] == 0.0)
                 return cli_input_error("contact", "--zb '%s' is the zero vector%s", value, zb_allowed);
+            /* its square must not underflow: the length from hypot, which does not square */
+            if (!(hypot(hypot(zb[0], zb[1]), zb[2]) >= 1e-100))
+                return cli_input_error("contact", "--zb '%s' is too short to give a direction%s", value, zb_allowed);
             have_zb = 1;
         } else if (!strcmp(opt, "--method")) {
             if (gb_contact_model_parse(value, &method))
@@ -236,7 +240,7 @@ int command_contact(int argc, char **argv)
         gb_contact_model_parse(NULL, &method); /* its message lists the models */
         return cli_input_error("contact", "missing --method %s", cli_allowed());
     }
-    const gb_file_use uses[] = {{landscape, "--landscape", GB_FILE_OUTPUT}, {zoom, "--zoom", GB_FILE_OUTPUT}};
+    const gb_file_use uses[] = {GB_FILE_USE(landscape, "--landscape", GB_FILE_OUTPUT), GB_FILE_USE(zoom, "--zoom", GB_FILE_OUTPUT)};
     if (cli_files_check("contact", uses, 2)) return EXIT_INPUT;
     if (cli_parse_only) return 0;
 

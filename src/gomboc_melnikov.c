@@ -104,7 +104,7 @@ static int melnikov_options_read(int argc, char **argv, melnikov_options *o)
         return EXIT_INPUT;
     if (o->points != floor(o->points))
         return cli_input_error("melnikov", "--curve-points %s: not an integer (allowed: an integer from 2 to 1000)", points_text);
-    const gb_file_use uses[] = {{o->case_path, "CASE", GB_FILE_INPUT}, {o->curve, "--curve", GB_FILE_OUTPUT}};
+    const gb_file_use uses[] = {GB_FILE_USE(o->case_path, "CASE", GB_FILE_INPUT), GB_FILE_USE(o->curve, "--curve", GB_FILE_OUTPUT)};
     if (cli_files_check("melnikov", uses, 2)) return EXIT_INPUT;
     return -1;
 }

@@ -171,8 +171,17 @@ static int stage_error(const run_outputs *out, int which)
     return status;
 }
 
+/* The set renamed into place and the stale outputs of this NAME removed, the directory locked over both
+ * (gb_file_lock): two runs of one NAME into one directory leave one whole set, the later one's. */
 static int stage_commit(run_outputs *out, int status)
 {
+    int lock = -1;
+    if (!status) {
+        char *path = cli_output_name(out->dir, out->case_path, cli_run_suffixes[OUT_SUMMARY]);
+        status = path ? gb_file_lock(path, "writing a run's outputs", &lock) : gb_error_set(GB_ENOMEM, "out of memory");
+        free(path);
+        out->set.directory_locked = lock >= 0;
+    }
     status = gb_file_set_commit(&out->set, status);
     for (int k = 0; !status && k < OUT_COUNT; k++) {
         if (out->written[k]) continue;
@@ -182,6 +191,7 @@ static int stage_commit(run_outputs *out, int status)
             status = gb_error_set(GB_EIO, "cannot remove the stale '%s': %s", path, strerror(errno));
         free(path);
     }
+    gb_file_unlock(lock);
     return status;
 }
 
@@ -200,19 +210,21 @@ static int asks_for(const gb_case *scene, int which)
 }
 
 /* Every file of the run by the rule of gb_file, before the run: the scene file, the outputs it asks
- * for, the atlas and the hull (each read, then written back). */
+ * for and the ones it would remove as stale, the atlas and the hull (caches: each read, then written
+ * back, and only over a cache of its kind). */
 static int check_files(const gb_case *scene, const char *case_path, const char *dir, const char *atlas, const char *hull)
 {
-    gb_file_use uses[OUT_COUNT + 3] = {{case_path, "CASE", GB_FILE_INPUT},
-                                       {atlas, "--atlas", GB_FILE_INPUT | GB_FILE_OUTPUT},
-                                       {hull, "--hull", GB_FILE_INPUT | GB_FILE_OUTPUT}};
+    static const char hull_magic[] = GB_CONTACT_HULL_MAGIC;
+    gb_file_use uses[OUT_COUNT + 3] = {
+        GB_FILE_USE(case_path, "CASE", GB_FILE_INPUT),
+        GB_FILE_CACHE_USE(atlas, "--atlas", "an atlas file", GB_ATLAS_FILE_MAGIC, sizeof GB_ATLAS_FILE_MAGIC),
+        GB_FILE_CACHE_USE(hull, "--hull", "a hull file", hull_magic, sizeof hull_magic)};
     char *names[OUT_COUNT] = {NULL};
     int bad = 0;
     for (int k = 0; k < OUT_COUNT; k++) {
-        if (!asks_for(scene, k)) continue;
         names[k] = cli_output_name(dir, case_path, cli_run_suffixes[k]);
         if (!names[k]) bad = cli_input_error("run", "out of memory for an output name");
-        uses[3 + k] = (gb_file_use){names[k], "--out", GB_FILE_OUTPUT};
+        uses[3 + k] = GB_FILE_USE(names[k], "--out", asks_for(scene, k) ? GB_FILE_OUTPUT : GB_FILE_SWEPT);
     }
     if (!bad) bad = cli_files_check("run", uses, OUT_COUNT + 3);
     for (int k = 0; k < OUT_COUNT; k++) free(names[k]);
@@ -361,6 +373,9 @@ static cJSON *summary_json(const gb_case *scene, const gb_run_result *r, const w
     cli_json_add(root, "orthonormality_max", r->orthonormality_max);
     cli_json_add(root, "quaternion_drift_max", r->stats.max_norm_drift);
     cli_json_add(root, "steps", (double)r->stats.steps);
+    /* the largest turn |ω| h of an accepted step [rad], and the RK4 steps that turned beyond the bound */
+    cli_json_add(root, "step_rotation_max", r->stats.max_step_rotation);
+    cli_json_add(root, "steps_too_coarse", (double)r->stats.coarse_steps);
     cli_json_add(root, "rhs_evaluations", (double)r->stats.rhs_evaluations);
     cli_json_add(root, "samples", (double)r->samples);
     cJSON *fp = cJSON_AddObjectToObject(root, "fingerprint");
@@ -481,6 +496,12 @@ int command_run(int argc, char **argv)
     scene.dynamics.hull_file = hull;
     if (check_files(&scene, case_path, dir, atlas, hull)) return EXIT_INPUT;
     if (cli_parse_only) return 0;
+    char *summary_path = cli_output_name(dir, case_path, cli_run_suffixes[OUT_SUMMARY]);
+    int held = !summary_path || cli_lock_probe("run", summary_path, "checking that the outputs can be written");
+    if (!held && atlas) held = cli_lock_probe("run", atlas, "checking that the atlas can be written back");
+    if (!held && hull) held = cli_lock_probe("run", hull, "checking that the hull can be written");
+    free(summary_path);
+    if (held) return EXIT_COMPUTE;
 
     run_outputs files = {.dir = dir, .case_path = case_path};
     streams out = {NULL, NULL};
@@ -496,8 +517,9 @@ int command_run(int argc, char **argv)
     gb_run_result r;
     if (!status) status = gb_run(&scene, out.history || out.impacts ? &sinks : NULL, &r);
     else memset(&r, 0, sizeof r);
-    if (out.history && ferror(out.history) && !status) status = stage_error(&files, OUT_HISTORY);
-    if (out.impacts && ferror(out.impacts) && !status) status = stage_error(&files, OUT_IMPACTS);
+    /* a stream that failed is named by its path (the sink's message says only which stream) */
+    if (out.history && ferror(out.history) && (!status || status == GB_EIO)) status = stage_error(&files, OUT_HISTORY);
+    if (out.impacts && ferror(out.impacts) && (!status || status == GB_EIO)) status = stage_error(&files, OUT_IMPACTS);
     const double period = gb_forcing_period(&scene.dynamics.forcing);
     if (!status && scene.strobe) status = write_strobe(&files, &r.strobe, period);
     if (!status && scene.spectrum) status = write_spectrum(&files, &r.spectrum);
@@ -540,6 +562,12 @@ int command_run(int argc, char **argv)
         fprintf(stderr, " (restitution %g; %zu impacts, %zu landings, %.1f %% of the time in flight)",
                 scene.dynamics.restitution, r.impacts, r.flight.landings, 100.0 * r.flight.time / r.t_end);
     fprintf(stderr, "; %zu steps in %.2f s CPU; fingerprint %s/%s\n", r.stats.steps, r.seconds, state_print, switch_print);
+    if (r.stats.coarse_steps)
+        fprintf(stderr, "gomboc run: %s: warning: %zu of %zu steps turned the body by more than %g rad (at most %.3g rad): "
+                "the step is too coarse for the body's spin (RK4's error grows as the fifth power of the turn); the "
+                "energy ledger drifted by up to %.3g J against an energy of %.3g J; more [integrator] steps_per_period "
+                "resolve it\n", case_path, r.stats.coarse_steps, r.stats.steps, GB_INTEGRATE_ROTATION_MAX,
+                r.stats.max_step_rotation, r.residual_max, fabs(r.final.energy));
     const size_t over = r.has_monitors ? r.monitors.friction_over_mu : 0;
     if (isfinite(scene.dynamics.friction) && (over || r.impacts_over_friction))
         fprintf(stderr, "gomboc run: %s: %zu of %zu impacts and %.2f %% of the samples need more friction than the scene's "

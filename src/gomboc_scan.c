@@ -72,8 +72,7 @@ static void interrupt_hint(const char *scan_path, const char *dir)
     const int n = snprintf(hint_text, sizeof hint_text, "\ngomboc scan: interrupted; the finished points are kept in the "
                            "journal: 'gomboc scan %s --out %s --resume' continues from them\n", scan_path, dir);
     hint_length = n > 0 && (size_t)n < sizeof hint_text ? (size_t)n : 0;
-    static const int signals[] = {SIGINT, SIGTERM, SIGHUP};
-    for (size_t k = 0; k < sizeof signals / sizeof signals[0]; k++) signal(signals[k], interrupted);
+    cli_catch_signals(interrupted);
 }
 
 /* The running binary's fingerprint (FNV-1a of /proc/self/exe): a journal is resumed by the same build. */
@@ -120,19 +119,26 @@ static int journal_resume(journal *j, const gb_scan *scan, gb_scan_metrics *resu
         if (fd >= 0) close(fd);
         return EXIT_COMPUTE;
     }
+    /* an empty journal (a kill before its header was written, by an older build) holds no points: its header */
+    if (!size && (fputs(j->header, j->file) < 0 || fflush(j->file) != 0)) {
+        fprintf(stderr, "gomboc scan: cannot write the journal '%s': %s\n", j->path, strerror(errno));
+        return EXIT_COMPUTE;
+    }
     return 0;
 }
 
+/* A new journal: its header written whole before its name appears (gb_file_write_new), so that a kill
+ * never leaves an empty journal in the way; then opened to append. */
 static int journal_create(journal *j)
 {
-    const int fd = open(j->path, O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
-    if (fd < 0 || !(j->file = fdopen(fd, "w"))) {
-        fprintf(stderr, "gomboc scan: cannot create the journal '%s': %s\n", j->path, strerror(errno));
-        if (fd >= 0) close(fd);
+    if (gb_file_write_new(j->path, j->header, strlen(j->header))) {
+        fprintf(stderr, "gomboc scan: cannot create the journal: %s\n", gb_error_message());
         return EXIT_COMPUTE;
     }
-    if (fputs(j->header, j->file) < 0 || fflush(j->file) != 0) {
-        fprintf(stderr, "gomboc scan: cannot write the journal '%s': %s\n", j->path, strerror(errno));
+    const int fd = open(j->path, O_WRONLY | O_APPEND | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC);
+    if (fd < 0 || !(j->file = fdopen(fd, "a"))) {
+        fprintf(stderr, "gomboc scan: cannot open the journal '%s' to append: %s\n", j->path, strerror(errno));
+        if (fd >= 0) close(fd);
         return EXIT_COMPUTE;
     }
     return 0;
@@ -520,7 +526,7 @@ static int scan_options_read(int argc, char **argv, scan_options *o)
             return positional;
         }
         if (!strcmp(opt, "--resume")) {
-            o->resume = 1;
+            if (cli_flag("scan", opt, &o->resume)) return EXIT_INPUT;
             continue;
         }
         const int kind = cli_next_option("scan", argc, argv, &i, usage_scan, valued,
@@ -588,11 +594,14 @@ static int scan_command(int argc, char **argv, const ranks *r)
     }
     if (!status && r->rank == 0) {
         char *csv_path = cli_output_name(dir, scan_path, "scan.csv"), *json_path = cli_output_name(dir, scan_path, "scan.json");
-        const gb_file_use uses[] = {{scan_path, "SCAN", GB_FILE_INPUT}, {scan.base, "[scan] base", GB_FILE_INPUT},
-                                    {csv_path, "--out", GB_FILE_OUTPUT}, {json_path, "--out", GB_FILE_OUTPUT},
-                                    {j.path, "--out (the journal)", GB_FILE_INPUT | GB_FILE_OUTPUT},
-                                    {scan.atlas_file, options.atlas ? "--atlas" : "--out (the atlas)",
-                                     GB_FILE_INPUT | GB_FILE_OUTPUT}};
+        char named[GB_SCAN_PATH_MAX + 48]; /* [scan] atlas_file by its line */
+        snprintf(named, sizeof named, "%s:%d: [scan] atlas_file", scan_path, scan.atlas_name_line);
+        const gb_file_use uses[] = {
+            GB_FILE_USE(scan_path, "SCAN", GB_FILE_INPUT), GB_FILE_USE(scan.base, "[scan] base", GB_FILE_INPUT),
+            GB_FILE_USE(csv_path, "--out", GB_FILE_OUTPUT), GB_FILE_USE(json_path, "--out", GB_FILE_OUTPUT),
+            GB_FILE_USE(j.path, "--out (the journal)", GB_FILE_INPUT | GB_FILE_OUTPUT),
+            GB_FILE_CACHE_USE(scan.atlas_file, options.atlas ? "--atlas" : scan.atlas_name[0] ? named : "--out (the atlas)",
+                              "an atlas file", GB_ATLAS_FILE_MAGIC, sizeof GB_ATLAS_FILE_MAGIC)};
         bad = !csv_path || !json_path || cli_files_check("scan", uses, sizeof uses / sizeof uses[0]);
         free(csv_path);
         free(json_path);
@@ -622,6 +631,15 @@ static int scan_command(int argc, char **argv, const ranks *r)
         free(j.path);
         return 0;
     }
+    /* a directory another process holds locked is reported now, not after the points */
+    int held = r->rank == 0 && cli_lock_probe("scan", j.path, "checking that the outputs can be written");
+    if (!held && r->rank == 0 && scan.atlas_file)
+        held = cli_lock_probe("scan", scan.atlas_file, "checking that the shared atlas can be written");
+    if (shared_status(r, held ? EXIT_COMPUTE : 0)) {
+        gb_scan_free(&scan);
+        free(j.path);
+        return EXIT_COMPUTE;
+    }
     const size_t points = gb_scan_points(&scan);
     gb_scan_metrics *results = calloc(points, sizeof *results);
     unsigned char *done = calloc(points, 1);
@@ -634,7 +652,9 @@ static int scan_command(int argc, char **argv, const ranks *r)
     if (r->rank == 0) {
         gb_scan_journal_header(&scan, binary_fingerprint(), j.header, sizeof j.header);
         struct stat st;
-        const int exists = lstat(j.path, &st) == 0;
+        int exists = lstat(j.path, &st) == 0;
+        if (!exit_status && exists && !resume && S_ISREG(st.st_mode) && st.st_size == 0 && unlink(j.path) == 0)
+            exists = 0; /* an empty journal holds no points: a fresh start replaces it */
         if (!exit_status && exists && !resume) {
             fprintf(stderr, "gomboc scan: a journal of an unfinished scan exists: '%s' (allowed: --resume to finish it, or "
                     "remove it to start again)\n", j.path);

@@ -172,7 +172,7 @@ int command_shape(int argc, char **argv)
         }
     }
     if (cli_body_required("shape", &body)) return EXIT_INPUT;
-    const gb_file_use uses[] = {{radial_map, "--radial-map", GB_FILE_OUTPUT}};
+    const gb_file_use uses[] = {GB_FILE_USE(radial_map, "--radial-map", GB_FILE_OUTPUT)};
     if (cli_files_check("shape", uses, 1)) return EXIT_INPUT;
     if (cli_parse_only) return 0;
     const char *morphology = body.morphology;

@@ -8,6 +8,7 @@
  * are added here too. Beside the table: values that are strict but valid are accepted, paths of any
  * length work, temporaries are removed after SIGTERM and after a kill -9, and the ranges written in
  * cases/README.md are the ranges the reader enforces. */
+#include "gb_atlas.h"
 #include "gb_case.h"
 #include "gb_check.h"
 #include "verify_sections.h"
@@ -15,6 +16,9 @@
 #include <dirent.h>
 #include <errno.h>
 #include <ftw.h>
+#include <math.h>
+#include <sys/file.h>
+#include <fcntl.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -178,9 +182,9 @@ static const bad_row rows[] = {
     {RUN, "[model]\nequation = newton\n", 0, 2, {"case.ini:2: [model] equation = newton", "unknown", "allowed: paper, rolling"}},
     {RUN, "[model]\nnodes = gauss\n", 0, 2, {"case.ini:2: [model] nodes = gauss", "unknown", "allowed: centred, linspace"}},
     {RUN, "[forcing]\namplitude_units = furlongs\n", 0, 2, {"case.ini:2: [forcing] amplitude_units = furlongs", "unknown", "allowed: m/s2, g"}},
-    {RUN, "[integrator]\nmethod = rk8pd\n", 0, 2, {"case.ini:2: [integrator] method: = rk8pd with [model] contact = fast-grid", "cannot cross the jumps", "allowed: rk4 with grid or fast-grid"}},
+    {RUN, "[integrator]\nmethod = rk8pd\n", 0, 2, {"case.ini:2: [integrator] method = rk8pd with [model] contact = fast-grid", "cannot cross the jumps", "allowed: rk4 with grid or fast-grid"}},
     {RUN, "[model]\ncontact = fast-grid\n[integrator]\nmethod = rkf45\n", 0, 2, {"case.ini:4: [integrator] method", "contact = fast-grid", "any method with contact = continuous"}},
-    {RUN, "[model]\ncertificate = atlas\n", 0, 2, {"case.ini:2: [model] certificate: = atlas with [model] contact = fast-grid", "only continuous contact is certified", "allowed: per-vertical with any contact; atlas with contact = continuous"}},
+    {RUN, "[model]\ncertificate = atlas\n", 0, 2, {"case.ini:2: [model] certificate = atlas with [model] contact = fast-grid", "only continuous contact is certified", "allowed: per-vertical with any contact; atlas with contact = continuous"}},
     {RUN, "[model]\ncertificate = proof\n", 0, 2, {"case.ini:2: [model] certificate = proof", "unknown", "allowed: per-vertical, atlas"}},
     {RUN, "[integrator]\nmethod = euler\n", 0, 2, {"case.ini:2: [integrator] method = euler", "unknown", "allowed: rk4, rk8pd, rkf45, rk4imp"}},
     {RUN, "[integrator]\nsteps_per_period = -3\n", 0, 2, {"case.ini:2: [integrator] steps_per_period = -3", "not an integer", "1 to 100000000"}},
@@ -191,19 +195,19 @@ static const bad_row rows[] = {
     {RUN, "[initial]\nattitude = axis-angle 1,0,0\n", 0, 2, {"case.ini:2: [initial] attitude", "not an attitude", "AX,AY,AZ,ANGLE"}},
     {RUN, "[initial]\nomega = 1,2\n", 0, 2, {"case.ini:2: [initial] omega = 1,2", "not three numbers", "X,Y,Z"}},
     {RUN, "[diagnostics]\nspectrum = yes\n[spectrum]\nwindow = blackman\n", 0, 2, {"case.ini:4: [spectrum] window = blackman", "unknown", "allowed: rectangular, hann"}},
-    {RUN, "[integrator]\nsteps_per_period = 4\n[diagnostics]\nstrobe = yes\n[strobe]\nphase = 0.3\n", 0, 2, {"case.ini:6: [strobe] phase: = 0.3 is not on the sample grid", "a multiple of 1/4", ""}},
-    {RUN, "[integrator]\nperiods = 10\n[diagnostics]\nlyapunov = yes\n[lyapunov]\ninterval_periods = 3\n", 0, 2, {"case.ini:6: [lyapunov] interval_periods: = 3", "does not divide", "at least 2 intervals"}},
-    {RUN, "[integrator]\nperiods = 10\n[diagnostics]\nlyapunov = yes\n[lyapunov]\nbatches = 20\n", 0, 2, {"case.ini:6: [lyapunov] batches: = 20 exceeds the 5 intervals of the record after its longest warm-up", "2 <= batches <= intervals - warmup_intervals", ""}},
-    {RUN, "[integrator]\nperiods = 10\n[diagnostics]\nlyapunov = yes\n[lyapunov]\nwarmup_intervals = 0\nbatches = 11\n", 0, 2, {"case.ini:7: [lyapunov] batches: = 11 exceeds the 10 intervals", "allowed: chosen, or 2 <= batches", ""}},
-    {RUN, "[integrator]\nperiods = 10\n[diagnostics]\nlyapunov = yes\n[lyapunov]\nwarmup_intervals = 5\n", 0, 2, {"case.ini:6: [lyapunov] warmup_intervals: = 5 is not less than half the 10 intervals", "0 <= warmup_intervals < intervals / 2", ""}},
-    {RUN, "[integrator]\nperiods = 10\n[diagnostics]\nlyapunov = yes\n[lyapunov]\ninterval_periods = 2\nwindow_periods = 3\n", 0, 2, {"case.ini:7: [lyapunov] window_periods: = 3 is not a whole number of intervals of 2 periods", "a multiple of interval_periods up to periods - transient_periods", ""}},
-    {RUN, "[integrator]\nperiods = 10\n[diagnostics]\nlyapunov = yes\n[lyapunov]\ntransient_periods = 2\nwindow_periods = 9\n", 0, 2, {"case.ini:7: [lyapunov] window_periods: = 9 is not a whole number of intervals of 1 periods within the record of 8 periods", "allowed: 0 for no windows", ""}},
+    {RUN, "[integrator]\nsteps_per_period = 4\n[diagnostics]\nstrobe = yes\n[strobe]\nphase = 0.3\n", 0, 2, {"case.ini:6: [strobe] phase = 0.3 is not on the sample grid", "a multiple of 1/4", ""}},
+    {RUN, "[integrator]\nperiods = 10\n[diagnostics]\nlyapunov = yes\n[lyapunov]\ninterval_periods = 3\n", 0, 2, {"case.ini:6: [lyapunov] interval_periods = 3", "does not divide", "at least 2 intervals"}},
+    {RUN, "[integrator]\nperiods = 10\n[diagnostics]\nlyapunov = yes\n[lyapunov]\nbatches = 20\n", 0, 2, {"case.ini:6: [lyapunov] batches = 20 exceeds the 5 intervals of the record after its longest warm-up", "2 <= batches <= intervals - warmup_intervals", ""}},
+    {RUN, "[integrator]\nperiods = 10\n[diagnostics]\nlyapunov = yes\n[lyapunov]\nwarmup_intervals = 0\nbatches = 11\n", 0, 2, {"case.ini:7: [lyapunov] batches = 11 exceeds the 10 intervals", "allowed: chosen, or 2 <= batches", ""}},
+    {RUN, "[integrator]\nperiods = 10\n[diagnostics]\nlyapunov = yes\n[lyapunov]\nwarmup_intervals = 5\n", 0, 2, {"case.ini:6: [lyapunov] warmup_intervals = 5 is not less than half the 10 intervals", "0 <= warmup_intervals < intervals / 2", ""}},
+    {RUN, "[integrator]\nperiods = 10\n[diagnostics]\nlyapunov = yes\n[lyapunov]\ninterval_periods = 2\nwindow_periods = 3\n", 0, 2, {"case.ini:7: [lyapunov] window_periods = 3 is not a whole number of intervals of 2 periods", "a multiple of interval_periods up to periods - transient_periods", ""}},
+    {RUN, "[integrator]\nperiods = 10\n[diagnostics]\nlyapunov = yes\n[lyapunov]\ntransient_periods = 2\nwindow_periods = 9\n", 0, 2, {"case.ini:7: [lyapunov] window_periods = 9 is not a whole number of intervals of 1 periods within the record of 8 periods", "allowed: 0 for no windows", ""}},
     {RUN, "[lyapunov]\nwindow_periods = -1\n", 0, 2, {"case.ini:2: [lyapunov] window_periods = -1", "0", "10000000"}},
     {RUN, "[lyapunov]\nbatches = auto\n", 0, 2, {"case.ini:2: [lyapunov] batches = auto", "not an integer", "chosen (from the record), or an integer from 2 to 1000000"}},
     {RUN, "[lyapunov]\ndelta0 = 2\n", 0, 2, {"case.ini:2: [lyapunov] delta0 = 2", "out of range", "1e-15 <= delta0 <= 0.1"}},
     {RUN, "[lyapunov]\nomega_scale = -1\n", 0, 2, {"case.ini:2: [lyapunov] omega_scale = -1", "out of range", "0.001 <= omega_scale <= 1000000 [rad/s]"}},
-    {RUN, "[integrator]\nperiods = 5\n[diagnostics]\nstrobe = yes\n[strobe]\ntransient_periods = 5\n", 0, 2, {"case.ini:6: [strobe] transient_periods: = 5 leaves no strobe samples", "< [integrator] periods = 5", ""}},
-    {"lyapunov @CASE@", "[integrator]\nperiods = 10\n[lyapunov]\nbatches = 20\n", 0, 2, {"case.ini:4: [lyapunov] batches: = 20 exceeds", "2 <= batches <= intervals - warmup_intervals", ""}},
+    {RUN, "[integrator]\nperiods = 5\n[diagnostics]\nstrobe = yes\n[strobe]\ntransient_periods = 5\n", 0, 2, {"case.ini:6: [strobe] transient_periods = 5 leaves no strobe samples", "< [integrator] periods = 5", ""}},
+    {"lyapunov @CASE@", "[integrator]\nperiods = 10\n[lyapunov]\nbatches = 20\n", 0, 2, {"case.ini:4: [lyapunov] batches = 20 exceeds", "2 <= batches <= intervals - warmup_intervals", ""}},
     /* Scan files (gomboc scan): the same strict reader, their own keys. */
     {"scan @CASE@ --out @D@", "[scan]\nbase = x.ini\nperiod = 10\n", 0, 2, {"case.ini:3: [scan] period = 10: unknown key", "allowed in [scan]: description, base, periods, transient_periods, metrics, failed_points, atlas", ""}},
     {"scan @CASE@ --out @D@", "[scan]\nbase = x.ini\n[x]\nkey = forcing.omega\nfrom = 20\nto = 10\ncount = 5\n[y]\nkey = forcing.A1\nfrom = 1\nto = 2\ncount = 2\n", 0, 2, {"case.ini:6: [x] to = 10: an empty range", "to > from = 20", ""}},
@@ -304,10 +308,10 @@ static const bad_row rows[] = {
     {"run @CASE@ --hull @D@/a --atlas @D@/a", ATLAS_SCENE, 0, 2, {"--hull", "has no hull", "allowed: a scene with [model] contact = fast-grid"}},
     /* smaller: options given twice, --curve-points alone */
     {RUN, "[model]\ncontact_law = bouncy\n", 0, 2, {"case.ini:2: [model] contact_law = bouncy", "unknown", "allowed: held, unilateral"}},
-    {RUN, "[model]\ncontact = continuous\ncontact_law = unilateral\n", 0, 2, {"case.ini:3: [model] contact_law: = unilateral with [model] contact = continuous, equation = paper", "eq 44 makes and takes energy", "allowed: held with any model; unilateral with equation = rolling, or with a grid model"}},
-    {RUN, "[model]\ncontact_law = unilateral\n", 0, 2, {"case.ini: [integrator] locate_switches (default): = no with [model] contact_law = unilateral", "every impact is located", "allowed: yes with contact_law = unilateral"}},
-    {RUN, "[model]\ncontact = continuous\nequation = rolling\ncontact_law = unilateral\n[integrator]\nlocate_switches = no\n", 0, 2, {"case.ini:6: [integrator] locate_switches: = no with [model] contact_law = unilateral", "allowed: yes with contact_law = unilateral", ""}},
-    {RUN, "[output]\nimpacts = yes\n", 0, 2, {"case.ini:2: [output] impacts: = yes with [model] contact_law = held", "a held contact has no impacts", "allowed: yes with contact_law = unilateral"}},
+    {RUN, "[model]\ncontact = continuous\ncontact_law = unilateral\n", 0, 2, {"case.ini:3: [model] contact_law = unilateral with [model] contact = continuous, equation = paper", "eq 44 makes and takes energy", "allowed: held with any model; unilateral with equation = rolling, or with a grid model"}},
+    {RUN, "[model]\ncontact_law = unilateral\n", 0, 2, {"case.ini: [integrator] locate_switches (default) = no with [model] contact_law = unilateral", "every impact is located", "allowed: yes with contact_law = unilateral"}},
+    {RUN, "[model]\ncontact = continuous\nequation = rolling\ncontact_law = unilateral\n[integrator]\nlocate_switches = no\n", 0, 2, {"case.ini:6: [integrator] locate_switches = no with [model] contact_law = unilateral", "allowed: yes with contact_law = unilateral", ""}},
+    {RUN, "[output]\nimpacts = yes\n", 0, 2, {"case.ini:2: [output] impacts = yes with [model] contact_law = held", "a held contact has no impacts", "allowed: yes with contact_law = unilateral"}},
     /* a computation the rough plane cannot follow (exit 1): a lift-off where the body would slide first */
     {RUN, "[forcing]\namplitude_units = g\n[model]\ncontact = continuous\nequation = rolling\ncontact_law = unilateral\n"
           "restitution = 0.5\n[integrator]\nperiods = 100\nsteps_per_period = 640\nlocate_switches = yes\n", 0, 1,
@@ -335,6 +339,36 @@ static const bad_row rows[] = {
     {"--help > @D@/full", NULL, 0, 1, {"gomboc: cannot write standard output", "No space left on device", ""}},
     {"frobnicate", NULL, 0, 2, {"unknown command 'frobnicate'", "allowed: shape, contact, run, lyapunov", ""}},
     {"", NULL, 0, 2, {"usage: gomboc", "", ""}},
+    /* Bad input, round 3, by the number of its defect. (1) A cache named like an output the run removes as
+     * stale (the scene asks for no λ): */
+    {RUN " --hull @D@/case-lyapunov.csv", HULL_SCENE, 0, 2, {"--hull '", "case-lyapunov.csv' is also the --out file", "a name this run removes as a stale output"}},
+    {RUN " --atlas @D@/case-lyapunov.csv", ATLAS_SCENE, 0, 2, {"--atlas '", "case-lyapunov.csv' is also the --out file", "a name this run removes as a stale output"}},
+    /* (2) A cache over a file that is not a cache of its kind: */
+    {RUN " --hull @D@/keep.txt", HULL_SCENE, 0, 2, {"--hull '", "keep.txt' exists and is not a hull file", "allowed: a new file, or a hull file this command wrote"}},
+    {RUN " --atlas @D@/keep.txt", ATLAS_SCENE, 0, 2, {"--atlas '", "keep.txt' exists and is not an atlas file", "allowed: a new file, or an atlas file"}},
+    /* (9) An empty scene, and one of comments alone: */
+    {RUN, "", 0, 2, {"case.ini: no [section] in 0 bytes", "an empty file", "allowed: at least one [section]"}},
+    {RUN, "; a comment\n\n# another\n", 0, 2, {"case.ini: no [section] in 23 bytes", "only blank lines and comments", ""}},
+    /* (12) An option's value that is an option: */
+    {RUN " --hull --json", HULL_SCENE, 0, 2, {"option '--hull' needs a value, and '--json' is an option", "allowed: --hull VALUE, or --hull=VALUE", ""}},
+    {"scan @CASE@ --out @D@ --atlas --resume", "[scan]\n", 0, 2, {"option '--atlas' needs a value, and '--resume' is an option", "--atlas=VALUE", ""}},
+    {"run --out --json @CASE@", HULL_SCENE, 0, 2, {"option '--out' needs a value", "'--json' is an option", ""}},
+    /* (13) A flag given twice: */
+    {RUN " --json --json", HULL_SCENE, 0, 2, {"option '--json' is given twice", "allowed: each option once", ""}},
+    {"scan @CASE@ --out @D@ --resume --resume", "[scan]\n", 0, 2, {"option '--resume' is given twice", "each option once", ""}},
+    {"contact --morphology I --beta 0.12 --zb 0,0,1 --method grid --json --json", NULL, 0, 2, {"option '--json' is given twice", "", ""}},
+    /* (17) A cache named like a temporary of the program: */
+    {"scan @CASE@ --out @D@", "[scan]\nbase = x.ini\natlas = shared\natlas_file = .gomboc-999999-AAAAAA\n", 0, 2,
+     {"case.ini:4: [scan] atlas_file = .gomboc-999999-AAAAAA: not a file name", "not named like the program's temporaries", ""}},
+    {RUN " --hull @D@/.gomboc-999999-AAAAAA", HULL_SCENE, 0, 2, {"--hull '", "is named like a temporary of this program", ""}},
+    {RUN " --atlas @D@/.gomboc-1-abcdef", ATLAS_SCENE, 0, 2, {"--atlas '", "is named like a temporary of this program", ""}},
+    /* (19) Messages that named their key badly, or no range: */
+    {"scan @CASE@ --out @D@", "[scan]\nbase = x.ini\n[x]\nkey = forcing.omega\nfrom = nan\nto = 2\ncount = 2\n", 0, 2,
+     {"case.ini:5: [x] from = nan: not a number", "allowed: -1000000 <= from <= 1000000", ""}},
+    {"contact --morphology I --beta 0.12 --zb 0,0,1e-320 --method grid", NULL, 0, 2, {"--zb '0,0,1e-320' is too short to give a direction", "of length at least 1e-100", ""}},
+    {RUN, "[body]\nbeta : 0.1\n", 0, 2, {"case.ini:2: 'beta : 0.1': a key and its value separated by ':'", "allowed: key = value", ""}},
+    {"scan @CASE@ --out @D@", "[scan]\nbase = x.ini\nperiods = 5\n[x]\nkey = forcing.omega\nfrom = 10\nto = 20\ncount = 3\n[y]\nkey = forcing.A1\nfrom = 1\nto = 2\ncount = 2\n", 0, 2,
+     {"case.ini: [scan] transient_periods (default) = 20 leaves less than one period", "allowed: <= periods - 1 = 4", ""}},
 };
 
 /* Replace every @CASE@ and @D@ in `args` (malloc'd result). */
@@ -450,6 +484,8 @@ static void test_strict_but_fair(void)
         {"shape --morphology I --beta 1e-320 --json", NULL, "\"beta\":\t9.99988867182683e-321"},
         {"run @CASE@ --out @D@ --json", "[body]\r\nbeta = 0.11\r\n[integrator]\r\nperiods = 1\r\nsteps_per_period = 20\r\n[model]\r\ncontact = fast-grid\r\n",
          "\"beta\":\t0.11"},
+        {"run @CASE@ --out @D@ --json", "[initial]\nattitude = axis-angle 1e-320,1e-320,1e-320,1\n[integrator]\nperiods = 1\n"
+         "steps_per_period = 20\n[model]\ncontact = fast-grid\n", "\"attitude\":\t\"axis-angle 1e-320,1e-320,1e-320,1\""},
         {"run @CASE@ --out @D@ --json", "\xEF\xBB\xBF[initial]\nomega = 1.3 , -0.7,\t0.4\n[forcing]\npsi = -2*pi/3\n[integrator]\nperiods = 1\nsteps_per_period = 20\n"
          "[model]\ncontact = fast-grid\n[scene]\ndescription = caf\xc3\xa9 \xe2\x80\x94 \"quoted\" ; an inline comment\n",
          "\"description\":\t\"caf\xc3\xa9 \xe2\x80\x94 \\\"quoted\\\"\","},
@@ -465,7 +501,9 @@ static void test_strict_but_fair(void)
         static char out[1 << 16];
         const int code = run_in(dir, command, out, sizeof out);
         char q[300];
-        snprintf(q, sizeof q, "strict but fair: gomboc %s is accepted (%s)", good[k].args, k == 0 ? "a subnormal beta" : k == 1 ? "CRLF lines" : "BOM, spaced list, -2*pi/3, UTF-8 text with quotes, an inline ; comment stripped");
+        static const char *const why[] = {"a subnormal beta", "CRLF lines", "an axis of subnormal components",
+                                          "BOM, spaced list, -2*pi/3, UTF-8 text with quotes, an inline ; comment stripped"};
+        snprintf(q, sizeof q, "strict but fair: gomboc %s is accepted (%s)", good[k].args, why[k]);
         gb_check c = {"-", "-", q, "exit 0 and the value as written", "exact"};
         gb_check_true(&c, code == 0 && strstr(out, good[k].expect), "exit %d: %.300s", code, out);
         free(args), free(command);
@@ -660,8 +698,9 @@ static void test_outputs(void)
      * atlas file at all (a sanitizer's shadow memory or a different allocator moves both alike): it may
      * exceed that by no more than the atlas limit, 64 MiB, where reading the file would take 1 GiB. */
     snprintf(path, sizeof path, "%s/huge.atlas", dir);
-    FILE *huge = fopen(path, "wb");
-    const int made = huge && fseek(huge, (1L << 30) - 1, SEEK_SET) == 0 && fputc(0, huge) != EOF;
+    FILE *huge = fopen(path, "wb"); /* an atlas file by its first bytes (a cache, to be replaced), but too large */
+    const int made = huge && fwrite(GB_ATLAS_FILE_MAGIC, 1, sizeof GB_ATLAS_FILE_MAGIC, huge) == sizeof GB_ATLAS_FILE_MAGIC &&
+                     fseek(huge, (1L << 30) - 1, SEEK_SET) == 0 && fputc(0, huge) != EOF;
     if (huge) fclose(huge);
     char summary_path[512];
     snprintf(summary_path, sizeof summary_path, "%s/a-summary.json", dir);
@@ -688,7 +727,7 @@ static void test_outputs(void)
     snprintf(out, sizeof out, "%s", summary ? summary : "");
     free(summary);
     struct stat st;
-    gb_check ca = {"-", "-", "gomboc run --atlas F, F a sparse file of 1 GiB", "exit 0, not loaded, the run's peak memory within "
+    gb_check ca = {"-", "-", "gomboc run --atlas F, F a sparse file of 1 GiB that starts as an atlas file does", "exit 0, not loaded, the run's peak memory within "
                    "64 MiB (the atlas limit) of the same run with no atlas file, F replaced by the atlas built (under the "
                    "64 MiB limit)", "exact"};
     gb_check_true(&ca, made && code == 0 && strstr(out, "\"loaded\":\t0") && kib > 0 && kib_of[0] > 0 &&
@@ -742,6 +781,299 @@ static void test_outputs(void)
     remove_tree(dir);
 }
 
+/* ---- round 3: what needs a second process, a lock, a signal or a file-size limit --------------------- */
+
+/* A scene that runs for minutes, its history's temporary appearing at once. */
+static const char *const long_scene = "[integrator]\nperiods = 100000\n[model]\ncontact = fast-grid\n";
+
+/* Start `gomboc run CASE --out DIR` with signal `ignored` ignored (0: none) and wait until its first
+ * temporary appears in `dir` (up to 10 s): the child's pid, or -1. */
+static pid_t start_run(const char *dir, const char *case_path, int ignored)
+{
+    const pid_t child = fork();
+    if (child == 0) {
+        if (ignored) signal(ignored, SIG_IGN); /* as nohup, or a shell's background job, leaves it */
+        if (!freopen("/dev/null", "w", stderr)) _exit(127);
+        execl(binary(), "gomboc", "run", case_path, "--out", dir, (char *)NULL);
+        _exit(127);
+    }
+    for (int k = 0; k < 200 && child > 0 && count_temporaries(dir) == 0; k++) usleep(50000);
+    return child;
+}
+
+/* (3) A signal the parent ignored stays ignored: SIGHUP under nohup, SIGINT for a background job. */
+static void test_signals_ignored(void)
+{
+    char dir[64] = "/tmp/gomboc-sig-XXXXXX";
+    if (!mkdtemp(dir)) return;
+    char case_path[128];
+    snprintf(case_path, sizeof case_path, "%s/long.ini", dir);
+    write_bytes(case_path, long_scene, strlen(long_scene));
+    static const int signals[] = {SIGHUP, SIGINT};
+    char report[512] = "";
+    int kept = 0;
+    for (int k = 0; k < 2; k++) {
+        const pid_t child = start_run(dir, case_path, signals[k]);
+        const int started = count_temporaries(dir) > 0;
+        kill(child, signals[k]);
+        usleep(300000);
+        int wstatus = 0;
+        const int alive = waitpid(child, &wstatus, WNOHANG) == 0;
+        kill(child, SIGTERM); /* still ours to end */
+        if (alive) waitpid(child, &wstatus, 0);
+        const int ok = started && alive && WIFSIGNALED(wstatus) && WTERMSIG(wstatus) == SIGTERM && count_temporaries(dir) == 0;
+        kept += ok;
+        snprintf(report + strlen(report), sizeof report - strlen(report), "%s%s: started %d, alive after it %d, ended by "
+                 "SIGTERM %d, temporaries left %d", k ? "; " : "", strsignal(signals[k]), started, alive,
+                 WIFSIGNALED(wstatus) && WTERMSIG(wstatus) == SIGTERM, count_temporaries(dir));
+    }
+    gb_check c = {"-", "-", "gomboc run with SIGHUP ignored by its parent (nohup), then with SIGINT ignored (a background job)",
+                  "the signal changes nothing; SIGTERM still ends the run and removes its temporaries", "exact"};
+    gb_check_true(&c, kept == 2, "%s", report);
+    remove_tree(dir);
+}
+
+/* (4) A lock held by another process is waited for a bounded time, then named; the run says so before its
+ * computation. */
+static void test_lock_bounded(void)
+{
+    char dir[64] = "/tmp/gomboc-lock-XXXXXX";
+    if (!mkdtemp(dir)) return;
+    char path[256], out[4096], command[1024];
+    snprintf(path, sizeof path, "%s/a.ini", dir);
+    const char *atlas_scene = "[model]\nequation = rolling\ncontact = continuous\ncertificate = atlas\n[integrator]\nperiods = 1\n";
+    write_bytes(path, atlas_scene, strlen(atlas_scene));
+    const int held = open(dir, O_RDONLY | O_DIRECTORY);
+    const int locked = held >= 0 && flock(held, LOCK_EX) == 0; /* as a writer stopped with Ctrl-Z while merging holds it */
+    char *before = snapshot(dir);
+    struct timespec t0, t1;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
+    snprintf(command, sizeof command, "env GOMBOC_LOCK_SECONDS=1 %s run a.ini --atlas shared.atlas", binary());
+    const int code = run_in(dir, command, out, sizeof out);
+    clock_gettime(CLOCK_MONOTONIC, &t1);
+    char *after = snapshot(dir);
+    const double seconds = (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
+    if (held >= 0) close(held); /* the lock goes with it */
+    snprintf(command, sizeof command, "env GOMBOC_LOCK_SECONDS=1 %s run a.ini --atlas shared.atlas", binary());
+    const int freed = run_in(dir, command, out + 2048, sizeof out - 2048);
+    gb_check c = {"-", "-", "gomboc run --atlas F while another process holds the lock of F's directory (GOMBOC_LOCK_SECONDS=1)",
+                  "exit 1 within a few seconds, naming the directory and the wait, nothing written; exit 0 once it is free",
+                  "exact; the bound: 1 s of wait, 10 s in all for the start of the process"};
+    gb_check_true(&c, locked && code == 1 && seconds < 10.0 && strstr(out, "stayed locked for 1 s") && strstr(out, dir) &&
+                       before && after && !strcmp(before, after) && freed == 0,
+                  "exit %d after %.2f s (then %d once free): %.300s", code, seconds, freed, out);
+    free(before), free(after);
+    remove_tree(dir);
+}
+
+/* (5) A temporary whose writer lives where its PID cannot be seen (another PID namespace, another host on
+ * NFS): its lock says it is alive, and it is left; once the lock goes, the next run removes it. */
+static void test_foreign_temporary(void)
+{
+    char dir[64] = "/tmp/gomboc-ns-XXXXXX";
+    if (!mkdtemp(dir)) return;
+    char case_path[128], temp[160], command[512], out[4096];
+    snprintf(case_path, sizeof case_path, "%s/quick.ini", dir);
+    const char *quick = "[integrator]\nperiods = 1\nsteps_per_period = 20\n[model]\ncontact = fast-grid\n";
+    write_bytes(case_path, quick, strlen(quick));
+    /* a PID that names no process here: the writer is in another namespace, alive */
+    snprintf(temp, sizeof temp, "%s/.gomboc-%d-Ab3dEf", dir, 4194302);
+    write_bytes(temp, "half", 4);
+    const int fd = open(temp, O_RDONLY);
+    const int locked = fd >= 0 && flock(fd, LOCK_EX) == 0;
+    snprintf(command, sizeof command, "%s run '%s' --out '%s'", binary(), case_path, dir);
+    const int live = run_in(dir, command, out, sizeof out);
+    const int kept = access(temp, F_OK) == 0;
+    if (fd >= 0) close(fd);
+    const int gone = run_in(dir, command, out, sizeof out);
+    const int removed = access(temp, F_OK) != 0;
+    gb_check c = {"-", "-", "a temporary '.gomboc-PID-XXXXXX' of a PID that names no process here, its lock held (a live writer "
+                  "in another PID namespace or on another host)", "left while locked; removed by the next run once its lock "
+                  "is free", "exact"};
+    gb_check_true(&c, locked && live == 0 && kept && gone == 0 && removed, "locked %d; run exit %d, temporary %s; after its "
+                  "lock went: run exit %d, temporary %s", locked, live, kept ? "kept" : "REMOVED", gone,
+                  removed ? "removed" : "LEFT");
+    remove_tree(dir);
+}
+
+/* (8, 14) Files limited to 4 KiB (ulimit -f, RLIMIT_FSIZE): the write fails with EFBIG, which the run
+ * reports as any failed write (exit 1, naming the file), with no temporary left and nothing written. */
+static void test_file_size_limit(void)
+{
+    char dir[64] = "/tmp/gomboc-fsize-XXXXXX";
+    if (!mkdtemp(dir)) return;
+    char case_path[128], log[160];
+    snprintf(case_path, sizeof case_path, "%s/l.ini", dir);
+    snprintf(log, sizeof log, "%s/../%s.log", dir, strrchr(dir, '/') + 1);
+    const char *scene = "[model]\ncontact = fast-grid\n[integrator]\nperiods = 20\n[diagnostics]\nlyapunov = yes\n";
+    write_bytes(case_path, scene, strlen(scene));
+    char *before = snapshot(dir);
+    const pid_t child = fork();
+    if (child == 0) {
+        const struct rlimit limit = {4096, 4096};
+        if (setrlimit(RLIMIT_FSIZE, &limit) || !freopen(log, "w", stderr)) _exit(127);
+        execl(binary(), "gomboc", "run", case_path, "--out", dir, (char *)NULL);
+        _exit(127);
+    }
+    int wstatus = 0;
+    waitpid(child, &wstatus, 0);
+    char *after = snapshot(dir), *message = read_all(log);
+    remove(log);
+    gb_check c = {"-", "-", "gomboc run of a scene with lambda, files limited to 4 KiB (ulimit -f)",
+                  "exit 1 (not killed by SIGXFSZ), naming the history and 'File too large', not the Lyapunov pair; no "
+                  "temporary left, the directory unchanged", "exact"};
+    gb_check_true(&c, WIFEXITED(wstatus) && WEXITSTATUS(wstatus) == 1 && message && strstr(message, "l-history.csv") &&
+                       strstr(message, "File too large") && !strstr(message, "sampler") && count_temporaries(dir) == 0 &&
+                       before && after && !strcmp(before, after),
+                  "%s %d, temporaries %d, directory %s: %.300s", WIFEXITED(wstatus) ? "exit" : "signal",
+                  WIFEXITED(wstatus) ? WEXITSTATUS(wstatus) : WTERMSIG(wstatus), count_temporaries(dir),
+                  before && after && !strcmp(before, after) ? "unchanged" : "CHANGED", message ? message : "(none)");
+    free(before), free(after), free(message);
+    remove_tree(dir);
+}
+
+/* (18) Two runs of one scene name, from two directories, into one output directory at once: each set is
+ * renamed into place with the directory locked, so the outputs are one whole set, whichever came last. */
+static void test_concurrent_runs(void)
+{
+    char dir[64] = "/tmp/gomboc-race-XXXXXX";
+    if (!mkdtemp(dir)) return;
+    char path[256], out[8192], command[2048];
+    static const char *const scenes[2] = {
+        "[integrator]\nperiods = 2\nsteps_per_period = 40\n[model]\ncontact = fast-grid\n[diagnostics]\nstrobe = yes\n"
+        "spectrum = yes\n[strobe]\ntransient_periods = 0\n[spectrum]\ntransient_periods = 0\n",
+        "[integrator]\nperiods = 3\nsteps_per_period = 40\n[model]\ncontact = fast-grid\n[diagnostics]\nstrobe = yes\n"
+        "spectrum = yes\n[strobe]\ntransient_periods = 0\n[spectrum]\ntransient_periods = 0\n"};
+    for (int k = 0; k < 2; k++) {
+        snprintf(path, sizeof path, "%s/%c", dir, 'a' + k);
+        mkdir(path, 0755);
+        snprintf(path, sizeof path, "%s/%c/s.ini", dir, 'a' + k);
+        write_bytes(path, scenes[k], strlen(scenes[k]));
+    }
+    snprintf(path, sizeof path, "%s/o", dir);
+    mkdir(path, 0755);
+    int whole = 0;
+    const int trials = 12;
+    for (int trial = 0; trial < trials; trial++) {
+        snprintf(command, sizeof command, "sh -c '%s run a/s.ini --out o 2>/dev/null & %s run b/s.ini --out o 2>/dev/null & "
+                 "wait %%1 && wait %%2 && %s check o/s-summary.json'", binary(), binary(), binary());
+        whole += run_in(dir, command, out, sizeof out) == 0;
+    }
+    gb_check c = {"-", "-", "two runs of one scene name (2 and 3 periods, history, strobe, spectrum) into one directory at once, "
+                  "12 trials", "both exit 0 and gomboc check finds the set whole, every trial", "exact"};
+    gb_check_true(&c, whole == trials, "%d of %d trials whole: %.300s", whole, trials, out);
+    remove_tree(dir);
+}
+
+/* The rest: a cache sealed under another key, an axis the base refuses, a FIFO beside a run's outputs, a
+ * step too coarse for the spin, and (6) the impact of two points 1e-15 apart. */
+static void test_round3_runs(void)
+{
+    char dir[64] = "/tmp/gomboc-r3-XXXXXX";
+    if (!mkdtemp(dir)) return;
+    char path[256], out[8192], command[2048];
+    /* (7) a hull sealed under another user's key is rebuilt, as a damaged one is */
+    snprintf(path, sizeof path, "%s/h.ini", dir);
+    const char *hull_scene = "[model]\ncontact = fast-grid\n[integrator]\nperiods = 1\nsteps_per_period = 20\n";
+    write_bytes(path, hull_scene, strlen(hull_scene));
+    snprintf(command, sizeof command, "%s run h.ini --hull h.hull --json | grep -A2 '\"hull\"' && env GOMBOC_KEY=%s/other.key "
+             "%s run h.ini --hull h.hull --json | grep -A2 '\"hull\"'", binary(), dir, binary());
+    const int code = run_in(dir, command, out, sizeof out);
+    const char *second = strstr(out, "\"loaded\"") ? strstr(strstr(out, "\"loaded\"") + 1, "\"loaded\"") : NULL;
+    gb_check ck = {"-", "-", "gomboc run --hull F, F sealed under another key (GOMBOC_KEY of another user)",
+                   "not loaded (its seal does not verify), built anew and written back", "exact"};
+    gb_check_true(&ck, code == 0 && second && strstr(second, "\"loaded\":\t0"), "exit %d: %.300s", code, out);
+
+    /* (16) a scan axis whose value the base refuses is named by the scan file's line, not the base's default */
+    snprintf(path, sizeof path, "%s/b.ini", dir);
+    write_bytes(path, "[integrator]\nperiods = 5\n", 25);
+    snprintf(path, sizeof path, "%s/s.ini", dir);
+    const char *scan = "[scan]\nbase = b.ini\nperiods = 5\ntransient_periods = 1\n[x]\nkey = model.restitution\nfrom = 0\n"
+                       "to = 0.5\ncount = 2\n[y]\nkey = forcing.A1\nfrom = 1\nto = 2\ncount = 2\n";
+    write_bytes(path, scan, strlen(scan));
+    char *before = snapshot(dir);
+    snprintf(command, sizeof command, "%s scan s.ini", binary());
+    const int axis = run_in(dir, command, out, sizeof out);
+    char *after = snapshot(dir);
+    gb_check ca = {"-", "-", "gomboc scan with [x] key = model.restitution over a base of the held law",
+                   "exit 2 naming the scan file's [x] line and the point, the base as the scene, nothing written", "exact"};
+    gb_check_true(&ca, axis == 2 && strstr(out, "s.ini:6 (point 1): [model] restitution") && strstr(out, "(in the scene b.ini)") &&
+                       !strstr(out, "(default)") && before && after && !strcmp(before, after),
+                  "exit %d: %.300s", axis, out);
+    free(before), free(after);
+
+    /* (2) a scan's shared atlas named by [scan] atlas_file over another scan's finished CSV */
+    snprintf(path, sizeof path, "%s/other-scan.csv", dir);
+    write_bytes(path, "index,x,y\n0,1,2\n", 16);
+    snprintf(path, sizeof path, "%s/rolling.ini", dir);
+    write_bytes(path, "[model]\nequation = rolling\ncontact = continuous\n", 48);
+    snprintf(path, sizeof path, "%s/shared.ini", dir);
+    const char *shared = "[scan]\nbase = rolling.ini\nperiods = 5\ntransient_periods = 1\natlas = shared\n"
+                         "atlas_file = other-scan.csv\n[x]\nkey = forcing.omega\nfrom = 17\nto = 19\ncount = 2\n[y]\n"
+                         "key = forcing.A1\nfrom = 1\nto = 2\ncount = 2\n";
+    write_bytes(path, shared, strlen(shared));
+    before = snapshot(dir);
+    snprintf(command, sizeof command, "%s scan shared.ini", binary());
+    const int foreign = run_in(dir, command, out, sizeof out);
+    after = snapshot(dir);
+    gb_check cs = {"-", "-", "gomboc scan with [scan] atlas_file = other-scan.csv, another scan's finished CSV",
+                   "exit 2 naming atlas_file and the file, which is left as it was; nothing written", "exact"};
+    gb_check_true(&cs, foreign == 2 && strstr(out, "shared.ini:6: [scan] atlas_file './other-scan.csv' exists and is not an atlas file") &&
+                       before && after && !strcmp(before, after),
+                  "exit %d: %.300s", foreign, out);
+    free(before), free(after);
+
+    /* (19) a FIFO named like an output the run does not write is no output of its set */
+    snprintf(path, sizeof path, "%s/h-lyapunov.csv", dir);
+    mkfifo(path, 0644);
+    snprintf(command, sizeof command, "%s run h.ini && %s check h-summary.json", binary(), binary());
+    const int fifo = run_in(dir, command, out, sizeof out);
+    gb_check cf = {"-", "-", "gomboc check of a run's set beside a FIFO named NAME-lyapunov.csv (the run leaves it alone)",
+                   "exit 0: the set is whole", "exact"};
+    gb_check_true(&cf, fifo == 0 && strstr(out, "the set is whole"), "exit %d: %.300s", fifo, out);
+    remove(path);
+
+    /* (6) a drop at 4 km/s that meets the plane with two points 9e-16 m apart: one point, no pull; and every
+     * step turns the body by radians: warned, counted, the ledger's drift stated */
+    snprintf(path, sizeof path, "%s/drop.ini", dir);
+    const char *drop = "[model]\ncontact = continuous\nequation = rolling\ncontact_law = unilateral\n[integrator]\n"
+                       "locate_switches = yes\nperiods = 2\n[initial]\nheight = 0.04067970569418181\n"
+                       "velocity = 2482.079522183096,-2908.913684460292,-1537.2646754640605\n"
+                       "omega = 16.481121288668746,-44.288031336110755,-12.051011432581646\n"
+                       "attitude = axis-angle -0.20014281332391626,0.7600603375468236,0.5171210564083513,0.47204654708929905\n"
+                       "[output]\nimpacts = yes\nhistory = no\n";
+    write_bytes(path, drop, strlen(drop));
+    snprintf(command, sizeof command, "%s run drop.ini --json", binary());
+    const int dropped = run_in(dir, command, out, sizeof out);
+    snprintf(path, sizeof path, "%s/drop-impacts.csv", dir);
+    char *impacts = read_all(path);
+    double worst = 0.0, scale = 0.0;
+    int rows = 0;
+    for (char *line = impacts ? strchr(impacts, '\n') : NULL; line && line[1]; line = strchr(line + 1, '\n')) {
+        double field[30];
+        int n = 0;
+        for (char *p = line + 1; n < 30 && p && *p != '\n'; n++) {
+            field[n] = strtod(p, NULL);
+            p = strchr(p, ',');
+            if (p) p++;
+        }
+        if (n < 27) continue;
+        rows++;
+        worst = fmin(worst, fmin(field[23], field[26])); /* normal_impulse, old_normal_impulse */
+        scale = fmax(scale, fabs(field[23]));
+    }
+    free(impacts);
+    gb_check cd = {"-", "-", "a unilateral drop at 4 km/s spinning at 50 rad/s whose impact meets two points 9e-16 m apart "
+                   "(one point: GB_IMPACT_SAME_POINT = 1e-9 of the body)", "exit 0; no normal impulse below -1e-9 of the "
+                   "largest (a pull of 5.5e18 N s before); the summary counts the steps too coarse and the run warns with the "
+                   "ledger's drift", "exact; the pull's bound is rounding, 1e-9 of the impulses"};
+    gb_check_true(&cd, dropped == 0 && rows >= 2 && worst >= -1e-9 * scale && strstr(out, "\"steps_too_coarse\":\t320") &&
+                       strstr(out, "the step is too coarse for the body's spin") && strstr(out, "energy ledger drifted"),
+                  "exit %d, %d impacts, the most negative normal impulse %.3g of %.3g: %.200s", dropped, rows, worst, scale,
+                  strstr(out, "warning") ? strstr(out, "warning") : out);
+    remove_tree(dir);
+}
+
 /* cases/README.md states, for every key, the allowed values the reader enforces, in the same words. */
 static void test_documented_ranges(void)
 {
@@ -774,6 +1106,12 @@ int verify_register_bad_input(void)
         {"bad input: temporaries removed after SIGTERM and after a kill -9", test_temporaries, NULL},
         {"bad input: outputs never an input, checked before the run, written as sets, safe to race", test_outputs, NULL},
         {"bad input: the documented ranges are the enforced ranges", test_documented_ranges, NULL},
+        {"bad input: signals a parent ignored stay ignored", test_signals_ignored, NULL},
+        {"bad input: a lock held elsewhere is waited for a bounded time, then named", test_lock_bounded, NULL},
+        {"bad input: a temporary is removed only when its writer's lock is free, whatever its PID", test_foreign_temporary, NULL},
+        {"bad input: a file-size limit is a failed write, not a kill", test_file_size_limit, NULL},
+        {"bad input: two runs of one name into one directory leave one whole set", test_concurrent_runs, NULL},
+        {"bad input: foreign caches, axes the base refuses, FIFOs, coarse steps and coincident impact points", test_round3_runs, NULL},
         {NULL, NULL, NULL},
     };
     return verify_register_suite("Bad input, never misread", tests);

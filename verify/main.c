@@ -5,8 +5,25 @@
 #include "verify_sections.h"
 
 #include <CUnit/Basic.h>
+#include <ftw.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
+
+/* The seals' key of this harness and of every gomboc it starts (GOMBOC_KEY, inherited): a key of its own
+ * in a directory of its own, so that the checks neither read nor make the user's key. */
+static char key_dir[64];
+
+static int remove_entry(const char *path, const struct stat *st, int flag, struct FTW *ftw)
+{
+    (void)st, (void)flag, (void)ftw;
+    return remove(path);
+}
+
+static void remove_key_dir(void)
+{
+    if (key_dir[0]) nftw(key_dir, remove_entry, 8, FTW_DEPTH | FTW_PHYS);
+}
 
 int main(int argc, char **argv)
 {
@@ -25,6 +42,15 @@ int main(int argc, char **argv)
         }
     }
     gb_error_init_gsl();
+    snprintf(key_dir, sizeof key_dir, "/tmp/gomboc-key-XXXXXX");
+    if (!mkdtemp(key_dir)) {
+        perror("verify: cannot make a directory for the seals' key");
+        return 1;
+    }
+    atexit(remove_key_dir);
+    char key[96];
+    snprintf(key, sizeof key, "%s/key", key_dir);
+    setenv("GOMBOC_KEY", key, 1);
     if (CU_initialize_registry() != CUE_SUCCESS) return 1;
     if (verify_register_s0_verdicts() || verify_register_s2_surface() || verify_register_s2_massprops() ||
         verify_register_s2_shape() || verify_register_s4_contact() || verify_register_s4_certify() || verify_register_s4_atlas() ||

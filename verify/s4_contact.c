@@ -13,6 +13,7 @@
  * attitude for eq 72, with the truncation error estimated by Richardson. (e) Continuity of h* (a
  * minimum of continuous functions is continuous, Lipschitz with constant max|x|) for switching. */
 #include "gb_check.h"
+#include "gb_seal.h"
 #include "gb_contact.h"
 #include "gb_error.h"
 #include "verify_sections.h"
@@ -479,13 +480,20 @@ static void test_hull_file(void)
     else
         refusals_ok = 0;
     if (f) fclose(f);
-    int flipped = 0, truncated = 0;
+    int flipped = 0, truncated = 0, forged = 0;
     if (refusals_ok) {
         data[bytes / 2] ^= 0x10; /* one bit in the edge lists */
         f = fopen(other, "wb");
         refusals_ok = f && fwrite(data, 1, bytes, f) == bytes;
         if (f) fclose(f);
-        flipped = refusals_ok && hull_file_refused(g2, other, "checksum");
+        flipped = refusals_ok && hull_file_refused(g2, other, "seal does not verify");
+        /* the same bit, its digest recomputed as a forger without the key can (unkeyed BLAKE2b-256) */
+        gb_seal_digest(&(gb_seal_piece){data, bytes - GB_SEAL_BYTES}, 1, data + bytes - GB_SEAL_BYTES);
+        f = fopen(other, "wb");
+        refusals_ok = refusals_ok && f && fwrite(data, 1, bytes, f) == bytes;
+        if (f) fclose(f);
+        forged = refusals_ok && hull_file_refused(g2, other, "seal does not verify");
+        if (refusals_ok) refusals_ok = !gb_seal_compute(&(gb_seal_piece){data, bytes - GB_SEAL_BYTES}, 1, data + bytes - GB_SEAL_BYTES);
         data[bytes / 2] ^= 0x10;
         f = fopen(other, "wb");
         refusals_ok = refusals_ok && f && fwrite(data, 1, bytes - 4, f) == bytes - 4;
@@ -496,12 +504,13 @@ static void test_hull_file(void)
     char absent[160];
     snprintf(absent, sizeof absent, "%s/absent", dir);
     const int missing = hull_file_refused(g2, dir, "hull file refused") && hull_file_refused(g2, absent, "hull file refused");
-    gb_check cr = {"8", "29", "a hull file is refused for another body or beta, with one bit flipped, cut short, a directory or missing",
-                   "the grid the file was written for; its checksum and size", "exact: every one refused with its reason"};
-    gb_check_true(&cr, other_body && other_beta && flipped && truncated && missing,
-                  "other body %s, other beta %s, a bit flipped %s, 4 bytes short %s, a directory and a missing file %s",
+    gb_check cr = {"8", "29", "a hull file is refused for another body or beta, with one bit flipped, with a bit flipped "
+                   "and its digest recomputed without the key, cut short, a directory or missing",
+                   "the grid the file was written for; its seal (keyed BLAKE2b-256) and size", "exact: every one refused with its reason"};
+    gb_check_true(&cr, other_body && other_beta && flipped && forged && truncated && missing,
+                  "other body %s, other beta %s, a bit flipped %s, forged %s, 4 bytes short %s, a directory and a missing file %s",
                   other_body ? "refused" : "TAKEN", other_beta ? "refused" : "TAKEN", flipped ? "refused" : "TAKEN",
-                  truncated ? "refused" : "TAKEN", missing ? "refused" : "TAKEN");
+                  forged ? "refused" : "TAKEN", truncated ? "refused" : "TAKEN", missing ? "refused" : "TAKEN");
     gb_contact_tracker_free(t1), gb_contact_tracker_free(t2);
     gb_contact_grid_free(g1), gb_contact_grid_free(g2), gb_contact_grid_free(gb);
     remove(path), remove(other), rmdir(dir);

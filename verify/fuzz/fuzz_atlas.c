@@ -1,8 +1,8 @@
 /* libFuzzer target: the atlas file reader (gb_atlas_load_buffer) on arbitrary cells.
  *
  * The input is the cell stream of a file; the target wraps it in the valid header of Gömböc II at
- * β = 0.12 (from an atlas saved once) and appends its checksum, so that the parser of the cells, not
- * only the checksum, meets every input. Beyond not crashing (ASan, UBSan), an atlas the reader accepts
+ * β = 0.12 (from an atlas saved once) and appends its seal, so that the parser of the cells, not
+ * only the seal, meets every input. Beyond not crashing (ASan, UBSan), an atlas the reader accepts
  * must hold only cells it can use: levels within the build's, one or two sites of one or two boxes in a
  * known chart. A refused input must say why and leave the atlas usable. */
 #include "gb_atlas.h"
@@ -31,7 +31,7 @@ int LLVMFuzzerInitialize(int *argc, char ***argv)
     gb_surface body;
     const gb_atlas_def def = gb_atlas_default_def();
     require(gb_surface_init(&body, "II", 0.12) == GB_OK && gb_atlas_create(&body, &def, &atlas) == GB_OK);
-    /* an empty atlas's file: the header, six unbuilt faces (one byte each) and the checksum */
+    /* an empty atlas's file: the header, six unbuilt faces (one byte each) and the seal */
     char path[64];
     snprintf(path, sizeof path, "/tmp/gomboc-fuzz-atlas-%ld", (long)getpid());
     require(gb_atlas_save(atlas, path) == GB_OK);
@@ -41,8 +41,8 @@ int LLVMFuzzerInitialize(int *argc, char ***argv)
     const size_t size = fread(file, 1, sizeof file, f);
     fclose(f);
     remove(path);
-    require(size > 6 + sizeof(uint64_t));
-    header_size = size - 6 - sizeof(uint64_t);
+    require(size > 6 + GB_SEAL_BYTES);
+    header_size = size - 6 - GB_SEAL_BYTES;
     header = malloc(header_size);
     require(header != NULL);
     memcpy(header, file, header_size);

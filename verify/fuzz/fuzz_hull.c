@@ -2,8 +2,8 @@
  *
  * The input is a hull file of Gömböc I at β = 0.12 on a grid of 8 × 16 nodes from its counts on (the
  * vertices, the edges, the coplanar nodes, then the arrays): the target puts the file's own first 48
- * bytes (what it was built from) before it and appends the checksum, so that the reader's checks of
- * sizes and indices, not only the checksum, meet every input. Beyond not crashing (ASan, UBSan), a hull
+ * bytes (what it was built from) before it and appends the seal, so that the reader's checks of
+ * sizes and indices, not only the seal, meet every input. Beyond not crashing (ASan, UBSan), a hull
  * the reader accepts must answer queries with a node of the grid; a refused input must say why. The seed
  * (verify/fuzz/hull.seed) is such a file as `gomboc run --hull` writes it, from its counts on. */
 #include "gb_contact.h"
@@ -43,12 +43,12 @@ int LLVMFuzzerInitialize(int *argc, char ***argv)
     FILE *f = fopen(path, "rb");
     require(f != NULL && fread(header, 1, sizeof header, f) == sizeof header);
     /* the counts follow BUILT_FROM: vertices, edges, coplanar nodes, and they size the file (2V + 1 + E + C
-     * words after them, then the checksum); a header laid out otherwise stops the target here */
+     * words after them, then the seal); a header laid out otherwise stops the target here */
     uint64_t counts[3];
     require(fread(counts, sizeof counts[0], 3, f) == 3 && counts[0] > 0 && !fseek(f, 0, SEEK_END));
     const long size = ftell(f);
     require(size == (long)(BUILT_FROM + sizeof counts + (2 * counts[0] + 1 + counts[1] + counts[2]) * sizeof(uint32_t) +
-                           sizeof(uint64_t)));
+                           GB_SEAL_BYTES));
     fclose(f);
     remove(path);
     return 0;

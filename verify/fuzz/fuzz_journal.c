@@ -2,8 +2,9 @@
  * lines after a valid header.
  *
  * The scan is fixed (3 x 2 points over forcing.omega and forcing.A1). When the input's first byte is
- * odd, every complete line of the rest is given its valid checksum first, so that the row parser, the
- * round trip and the coordinate check meet the input, not only the checksum. Beyond not crashing, an
+ * odd, every complete line of the rest is given its valid seal first (under the fuzzing process's key,
+ * as a forger with the key could), so that the row parser, the round trip and the coordinate check meet
+ * the input, not only the seal. Beyond not crashing, an
  * accepted journal must hold only points of the scan with their own coordinates, the count of points
  * read must match the marks, and only a half-written last line may be left out. */
 #include "gb_error.h"
@@ -30,8 +31,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     const int sign = size > 0 && (data[0] & 1);
     if (size) data++, size--;
     /* The journal: the header, then the input (its complete lines signed when `sign`). */
-    const size_t cap = strlen(header) + 18 * size + 64; /* a signed line grows by ",<16 hex>" */
-    char *text = malloc(cap), *line = malloc(size + 2), *signed_line = malloc(size + 64);
+    const size_t cap = strlen(header) + 66 * size + 64; /* a sealed line grows by ",<64 hex>" */
+    char *text = malloc(cap), *line = malloc(size + 2), *signed_line = malloc(size + 80);
     require(text && line && signed_line);
     size_t used = strlen(header);
     memcpy(text, header, used);
@@ -40,7 +41,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         const size_t n = end ? (size_t)(end - (data + at)) + 1 : size - at;
         memcpy(line, data + at, n);
         line[n] = '\0';
-        if (sign && end && !memchr(line, '\0', n) && gb_scan_journal_line(header, line, signed_line, size + 64) == GB_OK) {
+        if (sign && end && !memchr(line, '\0', n) && gb_scan_journal_line(header, line, signed_line, size + 80) == GB_OK) {
             const size_t m = strlen(signed_line);
             memcpy(text + used, signed_line, m), used += m;
         } else {

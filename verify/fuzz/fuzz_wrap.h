@@ -1,25 +1,26 @@
 /* fuzz_wrap — the file readers' fuzz targets (atlas, hull) put a valid header before each input and its
- * FNV-1a checksum after it, so that the parser behind the checksum meets every input. */
+ * seal (gb_seal, under the fuzzing process's key) after it, so that the parser behind the seal meets
+ * every input: the seal a forger cannot make is made here, to reach what a forger with the key could. */
 #ifndef FUZZ_WRAP_H
 #define FUZZ_WRAP_H
 
-#include "gb_hash.h"
+#include "gb_seal.h"
 
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
-/* header, data, checksum of both, in a new buffer of *total bytes (abort when out of memory) */
+/* header, data, the seal of both, in a new buffer of *total bytes (abort when out of memory or without a
+ * key) */
 static inline unsigned char *fuzz_wrap(const unsigned char *header, size_t header_size, const uint8_t *data, size_t size,
                                        size_t *total)
 {
-    unsigned char *file = malloc(header_size + size + sizeof(uint64_t));
+    unsigned char *file = malloc(header_size + size + GB_SEAL_BYTES);
     if (!file) abort();
     memcpy(file, header, header_size);
     if (size) memcpy(file + header_size, data, size);
-    const uint64_t sum = gb_hash_add(GB_HASH_OFFSET, file, header_size + size);
-    memcpy(file + header_size + size, &sum, sizeof sum);
-    *total = header_size + size + sizeof sum;
+    if (gb_seal_compute(&(gb_seal_piece){file, header_size + size}, 1, file + header_size + size)) abort();
+    *total = header_size + size + GB_SEAL_BYTES;
     return file;
 }
 
