@@ -443,18 +443,18 @@ static int cross_check(const char *path, gb_case *c)
                           "= %s with [model] contact = %s: only continuous contact is certified (allowed: "
                           "per-vertical with any contact; atlas with contact = continuous)",
                           gb_dynamics_certificate_name(c->dynamics.certificate), gb_contact_model_name(c->dynamics.contact));
-    if (c->dynamics.contact_law == GB_CONTACT_LAW_UNILATERAL && c->dynamics.contact == GB_CONTACT_MODEL_CONTINUOUS &&
+    if (gb_dynamics_contact_law_impacts(c->dynamics.contact_law) && c->dynamics.contact == GB_CONTACT_MODEL_CONTINUOUS &&
         c->dynamics.variant != GB_VARIANT_ROLLING)
         return cross_fail(path, c, "model", "contact_law",
                           "= unilateral with [model] contact = continuous, equation = %s: eq 44 makes and takes energy "
                           "where the contact moves on the surface, which the impacts' energy ledger cannot close (allowed: "
                           "held with any model; unilateral with equation = rolling, or with a grid model and either "
                           "equation)", gb_dynamics_variant_name(c->dynamics.variant));
-    if (c->dynamics.contact_law == GB_CONTACT_LAW_UNILATERAL && !c->integrate.locate_switches)
+    if (gb_dynamics_contact_law_impacts(c->dynamics.contact_law) && !c->integrate.locate_switches)
         return cross_fail(path, c, "integrator", "locate_switches",
                           "= no with [model] contact_law = unilateral: every impact is located inside its step (allowed: "
                           "yes with contact_law = unilateral)");
-    if (c->dynamics.contact_law != GB_CONTACT_LAW_UNILATERAL) {
+    if (!gb_dynamics_contact_law_impacts(c->dynamics.contact_law)) {
         const double *v = c->dynamics.velocity0;
         const char *key = c->dynamics.restitution != 0.0 ? "restitution" : c->dynamics.height0 != 0.0 ? "height"
                           : (v[0] != 0.0 || v[1] != 0.0 || v[2] != 0.0)                             ? "velocity"
@@ -464,7 +464,7 @@ static int cross_check(const char *path, gb_case *c)
                               "with [model] contact_law = held: a held contact never leaves the plane and has no impacts "
                               "(allowed: the default, 0, with contact_law = held; any value in range with unilateral)");
     }
-    if (c->write_impacts && c->dynamics.contact_law != GB_CONTACT_LAW_UNILATERAL)
+    if (c->write_impacts && !gb_dynamics_contact_law_impacts(c->dynamics.contact_law))
         return cross_fail(path, c, "output", "impacts",
                           "= yes with [model] contact_law = held: a held contact has no impacts (allowed: yes with "
                           "contact_law = unilateral)");
@@ -558,7 +558,7 @@ int gb_case_load_text_with(const char *name, const char *text, size_t size, cons
     scene.dynamics.forcing.a1 = scene.A1 * unit;
     scene.dynamics.forcing.a2 = scene.A2 * unit;
     /* The unilateral law's end to chatter: a return shorter than one step (gb_dynamics_def.settle_time). */
-    if (scene.dynamics.contact_law == GB_CONTACT_LAW_UNILATERAL)
+    if (gb_dynamics_contact_law_impacts(scene.dynamics.contact_law))
         scene.dynamics.settle_time = gb_forcing_step(&scene.dynamics.forcing, scene.integrate.steps_per_period);
     *out = scene;
     return GB_OK;

@@ -2,8 +2,14 @@
  *
  * State y (GB_STATE_SIZE doubles): the attitude as a quaternion q = (w, x, y, z) taking body to
  * inertial axes (R = R(q/|q|), so RᵀR = I to round-off whatever |q| drifts to; q̇ = ½ q ⊗ (0, ω) is eq 23
- * in quaternion form), the body-frame angular velocity ω (eq 44), and the work W = ∫(P_d + m ġ_eff ζ) dt
- * that the energy balance needs, integrated along the run as an extra state.
+ * in quaternion form), the body-frame angular velocity ω (eq 44), the work W = ∫(P_d + m ġ_eff ζ) dt
+ * that the energy balance needs, integrated along the run as an extra state, and the centroid's
+ * translation: its height ζ above the plane and its velocity relative to the plane (inertial axes). Each
+ * mode says how the translation follows: on the plane it is fixed by the attitude, ω and the contact
+ * (ζ = −z_b·r_c, v = R (ω × (G − P))), in flight it is the closed form under g_eff; the mode writes it at
+ * every accepted step and at the start (its rate in the vector field is 0: nothing integrates it yet, and
+ * the adaptive steppers' error control sees only what is integrated). A mode that integrates it (sliding)
+ * gives its rate instead.
  *
  * Two equations of motion, each a named variant (see docs/rolling.md for the derivation):
  *  GB_VARIANT_PAPER    eq 44 as written: I_P ω̇ + İ_P ω + ω × I_P ω = τ, İ_P from eq 45;
@@ -32,7 +38,17 @@
 extern "C" {
 #endif
 
-enum { GB_STATE_Q = 0, GB_STATE_OMEGA = 4, GB_STATE_WORK = 7, GB_STATE_SIZE = 8 };
+enum {
+    GB_STATE_Q = 0,
+    GB_STATE_OMEGA = 4,
+    GB_STATE_WORK = 7,
+    GB_STATE_ZETA = 8,      /* the centroid's height above the plane [m] */
+    GB_STATE_VELOCITY = 9,  /* the centroid's velocity relative to the plane, inertial axes [m/s] (3) */
+    GB_STATE_SIZE = 12,
+    GB_STATE_FINGERPRINT = 8, /* the leading components a run's state fingerprint hashes: q, ω, W */
+    GB_STATE_TANGENT = 6      /* the variational estimator's tangent: three rotations and ω (the translation
+                               * is fixed by them on the plane, and flight is not followed) */
+};
 
 typedef enum gb_dynamics_variant { GB_VARIANT_PAPER = 0, GB_VARIANT_ROLLING = 1 } gb_dynamics_variant;
 
@@ -86,6 +102,11 @@ typedef enum gb_contact_law { GB_CONTACT_LAW_HELD = 0, GB_CONTACT_LAW_UNILATERAL
 
 const char *gb_dynamics_contact_law_name(gb_contact_law law);
 int gb_dynamics_contact_law_parse(const char *name, gb_contact_law *law);
+/* Is a change of contact an impact under `law` (the plane can only push: impacts, two points, rest, flight,
+ * the ledger's L)? 1 for unilateral, 0 for held. What a caller asks instead of naming a law: with
+ * impacts, several changes of contact may follow inside one step, each jumps the state, and the body may
+ * leave the plane (its centroid's height and velocity are then state too). */
+int gb_dynamics_contact_law_impacts(gb_contact_law law);
 
 /* The unilateral law: a landing is located where the lowest point is this far below the plane [body
  * lengths] (far above the rounding of its height, far below any length of the problem). */

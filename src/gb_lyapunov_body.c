@@ -12,6 +12,11 @@ _Static_assert(GB_LYAPUNOV_MAX_EXPONENTS <= GB_INTEGRATE_TANGENT_MAX, "one RK4 s
 
 /* ---------------------------------------------------------------- a Gömböc as a pair system */
 
+/* The pair's separation: the rotation and ω (the tangent's GB_STATE_TANGENT), then, where the body may fly,
+ * the centroid's height and velocity (the state's translation). */
+enum { PAIR_ROTATION = GB_STATE_TANGENT, PAIR_TRANSLATION = GB_STATE_SIZE - GB_STATE_ZETA,
+       PAIR_ALL = PAIR_ROTATION + PAIR_TRANSLATION };
+
 struct gb_lyapunov_body {
     gb_dynamics *dynamics[2];
     gb_integrate_session *session[2];
@@ -40,7 +45,7 @@ int gb_lyapunov_body_create(const gb_surface *surface, const gb_dynamics_def *dy
     b->method = integrate->method;
     b->steps_per_period = integrate->steps_per_period;
     b->omega_scale = omega_scale;
-    b->translation = dynamics->contact_law == GB_CONTACT_LAW_UNILATERAL;
+    b->translation = gb_dynamics_contact_law_impacts(dynamics->contact_law);
     int status = GB_OK;
     /* the partner takes the reference's atlas (below): it need not read the atlas file itself; and the
      * two share one body (mass properties, grid, hull) through the caller's cache or their own */
@@ -127,24 +132,21 @@ static int body_separation(void *context, double *e)
     gb_dynamics_flight_summary f[2];
     const double t = gb_integrate_time(b->session[0]);
     for (int k = 0; k < 2; k++) gb_dynamics_flight_stats(b->dynamics[k], t, &f[k]);
-    memset(e + 6, 0, 4 * sizeof *e);
+    memset(e + PAIR_ROTATION, 0, PAIR_TRANSLATION * sizeof *e);
     if (!f[0].flying && !f[1].flying) return GB_OK;
-    gb_dynamics_observables o[2];
-    for (int k = 0; k < 2; k++) {
-        const int status = gb_dynamics_observe(b->dynamics[k], t, b->y[k], &o[k]);
-        if (status) return status;
-    }
-    const double L = gb_dynamics_mean_radius(b->dynamics[0]);
-    e[6] = (o[1].zeta - o[0].zeta) / L;
-    for (int k = 0; k < 3; k++) e[7 + k] = (o[1].velocity[k] - o[0].velocity[k]) / (b->omega_scale * L);
+    /* the centroid's height and velocity, as the state holds them at its accepted steps */
+    const double L = gb_dynamics_mean_radius(b->dynamics[0]), *ya = b->y[0], *yb = b->y[1];
+    e[PAIR_ROTATION] = (yb[GB_STATE_ZETA] - ya[GB_STATE_ZETA]) / L;
+    for (int k = 0; k < 3; k++)
+        e[PAIR_ROTATION + 1 + k] = (yb[GB_STATE_VELOCITY + k] - ya[GB_STATE_VELOCITY + k]) / (b->omega_scale * L);
     return GB_OK;
 }
 
 static int body_place(void *context, const double *given)
 {
     gb_lyapunov_body *b = context;
-    double e[10];
-    memcpy(e, given, (b->translation ? 10 : 6) * sizeof *e);
+    double e[PAIR_ALL];
+    memcpy(e, given, (b->translation ? PAIR_ALL : PAIR_ROTATION) * sizeof *e);
     gb_dynamics_flight_summary f;
     const double t = gb_integrate_time(b->session[0]);
     if (b->translation) {
@@ -153,9 +155,9 @@ static int body_place(void *context, const double *given)
             /* on the plane the height and velocity follow from the attitude and ω: the rotational part takes
              * the whole length */
             double all = 0.0, rotational = 0.0;
-            for (int k = 0; k < 10; k++) all += e[k] * e[k], rotational += k < 6 ? e[k] * e[k] : 0.0;
+            for (int k = 0; k < PAIR_ALL; k++) all += e[k] * e[k], rotational += k < PAIR_ROTATION ? e[k] * e[k] : 0.0;
             const double scale = rotational > 0.0 ? sqrt(all / rotational) : 1.0;
-            for (int k = 0; k < 6; k++) e[k] *= scale;
+            for (int k = 0; k < PAIR_ROTATION; k++) e[k] *= scale;
         }
     }
     const double angle = sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
@@ -168,14 +170,16 @@ static int body_place(void *context, const double *given)
     gb_integrate_follow(b->session[1], b->session[0]);
     if (b->translation && f.flying) {
         const double L = gb_dynamics_mean_radius(b->dynamics[0]), scale = b->omega_scale * L;
-        return gb_dynamics_flight_displace(b->dynamics[1], t, L * e[6], (const double[3]){scale * e[7], scale * e[8], scale * e[9]});
+        const double *dv = e + PAIR_ROTATION + 1;
+        return gb_dynamics_flight_displace(b->dynamics[1], t, L * e[PAIR_ROTATION],
+                                           (const double[3]){scale * dv[0], scale * dv[1], scale * dv[2]});
     }
     return GB_OK;
 }
 
 gb_lyapunov_pair_system gb_lyapunov_body_pair(const gb_lyapunov_body *body)
 {
-    return (gb_lyapunov_pair_system){body->translation ? 10 : 6, body_advance, body_separation, body_place};
+    return (gb_lyapunov_pair_system){body->translation ? PAIR_ALL : PAIR_ROTATION, body_advance, body_separation, body_place};
 }
 
 /* ---------------------------------------------------------------- the variational equation on a Gömböc */
@@ -189,7 +193,7 @@ static void tangent_to_state(const double q[4], double scale, const double *e, d
     quaternion_product(q, v, dy);
     for (int k = 0; k < 4; k++) dy[k] *= 0.5;
     for (int k = 0; k < 3; k++) dy[GB_STATE_OMEGA + k] = scale * e[3 + k];
-    dy[GB_STATE_WORK] = 0.0;
+    for (int k = GB_STATE_WORK; k < GB_STATE_SIZE; k++) dy[k] = 0.0; /* W and the translation: not in the tangent */
 }
 
 static void state_to_tangent(const double q[4], double scale, const double dy[GB_STATE_SIZE], double *e)
@@ -390,7 +394,7 @@ static int tangent_steps(gb_lyapunov_body *b, double t, double interval, size_t 
                             (double)b->tangent_steps * h, t);
     for (size_t n = 0; n < steps; n++, b->tangent_steps++) {
         const double tn = (double)b->tangent_steps * h;
-        for (size_t j = 0; j < k; j++) tangent_to_state(y + GB_STATE_Q, b->omega_scale, vectors + 6 * j, Y + j * GB_STATE_SIZE);
+        for (size_t j = 0; j < k; j++) tangent_to_state(y + GB_STATE_Q, b->omega_scale, vectors + GB_STATE_TANGENT * j, Y + j * GB_STATE_SIZE);
         double start[GB_STATE_SIZE], Ystart[GB_LYAPUNOV_MAX_EXPONENTS * GB_STATE_SIZE];
         memcpy(start, y, sizeof start);
         memcpy(Ystart, Y, k * GB_STATE_SIZE * sizeof *Y);
@@ -401,7 +405,7 @@ static int tangent_steps(gb_lyapunov_body *b, double t, double interval, size_t 
         if (!status && found) {
             memcpy(y, start, sizeof start);
             memcpy(Y, Ystart, k * GB_STATE_SIZE * sizeof *Y);
-            status = gb_dynamics_get_def(d)->contact_law == GB_CONTACT_LAW_UNILATERAL
+            status = gb_dynamics_contact_law_impacts(gb_dynamics_get_def(d)->contact_law)
                          ? tangent_impact_step(b, tn, h, y, k, Y, &other)
                          : tangent_switch_step(b, tn, h, y, k, Y, &other);
         }
@@ -410,7 +414,7 @@ static int tangent_steps(gb_lyapunov_body *b, double t, double interval, size_t 
         if (!status) status = gb_dynamics_accept(d, tn + h, y, &drift);
         if (status) return status;
         b->unlocated += gb_dynamics_switch_count(d) - before;
-        for (size_t j = 0; j < k; j++) state_to_tangent(y + GB_STATE_Q, b->omega_scale, Y + j * GB_STATE_SIZE, vectors + 6 * j);
+        for (size_t j = 0; j < k; j++) state_to_tangent(y + GB_STATE_Q, b->omega_scale, Y + j * GB_STATE_SIZE, vectors + GB_STATE_TANGENT * j);
     }
     return GB_OK;
 }
@@ -427,13 +431,13 @@ static int tangent_advance_vectors(void *context, double t, double interval, siz
 
 gb_lyapunov_tangent_system gb_lyapunov_body_tangent(void)
 {
-    return (gb_lyapunov_tangent_system){6, tangent_advance, tangent_advance_vectors};
+    return (gb_lyapunov_tangent_system){GB_STATE_TANGENT, tangent_advance, tangent_advance_vectors};
 }
 
 int gb_lyapunov_body_tangent_ready(const gb_lyapunov_body *body)
 {
     const gb_dynamics_def *def = gb_dynamics_get_def(body->dynamics[0]);
-    if ((def->contact != GB_CONTACT_MODEL_CONTINUOUS && def->contact_law != GB_CONTACT_LAW_UNILATERAL) ||
+    if ((def->contact != GB_CONTACT_MODEL_CONTINUOUS && !gb_dynamics_contact_law_impacts(def->contact_law)) ||
         body->method != GB_INTEGRATOR_RK4)
         return gb_error_set(GB_EINVAL,
                             "the variational estimator needs RK4 and continuous contact or the unilateral law (got %s, %s, "

@@ -182,7 +182,7 @@ int gb_run(const gb_case *scene, const gb_run_sinks *sinks, gb_run_result *out)
         status = gb_dynamics_observe(dynamics, out->t_end, out->y, &out->final);
     }
     if (!status) {
-        out->state_fingerprint = gb_hash_add(GB_HASH_OFFSET, out->y, sizeof out->y);
+        out->state_fingerprint = gb_hash_add(GB_HASH_OFFSET, out->y, GB_STATE_FINGERPRINT * sizeof *out->y);
         gb_dynamics_impact_stats(dynamics, &out->impacts, &out->impact_energy_lost, &out->impact_friction_max);
         out->impacts_over_friction = gb_dynamics_impacts_over_friction(dynamics);
         gb_dynamics_two_point_stats(dynamics, out->t_end, &out->two_point);

@@ -111,7 +111,7 @@ static cJSON *scene_json(const gb_case *c)
     }
     cJSON_AddStringToObject(o, "attitude", c->attitude_text);
     cJSON_AddItemToObject(o, "omega0", cli_json_vector(c->omega0, 3));
-    if (d->contact_law == GB_CONTACT_LAW_UNILATERAL) {
+    if (gb_dynamics_contact_law_impacts(d->contact_law)) {
         cli_json_add(o, "restitution", d->restitution);
         cli_json_add(o, "height0", d->height0);
         cJSON_AddItemToObject(o, "velocity0", cli_json_vector(d->velocity0, 3));
@@ -424,7 +424,7 @@ static cJSON *summary_json(const gb_case *scene, const gb_run_result *r, const w
         cli_json_add(h, "vertices", (double)r->hull_vertices);
         cli_json_add(h, "loaded", r->hull_loaded);
     }
-    if (scene->dynamics.contact_law == GB_CONTACT_LAW_UNILATERAL) {
+    if (gb_dynamics_contact_law_impacts(scene->dynamics.contact_law)) {
         /* energy_residual_* above is the ledger E − E0 − W + L, L the energy the impacts took */
         cJSON *m = cJSON_AddObjectToObject(root, "impacts");
         cli_json_add(m, "count", (double)r->impacts);
@@ -558,7 +558,7 @@ int command_run(int argc, char **argv)
     gb_run_result_free(&r);
     if (status) return cli_failure("run", status);
     fprintf(stderr, "gomboc run: %s: contact law %s", case_path, gb_dynamics_contact_law_name(scene.dynamics.contact_law));
-    if (scene.dynamics.contact_law == GB_CONTACT_LAW_UNILATERAL)
+    if (gb_dynamics_contact_law_impacts(scene.dynamics.contact_law))
         fprintf(stderr, " (restitution %g; %zu impacts, %zu landings, %.1f %% of the time in flight)",
                 scene.dynamics.restitution, r.impacts, r.flight.landings, 100.0 * r.flight.time / r.t_end);
     fprintf(stderr, "; %zu steps in %.2f s CPU; fingerprint %s/%s\n", r.stats.steps, r.seconds, state_print, switch_print);

@@ -1,0 +1,210 @@
+/* gb_dynamics_events — the events that end a mode: for each mode, whether one is due at a state (pending:
+ * the step's end is checked, and the kind of event into d->event), and the event's function, < 0 before it
+ * and > 0 after (gap), which gb_integrate's one locator brings to 0 inside the step.
+ *   one point   another minimum lower than the contact (eq 39, a change of contact); with impacts, the
+ *               normal force reaching 0 (lift-off)
+ *   two points  a normal force reaching 0 (a lift); a third point reaching the plane
+ *   at rest     g_eff reaching 0 (lift-off)
+ *   flight      the lowest point reaching the plane (landing) */
+#include "gb_dynamics_internal.h"
+
+#include "gb_error.h"
+#include "gb_vec.h"
+
+#include <math.h>
+#include <string.h>
+
+/* ---- one point ------------------------------------------------------------------------------------ */
+
+/* The held law's grid has no event (the paper's rule: the lowest node at every evaluation). */
+int gb_dyn_one_point_pending(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], gb_contact_point *other, int *found)
+{
+    if (d->def.contact != GB_CONTACT_MODEL_CONTINUOUS && !gb_dyn_pivots(d)) return GB_OK;
+    gb_contact_point continued;
+    int status = gb_dyn_competitor(d, t, y, &continued, other, found);
+    if (!status && *found) d->event = GB_DYN_EVENT_SWITCH;
+    if (!status && !*found && d->law->impacts) {
+        /* a plane that can only push cannot hold the body down: where N reaches 0 it leaves the plane */
+        double n;
+        status = gb_dyn_one_point_normal(d, t, y, &n);
+        if (!status && n < 0.0) *other = continued, *found = 1, d->event = GB_DYN_EVENT_LIFT_OFF;
+    }
+    return status;
+}
+
+int gb_dyn_one_point_gap(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const gb_contact_point *other,
+                         double *gap, gb_contact_point *other_here)
+{
+    if (d->event == GB_DYN_EVENT_LIFT_OFF) { /* −N of the contact */
+        double n;
+        const int status = gb_dyn_one_point_normal(d, t, y, &n);
+        *gap = -n;
+        *other_here = *other;
+        return status;
+    }
+    double zb[3];
+    gb_dyn_vertical(y, zb);
+    gb_contact_point here;
+    int status = gb_dyn_point_at(d, zb, &d->contact, &here);
+    /* a grid body: the next node at this state, whichever it is (continuous: `other`, continued) */
+    if (!status) status = d->def.contact == GB_CONTACT_MODEL_CONTINUOUS ? gb_dyn_point_at(d, zb, other, other_here)
+                                                                        : gb_dyn_next_node(d, zb, other_here);
+    if (status) return status;
+    *gap = here.height - other_here->height; /* > 0: the other branch is lower (eq 39) */
+    if (d->def.contact != GB_CONTACT_MODEL_CONTINUOUS) *gap -= GB_DYN_GRID_TIE;
+    /* With impacts: where Newton from the other branch ends on the contact itself, that branch is not born yet
+     * (it appears in a fold inside the step, above the contact, since the lowest height is continuous), so it
+     * is not lower: the crossing is located where it has been born and passes below. */
+    else if (d->law->impacts && gb_dyn_same_point(other_here, &here))
+        *gap = -1e-15;
+    else
+        *gap -= d->lift_allow;
+    return GB_OK;
+}
+
+/* ---- two points ----------------------------------------------------------------------------------- */
+
+static int two_point_search(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], gb_contact_point *other, int *found);
+
+/* Two points at state y: is an event due? A normal force below 0 (GB_DYN_EVENT_LIFT), or a third minimum
+ * lower than both points, proved by the certificate (GB_DYN_EVENT_THIRD, *other). */
+int gb_dyn_two_point_pending(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], gb_contact_point *other, int *found)
+{
+    /* The step's end is checked by gb_dynamics_switch_pending and again by gb_dynamics_accept at the same
+     * state: the memo (as gb_dyn_competitor()'s, its last key 1 for this mode) answers the second. */
+    double zkey[3];
+    gb_dyn_vertical(y, zkey);
+    const double key[8] = {zkey[0], zkey[1], zkey[2], t, y[GB_STATE_OMEGA], y[GB_STATE_OMEGA + 1], y[GB_STATE_OMEGA + 2], 1.0};
+    if (d->memo_valid && memcmp(key, d->memo_key, sizeof key) == 0) {
+        *found = d->memo_found;
+        if (*found) *other = d->memo_other, d->event = d->memo_event;
+        return GB_OK;
+    }
+    int status = two_point_search(d, t, y, other, found);
+    if (status) return status;
+    memcpy(d->memo_key, key, sizeof key);
+    d->memo_found = *found;
+    if (*found) d->memo_other = *other, d->memo_event = d->event;
+    d->memo_valid = 1;
+    return GB_OK;
+}
+
+static int two_point_search(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], gb_contact_point *other, int *found)
+{
+    gb_dyn_two_point tp;
+    *found = 0;
+    int status = gb_dyn_two_point_eval(d, t, y, &tp, 1);
+    if (status || tp.merged) return status; /* the end of a crease: gb_dynamics_accept leaves the mode */
+    if (fmin(tp.normal[0], tp.normal[1]) < 0.0) {
+        d->event = GB_DYN_EVENT_LIFT;
+        *other = tp.q;
+        *found = 1;
+        return GB_OK;
+    }
+    double zb[3];
+    gb_dyn_vertical(y, zb);
+    d->event = GB_DYN_EVENT_THIRD;
+    if (d->def.contact != GB_CONTACT_MODEL_CONTINUOUS) {
+        /* a grid body on an edge: a third node strictly lower than both */
+        status = gb_dyn_next_node(d, zb, other);
+        *found = !status && other->height < fmin(tp.p.point.height, tp.q.height) - GB_DYN_GRID_TIE;
+        return status;
+    }
+    gb_contact_point candidate = tp.p.point.height <= tp.q.height ? tp.p.point : tp.q;
+    for (int round = 0; round < 16; round++) {
+        gb_certify_result r;
+        status = gb_dyn_check_global(d, zb, &candidate, &r);
+        if (status) return status;
+        if (r.verdict != GB_CERTIFY_LOWER_FOUND) break;
+        candidate = *other = r.lower;
+        *found = 1;
+    }
+    if (*found) status = gb_dyn_canonical_minimum(d, zb, other);
+    if (!status && *found && (gb_dyn_same_point(other, &tp.p.point) || gb_dyn_same_point(other, &tp.q))) *found = 0; /* P and Q tie */
+    d->event = GB_DYN_EVENT_THIRD;
+    return status;
+}
+
+int gb_dyn_two_point_gap(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const gb_contact_point *other,
+                         double *gap, gb_contact_point *other_here)
+{
+    if (d->event == GB_DYN_EVENT_LIFT) { /* −min(N_P, N_Q) */
+        gb_dyn_two_point tp;
+        int status = gb_dyn_two_point_eval(d, t, y, &tp, 1);
+        if (!status && tp.merged)
+            status = gb_error_set(GB_ENUMERIC, "two-point contact at t = %.9g: the crease ends while a lift is located", t);
+        if (status) return status;
+        *gap = -fmin(tp.normal[0], tp.normal[1]);
+        *other_here = *other;
+        return GB_OK;
+    }
+    /* a third point against the lower of P and Q */
+    double zb[3];
+    gb_dyn_vertical(y, zb);
+    gb_contact_point here, q;
+    int status = gb_dyn_point_at(d, zb, &d->contact, &here);
+    if (!status) status = gb_dyn_point_at(d, zb, &d->contact2, &q);
+    if (!status && q.height < here.height) here = q;
+    if (!status) status = d->def.contact == GB_CONTACT_MODEL_CONTINUOUS ? gb_dyn_point_at(d, zb, other, other_here)
+                                                                        : gb_dyn_next_node(d, zb, other_here);
+    if (status) return status;
+    *gap = here.height - other_here->height;
+    if (d->def.contact != GB_CONTACT_MODEL_CONTINUOUS) *gap -= GB_DYN_GRID_TIE;
+    return GB_OK;
+}
+
+/* ---- at rest -------------------------------------------------------------------------------------- */
+
+/* On three points the weight m g_eff holds the body; it lifts off them all where g_eff reaches 0. */
+int gb_dyn_rest_pending(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], gb_contact_point *other, int *found)
+{
+    (void)y;
+    if (gb_forcing_geff(&d->def.forcing, t) < 0.0) *other = d->contact, *found = 1, d->event = GB_DYN_EVENT_LIFT_OFF;
+    return GB_OK;
+}
+
+/* −g_eff, to which all three normal forces are proportional. */
+int gb_dyn_rest_gap(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const gb_contact_point *other, double *gap,
+                    gb_contact_point *other_here)
+{
+    (void)y;
+    *gap = -gb_forcing_geff(&d->def.forcing, t);
+    *other_here = *other;
+    return GB_OK;
+}
+
+/* ---- flight ---------------------------------------------------------------------------------------- */
+
+/* Flight at state y: does the lowest point (continued, or a lower minimum the certificate finds) lie
+ * below the plane? Then *other is it and the event is a landing. */
+int gb_dyn_flight_pending(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], gb_contact_point *other, int *found)
+{
+    gb_contact_point continued, lower;
+    int lower_found;
+    const int status = gb_dyn_competitor(d, t, y, &continued, &lower, &lower_found);
+    if (status) return status;
+    const gb_contact_point *lowest = lower_found ? &lower : &continued;
+    double zeta, v[3];
+    gb_dyn_flight_state(d, t, &zeta, v);
+    *found = zeta + d->def.length * (lowest->height + d->gap_allow) < 0.0;
+    if (*found) *other = *lowest, d->event = GB_DYN_EVENT_LANDING;
+    return GB_OK;
+}
+
+/* −(the lowest point's height above the plane): the lower of the lowest point at the step's start and the
+ * one at its end (`other`), both continued, since the lowest point may change branch inside the step. */
+int gb_dyn_flight_gap(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const gb_contact_point *other, double *gap,
+                      gb_contact_point *other_here)
+{
+    double zb[3], zeta, v[3];
+    gb_dyn_vertical(y, zb);
+    gb_contact_point here;
+    int status = gb_dyn_point_at(d, zb, other, other_here);
+    if (!status && !gb_dyn_same_point(other, &d->contact)) {
+        status = gb_dyn_point_at(d, zb, &d->contact, &here);
+        if (!status && here.height < other_here->height) *other_here = here;
+    }
+    gb_dyn_flight_state(d, t, &zeta, v);
+    *gap = -(zeta + d->def.length * (other_here->height + d->gap_allow));
+    return status;
+}

@@ -1,0 +1,316 @@
+/* gb_dynamics_internal — the hybrid system's parts, shared by the files of the dynamics (internal).
+ *
+ * The body on the plane is a hybrid system: a few modes, each with smooth equations, joined by events (a
+ * function of the state crossing zero, located by gb_integrate's one locator) and jumps (a map from the
+ * state just before an event to the state just after it). The files:
+ *   gb_dynamics.c           the core: the state, the definition, creation, and the dispatch of every public
+ *                           call to the current mode through one table (gb_dyn_modes)
+ *   gb_dynamics_laws.c      the contact laws (held, unilateral) as a table of what each law does; the only
+ *                           file that tells one law from another
+ *   gb_dynamics_contact.c   the contact at a state: the grid's nodes, Newton's continuation, the
+ *                           certificate's competitor
+ *   gb_dynamics_rolling.c   the mode "rolling on one point" (eq 44 and the rolling equation)
+ *   gb_dynamics_two_point.c the mode "rolling on two points" (the crease)
+ *   gb_dynamics_rest.c      the mode "at rest on three points"
+ *   gb_dynamics_flight.c    the mode "flight"
+ *   gb_dynamics_events.c    the events that end a mode: their functions (pending, gap)
+ *   gb_dynamics_jumps.c     the jump maps at the events, each calling the generic impact law (gb_impact)
+ *   gb_dynamics_body.c      the body's set-up (mass properties, grid, tracker, certificate, atlas) and the
+ *                           caches the caller's context holds
+ * A mode's functions reach the others only through this header; the vector field of the current mode is
+ * asked through gb_dyn_field alone (the lift-off test's look along the flow included). */
+#ifndef GB_DYNAMICS_INTERNAL_H
+#define GB_DYNAMICS_INTERNAL_H
+
+#include "gb_dynamics.h"
+#include "gb_impact.h"
+#include "gb_massprops.h"
+
+#include <stddef.h>
+
+/* ---- the modes and the events ------------------------------------------------------------------- */
+
+typedef enum gb_dyn_mode_id {
+    GB_DYN_ONE_POINT = 0, /* rolling on one point (the held law's only mode) */
+    GB_DYN_TWO_POINT = 1, /* rolling on two points along a crease */
+    GB_DYN_REST = 2,      /* at rest on three points */
+    GB_DYN_FLIGHT = 3,    /* off the plane */
+    GB_DYN_MODES = 4
+} gb_dyn_mode_id;
+
+/* The event gb_dynamics_switch_pending found, for gb_dynamics_branch_gap, gb_dynamics_switch_to and
+ * gb_dynamics_jump. */
+typedef enum gb_dyn_event {
+    GB_DYN_EVENT_NONE = 0,
+    GB_DYN_EVENT_SWITCH = 1,   /* one point: another minimum lower than the contact (a change of contact) */
+    GB_DYN_EVENT_LIFT_OFF = 2, /* one point or at rest: the normal force (g_eff at rest) reaches 0 */
+    GB_DYN_EVENT_LANDING = 3,  /* flight: the lowest point reaches the plane */
+    GB_DYN_EVENT_LIFT = 4,     /* two points: a normal force reaches 0 */
+    GB_DYN_EVENT_THIRD = 5     /* two points: a third point reaches the plane */
+} gb_dyn_event;
+
+/* What a mode is: its vector field and what ends it. The state's attitude and ω are integrated; `turns`
+ * 0 makes ω read as 0 whatever the state holds (at rest). */
+typedef struct gb_dyn_mode {
+    const char *name;
+    int turns;
+    /* ω̇ and the centroid's height ζ above the plane at (t, y), with ω (0 where nothing turns), vertical zb and
+     * g_eff */
+    int (*field)(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const double omega[3], const double zb[3],
+                 double geff, double omega_dot[3], double *zeta);
+    /* after an accepted step: the contact continued and checked, changes with no jump made */
+    int (*accept)(gb_dynamics *d, double t, double y[GB_STATE_SIZE]);
+    /* is an event of this mode due at y? (its kind into d->event) */
+    int (*pending)(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], gb_contact_point *other, int *found);
+    /* the pending event's function, < 0 before it and > 0 after */
+    int (*gap)(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const gb_contact_point *other, double *gap,
+               gb_contact_point *other_here);
+    /* the jump at the located event (booked) */
+    int (*event)(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const gb_contact_point *branch);
+    /* what the jump would make of y, nothing booked (the saltation's map) */
+    int (*jump)(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const gb_contact_point *branch,
+                double out[GB_STATE_SIZE]);
+    int (*observe)(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], gb_dynamics_observables *o);
+    /* the translation the mode fixes, written into y at an accepted state (time t) */
+    void (*translate)(const gb_dynamics *d, double t, double y[GB_STATE_SIZE]);
+} gb_dyn_mode;
+
+extern const gb_dyn_mode gb_dyn_mode_one_point, gb_dyn_mode_two_point, gb_dyn_mode_rest, gb_dyn_mode_flight;
+
+/* ---- the contact laws ------------------------------------------------------------------------------ */
+
+/* What a contact law makes of a change of contact, and what follows from that. gb_dynamics_laws.c holds
+ * the table; the rest of the library reads these properties and never tells one law from another. */
+typedef struct gb_dyn_law {
+    const char *name;
+    /* 0: the paper's rule, one contact at all times and ω kept at a change of contact; 1: the plane can only
+     * push: a change of contact is an impact (ω jumps), the body may roll on two points, rest on three and
+     * fly, a grid body pivots about its node until an event, every change is located and several may
+     * follow inside one step, coincident minima are one contact, and the energy ledger books what the
+     * impacts took */
+    int impacts;
+} gb_dyn_law;
+
+const gb_dyn_law *gb_dyn_law_of(gb_contact_law law);
+/* The definition's law against its contact model and equation: GB_OK, or GB_EINVAL saying what is allowed. */
+int gb_dyn_law_check(const gb_dynamics_def *def);
+
+/* ---- the state ----------------------------------------------------------------------------------- */
+
+
+struct gb_dynamics {
+    gb_surface surface;
+    gb_dynamics_def def;
+    const gb_dyn_law *law;
+    gb_dyn_mode_id mode;
+    gb_dyn_event event;          /* the event gb_dynamics_switch_pending found (GB_DYN_EVENT_NONE: none) */
+    double inertia[3][3]; /* I_C [kg m²] */
+    double mean_radius;   /* L [m] (eq 53) */
+    gb_contact_grid *grid;
+    gb_contact_tracker *tracker; /* exact grid search along the trajectory (fast-grid) */
+    int grid_borrowed;           /* grid (and tracker) belong to def.cache */
+    gb_certify *certify;         /* the global-minimum certificate (continuous) */
+    gb_atlas *atlas;             /* certificate = atlas */
+    int atlas_borrowed;          /* the atlas belongs to another gb_dynamics (gb_dynamics_share_atlas) */
+    size_t atlas_fallbacks;      /* checks the atlas left to gb_certify */
+    int atlas_loaded;
+    int hull_loaded;             /* 1: the tracker's hull came from def.hull_file */
+    gb_contact_refine_def refine;
+    /* The contact at the last accepted state. */
+    size_t index;
+    gb_contact_point contact;
+    /* Newton's predictor for continuous contact: (φ, θ) ≈ contact + rate (t − contact_time), with the
+     * rate of eq 72 at the accepted state; the start changes which minimum is reached only across a fold,
+     * and otherwise its last bits at most. */
+    double contact_time, contact_rate[2];
+    /* ... or, when valid, from the last contact found (at any evaluation since the accepted state) by its
+     * sensitivity (eq 70): (φ, θ) ≈ last + ∂(φ, θ)/∂z_b (z_b − z_b,last). Between the two middle stages of
+     * RK4 the verticals differ by O(h²) and this start is the minimum to ~1e-12 rad. */
+    int last_valid;
+    double last_zb[3], last_dq[2][3];
+    gb_contact_point last_point; /* that contact: an evaluation at the same vertical takes it as it is */
+    double energy0, t0;
+    size_t grid_switches, branch_switches;
+    size_t contact_queries, nodes_visited; /* grid models: the searches' work */
+    double last_switch_time; /* of the latest grid or branch switch (NAN before the first) */
+    size_t branches_lost; /* continuous: evaluations where the continued branch had no minimum */
+    /* Impacts (a law with impacts): how many, the kinetic energy they took (L), the largest friction needed. */
+    size_t impacts;
+    double impact_loss, impact_friction_max;
+    size_t impacts_over_friction; /* that needed more than def.friction */
+    size_t next_hint; /* a grid body: the last next node found (gb_dyn_next_node) */
+    gb_dynamics_impact_sink impact_sink;
+    void *impact_context;
+    /* Two points: the body rolls on `contact` (P) and `contact2` (Q) at once, since two_point_since; the time
+     * spent there before, and how often it was entered. */
+    gb_contact_point contact2;
+    double two_point_since, two_point_time;
+    size_t two_point_entries, settled, lifts, third_points;
+    /* Q's Newton predictor, as last_* for P: the last Q found, its vertical and sensitivity (q_valid) */
+    int q_valid;
+    double q_zb[3], q_dq[2][3];
+    gb_contact_point q_last; /* that Q (its chart and coordinates start the predictor) */
+    double rest_since;       /* at rest on three points since (NAN: never) */
+    /* After a lift from two points (continuous contact): the point that lifted, and how far below the
+     * contact it may dip before its return counts as a change of contact (GB_DYN_LIFT_OFF_DIP_MAX), until
+     * its gap has opened (lift_allow is 0 when none is pending). */
+    gb_contact_point lifted;
+    double lift_allow;
+    /* Flight: since fly_t0 the centroid moves under g_eff alone, from height fly_zeta0 above the plane with
+     * velocity fly_v0 (inertial, relative to the plane): closed form (gb_dyn_flight_state). `contact` is
+     * then the lowest point, continued and certified as a contact is. */
+    double gap_allow; /* a landing is the lowest point this far below the plane [body lengths]: GB_DYN_GAP_TOL,
+                       * or a lift-off's dip until the gap has opened */
+    double fly_t0, fly_zeta0, fly_v0[3];
+    double flight_since, flight_time, hop_max;
+    size_t lift_offs, landings, bounces;
+    /* The last competitor() answer and the state it was for: with switch location, the step's end is
+     * checked by gb_dynamics_switch_pending and then again by gb_dynamics_accept at the same state. */
+    int memo_valid, memo_found;
+    gb_dyn_event memo_event;
+    double memo_key[8];
+    gb_contact_point memo_continued, memo_other;
+};
+
+/* ---- the core (gb_dynamics.c) ---------------------------------------------------------------------- */
+
+/* The vertical z_b = Rᵀ e_z of state y (q need not be normalised), and of a quaternion. */
+void gb_dyn_vertical(const double y[GB_STATE_SIZE], double zb[3]);
+void gb_dyn_vertical_of_quaternion(const double q[4], double zb[3]);
+/* The current mode's vector field: dy/dt at (t, y) (the one way a mode asks for another's accelerations). */
+int gb_dyn_field(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], double dydt[GB_STATE_SIZE]);
+/* Enter mode `mode` at time t: the time spent in the mode left is booked, the new one's start noted. */
+void gb_dyn_set_mode(gb_dynamics *d, gb_dyn_mode_id mode, double t);
+/* "t = ...: the state is no longer finite" (GB_ENUMERIC). */
+int gb_dyn_diverged(double t);
+
+/* ---- the body (gb_dynamics_body.c) ---------------------------------------------------------------- */
+
+/* The body's set-up for d (surface and def set): mass properties, and the grid and tracker or the
+ * certificate and atlas its contact model needs; and its release. */
+int gb_dyn_body_create(gb_dynamics *d);
+void gb_dyn_body_free(gb_dynamics *d);
+
+/* ---- the contact at a state (gb_dynamics_contact.c) ------------------------------------------------ */
+
+/* The contact at a state: r_c and ṙ_c [m, m/s], the grid node, the point. */
+typedef struct gb_dyn_contact {
+    double rc[3], rc_dot[3];
+    size_t index;
+    gb_contact_point point; /* continuous model; grid models under a law with impacts */
+} gb_dyn_contact;
+
+/* Two grid nodes whose heights differ by less than this [body length] are tied, not one below the other:
+ * a few units of the last place of h (|x| < 1.19). Nodes of a ring around a chart pole tie exactly at
+ * some attitudes; a tie is not a crossing, and the event is located where the new node is lower by this. */
+#define GB_DYN_GRID_TIE 4e-15
+
+/* A grid body that pivots about its node until an event (a law with impacts), rather than taking the lowest
+ * node at every evaluation (the held law's grid). */
+int gb_dyn_pivots(const gb_dynamics *d);
+void gb_dyn_grid_point(const gb_dynamics *d, size_t index, const double zb[3], gb_contact_point *p);
+int gb_dyn_next_node(gb_dynamics *d, const double zb[3], gb_contact_point *other);
+int gb_dyn_point_at(gb_dynamics *d, const double zb[3], const gb_contact_point *from, gb_contact_point *out);
+int gb_dyn_point_rate(const gb_dynamics *d, const double zb[3], const gb_contact_point *p, const double w[3], double v[3]);
+int gb_dyn_contact_at(gb_dynamics *d, double t, const double zb[3], const double omega[3], gb_dyn_contact *c);
+int gb_dyn_contact_global(gb_dynamics *d, const double zb[3]);
+int gb_dyn_remember_rate(gb_dynamics *d, double t, const double y[GB_STATE_SIZE]);
+int gb_dyn_check_global(gb_dynamics *d, const double zb[3], const gb_contact_point *candidate, gb_certify_result *r);
+int gb_dyn_canonical_minimum(gb_dynamics *d, const double zb[3], gb_contact_point *p);
+int gb_dyn_same_point(const gb_contact_point *a, const gb_contact_point *b);
+int gb_dyn_competitor(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], gb_contact_point *continued,
+                      gb_contact_point *other, int *found);
+void gb_dyn_set_contact(gb_dynamics *d, const gb_contact_point *p);
+
+/* ---- rolling on one point (gb_dynamics_rolling.c) --------------------------------------------------- */
+
+void gb_dyn_mat_vec(double A[3][3], const double v[3], double out[3]);
+int gb_dyn_solve3(double A[3][3], const double b[3], double x[3]);
+/* I_P = I_C − m [r_c]×[r_c]× (eq 40). */
+void gb_dyn_inertia_about(const gb_dynamics *d, const double rc[3], double IP[3][3]);
+/* ω̇ from eq 44 (paper) or the rolling equation, for the contact c and g_eff at the time. */
+int gb_dyn_angular_acceleration(const gb_dynamics *d, double geff, const double zb[3], const double omega[3],
+                                const gb_dyn_contact *c, double omega_dot[3]);
+/* The centroid's acceleration under rolling kinematics into acc, and the normal force N = m (g_eff + z_b·a_G). */
+double gb_dyn_normal_force(const gb_dynamics *d, double geff, const double zb[3], const double omega[3],
+                           const double omega_dot[3], const gb_dyn_contact *c, double acc[3]);
+/* Rolling on the accepted contact alone at state y: its normal force. */
+int gb_dyn_one_point_normal(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], double *n);
+/* On the plane: the centroid's height −z_b·r_c and velocity R (ω × (G − P)) about the accepted contact P. */
+void gb_dyn_translate_on_plane(const gb_dynamics *d, double t, double y[GB_STATE_SIZE]);
+/* The observables every mode on the plane shares, from its contact c, ω̇ (in o) and point count. */
+void gb_dyn_observe_on_plane(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const gb_dyn_contact *c, int contacts,
+                             gb_dynamics_observables *o);
+
+/* ---- rolling on two points (gb_dynamics_two_point.c) ------------------------------------------------ */
+
+typedef struct gb_dyn_two_point {
+    gb_dyn_contact p;         /* P, continued as the one-point contact is */
+    gb_contact_point q;       /* Q, continued by Newton from the accepted Q */
+    double rp[3], rq[3];      /* [m], from the centroid */
+    double u[3], dist;        /* (r_P − r_Q) / |r_P − r_Q|, |r_P − r_Q| */
+    double sigma, omega_dot[3];
+    double normal[2];         /* N_P, N_Q */
+    double friction_needed, balance;
+    int merged;               /* the end of a crease: Q merged with P or vanished; only p is filled */
+} gb_dyn_two_point;
+
+/* The mode at state y: the points, σ and ω̇; with `forces`, the normal forces, the friction they need and
+ * the balance too. */
+int gb_dyn_two_point_eval(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], gb_dyn_two_point *tp, int forces);
+
+/* ---- flight (gb_dynamics_flight.c) ---------------------------------------------------------------- */
+
+/* A landing is the lowest point this far below the plane [body lengths] (gb_dynamics.h). */
+#define GB_DYN_GAP_TOL GB_DYNAMICS_LANDING_TOL
+/* The deepest dip a lift-off may make [body lengths]: a micrometre for a body of a metre, below the elastic
+ * compliance of any real body under its own weight. */
+#define GB_DYN_LIFT_OFF_DIP_MAX 1e-6
+
+/* In flight at time t: the centroid's height above the plane and its velocity relative to it (inertial). */
+void gb_dyn_flight_state(const gb_dynamics *d, double t, double *zeta, double v[3]);
+/* Torque-free but for the damping torque: I_G ω̇ + ω × I_G ω = −c ω. */
+int gb_dyn_free_acceleration(const gb_dynamics *d, const double omega[3], double omega_dot[3]);
+/* The body leaves the plane (or bounces) at time t: its centroid at height zeta, moving with v_body (body
+ * axes) relative to the plane. */
+void gb_dyn_start_flight(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const double v_body[3], double zeta);
+
+/* ---- the events (gb_dynamics_events.c) ------------------------------------------------------------- */
+
+int gb_dyn_one_point_pending(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], gb_contact_point *other, int *found);
+int gb_dyn_one_point_gap(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const gb_contact_point *other,
+                         double *gap, gb_contact_point *other_here);
+int gb_dyn_two_point_pending(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], gb_contact_point *other, int *found);
+int gb_dyn_two_point_gap(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const gb_contact_point *other,
+                         double *gap, gb_contact_point *other_here);
+int gb_dyn_rest_pending(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], gb_contact_point *other, int *found);
+int gb_dyn_rest_gap(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const gb_contact_point *other,
+                    double *gap, gb_contact_point *other_here);
+int gb_dyn_flight_pending(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], gb_contact_point *other, int *found);
+int gb_dyn_flight_gap(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const gb_contact_point *other,
+                      double *gap, gb_contact_point *other_here);
+
+/* ---- the jumps (gb_dynamics_jumps.c) --------------------------------------------------------------- */
+
+int gb_dyn_one_point_event(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const gb_contact_point *branch);
+int gb_dyn_one_point_jump(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const gb_contact_point *branch,
+                          double out[GB_STATE_SIZE]);
+int gb_dyn_two_point_event(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const gb_contact_point *branch);
+int gb_dyn_two_point_jump(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const gb_contact_point *branch,
+                          double out[GB_STATE_SIZE]);
+int gb_dyn_rest_event(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const gb_contact_point *branch);
+int gb_dyn_flight_event(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const gb_contact_point *branch);
+/* The variational estimator cannot follow flight: the jump from or into it (GB_EINVAL). */
+int gb_dyn_no_jump(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const gb_contact_point *branch,
+                   double out[GB_STATE_SIZE]);
+/* A change of contact with no impulse: the record of nothing changed, the body turning with the ω of y about
+ * `about` [m]; v the centroid's velocity. */
+void gb_dyn_no_impulse(const gb_dynamics *d, const double y[GB_STATE_SIZE], const double about[3], double v[3],
+                       gb_impact_result *r);
+/* Fill an impact record; ω in y takes its value after. */
+void gb_dyn_record(gb_dynamics_impact *e, double y[GB_STATE_SIZE], const double old_point[3], const double new_point[3],
+                   const double v_before[3], const gb_impact_result *r, int k, int k_old);
+/* Book a change of contact: an impact's loss (a lift has none) and the sink. */
+int gb_dyn_book(gb_dynamics *d, const gb_dynamics_impact *e);
+
+#endif
