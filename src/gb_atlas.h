@@ -118,7 +118,7 @@ int gb_atlas_load(gb_atlas *atlas, const char *path);
 #define GB_ATLAS_FILE_MAX ((size_t)64 << 20)
 size_t gb_atlas_file_limit(const gb_atlas *atlas);
 /* The cells of the atlas file at `path` that this atlas lacks, added to it (a cell both hold is kept as
- * it is: its proof does not depend on the run that made it). What gb_dynamics_save_atlas does before it
+ * it is: its proof does not depend on the run that made it). What gb_dynamics_context_save does before it
  * writes, so that concurrent runs sharing one file add up their cells. GB_EIO when the file is missing,
  * of another atlas or damaged (the atlas is then unchanged, or holds the cells read before the fault). */
 int gb_atlas_merge(gb_atlas *atlas, const char *path);

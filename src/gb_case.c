@@ -20,10 +20,7 @@ gb_case gb_case_default(void)
     memset(&c, 0, sizeof c);
     snprintf(c.description, sizeof c.description, "Table 1 defaults");
     gb_surface_init(&c.body, "I", 0.12);
-    c.dynamics = gb_dynamics_default_def();
-    /* the paper's grid by the exact fast search: the brute-force node at every evaluation, so the same
-     * trajectory bit for bit, in a fraction of the time (`contact = grid` asks for the brute force) */
-    c.dynamics.contact = GB_CONTACT_MODEL_FAST_GRID;
+    c.dynamics = gb_dynamics_default_def(); /* the library's defaults are the scene's */
     c.A1 = c.dynamics.forcing.a1;
     c.A2 = c.dynamics.forcing.a2;
     c.integrate = gb_integrate_default_def();
@@ -557,9 +554,6 @@ int gb_case_load_text_with(const char *name, const char *text, size_t size, cons
     const double unit = scene.amplitudes_in_g ? scene.dynamics.forcing.g : 1.0;
     scene.dynamics.forcing.a1 = scene.A1 * unit;
     scene.dynamics.forcing.a2 = scene.A2 * unit;
-    /* The unilateral law's end to chatter: a return shorter than one step (gb_dynamics_def.settle_time). */
-    if (gb_dynamics_contact_law_impacts(scene.dynamics.contact_law))
-        scene.dynamics.settle_time = gb_forcing_step(&scene.dynamics.forcing, scene.integrate.steps_per_period);
     *out = scene;
     return GB_OK;
 }

@@ -40,7 +40,7 @@ gb_dynamics_def gb_dynamics_default_def(void)
 {
     gb_dynamics_def def = {
         .variant = GB_VARIANT_PAPER,
-        .contact = GB_CONTACT_MODEL_GRID,
+        .contact = GB_CONTACT_MODEL_FAST_GRID,
         .mass = 1.0,
         .length = 1.0,
         .damping = 0.02,
@@ -76,7 +76,8 @@ void gb_dyn_set_mode(gb_dynamics *d, gb_dyn_mode_id mode, double t)
 const gb_dynamics_def *gb_dynamics_get_def(const gb_dynamics *d) { return &d->def; }
 double gb_dynamics_mean_radius(const gb_dynamics *d) { return d->mean_radius; }
 
-int gb_dynamics_create(const gb_surface *surface, const gb_dynamics_def *def, gb_dynamics **out)
+int gb_dynamics_create_in(const gb_surface *surface, const gb_dynamics_def *def, gb_dynamics_context *context,
+                          gb_dynamics **out)
 {
     *out = NULL;
     if (!gb_dynamics_variant_name(def->variant) || !gb_contact_model_name(def->contact))
@@ -106,6 +107,8 @@ int gb_dynamics_create(const gb_surface *surface, const gb_dynamics_def *def, gb
     d->def = *def;
     d->refine = gb_contact_refine_default_def();
     d->law = gb_dyn_law_of(def->contact_law);
+    d->settle_time = def->settle_time;
+    d->context = context;
     status = gb_dyn_body_create(d);
     if (status) {
         gb_dynamics_free(d);
@@ -113,6 +116,16 @@ int gb_dynamics_create(const gb_surface *surface, const gb_dynamics_def *def, gb
     }
     *out = d;
     return GB_OK;
+}
+
+int gb_dynamics_create(const gb_surface *surface, const gb_dynamics_def *def, gb_dynamics **out)
+{
+    return gb_dynamics_create_in(surface, def, NULL, out);
+}
+
+void gb_dynamics_use_step(gb_dynamics *d, double h)
+{
+    if (d->def.settle_time == 0.0) d->settle_time = h;
 }
 
 void gb_dynamics_free(gb_dynamics *d)
@@ -387,15 +400,21 @@ int gb_dynamics_observe(gb_dynamics *d, double t, const double y[GB_STATE_SIZE],
     return GB_OK;
 }
 
-int gb_dynamics_start(const gb_surface *body, const gb_dynamics_def *def, const double R0[9], const double omega0[3],
-                      gb_dynamics **out, double y[GB_STATE_SIZE])
+int gb_dynamics_start_in(const gb_surface *body, const gb_dynamics_def *def, gb_dynamics_context *context, const double R0[9],
+                         const double omega0[3], gb_dynamics **out, double y[GB_STATE_SIZE])
 {
     *out = NULL;
-    int status = gb_dynamics_create(body, def, out);
+    int status = gb_dynamics_create_in(body, def, context, out);
     if (!status) status = gb_dynamics_init_state(*out, 0.0, R0, omega0, y);
     if (status) {
         gb_dynamics_free(*out);
         *out = NULL;
     }
     return status;
+}
+
+int gb_dynamics_start(const gb_surface *body, const gb_dynamics_def *def, const double R0[9], const double omega0[3],
+                      gb_dynamics **out, double y[GB_STATE_SIZE])
+{
+    return gb_dynamics_start_in(body, def, NULL, R0, omega0, out, y);
 }

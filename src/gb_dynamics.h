@@ -114,18 +114,26 @@ int gb_dynamics_contact_law_impacts(gb_contact_law law);
 
 /* What happened at a change of contact of the unilateral law. */
 typedef enum gb_dynamics_impact_kind {
-    GB_IMPACT_SWITCH = 0,    /* rolling on P, the body meets the plane at Q; P lifts */
-    GB_IMPACT_TWO_POINT = 1, /* rolling on P, the body meets the plane at Q; both hold (the two-point mode) */
-    GB_IMPACT_LIFT = 2,      /* two-point mode: a normal force reaches 0, that point lifts (no impulse) */
-    GB_IMPACT_THIRD = 3,     /* two-point mode: a third point reaches the plane (an impact over all three) */
-    GB_IMPACT_LIFT_OFF = 4,  /* the last contact's normal force (or g_eff at rest) reaches 0: the body flies
-                              * (no impulse; old point = the one left, new point = the lowest point) */
-    GB_IMPACT_LANDING = 5,   /* in flight, the lowest point reaches the plane (contacts after: 1 when it
-                              * holds, 0 when the body bounces or is pulled off at once) */
-    GB_IMPACT_BOUNCE = 6,    /* restitution e > 0 at a change of contact: Q rebounds; P holds (contacts
-                              * after 1, the body rolls on P) or lifts too (0: the body hops) */
-    GB_IMPACT_CREASE_END = 7 /* two-point mode: Q's minimum merges with P's or vanishes in a fold (the end of
-                              * the crease); the body rolls on P alone (no impulse; found at a step's end) */
+    /* rolling on P, the body meets the plane at Q; P lifts */
+    GB_DYNAMICS_IMPACT_SWITCH = 0,
+    /* rolling on P, the body meets the plane at Q; both hold (the two-point mode) */
+    GB_DYNAMICS_IMPACT_TWO_POINT = 1,
+    /* two-point mode: a normal force reaches 0, that point lifts (no impulse) */
+    GB_DYNAMICS_IMPACT_LIFT = 2,
+    /* two-point mode: a third point reaches the plane (an impact over all three) */
+    GB_DYNAMICS_IMPACT_THIRD = 3,
+    /* the last contact's normal force (or g_eff at rest) reaches 0: the body flies (no impulse; old point =
+     * the one left, new point = the lowest point) */
+    GB_DYNAMICS_IMPACT_LIFT_OFF = 4,
+    /* in flight, the lowest point reaches the plane (contacts after: 1 when it holds, 0 when the body
+     * bounces or is pulled off at once) */
+    GB_DYNAMICS_IMPACT_LANDING = 5,
+    /* restitution e > 0 at a change of contact: Q rebounds; P holds (contacts after 1, the body rolls on P)
+     * or lifts too (0: the body hops) */
+    GB_DYNAMICS_IMPACT_BOUNCE = 6,
+    /* two-point mode: Q's minimum merges with P's or vanishes in a fold (the end of the crease); the body
+     * rolls on P alone (no impulse; found at a step's end) */
+    GB_DYNAMICS_IMPACT_CREASE_END = 7
 } gb_dynamics_impact_kind;
 
 const char *gb_dynamics_impact_kind_name(gb_dynamics_impact_kind kind);
@@ -163,17 +171,33 @@ typedef struct gb_dynamics_impact {
 /* Called with every impact (the run's impacts file); a non-zero return stops the run with that status. */
 typedef int (*gb_dynamics_impact_sink)(void *context, const gb_dynamics_impact *impact);
 
-/* What the runs of one body share: its mass properties, its grid of nodes and, for the fast grid, the
- * tracker's hull. A caller that runs many scenes on one thread (a scan's thread, a Lyapunov pair) keeps
- * one and names it in gb_dynamics_def.cache: a run takes from it what was built for its body (the same
- * morphology, β and mass; the same grid) and stores there what it builds. The first body's grid and
- * tracker stay (a run of another body builds its own), so a run never loses what another run uses; the
- * mass properties follow the last body. The results are those without the cache, bit for bit (the
- * tracker returns brute force's node from any warm start). One thread at a time; free it after the last
- * run that used it. */
-typedef struct gb_dynamics_cache gb_dynamics_cache;
-int gb_dynamics_cache_create(gb_dynamics_cache **out);
-void gb_dynamics_cache_free(gb_dynamics_cache *cache);
+/* A context: what the runs of one body share, apart from their physics (gb_dynamics_def): the body's
+ * mass properties, its grid of nodes and the fast grid's tracker, the atlas of verticals (certificate =
+ * atlas), the files these caches live in, and a lowest-node search of one's own. A caller that runs many
+ * scenes on one thread (a scan's thread, a Lyapunov pair) keeps one and creates each run in it
+ * (gb_dynamics_create_in): a run takes from it what was built for its body (the same morphology, β and
+ * mass; the same grid; the same atlas definition) and stores there what it builds. The first body's
+ * grid, tracker and atlas stay (a run of another body builds its own), so a run never loses what another
+ * run uses; the mass properties follow the last body. The files are read when a run first needs what
+ * they hold (a file missing, stale, damaged or sealed under another key is built anew) and written by
+ * gb_dynamics_context_save alone: the dynamics never touch a file. The results are those without a
+ * context, bit for bit (the tracker returns brute force's node from any warm start; an atlas's answer is
+ * a proof, whoever made it). One thread at a time; free it after the last run that used it. */
+typedef struct gb_dynamics_context gb_dynamics_context;
+int gb_dynamics_context_create(gb_dynamics_context **out);
+void gb_dynamics_context_free(gb_dynamics_context *context);
+/* The caches' files (NULL: none): the atlas of verticals and the fast grid's hull. */
+int gb_dynamics_context_files(gb_dynamics_context *context, const char *atlas_file, const char *hull_file);
+/* contact = grid: this search instead of brute force (make bench's plain loop). */
+void gb_dynamics_context_lowest(gb_dynamics_context *context, gb_dynamics_lowest_node lowest, void *user);
+/* Write the caches back to their files: the atlas, merged with the cells the file gained since it was read
+ * (gb_atlas_merge_save: runs that share one file add up their cells), unless the file holds it already (it
+ * was read or written and no cell was proved since); the hull when Qhull built it. gb_ status. */
+int gb_dynamics_context_save(gb_dynamics_context *context);
+/* The atlas's memory [bytes], and letting it go (a run then reads the file anew): a scan's thread bounds
+ * its memory so. */
+size_t gb_dynamics_context_atlas_bytes(const gb_dynamics_context *context);
+void gb_dynamics_context_forget_atlas(gb_dynamics_context *context);
 
 typedef struct gb_dynamics_def {
     gb_dynamics_variant variant;
@@ -186,14 +210,14 @@ typedef struct gb_dynamics_def {
     gb_certify_def certify;        /* continuous contact: the certificate of the global minimum */
     gb_dynamics_certificate certificate; /* continuous contact: per vertical (default) or atlas */
     gb_contact_law contact_law;    /* held (the paper's, default) or unilateral */
-    double settle_time;            /* unilateral: the end to chatter [s] (0: none). At an impact after which P
+    double settle_time;            /* unilateral: the end to chatter [s] (0, the default: one step of the
+                                    * integrator the run uses, gb_dynamics_use_step). At an impact after which P
                                     * lifts, if P would fall back onto the plane within this time (its normal
                                     * separation speed v_n and acceleration a_n < 0 after: 2 v_n / |a_n|), both
                                     * points are taken as held instead: the impact that stops P and Q at once, unless
                                     * it would need the plane to pull by more than m g_max settle_time (the weight's
-                                    * impulse it stands for): then Moreau's impact stands. gb_case sets it to the
-                                    * integrator's step T / steps_per_period, so that the return the rule removes
-                                    * would fall inside one step. */
+                                    * impulse it stands for): then Moreau's impact stands. One step, so that the
+                                    * return the rule removes would fall inside one step. */
     double friction;               /* μ of the plane, for the monitors only (INFINITY, the default: none). The
                                     * model's plane is perfectly rough; impacts that need more friction than μ
                                     * are counted (gb_dynamics_impact_stats), where a plane of that μ would let
@@ -208,29 +232,25 @@ typedef struct gb_dynamics_def {
     double velocity0[3];           /* with height0 > 0: the centroid's initial velocity relative to the plane,
                                     * inertial axes [m/s] (default 0) */
     gb_atlas_def atlas;            /* certificate = atlas: its cells (its height_tol is certify's) */
-    const char *atlas_file;        /* certificate = atlas: load the atlas from here when the file matches the
-                                    * body (else build it), and gb_dynamics_save_atlas writes it (NULL: none) */
-    gb_atlas *atlas_shared;        /* certificate = atlas: use this atlas of the same body and definition,
-                                    * which the caller keeps across runs (not loaded, saved or freed here; one
-                                    * thread at a time), instead of an own one (NULL: own) */
-    gb_dynamics_cache *cache;      /* what runs of one body share (gb_dynamics_cache; NULL: none) */
-    const char *hull_file;         /* contact = fast-grid: load the tracker's hull from here when the file was
-                                    * written for this grid (else build it with Qhull), and
-                                    * gb_dynamics_save_hull writes it when built (NULL: none) */
-    gb_dynamics_lowest_node grid_lowest; /* contact = grid: this search instead of brute force (NULL) */
-    void *grid_lowest_context;
 } gb_dynamics_def;
 
-/* Table 1 with the paper's model: variant paper, grid contact 90 × 180, m = 1, c = 0.02, g = 9.81,
- * ω = 18, ψ = π/3, and a₁ = 2, a₂ = 1 m/s² (the m/s² reading of Table 1; see gb_case). */
+/* Table 1 with the paper's model: variant paper, the paper's 90 × 180 grid by the exact fast search
+ * (fast-grid: the brute-force node at every evaluation, bit for bit), m = 1, c = 0.02, g = 9.81, ω = 18,
+ * ψ = π/3, and a₁ = 2, a₂ = 1 m/s² (the m/s² reading of Table 1; see gb_case). The scene's defaults
+ * (gb_case_default) are these. */
 gb_dynamics_def gb_dynamics_default_def(void);
 
 typedef struct gb_dynamics gb_dynamics;
 
 /* Build the body (mass properties by gb_massprops, scaled by mass and length) and only the grid its
- * contact model needs. */
+ * contact model needs, in `context` (gb_dynamics_context; NULL: one of its own, no files). */
+int gb_dynamics_create_in(const gb_surface *surface, const gb_dynamics_def *def, gb_dynamics_context *context,
+                          gb_dynamics **out);
 int gb_dynamics_create(const gb_surface *surface, const gb_dynamics_def *def, gb_dynamics **out);
 void gb_dynamics_free(gb_dynamics *dynamics);
+/* The step h of the integrator the run uses: the end to chatter where def.settle_time is 0 (gb_integrate
+ * calls it when a run begins). */
+void gb_dynamics_use_step(gb_dynamics *dynamics, double h);
 
 const gb_dynamics_def *gb_dynamics_get_def(const gb_dynamics *dynamics);
 /* L of eq 53 [m], for this length. */
@@ -247,29 +267,21 @@ void gb_dynamics_contact_work(const gb_dynamics *dynamics, size_t *queries, size
 /* Continuous contact: the certificate's counters (checks, and how many ended global, lower-found or
  * undecided); GB_EINVAL for a grid model. */
 int gb_dynamics_certify_stats(const gb_dynamics *dynamics, gb_certify_stats *out);
-/* certificate = atlas: its counters, how many checks fell back to gb_certify, and whether it was loaded
- * from def.atlas_file (1) or built (0). */
+/* certificate = atlas: its counters, how many checks fell back to gb_certify, and whether it was read from
+ * the context's atlas file (1) or built (0). */
 int gb_dynamics_atlas_stats(const gb_dynamics *dynamics, gb_atlas_stats *out, size_t *fallbacks, int *loaded);
-/* certificate = atlas: let `to` use the atlas of `from` (same body and definition; both on one thread,
- * `from` freed last): a Lyapunov pair's two trajectories then build each cell once. */
-void gb_dynamics_share_atlas(gb_dynamics *to, const gb_dynamics *from);
-/* certificate = atlas with an atlas_file: write the atlas's cells there with those the file holds that
- * it lacks (gb_atlas_merge, then gb_atlas_save): runs that share one file add up their cells. Nothing
- * is written when the atlas was loaded from that file and no cell was proved since. */
-int gb_dynamics_save_atlas(const gb_dynamics *dynamics);
 /* contact = fast-grid: the tracker's hull vertices (0: no hull, the patch-tree search) and whether the hull
- * came from def.hull_file (1) or Qhull (0); GB_EINVAL for another model. */
+ * came from the context's hull file (1) or Qhull (0); GB_EINVAL for another model. */
 int gb_dynamics_hull_stats(const gb_dynamics *dynamics, size_t *vertices, int *loaded);
-/* contact = fast-grid with a hull_file: write the hull there when Qhull built it (nothing when it was
- * loaded from that file, or when Qhull could not build one). */
-int gb_dynamics_save_hull(const gb_dynamics *dynamics);
 
 /* The initial state: attitude R0 (row-major 3 × 3, orthonormal), ω0; W = 0. Establishes the
  * initial contact (the global minimum) and E(0). */
 int gb_dynamics_init_state(gb_dynamics *dynamics, double t0, const double R0[9], const double omega0[3],
                            double y[GB_STATE_SIZE]);
 
-/* gb_dynamics_create + gb_dynamics_init_state in one call for the body `body`; *out is NULL on failure. */
+/* gb_dynamics_create_in + gb_dynamics_init_state in one call for the body `body`; *out is NULL on failure. */
+int gb_dynamics_start_in(const gb_surface *body, const gb_dynamics_def *def, gb_dynamics_context *context, const double R0[9],
+                         const double omega0[3], gb_dynamics **out, double y[GB_STATE_SIZE]);
 int gb_dynamics_start(const gb_surface *body, const gb_dynamics_def *def, const double R0[9], const double omega0[3],
                       gb_dynamics **out, double y[GB_STATE_SIZE]);
 

@@ -33,11 +33,13 @@ void gb_dyn_grid_point(const gb_dynamics *d, size_t index, const double zb[3], g
 static int lowest_node(gb_dynamics *d, const double zb[3], gb_contact_node *node)
 {
     int status;
-    if (d->def.contact == GB_CONTACT_MODEL_GRID && d->def.grid_lowest) {
+    gb_dynamics_lowest_node lowest;
+    void *user;
+    if (d->def.contact == GB_CONTACT_MODEL_GRID && gb_dyn_lowest_hook(d, &lowest, &user)) {
         double unit[3];
         status = gb_contact_unit_vertical(zb, unit);
         if (!status) {
-            node->index = d->def.grid_lowest(d->def.grid_lowest_context, unit);
+            node->index = lowest(user, unit);
             node->visited = 0;
             if (node->index < gb_contact_grid_size(d->grid)) gb_contact_grid_node(d->grid, node->index, NULL, NULL, node->x);
             else status = gb_error_set(GB_EINVAL, "the lowest-node search returned node %zu of a grid of %zu",

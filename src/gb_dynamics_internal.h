@@ -15,8 +15,8 @@
  *   gb_dynamics_flight.c    the mode "flight"
  *   gb_dynamics_events.c    the events that end a mode: their functions (pending, gap)
  *   gb_dynamics_jumps.c     the jump maps at the events, each calling the generic impact law (gb_impact)
- *   gb_dynamics_body.c      the body's set-up (mass properties, grid, tracker, certificate, atlas) and the
- *                           caches the caller's context holds
+ *   gb_dynamics_context.c   the body's set-up (mass properties, grid, tracker, certificate, atlas), kept in
+ *                           the caller's context with the files of its caches
  * A mode's functions reach the others only through this header; the vector field of the current mode is
  * asked through gb_dyn_field alone (the lift-off test's look along the flow included). */
 #ifndef GB_DYNAMICS_INTERNAL_H
@@ -104,17 +104,18 @@ struct gb_dynamics {
     const gb_dyn_law *law;
     gb_dyn_mode_id mode;
     gb_dyn_event event;          /* the event gb_dynamics_switch_pending found (GB_DYN_EVENT_NONE: none) */
+    double settle_time;   /* the end to chatter [s]: def.settle_time, or the integrator's step where it is 0 */
     double inertia[3][3]; /* I_C [kg m²] */
     double mean_radius;   /* L [m] (eq 53) */
+    gb_dynamics_context *context; /* the caller's, or the run's own (own_context) */
+    int own_context;
     gb_contact_grid *grid;
     gb_contact_tracker *tracker; /* exact grid search along the trajectory (fast-grid) */
-    int grid_borrowed;           /* grid (and tracker) belong to def.cache */
+    int grid_borrowed;           /* grid (and tracker) belong to the context */
     gb_certify *certify;         /* the global-minimum certificate (continuous) */
     gb_atlas *atlas;             /* certificate = atlas */
-    int atlas_borrowed;          /* the atlas belongs to another gb_dynamics (gb_dynamics_share_atlas) */
+    int atlas_borrowed;          /* the atlas belongs to the context */
     size_t atlas_fallbacks;      /* checks the atlas left to gb_certify */
-    int atlas_loaded;
-    int hull_loaded;             /* 1: the tracker's hull came from def.hull_file */
     gb_contact_refine_def refine;
     /* The contact at the last accepted state. */
     size_t index;
@@ -184,12 +185,14 @@ void gb_dyn_set_mode(gb_dynamics *d, gb_dyn_mode_id mode, double t);
 /* "t = ...: the state is no longer finite" (GB_ENUMERIC). */
 int gb_dyn_diverged(double t);
 
-/* ---- the body (gb_dynamics_body.c) ---------------------------------------------------------------- */
+/* ---- the body and its context (gb_dynamics_context.c) --------------------------------------------- */
 
-/* The body's set-up for d (surface and def set): mass properties, and the grid and tracker or the
- * certificate and atlas its contact model needs; and its release. */
+/* The body's set-up for d (surface, def and context set; a context of its own when none): mass properties,
+ * and the grid and tracker or the certificate and atlas its contact model needs; and its release. */
 int gb_dyn_body_create(gb_dynamics *d);
 void gb_dyn_body_free(gb_dynamics *d);
+/* The context's lowest-node search of one's own (make bench): 1 with it, 0 when there is none. */
+int gb_dyn_lowest_hook(const gb_dynamics *d, gb_dynamics_lowest_node *lowest, void **user);
 
 /* ---- the contact at a state (gb_dynamics_contact.c) ------------------------------------------------ */
 

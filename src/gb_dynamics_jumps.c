@@ -31,7 +31,7 @@ static double restitution_at(const gb_dynamics *d, double t, double approach)
     const double e = d->def.restitution;
     if (e == 0.0) return 0.0;
     const double geff = gb_forcing_geff(&d->def.forcing, t);
-    return e * approach < 0.5 * fmax(geff, 0.0) * d->def.settle_time ? 0.0 : e;
+    return e * approach < 0.5 * fmax(geff, 0.0) * d->settle_time ? 0.0 : e;
 }
 
 /* The plastic impact (gb_impact, body axes, the plane's normal z_b) of the body turning with the ω of y
@@ -64,7 +64,7 @@ static int pulling_point(const gb_dynamics *d, const gb_impact_result *r, const 
     double reach = 0.0;
     for (int k = 0; k < count; k++) reach = fmax(reach, gb_vec_norm(points[k]));
     const double m = d->def.mass, rounding = 1e-9 * m * (gb_vec_norm(v_before) + gb_vec_norm(omega_before) * reach);
-    const double lumped = settled ? m * (f->g + fabs(f->a1) + fabs(f->a2)) * d->def.settle_time : 0.0;
+    const double lumped = settled ? m * (f->g + fabs(f->a1) + fabs(f->a2)) * d->settle_time : 0.0;
     for (int k = 0; k < count; k++) {
         *allowed = rounding + (k == arriving ? 0.0 : lumped);
         if (r->normal_impulse[k] < -*allowed) return k;
@@ -88,12 +88,12 @@ static int plane_pushes(const gb_dynamics *d, double t, const gb_impact_result *
 int gb_dyn_book(gb_dynamics *d, const gb_dynamics_impact *e)
 {
     d->settled += (size_t)e->settled;
-    d->lifts += e->kind == GB_IMPACT_LIFT;
-    d->third_points += e->kind == GB_IMPACT_THIRD;
-    d->lift_offs += e->kind == GB_IMPACT_LIFT_OFF;
-    d->landings += e->kind == GB_IMPACT_LANDING;
-    d->bounces += e->kind == GB_IMPACT_BOUNCE || (e->kind == GB_IMPACT_LANDING && e->rebound);
-    if (e->kind != GB_IMPACT_LIFT && e->kind != GB_IMPACT_LIFT_OFF && e->kind != GB_IMPACT_CREASE_END) {
+    d->lifts += e->kind == GB_DYNAMICS_IMPACT_LIFT;
+    d->third_points += e->kind == GB_DYNAMICS_IMPACT_THIRD;
+    d->lift_offs += e->kind == GB_DYNAMICS_IMPACT_LIFT_OFF;
+    d->landings += e->kind == GB_DYNAMICS_IMPACT_LANDING;
+    d->bounces += e->kind == GB_DYNAMICS_IMPACT_BOUNCE || (e->kind == GB_DYNAMICS_IMPACT_LANDING && e->rebound);
+    if (e->kind != GB_DYNAMICS_IMPACT_LIFT && e->kind != GB_DYNAMICS_IMPACT_LIFT_OFF && e->kind != GB_DYNAMICS_IMPACT_CREASE_END) {
         d->impacts++;
         d->impact_loss += e->kinetic_before - e->kinetic_after - e->potential_jump;
         d->impact_friction_max = fmax(d->impact_friction_max, e->friction_needed);
@@ -231,7 +231,7 @@ static int grazing(const gb_dynamics *d, const double y[GB_STATE_SIZE], const do
 
 /* The outcome of the impact at a change of contact from P (`from`) to Q (`to`) at state y while rolling on
  * one point, nothing booked: the body rolling about P meets the plane at Q; *both: both points hold after
- * (the two-point mode begins), else P lifts; a lift whose fall back would come within def.settle_time is
+ * (the two-point mode begins), else P lifts; a lift whose fall back would come within the settle time is
  * taken as both held (the settle rule). *bounce: 0, or with restitution 1 (Q rebounds, P holds) and 2 (both
  * leave), or 3 (e = 0 where Moreau's law would need a pull: Q's slip stopped leaves Q moving away, and P
  * too: the body hops). Also: the points [m], the centroid's velocity before, the solver's answer (the
@@ -312,7 +312,7 @@ static int impact_outcome(gb_dynamics *d, double t, const double y[GB_STATE_SIZE
         memcpy(yafter, y, sizeof yafter);
         memcpy(yafter + GB_STATE_OMEGA, r->omega, sizeof r->omega);
         *back = return_time(d, t, yafter, to, r->v, points[0]);
-        if (*back < d->def.settle_time) {
+        if (*back < d->settle_time) {
             /* the settle rule lumps the chatter, unless the lumped impact would need the plane to pull beyond
              * the weight's impulse it stands for (P and Q close together, a couple with a short arm): then
              * Moreau's impact stands, and P's return is an impact of its own */
@@ -335,9 +335,9 @@ static int impact(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const gb_co
     int status = impact_outcome(d, t, y, from, to, points, v, &r, &back, both, bounce);
     if (!status) status = plane_pushes(d, t, &r, (const double(*)[3])points, 2, 1, *both && isfinite(back), v, y + GB_STATE_OMEGA);
     if (status) return status;
-    gb_dynamics_impact e = {.t = t, .located = located, .kind = *both ? GB_IMPACT_TWO_POINT : GB_IMPACT_SWITCH,
+    gb_dynamics_impact e = {.t = t, .located = located, .kind = *both ? GB_DYNAMICS_IMPACT_TWO_POINT : GB_DYNAMICS_IMPACT_SWITCH,
                             .contacts_after = 1 + *both, .settled = *both && isfinite(back), .return_time = back};
-    if (*bounce == 1 || *bounce == 2) e.kind = GB_IMPACT_BOUNCE, e.contacts_after = *bounce == 1, e.rebound = 1;
+    if (*bounce == 1 || *bounce == 2) e.kind = GB_DYNAMICS_IMPACT_BOUNCE, e.contacts_after = *bounce == 1, e.rebound = 1;
     else if (*bounce == 3) e.contacts_after = 0; /* Q's slip stopped and Q leaves with P: the body hops */
     gb_dyn_record(&e, y, points[0], points[1], v, &r, 1, 0);
     if (*bounce >= 2) {
@@ -395,7 +395,7 @@ static int lift_off_consistent(gb_dynamics *d, double t, const double y[GB_STATE
      * (2/3) a³/b² at t = 2a/b: within the landing tolerance (GB_DYN_GAP_TOL) the lift-off stands. Ṅ by a
      * forward difference along the flow (the current mode's field, gb_dyn_field) over 1e-6 of the step. */
     double f[GB_STATE_SIZE], y2[GB_STATE_SIZE], n2;
-    const double delta = 1e-6 * (d->def.settle_time > 0.0 ? d->def.settle_time : gb_forcing_period(&d->def.forcing) / 160.0);
+    const double delta = 1e-6 * (d->settle_time > 0.0 ? d->settle_time : gb_forcing_period(&d->def.forcing) / 160.0);
     status = gb_dyn_field(d, t, y, f);
     for (int k = 0; k < GB_STATE_SIZE; k++) y2[k] = y[k] + delta * f[k];
     if (!status) status = gb_dyn_one_point_normal(d, t + delta, y2, &n2);
@@ -435,7 +435,7 @@ static int lift_off(gb_dynamics *d, double t, double y[GB_STATE_SIZE])
     for (int k = 0; k < 3; k++) rp[k] = L * p.rc[k];
     gb_impact_result r;
     gb_dyn_no_impulse(d, y, rp, v, &r);
-    gb_dynamics_impact e = {.t = t, .located = 1, .kind = GB_IMPACT_LIFT_OFF, .contacts_after = 0, .return_time = INFINITY};
+    gb_dynamics_impact e = {.t = t, .located = 1, .kind = GB_DYNAMICS_IMPACT_LIFT_OFF, .contacts_after = 0, .return_time = INFINITY};
     gb_dyn_record(&e, y, rp, rp, v, &r, 0, -1);
     gb_dyn_set_contact(d, &p);
     gb_dyn_start_flight(d, t, y, v, -gb_vec_dot(zb, rp));
@@ -464,7 +464,7 @@ static int landing(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const gb_c
         return gb_error_set(GB_ENUMERIC, "landing at t = %.9g: %s", t, gb_error_message());
     const int pushes = plane_pushes(d, t, &r, (const double(*)[3])&rq, 1, 0, 0, v, y + GB_STATE_OMEGA);
     if (pushes) return pushes;
-    gb_dynamics_impact rec = {.t = t, .located = 1, .kind = GB_IMPACT_LANDING, .rebound = e > 0.0 && r.holds[0],
+    gb_dynamics_impact rec = {.t = t, .located = 1, .kind = GB_DYNAMICS_IMPACT_LANDING, .rebound = e > 0.0 && r.holds[0],
                               .return_time = INFINITY};
     gb_dyn_record(&rec, y, rq, rq, v, &r, 0, -1);
     gb_dyn_set_contact(d, q);
@@ -528,7 +528,7 @@ static int third_point_outcome(gb_dynamics *d, double t, const double y[GB_STATE
          * (pulling_point): a thin triangle or a short edge would need a couple the plane cannot give, and
          * then the next lumping is tried, and last Moreau's impact stands. */
         double allowed;
-        if (fmax(back_p, back_q) < d->def.settle_time) {
+        if (fmax(back_p, back_q) < d->settle_time) {
             /* both would fall back within it: the body stops on the three points (the chatter's limit) */
             double zb[3];
             gb_dyn_vertical(y, zb);
@@ -542,7 +542,7 @@ static int third_point_outcome(gb_dynamics *d, double t, const double y[GB_STATE
                 return GB_OK;
             }
         }
-        if (*back < d->def.settle_time) {
+        if (*back < d->settle_time) {
             gb_impact_result h; /* its slots: 0 the third point, 1 the one held with it */
             hold_both(d, y, points[2], points[k], v, &h);
             gb_impact_result two = h;
@@ -571,7 +571,7 @@ static int two_point_located(gb_dynamics *d, double t, double y[GB_STATE_SIZE], 
     if (d->event == GB_DYN_EVENT_LIFT) {
         const int lifts = tp.normal[0] < tp.normal[1] ? 0 : 1; /* the point whose force reached 0 */
         const double *up = lifts ? tp.rq : tp.rp, *stays = lifts ? tp.rp : tp.rq;
-        gb_dynamics_impact e = {.t = t, .located = 1, .kind = GB_IMPACT_LIFT, .contacts_after = 1};
+        gb_dynamics_impact e = {.t = t, .located = 1, .kind = GB_DYNAMICS_IMPACT_LIFT, .contacts_after = 1};
         gb_impact_result r;
         double v[3];
         gb_dyn_no_impulse(d, y, stays, v, &r);
@@ -596,7 +596,7 @@ static int two_point_located(gb_dynamics *d, double t, double y[GB_STATE_SIZE], 
     status = third_point_outcome(d, t, y, third, points, v, &r, &held, &back, &settled);
     if (!status) status = plane_pushes(d, t, &r, points, 3, 2, settled, v, y + GB_STATE_OMEGA);
     if (status) return status;
-    gb_dynamics_impact e = {.t = t, .located = 1, .kind = GB_IMPACT_THIRD, .contacts_after = held,
+    gb_dynamics_impact e = {.t = t, .located = 1, .kind = GB_DYNAMICS_IMPACT_THIRD, .contacts_after = held,
                             .settled = settled, .return_time = back};
     const int old = held == 2 && r.holds[1]; /* the one that stays (P when none does) */
     gb_dyn_record(&e, y, points[old], points[2], v, &r, 2, old);

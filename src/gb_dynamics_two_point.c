@@ -151,7 +151,7 @@ static int two_point_accept(gb_dynamics *d, double t, double y[GB_STATE_SIZE])
         for (int k = 0; k < 3; k++) rp[k] = L * tp.p.point.rc[k];
         gb_impact_result r;
         gb_dyn_no_impulse(d, y, rp, v, &r);
-        gb_dynamics_impact e = {.t = t, .located = 0, .kind = GB_IMPACT_CREASE_END, .contacts_after = 1,
+        gb_dynamics_impact e = {.t = t, .located = 0, .kind = GB_DYNAMICS_IMPACT_CREASE_END, .contacts_after = 1,
                                 .return_time = INFINITY};
         double qr[3];
         for (int k = 0; k < 3; k++) qr[k] = L * d->contact2.rc[k];

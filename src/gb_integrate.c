@@ -401,6 +401,7 @@ int gb_integrate_begin(gb_dynamics *d, const gb_integrate_def *def, double t0, g
     s->t0 = s->t = t0;
     s->h = gb_forcing_step(&gb_dynamics_get_def(d)->forcing, def->steps_per_period);
     s->dt = s->h;
+    gb_dynamics_use_step(d, s->h); /* the end to chatter, where the definition leaves it to the step */
     if (def->method != GB_INTEGRATOR_RK4) {
         s->gsl = malloc(sizeof *s->gsl);
         if (s->gsl) {

@@ -29,12 +29,12 @@ struct gb_lyapunov_body {
     gb_integrator method;
     size_t steps_per_period, tangent_steps;
     size_t saltations, unlocated, grazing, jumps;
-    gb_dynamics_cache *cache; /* the pair's own, when the caller named none */
+    gb_dynamics_context *context; /* the pair's own, when the caller named none */
 };
 
-int gb_lyapunov_body_create(const gb_surface *surface, const gb_dynamics_def *dynamics,
-                            const gb_integrate_def *integrate, const double R0[9], const double omega0[3],
-                            double omega_scale, gb_lyapunov_body **out)
+int gb_lyapunov_body_create_in(const gb_surface *surface, const gb_dynamics_def *dynamics, gb_dynamics_context *context,
+                               const gb_integrate_def *integrate, const double R0[9], const double omega0[3],
+                               double omega_scale, gb_lyapunov_body **out)
 {
     *out = NULL;
     if (!(isfinite(omega_scale) && omega_scale > 0.0))
@@ -47,17 +47,12 @@ int gb_lyapunov_body_create(const gb_surface *surface, const gb_dynamics_def *dy
     b->omega_scale = omega_scale;
     b->translation = gb_dynamics_contact_law_impacts(dynamics->contact_law);
     int status = GB_OK;
-    /* the partner takes the reference's atlas (below): it need not read the atlas file itself; and the
-     * two share one body (mass properties, grid, hull) through the caller's cache or their own */
-    gb_dynamics_def reference = *dynamics;
-    if (!reference.cache) status = gb_dynamics_cache_create(&b->cache), reference.cache = b->cache;
-    gb_dynamics_def partner = reference;
-    partner.atlas_file = NULL;
+    /* the two share one body (mass properties, grid, hull, atlas) through the caller's context or their own */
+    if (!context) status = gb_dynamics_context_create(&b->context), context = b->context;
     for (int k = 0; k < 2 && !status; k++) {
-        status = gb_dynamics_start(surface, k ? &partner : &reference, R0, omega0, &b->dynamics[k], b->y[k]);
+        status = gb_dynamics_start_in(surface, dynamics, context, R0, omega0, &b->dynamics[k], b->y[k]);
         if (!status) status = gb_integrate_begin(b->dynamics[k], integrate, 0.0, &b->session[k]);
     }
-    if (!status) gb_dynamics_share_atlas(b->dynamics[1], b->dynamics[0]);
     if (status) {
         gb_lyapunov_body_free(b);
         return status;
@@ -71,10 +66,16 @@ void gb_lyapunov_body_free(gb_lyapunov_body *body)
     if (!body) return;
     gb_integrate_end(body->session[0]);
     gb_integrate_end(body->session[1]);
-    gb_dynamics_free(body->dynamics[1]); /* first: it may use the atlas of dynamics[0] */
+    gb_dynamics_free(body->dynamics[1]);
     gb_dynamics_free(body->dynamics[0]);
-    gb_dynamics_cache_free(body->cache); /* last: both may use what it holds */
+    gb_dynamics_context_free(body->context); /* last: both may use what it holds */
     free(body);
+}
+
+int gb_lyapunov_body_create(const gb_surface *surface, const gb_dynamics_def *dynamics, const gb_integrate_def *integrate,
+                            const double R0[9], const double omega0[3], double omega_scale, gb_lyapunov_body **out)
+{
+    return gb_lyapunov_body_create_in(surface, dynamics, NULL, integrate, R0, omega0, omega_scale, out);
 }
 
 gb_dynamics *gb_lyapunov_body_dynamics(gb_lyapunov_body *body) { return body->dynamics[0]; }

@@ -25,6 +25,11 @@ typedef struct gb_lyapunov_body gb_lyapunov_body;
 int gb_lyapunov_body_create(const gb_surface *body, const gb_dynamics_def *dynamics,
                             const gb_integrate_def *integrate, const double R0[9], const double omega0[3],
                             double omega_scale, gb_lyapunov_body **out);
+/* The same with the copies' dynamics in `context` (gb_dynamics_context; NULL: the pair's own): both share
+ * the body's set-up and its atlas. */
+int gb_lyapunov_body_create_in(const gb_surface *body, const gb_dynamics_def *dynamics, gb_dynamics_context *context,
+                               const gb_integrate_def *integrate, const double R0[9], const double omega0[3],
+                               double omega_scale, gb_lyapunov_body **out);
 void gb_lyapunov_body_free(gb_lyapunov_body *body);
 /* The pair system of `body`. Under the unilateral law the separation has four more coordinates, the
  * centroid's height and velocity relative to the plane, (ζ₂ − ζ₁)/L and (v₂ − v₁)/(Ω L) (inertial axes, L

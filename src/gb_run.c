@@ -113,11 +113,12 @@ void gb_run_result_free(gb_run_result *r)
 }
 
 /* The trajectory as the reference of the Lyapunov pair, λ beside it. */
-static int run_with_lyapunov(const gb_case *scene, observer *s, gb_dynamics **dynamics, gb_lyapunov_body **body)
+static int run_with_lyapunov(const gb_case *scene, gb_dynamics_context *context, observer *s, gb_dynamics **dynamics,
+                             gb_lyapunov_body **body)
 {
     gb_run_result *r = s->out;
-    int status = gb_lyapunov_body_create(&scene->body, &scene->dynamics, &scene->integrate, scene->attitude,
-                                         scene->omega0, scene->omega_scale, body);
+    int status = gb_lyapunov_body_create_in(&scene->body, &scene->dynamics, context, &scene->integrate, scene->attitude,
+                                            scene->omega0, scene->omega_scale, body);
     if (status) return status;
     *dynamics = s->dynamics = gb_lyapunov_body_dynamics(*body);
     if (s->sinks && s->sinks->impact) gb_dynamics_set_impact_sink(*dynamics, s->sinks->impact, s->sinks->context);
@@ -135,6 +136,11 @@ static int run_with_lyapunov(const gb_case *scene, observer *s, gb_dynamics **dy
 }
 
 int gb_run(const gb_case *scene, const gb_run_sinks *sinks, gb_run_result *out)
+{
+    return gb_run_in(scene, NULL, sinks, out);
+}
+
+int gb_run_in(const gb_case *scene, gb_dynamics_context *context, const gb_run_sinks *sinks, gb_run_result *out)
 {
     memset(out, 0, sizeof *out);
     if (scene->lyapunov && scene->lyapunov_def.intervals == 0)
@@ -159,9 +165,10 @@ int gb_run(const gb_case *scene, const gb_run_sinks *sinks, gb_run_result *out)
     gb_lyapunov_body *body = NULL;
     const clock_t start = clock();
     if (!status && scene->lyapunov) {
-        status = run_with_lyapunov(scene, &s, &dynamics, &body);
+        status = run_with_lyapunov(scene, context, &s, &dynamics, &body);
     } else if (!status) {
-        status = gb_dynamics_start(&scene->body, &scene->dynamics, scene->attitude, scene->omega0, &dynamics, out->y);
+        status = gb_dynamics_start_in(&scene->body, &scene->dynamics, context, scene->attitude, scene->omega0, &dynamics,
+                                      out->y);
         s.dynamics = dynamics;
         if (!status && sinks && sinks->impact) gb_dynamics_set_impact_sink(dynamics, sinks->impact, sinks->context);
         if (!status) status = gb_integrate_run(dynamics, &scene->integrate, 0.0, out->y, observe, &s, &out->stats);
@@ -193,8 +200,6 @@ int gb_run(const gb_case *scene, const gb_run_sinks *sinks, gb_run_result *out)
         gb_error_clear();
         out->has_hull = gb_dynamics_hull_stats(dynamics, &out->hull_vertices, &out->hull_loaded) == GB_OK;
         gb_error_clear();
-        status = gb_dynamics_save_atlas(dynamics);
-        if (!status) status = gb_dynamics_save_hull(dynamics);
     }
     if (body) gb_lyapunov_body_free(body);
     else gb_dynamics_free(dynamics);

@@ -64,10 +64,10 @@ typedef struct gb_run_result {
     int has_atlas;                       /* certificate = atlas */
     gb_atlas_stats atlas;
     size_t atlas_fallbacks;              /* checks the atlas left to the per-vertical certificate */
-    int atlas_loaded;                    /* 1: the atlas came from the scene's atlas_file */
+    int atlas_loaded;                    /* 1: the atlas came from the context's atlas file */
     int has_hull;                        /* contact = fast-grid */
     size_t hull_vertices;                /* the tracker's hull (0: the patch-tree search) */
-    int hull_loaded;                     /* 1: the hull came from the scene's hull_file */
+    int hull_loaded;                     /* 1: the hull came from the context's hull file */
     size_t impacts;                      /* the unilateral law: impacts, the kinetic energy they took (L of */
     double impact_energy_lost;           /* the ledger; energy_residual is E − E0 − W + L) and the largest */
     double impact_friction_max;          /* friction coefficient an impact needed */
@@ -88,6 +88,10 @@ typedef struct gb_run_result {
 /* Run `scene` (as gb_case_load returned it). The result owns its strobe, spectrum and λ record:
  * gb_run_result_free. On failure nothing is left to free. */
 int gb_run(const gb_case *scene, const gb_run_sinks *sinks, gb_run_result *out);
+/* The same in `context` (gb_dynamics_context; NULL: the run's own): the body's set-up and the caches the
+ * context holds (its files read when first needed); writing them back is the caller's, by
+ * gb_dynamics_context_save. */
+int gb_run_in(const gb_case *scene, gb_dynamics_context *context, const gb_run_sinks *sinks, gb_run_result *out);
 void gb_run_result_free(gb_run_result *result);
 
 #ifdef __cplusplus

@@ -611,34 +611,17 @@ int gb_scan_melnikov_margins(const gb_case *scene, double *margin, double *margi
 
 /* ---- a point's run ------------------------------------------------------------------------------ */
 
-int gb_scan_atlas_create(const gb_scan *scan, gb_atlas **out)
-{
-    *out = NULL;
-    gb_case scene;
-    int status = gb_scan_point_case(scan, 0, &scene);
-    if (status || scene.dynamics.certificate != GB_CERTIFICATE_ATLAS || scene.dynamics.contact != GB_CONTACT_MODEL_CONTINUOUS)
-        return status;
-    gb_atlas_def adef = scene.dynamics.atlas;
-    adef.height_tol = scene.dynamics.certify.height_tol; /* as gb_dynamics_create builds its own */
-    status = gb_atlas_create(&scene.body, &adef, out);
-    if (!status && scan->atlas_file && gb_atlas_load(*out, scan->atlas_file)) gb_error_clear(); /* missing or stale: empty */
-    return status;
-}
-
 int gb_scan_point_run(const gb_scan *scan, const gb_scan_melnikov *melnikov, size_t index, gb_scan_metrics *out)
 {
-    return gb_scan_point_run_shared(scan, melnikov, index, NULL, NULL, out);
+    return gb_scan_point_run_in(scan, melnikov, index, NULL, out);
 }
 
-int gb_scan_point_run_shared(const gb_scan *scan, const gb_scan_melnikov *melnikov, size_t index, gb_atlas *atlas,
-                             gb_dynamics_cache *cache, gb_scan_metrics *out)
+int gb_scan_point_run_in(const gb_scan *scan, const gb_scan_melnikov *melnikov, size_t index, gb_dynamics_context *context,
+                         gb_scan_metrics *out)
 {
     gb_case scene;
     int status = gb_scan_point_case(scan, index, &scene);
     if (status) return status;
-    scene.dynamics.cache = cache;
-    if (scene.dynamics.certificate == GB_CERTIFICATE_ATLAS && atlas) scene.dynamics.atlas_shared = atlas;
-    else if (scan->atlas_file && scene.dynamics.certificate == GB_CERTIFICATE_ATLAS) scene.dynamics.atlas_file = scan->atlas_file;
     gb_scan_metrics m = {.omega_rms = NAN, .switch_rate = NAN, .mean_height = NAN, .lambda = NAN, .lambda_error = NAN,
                          .strobe_sd = NAN, .geff_nonpositive = NAN, .lift_off = NAN, .lambda_early = NAN,
                          .lambda_late = NAN, .chaos_lifetime = NAN, .melnikov_margin = NAN, .melnikov_margin_eq93 = NAN};
@@ -658,7 +641,7 @@ int gb_scan_point_run_shared(const gb_scan *scan, const gb_scan_melnikov *melnik
     gb_scan_accumulator acc = {.first_t = (double)scan->transient_periods * T - 0.5 * step};
     const gb_run_sinks sinks = {accumulate_sample, &acc, NULL};
     gb_run_result r;
-    status = gb_run(&scene, &sinks, &r);
+    status = gb_run_in(&scene, context, &sinks, &r);
     if (status) return status;
     double rms, height, rate;
     gb_scan_accumulated(&acc, &rms, &height, &rate);

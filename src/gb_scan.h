@@ -162,16 +162,12 @@ void gb_scan_melnikov_free(gb_scan_melnikov *plan);
  * alone runs no dynamics: the run's fingerprints are then 0. */
 int gb_scan_point_run(const gb_scan *scan, const gb_scan_melnikov *melnikov, size_t index, gb_scan_metrics *out);
 
-/* The same with what the points of one thread share, which the caller keeps between them: `atlas` (NULL:
- * none) as the point's atlas of verticals when its scene certifies with one (gb_scan_atlas_create), so
- * that a point neither reads nor writes the atlas file; `cache` (NULL: none) for the body's mass
- * properties, grid and hull (gb_dynamics_cache). The results are the same bit for bit. */
-int gb_scan_point_run_shared(const gb_scan *scan, const gb_scan_melnikov *melnikov, size_t index, gb_atlas *atlas,
-                             gb_dynamics_cache *cache, gb_scan_metrics *out);
-
-/* An atlas for the points of a scan whose scenes certify with one (*out NULL otherwise): the body and
- * definition of point 0's scene, its cells loaded from scan->atlas_file when that file holds them. */
-int gb_scan_atlas_create(const gb_scan *scan, gb_atlas **out);
+/* The same in the context the points of one thread share, which the caller keeps between them
+ * (gb_dynamics_context: the body's mass properties, grid and hull, and the atlas of verticals, read from
+ * scan->atlas_file by the first point that needs it; writing it back is the caller's). The results are the
+ * same bit for bit. */
+int gb_scan_point_run_in(const gb_scan *scan, const gb_scan_melnikov *melnikov, size_t index, gb_dynamics_context *context,
+                         gb_scan_metrics *out);
 
 /* The accumulators of the per-sample metrics (exposed for their checks against closed forms). */
 typedef struct gb_scan_accumulator {

@@ -492,8 +492,6 @@ int command_run(int argc, char **argv)
     if (hull && scene.dynamics.contact != GB_CONTACT_MODEL_FAST_GRID)
         return cli_input_error("run", "--hull %s: %s has no hull (allowed: a scene with [model] contact = fast-grid)", hull,
                                case_path);
-    scene.dynamics.atlas_file = atlas;
-    scene.dynamics.hull_file = hull;
     if (check_files(&scene, case_path, dir, atlas, hull)) return EXIT_INPUT;
     if (cli_parse_only) return 0;
     char *summary_path = cli_output_name(dir, case_path, cli_run_suffixes[OUT_SUMMARY]);
@@ -515,8 +513,14 @@ int command_run(int argc, char **argv)
     }
     const gb_run_sinks sinks = {history_row, &out, impact_row};
     gb_run_result r;
-    if (!status) status = gb_run(&scene, out.history || out.impacts ? &sinks : NULL, &r);
-    else memset(&r, 0, sizeof r);
+    memset(&r, 0, sizeof r);
+    /* the caches: read by the run when it first needs them, written back after it */
+    gb_dynamics_context *context = NULL;
+    if (!status) status = gb_dynamics_context_create(&context);
+    if (!status) status = gb_dynamics_context_files(context, atlas, hull);
+    if (!status) status = gb_run_in(&scene, context, out.history || out.impacts ? &sinks : NULL, &r);
+    if (!status) status = gb_dynamics_context_save(context);
+    gb_dynamics_context_free(context);
     /* a stream that failed is named by its path (the sink's message says only which stream) */
     if (out.history && ferror(out.history) && (!status || status == GB_EIO)) status = stage_error(&files, OUT_HISTORY);
     if (out.impacts && ferror(out.impacts) && (!status || status == GB_EIO)) status = stage_error(&files, OUT_IMPACTS);

@@ -398,16 +398,12 @@ enum { ATLAS_SAVE_POINTS = 8 };
 #define ATLAS_MEMORY ((size_t)256 << 20)
 
 /* The thread's atlas merged with its file and written back, when it proved a cell since the last time
- * (a file that cannot be written costs the sharing, not the scan: the points' results do not depend on
- * the atlas). gb_atlas_merge_save lets the writers take turns, threads and processes alike: two
- * merging before either wrote would each write a file without the other's cells. */
-static void save_atlas(const gb_scan *scan, gb_atlas *atlas, double *built_at_save)
+ * (gb_dynamics_context_save; a file that cannot be written costs the sharing, not the scan: the points'
+ * results do not depend on the atlas). The writers take turns under the directory's lock, threads and
+ * processes alike: two merging before either wrote would each write a file without the other's cells. */
+static void save_atlas(gb_dynamics_context *context)
 {
-    gb_atlas_stats stats;
-    gb_atlas_get_stats(atlas, &stats);
-    if (stats.build_seconds == *built_at_save) return;
-    *built_at_save = stats.build_seconds;
-    if (gb_atlas_merge_save(atlas, scan->atlas_file)) {
+    if (gb_dynamics_context_save(context)) {
         fprintf(stderr, "gomboc scan: the shared atlas was not written: %s\n", gb_error_message());
         gb_error_clear();
     }
@@ -428,18 +424,16 @@ static void run_points(scan_state *st, const ranks *r)
 #pragma omp parallel
 #endif
     {
-    /* A shared atlas stays in each thread's memory from point to point; the thread merges it with the
-     * file and writes it back every ATLAS_SAVE_POINTS points it ran and at its end, so that the threads
-     * and the ranks still share their cells through the file. */
-    gb_atlas *atlas = NULL;
-    gb_dynamics_cache *cache = NULL; /* the body's mass properties, grid and hull, kept between points */
-    if (gb_dynamics_cache_create(&cache)) gb_error_clear(); /* none: each point builds its own */
-    double built_at_save = 0.0;
-    size_t since_save = 0;
-    if (st->scan->atlas_file && gb_scan_atlas_create(st->scan, &atlas)) {
-        gb_error_clear(); /* the points then read and write the file themselves */
-        atlas = NULL;
+    /* Each thread's context keeps the body's mass properties, grid and hull and the shared atlas from point
+     * to point; the thread merges the atlas with its file and writes it back every ATLAS_SAVE_POINTS points
+     * it ran and at its end, so that the threads and the ranks still share their cells through the file. */
+    gb_dynamics_context *context = NULL;
+    if (gb_dynamics_context_create(&context) || gb_dynamics_context_files(context, st->scan->atlas_file, NULL)) {
+        gb_error_clear(); /* none: each point builds its own set-up and atlas */
+        gb_dynamics_context_free(context);
+        context = NULL;
     }
+    size_t since_save = 0;
 #ifdef _OPENMP
 #pragma omp for schedule(dynamic, 1)
 #endif
@@ -452,16 +446,10 @@ static void run_points(scan_state *st, const ranks *r)
         if (skip) continue;
         const size_t k = todo[i];
         gb_scan_metrics m;
-        int s = gb_scan_point_run_shared(st->scan, melnikov, k, atlas, cache, &m);
-        if (atlas && ++since_save == ATLAS_SAVE_POINTS) {
-            save_atlas(st->scan, atlas, &built_at_save), since_save = 0;
-            gb_atlas_stats held;
-            gb_atlas_get_stats(atlas, &held);
-            if (held.bytes > ATLAS_MEMORY) {
-                gb_atlas_free(atlas);
-                if (gb_scan_atlas_create(st->scan, &atlas)) gb_error_clear(), atlas = NULL;
-                built_at_save = 0.0;
-            }
+        int s = gb_scan_point_run_in(st->scan, melnikov, k, context, &m);
+        if (context && ++since_save == ATLAS_SAVE_POINTS) {
+            save_atlas(context), since_save = 0;
+            if (gb_dynamics_context_atlas_bytes(context) > ATLAS_MEMORY) gb_dynamics_context_forget_atlas(context);
         }
         if (s && st->scan->record_failures && s != GB_ENOMEM && s != GB_EIO && s != GB_EINVAL && s != GB_EDOM) {
             /* failed_points = record: the computation failed (the model cannot follow this point); a row of NaN */
@@ -493,9 +481,8 @@ static void run_points(scan_state *st, const ranks *r)
 #endif
         }
     }
-    if (atlas) save_atlas(st->scan, atlas, &built_at_save);
-    gb_atlas_free(atlas);
-    gb_dynamics_cache_free(cache);
+    if (context) save_atlas(context);
+    gb_dynamics_context_free(context);
     }
     free(todo);
     gb_scan_melnikov_free(melnikov);

@@ -168,18 +168,21 @@ static int table1_run(const char *body, gb_dynamics_certificate certificate, con
     gb_dynamics_def def = gb_dynamics_default_def();
     def.contact = GB_CONTACT_MODEL_CONTINUOUS, def.variant = GB_VARIANT_ROLLING;
     def.certificate = certificate;
-    def.atlas_file = atlas_file;
     const double R0[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1}, w0[3] = {0, 0, 0};
     gb_dynamics *d = NULL;
-    int status = gb_dynamics_start(gb_check_body(body, 0.12), &def, R0, w0, &d, y);
+    gb_dynamics_context *context = NULL;
+    int status = gb_dynamics_context_create(&context);
+    if (!status) status = gb_dynamics_context_files(context, atlas_file, NULL);
+    if (!status) status = gb_dynamics_start_in(gb_check_body(body, 0.12), &def, context, R0, w0, &d, y);
     gb_integrate_def idef = gb_integrate_default_def();
     idef.locate_switches = 1;
     gb_integrate_stats stats;
     if (!status) status = gb_integrate_run(d, &idef, 0.0, y, NULL, NULL, &stats);
     if (!status) *switches = gb_dynamics_switch_count(d);
     if (!status && certificate == GB_CERTIFICATE_ATLAS) status = gb_dynamics_atlas_stats(d, as, fallbacks, loaded);
-    if (!status) status = gb_dynamics_save_atlas(d);
     gb_dynamics_free(d);
+    if (!status) status = gb_dynamics_context_save(context);
+    gb_dynamics_context_free(context);
     return status;
 }
 

@@ -344,10 +344,10 @@ static int cache_scene(const char *dir, const char *name, const char *morphology
     return status;
 }
 
-/* Runs that share a gb_dynamics_cache (as a scan's thread does) against the same runs each on its own:
+/* Runs that share a gb_dynamics_context (as a scan's thread does) against the same runs each on its own:
  * Gömböc II, I, II again and II rolling with continuous contact, every one a Lyapunov pair; and the pair
  * on the fast grid (reference and partner on one tracker) against the brute-force grid. */
-static void test_dynamics_cache(void)
+static void test_dynamics_context(void)
 {
     char dir[] = "/tmp/gomboc-cache-XXXXXX";
     if (!mkdtemp(dir)) return;
@@ -359,22 +359,21 @@ static void test_dynamics_cache(void)
         {"II", "equation = paper\ncontact = grid"},
     };
     enum { RUNS = sizeof runs / sizeof runs[0] };
-    gb_dynamics_cache *cache = NULL;
-    int status = gb_dynamics_cache_create(&cache), same = 0;
+    gb_dynamics_context *context = NULL;
+    int status = gb_dynamics_context_create(&context), same = 0;
     gb_run_result alone[RUNS], shared[RUNS];
     memset(alone, 0, sizeof alone), memset(shared, 0, sizeof shared);
     for (int k = 0; k < RUNS && !status; k++) {
         gb_case scene;
         status = cache_scene(dir, "cache", runs[k].morphology, runs[k].model, &scene);
         if (!status) status = gb_run(&scene, NULL, &alone[k]);
-        scene.dynamics.cache = cache;
-        if (!status) status = gb_run(&scene, NULL, &shared[k]);
+        if (!status) status = gb_run_in(&scene, context, NULL, &shared[k]);
         same += !status && alone[k].state_fingerprint == shared[k].state_fingerprint &&
                 alone[k].switch_fingerprint == shared[k].switch_fingerprint &&
                 !memcmp(&alone[k].lyapunov.lambda_max, &shared[k].lyapunov.lambda_max, sizeof(double));
     }
-    gb_check c = {"6, 8.3", "44, 77", "runs sharing one dynamics cache (II, I, II fast grid; II rolling, continuous), each a Lyapunov pair",
-                  "the same runs without a shared cache", "exact: state and switch fingerprints, lambda_max bits"};
+    gb_check c = {"6, 8.3", "44, 77", "runs sharing one dynamics context (II, I, II fast grid; II rolling, continuous), each a Lyapunov pair",
+                  "the same runs without a shared context", "exact: state and switch fingerprints, lambda_max bits"};
     gb_check_true(&c, !status && same == RUNS, "%d of %d the same; lambda_max %.17g and %.17g (the first)", same, RUNS,
                   alone[0].lyapunov.lambda_max, shared[0].lyapunov.lambda_max);
     gb_check cb = {"6", "29, 77", "Table 1 paper model, Gomboc II, 12 periods: the Lyapunov pair on the fast grid (one tracker for both) == on the brute-force grid",
@@ -387,7 +386,7 @@ static void test_dynamics_cache(void)
                   (unsigned long long)alone[4].state_fingerprint);
     if (status) gb_error_clear();
     for (int k = 0; k < RUNS; k++) gb_run_result_free(&alone[k]), gb_run_result_free(&shared[k]);
-    gb_dynamics_cache_free(cache);
+    gb_dynamics_context_free(context);
     rmdir(dir);
 }
 
@@ -903,7 +902,7 @@ int verify_register_s5_dynamics(void)
         {"eq 23, 44: GSL adaptive steppers against the reference", test_adaptive_steppers, NULL},
         {"eq 29, 44: the trajectory tracker reproduces the brute-force grid run", test_tracker_equals_brute_force,
          "the fast-grid run of the paper's model equals the paper's brute-force run bit for bit"},
-        {"eq 44, 77: runs sharing a dynamics cache", test_dynamics_cache,
+        {"eq 44, 77: runs sharing a dynamics context", test_dynamics_context,
          "runs that share one body's mass properties, grid and hull (a scan's thread, a Lyapunov pair) give the "
          "bits of runs that build their own"},
         {"eq 53-65: the dimensionless run equals the dimensional one", test_nondimensional,

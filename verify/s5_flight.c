@@ -161,12 +161,12 @@ static int landing_sink(void *context, const gb_dynamics_impact *e)
 {
     landings *l = context;
     l->event_since = 1;
-    if (e->kind == GB_IMPACT_LANDING) l->in_flight = 0; /* a new flight begins after a bounce */
-    if (e->kind == GB_IMPACT_LIFT_OFF) {
+    if (e->kind == GB_DYNAMICS_IMPACT_LANDING) l->in_flight = 0; /* a new flight begins after a bounce */
+    if (e->kind == GB_DYNAMICS_IMPACT_LIFT_OFF) {
         l->lift_offs++;
         return GB_OK;
     }
-    if (e->kind != GB_IMPACT_LANDING) return GB_OK;
+    if (e->kind != GB_DYNAMICS_IMPACT_LANDING) return GB_OK;
     if (l->n == l->cap) {
         l->cap = l->cap ? 2 * l->cap : 64;
         l->t = realloc(l->t, l->cap * sizeof *l->t);

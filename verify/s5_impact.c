@@ -478,12 +478,12 @@ static int ledger_impact(void *context, const gb_dynamics_impact *e)
     ledger *l = context;
     double before[3], after[3];
     l->changes++;
-    if (e->kind == GB_IMPACT_LIFT) {
+    if (e->kind == GB_DYNAMICS_IMPACT_LIFT) {
         for (int i = 0; i < 3; i++) l->worst_momentum = fmax(l->worst_momentum, fabs(e->omega_after[i] - e->omega_before[i]));
         return GB_OK;
     }
     const double *const points[2] = {e->new_point, e->old_point};
-    const int both = e->contacts_after == 2 && e->kind != GB_IMPACT_SWITCH;
+    const int both = e->contacts_after == 2 && e->kind != GB_DYNAMICS_IMPACT_SWITCH;
     l->worst_rest = fmax(l->worst_rest, rest_after(e, points, 1 + both));
     momentum_about(&l->body, e->new_point, e->v_before, e->omega_before, before);
     momentum_about(&l->body, e->new_point, e->v_after, e->omega_after, after);

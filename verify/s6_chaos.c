@@ -1133,7 +1133,7 @@ static void test_impact_saltation(void)
         size_t chosen[2] = {0, 0};
         int have[2] = {it.n > 0, 0};
         for (size_t i = 0; i < it.n; i++)
-            if (it.kind[i] == GB_IMPACT_TWO_POINT && !have[1]) chosen[1] = i, have[1] = 1;
+            if (it.kind[i] == GB_DYNAMICS_IMPACT_TWO_POINT && !have[1]) chosen[1] = i, have[1] = 1;
         for (int c = 0; c < 2; c++) {
             double worst = NAN;
             const size_t step = have[c] ? (size_t)floor(it.t[chosen[c]] / h) : 0;

@@ -97,6 +97,20 @@ static double time_run(const char *m, gb_contact_model contact, gb_dynamics_vari
     return time_run_with(m, contact, variant, repeats, NULL, y, switches);
 }
 
+/* A fresh context for one timed run: the atlas file (continuous contact) and the grid's lowest-node
+ * search the bench is comparing, nothing else shared between repeats. */
+static gb_dynamics_context *bench_context(gb_contact_model contact)
+{
+    gb_dynamics_context *context = NULL;
+    if (gb_dynamics_context_create(&context) ||
+        gb_dynamics_context_files(context, contact == GB_CONTACT_MODEL_CONTINUOUS ? run_atlas_file : NULL, NULL)) {
+        fprintf(stderr, "bench: %s\n", gb_error_message());
+        exit(1);
+    }
+    if (contact == GB_CONTACT_MODEL_GRID) gb_dynamics_context_lowest(context, run_lowest, run_lowest_context);
+    return context;
+}
+
 /* time_run with the certificate's definition `certify` (NULL: the default); the certificate's counters
  * kept are those of the fastest repeat. */
 static double time_run_with(const char *m, gb_contact_model contact, gb_dynamics_variant variant, int repeats,
@@ -115,12 +129,12 @@ static double time_run_with(const char *m, gb_contact_model contact, gb_dynamics
         def.restitution = run_restitution;
         if (run_law == GB_CONTACT_LAW_UNILATERAL) /* one step, as a scene's (gb_case) */
             def.settle_time = gb_forcing_period(&def.forcing) / (double)gb_integrate_default_def().steps_per_period;
-        if (contact == GB_CONTACT_MODEL_CONTINUOUS) def.certificate = run_certificate, def.atlas_file = run_atlas_file;
-        if (contact == GB_CONTACT_MODEL_GRID) def.grid_lowest = run_lowest, def.grid_lowest_context = run_lowest_context;
+        if (contact == GB_CONTACT_MODEL_CONTINUOUS) def.certificate = run_certificate;
         gb_dynamics *d;
         const double R0[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1}, w0[3] = {0, 0, 0};
         const double setup_start = now();
-        if (gb_dynamics_create(&s, &def, &d) || gb_dynamics_init_state(d, 0.0, R0, w0, y)) {
+        gb_dynamics_context *context = bench_context(contact);
+        if (gb_dynamics_create_in(&s, &def, context, &d) || gb_dynamics_init_state(d, 0.0, R0, w0, y)) {
             fprintf(stderr, "bench: %s\n", gb_error_message());
             exit(1);
         }
@@ -140,13 +154,14 @@ static double time_run_with(const char *m, gb_contact_model contact, gb_dynamics
         if (contact == GB_CONTACT_MODEL_CONTINUOUS && t < best) gb_dynamics_certify_stats(d, &last_certificate);
         if (def.certificate == GB_CERTIFICATE_ATLAS && t < best)
             gb_dynamics_atlas_stats(d, &last_atlas, &last_atlas_fallbacks, &last_atlas_loaded);
-        if (def.certificate == GB_CERTIFICATE_ATLAS && gb_dynamics_save_atlas(d)) {
-            fprintf(stderr, "bench: %s\n", gb_error_message());
-            exit(1);
-        }
         if (t < best) gb_dynamics_contact_work(d, &last_queries, &last_nodes), last_setup = setup;
         if (t < best) best = t;
         gb_dynamics_free(d);
+        if (gb_dynamics_context_save(context)) {
+            fprintf(stderr, "bench: %s\n", gb_error_message());
+            exit(1);
+        }
+        gb_dynamics_context_free(context);
     }
     return best;
 }
@@ -161,7 +176,7 @@ static double time_lyapunov(const char *m, gb_contact_model contact, gb_dynamics
         gb_dynamics_def def = gb_dynamics_default_def();
         def.contact = contact;
         def.variant = variant;
-        if (contact == GB_CONTACT_MODEL_CONTINUOUS) def.certificate = run_certificate, def.atlas_file = run_atlas_file;
+        if (contact == GB_CONTACT_MODEL_CONTINUOUS) def.certificate = run_certificate;
         const gb_integrate_def idef = gb_integrate_default_def();
         const double R0[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1}, w0[3] = {0, 0, 0};
         gb_lyapunov_def ldef = gb_lyapunov_default_def();
@@ -170,7 +185,8 @@ static double time_lyapunov(const char *m, gb_contact_model contact, gb_dynamics
         const double start = now();
         gb_lyapunov_body *body;
         gb_lyapunov_result res;
-        int status = gb_lyapunov_body_create(bench_body(m, 0.12), &def, &idef, R0, w0, def.forcing.omega, &body);
+        gb_dynamics_context *context = bench_context(contact);
+        int status = gb_lyapunov_body_create_in(bench_body(m, 0.12), &def, context, &idef, R0, w0, def.forcing.omega, &body);
         if (!status) {
             const gb_lyapunov_pair_system ps = gb_lyapunov_body_pair(body);
             status = gb_lyapunov_pair(&ps, body, &ldef, 0.0, NULL, &res);
@@ -185,6 +201,11 @@ static double time_lyapunov(const char *m, gb_contact_model contact, gb_dynamics
         *lambda = res.lambda_max;
         gb_lyapunov_result_free(&res);
         gb_lyapunov_body_free(body);
+        if (gb_dynamics_context_save(context)) {
+            fprintf(stderr, "bench: %s\n", gb_error_message());
+            exit(1);
+        }
+        gb_dynamics_context_free(context);
     }
     return best;
 }
@@ -1126,7 +1147,7 @@ static int bench_scans(const char *gomboc, FILE *out)
                          "\"parallel_efficiency\": %.4f}", models[k].name, 16.0 / seconds[0], 16.0 / seconds[1], efficiency);
     }
     /* A whole map of the paper's model, whose points cost 1/7 of what they did before each thread kept
-     * its body's set-up (gb_dynamics_cache): in the 4 x 4 scan above the threads' own set-up and the
+     * its body's set-up (gb_dynamics_context): in the 4 x 4 scan above the threads' own set-up and the
      * process's start now weigh against 16 points of ~14 ms; here against 625 (once each: ~20 s). */
     double seconds[2] = {INFINITY, INFINITY};
     for (int threads = 1; threads <= 2; threads++) {

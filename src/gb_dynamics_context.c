@@ -1,0 +1,258 @@
+/* gb_dynamics_context — what a run of one body is built on, kept apart from its physics (gb_dynamics.h):
+ * the mass properties, the grid of nodes and the fast grid's tracker, the certificate and the atlas of
+ * verticals; the caller's context shares them between runs and holds the files of the caches, read when a
+ * run first needs them and written by gb_dynamics_context_save. The dynamics never touch a file. */
+#include "gb_dynamics_internal.h"
+
+#include "gb_contact.h"
+#include "gb_error.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+struct gb_dynamics_context {
+    gb_surface props_surface; /* the body and mass of `props` (has_props) */
+    double props_mass;
+    gb_massprops props;
+    int has_props;
+    gb_surface grid_surface;  /* the body and definition of `grid` (and `tracker`) */
+    gb_contact_grid_def grid_def;
+    gb_contact_grid *grid;
+    gb_contact_tracker *tracker;
+    int hull_loaded;          /* the tracker came from hull_file (else Qhull built it: saved when named) */
+    int hull_written;         /* hull_file holds the tracker's hull (saved) */
+    gb_surface atlas_surface; /* the body and definition of `atlas` */
+    gb_atlas_def atlas_def;
+    gb_atlas *atlas;
+    int atlas_loaded;         /* the atlas came from atlas_file */
+    int atlas_written;        /* atlas_file holds this atlas as of atlas_saved_build (loaded or saved) */
+    double atlas_saved_build; /* the atlas's build seconds at its load or last save */
+    char *atlas_file, *hull_file;
+    gb_dynamics_lowest_node lowest;
+    void *lowest_user;
+};
+
+int gb_dynamics_context_create(gb_dynamics_context **out)
+{
+    *out = calloc(1, sizeof **out);
+    return *out ? GB_OK : gb_error_set(GB_ENOMEM, "out of memory for the dynamics context");
+}
+
+void gb_dynamics_context_free(gb_dynamics_context *c)
+{
+    if (!c) return;
+    gb_contact_tracker_free(c->tracker);
+    gb_contact_grid_free(c->grid);
+    gb_atlas_free(c->atlas);
+    free(c->atlas_file);
+    free(c->hull_file);
+    free(c);
+}
+
+static int set_path(char **slot, const char *path)
+{
+    free(*slot);
+    *slot = path ? strdup(path) : NULL;
+    return !path || *slot ? GB_OK : gb_error_set(GB_ENOMEM, "out of memory for a file name");
+}
+
+int gb_dynamics_context_files(gb_dynamics_context *c, const char *atlas_file, const char *hull_file)
+{
+    const int status = set_path(&c->atlas_file, atlas_file);
+    return status ? status : set_path(&c->hull_file, hull_file);
+}
+
+void gb_dynamics_context_lowest(gb_dynamics_context *c, gb_dynamics_lowest_node lowest, void *user)
+{
+    c->lowest = lowest, c->lowest_user = user;
+}
+
+size_t gb_dynamics_context_atlas_bytes(const gb_dynamics_context *c)
+{
+    if (!c->atlas) return 0;
+    gb_atlas_stats stats;
+    gb_atlas_get_stats(c->atlas, &stats);
+    return stats.bytes;
+}
+
+void gb_dynamics_context_forget_atlas(gb_dynamics_context *c)
+{
+    gb_atlas_free(c->atlas);
+    c->atlas = NULL;
+    c->atlas_loaded = c->atlas_written = 0;
+    c->atlas_saved_build = 0.0;
+}
+
+int gb_dynamics_context_save(gb_dynamics_context *c)
+{
+    int status = GB_OK;
+    if (c->atlas && c->atlas_file) {
+        /* the file holds this atlas already when it was loaded or saved and no cell was proved since */
+        gb_atlas_stats st;
+        gb_atlas_get_stats(c->atlas, &st);
+        if (!c->atlas_written || st.build_seconds != c->atlas_saved_build) {
+            /* the cells another run wrote there since are kept (missing or stale: replaced) */
+            status = gb_atlas_merge_save(c->atlas, c->atlas_file);
+            if (!status) c->atlas_written = 1, c->atlas_saved_build = st.build_seconds;
+        }
+    }
+    if (!status && c->tracker && c->hull_file && !c->hull_loaded && !c->hull_written && gb_contact_tracker_vertices(c->tracker)) {
+        status = gb_contact_tracker_save(c->tracker, c->hull_file);
+        c->hull_written = !status;
+    }
+    return status;
+}
+
+static int same_body(const gb_surface *a, const gb_surface *b)
+{
+    return a->morphology == b->morphology && !memcmp(&a->beta, &b->beta, sizeof a->beta);
+}
+
+static int same_grid(const gb_contact_grid_def *a, const gb_contact_grid_def *b)
+{
+    return a->n_phi == b->n_phi && a->n_theta == b->n_theta && a->nodes == b->nodes && a->leaf_size == b->leaf_size;
+}
+
+/* The body's mass properties: the context's when it holds this body's and mass's, else computed (and kept
+ * there: they follow the last body). */
+static int body_massprops(gb_dynamics_context *c, const gb_surface *surface, const gb_dynamics_def *def, gb_massprops *props)
+{
+    if (c->has_props && same_body(&c->props_surface, surface) && !memcmp(&c->props_mass, &def->mass, sizeof def->mass)) {
+        *props = c->props;
+        return GB_OK;
+    }
+    gb_massprops_def mdef = gb_massprops_default_def();
+    mdef.mass = def->mass;
+    const int status = gb_massprops_compute(surface, &mdef, props);
+    if (!status) c->props_surface = *surface, c->props_mass = def->mass, c->props = *props, c->has_props = 1;
+    return status;
+}
+
+/* The grid, and for the fast grid its tracker (from the hull file when it holds this grid's hull, else by
+ * Qhull): the context's when it holds this body's and grid's; else built, and kept in a context that holds
+ * none (the first body's stay, so a run never loses what another run uses), or else the run's own. */
+static int body_grid(gb_dynamics *d, gb_dynamics_context *c, const gb_surface *surface, const gb_dynamics_def *def)
+{
+    const int fast = def->contact == GB_CONTACT_MODEL_FAST_GRID;
+    const int cached = c->grid && same_body(&c->grid_surface, surface) && same_grid(&c->grid_def, &def->grid);
+    int status = GB_OK;
+    if (cached) {
+        d->grid = c->grid, d->grid_borrowed = 1;
+        if (!fast) return GB_OK;
+        if (c->tracker) {
+            d->tracker = c->tracker;
+            return GB_OK;
+        }
+    } else {
+        status = gb_contact_grid_create(surface, &def->grid, &d->grid);
+        if (status) return status;
+        if (!c->grid) c->grid = d->grid, c->grid_surface = *surface, c->grid_def = def->grid, d->grid_borrowed = 1;
+        if (!fast) return GB_OK;
+    }
+    /* a hull file that is missing, stale or damaged is built anew by Qhull (and replaced when saved) */
+    const int loaded = d->grid_borrowed && c->hull_file && gb_contact_tracker_load(d->grid, c->hull_file, &d->tracker) == GB_OK;
+    if (!loaded) {
+        gb_error_clear();
+        status = gb_contact_tracker_create(d->grid, &d->tracker);
+    }
+    if (!status && d->grid_borrowed) c->tracker = d->tracker, c->hull_loaded = loaded;
+    return status;
+}
+
+/* The atlas of verticals: the context's when it was made for this body and definition, made there (and read
+ * from the atlas file, when it holds this atlas) when the context has none, else the run's own. */
+static int body_atlas(gb_dynamics *d, gb_dynamics_context *c, const gb_surface *surface, const gb_dynamics_def *def)
+{
+    gb_atlas_def adef = def->atlas;
+    adef.height_tol = def->certify.height_tol;
+    if (c->atlas && same_body(&c->atlas_surface, surface) && !memcmp(&c->atlas_def, &adef, sizeof adef)) {
+        d->atlas = c->atlas, d->atlas_borrowed = 1;
+        return GB_OK;
+    }
+    const int status = gb_atlas_create(surface, &adef, &d->atlas);
+    if (status || c->atlas) return status;
+    c->atlas = d->atlas, c->atlas_surface = *surface, c->atlas_def = adef, d->atlas_borrowed = 1;
+    /* a file that is missing, stale or damaged is built anew (and replaced when saved) */
+    c->atlas_loaded = c->atlas_file && gb_atlas_load(c->atlas, c->atlas_file) == GB_OK;
+    if (!c->atlas_loaded) gb_error_clear();
+    c->atlas_written = c->atlas_loaded, c->atlas_saved_build = 0.0;
+    return GB_OK;
+}
+
+int gb_dyn_body_create(gb_dynamics *d)
+{
+    if (!d->context) {
+        const int status = gb_dynamics_context_create(&d->context);
+        if (status) return status;
+        d->own_context = 1;
+    }
+    gb_dynamics_context *c = d->context;
+    const gb_surface *surface = &d->surface;
+    const gb_dynamics_def *def = &d->def;
+    gb_massprops props;
+    int status = body_massprops(c, surface, def, &props);
+    if (status) return status;
+    const double l2 = def->length * def->length;
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) d->inertia[i][j] = props.inertia[i][j] * l2;
+    d->mean_radius = props.L * def->length;
+    if (def->contact != GB_CONTACT_MODEL_CONTINUOUS) return body_grid(d, c, surface, def);
+    status = gb_certify_create(surface, &def->certify, &d->certify);
+    if (!status && def->certificate == GB_CERTIFICATE_ATLAS) status = body_atlas(d, c, surface, def);
+    return status;
+}
+
+void gb_dyn_body_free(gb_dynamics *d)
+{
+    if (!d->grid_borrowed) {
+        gb_contact_tracker_free(d->tracker);
+        gb_contact_grid_free(d->grid);
+    }
+    gb_certify_free(d->certify);
+    if (!d->atlas_borrowed) gb_atlas_free(d->atlas);
+    if (d->own_context) gb_dynamics_context_free(d->context);
+}
+
+int gb_dyn_lowest_hook(const gb_dynamics *d, gb_dynamics_lowest_node *lowest, void **user)
+{
+    if (!d->context || !d->context->lowest) return 0;
+    *lowest = d->context->lowest, *user = d->context->lowest_user;
+    return 1;
+}
+
+size_t gb_dynamics_grid_size(const gb_dynamics *d) { return d->grid ? gb_contact_grid_size(d->grid) : 0; }
+
+void gb_dynamics_contact_work(const gb_dynamics *d, size_t *queries, size_t *nodes)
+{
+    gb_dynamics_lowest_node lowest;
+    void *user;
+    const int counted = d->def.contact != GB_CONTACT_MODEL_CONTINUOUS &&
+                        !(d->def.contact == GB_CONTACT_MODEL_GRID && gb_dyn_lowest_hook(d, &lowest, &user));
+    *queries = counted ? d->contact_queries : 0;
+    *nodes = counted ? d->nodes_visited : 0;
+}
+
+int gb_dynamics_certify_stats(const gb_dynamics *d, gb_certify_stats *out)
+{
+    if (!d->certify) return gb_error_set(GB_EINVAL, "the certificate belongs to continuous contact only");
+    gb_certify_get_stats(d->certify, out);
+    return GB_OK;
+}
+
+int gb_dynamics_atlas_stats(const gb_dynamics *d, gb_atlas_stats *out, size_t *fallbacks, int *loaded)
+{
+    if (!d->atlas) return gb_error_set(GB_EINVAL, "the atlas belongs to continuous contact with certificate = atlas only");
+    gb_atlas_get_stats(d->atlas, out);
+    *fallbacks = d->atlas_fallbacks;
+    *loaded = d->atlas == d->context->atlas && d->context->atlas_loaded;
+    return GB_OK;
+}
+
+int gb_dynamics_hull_stats(const gb_dynamics *d, size_t *vertices, int *loaded)
+{
+    if (!d->tracker) return gb_error_set(GB_EINVAL, "the contact model %s has no hull (allowed: fast-grid)",
+                                         gb_contact_model_name(d->def.contact));
+    *vertices = gb_contact_tracker_vertices(d->tracker);
+    *loaded = d->tracker == d->context->tracker && d->context->hull_loaded;
+    return GB_OK;
+}
