@@ -96,19 +96,12 @@ typedef struct gb_scan {
  * ...)". On success the scan holds the base scene's text: gb_scan_free. */
 int gb_scan_load(const char *path, gb_scan *out);
 
-/* The scan file's text alone (`path` for messages; the base scene is neither read nor checked): what
- * gb_scan_load does before it reads the base scene. For the fuzzer. */
-int gb_scan_parse(const char *path, const char *text, size_t size, gb_scan *out);
-
 void gb_scan_free(gb_scan *scan);
 
 size_t gb_scan_points(const gb_scan *scan);
 
 /* The coordinates of point `index` (row-major: index = iy · count_x + ix), in the keys' own units. */
 void gb_scan_coordinates(const gb_scan *scan, size_t index, double *x, double *y);
-
-/* The k-th uniformly random attitude of a random axis, as the case file's "axis-angle X,Y,Z,ANGLE". */
-void gb_scan_random_attitude(unsigned long seed, size_t k, char *text, size_t size);
 
 /* The scene of point `index`. */
 int gb_scan_point_case(const gb_scan *scan, size_t index, gb_case *out);
@@ -142,78 +135,70 @@ typedef struct gb_scan_metrics {
  * not defined (GB_EDOM from it: no strict top, no saddle; or g ≤ 0). */
 int gb_scan_melnikov_margins(const gb_case *scene, double *margin, double *margin_eq93);
 
-/* The reduced model costs a table per body (mass, g) and the integrals (eqs 88–90) once per ω, about a
- * second each, while the margin of a point is then a one-dimensional maximisation. A scan computes them
- * once for the points it will run: plan the distinct bodies and frequencies of `points[0..count)`, then
- * compute every body (gb_scan_melnikov_body) before any frequency (gb_scan_melnikov_frequency); distinct
- * indices may run on threads at once. A point's margins from the plan are those of
- * gb_scan_melnikov_margins, bit for bit. A scan without the metric plans nothing. */
-typedef struct gb_scan_melnikov gb_scan_melnikov;
-
-int gb_scan_melnikov_plan(const gb_scan *scan, const size_t *points, size_t count, gb_scan_melnikov **out);
-size_t gb_scan_melnikov_bodies(const gb_scan_melnikov *plan);
-size_t gb_scan_melnikov_frequencies(const gb_scan_melnikov *plan);
-int gb_scan_melnikov_body(gb_scan_melnikov *plan, size_t i);
-int gb_scan_melnikov_frequency(gb_scan_melnikov *plan, size_t i);
-void gb_scan_melnikov_free(gb_scan_melnikov *plan);
-
-/* Run point `index`; metrics not asked for are NAN. The margins come from `melnikov` (computed; it must
- * have planned this point) or, when it is NULL, are computed for this point alone. A scan of margins
- * alone runs no dynamics: the run's fingerprints are then 0. */
-int gb_scan_point_run(const gb_scan *scan, const gb_scan_melnikov *melnikov, size_t index, gb_scan_metrics *out);
-
-/* The same in the context the points of one thread share, which the caller keeps between them
- * (gb_dynamics_context: the body's mass properties, grid and hull, and the atlas of verticals, read from
- * scan->atlas_file by the first point that needs it; writing it back is the caller's). The results are the
- * same bit for bit. */
-int gb_scan_point_run_in(const gb_scan *scan, const gb_scan_melnikov *melnikov, size_t index, gb_dynamics_context *context,
-                         gb_scan_metrics *out);
-
-/* The accumulators of the per-sample metrics (exposed for their checks against closed forms). */
-typedef struct gb_scan_accumulator {
-    double first_t;                    /* samples at t ≥ first_t count */
-    size_t samples;
-    double omega2_sum, height_sum, t_start, t_last;
-    size_t switches_start, switches_last;
-} gb_scan_accumulator;
-
-void gb_scan_accumulate(gb_scan_accumulator *a, double t, const double omega[3], double height, size_t switches);
-/* omega_rms, mean height and switch rate of what was accumulated (NAN when nothing was). */
-void gb_scan_accumulated(const gb_scan_accumulator *a, double *omega_rms, double *mean_height, double *switch_rate);
-
-/* The lifetime of the chaos in a record λ_inst[0..n) (see gb_scan_metrics.chaos_lifetime). */
-double gb_scan_chaos_lifetime(const double *lambda, size_t n, double periods_per_interval);
+/* Run point `index` alone; metrics not asked for are NAN. A scan of margins alone runs no dynamics: the
+ * run's fingerprints are then 0. */
+int gb_scan_point_run(const gb_scan *scan, size_t index, gb_scan_metrics *out);
 
 /* The CSV header and one row (every metric %.17g, fingerprints in hex); each ends with '\n'. The header names
- * the columns: index, the two axes by their keys (SECTION.KEY, such as forcing.omega), then the metrics
- * (gb_scan_csv_metric_columns). */
+ * the columns: index, the two axes by their keys (SECTION.KEY, such as forcing.omega), then the metrics. */
 int gb_scan_csv_header(const gb_scan *scan, char *out, size_t size);
-const char *gb_scan_csv_metric_columns(void);
 int gb_scan_csv_row(const gb_scan_metrics *m, size_t index, char *out, size_t size);
 
-/* The metrics of a point that failed under failed_points = record: its coordinates, every metric NaN,
- * no certificate counts, zero fingerprints. */
-void gb_scan_failed_metrics(const gb_scan *scan, size_t index, gb_scan_metrics *out);
-/* Parse a row written by gb_scan_csv_row (a journal line): 0, or GB_EINVAL. */
-int gb_scan_csv_parse(const char *line, size_t *index, gb_scan_metrics *out);
+/* ---- running a scan ----
+ * gb_scan_run runs the points of a scan on threads (POSIX threads: one work queue of points, each thread
+ * pulling the next; docs/layout.md says why not OpenMP) and hands each finished point to the caller, one
+ * at a time, as it finishes. The results do not depend on the number of threads: every point is the run
+ * of its scene, bit for bit. Before the points, the reduced models and Melnikov integrals the points'
+ * margins need are computed once each, on the same threads (bodies, then frequencies).
+ *
+ * Each thread keeps a gb_dynamics_context from point to point (the body's mass properties, grid and hull;
+ * and the atlas of verticals of scan->atlas_file, merged with its file and written back every
+ * GB_SCAN_ATLAS_SAVE_POINTS points it ran and at its end, and let go beyond GB_SCAN_ATLAS_MEMORY bytes), so
+ * that a point costs its integration, not its set-up. */
+#define GB_SCAN_ATLAS_SAVE_POINTS 8
+#define GB_SCAN_ATLAS_MEMORY ((size_t)256 << 20)
 
-/* ---- the journal of an interrupted scan ----
- * Its first line names the scan (the BLAKE2b-256 identity of the scan file and base scene), the binary
- * and the number of points; each further line is one finished point: its CSV row (gb_scan_csv_row) and
- * the seal (gb_seal: keyed BLAKE2b-256) of the header and the row. A journal is verified, never trusted:
- * every line must carry a seal that verifies under this user's key (so an edited value is refused even
- * when whoever edited it recomputed a checksum), read back to the same row, hold the point's own
- * coordinates, and name a point of the scan; a point twice must be the same twice. Only a half-written
- * last line (no '\n') may go; an empty journal holds no points. */
-#define GB_SCAN_JOURNAL_LINE_MAX 1200
-void gb_scan_journal_header(const gb_scan *scan, uint64_t binary, char *out, size_t size);
-/* The journal line of a CSV row (GB_EIO when there is no key to seal it). */
-int gb_scan_journal_line(const char *header, const char *row, char *out, size_t size);
-/* Read a journal's bytes (`name` for messages) into results/done (each of gb_scan_points entries,
- * done zeroed by the caller): GB_OK with the points read in *count and in *keep the bytes to keep
- * (all but a half-written last line), or GB_EINVAL naming the line and what is wrong with it. */
-int gb_scan_journal_read(const gb_scan *scan, const char *name, const char *header, const char *text, size_t size,
-                         gb_scan_metrics *results, unsigned char *done, size_t *count, size_t *keep);
+typedef enum gb_scan_phase {
+    GB_SCAN_PHASE_MELNIKOV = 0, /* the reduced models and their integrals (tasks: models + frequencies) */
+    GB_SCAN_PHASE_POINTS = 1    /* the points */
+} gb_scan_phase;
+
+typedef struct gb_scan_progress {
+    gb_scan_phase phase;
+    size_t done, total;       /* the phase's tasks finished by this process, and their number */
+    size_t models, frequencies; /* GB_SCAN_PHASE_MELNIKOV: the reduced models and the frequencies planned */
+    double seconds;           /* wall time since the phase began */
+} gb_scan_progress;
+
+typedef struct gb_scan_runner {
+    unsigned threads;         /* 0: one per online processor; at most 256 */
+    /* This process runs the i-th point not yet done for i ≡ rank (mod ranks) (MPI ranks share a scan so):
+     * 0 and 1 run them all. */
+    size_t rank, ranks;
+    const unsigned char *done; /* gb_scan_points entries: 1 where a point is done already (a journal's), not
+                                * run again; NULL: none */
+    /* A finished point: its metrics and its CSV row (gb_scan_csv_row). Called one at a time, from the
+     * thread that ran it. Nonzero (a gb_ status, its message set by gb_error_set) stops the scan with it. */
+    int (*finished)(void *user, size_t index, const gb_scan_metrics *metrics, const char *row);
+    /* What the caller should hear without the scan stopping (may be NULL), one at a time: a point whose
+     * computation failed under failed_points = record ("point K (...) failed, recorded with NaN metrics:
+     * ...": its `finished` call follows), a shared atlas that could not be written. */
+    void (*notice)(void *user, const char *message);
+    /* Progress (may be NULL), one call at a time: at each phase's start (done = 0) and end (done = total),
+     * and between at most every `progress_seconds` (0: 2 s). A phase with no task is not reported. */
+    void (*progress)(void *user, const gb_scan_progress *progress);
+    double progress_seconds;
+    void *user;
+} gb_scan_runner;
+
+/* Run the scan's points (runner->done's excepted) as runner says. GB_OK, or the first failure: a point's
+ * ("point K (SECTION.KEY = X, SECTION.KEY = Y) failed: why", its gb_ status; the points running then finish,
+ * no new one starts), a `finished` call's, or GB_EINVAL for a runner out of range. *points_run (may be
+ * NULL) counts the points this process finished. */
+int gb_scan_run(const gb_scan *scan, const gb_scan_runner *runner, size_t *points_run);
+
+/* The threads gb_scan_run uses for runner->threads = `threads` (0: one per online processor). */
+unsigned gb_scan_threads(unsigned threads);
 
 #ifdef __cplusplus
 }

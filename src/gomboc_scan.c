@@ -4,7 +4,7 @@
 
 #include "gb_error.h"
 #include "gb_parse.h"
-#include "gb_scan.h"
+#include "gb_scan_internal.h"
 
 #include <errno.h>
 #include <fcntl.h>
@@ -17,9 +17,6 @@
 #include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
-#ifdef _OPENMP
-#include <omp.h>
-#endif
 #ifdef GOMBOC_MPI
 #include <mpi.h>
 #endif
@@ -34,7 +31,7 @@ static const char *usage_scan =
     "               as read, the environment and the timings. NAME is SCAN without .ini\n"
     "  --resume     finish an interrupted scan from its journal (NAME-scan.journal in DIR): the points\n"
     "               it holds are not run again, and the CSV is byte for byte that of an uninterrupted run\n"
-    "  --threads N  points run in parallel on N threads (1 ... 256; default: OpenMP's own choice);\n"
+    "  --threads N  points run in parallel on N threads (1 ... 256; default: one per online processor);\n"
     "               the results do not depend on N\n"
     "  --atlas FILE ([model] certificate = atlas in the base scene, or [scan] atlas = shared) the points\n"
     "               share one atlas of verticals through FILE (built by the first points when FILE is\n"
@@ -163,7 +160,7 @@ static cJSON *axis_json(const gb_scan_axis *a)
 }
 
 static int write_outputs(const char *dir, const char *path, const gb_scan *scan, const gb_scan_metrics *results,
-                         int ranks, int threads, double seconds, size_t run_here)
+                         int ranks, unsigned threads, double seconds, size_t run_here)
 {
     gb_file_set set = {0};
     int status = GB_OK;
@@ -198,11 +195,7 @@ static int write_outputs(const char *dir, const char *path, const gb_scan *scan,
         snprintf(fp, sizeof fp, "%016" PRIx64, scan->fingerprint);
         cJSON_AddStringToObject(root, "fingerprint", fp);
         cJSON *env = cJSON_AddObjectToObject(root, "environment");
-#ifdef _OPENMP
-        cJSON_AddStringToObject(env, "parallel", "OpenMP");
-#else
-        cJSON_AddStringToObject(env, "parallel", "none (built without OpenMP)");
-#endif
+        cJSON_AddStringToObject(env, "parallel", "POSIX threads");
 #ifdef GOMBOC_MPI
         cJSON_AddStringToObject(env, "distributed", "MPI");
 #else
@@ -229,17 +222,18 @@ static int write_outputs(const char *dir, const char *path, const gb_scan *scan,
 /* The ranks of the run: one, rank 0, without MPI. Rank 0 alone touches the journal and the outputs. */
 typedef struct ranks {
     int rank, size;
+    int one_thread; /* MPI without MPI_THREAD_SERIALIZED: the rank's points on one thread */
 } ranks;
 
-/* Everything the loop over points shares, under the critical section of the journal. */
+/* What the callbacks of gb_scan_run share (they run one at a time). */
 typedef struct scan_state {
     const gb_scan *scan;
+    const ranks *r;
     journal *j;
     gb_scan_metrics *results;
     unsigned char *done;
-    size_t points, finished, run_here;
-    double start, last_report;
-    double points_start;          /* when the points began (after the margins' models): the rate's origin */
+    size_t points, finished, run_here; /* finished: in the journal; run_here: finished by this run, on any rank */
+    double last_report, points_start;   /* points_start: when the points began (the rate's origin) */
     int failed, workers_done;
     char failure[GB_ERROR_MAX];
 } scan_state;
@@ -250,16 +244,6 @@ static void fail_with(scan_state *st, const char *message)
     if (st->failed) return;
     snprintf(st->failure, sizeof st->failure, "%s", message);
     st->failed = 1;
-}
-
-static void fail_point(scan_state *st, size_t k)
-{
-    double x, y;
-    char message[sizeof st->failure];
-    gb_scan_coordinates(st->scan, k, &x, &y);
-    snprintf(message, sizeof message, "point %zu (%s.%s = %.17g, %s.%s = %.17g) failed: %s", k, st->scan->axis[0].section,
-             st->scan->axis[0].key, x, st->scan->axis[1].section, st->scan->axis[1].key, y, gb_error_message());
-    fail_with(st, message);
 }
 
 /* Rank 0: a finished point, as its journal row, appended to the journal and kept. */
@@ -333,159 +317,64 @@ static int shared_status(const ranks *r, int status)
     return status;
 }
 
-/* The reduced models and Melnikov integrals this rank's points need (every i-th of todo[0..left) from
- * its rank), computed on the threads before the points run: bodies first, then frequencies. NULL after
- * a failure, which is recorded. */
-static gb_scan_melnikov *prepare_melnikov(scan_state *st, const ranks *r, const size_t *todo, size_t left)
+/* gb_scan_run's callbacks: a finished point goes to the journal (rank 0, which then takes the other
+ * ranks' messages) or to rank 0; a failure on rank 0's side stops this rank's points. */
+static int point_finished(void *user, size_t k, const gb_scan_metrics *m, const char *row)
 {
-    const size_t step = (size_t)r->size, mine = left > (size_t)r->rank ? (left - (size_t)r->rank + step - 1) / step : 0;
-    size_t *points = malloc((mine ? mine : 1) * sizeof *points);
-    if (!points) {
-        fail_with(st, "out of memory for the list of points");
-        return NULL;
+    scan_state *st = user;
+    if (st->r->rank == 0) {
+        accept_point(st, k, m, row);
+#ifdef GOMBOC_MPI
+        while (st->r->size > 1 && receive_one(st, 0)) continue;
+#endif
+        return st->failed ? gb_error_set(GB_EIO, "%s", st->failure) : GB_OK;
     }
-    for (size_t i = (size_t)r->rank, n = 0; i < left; i += step) points[n++] = todo[i];
-    gb_scan_melnikov *plan = NULL;
-    int status = gb_scan_melnikov_plan(st->scan, points, mine, &plan);
-    free(points);
-    if (!status && gb_scan_melnikov_frequencies(plan) && r->rank == 0)
+#ifdef GOMBOC_MPI
+    send_to_root(row, TAG_ROW);
+#endif
+    return GB_OK;
+}
+
+static void point_notice(void *user, const char *message)
+{
+    (void)user;
+    fprintf(stderr, "gomboc scan: %s\n", message);
+}
+
+/* Rank 0 reports the Melnikov phase; the points' progress is accept_point's (it counts every rank's). */
+static void scan_progress(void *user, const gb_scan_progress *p)
+{
+    scan_state *st = user;
+    if (p->phase == GB_SCAN_PHASE_POINTS) {
+        if (!p->done) st->points_start = st->last_report = gb_wall_seconds();
+        return;
+    }
+    if (st->r->rank != 0) return;
+    if (!p->done)
         fprintf(stderr, "gomboc scan: the Melnikov margins need %zu reduced model(s) and their integrals at %zu frequency(ies)\n",
-                gb_scan_melnikov_bodies(plan), gb_scan_melnikov_frequencies(plan));
-    const double start = gb_wall_seconds();
-    double last_report = start;
-    const size_t tasks = status ? 0 : gb_scan_melnikov_bodies(plan) + gb_scan_melnikov_frequencies(plan);
-    size_t finished = 0;
-    for (int phase = 0; !status && phase < 2; phase++) {
-        const size_t n = phase ? gb_scan_melnikov_frequencies(plan) : gb_scan_melnikov_bodies(plan);
-#ifdef _OPENMP
-#pragma omp parallel for schedule(dynamic, 1)
-#endif
-        for (size_t k = 0; k < n; k++) {
-            const int s = phase ? gb_scan_melnikov_frequency(plan, k) : gb_scan_melnikov_body(plan, k);
-#ifdef _OPENMP
-#pragma omp critical(scan_journal)
-#endif
-            {
-                if (s && !status) {
-                    char message[sizeof st->failure];
-                    snprintf(message, sizeof message, "the Melnikov margins' reduced model failed: %s", gb_error_message());
-                    fail_with(st, message);
-                    status = s;
-                }
-                finished++;
-                const double now = gb_wall_seconds();
-                if (r->rank == 0 && now - last_report >= 2.0 && finished < tasks) {
-                    fprintf(stderr, "gomboc scan: the Melnikov margins: %zu of %zu models and frequencies, %.0f s\n", finished,
-                            tasks, now - start);
-                    last_report = now;
-                }
-            }
-        }
-    }
-    if (!status && gb_scan_melnikov_frequencies(plan) && r->rank == 0)
-        fprintf(stderr, "gomboc scan: the Melnikov margins' models and integrals in %.1f s\n", gb_wall_seconds() - start);
-    if (status) {
-        if (!st->failed) fail_with(st, gb_error_message());
-        gb_scan_melnikov_free(plan);
-        return NULL;
-    }
-    return plan;
+                p->models, p->frequencies);
+    else if (p->done < p->total)
+        fprintf(stderr, "gomboc scan: the Melnikov margins: %zu of %zu models and frequencies, %.0f s\n", p->done, p->total,
+                p->seconds);
+    else
+        fprintf(stderr, "gomboc scan: the Melnikov margins' models and integrals in %.1f s\n", p->seconds);
 }
 
-enum { ATLAS_SAVE_POINTS = 8 };
-/* A thread's atlas beyond this memory (the enclosures its proofs kept) is written and read back anew:
- * the file holds its cells, not the enclosures. */
-#define ATLAS_MEMORY ((size_t)256 << 20)
-
-/* The thread's atlas merged with its file and written back, when it proved a cell since the last time
- * (gb_dynamics_context_save; a file that cannot be written costs the sharing, not the scan: the points'
- * results do not depend on the atlas). The writers take turns under the directory's lock, threads and
- * processes alike: two merging before either wrote would each write a file without the other's cells. */
-static void save_atlas(gb_dynamics_context *context)
+/* Run this rank's share of the points not yet done (gb_scan_run: the i-th of them for i ≡ rank (mod
+ * ranks), on `threads` threads); rank 0 journals its own points and those the other ranks send. */
+static void run_points(scan_state *st, unsigned threads)
 {
-    if (gb_dynamics_context_save(context)) {
-        fprintf(stderr, "gomboc scan: the shared atlas was not written: %s\n", gb_error_message());
-        gb_error_clear();
-    }
-}
-
-/* Run this rank's share of the points not yet done: the i-th of them for i ≡ rank (mod ranks), on the
- * rank's threads; rank 0 journals its own points and those the other ranks send. */
-static void run_points(scan_state *st, const ranks *r)
-{
-    size_t *todo = malloc((st->points ? st->points : 1) * sizeof *todo), left = 0;
-    if (!todo) fail_with(st, "out of memory for the list of points");
-    for (size_t k = 0; todo && k < st->points; k++)
-        if (!st->done[k]) todo[left++] = k;
-    const size_t step = (size_t)r->size;
-    gb_scan_melnikov *melnikov = todo ? prepare_melnikov(st, r, todo, left) : NULL;
+    const ranks *r = st->r;
+    const gb_scan_runner runner = {.threads = threads, .rank = (size_t)r->rank, .ranks = (size_t)r->size,
+                                   .done = st->done, .finished = point_finished, .notice = point_notice,
+                                   .progress = scan_progress, .user = st};
     st->points_start = st->last_report = gb_wall_seconds();
-#ifdef _OPENMP
-#pragma omp parallel
-#endif
-    {
-    /* Each thread's context keeps the body's mass properties, grid and hull and the shared atlas from point
-     * to point; the thread merges the atlas with its file and writes it back every ATLAS_SAVE_POINTS points
-     * it ran and at its end, so that the threads and the ranks still share their cells through the file. */
-    gb_dynamics_context *context = NULL;
-    if (gb_dynamics_context_create(&context) || gb_dynamics_context_files(context, st->scan->atlas_file, NULL)) {
-        gb_error_clear(); /* none: each point builds its own set-up and atlas */
-        gb_dynamics_context_free(context);
-        context = NULL;
-    }
-    size_t since_save = 0;
-#ifdef _OPENMP
-#pragma omp for schedule(dynamic, 1)
-#endif
-    for (size_t i = (size_t)r->rank; i < left; i += step) {
-        int skip;
-#ifdef _OPENMP
-#pragma omp atomic read
-#endif
-        skip = st->failed;
-        if (skip) continue;
-        const size_t k = todo[i];
-        gb_scan_metrics m;
-        int s = gb_scan_point_run_in(st->scan, melnikov, k, context, &m);
-        if (context && ++since_save == ATLAS_SAVE_POINTS) {
-            save_atlas(context), since_save = 0;
-            if (gb_dynamics_context_atlas_bytes(context) > ATLAS_MEMORY) gb_dynamics_context_forget_atlas(context);
-        }
-        if (s && st->scan->record_failures && s != GB_ENOMEM && s != GB_EIO && s != GB_EINVAL && s != GB_EDOM) {
-            /* failed_points = record: the computation failed (the model cannot follow this point); a row of NaN */
-            double x, y;
-            gb_scan_coordinates(st->scan, k, &x, &y);
-            fprintf(stderr, "gomboc scan: point %zu (%s.%s = %.17g, %s.%s = %.17g) failed, recorded with NaN metrics: %s\n", k,
-                    st->scan->axis[0].section, st->scan->axis[0].key, x, st->scan->axis[1].section, st->scan->axis[1].key, y,
-                    gb_error_message());
-            gb_scan_failed_metrics(st->scan, k, &m);
-            gb_error_clear();
-            s = GB_OK;
-        }
-        char row[1024];
-        const int failure = s ? s : gb_scan_csv_row(&m, k, row, sizeof row);
-#ifdef _OPENMP
-#pragma omp critical(scan_journal)
-#endif
-        {
-            if (failure) fail_point(st, k);
-            if (r->rank == 0) {
-                if (!failure) accept_point(st, k, &m, row);
+    if (gb_scan_run(st->scan, &runner, NULL)) {
 #ifdef GOMBOC_MPI
-                while (r->size > 1 && receive_one(st, 0)) continue;
+        if (r->rank != 0) send_to_root(gb_error_message(), TAG_FAILURE);
 #endif
-            }
-#ifdef GOMBOC_MPI
-            else if (failure) send_to_root(st->failure, TAG_FAILURE);
-            else send_to_root(row, TAG_ROW);
-#endif
-        }
+        fail_with(st, gb_error_message());
     }
-    if (context) save_atlas(context);
-    gb_dynamics_context_free(context);
-    }
-    free(todo);
-    gb_scan_melnikov_free(melnikov);
 #ifdef GOMBOC_MPI
     if (r->rank != 0) send_to_root("", TAG_DONE);
     else
@@ -493,7 +382,7 @@ static void run_points(scan_state *st, const ranks *r)
 #endif
 }
 
-/* The options of `gomboc scan`, read and checked (--threads as a count, 0 for OpenMP's own choice). */
+/* The options of `gomboc scan`, read and checked (--threads as a count, 0 for one per online processor). */
 typedef struct scan_options {
     const char *scan_path, *dir, *atlas;
     int resume, threads;
@@ -660,26 +549,19 @@ static int scan_command(int argc, char **argv, const ranks *r)
     }
 #endif
 
-#ifdef _OPENMP
-    if (threads > 0) omp_set_num_threads(threads);
-    const int used_threads = omp_get_max_threads();
-#else
-    const int used_threads = 1; /* built without OpenMP: --threads is read and checked, and one thread runs */
-    (void)threads;
-#endif
-    scan_state st = {.scan = &scan, .j = &j, .results = results, .done = done,
-                     .points = points, .finished = already, .start = gb_wall_seconds()};
-    st.last_report = st.start;
+    const unsigned used_threads = r->one_thread ? 1u : gb_scan_threads((unsigned)threads);
+    scan_state st = {.scan = &scan, .r = r, .j = &j, .results = results, .done = done, .points = points, .finished = already};
+    const double start = gb_wall_seconds();
     if (!exit_status) {
         if (already && r->rank == 0)
             fprintf(stderr, "gomboc scan: %s: resuming, %zu of %zu points in the journal\n", scan_path, already, points);
-        run_points(&st, r);
+        run_points(&st, used_threads);
         if (st.failed) {
             fprintf(stderr, "gomboc scan: %s: %s\n", scan_path, st.failure);
             exit_status = EXIT_COMPUTE;
         }
     }
-    const double seconds = gb_wall_seconds() - st.start;
+    const double seconds = gb_wall_seconds() - start;
     if (j.file && fclose(j.file) != 0 && !exit_status) {
         fprintf(stderr, "gomboc scan: cannot close the journal '%s': %s\n", j.path, strerror(errno));
         exit_status = EXIT_COMPUTE;
@@ -699,7 +581,7 @@ static int scan_command(int argc, char **argv, const ranks *r)
             fprintf(stderr, "gomboc scan: cannot remove the finished journal '%s': %s\n", j.path, strerror(errno));
             exit_status = EXIT_COMPUTE;
         } else {
-            fprintf(stderr, "gomboc scan: %s: %zu points (%zu run now) in %.1f s on %d rank(s) of %d thread(s)\n",
+            fprintf(stderr, "gomboc scan: %s: %zu points (%zu run now) in %.1f s on %d rank(s) of %u thread(s)\n",
                     scan_path, points, st.run_here, seconds, r->size, used_threads);
         }
     }
@@ -712,7 +594,7 @@ static int scan_command(int argc, char **argv, const ranks *r)
 
 int command_scan(int argc, char **argv)
 {
-    ranks r = {0, 1};
+    ranks r = {0, 1, 0};
 #ifdef GOMBOC_MPI
     /* The ranks' points run on threads; their messages pass one at a time (the journal's critical section). */
     int provided = 0, initialized = 0;
@@ -721,9 +603,7 @@ int command_scan(int argc, char **argv)
     else MPI_Query_thread(&provided);
     MPI_Comm_rank(MPI_COMM_WORLD, &r.rank);
     MPI_Comm_size(MPI_COMM_WORLD, &r.size);
-#ifdef _OPENMP
-    if (provided < MPI_THREAD_SERIALIZED && r.size > 1) omp_set_num_threads(1);
-#endif
+    r.one_thread = provided < MPI_THREAD_SERIALIZED && r.size > 1;
     /* Rank 0 speaks for all: the others' messages would repeat its own, and theirs reach it by message. */
     if (r.rank != 0) {
         FILE *quiet = freopen("/dev/null", "w", stderr);

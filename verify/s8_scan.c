@@ -6,7 +6,7 @@
  * another scan is refused. The binary comes from $GOMBOC_BIN. */
 #include "gb_check.h"
 #include "gb_error.h"
-#include "gb_scan.h"
+#include "gb_scan_internal.h"
 #include "gb_seal.h"
 #include "verify_sections.h"
 
@@ -342,7 +342,7 @@ static void test_melnikov_margins(void)
     double halved[2] = {NAN, NAN}, sphere[2] = {0.0, 0.0}, negative[2] = {NAN, NAN};
     int status = gb_scan_load(d.scan, &scan), status_sphere = -1, status_flipped = -1;
     if (!status) {
-        status = gb_scan_point_run(&scan, NULL, 3, &alone);
+        status = gb_scan_point_run(&scan, 3, &alone);
         if (!status) status = gb_scan_point_case(&scan, 3, &scene);
         gb_scan_free(&scan);
     }
@@ -375,6 +375,126 @@ static void test_melnikov_margins(void)
     gb_check cs = {"8.3", "7", "margins of the sphere (beta = 0): no top to rock over", "NaN, and no failure", "exact"};
     gb_check_true(&cs, status_sphere == 0 && isnan(sphere[0]) && isnan(sphere[1]), "status %d: %g, %g", status_sphere, sphere[0],
                   sphere[1]);
+    remove_scan_dir(&d);
+}
+
+/* ---- the library's runner ------------------------------------------------------------------------ */
+
+enum { RUNNER_POINTS = 6 };
+
+/* What a runner's callbacks saw: each point's row and how often it came, the progress reports. */
+typedef struct runner_seen {
+    char row[RUNNER_POINTS][1024];
+    int calls[RUNNER_POINTS];
+    size_t finished, progress_calls, progress_bad, last_done, stop_after;
+    int points_started, points_ended;
+} runner_seen;
+
+static int seen_finished(void *user, size_t index, const gb_scan_metrics *metrics, const char *row)
+{
+    (void)metrics;
+    runner_seen *seen = user;
+    if (index < RUNNER_POINTS) snprintf(seen->row[index], sizeof seen->row[index], "%s", row), seen->calls[index]++;
+    if (++seen->finished == seen->stop_after) return gb_error_set(GB_EIO, "the caller stops the scan here");
+    return GB_OK;
+}
+
+static void seen_progress(void *user, const gb_scan_progress *p)
+{
+    runner_seen *seen = user;
+    seen->progress_calls++;
+    if (p->phase != GB_SCAN_PHASE_POINTS || p->done > p->total || (p->done && p->done < seen->last_done)) seen->progress_bad++;
+    if (!p->done) seen->points_started++;
+    if (p->done == p->total) seen->points_ended++;
+    seen->last_done = p->done;
+}
+
+static int runner_run(const gb_scan *scan, unsigned threads, size_t rank, size_t ranks, const unsigned char *done,
+                      runner_seen *seen, size_t *points_run)
+{
+    const gb_scan_runner runner = {.threads = threads, .rank = rank, .ranks = ranks, .done = done,
+                                   .finished = seen_finished, .progress = seen_progress, .user = seen};
+    return gb_scan_run(scan, &runner, points_run);
+}
+
+/* gb_scan_run, the library's runner, against each point run alone (gb_scan_point_run, then its CSV row): on
+ * 1 and 2 threads, as rank 0 and rank 1 of 2 (which share the points, each once), with points already
+ * done left out, stopped by its caller, and refusing a runner out of range. */
+static void test_library_runner(void)
+{
+    scan_dir d;
+    gb_check c = {"8.3", "-", "gb_scan_run on 1 and 2 threads: 3 x 2 points (omega, A2), 4 periods, every row",
+                  "each point run alone (gb_scan_point_run), its CSV row", "exact (byte for byte), each point once"};
+    if (make_scan_dir(&d, &c)) return;
+    static const char text[] = "[scan]\ndescription = the runner's scan\nbase = base.ini\nperiods = 4\n"
+                               "transient_periods = 1\nmetrics = omega_rms, switch_rate, strobe_sd\n"
+                               "[x]\nkey = forcing.omega\nfrom = 16\nto = 20\ncount = 3\n"
+                               "[y]\nkey = forcing.A2\nfrom = 0.5\nto = 1.5\ncount = 2\n";
+    gb_scan scan;
+    if (spill(d.scan, text) || gb_scan_load(d.scan, &scan)) {
+        gb_check_true(&c, 0, "cannot load the scan: %s", gb_error_message());
+        remove_scan_dir(&d);
+        return;
+    }
+    char alone[RUNNER_POINTS][1024];
+    int status = gb_scan_points(&scan) == RUNNER_POINTS ? GB_OK : GB_EINVAL;
+    for (size_t k = 0; k < RUNNER_POINTS && !status; k++) {
+        gb_scan_metrics m;
+        status = gb_scan_point_run(&scan, k, &m);
+        if (!status) status = gb_scan_csv_row(&m, k, alone[k], sizeof alone[k]);
+    }
+    static runner_seen one, two, rank0, rank1, partial, stopped;
+    size_t run_one = 0, run_two = 0, run0 = 0, run1 = 0, run_partial = 0, run_stopped = 0;
+    const int s1 = status ? status : runner_run(&scan, 1, 0, 1, NULL, &one, &run_one);
+    const int s2 = status ? status : runner_run(&scan, 2, 0, 1, NULL, &two, &run_two);
+    int same = 0, once = 0;
+    for (int k = 0; k < RUNNER_POINTS; k++) {
+        same += !strcmp(one.row[k], alone[k]) && !strcmp(two.row[k], alone[k]);
+        once += one.calls[k] == 1 && two.calls[k] == 1;
+    }
+    gb_check_true(&c, !status && !s1 && !s2 && same == RUNNER_POINTS && once == RUNNER_POINTS && run_one == RUNNER_POINTS &&
+                  run_two == RUNNER_POINTS, "%s; statuses %d, %d; %d of %d rows the same, %d each once; %zu and %zu run",
+                  status ? gb_error_message() : "alone ran", s1, s2, same, RUNNER_POINTS, once, run_one, run_two);
+    gb_check cp = {"8.3", "-", "gb_scan_run's progress reports (points phase)",
+                   "one at the start (done 0), one at the end (done = total), done never decreasing", "exact"};
+    gb_check_true(&cp, one.progress_bad == 0 && one.points_started == 1 && one.points_ended == 1 && one.last_done == RUNNER_POINTS &&
+                  two.progress_bad == 0 && two.points_started == 1 && two.points_ended == 1,
+                  "%zu and %zu reports, %zu and %zu out of order, starts %d, %d, ends %d, %d", one.progress_calls,
+                  two.progress_calls, one.progress_bad, two.progress_bad, one.points_started, two.points_started,
+                  one.points_ended, two.points_ended);
+
+    const int r0 = status ? status : runner_run(&scan, 2, 0, 2, NULL, &rank0, &run0);
+    const int r1 = status ? status : runner_run(&scan, 2, 1, 2, NULL, &rank1, &run1);
+    int shared = 0;
+    for (int k = 0; k < RUNNER_POINTS; k++)
+        shared += rank0.calls[k] + rank1.calls[k] == 1 && !strcmp(rank0.calls[k] ? rank0.row[k] : rank1.row[k], alone[k]);
+    gb_check cr = {"8.3", "-", "gb_scan_run as rank 0 and as rank 1 of 2 (2 threads each)",
+                   "every point once, on one rank, its row the point's own", "exact"};
+    gb_check_true(&cr, !r0 && !r1 && shared == RUNNER_POINTS && run0 + run1 == RUNNER_POINTS && run0 == RUNNER_POINTS / 2,
+                  "statuses %d, %d; %d of %d points once and the same; %zu + %zu run", r0, r1, shared, RUNNER_POINTS, run0, run1);
+
+    const unsigned char done[RUNNER_POINTS] = {1, 0, 1, 0, 0, 1};
+    const int sp = status ? status : runner_run(&scan, 2, 0, 1, done, &partial, &run_partial);
+    int left_out = 0;
+    for (int k = 0; k < RUNNER_POINTS; k++)
+        left_out += done[k] ? partial.calls[k] == 0 : partial.calls[k] == 1 && !strcmp(partial.row[k], alone[k]);
+    gb_check cd = {"8.3", "-", "gb_scan_run with points 0, 2 and 5 done already (a journal's)",
+                   "those never run, the others once with their own rows", "exact"};
+    gb_check_true(&cd, !sp && left_out == RUNNER_POINTS && run_partial == 3, "status %d; %d of %d as they should; %zu run", sp,
+                  left_out, RUNNER_POINTS, run_partial);
+
+    stopped.stop_after = 2;
+    const int ss = status ? status : runner_run(&scan, 1, 0, 1, NULL, &stopped, &run_stopped);
+    const unsigned char none[RUNNER_POINTS] = {0};
+    const gb_scan_runner wide = {.threads = 257, .done = none}, beyond = {.rank = 2, .ranks = 2};
+    const int sw = gb_scan_run(&scan, &wide, NULL), sb = gb_scan_run(&scan, &beyond, NULL);
+    gb_check cs = {"8.3", "-", "gb_scan_run stopped by its caller's second finished point; 257 threads; rank 2 of 2",
+                   "the caller's status and message, no point after; GB_EINVAL twice", "exact"};
+    gb_check_true(&cs, ss == GB_EIO && stopped.finished == 2 && run_stopped == 1 && sw == GB_EINVAL && sb == GB_EINVAL,
+                  "status %d (%s), %zu finished, %zu counted; %d, %d", ss, ss ? gb_error_message() : "", stopped.finished,
+                  run_stopped, sw, sb);
+    gb_error_clear();
+    gb_scan_free(&scan);
     remove_scan_dir(&d);
 }
 
@@ -1295,6 +1415,8 @@ int verify_register_s8_scan(void)
          "every scan point is, bit for bit, the run of the scene it stands for"},
         {"sections 7, 8.3: the Melnikov margin of a scan point", test_melnikov_margins,
          "a point's Melnikov margins are those of gomboc melnikov, exact under scaling, with or without a plan"},
+        {"section 8.3: the library's runner: threads, ranks and points done give each point's own row", test_library_runner,
+         "gb_scan_run, the library's parallel runner, gives each point's own run on any threads and ranks"},
         {"section 8.3: threads, kill -9 and --resume give the same bytes", test_threads_and_resume,
          "a scan's CSV does not depend on the thread count or on an interruption"},
         {"section 8.3: a journal is verified line by line, never trusted", test_journal_verified,

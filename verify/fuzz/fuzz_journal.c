@@ -8,7 +8,7 @@
  * accepted journal must hold only points of the scan with their own coordinates, the count of points
  * read must match the marks, and only a half-written last line may be left out. */
 #include "gb_error.h"
-#include "gb_scan.h"
+#include "gb_scan_internal.h"
 
 #include <stdint.h>
 #include <stdlib.h>

@@ -4,7 +4,7 @@
  * different keys of the scene, each taking a number (or random attitudes), counts within their limits,
  * non-empty ranges, a transient shorter than the run, some metric, a base scene named. */
 #include "gb_error.h"
-#include "gb_scan.h"
+#include "gb_scan_internal.h"
 
 #include <math.h>
 #include <stdint.h>
