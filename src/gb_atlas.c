@@ -1,83 +1,15 @@
-#include "gb_atlas.h"
+/* gb_atlas — §4 eq 29: an atlas of verticals (gb_atlas.h): the cube's faces cut into cells of verticals,
+ * each proved, over the surface's boxes, to hold its global minimum in one or two named sites, so that a
+ * step's certificate is a lookup and a Newton solve. Its file (save, load, merge) is gb_atlas_file.c. */
+#include "gb_atlas_internal.h"
 #include "gb_clock.h"
 
-#include "gb_arena.h"
-#include "gb_file.h"
-#include "gb_certify_internal.h"
 #include "gb_error.h"
-#include "gb_seal.h"
 #include "gb_vec.h"
 
-#include <errno.h>
-#include <fcntl.h>
 #include <math.h>
-#include <stdint.h>
-#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/file.h>
-#include <time.h>
-#include <unistd.h>
-
-/* Site boxes are built where the minimum lies within this distance of a chart's root boxes [rad]
- * (as gb_certify's basins). */
-#define SITE_REACH 0.1
-#define SITE_MAX_HALF_WIDTH 0.3
-#define SITE_MIN_HALF_WIDTH 2e-3
-#define SITE_WIDTH_STEP 0.75
-/* A site box's Hessian is tested on one enclosure, or on its 4 or 16 sub-boxes (each must pass). */
-#define SITE_SPLITS 2
-/* Two minima closer than this are the same site [body length]. */
-#define SAME_POINT 1e-7
-
-enum { CELL_UNBUILT = 0, CELL_SPLIT = 1, CELL_CERTIFIED = 2, CELL_FAILED = 3 };
-enum { SETTLED = 0, UNSETTLED = 1 };
-
-/* A box of the surface cover, kept with its enclosure for every cell's proof. */
-typedef struct box {
-    struct box *child; /* four, or NULL */
-    gb_surface_enclosure *e;
-    double a_lo, a_hi, b_lo, b_hi;
-    double xa_mag, xb_mag, xaa_mag, xab_mag, xbb_mag; /* bounds of |x_a|, ... over the box */
-    unsigned char region, depth;
-} box;
-
-typedef struct box_quad {
-    box n[4];
-    gb_surface_enclosure e[4];
-} box_quad;
-
-typedef struct site {
-    int boxes;
-    gb_atlas_site_box box[2];
-    int looked_up[2];            /* 0: a polar-x box whose directions all lie in the (φ, θ) band (below) */
-    double x0[3];                /* its minimum at the cell's centre (the FAR reference) */
-    double hint_phi, hint_theta; /* where Newton starts: the last minimum found in it */
-} site;
-
-typedef struct cell {
-    struct cell *child; /* four, or NULL */
-    double u_lo, u_hi, v_lo, v_hi;
-    unsigned char face, level, state, sites;
-    site site[2];
-} cell;
-
-typedef struct cell_quad {
-    cell c[4];
-} cell_quad;
-
-struct gb_atlas {
-    gb_surface surface;
-    gb_atlas_def def;
-    gb_certify *certify; /* the global minimum at a cell's centre */
-    box roots[GB_ROOT_COUNT];
-    gb_surface_enclosure root_enclosures[GB_ROOT_COUNT];
-    gb_arena box_quads, cell_quads;
-    cell faces[6];
-    cell *last; /* the cell of the last check */
-    double last_half_width;
-    gb_atlas_stats stats;
-};
 
 gb_atlas_def gb_atlas_default_def(void)
 {
@@ -160,7 +92,7 @@ static void cell_geometry(const cell *c, double d0[3], double *rho)
     *rho = worst * (1.0 + 1e-12) + 1e-13;
 }
 
-static int cell_split(gb_atlas *A, cell *c)
+int gb_atlas_cell_split(gb_atlas *A, cell *c)
 {
     cell_quad *q = gb_arena_take(&A->cell_quads);
     if (!q) return gb_error_set(GB_ENOMEM, "out of memory for the atlas's cells");
@@ -206,7 +138,7 @@ static int site_holds(const site *s, double phi, double theta, int *count)
  * with u_z = sin α sin γ? A global minimum there lies in the band, whose boxes the proof settled
  * against the (φ, θ) site boxes, so it is in one of those: a check need not look in this box. (The
  * (φ, θ) boxes are always looked in, so the two charts never defer to each other.) */
-static int inside_band(const gb_atlas_site_box *b)
+int gb_atlas_site_in_band(const gb_atlas_site_box *b)
 {
     if (b->chart != GB_SURFACE_CHART_POLAR_X) return 0;
     const gb_interval uz = gb_interval_mul(gb_interval_sin((gb_interval){b->a_lo, b->a_hi}),
@@ -265,7 +197,7 @@ static int site_build(gb_atlas *A, const double d0[3], double rho, const gb_cont
             if (!(a > a_lo + GB_CERTIFY_INSIDE_MARGIN && a < a_hi - GB_CERTIFY_INSIDE_MARGIN)) continue;
             if (!definite_over_cell(A, (gb_surface_chart)chart, a_lo, a_hi, b - w, b + w, d0, rho, SITE_SPLITS)) continue;
             s->box[s->boxes] = (gb_atlas_site_box){(gb_surface_chart)chart, a_lo, a_hi, b - w, b + w};
-            s->looked_up[s->boxes] = !inside_band(&s->box[s->boxes]);
+            s->looked_up[s->boxes] = !gb_atlas_site_in_band(&s->box[s->boxes]);
             s->boxes++;
             A->last_half_width = w;
             built = 1;
@@ -383,7 +315,7 @@ static int cell_prove(gb_atlas *A, cell *c, const gb_contact_refine_def *refine)
             A->stats.cells++;
             A->stats.two_site_cells += p.sites == 2;
         } else if (c->level < A->def.max_level) {
-            status = cell_split(A, c);
+            status = gb_atlas_cell_split(A, c);
             A->stats.cells_split++;
         } else {
             c->state = CELL_FAILED;
@@ -408,7 +340,7 @@ static int find_cell(gb_atlas *A, const double d[3], const gb_contact_refine_def
     c = &A->faces[face];
     for (;;) {
         if (c->state == CELL_UNBUILT) {
-            const int status = c->level < A->def.first_level ? cell_split(A, c) : cell_prove(A, c, refine);
+            const int status = c->level < A->def.first_level ? gb_atlas_cell_split(A, c) : cell_prove(A, c, refine);
             if (status) return status;
         }
         if (c->state != CELL_SPLIT) break;
@@ -422,7 +354,7 @@ static int find_cell(gb_atlas *A, const double d[3], const gb_contact_refine_def
 
 /* ---------------------------------------------------------------- public */
 
-static void faces_reset(gb_atlas *A)
+void gb_atlas_faces_reset(gb_atlas *A)
 {
     gb_arena_release(&A->cell_quads);
     for (int f = 0; f < 6; f++) {
@@ -465,7 +397,7 @@ int gb_atlas_create(const gb_surface *surface, const gb_atlas_def *def, gb_atlas
     }
     A->stats.boxes = GB_ROOT_COUNT;
     A->last_half_width = SITE_MAX_HALF_WIDTH;
-    faces_reset(A);
+    gb_atlas_faces_reset(A);
     *out = A;
     return GB_OK;
 }
@@ -589,297 +521,4 @@ void gb_atlas_get_stats(const gb_atlas *A, gb_atlas_stats *out)
     size_t cells = 0;
     for (int f = 0; f < 6; f++) cells += count_cells(&A->faces[f]);
     out->bytes = cells * sizeof(cell) + (A->stats.boxes / 4) * sizeof(box_quad);
-}
-
-/* ---------------------------------------------------------------- the file */
-
-/* The file: a header (magic, format, morphology, β, η, levels, depth, site build constants), the cells
- * of the six faces in preorder (state; for a certified cell its sites), and the seal (gb_seal) of
- * everything before it. Written as a gb_file set of one, so a reader never sees half a file. */
-#define ATLAS_MAGIC GB_ATLAS_FILE_MAGIC
-#define ATLAS_FORMAT 3u
-
-typedef struct header {
-    char magic[16];
-    uint32_t format, first_level, max_level, max_depth;
-    char morphology[16];
-    double beta, height_tol, site_reach, site_max, site_min, site_step;
-    uint32_t site_splits, cell_bytes;
-} header;
-
-static void header_of(const gb_atlas *A, header *h)
-{
-    memset(h, 0, sizeof *h);
-    memcpy(h->magic, ATLAS_MAGIC, sizeof ATLAS_MAGIC);
-    h->format = ATLAS_FORMAT;
-    h->first_level = (uint32_t)A->def.first_level, h->max_level = (uint32_t)A->def.max_level;
-    h->max_depth = (uint32_t)A->def.max_depth;
-    snprintf(h->morphology, sizeof h->morphology, "%s", A->surface.morphology->name);
-    h->beta = A->surface.beta, h->height_tol = A->def.height_tol;
-    h->site_reach = SITE_REACH, h->site_max = SITE_MAX_HALF_WIDTH, h->site_min = SITE_MIN_HALF_WIDTH;
-    h->site_step = SITE_WIDTH_STEP, h->site_splits = SITE_SPLITS;
-    h->cell_bytes = (uint32_t)sizeof(site);
-}
-
-typedef struct writer {
-    FILE *f;
-    gb_seal_state seal;
-    int failed;
-} writer;
-
-static void put(writer *w, const void *bytes, size_t size)
-{
-    gb_seal_add(&w->seal, bytes, size);
-    if (fwrite(bytes, 1, size, w->f) != size) w->failed = 1;
-}
-
-static void put_cell(writer *w, const cell *c)
-{
-    const unsigned char state = c->state;
-    put(w, &state, 1);
-    if (state == CELL_SPLIT)
-        for (int k = 0; k < 4; k++) put_cell(w, &c->child[k]);
-    if (state == CELL_CERTIFIED) {
-        put(w, &c->sites, 1);
-        put(w, c->site, c->sites * sizeof(site));
-    }
-}
-
-/* Write the atlas to `path` as a set of one; `locked`: the caller holds the lock of its directory. */
-static int atlas_save(const gb_atlas *A, const char *path, int locked)
-{
-    gb_file_set set = {.directory_locked = locked};
-    writer w = {0};
-    int status = gb_seal_begin(&w.seal);
-    if (status) return gb_error_set(status, "cannot seal the atlas file %s: %s", path, gb_error_message());
-    w.f = gb_file_set_open(&set, path, &status);
-    if (!w.f) return gb_error_set(status, "cannot write the atlas file: %s", gb_error_message());
-    header h;
-    header_of(A, &h);
-    put(&w, &h, sizeof h);
-    for (int f = 0; f < 6; f++) put_cell(&w, &A->faces[f]);
-    unsigned char seal[GB_SEAL_BYTES];
-    gb_seal_end(&w.seal, seal);
-    if (fwrite(seal, sizeof seal, 1, w.f) != 1) w.failed = 1;
-    if (w.failed) status = gb_error_set(GB_EIO, "cannot write the atlas file %s: %s", path, strerror(errno ? errno : EIO));
-    return gb_file_set_commit(&set, status);
-}
-
-int gb_atlas_save(const gb_atlas *A, const char *path) { return atlas_save(A, path, 0); }
-
-typedef struct reader {
-    const unsigned char *p, *end;
-} reader;
-
-static int take(reader *r, void *bytes, size_t size)
-{
-    if ((size_t)(r->end - r->p) < size) return 0;
-    memcpy(bytes, r->p, size);
-    r->p += size;
-    return 1;
-}
-
-static int take_cell(gb_atlas *A, reader *r, cell *c)
-{
-    unsigned char state;
-    if (!take(r, &state, 1)) return 0;
-    if (state == CELL_SPLIT) {
-        if (c->level >= A->def.max_level || cell_split(A, c)) return 0;
-        for (int k = 0; k < 4; k++)
-            if (!take_cell(A, r, &c->child[k])) return 0;
-        return 1;
-    }
-    if (state == CELL_CERTIFIED) {
-        unsigned char sites;
-        if (c->level < A->def.first_level || !take(r, &sites, 1) || sites < 1 || sites > 2 ||
-            !take(r, c->site, sites * sizeof(site)))
-            return 0;
-        for (int s = 0; s < sites; s++) {
-            site *t = &c->site[s];
-            if (t->boxes < 1 || t->boxes > 2 || !isfinite(t->hint_phi) || !isfinite(t->hint_theta)) return 0;
-            for (int k = 0; k < 3; k++)
-                if (!isfinite(t->x0[k])) return 0;
-            for (int k = 0; k < t->boxes; k++) {
-                const gb_atlas_site_box *b = &t->box[k];
-                if (b->chart != GB_SURFACE_CHART_POLAR_Z && b->chart != GB_SURFACE_CHART_POLAR_X) return 0;
-                if (!(b->a_lo < b->a_hi && b->b_lo < b->b_hi && b->a_lo >= 0.0 && b->a_hi <= M_PI &&
-                      b->b_hi - b->b_lo <= 2.0 * M_PI && fabs(b->b_lo) <= 4.0 * M_PI))
-                    return 0;
-                t->looked_up[k] = !inside_band(b); /* recomputed, not read */
-            }
-        }
-        c->state = CELL_CERTIFIED;
-        c->sites = sites;
-        A->stats.cells++;
-        A->stats.two_site_cells += sites == 2;
-        return 1;
-    }
-    if (state == CELL_FAILED) {
-        /* a cell whose proof failed at max_level stays without a certificate (its checks go to gb_certify) */
-        if (c->level != A->def.max_level) return 0;
-        c->state = CELL_FAILED;
-        A->stats.cells_failed++;
-        return 1;
-    }
-    return state == CELL_UNBUILT;
-}
-
-size_t gb_atlas_file_limit(const gb_atlas *A)
-{
-    /* Every cell of every face split down to max_level, each leaf certified with two sites: no file of
-     * these levels is larger; and none beyond GB_ATLAS_FILE_MAX, whatever its levels declare. */
-    double bytes = (double)sizeof(header) + GB_SEAL_BYTES;
-    for (int level = 0; level <= A->def.max_level && bytes <= (double)GB_ATLAS_FILE_MAX; level++)
-        bytes += 6.0 * pow(4.0, level) * (level < A->def.max_level ? 1.0 : 2.0 + 2.0 * sizeof(site));
-    return bytes < (double)GB_ATLAS_FILE_MAX ? (size_t)bytes : (size_t)GB_ATLAS_FILE_MAX;
-}
-
-int gb_atlas_load(gb_atlas *A, const char *path)
-{
-    char *data;
-    size_t size;
-    const int status = gb_file_read(path, gb_atlas_file_limit(A), "atlas file", "an atlas file this command wrote", &data, &size);
-    if (status) return gb_error_set(GB_EIO, "atlas file refused: %s", gb_error_message());
-    const int parsed = gb_atlas_load_buffer(A, (const unsigned char *)data, size, path);
-    free(data);
-    return parsed;
-}
-
-/* The counters of the cells of a subtree read apart (merge_cell's scratch), now taken into the atlas. */
-static void count_subtree(gb_atlas *A, const cell *c)
-{
-    if (c->state == CELL_SPLIT)
-        for (int k = 0; k < 4; k++) count_subtree(A, &c->child[k]);
-    A->stats.cells += c->state == CELL_CERTIFIED;
-    A->stats.two_site_cells += c->state == CELL_CERTIFIED && c->sites == 2;
-    A->stats.cells_failed += c->state == CELL_FAILED;
-    if (c->level > A->stats.deepest_level) A->stats.deepest_level = c->level;
-}
-
-/* A certificate holds for every vertical of its cell (gb_atlas.h), so for every vertical of a cell inside
- * it: every cell of c's subtree that has none (unbuilt, or failed) takes a copy of `from`'s sites. */
-static void inherit(gb_atlas *A, cell *c, const cell *from)
-{
-    if (c->state == CELL_SPLIT) {
-        for (int k = 0; k < 4; k++) inherit(A, &c->child[k], from);
-        return;
-    }
-    if (c->state == CELL_CERTIFIED) return;
-    if (c->state == CELL_FAILED) A->stats.cells_failed--;
-    c->state = CELL_CERTIFIED;
-    c->sites = from->sites;
-    memcpy(c->site, from->site, sizeof c->site);
-    A->stats.cells++;
-    A->stats.two_site_cells += from->sites == 2;
-}
-
-/* The file's cells merged into c, so that nothing either side proved is lost:
- *  - c unbuilt: the file's cell (and its subtree) is taken;
- *  - both split: their children are merged;
- *  - one side split, the other certified (a cell's fate depends on the verticals that first needed it, so
- *    two runs can decompose one cell differently): the finer decomposition is kept, its cells without a
- *    certificate taking the coarser certificate (inherit);
- *  - c failed, the file's certified: the file's certificate;
- *  - elsewhere c is kept (the same cell, proved either way).
- * 0 when the bytes do not parse. */
-static int merge_cell(gb_atlas *A, reader *r, cell *c)
-{
-    if (c->state == CELL_UNBUILT) return take_cell(A, r, c);
-    if (r->p == r->end) return 0;
-    if (c->state == CELL_SPLIT && *r->p == CELL_SPLIT) {
-        r->p++;
-        for (int k = 0; k < 4; k++)
-            if (!merge_cell(A, r, &c->child[k])) return 0;
-        return 1;
-    }
-    cell scratch = {.u_lo = c->u_lo, .u_hi = c->u_hi, .v_lo = c->v_lo, .v_hi = c->v_hi, .face = c->face, .level = c->level};
-    const gb_atlas_stats kept = A->stats;
-    const int ok = take_cell(A, r, &scratch);
-    A->stats = kept;
-    if (!ok) return 0;
-    if (c->state == CELL_SPLIT && scratch.state == CELL_CERTIFIED) {
-        inherit(A, c, &scratch);
-    } else if (c->state == CELL_CERTIFIED && scratch.state == CELL_SPLIT) {
-        const cell coarse = *c;
-        c->state = CELL_SPLIT;
-        c->child = scratch.child; /* the file's subtree, from this atlas's arena */
-        A->stats.cells--, A->stats.two_site_cells -= coarse.sites == 2;
-        for (int k = 0; k < 4; k++) count_subtree(A, &c->child[k]);
-        inherit(A, c, &coarse);
-    } else if (c->state == CELL_FAILED && scratch.state == CELL_CERTIFIED) {
-        A->stats.cells_failed--;
-        *c = scratch;
-        A->stats.cells++, A->stats.two_site_cells += scratch.sites == 2;
-    }
-    return 1;
-}
-
-/* The header and checksum of an atlas file's bytes: NULL when they are this atlas's, else why not. */
-static const char *refused(const gb_atlas *A, const unsigned char *data, size_t size)
-{
-    header want, have;
-    header_of(A, &want);
-    if (size < sizeof have + GB_SEAL_BYTES) return "it is not an atlas of this body, beta, eta and build, or it is damaged";
-    memcpy(&have, data, sizeof have);
-    if (memcmp(&want, &have, sizeof want)) return "it is not an atlas of this body, beta, eta and build";
-    const gb_seal_piece content = {data, size - GB_SEAL_BYTES};
-    if (!gb_seal_verify(&content, 1, data + size - GB_SEAL_BYTES))
-        return "its seal does not verify: damaged, changed since it was written, or written under another key "
-               "(see GOMBOC_KEY)";
-    return NULL;
-}
-
-int gb_atlas_merge(gb_atlas *A, const char *path)
-{
-    char *data;
-    size_t size;
-    int status = gb_file_read(path, gb_atlas_file_limit(A), "atlas file", "an atlas file this command wrote", &data, &size);
-    if (status) return gb_error_set(GB_EIO, "atlas file refused: %s", gb_error_message());
-    const char *why = refused(A, (const unsigned char *)data, size);
-    if (!why) {
-        reader r = {(const unsigned char *)data + sizeof(header), (const unsigned char *)data + size - GB_SEAL_BYTES};
-        int ok = 1;
-        for (int face = 0; face < 6 && ok; face++) ok = merge_cell(A, &r, &A->faces[face]);
-        if (!ok || r.p != r.end) why = "its cells do not parse (the cells read before the fault are kept)";
-    }
-    free(data);
-    if (why) return gb_error_set(GB_EIO, "atlas file %s is not merged: %s", path, why);
-    return GB_OK;
-}
-
-int gb_atlas_merge_save(gb_atlas *A, const char *path)
-{
-    /* The lock: gb_file_lock's, on the file's directory (the file itself is replaced by a rename, so a
-     * lock on it would not be held by the next writer), waited for a bounded time. Without one (a
-     * directory that cannot be locked) the writers are still safe, and a cell can only be lost, to be
-     * proved again when needed. */
-    int lock;
-    int status = gb_file_lock(path, "merging the shared atlas of verticals", &lock);
-    if (status) return status;
-    if (gb_atlas_merge(A, path)) gb_error_clear(); /* missing, stale or damaged: replaced */
-    status = atlas_save(A, path, lock >= 0);
-    gb_file_unlock(lock);
-    return status;
-}
-
-int gb_atlas_load_buffer(gb_atlas *A, const unsigned char *data, size_t size, const char *name)
-{
-    const char *path = name;
-    const char *why = refused(A, data, size);
-    int ok = !why;
-    if (ok) {
-        const gb_atlas_stats kept = A->stats;
-        faces_reset(A);
-        A->stats.cells = A->stats.two_site_cells = A->stats.cells_failed = 0;
-        reader r = {data + sizeof(header), data + size - GB_SEAL_BYTES};
-        for (int face = 0; face < 6 && ok; face++) ok = take_cell(A, &r, &A->faces[face]);
-        ok = ok && r.p == r.end;
-        if (!ok) {
-            faces_reset(A);
-            A->stats = kept;
-            why = "its cells do not parse";
-        }
-    }
-    if (!ok) return gb_error_set(GB_EIO, "atlas file %s is refused: %s", path, why);
-    return GB_OK;
 }
