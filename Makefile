@@ -297,11 +297,12 @@ references-only:
 	$(PYTHON) references/switching.py > references/switching.json.tmp && mv references/switching.json.tmp references/switching.json
 
 # The command, the static and shared libraries, the public headers (src/gomboc.h includes them all; the
-# internal ones, *_internal.h, gb_interval.h, gb_arena.h, gb_vec.h, gb_hash.h, gb_clock.h, and the readers behind gb_case
-# and gb_scan, gb_ini.h and gb_parse.h, stay), a pkg-config file and the man page, under $(DESTDIR)$(PREFIX).
+# internal ones, *_internal.h, gb_interval.h, gb_arena.h, gb_vec.h, gb_hash.h, gb_clock.h, the readers behind gb_case
+# and gb_scan, gb_ini.h and gb_parse.h, and the caches' seals, gb_seal.h, stay), a pkg-config file and the man page, under $(DESTDIR)$(PREFIX).
 PREFIX  ?= /usr/local
 VERSION := $(shell git describe --always --dirty 2>/dev/null || echo unknown)
-PRIVATE_HEADERS := %_internal.h src/gb_interval.h src/gb_arena.h src/gb_vec.h src/gb_hash.h src/gb_clock.h src/gb_ini.h src/gb_parse.h
+PRIVATE_HEADERS := %_internal.h src/gb_interval.h src/gb_arena.h src/gb_vec.h src/gb_hash.h src/gb_clock.h src/gb_ini.h src/gb_parse.h \
+                   src/gb_seal.h
 PUBLIC_HEADERS = src/gomboc.h $(filter-out $(PRIVATE_HEADERS),$(wildcard src/gb_*.h))
 
 install: deps
@@ -337,6 +338,7 @@ example-only: $(BIN) $(LIB) $(SOLIB)
 	cd / && LD_LIBRARY_PATH=$(STAGE)/usr/local/lib $(abspath $(BUILD))/example-cxx
 	@readelf -d $(BUILD)/example | grep -q 'NEEDED.*\[$(SONAME)\]' && readelf -d $(SOLIB) | grep -q 'SONAME.*\[$(SONAME)\]' \
 	  || { echo "example: not linked against $(SONAME)"; exit 1; }
+	@$(PYTHON) scripts/check_exports.py $(SOLIB) $(PUBLIC_HEADERS)
 	@test -z "$$(groff -man -ww -z $(STAGE)/usr/local/share/man/man1/gomboc.1 2>&1)" && \
 	  groff -man -Tutf8 -P-cbou $(STAGE)/usr/local/share/man/man1/gomboc.1 2>/dev/null | grep -q '^       run CASE' \
 	  || { echo "example: the man page does not render without warnings"; exit 1; }
@@ -388,6 +390,10 @@ $(FLAGS_STAMP): FORCE | $(BUILD)/obj
 
 $(BUILD)/obj/%.o: src/%.c $(wildcard src/*.h) $(FLAGS_STAMP) | $(BUILD)/obj
 	$(CC) $(ALL_CFLAGS) -c $< -o $@
+
+# The library's symbols are hidden but for its public API (GB_API, src/gb_export.h): libgomboc.so exports
+# nothing else (make verify compares `nm -D` with the marked declarations: scripts/check_exports.py).
+$(CORE_OBJ) $(PIC_OBJ): ALL_CFLAGS += -fvisibility=hidden
 
 $(BUILD)/pic/%.o: src/%.c $(wildcard src/*.h) $(FLAGS_STAMP)
 	@mkdir -p $(BUILD)/pic

@@ -34,6 +34,8 @@
 #ifndef GB_ATLAS_H
 #define GB_ATLAS_H
 
+#include "gb_export.h"
+
 #include "gb_certify.h"
 #include "gb_contact.h"
 #include "gb_surface.h"
@@ -51,7 +53,7 @@ typedef struct gb_atlas_def {
     int max_depth;       /* splits of a root box of the surface cover in a cell's proof (default 14) */
 } gb_atlas_def;
 
-gb_atlas_def gb_atlas_default_def(void);
+GB_API gb_atlas_def gb_atlas_default_def(void);
 
 typedef struct gb_atlas_stats {
     size_t checks;         /* gb_atlas_check calls */
@@ -71,15 +73,15 @@ typedef struct gb_atlas_stats {
 
 typedef struct gb_atlas gb_atlas;
 
-int gb_atlas_create(const gb_surface *surface, const gb_atlas_def *def, gb_atlas **out);
-void gb_atlas_free(gb_atlas *atlas);
+GB_API int gb_atlas_create(const gb_surface *surface, const gb_atlas_def *def, gb_atlas **out);
+GB_API void gb_atlas_free(gb_atlas *atlas);
 
 /* As gb_certify_check: is `minimum` (a local minimum of h at zb, as gb_contact_refine returns it) the
  * global one (GLOBAL), or is another minimum lower by more than η (LOWER_FOUND, the lowest of them in
  * out->lower)? UNDECIDED when the cell has no certificate or a Newton solve failed: the caller then
  * asks gb_certify. Builds the cell if needed. GB_EDOM for a bad vertical, GB_ENOMEM. */
-int gb_atlas_check(gb_atlas *atlas, const double zb[3], const gb_contact_point *minimum,
-                   const gb_contact_refine_def *refine, gb_certify_result *out);
+GB_API int gb_atlas_check(gb_atlas *atlas, const double zb[3], const gb_contact_point *minimum,
+                          const gb_contact_refine_def *refine, gb_certify_result *out);
 
 /* The certificate of the cell of zb (built if needed), for the harness: its centre d0, radius rho,
  * level, site count (0 when the cell has no certificate) and each site's boxes. */
@@ -96,10 +98,10 @@ typedef struct gb_atlas_cell_info {
     gb_atlas_site_box box[2][2];
 } gb_atlas_cell_info;
 
-int gb_atlas_cell(gb_atlas *atlas, const double zb[3], gb_atlas_cell_info *out);
+GB_API int gb_atlas_cell(gb_atlas *atlas, const double zb[3], gb_atlas_cell_info *out);
 /* Every certified cell held (in preorder of the six faces' quadtrees): up to `max` of them into out,
  * and their number in *count. */
-void gb_atlas_cells(const gb_atlas *atlas, gb_atlas_cell_info *out, size_t max, size_t *count);
+GB_API void gb_atlas_cells(const gb_atlas *atlas, gb_atlas_cell_info *out, size_t max, size_t *count);
 
 /* Save the cells built so far (with those that have no certificate, so that they are not proved
  * again) as a gb_file set of one: a unique temporary renamed into place, so that concurrent writers of
@@ -109,29 +111,29 @@ void gb_atlas_cells(const gb_atlas *atlas, gb_atlas_cell_info *out, size_t max, 
  * gb_atlas_file_limit, is not an atlas of this body, β, η and build parameters, or whose seal does not
  * verify (damaged, edited, or sealed under another key): the caller then builds anew. GB_EIO too when the
  * file cannot be sealed (no key: gb_seal_key_ready). */
-int gb_atlas_save(const gb_atlas *atlas, const char *path);
+GB_API int gb_atlas_save(const gb_atlas *atlas, const char *path);
 /* Every atlas file starts with these bytes (the string with its NUL). */
 #define GB_ATLAS_FILE_MAGIC "gomboc-atlas"
-int gb_atlas_load(gb_atlas *atlas, const char *path);
+GB_API int gb_atlas_load(gb_atlas *atlas, const char *path);
 /* The largest file an atlas of these levels can be (every cell split down to max_level, every leaf
  * certified with two sites), and never more than GB_ATLAS_FILE_MAX: a larger file is refused unread. */
 #define GB_ATLAS_FILE_MAX ((size_t)64 << 20)
-size_t gb_atlas_file_limit(const gb_atlas *atlas);
+GB_API size_t gb_atlas_file_limit(const gb_atlas *atlas);
 /* The cells of the atlas file at `path` that this atlas lacks, added to it (a cell both hold is kept as
  * it is: its proof does not depend on the run that made it). What gb_dynamics_context_save does before it
  * writes, so that concurrent runs sharing one file add up their cells. GB_EIO when the file is missing,
  * of another atlas or damaged (the atlas is then unchanged, or holds the cells read before the fault). */
-int gb_atlas_merge(gb_atlas *atlas, const char *path);
+GB_API int gb_atlas_merge(gb_atlas *atlas, const char *path);
 /* gb_atlas_merge, then gb_atlas_save, with the file's directory locked (gb_file_lock) in between, so
  * that writers of one file, threads or processes, take turns and every cell any of them proved stays in
  * it. A file that is missing, of another atlas or damaged is replaced. GB_EIO when the lock stays held
  * beyond gb_file_lock_seconds (nothing is written then). */
-int gb_atlas_merge_save(gb_atlas *atlas, const char *path);
+GB_API int gb_atlas_merge_save(gb_atlas *atlas, const char *path);
 
 /* gb_atlas_load on the bytes of a file already read (`name` for messages). */
-int gb_atlas_load_buffer(gb_atlas *atlas, const unsigned char *data, size_t size, const char *name);
+GB_API int gb_atlas_load_buffer(gb_atlas *atlas, const unsigned char *data, size_t size, const char *name);
 
-void gb_atlas_get_stats(const gb_atlas *atlas, gb_atlas_stats *out);
+GB_API void gb_atlas_get_stats(const gb_atlas *atlas, gb_atlas_stats *out);
 
 #ifdef __cplusplus
 }

@@ -4,6 +4,7 @@
 
 #include "gb_error.h"
 #include "gb_file.h"
+#include "gb_impact.h"
 #include "gb_ini.h"
 #include "gb_parse.h"
 
@@ -33,7 +34,7 @@ gb_case gb_case_default(void)
      * periods for the strobe and the spectrum, and none for λ (Fig 9 starts at period 0). */
     c.strobe_def = (gb_strobe_def){.transient = 50, .phase = 0.0};
     c.spectrum_transient = 50;
-    c.spectrum_window = GB_WINDOW_HANN;
+    c.spectrum_window = GB_SPECTRUM_WINDOW_HANN;
     c.lyapunov_def = gb_lyapunov_default_def();
     c.lyapunov_interval_periods = 1;
     c.omega_scale = 0.0; /* the forcing omega */
@@ -93,7 +94,7 @@ static int parse_contact_law(const char *value, gb_case *c)
 }
 static int parse_nodes(const char *value, gb_case *c) { return gb_contact_nodes_parse(value, &c->dynamics.grid.nodes); }
 static int parse_method(const char *value, gb_case *c) { return gb_integrate_parse(value, &c->integrate.method); }
-static int parse_window(const char *value, gb_case *c) { return gb_window_parse(value, &c->spectrum_window); }
+static int parse_window(const char *value, gb_case *c) { return gb_spectrum_window_parse(value, &c->spectrum_window); }
 
 #define AT(field) offsetof(gb_case, field)
 #define NAME(sec, key, fn) {sec, key, KEY_NAME, 0, 0, 0, NULL, 0, fn}
@@ -124,7 +125,7 @@ static const key_def keys[] = {
     NAME("model", "nodes", parse_nodes),
     REAL("model", "damping", 0.0, 1000.0, 0, "[N m s]", dynamics.damping),
     REAL("model", "friction", 0.0, 1000.0, OPEN_MIN, "(the plane's mu, for the monitors)", dynamics.friction),
-    REAL("model", "restitution", 0.0, 1.0, 0, "(Newton's e; needs contact_law = unilateral)", dynamics.restitution),
+    REAL("model", "restitution", 0.0, GB_IMPACT_RESTITUTION_MAX, 0, "(Newton's e; needs contact_law = unilateral)", dynamics.restitution),
     NAME("integrator", "method", parse_method),
     COUNT("integrator", "steps_per_period", 1, 100000000, integrate.steps_per_period),
     REAL("integrator", "periods", 0.0, 1e7, OPEN_MIN, "[forcing periods]", integrate.periods),

@@ -17,6 +17,8 @@
 #ifndef GB_CASE_H
 #define GB_CASE_H
 
+#include "gb_export.h"
+
 #include "gb_dynamics.h"
 #include "gb_integrate.h"
 #include "gb_lyapunov.h"
@@ -48,7 +50,7 @@ typedef struct gb_case {
     int strobe, spectrum, lyapunov;  /* [diagnostics] */
     gb_strobe_def strobe_def;
     size_t spectrum_transient;
-    gb_window spectrum_window;
+    gb_spectrum_window spectrum_window;
     gb_lyapunov_def lyapunov_def;     /* interval in seconds and intervals set from the scene's periods */
     size_t lyapunov_interval_periods;
     size_t lyapunov_window_periods;   /* windowed exponents over this many periods; 0: none */
@@ -59,14 +61,14 @@ typedef struct gb_case {
 } gb_case;
 
 /* The defaults: Table 1 with the paper's model (m/s² reading of A1, A2; R0 = I; ω0 = 0). */
-gb_case gb_case_default(void);
+GB_API gb_case gb_case_default(void);
 
 /* Read `path` over the defaults. GB_EIO when the file cannot be read; GB_EINVAL / GB_EDOM with
  * "FILE:LINE: [section] key = value: reason (allowed: ...)". */
-int gb_case_load(const char *path, gb_case *out);
+GB_API int gb_case_load(const char *path, gb_case *out);
 
 /* The same for `size` bytes of `text` (NUL bytes and all), named `name` in messages. */
-int gb_case_load_text(const char *name, const char *text, size_t size, gb_case *out);
+GB_API int gb_case_load_text(const char *name, const char *text, size_t size, gb_case *out);
 
 /* A key set over what the scene file says (a scan point's coordinate): the same parser and range as
  * the file's own line, before the checks no single key can make. `origin` names where it comes from
@@ -76,22 +78,22 @@ typedef struct gb_case_override {
 } gb_case_override;
 
 /* gb_case_load and gb_case_load_text with overrides applied in order. */
-int gb_case_load_with(const char *path, const gb_case_override *overrides, size_t count, gb_case *out);
-int gb_case_load_text_with(const char *name, const char *text, size_t size, const gb_case_override *overrides,
-                           size_t count, gb_case *out);
+GB_API int gb_case_load_with(const char *path, const gb_case_override *overrides, size_t count, gb_case *out);
+GB_API int gb_case_load_text_with(const char *name, const char *text, size_t size, const gb_case_override *overrides,
+                                  size_t count, gb_case *out);
 
 /* The keys a scene may set: their count, and for key `index` its section, name and allowed values
  * in words (the text every error message and cases/README.md use). GB_EDOM past the last key. It
  * leaves no library message behind (gb_error_message() is cleared). */
-size_t gb_case_key_count(void);
-int gb_case_key_allowed(size_t index, const char **section, const char **name, char *allowed, size_t size);
+GB_API size_t gb_case_key_count(void);
+GB_API int gb_case_key_allowed(size_t index, const char **section, const char **name, char *allowed, size_t size);
 /* Does [section] name take one number (a real, an angle, a count)? 1, 0, or -1 for no such key. */
-int gb_case_key_numeric(const char *section, const char *name);
+GB_API int gb_case_key_numeric(const char *section, const char *name);
 
 /* The [lyapunov] section against the run (gb_case_load does this when [diagnostics] lyapunov = yes;
  * `gomboc lyapunov` asks for it whatever the flag): sets lyapunov_def.interval [s] and .intervals and
  * omega_scale. GB_EDOM with "FILE:LINE: [lyapunov] key: reason (allowed: ...)". */
-int gb_case_lyapunov_check(const char *path, gb_case *c);
+GB_API int gb_case_lyapunov_check(const char *path, gb_case *c);
 
 #ifdef __cplusplus
 }

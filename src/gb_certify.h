@@ -38,6 +38,8 @@
 #ifndef GB_CERTIFY_H
 #define GB_CERTIFY_H
 
+#include "gb_export.h"
+
 #include "gb_contact.h"
 #include "gb_surface.h"
 
@@ -54,7 +56,7 @@ typedef struct gb_certify_def {
     int time_checks;    /* 1: add each check's wall time to the stats (make bench; default 0) */
 } gb_certify_def;
 
-gb_certify_def gb_certify_default_def(void);
+GB_API gb_certify_def gb_certify_default_def(void);
 
 typedef enum gb_certify_verdict {
     GB_CERTIFY_GLOBAL = 0,       /* no point is lower than the minimum by more than η */
@@ -83,24 +85,24 @@ typedef struct gb_certify_stats {
 
 typedef struct gb_certify gb_certify;
 
-int gb_certify_create(const gb_surface *surface, const gb_certify_def *def, gb_certify **out);
-void gb_certify_free(gb_certify *certify);
+GB_API int gb_certify_create(const gb_surface *surface, const gb_certify_def *def, gb_certify **out);
+GB_API void gb_certify_free(gb_certify *certify);
 
 /* Check that `minimum` (a minimum of h for vertical zb, as gb_contact_refine returns it for this zb) is
  * the global one. Consecutive calls along a trajectory reuse verdicts (see above); any vertical may be
  * passed in any order. GB_EDOM for a bad vertical, GB_ENOMEM. */
-int gb_certify_check(gb_certify *certify, const double zb[3], const gb_contact_point *minimum,
-                     const gb_contact_refine_def *refine, gb_certify_result *out);
+GB_API int gb_certify_check(gb_certify *certify, const double zb[3], const gb_contact_point *minimum,
+                            const gb_contact_refine_def *refine, gb_certify_result *out);
 
 /* Forget every kept verdict (not the enclosures): the next check tests from the root boxes. */
-void gb_certify_forget(gb_certify *certify);
+GB_API void gb_certify_forget(gb_certify *certify);
 
 /* The global minimum of h for vertical zb from scratch: Newton from the lowest root-box centre, then
  * check; a lower minimum found replaces it until the check says GLOBAL. GB_ENOCONV when undecided. */
-int gb_certify_global_minimum(gb_certify *certify, const double zb[3], const gb_contact_refine_def *refine,
-                              gb_contact_point *out);
+GB_API int gb_certify_global_minimum(gb_certify *certify, const double zb[3], const gb_contact_refine_def *refine,
+                                     gb_contact_point *out);
 
-void gb_certify_get_stats(const gb_certify *certify, gb_certify_stats *out);
+GB_API void gb_certify_get_stats(const gb_certify *certify, gb_certify_stats *out);
 
 #ifdef __cplusplus
 }

@@ -21,6 +21,8 @@
 #ifndef GB_CONTACT_H
 #define GB_CONTACT_H
 
+#include "gb_export.h"
+
 #include "gb_surface.h"
 
 #include <stddef.h>
@@ -35,9 +37,9 @@ typedef enum gb_contact_nodes {
 } gb_contact_nodes;
 
 /* "centred" / "linspace"; NULL for an unknown value. */
-const char *gb_contact_nodes_name(gb_contact_nodes nodes);
+GB_API const char *gb_contact_nodes_name(gb_contact_nodes nodes);
 /* Parse a name; GB_EINVAL naming the allowed values when unknown. */
-int gb_contact_nodes_parse(const char *name, gb_contact_nodes *nodes);
+GB_API int gb_contact_nodes_parse(const char *name, gb_contact_nodes *nodes);
 
 /* The contact models a run may use: the paper's brute-force grid (§8), the same nodes found by the
  * exact fast search and tracker, and the certified continuous minimum. */
@@ -48,9 +50,9 @@ typedef enum gb_contact_model {
 } gb_contact_model;
 
 /* "grid" / "fast-grid" / "continuous"; NULL for an unknown value. */
-const char *gb_contact_model_name(gb_contact_model model);
+GB_API const char *gb_contact_model_name(gb_contact_model model);
 /* Parse a name; GB_EINVAL naming the allowed values when unknown (or NULL). */
-int gb_contact_model_parse(const char *name, gb_contact_model *model);
+GB_API int gb_contact_model_parse(const char *name, gb_contact_model *model);
 
 typedef struct gb_contact_grid_def {
     size_t n_phi, n_theta;   /* Table 1: 90 × 180; each at least 2 (linspace) or 1 (centred) */
@@ -58,7 +60,7 @@ typedef struct gb_contact_grid_def {
     size_t leaf_size;        /* fast search: the most nodes in one leaf patch (default 32) */
 } gb_contact_grid_def;
 
-gb_contact_grid_def gb_contact_grid_default_def(void);
+GB_API gb_contact_grid_def gb_contact_grid_default_def(void);
 
 /* Largest grid accepted: 2^26 nodes (1.6 GB of node data). */
 #define GB_CONTACT_GRID_MAX_NODES ((size_t)1 << 26)
@@ -66,16 +68,14 @@ gb_contact_grid_def gb_contact_grid_default_def(void);
 typedef struct gb_contact_grid gb_contact_grid;
 
 /* Build the node set (x at every node) and the patch tree of the fast search, once per body. */
-int gb_contact_grid_create(const gb_surface *surface, const gb_contact_grid_def *def,
-                           gb_contact_grid **out);
-void gb_contact_grid_free(gb_contact_grid *grid);
+GB_API int gb_contact_grid_create(const gb_surface *surface, const gb_contact_grid_def *def, gb_contact_grid **out);
+GB_API void gb_contact_grid_free(gb_contact_grid *grid);
 
-size_t gb_contact_grid_size(const gb_contact_grid *grid);
-const gb_contact_grid_def *gb_contact_grid_get_def(const gb_contact_grid *grid);
-const gb_surface *gb_contact_grid_surface(const gb_contact_grid *grid);
+GB_API size_t gb_contact_grid_size(const gb_contact_grid *grid);
+GB_API const gb_contact_grid_def *gb_contact_grid_get_def(const gb_contact_grid *grid);
+GB_API const gb_surface *gb_contact_grid_surface(const gb_contact_grid *grid);
 /* Parameters and body-frame point of node `index` (< size). */
-void gb_contact_grid_node(const gb_contact_grid *grid, size_t index, double *phi, double *theta,
-                          double x[3]);
+GB_API void gb_contact_grid_node(const gb_contact_grid *grid, size_t index, double *phi, double *theta, double x[3]);
 
 /* The lowest grid node for one vertical. `visited` counts the nodes whose height was computed. */
 typedef struct gb_contact_node {
@@ -86,14 +86,14 @@ typedef struct gb_contact_node {
 } gb_contact_node;
 
 /* Brute force, as the paper: every node, the first (lowest index) of the lowest. */
-int gb_contact_grid_brute(const gb_contact_grid *grid, const double zb[3], gb_contact_node *out);
+GB_API int gb_contact_grid_brute(const gb_contact_grid *grid, const double zb[3], gb_contact_node *out);
 /* The same node, by branch and bound over the patch tree (see gb_contact.c for the bound). */
-int gb_contact_grid_fast(const gb_contact_grid *grid, const double zb[3], gb_contact_node *out);
+GB_API int gb_contact_grid_fast(const gb_contact_grid *grid, const double zb[3], gb_contact_node *out);
 /* The lowest node but the `n_except` (0 to 2) nodes listed, exactly (ties to the lower index): the node a
  * grid body pivoting about one node, or rocking on an edge of two, meets the plane with next. `hint` (a
  * node index, or SIZE_MAX) seeds the search, as for the fast search; it changes no answer. */
-int gb_contact_grid_lowest_except(const gb_contact_grid *grid, const double zb[3], size_t hint, const size_t *except,
-                                  int n_except, gb_contact_node *out);
+GB_API int gb_contact_grid_lowest_except(const gb_contact_grid *grid, const double zb[3], size_t hint,
+                                         const size_t *except, int n_except, gb_contact_node *out);
 
 /* Exact grid search along a trajectory: a descent over the vertices of the nodes' convex hull from
  * the previous answer (the lowest node is a hull vertex, and on a convex polytope a vertex no higher
@@ -103,10 +103,10 @@ int gb_contact_grid_lowest_except(const gb_contact_grid *grid, const double zb[3
  * cannot build the hull it falls back to gb_contact_grid_search. */
 typedef struct gb_contact_tracker gb_contact_tracker;
 
-int gb_contact_tracker_create(const gb_contact_grid *grid, gb_contact_tracker **out);
-void gb_contact_tracker_free(gb_contact_tracker *tracker);
+GB_API int gb_contact_tracker_create(const gb_contact_grid *grid, gb_contact_tracker **out);
+GB_API void gb_contact_tracker_free(gb_contact_tracker *tracker);
 /* The hull's vertices (0 when the tracker fell back to the patch-tree search). */
-size_t gb_contact_tracker_vertices(const gb_contact_tracker *tracker);
+GB_API size_t gb_contact_tracker_vertices(const gb_contact_tracker *tracker);
 /* The hull as a file, a cache per grid: gb_contact_tracker_save writes the tracker's hull graph
  * atomically and sealed (gb_seal: a keyed BLAKE2b-256 of its bytes; GB_EINVAL when it has no hull, GB_EIO
  * when there is no key); gb_contact_tracker_load makes a tracker from a file written for this very grid
@@ -114,13 +114,13 @@ size_t gb_contact_tracker_vertices(const gb_contact_tracker *tracker);
  * why. A loaded tracker answers every query as the one Qhull built, bit for bit. Every hull file starts
  * with the 8 bytes GB_CONTACT_HULL_MAGIC. */
 #define GB_CONTACT_HULL_MAGIC {'G', 'B', 'H', 'U', 'L', 'L', '\0', '\0'}
-int gb_contact_tracker_save(const gb_contact_tracker *tracker, const char *path);
-int gb_contact_tracker_load(const gb_contact_grid *grid, const char *path, gb_contact_tracker **out);
+GB_API int gb_contact_tracker_save(const gb_contact_tracker *tracker, const char *path);
+GB_API int gb_contact_tracker_load(const gb_contact_grid *grid, const char *path, gb_contact_tracker **out);
 /* The same from a file's bytes (`name` for the message), and the largest file of this grid's hull. */
-int gb_contact_tracker_load_buffer(const gb_contact_grid *grid, const unsigned char *data, size_t size, const char *name,
-                                   gb_contact_tracker **out);
-size_t gb_contact_tracker_file_limit(const gb_contact_grid *grid);
-int gb_contact_tracker_find(gb_contact_tracker *tracker, const double zb[3], gb_contact_node *out);
+GB_API int gb_contact_tracker_load_buffer(const gb_contact_grid *grid, const unsigned char *data, size_t size,
+                                          const char *name, gb_contact_tracker **out);
+GB_API size_t gb_contact_tracker_file_limit(const gb_contact_grid *grid);
+GB_API int gb_contact_tracker_find(gb_contact_tracker *tracker, const double zb[3], gb_contact_node *out);
 
 #define GB_CONTACT_POLAR_CAP 1e-2 /* sin φ below which Newton works in the POLAR_X chart */
 
@@ -152,20 +152,20 @@ typedef struct gb_contact_refine_def {
     int force_fallback;       /* skip Newton: for testing the fallback path (default 0) */
 } gb_contact_refine_def;
 
-gb_contact_refine_def gb_contact_refine_default_def(void);
+GB_API gb_contact_refine_def gb_contact_refine_default_def(void);
 
 /* The (φ, θ) of the point at chart offsets (Δa, Δb) from `p` in p's chart: a predictor's start, such as
  * p + (∂q/∂z_b)·Δz_b with the sensitivity of gb_contact_sensitivity. For POLAR_Z it is (φ + Δa, θ + Δb)
  * unwrapped (gb_contact_refine wraps its start). */
-void gb_contact_chart_offset(const gb_contact_point *p, double da, double db, double *phi, double *theta);
+GB_API void gb_contact_chart_offset(const gb_contact_point *p, double da, double db, double *phi, double *theta);
 /* The length of a chart step (Δa, Δb) at `p` on the unit sphere of directions, √(Δa² + sin²a Δb²). */
-double gb_contact_chart_step_length(const gb_contact_point *p, double da, double db);
+GB_API double gb_contact_chart_step_length(const gb_contact_point *p, double da, double db);
 
 /* The local minimum of h reached from (φ0, θ0): safeguarded Newton (positive-definite Hessian or a
  * shifted one, backtracking on h), falling back to GSL's nmsimplex2 in a pole-free tangent chart
  * when Newton fails or nears a pole, and then polishing again. GB_ENOCONV when neither converges. */
-int gb_contact_refine(const gb_surface *surface, const double zb[3], double phi0, double theta0,
-                      const gb_contact_refine_def *def, gb_contact_point *out);
+GB_API int gb_contact_refine(const gb_surface *surface, const double zb[3], double phi0, double theta0,
+                             const gb_contact_refine_def *def, gb_contact_point *out);
 
 /* All local minima of h for one vertical. */
 #define GB_CONTACT_BRANCH_MAX 64
@@ -181,11 +181,11 @@ typedef struct gb_contact_branches {
  * polished by gb_contact_refine; duplicates (contact vectors closer than 1e-7) merge, and only
  * points passing eq 35 are kept. A minimum whose basin holds no node of `grid` can be missed:
  * gb_contact_default_branch_grid gives the grid the checks validate. */
-int gb_contact_branches_find(const gb_contact_grid *grid, const double zb[3],
-                             const gb_contact_refine_def *def, gb_contact_branches *out);
+GB_API int gb_contact_branches_find(const gb_contact_grid *grid, const double zb[3], const gb_contact_refine_def *def,
+                                    gb_contact_branches *out);
 
 /* The grid the continuous minimiser seeds from: 180 × 360 centred nodes. */
-gb_contact_grid_def gb_contact_default_branch_grid(void);
+GB_API gb_contact_grid_def gb_contact_default_branch_grid(void);
 
 /* Branch switching between two verticals (eqs 38–39). The branch of `previous` (a minimum at
  * zb_from) is continued to zb_to by Newton along the great circle, in steps of at most
@@ -202,32 +202,31 @@ typedef struct gb_contact_switch {
     gb_contact_point global;     /* the global minimum at zb_to */
 } gb_contact_switch;
 
-const char *gb_contact_switch_name(gb_contact_switch_kind kind);
+GB_API const char *gb_contact_switch_name(gb_contact_switch_kind kind);
 
-int gb_contact_switch_detect(const gb_contact_grid *grid, const double zb_from[3],
-                             const gb_contact_point *previous, const double zb_to[3],
-                             double max_step, const gb_contact_refine_def *def,
-                             gb_contact_switch *out);
+GB_API int gb_contact_switch_detect(const gb_contact_grid *grid, const double zb_from[3],
+                                    const gb_contact_point *previous, const double zb_to[3], double max_step,
+                                    const gb_contact_refine_def *def, gb_contact_switch *out);
 
 /* Contact sensitivity (eq 72): with F = (∂φh, ∂θh) and J = ∂F/∂(φ, θ) = H (eq 34),
  * d(φ*, θ*)/dz_b = −H⁻¹ [∂φxᵀ; ∂θxᵀ], a 2 × 3 matrix, for the unit vertical. Uses the Hessian and
  * tangents stored in `contact`, which must be the point gb_contact_refine returned for this z_b.
  * GB_ENUMERIC when H is singular (the minimiser is not locally well defined). */
-int gb_contact_sensitivity(const gb_surface *surface, const double zb[3],
-                           const gb_contact_point *contact, double dq_dzb[2][3]);
+GB_API int gb_contact_sensitivity(const gb_surface *surface, const double zb[3], const gb_contact_point *contact,
+                                  double dq_dzb[2][3]);
 
 /* The contact's rates for body angular velocity ω: ż_b = −ω × z_b (eq 24), (φ̇*, θ̇*) from eq 72,
  * and ṙ_c = ∂φx φ̇* + ∂θx θ̇*, which eq 45 needs. `q_dot` may be NULL. */
-int gb_contact_rate(const gb_surface *surface, const double zb[3], const gb_contact_point *contact,
-                    const double omega[3], double rc_dot[3], double q_dot[2]);
+GB_API int gb_contact_rate(const gb_surface *surface, const double zb[3], const gb_contact_point *contact,
+                           const double omega[3], double rc_dot[3], double q_dot[2]);
 /* gb_contact_rate for a contact whose sensitivity ∂(φ, θ)/∂z_b (gb_contact_sensitivity) is already known, at
  * the unit vertical d: ṙ_c and the chart rates (q_dot may be NULL), eq 72; for a caller that keeps the
  * sensitivity (the dynamics reuse it as the next Newton start's predictor). */
-void gb_contact_rate_from(const double dq_dzb[2][3], const double d[3], const gb_contact_point *contact,
-                          const double omega[3], double rc_dot[3], double q_dot[2]);
+GB_API void gb_contact_rate_from(const double dq_dzb[2][3], const double d[3], const gb_contact_point *contact,
+                                 const double omega[3], double rc_dot[3], double q_dot[2]);
 
 /* Normalise z_b into `unit`; GB_EDOM for a zero or non-finite vector. */
-int gb_contact_unit_vertical(const double zb[3], double unit[3]);
+GB_API int gb_contact_unit_vertical(const double zb[3], double unit[3]);
 
 #ifdef __cplusplus
 }

@@ -26,6 +26,8 @@
 #ifndef GB_DYNAMICS_H
 #define GB_DYNAMICS_H
 
+#include "gb_export.h"
+
 #include "gb_atlas.h"
 #include "gb_certify.h"
 #include "gb_contact.h"
@@ -52,8 +54,8 @@ enum {
 
 typedef enum gb_dynamics_variant { GB_VARIANT_PAPER = 0, GB_VARIANT_ROLLING = 1 } gb_dynamics_variant;
 
-const char *gb_dynamics_variant_name(gb_dynamics_variant variant);
-int gb_dynamics_variant_parse(const char *name, gb_dynamics_variant *variant);
+GB_API const char *gb_dynamics_variant_name(gb_dynamics_variant variant);
+GB_API int gb_dynamics_variant_parse(const char *name, gb_dynamics_variant *variant);
 
 /* A lowest-node search of one's own for contact = grid (make bench's plain loop): the index of the
  * lowest node of the grid for the unit vertical d (gb_contact_unit_vertical of z_b), ties to the lowest
@@ -69,8 +71,8 @@ typedef enum gb_dynamics_certificate {
     GB_CERTIFICATE_ATLAS = 1
 } gb_dynamics_certificate;
 
-const char *gb_dynamics_certificate_name(gb_dynamics_certificate certificate);
-int gb_dynamics_certificate_parse(const char *name, gb_dynamics_certificate *certificate);
+GB_API const char *gb_dynamics_certificate_name(gb_dynamics_certificate certificate);
+GB_API int gb_dynamics_certificate_parse(const char *name, gb_dynamics_certificate *certificate);
 
 /* What happens when the contact point changes. HELD: the paper's rule, one contact at all times and ω
  * kept (the kinetic energy about the new point is what it is). UNILATERAL: the plane can only push, and
@@ -100,13 +102,13 @@ int gb_dynamics_certificate_parse(const char *name, gb_dynamics_certificate *cer
  * sequence (a rebound that would return within it is plastic). */
 typedef enum gb_contact_law { GB_CONTACT_LAW_HELD = 0, GB_CONTACT_LAW_UNILATERAL = 1 } gb_contact_law;
 
-const char *gb_dynamics_contact_law_name(gb_contact_law law);
-int gb_dynamics_contact_law_parse(const char *name, gb_contact_law *law);
+GB_API const char *gb_dynamics_contact_law_name(gb_contact_law law);
+GB_API int gb_dynamics_contact_law_parse(const char *name, gb_contact_law *law);
 /* Is a change of contact an impact under `law` (the plane can only push: impacts, two points, rest, flight,
  * the ledger's L)? 1 for unilateral, 0 for held. What a caller asks instead of naming a law: with
  * impacts, several changes of contact may follow inside one step, each jumps the state, and the body may
  * leave the plane (its centroid's height and velocity are then state too). */
-int gb_dynamics_contact_law_impacts(gb_contact_law law);
+GB_API int gb_dynamics_contact_law_impacts(gb_contact_law law);
 
 /* The unilateral law: a landing is located where the lowest point is this far below the plane [body
  * lengths] (far above the rounding of its height, far below any length of the problem). */
@@ -136,7 +138,7 @@ typedef enum gb_dynamics_impact_kind {
     GB_DYNAMICS_IMPACT_CREASE_END = 7
 } gb_dynamics_impact_kind;
 
-const char *gb_dynamics_impact_kind_name(gb_dynamics_impact_kind kind);
+GB_API const char *gb_dynamics_impact_kind_name(gb_dynamics_impact_kind kind);
 
 /* One change of contact of the unilateral law, in body axes with the centroid at the origin. */
 typedef struct gb_dynamics_impact {
@@ -184,20 +186,20 @@ typedef int (*gb_dynamics_impact_sink)(void *context, const gb_dynamics_impact *
  * context, bit for bit (the tracker returns brute force's node from any warm start; an atlas's answer is
  * a proof, whoever made it). One thread at a time; free it after the last run that used it. */
 typedef struct gb_dynamics_context gb_dynamics_context;
-int gb_dynamics_context_create(gb_dynamics_context **out);
-void gb_dynamics_context_free(gb_dynamics_context *context);
+GB_API int gb_dynamics_context_create(gb_dynamics_context **out);
+GB_API void gb_dynamics_context_free(gb_dynamics_context *context);
 /* The caches' files (NULL: none): the atlas of verticals and the fast grid's hull. */
-int gb_dynamics_context_files(gb_dynamics_context *context, const char *atlas_file, const char *hull_file);
+GB_API int gb_dynamics_context_files(gb_dynamics_context *context, const char *atlas_file, const char *hull_file);
 /* contact = grid: this search instead of brute force (make bench's plain loop). */
-void gb_dynamics_context_lowest(gb_dynamics_context *context, gb_dynamics_lowest_node lowest, void *user);
+GB_API void gb_dynamics_context_lowest(gb_dynamics_context *context, gb_dynamics_lowest_node lowest, void *user);
 /* Write the caches back to their files: the atlas, merged with the cells the file gained since it was read
  * (gb_atlas_merge_save: runs that share one file add up their cells), unless the file holds it already (it
  * was read or written and no cell was proved since); the hull when Qhull built it. gb_ status. */
-int gb_dynamics_context_save(gb_dynamics_context *context);
+GB_API int gb_dynamics_context_save(gb_dynamics_context *context);
 /* The atlas's memory [bytes], and letting it go (a run then reads the file anew): a scan's thread bounds
  * its memory so. */
-size_t gb_dynamics_context_atlas_bytes(const gb_dynamics_context *context);
-void gb_dynamics_context_forget_atlas(gb_dynamics_context *context);
+GB_API size_t gb_dynamics_context_atlas_bytes(const gb_dynamics_context *context);
+GB_API void gb_dynamics_context_forget_atlas(gb_dynamics_context *context);
 
 typedef struct gb_dynamics_def {
     gb_dynamics_variant variant;
@@ -238,93 +240,95 @@ typedef struct gb_dynamics_def {
  * (fast-grid: the brute-force node at every evaluation, bit for bit), m = 1, c = 0.02, g = 9.81, ω = 18,
  * ψ = π/3, and a₁ = 2, a₂ = 1 m/s² (the m/s² reading of Table 1; see gb_case). The scene's defaults
  * (gb_case_default) are these. */
-gb_dynamics_def gb_dynamics_default_def(void);
+GB_API gb_dynamics_def gb_dynamics_default_def(void);
 
 typedef struct gb_dynamics gb_dynamics;
 
 /* Build the body (mass properties by gb_massprops, scaled by mass and length) and only the grid its
  * contact model needs, in `context` (gb_dynamics_context; NULL: one of its own, no files). */
-int gb_dynamics_create_in(const gb_surface *surface, const gb_dynamics_def *def, gb_dynamics_context *context,
-                          gb_dynamics **out);
-int gb_dynamics_create(const gb_surface *surface, const gb_dynamics_def *def, gb_dynamics **out);
-void gb_dynamics_free(gb_dynamics *dynamics);
+GB_API int gb_dynamics_create_in(const gb_surface *surface, const gb_dynamics_def *def, gb_dynamics_context *context,
+                                 gb_dynamics **out);
+GB_API int gb_dynamics_create(const gb_surface *surface, const gb_dynamics_def *def, gb_dynamics **out);
+GB_API void gb_dynamics_free(gb_dynamics *dynamics);
 /* The step h of the integrator the run uses: the end to chatter where def.settle_time is 0 (gb_integrate
  * calls it when a run begins). */
-void gb_dynamics_use_step(gb_dynamics *dynamics, double h);
+GB_API void gb_dynamics_use_step(gb_dynamics *dynamics, double h);
 
-const gb_dynamics_def *gb_dynamics_get_def(const gb_dynamics *dynamics);
+GB_API const gb_dynamics_def *gb_dynamics_get_def(const gb_dynamics *dynamics);
 /* L of eq 53 [m], for this length. */
-double gb_dynamics_mean_radius(const gb_dynamics *dynamics);
+GB_API double gb_dynamics_mean_radius(const gb_dynamics *dynamics);
 /* The nodes of the grid built: the contact grid for grid models; 0 for continuous contact, which
  * builds none. */
-size_t gb_dynamics_grid_size(const gb_dynamics *dynamics);
+GB_API size_t gb_dynamics_grid_size(const gb_dynamics *dynamics);
 
 /* Grid models: the contact queries since creation and the nodes whose height they computed (the
  * searches' work: every node for brute force, far fewer for the tracker); 0 and 0 for continuous
  * contact and for a search of one's own. */
-void gb_dynamics_contact_work(const gb_dynamics *dynamics, size_t *queries, size_t *nodes);
+GB_API void gb_dynamics_contact_work(const gb_dynamics *dynamics, size_t *queries, size_t *nodes);
 
 /* Continuous contact: the certificate's counters (checks, and how many ended global, lower-found or
  * undecided); GB_EINVAL for a grid model. */
-int gb_dynamics_certify_stats(const gb_dynamics *dynamics, gb_certify_stats *out);
+GB_API int gb_dynamics_certify_stats(const gb_dynamics *dynamics, gb_certify_stats *out);
 /* certificate = atlas: its counters, how many checks fell back to gb_certify, and whether it was read from
  * the context's atlas file (1) or built (0). */
-int gb_dynamics_atlas_stats(const gb_dynamics *dynamics, gb_atlas_stats *out, size_t *fallbacks, int *loaded);
+GB_API int gb_dynamics_atlas_stats(const gb_dynamics *dynamics, gb_atlas_stats *out, size_t *fallbacks, int *loaded);
 /* contact = fast-grid: the tracker's hull vertices (0: no hull, the patch-tree search) and whether the hull
  * came from the context's hull file (1) or Qhull (0); GB_EINVAL for another model. */
-int gb_dynamics_hull_stats(const gb_dynamics *dynamics, size_t *vertices, int *loaded);
+GB_API int gb_dynamics_hull_stats(const gb_dynamics *dynamics, size_t *vertices, int *loaded);
 
 /* The initial state: attitude R0 (row-major 3 × 3, orthonormal), ω0; W = 0. Establishes the
  * initial contact (the global minimum) and E(0). */
-int gb_dynamics_init_state(gb_dynamics *dynamics, double t0, const double R0[9], const double omega0[3],
-                           double y[GB_STATE_SIZE]);
+GB_API int gb_dynamics_init_state(gb_dynamics *dynamics, double t0, const double R0[9], const double omega0[3],
+                                  double y[GB_STATE_SIZE]);
 
 /* gb_dynamics_create_in + gb_dynamics_init_state in one call for the body `body`; *out is NULL on failure. */
-int gb_dynamics_start_in(const gb_surface *body, const gb_dynamics_def *def, gb_dynamics_context *context, const double R0[9],
-                         const double omega0[3], gb_dynamics **out, double y[GB_STATE_SIZE]);
-int gb_dynamics_start(const gb_surface *body, const gb_dynamics_def *def, const double R0[9], const double omega0[3],
-                      gb_dynamics **out, double y[GB_STATE_SIZE]);
+GB_API int gb_dynamics_start_in(const gb_surface *body, const gb_dynamics_def *def, gb_dynamics_context *context,
+                                const double R0[9], const double omega0[3], gb_dynamics **out, double y[GB_STATE_SIZE]);
+GB_API int gb_dynamics_start(const gb_surface *body, const gb_dynamics_def *def, const double R0[9],
+                             const double omega0[3], gb_dynamics **out, double y[GB_STATE_SIZE]);
 
 /* GB_ENUMERIC, with a message that names t and says the integration diverged, when a component of y is
  * not finite (the steppers check each step's result, gb_dynamics_rhs its argument); GB_OK otherwise. */
-int gb_dynamics_state_finite(double t, const double y[GB_STATE_SIZE]);
+GB_API int gb_dynamics_state_finite(double t, const double y[GB_STATE_SIZE]);
 
 /* dy/dt (eqs 23, 44 or rolling, and Ẇ). GB_ENOCONV when the contact cannot be found; GB_ENUMERIC for a
  * state that is not finite. */
-int gb_dynamics_rhs(gb_dynamics *dynamics, double t, const double y[GB_STATE_SIZE], double dydt[GB_STATE_SIZE]);
+GB_API int gb_dynamics_rhs(gb_dynamics *dynamics, double t, const double y[GB_STATE_SIZE], double dydt[GB_STATE_SIZE]);
 
 /* After an accepted step to (t, y): renormalise q (returns the |q| − 1 it removed), update the
  * contact and count switches. Continuous contact: the branch is continued by Newton, then gb_certify
  * proves it the global minimum or returns a lower minimum, which becomes the contact (a branch
  * switch). A check left undecided keeps the continued branch and is counted. */
-int gb_dynamics_accept(gb_dynamics *dynamics, double t, double y[GB_STATE_SIZE], double *norm_drift);
+GB_API int gb_dynamics_accept(gb_dynamics *dynamics, double t, double y[GB_STATE_SIZE], double *norm_drift);
 
 /* Switch-event location (continuous contact; gb_integrate uses these). At state y, is another branch
  * lower than the continued one? Then *found = 1 and *other is that minimum. */
-int gb_dynamics_switch_pending(gb_dynamics *dynamics, double t, const double y[GB_STATE_SIZE], gb_contact_point *other,
-                               int *found);
+GB_API int gb_dynamics_switch_pending(gb_dynamics *dynamics, double t, const double y[GB_STATE_SIZE],
+                                      gb_contact_point *other, int *found);
 /* Δh = h(current branch) − h(the branch of `other`) at state y, both continued by Newton (eq 39);
  * *other_here is the other branch at y. In the two-point mode the event's own function, < 0 before it
  * and > 0 after: a third point's Δh against the lower of the two, or −min(N_P, N_Q). */
-int gb_dynamics_branch_gap(gb_dynamics *dynamics, double t, const double y[GB_STATE_SIZE],
-                           const gb_contact_point *other, double *gap, gb_contact_point *other_here);
+GB_API int gb_dynamics_branch_gap(gb_dynamics *dynamics, double t, const double y[GB_STATE_SIZE],
+                                  const gb_contact_point *other, double *gap, gb_contact_point *other_here);
 /* Make `branch` the contact from time t on (a located switch at state y). Under the unilateral law this
  * is an impact: ω in y jumps. GB_ENUMERIC for an impact the law cannot take (see gb_contact_law). */
-int gb_dynamics_switch_to(gb_dynamics *dynamics, double t, double y[GB_STATE_SIZE], const gb_contact_point *branch);
+GB_API int gb_dynamics_switch_to(gb_dynamics *dynamics, double t, double y[GB_STATE_SIZE],
+                                 const gb_contact_point *branch);
 
 /* What gb_dynamics_switch_to would make of the state y at time t (the impact's ω after, under the
  * unilateral law; y itself under the held law and at a lift), into out, changing nothing: the jump map
  * whose derivative the variational estimator's saltation needs. The contacts are continued to y from
  * the accepted ones and from `branch`. */
-int gb_dynamics_jump(gb_dynamics *dynamics, double t, const double y[GB_STATE_SIZE], const gb_contact_point *branch,
-                     double out[GB_STATE_SIZE]);
+GB_API int gb_dynamics_jump(gb_dynamics *dynamics, double t, const double y[GB_STATE_SIZE],
+                            const gb_contact_point *branch, double out[GB_STATE_SIZE]);
 
 /* The unilateral law: a sink for every impact (NULL: none), and the impacts so far, the kinetic
  * energy they took (L) and the largest friction they needed. */
-void gb_dynamics_set_impact_sink(gb_dynamics *dynamics, gb_dynamics_impact_sink sink, void *context);
-void gb_dynamics_impact_stats(const gb_dynamics *dynamics, size_t *impacts, double *energy_lost, double *friction_max);
+GB_API void gb_dynamics_set_impact_sink(gb_dynamics *dynamics, gb_dynamics_impact_sink sink, void *context);
+GB_API void gb_dynamics_impact_stats(const gb_dynamics *dynamics, size_t *impacts, double *energy_lost,
+                                     double *friction_max);
 /* Impacts so far that needed more friction than def.friction (0 when it is INFINITY). */
-size_t gb_dynamics_impacts_over_friction(const gb_dynamics *dynamics);
+GB_API size_t gb_dynamics_impacts_over_friction(const gb_dynamics *dynamics);
 /* The two-point mode up to time t: the time spent in it, how often it was entered from one point, the
  * impacts the settle rule ended (`settled`: entries and third points), how often it was left by a lift
  * and met a third point; when the body came to rest on three points (NAN: it did not). */
@@ -334,7 +338,7 @@ typedef struct gb_dynamics_two_point_summary {
     double rest_since;
 } gb_dynamics_two_point_summary;
 
-void gb_dynamics_two_point_stats(const gb_dynamics *dynamics, double t, gb_dynamics_two_point_summary *out);
+GB_API void gb_dynamics_two_point_stats(const gb_dynamics *dynamics, double t, gb_dynamics_two_point_summary *out);
 
 /* Flight (the unilateral law) up to time t: the time spent in flight, lift-offs, landings, the highest
  * gap between the lowest point and the plane at the accepted steps of a flight [m] (0: none), and whether
@@ -346,21 +350,21 @@ typedef struct gb_dynamics_flight_summary {
     int flying;
 } gb_dynamics_flight_summary;
 
-void gb_dynamics_flight_stats(const gb_dynamics *dynamics, double t, gb_dynamics_flight_summary *out);
+GB_API void gb_dynamics_flight_stats(const gb_dynamics *dynamics, double t, gb_dynamics_flight_summary *out);
 /* In flight: move the centroid by dzeta [m] up and change its velocity by dv [m/s] (inertial) at time t (a
  * Lyapunov perturbation). GB_EINVAL when the body is not in flight. */
-int gb_dynamics_flight_displace(gb_dynamics *dynamics, double t, double dzeta, const double dv[3]);
+GB_API int gb_dynamics_flight_displace(gb_dynamics *dynamics, double t, double dzeta, const double dv[3]);
 
 /* Take over the accepted contact of `from` (same body and model): for a trajectory placed next to
  * another one (a Lyapunov perturbation), whose contact is then continued from there. The next accepted
  * step re-checks it as every step does. Switch counters are left alone. */
-void gb_dynamics_adopt_contact(gb_dynamics *to, const gb_dynamics *from);
+GB_API void gb_dynamics_adopt_contact(gb_dynamics *to, const gb_dynamics *from);
 
 /* Grid-index changes plus branch switches so far. */
-size_t gb_dynamics_switch_count(const gb_dynamics *dynamics);
+GB_API size_t gb_dynamics_switch_count(const gb_dynamics *dynamics);
 /* The time of the latest switch: the located time for a located switch, else the accepted step's end
  * (NAN before the first). */
-double gb_dynamics_last_switch_time(const gb_dynamics *dynamics);
+GB_API double gb_dynamics_last_switch_time(const gb_dynamics *dynamics);
 
 typedef struct gb_dynamics_observables {
     double t;
@@ -391,13 +395,13 @@ typedef struct gb_dynamics_observables {
                               * (a fold inside a step) and the certified global minimum was taken */
 } gb_dynamics_observables;
 
-int gb_dynamics_observe(gb_dynamics *dynamics, double t, const double y[GB_STATE_SIZE],
-                        gb_dynamics_observables *out);
+GB_API int gb_dynamics_observe(gb_dynamics *dynamics, double t, const double y[GB_STATE_SIZE],
+                               gb_dynamics_observables *out);
 
 /* R(q/|q|), row-major. */
-void gb_dynamics_rotation(const double q[4], double R[9]);
+GB_API void gb_dynamics_rotation(const double q[4], double R[9]);
 /* The unit quaternion of an orthonormal R. */
-void gb_dynamics_quaternion(const double R[9], double q[4]);
+GB_API void gb_dynamics_quaternion(const double R[9], double q[4]);
 
 #ifdef __cplusplus
 }

@@ -63,7 +63,7 @@ void gb_dyn_start_flight(gb_dynamics *d, double t, const double y[GB_STATE_SIZE]
 }
 
 /* The centroid's motion is in closed form; only the turning is integrated. */
-static int flight_field(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const double omega[3], const double zb[3],
+int gb_dyn_flight_field(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const double omega[3], const double zb[3],
                         double geff, double omega_dot[3], double *zeta)
 {
     (void)y, (void)zb, (void)geff;
@@ -75,7 +75,7 @@ static int flight_field(gb_dynamics *d, double t, const double y[GB_STATE_SIZE],
 }
 
 /* The lowest point: continued, certified, and relabelled when a lower minimum takes over (no impact). */
-static int flight_accept(gb_dynamics *d, double t, double y[GB_STATE_SIZE])
+int gb_dyn_flight_accept(gb_dynamics *d, double t, double y[GB_STATE_SIZE])
 {
     gb_contact_point continued, other;
     int found;
@@ -96,7 +96,7 @@ static int flight_accept(gb_dynamics *d, double t, double y[GB_STATE_SIZE])
 }
 
 /* The lowest point for the clearance; no contact force. */
-static int flight_observe(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], gb_dynamics_observables *o)
+int gb_dyn_flight_observe(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], gb_dynamics_observables *o)
 {
     const double m = d->def.mass;
     double Iw[3], I[3][3];
@@ -147,10 +147,7 @@ int gb_dynamics_flight_displace(gb_dynamics *d, double t, double dzeta, const do
 }
 
 /* The closed form of the flight's start (gb_dyn_flight_state). */
-static void flight_translate(const gb_dynamics *d, double t, double y[GB_STATE_SIZE])
+void gb_dyn_flight_translate(const gb_dynamics *d, double t, double y[GB_STATE_SIZE])
 {
     gb_dyn_flight_state(d, t, y + GB_STATE_ZETA, y + GB_STATE_VELOCITY);
 }
-
-const gb_dyn_mode gb_dyn_mode_flight = {"flight", 1, flight_field, flight_accept, gb_dyn_flight_pending, gb_dyn_flight_gap,
-                                        gb_dyn_flight_event, gb_dyn_no_jump, flight_observe, flight_translate};

@@ -2,23 +2,29 @@
  *
  * The body on the plane is a hybrid system: a few modes, each with smooth equations, joined by events (a
  * function of the state crossing zero, located by gb_integrate's one locator) and jumps (a map from the
- * state just before an event to the state just after it). The files:
- *   gb_dynamics.c           the core: the state, the definition, creation, and the dispatch of every public
- *                           call to the current mode through one table (gb_dyn_modes)
- *   gb_dynamics_laws.c      the contact laws (held, unilateral) as a table of what each law does; the only
- *                           file that tells one law from another
- *   gb_dynamics_contact.c   the contact at a state: the grid's nodes, Newton's continuation, the
- *                           certificate's competitor
- *   gb_dynamics_rolling.c   the mode "rolling on one point" (eq 44 and the rolling equation)
+ * state just before an event to the state just after it). The files, from the top down (each calls only
+ * files below it; docs/layout.md draws them):
+ *   gb_dynamics_hybrid.c    the hybrid system as a whole: the one table of modes (each mode's field, step,
+ *                           observables and translation with its events and jumps), creation and start,
+ *                           and every public call that goes to the current mode
+ *   gb_dynamics_jumps.c     the jump maps at the events, each calling the generic impact law (gb_impact)
+ *   gb_dynamics_events.c    the events that end a mode: their functions (pending, gap)
  *   gb_dynamics_two_point.c the mode "rolling on two points" (the crease)
  *   gb_dynamics_rest.c      the mode "at rest on three points"
  *   gb_dynamics_flight.c    the mode "flight"
- *   gb_dynamics_events.c    the events that end a mode: their functions (pending, gap)
- *   gb_dynamics_jumps.c     the jump maps at the events, each calling the generic impact law (gb_impact)
+ *   gb_dynamics_rolling.c   the mode "rolling on one point" (eq 44 and the rolling equation)
+ *   gb_dynamics_ledger.c    what every change of contact leaves: its record, the counters, the energy taken,
+ *                           the caller's sink
+ *   gb_dynamics_contact.c   the contact at a state: the grid's nodes, Newton's continuation, the
+ *                           certificate's competitor
  *   gb_dynamics_context.c   the body's set-up (mass properties, grid, tracker, certificate, atlas), kept in
  *                           the caller's context with the files of its caches
- * A mode's functions reach the others only through this header; the vector field of the current mode is
- * asked through gb_dyn_field alone (the lift-off test's look along the flow included). */
+ *   gb_dynamics_laws.c      the contact laws (held, unilateral) as a table of what each law does; the only
+ *                           file that tells one law from another
+ *   gb_dynamics.c           the state: the definition, the attitude, the mode and its time, the vector
+ *                           field of the current mode through the table the state carries, the counters
+ * A mode asks for another's accelerations through gb_dyn_field alone (the lift-off test's look along the
+ * flow included), never by name. */
 #ifndef GB_DYNAMICS_INTERNAL_H
 #define GB_DYNAMICS_INTERNAL_H
 
@@ -75,7 +81,25 @@ typedef struct gb_dyn_mode {
     void (*translate)(const gb_dynamics *d, double t, double y[GB_STATE_SIZE]);
 } gb_dyn_mode;
 
-extern const gb_dyn_mode gb_dyn_mode_one_point, gb_dyn_mode_two_point, gb_dyn_mode_rest, gb_dyn_mode_flight;
+/* The modes' own functions (gb_dynamics_hybrid.c puts them in its table with their events and jumps). */
+int gb_dyn_one_point_field(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const double omega[3], const double zb[3],
+                           double geff, double omega_dot[3], double *zeta);
+int gb_dyn_one_point_accept(gb_dynamics *d, double t, double y[GB_STATE_SIZE]);
+int gb_dyn_one_point_observe(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], gb_dynamics_observables *o);
+int gb_dyn_two_point_field(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const double omega[3], const double zb[3],
+                           double geff, double omega_dot[3], double *zeta);
+int gb_dyn_two_point_accept(gb_dynamics *d, double t, double y[GB_STATE_SIZE]);
+int gb_dyn_two_point_observe(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], gb_dynamics_observables *o);
+int gb_dyn_rest_field(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const double omega[3], const double zb[3],
+                      double geff, double omega_dot[3], double *zeta);
+int gb_dyn_rest_accept(gb_dynamics *d, double t, double y[GB_STATE_SIZE]);
+int gb_dyn_rest_observe(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], gb_dynamics_observables *o);
+void gb_dyn_rest_translate(const gb_dynamics *d, double t, double y[GB_STATE_SIZE]);
+int gb_dyn_flight_field(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const double omega[3], const double zb[3],
+                        double geff, double omega_dot[3], double *zeta);
+int gb_dyn_flight_accept(gb_dynamics *d, double t, double y[GB_STATE_SIZE]);
+int gb_dyn_flight_observe(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], gb_dynamics_observables *o);
+void gb_dyn_flight_translate(const gb_dynamics *d, double t, double y[GB_STATE_SIZE]);
 
 /* ---- the contact laws ------------------------------------------------------------------------------ */
 
@@ -102,6 +126,7 @@ struct gb_dynamics {
     gb_surface surface;
     gb_dynamics_def def;
     const gb_dyn_law *law;
+    const gb_dyn_mode *modes;    /* the one table of modes (gb_dynamics_hybrid.c), indexed by mode */
     gb_dyn_mode_id mode;
     gb_dyn_event event;          /* the event gb_dynamics_switch_pending found (GB_DYN_EVENT_NONE: none) */
     double settle_time;   /* the end to chatter [s]: def.settle_time, or the integrator's step where it is 0 */
@@ -173,7 +198,10 @@ struct gb_dynamics {
     gb_contact_point memo_continued, memo_other;
 };
 
-/* ---- the core (gb_dynamics.c) ---------------------------------------------------------------------- */
+/* ---- the state (gb_dynamics.c) --------------------------------------------------------------------- */
+
+/* The current mode's entry in the table. */
+static inline const gb_dyn_mode *gb_dyn_current(const gb_dynamics *d) { return &d->modes[d->mode]; }
 
 /* The vertical z_b = Rᵀ e_z of state y (q need not be normalised), and of a quaternion. */
 void gb_dyn_vertical(const double y[GB_STATE_SIZE], double zb[3]);
@@ -184,6 +212,9 @@ int gb_dyn_field(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], double
 void gb_dyn_set_mode(gb_dynamics *d, gb_dyn_mode_id mode, double t);
 /* "t = ...: the state is no longer finite" (GB_ENUMERIC). */
 int gb_dyn_diverged(double t);
+/* A v, and the solution of A x = b for a symmetric positive-definite 3 × 3 A (GB_ENUMERIC when singular). */
+void gb_dyn_mat_vec(double A[3][3], const double v[3], double out[3]);
+int gb_dyn_solve3(double A[3][3], const double b[3], double x[3]);
 
 /* ---- the body and its context (gb_dynamics_context.c) --------------------------------------------- */
 
@@ -227,8 +258,6 @@ void gb_dyn_set_contact(gb_dynamics *d, const gb_contact_point *p);
 
 /* ---- rolling on one point (gb_dynamics_rolling.c) --------------------------------------------------- */
 
-void gb_dyn_mat_vec(double A[3][3], const double v[3], double out[3]);
-int gb_dyn_solve3(double A[3][3], const double b[3], double x[3]);
 /* I_P = I_C − m [r_c]×[r_c]× (eq 40). */
 void gb_dyn_inertia_about(const gb_dynamics *d, const double rc[3], double IP[3][3]);
 /* ω̇ from eq 44 (paper) or the rolling equation, for the contact c and g_eff at the time. */
@@ -306,6 +335,8 @@ int gb_dyn_flight_event(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const
 /* The variational estimator cannot follow flight: the jump from or into it (GB_EINVAL). */
 int gb_dyn_no_jump(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const gb_contact_point *branch,
                    double out[GB_STATE_SIZE]);
+/* ---- the ledger (gb_dynamics_ledger.c) ------------------------------------------------------------ */
+
 /* A change of contact with no impulse: the record of nothing changed, the body turning with the ω of y about
  * `about` [m]; v the centroid's velocity. */
 void gb_dyn_no_impulse(const gb_dynamics *d, const double y[GB_STATE_SIZE], const double about[3], double v[3],

@@ -85,43 +85,6 @@ static int plane_pushes(const gb_dynamics *d, double t, const gb_impact_result *
                         allowed, gb_vec_norm(v_before), gb_vec_norm(omega_before));
 }
 
-int gb_dyn_book(gb_dynamics *d, const gb_dynamics_impact *e)
-{
-    d->settled += (size_t)e->settled;
-    d->lifts += e->kind == GB_DYNAMICS_IMPACT_LIFT;
-    d->third_points += e->kind == GB_DYNAMICS_IMPACT_THIRD;
-    d->lift_offs += e->kind == GB_DYNAMICS_IMPACT_LIFT_OFF;
-    d->landings += e->kind == GB_DYNAMICS_IMPACT_LANDING;
-    d->bounces += e->kind == GB_DYNAMICS_IMPACT_BOUNCE || (e->kind == GB_DYNAMICS_IMPACT_LANDING && e->rebound);
-    if (e->kind != GB_DYNAMICS_IMPACT_LIFT && e->kind != GB_DYNAMICS_IMPACT_LIFT_OFF && e->kind != GB_DYNAMICS_IMPACT_CREASE_END) {
-        d->impacts++;
-        d->impact_loss += e->kinetic_before - e->kinetic_after - e->potential_jump;
-        d->impact_friction_max = fmax(d->impact_friction_max, e->friction_needed);
-        d->impacts_over_friction += e->friction_needed > d->def.friction;
-    }
-    d->memo_valid = 0; /* ω may have changed */
-    return d->impact_sink ? d->impact_sink(d->impact_context, e) : GB_OK;
-}
-
-/* An impact record from its points and the solver's answer at the new point `k` and the old one `k_old`
- * (−1: none); ω in y takes its value after. */
-void gb_dyn_record(gb_dynamics_impact *e, double y[GB_STATE_SIZE], const double old_point[3], const double new_point[3],
-                   const double v_before[3], const gb_impact_result *r, int k, int k_old)
-{
-    double *omega = y + GB_STATE_OMEGA;
-    memcpy(e->old_point, old_point, sizeof e->old_point);
-    memcpy(e->new_point, new_point, sizeof e->new_point);
-    memcpy(e->omega_before, omega, sizeof e->omega_before);
-    memcpy(e->v_before, v_before, sizeof e->v_before);
-    memcpy(omega, r->omega, sizeof r->omega);
-    memcpy(e->omega_after, r->omega, sizeof e->omega_after);
-    memcpy(e->v_after, r->v, sizeof e->v_after);
-    e->normal_impulse = r->normal_impulse[k], e->tangential_impulse = r->tangential_impulse[k];
-    e->old_normal_impulse = k_old >= 0 ? r->normal_impulse[k_old] : 0.0;
-    e->friction_needed = r->friction_needed;
-    e->kinetic_before = r->energy_before, e->kinetic_after = r->energy_after;
-}
-
 /* The plastic impact that stops both P and Q (r_P, r_Q [m]), from the state y turning about P: ω⁺ = σ u
  * along PQ with u·H_P kept (the impulses at P and Q have no moment about the line PQ), H_P = I_G ω + m
  * (G − P) × v_G; the impulses from the momentum and moment jumps, the part along PQ split as the normal
@@ -347,21 +310,6 @@ static int impact(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const gb_co
         gb_dyn_start_flight(d, t, y, r.v, -gb_vec_dot(zb, points[0]));
     }
     return gb_dyn_book(d, &e);
-}
-
-/* A change of contact with no impulse (a lift, a lift-off, the end of a crease), the body turning with the ω
- * of y about the point `about` [m]: the centroid's velocity v = ω × (G − P), and the impact's record of
- * nothing changed. */
-void gb_dyn_no_impulse(const gb_dynamics *d, const double y[GB_STATE_SIZE], const double about[3], double v[3],
-                       gb_impact_result *r)
-{
-    memset(r, 0, sizeof *r);
-    memcpy(r->omega, y + GB_STATE_OMEGA, sizeof r->omega);
-    gb_vec_cross(y + GB_STATE_OMEGA, (const double[3]){-about[0], -about[1], -about[2]}, v);
-    memcpy(r->v, v, sizeof r->v);
-    gb_impact_body body = {d->def.mass, {{0}}};
-    memcpy(body.inertia, d->inertia, sizeof body.inertia);
-    r->energy_before = r->energy_after = gb_impact_energy(&body, v, r->omega);
 }
 
 /* At a lift-off from one point the normal force is 0 but the rolling contact's tangential force F_t
@@ -642,7 +590,6 @@ static int two_point_located(gb_dynamics *d, double t, double y[GB_STATE_SIZE], 
     gb_dyn_set_contact(d, third);
     return gb_dyn_book(d, &e);
 }
-
 
 /* ---- the events' jumps, by mode ------------------------------------------------------------------ */
 

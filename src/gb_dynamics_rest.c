@@ -9,7 +9,7 @@
 #include <string.h>
 
 /* Nothing turns, whatever rounding is left in the state's ω. */
-static int rest_field(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const double omega[3], const double zb[3],
+int gb_dyn_rest_field(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const double omega[3], const double zb[3],
                       double geff, double omega_dot[3], double *zeta)
 {
     (void)y, (void)geff;
@@ -21,7 +21,7 @@ static int rest_field(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], c
     return GB_OK;
 }
 
-static int rest_accept(gb_dynamics *d, double t, double y[GB_STATE_SIZE])
+int gb_dyn_rest_accept(gb_dynamics *d, double t, double y[GB_STATE_SIZE])
 {
     (void)y;
     if (gb_forcing_geff(&d->def.forcing, t) < 0.0)
@@ -30,7 +30,7 @@ static int rest_accept(gb_dynamics *d, double t, double y[GB_STATE_SIZE])
     return GB_OK;
 }
 
-static int rest_observe(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], gb_dynamics_observables *o)
+int gb_dyn_rest_observe(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], gb_dynamics_observables *o)
 {
     gb_dyn_contact c;
     const int status = gb_dyn_contact_at(d, t, o->zb, o->omega, &c); /* ω̇ = 0 */
@@ -39,11 +39,8 @@ static int rest_observe(gb_dynamics *d, double t, const double y[GB_STATE_SIZE],
 }
 
 /* At rest: the height on the three points, and no velocity. */
-static void rest_translate(const gb_dynamics *d, double t, double y[GB_STATE_SIZE])
+void gb_dyn_rest_translate(const gb_dynamics *d, double t, double y[GB_STATE_SIZE])
 {
     gb_dyn_translate_on_plane(d, t, y);
     memset(y + GB_STATE_VELOCITY, 0, 3 * sizeof *y);
 }
-
-const gb_dyn_mode gb_dyn_mode_rest = {"at rest", 0, rest_field, rest_accept, gb_dyn_rest_pending, gb_dyn_rest_gap,
-                                      gb_dyn_rest_event, gb_dyn_no_jump, rest_observe, rest_translate};

@@ -18,26 +18,6 @@ void gb_dyn_inertia_about(const gb_dynamics *d, const double rc[3], double IP[3]
         for (int j = 0; j < 3; j++) IP[i][j] = d->inertia[i][j] + m * ((i == j) * r2 - rc[i] * rc[j]);
 }
 
-void gb_dyn_mat_vec(double A[3][3], const double v[3], double out[3])
-{
-    for (int i = 0; i < 3; i++) out[i] = A[i][0] * v[0] + A[i][1] * v[1] + A[i][2] * v[2];
-}
-
-/* Solve A x = b for a symmetric positive-definite 3 × 3 A by cofactors. */
-int gb_dyn_solve3(double A[3][3], const double b[3], double x[3])
-{
-    const double c00 = A[1][1] * A[2][2] - A[1][2] * A[2][1], c01 = A[1][2] * A[2][0] - A[1][0] * A[2][2],
-                 c02 = A[1][0] * A[2][1] - A[1][1] * A[2][0];
-    const double det = A[0][0] * c00 + A[0][1] * c01 + A[0][2] * c02;
-    if (!(det > 0.0) || !isfinite(det)) return gb_error_set(GB_ENUMERIC, "inertia about the contact is singular (det %g)", det);
-    const double inv[3][3] = {
-        {c00, A[0][2] * A[2][1] - A[0][1] * A[2][2], A[0][1] * A[1][2] - A[0][2] * A[1][1]},
-        {c01, A[0][0] * A[2][2] - A[0][2] * A[2][0], A[0][2] * A[1][0] - A[0][0] * A[1][2]},
-        {c02, A[0][1] * A[2][0] - A[0][0] * A[2][1], A[0][0] * A[1][1] - A[0][1] * A[1][0]}};
-    for (int i = 0; i < 3; i++) x[i] = (inv[i][0] * b[0] + inv[i][1] * b[1] + inv[i][2] * b[2]) / det;
-    return GB_OK;
-}
-
 /* ω̇ from eq 44 (paper) or the rolling equation, for the contact c and g_eff at the time. */
 int gb_dyn_angular_acceleration(const gb_dynamics *d, double geff, const double zb[3], const double omega[3],
                                 const gb_dyn_contact *c, double omega_dot[3])
@@ -93,7 +73,7 @@ int gb_dyn_one_point_normal(gb_dynamics *d, double t, const double y[GB_STATE_SI
 }
 
 /* ω̇ and ζ = −z_b·r_c on the contact (eqs 37, 44). */
-static int one_point_field(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const double omega[3], const double zb[3],
+int gb_dyn_one_point_field(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const double omega[3], const double zb[3],
                            double geff, double omega_dot[3], double *zeta)
 {
     (void)y;
@@ -107,7 +87,7 @@ static int one_point_field(gb_dynamics *d, double t, const double y[GB_STATE_SIZ
 /* After an accepted step: the held law's grid takes the lowest node and counts its changes (the paper's
  * rule); otherwise the contact is continued and checked by the certificate, a lower minimum becoming the
  * contact (a switch at the step's end, which a law with impacts must have located inside the step). */
-static int one_point_accept(gb_dynamics *d, double t, double y[GB_STATE_SIZE])
+int gb_dyn_one_point_accept(gb_dynamics *d, double t, double y[GB_STATE_SIZE])
 {
     if (d->def.contact != GB_CONTACT_MODEL_CONTINUOUS && !gb_dyn_pivots(d)) {
         double zb[3];
@@ -181,7 +161,7 @@ void gb_dyn_observe_on_plane(gb_dynamics *d, double t, const double y[GB_STATE_S
     o->normal_forces[0] = o->normal_force;
 }
 
-static int one_point_observe(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], gb_dynamics_observables *o)
+int gb_dyn_one_point_observe(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], gb_dynamics_observables *o)
 {
     gb_dyn_contact c;
     int status = gb_dyn_contact_at(d, t, o->zb, o->omega, &c);
@@ -203,7 +183,3 @@ void gb_dyn_translate_on_plane(const gb_dynamics *d, double t, double y[GB_STATE
     gb_vec_cross(y + GB_STATE_OMEGA, (const double[3]){-rc[0], -rc[1], -rc[2]}, vb); /* ω × (G − P) */
     for (int i = 0; i < 3; i++) y[GB_STATE_VELOCITY + i] = R[3 * i] * vb[0] + R[3 * i + 1] * vb[1] + R[3 * i + 2] * vb[2];
 }
-
-const gb_dyn_mode gb_dyn_mode_one_point = {"one point", 1, one_point_field, one_point_accept, gb_dyn_one_point_pending,
-                                      gb_dyn_one_point_gap, gb_dyn_one_point_event, gb_dyn_one_point_jump,
-                                      one_point_observe, gb_dyn_translate_on_plane};

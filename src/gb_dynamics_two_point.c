@@ -114,7 +114,7 @@ int gb_dyn_two_point_eval(gb_dynamics *d, double t, const double y[GB_STATE_SIZE
     return GB_OK;
 }
 
-static int two_point_field(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const double omega[3], const double zb[3],
+int gb_dyn_two_point_field(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const double omega[3], const double zb[3],
                            double geff, double omega_dot[3], double *zeta)
 {
     gb_dyn_two_point tp;
@@ -131,11 +131,11 @@ static int two_point_field(gb_dynamics *d, double t, const double y[GB_STATE_SIZ
  * second inside one step; the points continued; and the end of a crease (Q merged with P or gone in a
  * fold), where the state is continuous and the mode whose constraint ends has nothing to jump: the body
  * rolls on P alone from here. */
-static int two_point_accept(gb_dynamics *d, double t, double y[GB_STATE_SIZE])
+int gb_dyn_two_point_accept(gb_dynamics *d, double t, double y[GB_STATE_SIZE])
 {
     gb_contact_point other;
     int found;
-    int status = gb_dyn_two_point_pending(d, t, y, &other, &found);
+    int status = gb_dyn_current(d)->pending(d, t, y, &other, &found); /* this mode's, through the table */
     if (!status && found)
         status = gb_error_set(GB_ENUMERIC, "unilateral contact at t = %.9g: a second change of contact inside one "
                               "step of the two-point mode (%s)", t, d->event == GB_DYN_EVENT_LIFT ? "a normal force below 0"
@@ -167,7 +167,7 @@ static int two_point_accept(gb_dynamics *d, double t, double y[GB_STATE_SIZE])
 }
 
 /* (the end of a crease is observed as rolling on P) */
-static int two_point_observe(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], gb_dynamics_observables *o)
+int gb_dyn_two_point_observe(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], gb_dynamics_observables *o)
 {
     gb_dyn_two_point tp;
     int status = gb_dyn_two_point_eval(d, t, y, &tp, 1);
@@ -188,7 +188,3 @@ static int two_point_observe(gb_dynamics *d, double t, const double y[GB_STATE_S
     o->tie = d->def.length * (tp.p.point.height - tp.q.height);
     return GB_OK;
 }
-
-const gb_dyn_mode gb_dyn_mode_two_point = {"two points", 1, two_point_field, two_point_accept, gb_dyn_two_point_pending,
-                                      gb_dyn_two_point_gap, gb_dyn_two_point_event, gb_dyn_two_point_jump,
-                                      two_point_observe, gb_dyn_translate_on_plane};

@@ -6,6 +6,8 @@
 #ifndef GB_ERROR_H
 #define GB_ERROR_H
 
+#include "gb_export.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -26,21 +28,21 @@ enum gb_status {
 /* Record a message (printf format) for status `code` and return `code`, so a failing function can
  * end with `return gb_error_set(GB_EDOM, "...")`. The arguments may include gb_error_message(), to
  * wrap the last message in its context. */
-int gb_error_set(int code, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+GB_API int gb_error_set(int code, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 
 /* The message of the most recent failure in this thread ("" if none). */
-const char *gb_error_message(void);
+GB_API const char *gb_error_message(void);
 
 /* Forget the last message. */
-void gb_error_clear(void);
+GB_API void gb_error_clear(void);
 
 /* Look `name` up in `names` (count entries); on success store its position in *index. Otherwise
  * GB_EINVAL with the message "<what> '<name>' is unknown (allowed: a, b, c)". */
-int gb_error_parse_name(const char *name, const char *const *names, int count, const char *what, int *index);
+GB_API int gb_error_parse_name(const char *name, const char *const *names, int count, const char *what, int *index);
 
 /* Install a GSL error handler that does not abort: GSL failures come back as status codes, and the
  * callers turn them into gb_ messages. Call once before using GSL-backed modules. */
-void gb_error_init_gsl(void);
+GB_API void gb_error_init_gsl(void);
 
 #ifdef __cplusplus
 }

@@ -32,6 +32,8 @@
 #ifndef GB_FILE_H
 #define GB_FILE_H
 
+#include "gb_export.h"
+
 #include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -43,7 +45,8 @@ extern "C" {
 /* Read the regular file `path` whole into a malloc'd, NUL-terminated buffer of at most max_bytes
  * (plus the NUL). `noun` names it in messages ("case file"), `allowed` says what is allowed. GB_EINVAL
  * for a path that is not a readable regular file or is too large, GB_EIO for a failed read. */
-int gb_file_read(const char *path, size_t max_bytes, const char *noun, const char *allowed, char **text, size_t *size);
+GB_API int gb_file_read(const char *path, size_t max_bytes, const char *noun, const char *allowed, char **text,
+                        size_t *size);
 
 /* How a run uses a path. */
 enum {
@@ -71,23 +74,23 @@ typedef struct gb_file_use {
  * not named like a temporary of this program; a cache that exists starts with its kind's magic; and no
  * two uses name the same file (an output that is also the input of the same use is allowed: the atlas
  * read and written back). GB_EINVAL with "WHAT 'PATH' ... (allowed: ...)", or GB_OK. */
-int gb_file_check(const gb_file_use *uses, size_t count);
+GB_API int gb_file_check(const gb_file_use *uses, size_t count);
 
 /* Is `name` (a base name) one of the program's temporaries, ".gomboc-" followed by anything? */
-int gb_file_reserved_name(const char *name);
+GB_API int gb_file_reserved_name(const char *name);
 
 /* The lock of the directory that holds `path`: an exclusive flock on the directory, waited for at most
  * gb_file_lock_seconds(). *fd is the lock to give to gb_file_unlock (-1 when the directory could not be
  * locked at all, which is not an error). GB_EIO after the wait, naming the directory and `what` it was
  * to be locked for. */
-int gb_file_lock(const char *path, const char *what, int *fd);
-void gb_file_unlock(int fd);
+GB_API int gb_file_lock(const char *path, const char *what, int *fd);
+GB_API void gb_file_unlock(int fd);
 /* GB_FILE_LOCK_SECONDS, or $GOMBOC_LOCK_SECONDS when it is a number from 0 to 86400. */
 #define GB_FILE_LOCK_SECONDS 60.0
-double gb_file_lock_seconds(void);
+GB_API double gb_file_lock_seconds(void);
 
 /* --out DIR: an existing, writable directory. GB_EINVAL with "WHAT 'DIR' ... (allowed: ...)". */
-int gb_file_check_directory(const char *dir, const char *what);
+GB_API int gb_file_check_directory(const char *dir, const char *what);
 
 enum { GB_FILE_SET_MAX = 8 };
 typedef struct gb_file_member {
@@ -107,28 +110,28 @@ typedef struct gb_file_set {
 /* A new member, open for writing (NULL with *status set on failure; nothing when *status is already
  * non-zero). The path is checked again (a non-regular file that appeared since gb_file_check is
  * refused). */
-FILE *gb_file_set_open(gb_file_set *set, const char *path, int *status);
+GB_API FILE *gb_file_set_open(gb_file_set *set, const char *path, int *status);
 
 /* Close member `index` and record its size and checksum (for the manifest). gb_ status. */
-int gb_file_set_seal(gb_file_set *set, int index);
+GB_API int gb_file_set_seal(gb_file_set *set, int index);
 
 /* With status GB_OK, seal what is open and rename every member into place in order, the directory of
  * the last member locked; otherwise, or when a write, a close, the lock or a rename fails, remove the
  * temporaries and the members already renamed. Returns the final status. The set is empty afterwards. */
-int gb_file_set_commit(gb_file_set *set, int status);
+GB_API int gb_file_set_commit(gb_file_set *set, int status);
 
 /* Write `size` bytes as a set of one. */
-int gb_file_write_atomically(const char *path, const void *bytes, size_t size);
+GB_API int gb_file_write_atomically(const char *path, const void *bytes, size_t size);
 /* Write `size` bytes to `path` only if it does not exist yet: whole under a temporary, then linked to its
  * name (link fails where the name exists), so that the file never stands there half written and never
  * replaces another. GB_EINVAL when `path` exists, GB_EIO when the write fails. */
-int gb_file_write_new(const char *path, const void *bytes, size_t size);
+GB_API int gb_file_write_new(const char *path, const void *bytes, size_t size);
 
 /* The size and FNV-1a 64 checksum of a file as it is now: GB_OK, or GB_EIO when it cannot be read. */
-int gb_file_digest(const char *path, uint64_t *bytes, uint64_t *checksum);
+GB_API int gb_file_digest(const char *path, uint64_t *bytes, uint64_t *checksum);
 
 /* Remove every temporary of this process (async-signal-safe). */
-void gb_file_remove_temporaries(void);
+GB_API void gb_file_remove_temporaries(void);
 
 #ifdef __cplusplus
 }

@@ -8,6 +8,8 @@
 #ifndef GB_FORCING_H
 #define GB_FORCING_H
 
+#include "gb_export.h"
+
 #include <stddef.h>
 
 #ifdef __cplusplus
@@ -22,23 +24,23 @@ typedef struct gb_forcing {
 } gb_forcing;
 
 /* GB_EDOM unless g ≥ 0, ω > 0 and every value is finite. */
-int gb_forcing_validate(const gb_forcing *forcing);
+GB_API int gb_forcing_validate(const gb_forcing *forcing);
 
-double gb_forcing_geff(const gb_forcing *forcing, double t);
-double gb_forcing_geff_rate(const gb_forcing *forcing, double t);
+GB_API double gb_forcing_geff(const gb_forcing *forcing, double t);
+GB_API double gb_forcing_geff_rate(const gb_forcing *forcing, double t);
 /* Both at once, with one sincos a harmonic: the same values as the two calls above. */
-void gb_forcing_geff_with_rate(const gb_forcing *forcing, double t, double *geff, double *rate);
+GB_API void gb_forcing_geff_with_rate(const gb_forcing *forcing, double t, double *geff, double *rate);
 
 /* The forcing period T = 2π/ω. */
-double gb_forcing_period(const gb_forcing *forcing);
+GB_API double gb_forcing_period(const gb_forcing *forcing);
 /* The fixed step of a run with `steps_per_period` steps a forcing period: gb_forcing_period / steps_per_period,
  * the one place it is computed (the integrator, the run's observer, a scan's metrics, the settle time). */
-double gb_forcing_step(const gb_forcing *forcing, size_t steps_per_period);
+GB_API double gb_forcing_step(const gb_forcing *forcing, size_t steps_per_period);
 
 /* The fraction of one period in which g_eff ≤ 0 (the support pulls the body down faster than it can
  * follow: a single-contact model is then invalid), and the smallest g_eff on the samples. Sign
  * changes are bracketed on 4096 samples and refined by bisection to 1e-14 of the period. */
-int gb_forcing_nonpositive_fraction(const gb_forcing *forcing, double *fraction, double *geff_min);
+GB_API int gb_forcing_nonpositive_fraction(const gb_forcing *forcing, double *fraction, double *geff_min);
 
 #ifdef __cplusplus
 }

@@ -208,6 +208,12 @@ int gb_impact_hold_all(const gb_impact_body *body, const double normal[3], const
     return status;
 }
 
+int gb_impact_restitution_check(double e)
+{
+    if (e >= 0.0 && e <= GB_IMPACT_RESTITUTION_MAX) return GB_OK;
+    return gb_error_set(GB_EDOM, "restitution e = %g is out of range (allowed: 0 <= e <= %g)", e, GB_IMPACT_RESTITUTION_MAX);
+}
+
 int gb_impact_solve(const gb_impact_body *body, const double normal[3], double e, const double (*points)[3], int count,
                     const double v[3], const double omega[3], gb_impact_result *out)
 {
@@ -253,7 +259,8 @@ static int solve_distinct(const gb_impact_body *body, const double normal[3], do
     double inv[3][3];
     int status = check_body(body, count, inv);
     if (status) return status;
-    if (!(e >= 0.0 && e <= 1.0)) return gb_error_set(GB_EDOM, "impact: restitution %g (allowed: 0 <= e <= 1)", e);
+    status = gb_impact_restitution_check(e);
+    if (status) return status;
     /* What each held contact's velocity must become, less what it is: −e u⁻·n n − u⁻. */
     double before[GB_IMPACT_CONTACTS_MAX][3], rhs[GB_IMPACT_CONTACTS_MAX][3];
     double speed = 0.0;
@@ -306,7 +313,8 @@ int gb_impact_rough_point(const gb_impact_body *body, const double normal[3], do
     double inv[3][3];
     int status = check_body(body, 1, inv);
     if (status) return status;
-    if (!(e >= 0.0 && e <= 1.0)) return gb_error_set(GB_EDOM, "impact: restitution %g (allowed: 0 <= e <= 1)", e);
+    status = gb_impact_restitution_check(e);
+    if (status) return status;
     /* The Delassus operator of the point: Δu = W P, W = I/m − [r]× I⁻¹ [r]× */
     double rx[3][3], a[3][3], W[3][3];
     cross_matrix(point, rx);

@@ -20,6 +20,8 @@
 #ifndef GB_IMPACT_H
 #define GB_IMPACT_H
 
+#include "gb_export.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -47,20 +49,25 @@ typedef struct gb_impact_result {
     int feasible_sets;                            /* contact sets that satisfy the law (1 when well posed) */
 } gb_impact_result;
 
+/* Newton's restitution e, its one range: 0 ≤ e ≤ GB_IMPACT_RESTITUTION_MAX (the scene table reads it from
+ * here). gb_impact_restitution_check: GB_OK, or GB_EDOM naming the range. */
+#define GB_IMPACT_RESTITUTION_MAX 1.0
+GB_API int gb_impact_restitution_check(double e);
+
 /* The impact of `body` moving with centroid velocity v and angular velocity omega, at the `count`
  * points (relative to the centroid) that may touch the plane of unit normal `normal`, with
  * restitution e. GB_OK; GB_EDOM for a bad body, count or e (the message says the allowed range);
  * GB_ENUMERIC when no contact set satisfies the law (not seen for a body with positive mass). */
-int gb_impact_solve(const gb_impact_body *body, const double normal[3], double e, const double (*points)[3], int count,
-                    const double v[3], const double omega[3], gb_impact_result *out);
+GB_API int gb_impact_solve(const gb_impact_body *body, const double normal[3], double e, const double (*points)[3],
+                           int count, const double v[3], const double omega[3], gb_impact_result *out);
 
 /* The plastic impact that holds all `count` points at rest after, whatever the signs of its impulses: a
  * chatter of impacts lumped into one (the dynamics' settle rule). Where the impulses are indeterminate
  * (coincident points, three points), the minimum-norm ones. The system always has a solution (the
  * points' velocities lie in the range of the Delassus operator); GB_ENUMERIC only if its SVD solve
  * misses it by more than its residual tolerance. GB_EDOM as gb_impact_solve. */
-int gb_impact_hold_all(const gb_impact_body *body, const double normal[3], const double (*points)[3], int count,
-                       const double v[3], const double omega[3], gb_impact_result *out);
+GB_API int gb_impact_hold_all(const gb_impact_body *body, const double normal[3], const double (*points)[3], int count,
+                              const double v[3], const double omega[3], gb_impact_result *out);
 /* One point meeting the plane, rough in the limit of Coulomb friction μ → ∞ of the Darboux–Keller impulse
  * process: the slip is stopped first by a tangential impulse (no normal impulse is needed for it when μ is
  * unbounded); if the point still approaches the plane after that, the normal impulse brings its velocity
@@ -70,10 +77,10 @@ int gb_impact_hold_all(const gb_impact_body *body, const double normal[3], const
  * stage leaves the point approaching, the two laws give the same impulse; where Moreau's would need the
  * plane to pull, this one has the answer. The kinetic energy never grows (each stage takes the energy of
  * its velocity jump, less e² of the normal part's). GB_EDOM as gb_impact_solve. */
-int gb_impact_rough_point(const gb_impact_body *body, const double normal[3], double e, const double point[3],
-                          const double v[3], const double omega[3], gb_impact_result *out);
+GB_API int gb_impact_rough_point(const gb_impact_body *body, const double normal[3], double e, const double point[3],
+                                 const double v[3], const double omega[3], gb_impact_result *out);
 /* The kinetic energy ½ m |v|² + ½ ω·Iω. */
-double gb_impact_energy(const gb_impact_body *body, const double v[3], const double omega[3]);
+GB_API double gb_impact_energy(const gb_impact_body *body, const double v[3], const double omega[3]);
 
 #ifdef __cplusplus
 }

@@ -16,6 +16,8 @@
 #ifndef GB_INTEGRATE_H
 #define GB_INTEGRATE_H
 
+#include "gb_export.h"
+
 #include "gb_dynamics.h"
 
 #ifdef __cplusplus
@@ -29,8 +31,8 @@ typedef enum gb_integrator {
     GB_INTEGRATOR_RK4IMP = 3
 } gb_integrator;
 
-const char *gb_integrate_name(gb_integrator method);
-int gb_integrate_parse(const char *name, gb_integrator *method);
+GB_API const char *gb_integrate_name(gb_integrator method);
+GB_API int gb_integrate_parse(const char *name, gb_integrator *method);
 
 typedef struct gb_integrate_def {
     gb_integrator method;
@@ -43,7 +45,7 @@ typedef struct gb_integrate_def {
                                 the step fraction), switch there, finish the step (default 0) */
 } gb_integrate_def;
 
-gb_integrate_def gb_integrate_default_def(void);
+GB_API gb_integrate_def gb_integrate_default_def(void);
 
 typedef struct gb_integrate_stats {
     size_t steps, rhs_evaluations, failed_steps;
@@ -64,8 +66,8 @@ typedef int (*gb_integrate_sample)(void *context, double t, const double y[GB_ST
 
 /* Integrate from t0 over def->periods periods, y in/out: gb_integrate_begin, the sample at t0, one
  * gb_integrate_advance over every step, gb_integrate_end. Every GSL status is checked. */
-int gb_integrate_run(gb_dynamics *dynamics, const gb_integrate_def *def, double t0, double y[GB_STATE_SIZE],
-                     gb_integrate_sample sample, void *context, gb_integrate_stats *stats);
+GB_API int gb_integrate_run(gb_dynamics *dynamics, const gb_integrate_def *def, double t0, double y[GB_STATE_SIZE],
+                            gb_integrate_sample sample, void *context, gb_integrate_stats *stats);
 
 /* A run in pieces. The nominal grid t_n = t0 + n·T/steps_per_period is global to the session and an
  * adaptive stepper keeps its state between pieces, so advancing by n₁ then n₂ steps takes exactly the
@@ -74,19 +76,20 @@ int gb_integrate_run(gb_dynamics *dynamics, const gb_integrate_def *def, double 
  * multiple of sample_every; the sample at t0 is the caller's. def->periods is not used by a session. */
 typedef struct gb_integrate_session gb_integrate_session;
 
-int gb_integrate_begin(gb_dynamics *dynamics, const gb_integrate_def *def, double t0, gb_integrate_session **out);
+GB_API int gb_integrate_begin(gb_dynamics *dynamics, const gb_integrate_def *def, double t0,
+                              gb_integrate_session **out);
 /* Advance y by `steps` nominal steps. After a sample callback has asked to stop, does nothing. */
-int gb_integrate_advance(gb_integrate_session *session, size_t steps, double y[GB_STATE_SIZE],
-                         gb_integrate_sample sample, void *context);
+GB_API int gb_integrate_advance(gb_integrate_session *session, size_t steps, double y[GB_STATE_SIZE],
+                                gb_integrate_sample sample, void *context);
 /* The nominal steps in `periods` forcing periods (rounded to the nearest whole step). */
-size_t gb_integrate_steps_for(const gb_integrate_session *session, double periods);
-double gb_integrate_time(const gb_integrate_session *session);
-int gb_integrate_stopped(const gb_integrate_session *session);
-const gb_integrate_stats *gb_integrate_session_stats(const gb_integrate_session *session);
+GB_API size_t gb_integrate_steps_for(const gb_integrate_session *session, double periods);
+GB_API double gb_integrate_time(const gb_integrate_session *session);
+GB_API int gb_integrate_stopped(const gb_integrate_session *session);
+GB_API const gb_integrate_stats *gb_integrate_session_stats(const gb_integrate_session *session);
 /* Put `to` (a session of a second copy of the same scene) at the time, step count and step size of
  * `from`: for a trajectory placed next to another one. */
-void gb_integrate_follow(gb_integrate_session *to, const gb_integrate_session *from);
-void gb_integrate_end(gb_integrate_session *session);
+GB_API void gb_integrate_follow(gb_integrate_session *to, const gb_integrate_session *from);
+GB_API void gb_integrate_end(gb_integrate_session *session);
 
 #ifdef __cplusplus
 }

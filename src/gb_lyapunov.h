@@ -31,6 +31,8 @@
 #ifndef GB_LYAPUNOV_H
 #define GB_LYAPUNOV_H
 
+#include "gb_export.h"
+
 #include <stddef.h>
 
 #ifdef __cplusplus
@@ -49,7 +51,7 @@ typedef struct gb_lyapunov_def {
 /* A warm-up or a batch count chosen from the record (the default of both). */
 #define GB_LYAPUNOV_CHOSEN ((size_t)-1)
 
-gb_lyapunov_def gb_lyapunov_default_def(void);
+GB_API gb_lyapunov_def gb_lyapunov_default_def(void);
 
 /* Two trajectories (0: reference, 1: perturbed) of a system whose separation lives in a
  * `dimension`-dimensional tangent space. */
@@ -93,35 +95,35 @@ typedef struct gb_lyapunov_result {
     double *running;                             /* running mean of λ_inst [intervals], owned */
 } gb_lyapunov_result;
 
-void gb_lyapunov_result_free(gb_lyapunov_result *result);
+GB_API void gb_lyapunov_result_free(gb_lyapunov_result *result);
 
 /* The pair estimator (eq 77). After `transient` intervals of the reference alone, trajectory 1 is
  * placed at δ₀ along `direction` (a vector of `dimension`, normalised here; NULL for (1, 1, …, 1)) and
  * put back at δ₀ along the separation after every interval. GB_ENUMERIC when the separation becomes
  * zero or non-finite. */
-int gb_lyapunov_pair(const gb_lyapunov_pair_system *system, void *context, const gb_lyapunov_def *def,
-                     double t0, const double *direction, gb_lyapunov_result *out);
+GB_API int gb_lyapunov_pair(const gb_lyapunov_pair_system *system, void *context, const gb_lyapunov_def *def, double t0,
+                            const double *direction, gb_lyapunov_result *out);
 
 /* The tangent estimator with k vectors (1 <= k <= min(dimension, GB_LYAPUNOV_MAX_EXPONENTS)), started
  * from the first k unit vectors. */
-int gb_lyapunov_tangent(const gb_lyapunov_tangent_system *system, void *context, const gb_lyapunov_def *def,
-                        double t0, size_t k, gb_lyapunov_result *out);
+GB_API int gb_lyapunov_tangent(const gb_lyapunov_tangent_system *system, void *context, const gb_lyapunov_def *def,
+                               double t0, size_t k, gb_lyapunov_result *out);
 
 /* The statistics of a record x[0..n) as the estimators compute them: warm-up and batches as `def` asks
  * (chosen from the record by default); fills warmup, warmup_found, batches, batch_correlation,
  * batches_independent, error_bar, late_drift, converged and whole_record of `out`, and puts the mean of
  * the kept part in *mean. GB_EDOM when a fixed warm-up or batch count does not fit n. */
-int gb_lyapunov_statistics(const double *x, size_t n, const gb_lyapunov_def *def, gb_lyapunov_result *out,
-                           double *mean);
+GB_API int gb_lyapunov_statistics(const double *x, size_t n, const gb_lyapunov_def *def, gb_lyapunov_result *out,
+                                  double *mean);
 
 /* MSER-5's warm-up of x[0..n) (a multiple of 5, at most n/2), and whether its minimum is interior. */
-size_t gb_lyapunov_mser5(const double *x, size_t n, int *found);
+GB_API size_t gb_lyapunov_mser5(const double *x, size_t n, int *found);
 
 /* Windowed exponents: the record λ_inst[0..n) cut into consecutive windows of `per_window` intervals
  * from its start (an incomplete last window is left out), and the mean of each in mean[0..n/per_window).
  * Where the running mean still remembers a chaotic start, the windows show when the chaos ended. Returns
  * the number of windows (0 when per_window is 0 or exceeds n). */
-size_t gb_lyapunov_windows(const double *lambda, size_t n, size_t per_window, double *mean);
+GB_API size_t gb_lyapunov_windows(const double *lambda, size_t n, size_t per_window, double *mean);
 
 /* A window whose mean exponent exceeds this [1/s] counts as chaotic: a separation growing by e^(0.05 t),
  * one e-fold in 20 s (57 forcing periods at Table 1's ω = 18 rad/s). */
@@ -130,7 +132,7 @@ size_t gb_lyapunov_windows(const double *lambda, size_t n, size_t per_window, do
 /* The lifetime of the chaos in `count` window means, each `per_window` long (any unit: the result is
  * in the same): the end of the last chaotic window; 0 when none is, +inf when the last one is (chaotic
  * to the end of the record: censored). */
-double gb_lyapunov_lifetime(const double *mean, size_t count, double per_window);
+GB_API double gb_lyapunov_lifetime(const double *mean, size_t count, double per_window);
 
 #ifdef __cplusplus
 }

@@ -8,6 +8,8 @@
 #ifndef GB_MASSPROPS_H
 #define GB_MASSPROPS_H
 
+#include "gb_export.h"
+
 #include "gb_surface.h"
 
 #ifdef __cplusplus
@@ -21,7 +23,7 @@ typedef struct gb_massprops_def {
     size_t limit;        /* subintervals per 1-D quadrature */
 } gb_massprops_def;
 
-gb_massprops_def gb_massprops_default_def(void);
+GB_API gb_massprops_def gb_massprops_default_def(void);
 
 typedef struct gb_massprops {
     double mass, density;
@@ -35,7 +37,7 @@ typedef struct gb_massprops {
 /* GB_EDOM for a non-positive mass or tolerances; GB_ENOCONV when a quadrature fails. The error
  * estimates bound |computed − exact| as outer abserr + 2π · max inner abserr (the inner errors
  * enter the outer integral at most with weight 2π), propagated through the formulas above. */
-int gb_massprops_compute(const gb_surface *surface, const gb_massprops_def *def, gb_massprops *out);
+GB_API int gb_massprops_compute(const gb_surface *surface, const gb_massprops_def *def, gb_massprops *out);
 
 #ifdef __cplusplus
 }

@@ -21,6 +21,8 @@
 #ifndef GB_MELNIKOV_H
 #define GB_MELNIKOV_H
 
+#include "gb_export.h"
+
 #include <stddef.h>
 
 #ifdef __cplusplus
@@ -58,11 +60,11 @@ typedef struct gb_melnikov_orbit {
 /* The saddle (GSL Brent on U′ in the bracket), E_s, the rate and the far end of the separatrix.
  * GB_EDOM when the bracket holds no saddle (U′ keeps its sign, or U″ ≥ 0 there: a sphere has none),
  * when M ≤ 0, or when a loop finds no turning point within `reach` (the orbit escapes). */
-int gb_melnikov_orbit_find(const gb_melnikov_model *model, gb_melnikov_orbit *out);
+GB_API int gb_melnikov_orbit_find(const gb_melnikov_model *model, gb_melnikov_orbit *out);
 
 /* t(q) on the separatrix by quadrature in q (t = 0 at q0; t < 0 between the saddle and q0 on the way
  * out, for a loop the outgoing half). */
-int gb_melnikov_time(const gb_melnikov_model *model, const gb_melnikov_orbit *orbit, double q, double *t);
+GB_API int gb_melnikov_time(const gb_melnikov_model *model, const gb_melnikov_orbit *orbit, double q, double *t);
 
 typedef enum gb_melnikov_weight { GB_MELNIKOV_EXACT = 0, GB_MELNIKOV_PAPER = 1 } gb_melnikov_weight;
 
@@ -73,8 +75,8 @@ typedef struct gb_melnikov_integrals {
     double A1, A2;               /* eq 92 */
 } gb_melnikov_integrals;
 
-int gb_melnikov_integrals_compute(const gb_melnikov_model *model, const gb_melnikov_orbit *orbit, double omega,
-                                  gb_melnikov_weight weight, gb_melnikov_integrals *out);
+GB_API int gb_melnikov_integrals_compute(const gb_melnikov_model *model, const gb_melnikov_orbit *orbit, double omega,
+                                         gb_melnikov_weight weight, gb_melnikov_integrals *out);
 
 typedef struct gb_melnikov_forcing {
     double mu, nu1, nu2, omega, psi;
@@ -82,11 +84,12 @@ typedef struct gb_melnikov_forcing {
 } gb_melnikov_forcing;
 
 /* Eq 91. */
-double gb_melnikov_function(const gb_melnikov_integrals *integrals, const gb_melnikov_forcing *forcing, double t0);
+GB_API double gb_melnikov_function(const gb_melnikov_integrals *integrals, const gb_melnikov_forcing *forcing,
+                                   double t0);
 
 /* Eq 86 directly: ∫ w G(q_h, p_h, t + t₀) dt by quadrature along the orbit (w = q̇ or p). */
-int gb_melnikov_direct(const gb_melnikov_model *model, const gb_melnikov_orbit *orbit, const gb_melnikov_forcing *forcing,
-                       gb_melnikov_weight weight, double t0, double *value);
+GB_API int gb_melnikov_direct(const gb_melnikov_model *model, const gb_melnikov_orbit *orbit,
+                              const gb_melnikov_forcing *forcing, gb_melnikov_weight weight, double t0, double *value);
 
 typedef struct gb_melnikov_criterion {
     int eq93;                    /* |ν₁|A₁* + |ν₂|A₂* > μD */
@@ -95,13 +98,13 @@ typedef struct gb_melnikov_criterion {
     double t0_max;               /* where it is reached, in [0, 2π/ω) */
 } gb_melnikov_criterion;
 
-void gb_melnikov_judge(const gb_melnikov_integrals *integrals, const gb_melnikov_forcing *forcing,
-                       gb_melnikov_criterion *out);
+GB_API void gb_melnikov_judge(const gb_melnikov_integrals *integrals, const gb_melnikov_forcing *forcing,
+                              gb_melnikov_criterion *out);
 
 /* The critical scale of the forcing: the smallest s such that (sν₁, sν₂) makes M(t₀) change sign, by
  * eq 93 (s = μD/(ν₁A₁* + ν₂A₂*)) and exactly (s = μD / max oscillatory part at s = 1). */
-void gb_melnikov_threshold(const gb_melnikov_integrals *integrals, const gb_melnikov_forcing *forcing, double *by_eq93,
-                           double *exact);
+GB_API void gb_melnikov_threshold(const gb_melnikov_integrals *integrals, const gb_melnikov_forcing *forcing,
+                                  double *by_eq93, double *exact);
 
 /* The separatrix of a rotation (period > 0) tabulated once for every frequency up to omega_max: the
  * path of gb_melnikov_integrals_compute cut into panels in u (ending at the model's knots, each at
@@ -112,12 +115,12 @@ void gb_melnikov_threshold(const gb_melnikov_integrals *integrals, const gb_meln
  * GB_EDOM for a loop (period 0) and for omega_max outside (0, 10⁴]. */
 typedef struct gb_melnikov_table gb_melnikov_table;
 
-int gb_melnikov_table_create(const gb_melnikov_model *model, const gb_melnikov_orbit *orbit, gb_melnikov_weight weight,
-                             double omega_max, gb_melnikov_table **out);
+GB_API int gb_melnikov_table_create(const gb_melnikov_model *model, const gb_melnikov_orbit *orbit,
+                                    gb_melnikov_weight weight, double omega_max, gb_melnikov_table **out);
 /* GB_EDOM for omega outside (0, omega_max]. */
-int gb_melnikov_table_integrals(const gb_melnikov_table *table, double omega, gb_melnikov_integrals *out);
-size_t gb_melnikov_table_nodes(const gb_melnikov_table *table);
-void gb_melnikov_table_free(gb_melnikov_table *table);
+GB_API int gb_melnikov_table_integrals(const gb_melnikov_table *table, double omega, gb_melnikov_integrals *out);
+GB_API size_t gb_melnikov_table_nodes(const gb_melnikov_table *table);
+GB_API void gb_melnikov_table_free(gb_melnikov_table *table);
 
 /* The integrals at any ω from tables kept per octave of ω (a table of ω_max = 16, 32, 64, 128 or
  * 256 rad/s serves the ω above the octave below: 16 serves every ω ≤ 16), so that an ω's integrals do
@@ -127,33 +130,33 @@ void gb_melnikov_table_free(gb_melnikov_table *table);
 #define GB_MELNIKOV_TABLES_OMEGA 256.0
 typedef struct gb_melnikov_tables gb_melnikov_tables;
 
-int gb_melnikov_tables_create(const gb_melnikov_model *model, const gb_melnikov_orbit *orbit, gb_melnikov_weight weight,
-                              gb_melnikov_tables **out);
-int gb_melnikov_tables_prepare(gb_melnikov_tables *tables, double omega);
-int gb_melnikov_tables_integrals(const gb_melnikov_tables *tables, double omega, gb_melnikov_integrals *out);
-void gb_melnikov_tables_free(gb_melnikov_tables *tables);
+GB_API int gb_melnikov_tables_create(const gb_melnikov_model *model, const gb_melnikov_orbit *orbit,
+                                     gb_melnikov_weight weight, gb_melnikov_tables **out);
+GB_API int gb_melnikov_tables_prepare(gb_melnikov_tables *tables, double omega);
+GB_API int gb_melnikov_tables_integrals(const gb_melnikov_tables *tables, double omega, gb_melnikov_integrals *out);
+GB_API void gb_melnikov_tables_free(gb_melnikov_tables *tables);
 
 /* The first-order splitting distance ε M(t₀)/|f(x_h(0))| predicted at the orbit's t = 0 point, and its
  * direct measurement for a perturbation of damping alone (G = −μp; the saddle stays put): the unstable
  * manifold integrated forward and the stable one backward (rk8pd) to the line through x_h(0) normal to
  * the flow, their signed distance along (−f_p, f_q)/|f|. */
-int gb_melnikov_split_damped(const gb_melnikov_model *model, const gb_melnikov_orbit *orbit, double epsilon_mu,
-                             double *measured, double *flow_speed);
+GB_API int gb_melnikov_split_damped(const gb_melnikov_model *model, const gb_melnikov_orbit *orbit, double epsilon_mu,
+                                    double *measured, double *flow_speed);
 
 /* The same under the whole perturbation εG at phase t₀: the saddle becomes a hyperbolic periodic orbit
  * (a fixed point of the period map, by Newton); points of its unstable manifold at time t₀ are flowed
  * from t₀ − kT, of its stable manifold from t₀ + kT, both found on the section normal to the flow at
  * x_h(0) by bisection on their displacement along the map's eigenvectors. To compare with
  * ε M(t₀)/|f(x_h(0))|. */
-int gb_melnikov_split_forced(const gb_melnikov_model *model, const gb_melnikov_orbit *orbit,
-                             const gb_melnikov_forcing *forcing, double epsilon, double t0, double *measured,
-                             double *flow_speed);
+GB_API int gb_melnikov_split_forced(const gb_melnikov_model *model, const gb_melnikov_orbit *orbit,
+                                    const gb_melnikov_forcing *forcing, double epsilon, double t0, double *measured,
+                                    double *flow_speed);
 
 /* The second, independent orbit: the flow of eq 78 (rk8pd) started on the saddle's unstable direction,
  * and the time it takes from q = q_a to q = q_b (both on the way out from the saddle, before a loop's
  * turning point). To compare with gb_melnikov_time(q_b) − gb_melnikov_time(q_a). */
-int gb_melnikov_flight_time(const gb_melnikov_model *model, const gb_melnikov_orbit *orbit, double q_a, double q_b,
-                            double *dt);
+GB_API int gb_melnikov_flight_time(const gb_melnikov_model *model, const gb_melnikov_orbit *orbit, double q_a,
+                                   double q_b, double *dt);
 
 #ifdef __cplusplus
 }

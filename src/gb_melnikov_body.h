@@ -24,6 +24,8 @@
 #ifndef GB_MELNIKOV_BODY_H
 #define GB_MELNIKOV_BODY_H
 
+#include "gb_export.h"
+
 #include "gb_melnikov.h"
 #include "gb_surface.h"
 
@@ -39,8 +41,8 @@ typedef struct gb_melnikov_body gb_melnikov_body;
 /* The reduced model of `body` with mass `mass` [kg] under gravity g [m/s²]; `nodes` table points a
  * smooth piece per radian (≥ 64). GB_EDOM when the body has no top that is a strict maximum of r (β =
  * 0: a sphere has no unstable equilibrium to rock over). */
-int gb_melnikov_body_create(const gb_surface *body, double mass, double g, size_t nodes, gb_melnikov_body **out);
-void gb_melnikov_body_free(gb_melnikov_body *body);
+GB_API int gb_melnikov_body_create(const gb_surface *body, double mass, double g, size_t nodes, gb_melnikov_body **out);
+GB_API void gb_melnikov_body_free(gb_melnikov_body *body);
 
 /* M(q) is the body's inertia about its contact, which jumps where the contact jumps (a tie): with it the
  * reduced system is not conservative across the ties (p = M q̇ continuous, M not: the energy jumps), and
@@ -50,7 +52,7 @@ typedef enum gb_melnikov_body_mass { GB_MELNIKOV_MASS_AT_TOP = 0, GB_MELNIKOV_MA
 
 /* The model for gb_melnikov (saddle at q = 0, a rotation of period 2π in the direction of e); it reads
  * `body`, which must outlive it. Models of both readings may be used side by side. */
-gb_melnikov_model gb_melnikov_body_model(gb_melnikov_body *body, gb_melnikov_body_mass mass);
+GB_API gb_melnikov_model gb_melnikov_body_model(gb_melnikov_body *body, gb_melnikov_body_mass mass);
 
 typedef struct gb_melnikov_body_info {
     double top[3];            /* x at the top (body frame) */
@@ -65,11 +67,11 @@ typedef struct gb_melnikov_body_info {
     size_t table_nodes;       /* points tabulated in all */
 } gb_melnikov_body_info;
 
-void gb_melnikov_body_get_info(const gb_melnikov_body *body, gb_melnikov_body_info *out);
+GB_API void gb_melnikov_body_get_info(const gb_melnikov_body *body, gb_melnikov_body_info *out);
 
 /* H, H′ and M at q computed directly (continuation from the nearest table node and certification), not
  * interpolated: the tables' oracle. */
-int gb_melnikov_body_direct(gb_melnikov_body *body, double q, double *H, double *dH, double *M);
+GB_API int gb_melnikov_body_direct(gb_melnikov_body *body, double q, double *H, double *dH, double *M);
 
 #ifdef __cplusplus
 }

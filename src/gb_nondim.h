@@ -9,6 +9,8 @@
 #ifndef GB_NONDIM_H
 #define GB_NONDIM_H
 
+#include "gb_export.h"
+
 #include "gb_dynamics.h"
 
 #ifdef __cplusplus
@@ -25,10 +27,10 @@ typedef struct gb_nondim {
 
 /* The groups of `def` for a body of mean radius L (gb_dynamics_mean_radius). GB_EDOM when g = 0
  * (A_i = a_i/g is then undefined). */
-int gb_nondim_groups(const gb_dynamics_def *def, double L, gb_nondim *out);
+GB_API int gb_nondim_groups(const gb_dynamics_def *def, double L, gb_nondim *out);
 
 /* The dimensionless problem as a gb_dynamics_def (see above). */
-gb_dynamics_def gb_nondim_scaled_def(const gb_dynamics_def *def, const gb_nondim *groups);
+GB_API gb_dynamics_def gb_nondim_scaled_def(const gb_dynamics_def *def, const gb_nondim *groups);
 
 #ifdef __cplusplus
 }

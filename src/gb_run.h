@@ -14,6 +14,8 @@
 #ifndef GB_RUN_H
 #define GB_RUN_H
 
+#include "gb_export.h"
+
 #include "gb_case.h"
 #include "gb_certify.h"
 #include "gb_spectrum.h"
@@ -87,12 +89,12 @@ typedef struct gb_run_result {
 
 /* Run `scene` (as gb_case_load returned it). The result owns its strobe, spectrum and λ record:
  * gb_run_result_free. On failure nothing is left to free. */
-int gb_run(const gb_case *scene, const gb_run_sinks *sinks, gb_run_result *out);
+GB_API int gb_run(const gb_case *scene, const gb_run_sinks *sinks, gb_run_result *out);
 /* The same in `context` (gb_dynamics_context; NULL: the run's own): the body's set-up and the caches the
  * context holds (its files read when first needed); writing them back is the caller's, by
  * gb_dynamics_context_save. */
-int gb_run_in(const gb_case *scene, gb_dynamics_context *context, const gb_run_sinks *sinks, gb_run_result *out);
-void gb_run_result_free(gb_run_result *result);
+GB_API int gb_run_in(const gb_case *scene, gb_dynamics_context *context, const gb_run_sinks *sinks, gb_run_result *out);
+GB_API void gb_run_result_free(gb_run_result *result);
 
 #ifdef __cplusplus
 }

@@ -11,6 +11,8 @@
 #ifndef GB_SCAN_H
 #define GB_SCAN_H
 
+#include "gb_export.h"
+
 #include "gb_case.h"
 
 #include <stdint.h>
@@ -54,7 +56,7 @@ enum {
 };
 
 /* The names of the metrics in `metrics` (as a scan file writes them), in the CSV's order: their number. */
-size_t gb_scan_metric_names(unsigned metrics, const char **names, size_t max);
+GB_API size_t gb_scan_metric_names(unsigned metrics, const char **names, size_t max);
 
 typedef struct gb_scan {
     char path[GB_SCAN_PATH_MAX];       /* the scan file */
@@ -94,17 +96,17 @@ typedef struct gb_scan {
 /* Read a scan file and its base scene, and check every point's scene (each point loads: a bad range is
  * found before any run). GB_EINVAL / GB_EDOM with "FILE:LINE: [section] key = value: reason (allowed:
  * ...)". On success the scan holds the base scene's text: gb_scan_free. */
-int gb_scan_load(const char *path, gb_scan *out);
+GB_API int gb_scan_load(const char *path, gb_scan *out);
 
-void gb_scan_free(gb_scan *scan);
+GB_API void gb_scan_free(gb_scan *scan);
 
-size_t gb_scan_points(const gb_scan *scan);
+GB_API size_t gb_scan_points(const gb_scan *scan);
 
 /* The coordinates of point `index` (row-major: index = iy · count_x + ix), in the keys' own units. */
-void gb_scan_coordinates(const gb_scan *scan, size_t index, double *x, double *y);
+GB_API void gb_scan_coordinates(const gb_scan *scan, size_t index, double *x, double *y);
 
 /* The scene of point `index`. */
-int gb_scan_point_case(const gb_scan *scan, size_t index, gb_case *out);
+GB_API int gb_scan_point_case(const gb_scan *scan, size_t index, gb_case *out);
 
 typedef struct gb_scan_metrics {
     double x, y;
@@ -133,16 +135,16 @@ typedef struct gb_scan_metrics {
  * Both are linear in the forcing's scale: a point at margin m is at m times its threshold A₁ with A₂/A₁
  * and ψ held. +inf without damping (NAN with neither damping nor forcing), NAN where the reduced model is
  * not defined (GB_EDOM from it: no strict top, no saddle; or g ≤ 0). */
-int gb_scan_melnikov_margins(const gb_case *scene, double *margin, double *margin_eq93);
+GB_API int gb_scan_melnikov_margins(const gb_case *scene, double *margin, double *margin_eq93);
 
 /* Run point `index` alone; metrics not asked for are NAN. A scan of margins alone runs no dynamics: the
  * run's fingerprints are then 0. */
-int gb_scan_point_run(const gb_scan *scan, size_t index, gb_scan_metrics *out);
+GB_API int gb_scan_point_run(const gb_scan *scan, size_t index, gb_scan_metrics *out);
 
 /* The CSV header and one row (every metric %.17g, fingerprints in hex); each ends with '\n'. The header names
  * the columns: index, the two axes by their keys (SECTION.KEY, such as forcing.omega), then the metrics. */
-int gb_scan_csv_header(const gb_scan *scan, char *out, size_t size);
-int gb_scan_csv_row(const gb_scan_metrics *m, size_t index, char *out, size_t size);
+GB_API int gb_scan_csv_header(const gb_scan *scan, char *out, size_t size);
+GB_API int gb_scan_csv_row(const gb_scan_metrics *m, size_t index, char *out, size_t size);
 
 /* ---- running a scan ----
  * gb_scan_run runs the points of a scan on threads (POSIX threads: one work queue of points, each thread
@@ -195,10 +197,10 @@ typedef struct gb_scan_runner {
  * ("point K (SECTION.KEY = X, SECTION.KEY = Y) failed: why", its gb_ status; the points running then finish,
  * no new one starts), a `finished` call's, or GB_EINVAL for a runner out of range. *points_run (may be
  * NULL) counts the points this process finished. */
-int gb_scan_run(const gb_scan *scan, const gb_scan_runner *runner, size_t *points_run);
+GB_API int gb_scan_run(const gb_scan *scan, const gb_scan_runner *runner, size_t *points_run);
 
 /* The threads gb_scan_run uses for runner->threads = `threads` (0: one per online processor). */
-unsigned gb_scan_threads(unsigned threads);
+GB_API unsigned gb_scan_threads(unsigned threads);
 
 #ifdef __cplusplus
 }

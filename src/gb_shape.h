@@ -7,6 +7,8 @@
 #ifndef GB_SHAPE_H
 #define GB_SHAPE_H
 
+#include "gb_export.h"
+
 #include "gb_surface.h"
 
 #include <stddef.h>
@@ -24,7 +26,7 @@ typedef struct gb_curvature {
 
 /* Curvature at one interior parameter point (0 < φ < π); from the analytic first and second
  * derivatives of gb_surface through the first and second fundamental forms. */
-void gb_shape_curvature(const gb_surface *surface, double phi, double theta, gb_curvature *out);
+GB_API void gb_shape_curvature(const gb_surface *surface, double phi, double theta, gb_curvature *out);
 
 typedef struct gb_shape_def {
     size_t survey_phi, survey_theta; /* midpoint grid for the curvature survey */
@@ -37,7 +39,7 @@ typedef struct gb_shape_def {
                                         be extreme to count as robust (see gb_hull_equilibria) */
 } gb_shape_def;
 
-gb_shape_def gb_shape_default_def(void);
+GB_API gb_shape_def gb_shape_default_def(void);
 
 typedef struct gb_curvature_survey {
     double K_min, K_min_phi, K_min_theta;
@@ -46,17 +48,16 @@ typedef struct gb_curvature_survey {
     double area;              /* total area by the same rule */
 } gb_curvature_survey;
 
-int gb_shape_curvature_survey(const gb_surface *surface, const gb_shape_def *def,
-                              gb_curvature_survey *out);
+GB_API int gb_shape_curvature_survey(const gb_surface *surface, const gb_shape_def *def, gb_curvature_survey *out);
 
 /* The supremum of β for which the morphology is strictly convex: the root of β ↦ min κ₁(β),
  * bracketed in (0, 1/4) and solved with Brent's method to def->beta_tol. *where_phi/_theta get the
  * place where convexity is lost (may be NULL). */
-int gb_shape_convexity_limit(const gb_morphology *morphology, const gb_shape_def *def,
-                             double *beta_limit, double *where_phi, double *where_theta);
+GB_API int gb_shape_convexity_limit(const gb_morphology *morphology, const gb_shape_def *def, double *beta_limit,
+                                    double *where_phi, double *where_theta);
 
 enum gb_equilibrium_type { GB_EQ_STABLE = 0, GB_EQ_SADDLE = 1, GB_EQ_UNSTABLE = 2 };
-const char *gb_shape_equilibrium_name(int type);
+GB_API const char *gb_shape_equilibrium_name(int type);
 
 typedef struct gb_equilibrium {
     int type;
@@ -78,7 +79,7 @@ typedef struct gb_equilibria {
  * with the analytic Hessian from every grid node where |∇r| is a local minimum; duplicates merged.
  * The polar caps (φ < polar_cap or φ > π − polar_cap) are not searched: polar_gradient_min reports
  * the smallest sphere gradient there, so a caller can see that no critical point hides in them. */
-int gb_shape_equilibria(const gb_surface *surface, const gb_shape_def *def, gb_equilibria *out);
+GB_API int gb_shape_equilibria(const gb_surface *surface, const gb_shape_def *def, gb_equilibria *out);
 
 typedef struct gb_hull_rest {
     double normal[3]; /* outward normal of the resting face: the body's "down" direction */
@@ -103,8 +104,7 @@ typedef struct gb_hull_equilibria {
 } gb_hull_equilibria;
 
 /* Convex hull of a hull_phi × hull_theta midpoint sample plus both poles (Qhull). */
-int gb_shape_hull_equilibria(const gb_surface *surface, const gb_shape_def *def,
-                             gb_hull_equilibria *out);
+GB_API int gb_shape_hull_equilibria(const gb_surface *surface, const gb_shape_def *def, gb_hull_equilibria *out);
 
 #ifdef __cplusplus
 }

@@ -10,13 +10,13 @@
 
 static const char *const window_names[] = {"rectangular", "hann"};
 
-const char *gb_window_name(gb_window w) { return (unsigned)w < 2 ? window_names[w] : NULL; }
+const char *gb_spectrum_window_name(gb_spectrum_window w) { return (unsigned)w < 2 ? window_names[w] : NULL; }
 
-int gb_window_parse(const char *name, gb_window *window)
+int gb_spectrum_window_parse(const char *name, gb_spectrum_window *window)
 {
     int k = 0;
     const int status = gb_error_parse_name(name, window_names, 2, "window", &k);
-    if (!status) *window = (gb_window)k;
+    if (!status) *window = (gb_spectrum_window)k;
     return status;
 }
 
@@ -27,12 +27,12 @@ void gb_spectrum_free(gb_spectrum *s)
     memset(s, 0, sizeof *s);
 }
 
-int gb_spectrum_compute(const double *x, size_t n, double dt, gb_window window, gb_spectrum *out)
+int gb_spectrum_compute(const double *x, size_t n, double dt, gb_spectrum_window window, gb_spectrum *out)
 {
     memset(out, 0, sizeof *out);
     if (n < 2) return gb_error_set(GB_EDOM, "a spectrum needs at least 2 samples (got %zu)", n);
     if (!(isfinite(dt) && dt > 0.0)) return gb_error_set(GB_EDOM, "sample spacing dt = %g is out of range (allowed: > 0)", dt);
-    if (!gb_window_name(window)) return gb_error_set(GB_EINVAL, "window %d is unknown", (int)window);
+    if (!gb_spectrum_window_name(window)) return gb_error_set(GB_EINVAL, "window %d is unknown", (int)window);
     double *data = malloc(n * sizeof *data);
     const size_t bins = n / 2 + 1;
     out->frequency = malloc(bins * sizeof *out->frequency);
@@ -48,7 +48,7 @@ int gb_spectrum_compute(const double *x, size_t n, double dt, gb_window window, 
         mean /= (double)n;
         for (size_t i = 0; i < n; i++) {
             /* The periodic Hann window (scipy's default for spectra): w_i = sin²(π i / n). */
-            const double w = window == GB_WINDOW_HANN ? 0.5 - 0.5 * cos(2.0 * M_PI * (double)i / (double)n) : 1.0;
+            const double w = window == GB_SPECTRUM_WINDOW_HANN ? 0.5 - 0.5 * cos(2.0 * M_PI * (double)i / (double)n) : 1.0;
             data[i] = w * (x[i] - mean);
             w2 += w * w;
         }

@@ -9,16 +9,18 @@
 #ifndef GB_SPECTRUM_H
 #define GB_SPECTRUM_H
 
+#include "gb_export.h"
+
 #include <stddef.h>
 
 #ifdef __cplusplus
 extern "C" {
 #endif
 
-typedef enum gb_window { GB_WINDOW_RECTANGULAR = 0, GB_WINDOW_HANN = 1 } gb_window;
+typedef enum gb_spectrum_window { GB_SPECTRUM_WINDOW_RECTANGULAR = 0, GB_SPECTRUM_WINDOW_HANN = 1 } gb_spectrum_window;
 
-const char *gb_window_name(gb_window window);
-int gb_window_parse(const char *name, gb_window *window);
+GB_API const char *gb_spectrum_window_name(gb_spectrum_window window);
+GB_API int gb_spectrum_window_parse(const char *name, gb_spectrum_window *window);
 
 typedef struct gb_spectrum {
     size_t count;        /* ⌊n/2⌋ + 1 bins */
@@ -28,11 +30,11 @@ typedef struct gb_spectrum {
 } gb_spectrum;
 
 /* GB_EDOM for n < 2 or dt ≤ 0; GB_ENOMEM; GB_ENUMERIC when GSL's FFT fails. */
-int gb_spectrum_compute(const double *x, size_t n, double dt, gb_window window, gb_spectrum *out);
-void gb_spectrum_free(gb_spectrum *spectrum);
+GB_API int gb_spectrum_compute(const double *x, size_t n, double dt, gb_spectrum_window window, gb_spectrum *out);
+GB_API void gb_spectrum_free(gb_spectrum *spectrum);
 
 /* The bin of largest power among k ≥ 1 (the mean was removed). */
-size_t gb_spectrum_peak(const gb_spectrum *spectrum);
+GB_API size_t gb_spectrum_peak(const gb_spectrum *spectrum);
 
 #ifdef __cplusplus
 }

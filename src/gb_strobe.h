@@ -8,6 +8,8 @@
 #ifndef GB_STROBE_H
 #define GB_STROBE_H
 
+#include "gb_export.h"
+
 #include <stddef.h>
 
 #ifdef __cplusplus
@@ -30,21 +32,21 @@ typedef struct gb_strobe {
 
 /* An empty strobe for a run started at t0 with steps_per_period steps per period T. GB_EDOM when the
  * phase is outside [0, 1) or not on the grid. */
-int gb_strobe_init(gb_strobe *strobe, size_t dimension, double t0, double period, size_t steps_per_period,
-                   const gb_strobe_def *def);
-void gb_strobe_free(gb_strobe *strobe);
+GB_API int gb_strobe_init(gb_strobe *strobe, size_t dimension, double t0, double period, size_t steps_per_period,
+                          const gb_strobe_def *def);
+GB_API void gb_strobe_free(gb_strobe *strobe);
 
 /* Offer the run's sample (t, x[dimension]); kept when t is a strobe instant. *kept (may be NULL) says
  * whether it was. GB_ENOMEM when the record cannot grow. */
-int gb_strobe_offer(gb_strobe *strobe, double t, const double *x, int *kept);
+GB_API int gb_strobe_offer(gb_strobe *strobe, double t, const double *x, int *kept);
 
 /* The least p in 1..max_period with |x_{n+p} − x_n| ≤ tol for every pair of the last `window` samples
  * (max norm over the components); 0 when there is none: no period up to max_period. */
-size_t gb_strobe_period(const double *x, size_t count, size_t dimension, size_t window, size_t max_period,
-                        double tol);
+GB_API size_t gb_strobe_period(const double *x, size_t count, size_t dimension, size_t window, size_t max_period,
+                               double tol);
 
 /* Mean and (population) standard deviation of each component. */
-void gb_strobe_spread(const double *x, size_t count, size_t dimension, double *mean, double *sd);
+GB_API void gb_strobe_spread(const double *x, size_t count, size_t dimension, double *mean, double *sd);
 
 #ifdef __cplusplus
 }

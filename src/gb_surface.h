@@ -9,6 +9,8 @@
 #ifndef GB_SURFACE_H
 #define GB_SURFACE_H
 
+#include "gb_export.h"
+
 
 #include <stddef.h>
 
@@ -39,10 +41,10 @@ typedef struct gb_morphology {
     double symmetry_axis[3];
 } gb_morphology;
 
-size_t gb_surface_morphology_count(void);
-const gb_morphology *gb_surface_morphology_at(size_t index);
+GB_API size_t gb_surface_morphology_count(void);
+GB_API const gb_morphology *gb_surface_morphology_at(size_t index);
 /* The morphology called `name`, or NULL. */
-const gb_morphology *gb_surface_morphology_find(const char *name);
+GB_API const gb_morphology *gb_surface_morphology_find(const char *name);
 
 /* β must satisfy 0 ≤ β < 1/4: S ≥ 1 − 4β on the sphere, with equality reached, so r is real and
  * positive everywhere exactly when β < 1/4. */
@@ -54,7 +56,7 @@ typedef struct gb_surface {
 } gb_surface;
 
 /* Fill `surface`; GB_EINVAL for an unknown morphology, GB_EDOM for β outside [0, 1/4). */
-int gb_surface_init(gb_surface *surface, const char *morphology, double beta);
+GB_API int gb_surface_init(gb_surface *surface, const char *morphology, double beta);
 
 /* Everything §2 defines at one parameter point. Derivatives of the kernel and radius are eq 13/14
  * and their second-order extensions; tangents eq 15; n = ∂φx × ∂θx (eq 16), outward; n̂ eq 17. */
@@ -68,21 +70,20 @@ typedef struct gb_surface_point {
     double n[3], n_hat[3];
 } gb_surface_point;
 
-void gb_surface_eval(const gb_surface *surface, double phi, double theta, gb_surface_point *point);
+GB_API void gb_surface_eval(const gb_surface *surface, double phi, double theta, gb_surface_point *point);
 
 /* Cheap paths for hot loops: the kernel S (eq 11), r (eq 12) and x (eq 2) only. */
-double gb_surface_kernel(const gb_surface *surface, double phi, double theta);
-double gb_surface_radius(const gb_surface *surface, double phi, double theta);
-void gb_surface_position(const gb_surface *surface, double phi, double theta, double x[3]);
+GB_API double gb_surface_kernel(const gb_surface *surface, double phi, double theta);
+GB_API double gb_surface_radius(const gb_surface *surface, double phi, double theta);
+GB_API void gb_surface_position(const gb_surface *surface, double phi, double theta, double x[3]);
 
 /* β-sensitivity at fixed (φ, θ): ∂r/∂β (eq 66), ∂x/∂β (eq 67), ∂h/∂β = z_bᵀ ∂x/∂β (eq 68). */
-double gb_surface_radius_dbeta(const gb_surface *surface, double phi, double theta);
-void gb_surface_position_dbeta(const gb_surface *surface, double phi, double theta, double dx[3]);
-double gb_surface_height_dbeta(const gb_surface *surface, double phi, double theta,
-                               const double zb[3]);
+GB_API double gb_surface_radius_dbeta(const gb_surface *surface, double phi, double theta);
+GB_API void gb_surface_position_dbeta(const gb_surface *surface, double phi, double theta, double dx[3]);
+GB_API double gb_surface_height_dbeta(const gb_surface *surface, double phi, double theta, const double zb[3]);
 
 /* The unit direction u(φ, θ) of eq 1. */
-void gb_surface_direction(double phi, double theta, double u[3]);
+GB_API void gb_surface_direction(double phi, double theta, double u[3]);
 
 /* Enclosures over parameter boxes (the certified contact search, gb_certify, uses them).
  *
@@ -92,10 +93,10 @@ void gb_surface_direction(double phi, double theta, double u[3]);
  *                            so it covers the (φ, θ) poles ±e_z regularly. */
 typedef enum gb_surface_chart { GB_SURFACE_CHART_POLAR_Z = 0, GB_SURFACE_CHART_POLAR_X = 1 } gb_surface_chart;
 
-void gb_surface_chart_direction(gb_surface_chart chart, double a, double b, double u[3]);
+GB_API void gb_surface_chart_direction(gb_surface_chart chart, double a, double b, double u[3]);
 /* Chart coordinates of the direction (φ, θ) (b in [0, 2π) for POLAR_X), and back (θ in [0, 2π)). */
-void gb_surface_chart_coordinates(gb_surface_chart chart, double phi, double theta, double *a, double *b);
-void gb_surface_chart_angles(gb_surface_chart chart, double a, double b, double *phi, double *theta);
+GB_API void gb_surface_chart_coordinates(gb_surface_chart chart, double phi, double theta, double *a, double *b);
+GB_API void gb_surface_chart_angles(gb_surface_chart chart, double a, double b, double *phi, double *theta);
 
 #ifdef __cplusplus
 }

@@ -127,7 +127,7 @@ static cJSON *scene_json(const gb_case *c)
     cJSON_AddBoolToObject(o, "spectrum", c->spectrum);
     if (c->spectrum) {
         cli_json_add(o, "spectrum_transient_periods", (double)c->spectrum_transient);
-        cJSON_AddStringToObject(o, "spectrum_window", gb_window_name(c->spectrum_window));
+        cJSON_AddStringToObject(o, "spectrum_window", gb_spectrum_window_name(c->spectrum_window));
     }
     cJSON_AddBoolToObject(o, "lyapunov", c->lyapunov);
     return o;
@@ -336,7 +336,7 @@ static cJSON *spectrum_json(const gb_case *scene, const gb_spectrum *spectrum, s
 {
     cJSON *o = cJSON_CreateObject();
     cli_json_add(o, "samples", (double)samples);
-    cJSON_AddStringToObject(o, "window", gb_window_name(scene->spectrum_window));
+    cJSON_AddStringToObject(o, "window", gb_spectrum_window_name(scene->spectrum_window));
     cli_json_add(o, "df_hz", spectrum->df);
     const size_t peak = gb_spectrum_peak(spectrum);
     cli_json_add(o, "peak_hz", spectrum->frequency[peak]);

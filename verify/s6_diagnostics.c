@@ -275,7 +275,7 @@ static void test_run_one_path(void)
 
 static void test_spectrum_closed_forms(void)
 {
-    static const gb_window windows[2] = {GB_WINDOW_RECTANGULAR, GB_WINDOW_HANN};
+    static const gb_spectrum_window windows[2] = {GB_SPECTRUM_WINDOW_RECTANGULAR, GB_SPECTRUM_WINDOW_HANN};
     static const size_t lengths[3] = {512, 1000, 625};
     for (int w = 0; w < 2; w++)
         for (int l = 0; l < 3; l++) {
@@ -287,7 +287,7 @@ static void test_spectrum_closed_forms(void)
             const int status = gb_spectrum_compute(x, n, dt, windows[w], &s);
             free(x);
             char q[160];
-            snprintf(q, sizeof q, "sinusoid on bin 37, n = %zu, %s window: peak frequency [Hz]", n, gb_window_name(windows[w]));
+            snprintf(q, sizeof q, "sinusoid on bin 37, n = %zu, %s window: peak frequency [Hz]", n, gb_spectrum_window_name(windows[w]));
             gb_check cp = {"8.2", "Fig 8", q, "f0 = 37/(n dt)", "2 ulp of f0"};
             if (status) {
                 gb_check_true(&cp, 0, "%s", gb_error_message());
@@ -296,7 +296,7 @@ static void test_spectrum_closed_forms(void)
             gb_check_close(&cp, s.frequency[gb_spectrum_peak(&s)], f0, 2.0 * DBL_EPSILON, 0.0);
             double total = 0.0;
             for (size_t k = 0; k < s.count; k++) total += s.power[k] * s.df;
-            snprintf(q, sizeof q, "sinusoid on bin 37, n = %zu, %s window: integrated power sum(P) df", n, gb_window_name(windows[w]));
+            snprintf(q, sizeof q, "sinusoid on bin 37, n = %zu, %s window: integrated power sum(P) df", n, gb_spectrum_window_name(windows[w]));
             gb_check ci = {"8.2", "Fig 8", q, "A^2/2 (Parseval; the window's cross terms vanish on bin 37)",
                            "FFT rounding: 64 eps log2(n) relative"};
             gb_check_close(&ci, total, 0.5 * A * A, 64.0 * DBL_EPSILON * log2((double)n), 0.0);
@@ -318,9 +318,9 @@ static void test_spectrum_scipy(void)
         const size_t n = (size_t)cJSON_GetArraySize(sig);
         double *x = malloc(n * sizeof *x);
         for (size_t i = 0; i < n; i++) x[i] = cJSON_GetNumberValue(cJSON_GetArrayItem(sig, (int)i));
-        gb_window window;
+        gb_spectrum_window window;
         gb_spectrum s = {0};
-        int status = gb_window_parse(wname, &window);
+        int status = gb_spectrum_window_parse(wname, &window);
         if (!status) status = gb_spectrum_compute(x, n, dt, window, &s);
         free(x);
         char q[200];
