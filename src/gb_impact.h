@@ -47,6 +47,12 @@ typedef struct gb_impact_result {
     double friction_needed;                       /* max |P_t| / P_n over the contacts that hold (0: none) */
     double energy_before, energy_after;           /* kinetic energy [J] */
     int feasible_sets;                            /* contact sets that satisfy the law (1 when well posed) */
+    /* A plane of finite friction (gb_impact_coulomb): which held contacts slide after, each point's slip
+     * (the tangential part of its velocity) before and after, and the stages of a one-point impact (slip,
+     * stick, slip again: gb_impact_coulomb_point). 0 under the rough law. */
+    int slides[GB_IMPACT_CONTACTS_MAX];
+    double slip_before[GB_IMPACT_CONTACTS_MAX][3], slip_after[GB_IMPACT_CONTACTS_MAX][3];
+    int stages;
 } gb_impact_result;
 
 /* Newton's restitution e, its one range: 0 ≤ e ≤ GB_IMPACT_RESTITUTION_MAX (the scene table reads it from
@@ -79,6 +85,32 @@ GB_API int gb_impact_hold_all(const gb_impact_body *body, const double normal[3]
  * its velocity jump, less e² of the normal part's). GB_EDOM as gb_impact_solve. */
 GB_API int gb_impact_rough_point(const gb_impact_body *body, const double normal[3], double e, const double point[3],
                                  const double v[3], const double omega[3], gb_impact_result *out);
+/* ---- a plane of finite friction (gb_impact_coulomb.c; docs/friction.md) ----
+ * Coulomb's law: at a contact that holds, the tangential impulse lies in the cone |P_t| ≤ μ P_n, and a
+ * contact that slides after the impact takes the cone's edge against its slip.
+ *
+ * One point (gb_impact_coulomb_point): the impact integrated in the normal impulse p as Darboux and
+ * Keller do, du/dp = W (n + f), f = −μ u_t/|u_t| while the point slips; when the slip stops the point
+ * sticks if the cone holds the impulse that keeps it stopped (f = −W_tt⁻¹ W_tn, |f| ≤ μ), else it slips on
+ * in the one direction the law allows. Compression ends where u_n = 0; the impact ends where the normal
+ * impulse's work in restitution is e² times that in compression (Stronge's energetic coefficient: the
+ * kinetic energy never grows, which Newton's coefficient does not guarantee once slip changes during the
+ * impact; where slip does not change the two coincide). μ = INFINITY is gb_impact_rough_point.
+ *
+ * Several points (gb_impact_coulomb): the set of contacts that take impulse is enumerated from the
+ * smallest, as gb_impact_solve does; a single point by Darboux–Keller above; two or more at once by
+ * Moreau's law with Coulomb's cone at the velocity level (each held contact sticks, u⁺ = −e u_n⁻ n, or
+ * slides, u_n⁺ = −e u_n⁻ with P_t = −μ P_n u_t⁺/|u_t⁺|; the slip directions found by root finding), the
+ * first set and status that satisfy every sign taken. Newton's coefficient there: with e > 0 and friction
+ * it may add energy (the result says so: energy_after > energy_before). μ = INFINITY is gb_impact_solve. */
+GB_API int gb_impact_coulomb_point(const gb_impact_body *body, const double normal[3], double e, double mu,
+                                   const double point[3], const double v[3], const double omega[3], gb_impact_result *out);
+GB_API int gb_impact_coulomb(const gb_impact_body *body, const double normal[3], double e, double mu,
+                             const double (*points)[3], int count, const double v[3], const double omega[3],
+                             gb_impact_result *out);
+/* μ's range: 0 < μ (INFINITY: rough). GB_OK, or GB_EDOM naming it. */
+GB_API int gb_impact_friction_check(double mu);
+
 /* The kinetic energy ½ m |v|² + ½ ω·Iω. */
 GB_API double gb_impact_energy(const gb_impact_body *body, const double v[3], const double omega[3]);
 

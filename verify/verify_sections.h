@@ -14,6 +14,7 @@ int verify_register_s4_atlas(void);
 int verify_register_s5_dynamics(void);
 int verify_register_s5_impact(void);
 int verify_register_s5_flight(void);
+int verify_register_s5_friction(void);
 int verify_register_s6_chaos(void);
 int verify_register_s6_diagnostics(void);
 int verify_register_s7_melnikov(void);
