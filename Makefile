@@ -153,7 +153,8 @@ scans-only: $(BIN)
 	$(call scan_all,$(SCANS),scans,maps of cases/scans)
 
 # --- the ensembles of section 8.2 (cases/studies): 32 random initial attitudes per body, 3000 periods
-# each, lambda over the record and its halves; resumable like the scans.
+# each (16 x 1000 in units of g and on planes of finite friction), lambda over the record and its halves;
+# resumable like the scans.
 STUDIES := $(sort $(wildcard cases/studies/*.ini))
 
 study: deps
@@ -295,6 +296,11 @@ references-only:
 	$(PYTHON) references/spectrum.py > references/spectrum.json.tmp && mv references/spectrum.json.tmp references/spectrum.json
 	$(PYTHON) references/grid_model.py > references/grid_model.json.tmp && mv references/grid_model.json.tmp references/grid_model.json
 	$(PYTHON) references/switching.py > references/switching.json.tmp && mv references/switching.json.tmp references/switching.json
+	@if $(PYTHON) -c "import siconos.numerics" 2>/dev/null; then \
+	  echo "$(PYTHON) references/siconos_impacts.py > references/siconos_impacts.json"; \
+	  $(PYTHON) references/siconos_impacts.py > references/siconos_impacts.json.tmp && \
+	  mv references/siconos_impacts.json.tmp references/siconos_impacts.json; \
+	else echo "references: Siconos absent (sh scripts/install-deps.sh siconos): references/siconos_impacts.json kept as committed"; fi
 
 # The command, the static and shared libraries, the public headers (src/gomboc.h includes them all; the
 # internal ones, *_internal.h, gb_interval.h, gb_arena.h, gb_vec.h, gb_hash.h, gb_clock.h, the readers behind gb_case

@@ -5,6 +5,7 @@
 #   install-deps.sh fuzz       and clang with its libFuzzer runtime (make fuzz)
 #   install-deps.sh valgrind   and valgrind (make valgrind)
 #   install-deps.sh mpi        and OpenMPI (make mpi)
+#   install-deps.sh siconos    and Siconos's Python modules (make references: the reference impacts)
 set -eu
 packages="build-essential pkg-config libgsl-dev libcunit1-dev libinih-dev libcjson-dev libqhull-dev libsodium-dev
 python3 python3-numpy python3-scipy python3-sympy python3-matplotlib groff-base"
@@ -13,7 +14,8 @@ for extra in "$@"; do
         fuzz) packages="$packages clang libclang-rt-dev" ;;
         valgrind) packages="$packages valgrind" ;;
         mpi) packages="$packages libopenmpi-dev openmpi-bin" ;;
-        *) echo "install-deps: unknown extra '$extra' (allowed: fuzz, valgrind, mpi)" >&2; exit 2 ;;
+        siconos) packages="$packages python3-siconos" ;;
+        *) echo "install-deps: unknown extra '$extra' (allowed: fuzz, valgrind, mpi, siconos)" >&2; exit 2 ;;
     esac
 done
 missing=""
