@@ -48,7 +48,7 @@ GATES = (("fuzz", "make fuzz", "the scene reader, the option parser and the atla
          ("verify-full", "make verify-full", "every check, the long studies (10000-period records) and the ensembles"),
          ("bench", "make bench", "speed ratios measured side by side in one run"),
          ("scans", "make scans", "the maps of Figs 10-13 (cases/scans), 25 x 25 points each, and their stability maps"),
-         ("study", "make study", "the ensembles of section 8.2 (cases/studies), 32 initial attitudes each (64 for Gömböc I)"),
+         ("study", "make study", "the ensembles of section 8.2 (cases/studies), 32 initial attitudes each (64 for Gömböc I; 16 in units of g and on planes of finite friction)"),
          ("mpi", "make mpi", "OpenMPI installed; gomboc-mpi's scans on 1, 2 and 3 ranks and after a kill -9, "
           "against one thread"))
 
@@ -197,7 +197,53 @@ def spell(text):
 CENTRAL = "lambda_max > 0 after convergence at baseline"
 
 
-def summary_lines(findings, counts, rows, failed):
+FRICTION_PAIRS = (("continuous contact, rolling equation, unilateral contact", "m/s²"),
+                  ("continuous rolling, unilateral contact with flight (e = 0), A in units of g", "units of g"))
+
+
+def friction_lines(central, ensembles):
+    """Whether a real plane (finite Coulomb friction) changes any verdict of the central claim against the
+    perfectly rough plane of the same law, reading and body: the 300-period runs' findings, and the ensembles of
+    `make study` where they were made."""
+    changed, same, missing = [], 0, 0
+    for rough, reading in FRICTION_PAIRS:
+        for mu in ("0.3", "0.6"):
+            real = central.get(f"{rough}, friction mu = {mu}", {})
+            for body in ("I", "II"):
+                a, b = central.get(rough, {}).get(body), real.get(body)
+                if a is None or b is None:
+                    missing += 1
+                elif a == b:
+                    same += 1
+                else:
+                    changed.append(f"Gömböc {body}, {reading}, μ = {mu}: {a} on the rough plane, {b} on the real one")
+    if not same and not changed:
+        return []
+    text = (f"**A real plane** (Coulomb friction μ = 0.3 and 0.6, `docs/friction.md`): of {same + len(changed)} verdicts "
+            f"of the central claim under the unilateral law, ")
+    text += ("none changes from the perfectly rough plane's." if not changed else
+             f"{len(changed)} change{'s' if len(changed) == 1 else ''} from the perfectly rough plane's: "
+             + "; ".join(changed) + ".")
+    if missing:
+        text += f" ({missing} not computed in this run.)"
+    moved, kept = [], 0
+    for law, reading in (("unilateral", "m/s²"), ("flight", "units of g")):
+        for mu in ("0.3", "0.6"):
+            for body in ("I", "II"):
+                a, b = ensembles.get((body, law)), ensembles.get((body, f"{law}, mu = {mu}"))
+                if a is None or b is None:
+                    continue
+                if a == b:
+                    kept += 1
+                else:
+                    moved.append(f"Gömböc {body}, {reading}, μ = {mu}: {a} on the rough plane, {b} on the real one")
+    if kept or moved:
+        text += (f" The ensembles of `make study` (16 attitudes × 1000 periods at each μ): of {kept + len(moved)} readings, "
+                 + ("none changes." if not moved else f"{len(moved)} change: " + "; ".join(moved) + "."))
+    return [text, ""]
+
+
+def summary_lines(findings, counts, rows, failed, ensembles):
     """The report's answer first: the verdict counts, the central claim under each model and contact law,
     and every claim of the paper with how its rows came out; all from this run's findings."""
     lines = ["## Summary", "",
@@ -209,8 +255,9 @@ def summary_lines(findings, counts, rows, failed):
              "Table 1's baseline). It is tested under the paper's model (eq 44 on its 90 × 180 grid) and under "
              "the rolling equation with certified continuous contact, each with the paper's **held** contact "
              "(one contact, ω kept at a switch) and with the **unilateral** law (a plane that can only push: "
-             "every change of contact an impact, lift-off, flight and landing), and under both readings of "
-             "Table 1's amplitudes (m/s² and units of g):", "",
+             "every change of contact an impact, lift-off, flight and landing) on a perfectly rough plane and on "
+             "planes of Coulomb friction μ = 0.3 and 0.6, and under both readings of Table 1's amplitudes (m/s² "
+             "and units of g):", "",
              "| measured on (300 periods, R0 = I) | Gömböc I | Gömböc II |", "|---|---|---|"]
     central = {}
     for r in findings:
@@ -222,6 +269,7 @@ def summary_lines(findings, counts, rows, failed):
         central.setdefault(model, {})[body.replace("Gomboc ", "")] = r["verdict"]
     for model, by_body in central.items():
         lines.append(f"| {spell(model)} | {by_body.get('I', '—')} | {by_body.get('II', '—')} |")
+    lines += [""] + friction_lines(central, ensembles)
     lines += ["", "Every claim of the paper the suite tests, with how its rows came out (the table below names what "
               "each row was measured on, the number and the rule):", ""]
     claims = {}
@@ -252,7 +300,7 @@ def main():
     counts = {v: sum(1 for r in findings if r["verdict"] == v) for v in ("holds", "fails", "undecided")}
     error_vs_time(out, rows)
 
-    lines = ["# gomboc — verification report", ""] + summary_lines(findings, counts, rows, failed)
+    lines = ["# gomboc — verification report", ""] + summary_lines(findings, counts, rows, failed, ensemble_readings(out))
     lines += ["## Environment", "", "| item | value |", "|---|---|"]
     lines += [f"| {k} | {v} |" for k, v in environment(cc, cflags, rows)]
     lines += [""] + gate_lines(out)
@@ -273,13 +321,16 @@ def main():
                 detail += f" — {reading} (see 'Convergence')"
         # The one-trajectory, 300-period chaos verdict of the rolling model against the ensemble of `make study`.
         for (body, law), reading in ensembles.items():
+            base, _, mu = law.partition(", mu = ")
             model = {"unilateral": "continuous contact, rolling equation, unilateral contact",
                      "flight": "continuous rolling, unilateral contact with flight (e = 0), A in units of g",
                      "bouncing": "continuous rolling, unilateral contact with flight (e = 0.5), A in units of g"}.get(
-                         law, "continuous contact, rolling equation")
+                         base, "continuous contact, rolling equation")
+            if mu:
+                model += f", friction mu = {mu}"
             if where.startswith(f"Gomboc {body}, {model}: lambda_max - 4 sigma"):
                 agrees = (reading == "sustained") == (r["verdict"] == "holds")
-                size = ("16 initial attitudes, 1000 periods" if law in ("flight", "bouncing")
+                size = ("16 initial attitudes, 1000 periods" if base in ("flight", "bouncing") or mu
                         else "32 initial attitudes, 64 for Gömböc I; 3000 periods")
                 if not agrees or reading == "undecided":
                     detail += (f" — **preliminary: the ensemble of `make study` ({size}) "

@@ -60,21 +60,35 @@ def classify(rows):
     return lam, err, early, late, chaotic, chaotic_late, kind
 
 
+def ensembles_of(folder, name):
+    """[(label, rows)] of one study's CSV: one ensemble, or, for a study whose second axis is the plane's Coulomb
+    coefficient (model.friction), one ensemble per value, labelled with it."""
+    rows = list(csv.DictReader(open(os.path.join(folder, name))))
+    label = name.replace("-scan.csv", "")
+    if not rows or "model.friction" not in rows[0]:
+        return [(label, rows, None)]
+    values = sorted({float(r["model.friction"]) for r in rows})
+    return [(f"{label} (μ = {mu:g})", [r for r in rows if float(r["model.friction"]) == mu], f"{mu:g}") for mu in values]
+
+
 def ensemble_readings(out):
     """{(body, law): reading} of the ensembles `make study` last ran (sustained, transient, regular, undecided);
     law is "held" (ensemble-gomboc-BODY-rolling), "unilateral" (ensemble-gomboc-BODY-unilateral), or, for Table 1
     read in units of g under the unilateral law with flight, "flight" (e = 0, ensemble-gomboc-BODY-g-units-flight)
-    and "bouncing" (e = 0.5, ensemble-gomboc-BODY-g-units-bouncing)."""
+    and "bouncing" (e = 0.5, ensemble-gomboc-BODY-g-units-bouncing); on a plane of Coulomb friction μ,
+    "unilateral, mu = μ" (ensemble-gomboc-BODY-friction) and "flight, mu = μ" (ensemble-gomboc-BODY-g-units-friction)."""
     folder = os.path.join(out, "study")
     readings = {}
     if not os.path.isdir(folder):
         return readings
     for name in sorted(os.listdir(folder)):
         for suffix, law in (("-g-units-flight-scan.csv", "flight"), ("-g-units-bouncing-scan.csv", "bouncing"),
+                            ("-g-units-friction-scan.csv", "flight"), ("-friction-scan.csv", "unilateral"),
                             ("-rolling-scan.csv", "held"), ("-unilateral-scan.csv", "unilateral")):
             if name.startswith("ensemble-gomboc-") and name.endswith(suffix):
                 body = name[len("ensemble-gomboc-"):-len(suffix)]
-                readings[(body, law)] = classify(list(csv.DictReader(open(os.path.join(folder, name)))))[-1]
+                for _, rows, mu in ensembles_of(folder, name):
+                    readings[(body, law if mu is None else f"{law}, mu = {mu}")] = classify(rows)[-1]
                 break
     return readings
 
@@ -86,7 +100,7 @@ def study_section(out):
     if not files:
         return lines + ["No ensembles in this checkout: `make study` runs those of `cases/studies` (32 random initial "
                         "attitudes per body and contact law, 64 for Gömböc I, 3000 periods each; Table 1 in units of g with "
-                        "flight, 16 attitudes x 1000 periods) and writes them here.", ""]
+                        "flight, and on planes of Coulomb friction μ = 0.3 and 0.6, 16 attitudes x 1000 periods) and writes them here.", ""]
     stamp = os.path.join(out, "gates", "study.json")
     when = ""
     if os.path.exists(stamp):
@@ -106,13 +120,12 @@ def study_section(out):
               "| ensemble | members (failed) | λ median [quartiles] | λ − 2σ > 0.01 | first half, median | second half, median | "
               "chaotic in the second half | chaos ended (lifetime, periods: median [range]) | reading | the paper's claim |",
               "|---|---|---|---|---|---|---|---|---|---|"]
-    fig, ax = plt.subplots(figsize=(8, 4))
-    for k, name in enumerate(files):
-        rows = list(csv.DictReader(open(os.path.join(folder, name))))
+    ensembles = [e for name in files for e in ensembles_of(folder, name)]
+    fig, ax = plt.subplots(figsize=(max(8.0, 0.6 * len(ensembles)), 4.5))
+    for k, (label, rows, _) in enumerate(ensembles):
         lam, err, early, late, chaotic, chaotic_late, kind = classify(rows)
         q1, med, q3 = numpy.percentile(lam, [25, 50, 75])
         verdict = {"sustained": "holds", "transient": "**fails** (transient)", "regular": "**fails** (regular)"}.get(kind, "*undecided*")
-        label = name.replace("-scan.csv", "")
         lifetimes = numpy.array([float(r.get("chaos_lifetime_periods", "nan")) for r in rows])
         ended = lifetimes[numpy.isfinite(lifetimes)]
         ended_text = (f"{len(ended)} of {len(rows)}: {numpy.median(ended):.0f} [{ended.min():.0f}, {ended.max():.0f}]"
@@ -126,8 +139,8 @@ def study_section(out):
         for e, l in zip(early, late):
             ax.plot([k - 0.1, k + 0.1], [e, l], color="0.8", lw=0.5)
     ax.axhline(LATE, color="k", lw=0.5, ls="--")
-    ax.set_xticks(range(len(files)))
-    ax.set_xticklabels([f.replace("-scan.csv", "").replace("ensemble-", "") for f in files], fontsize=8)
+    ax.set_xticks(range(len(ensembles)))
+    ax.set_xticklabels([label.replace("ensemble-", "") for label, _, _ in ensembles], fontsize=8, rotation=40, ha="right")
     ax.set_ylabel("λ over the half record [1/s]")
     ax.legend(fontsize=8)
     ax.set_title("Each member's exponent over the first and the second half of its record", fontsize=9)

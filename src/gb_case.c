@@ -55,7 +55,12 @@ typedef enum key_kind {
     KEY_ATTITUDE   /* identity | axis-angle AX,AY,AZ,ANGLE */
 } key_kind;
 
-enum { OPEN_MIN = 1, OPEN_MAX = 2, COUNT_CHOSEN = 4 /* a count that may be "chosen" (GB_LYAPUNOV_CHOSEN) */ };
+enum {
+    OPEN_MIN = 1,
+    OPEN_MAX = 2,
+    COUNT_CHOSEN = 4, /* a count that may be "chosen" (GB_LYAPUNOV_CHOSEN) */
+    REAL_ROUGH = 8    /* a number that may be "rough" (INFINITY: the friction of a perfectly rough plane) */
+};
 
 typedef struct key_def {
     const char *section, *name;
@@ -124,7 +129,8 @@ static const key_def keys[] = {
     {"model", "grid", KEY_GRID, 0, 0, 0, NULL, 0, NULL},
     NAME("model", "nodes", parse_nodes),
     REAL("model", "damping", 0.0, 1000.0, 0, "[N m s]", dynamics.damping),
-    REAL("model", "friction", 0.0, 1000.0, OPEN_MIN, "(the plane's mu, for the monitors)", dynamics.friction),
+    REAL("model", "friction", 0.0, 1000.0, OPEN_MIN | REAL_ROUGH, "(the plane's Coulomb mu; needs contact_law = unilateral)",
+         dynamics.friction),
     REAL("model", "restitution", 0.0, GB_IMPACT_RESTITUTION_MAX, 0, "(Newton's e; needs contact_law = unilateral)", dynamics.restitution),
     NAME("integrator", "method", parse_method),
     COUNT("integrator", "steps_per_period", 1, 100000000, integrate.steps_per_period),
@@ -174,8 +180,9 @@ static void range_text(const key_def *k, char *out, size_t size)
         return;
     }
     const char *what = k->kind == KEY_VECTOR ? "each component" : k->name;
-    snprintf(out, size, "%.15g %s %s %s %.15g%s%s", k->min, k->open & OPEN_MIN ? "<" : "<=", what,
-             k->open & OPEN_MAX ? "<" : "<=", k->max, k->units && k->units[0] ? " " : "", k->units ? k->units : "");
+    snprintf(out, size, "%s%.15g %s %s %s %.15g%s%s", k->open & REAL_ROUGH ? "rough, or " : "", k->min,
+             k->open & OPEN_MIN ? "<" : "<=", what, k->open & OPEN_MAX ? "<" : "<=", k->max, k->units && k->units[0] ? " " : "",
+             k->units ? k->units : "");
 }
 
 int gb_case_key_numeric(const char *section, const char *name)
@@ -344,6 +351,10 @@ static int set_value(reader *r, const key_def *k, size_t index, const char *valu
         return 1;
     case KEY_REAL:
     case KEY_ANGLE:
+        if ((k->open & REAL_ROUGH) && !strcmp(value, "rough")) {
+            *(double *)field = INFINITY;
+            return 1;
+        }
         p = k->kind == KEY_REAL ? gb_parse_double(value, &x) : gb_parse_angle(value, &x);
         if (p || !in_range(k, x)) return value_fail(r, k, index, value, p);
         *(double *)field = x;
@@ -462,6 +473,10 @@ static int cross_check(const char *path, gb_case *c)
                               "with [model] contact_law = held: a held contact never leaves the plane and has no impacts "
                               "(allowed: the default, 0, with contact_law = held; any value in range with unilateral)");
     }
+    if (isfinite(c->dynamics.friction) && !gb_dynamics_contact_law_impacts(c->dynamics.contact_law))
+        return cross_fail(path, c, "model", "friction",
+                          "= %g with [model] contact_law = held: a held contact never slips (allowed: rough with either "
+                          "law; a finite mu with contact_law = unilateral)", c->dynamics.friction);
     if (c->write_impacts && !gb_dynamics_contact_law_impacts(c->dynamics.contact_law))
         return cross_fail(path, c, "output", "impacts",
                           "= yes with [model] contact_law = held: a held contact has no impacts (allowed: yes with "

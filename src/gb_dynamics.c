@@ -62,6 +62,8 @@ void gb_dyn_set_mode(gb_dynamics *d, gb_dyn_mode_id mode, double t)
     if (d->mode == mode) return;
     if (d->mode == GB_DYN_TWO_POINT) d->two_point_time += t - d->two_point_since;
     if (d->mode == GB_DYN_FLIGHT) d->flight_time += t - d->flight_since;
+    if (d->mode == GB_DYN_SLIDING) d->sliding_time += t - d->sliding_since;
+    if (mode == GB_DYN_SLIDING) d->sliding_since = t;
     if (mode == GB_DYN_TWO_POINT) d->two_point_since = t;
     if (mode == GB_DYN_FLIGHT) d->flight_since = t;
     if (mode == GB_DYN_REST) d->rest_since = t;
@@ -74,6 +76,7 @@ double gb_dynamics_mean_radius(const gb_dynamics *d) { return d->mean_radius; }
 void gb_dynamics_use_step(gb_dynamics *d, double h)
 {
     if (d->def.settle_time == 0.0) d->settle_time = h;
+    d->step = h;
 }
 
 /* ---------------------------------------------------------------- attitude */
@@ -131,6 +134,13 @@ int gb_dynamics_state_finite(double t, const double y[GB_STATE_SIZE])
     return GB_OK;
 }
 
+void gb_dyn_to_inertial(const double y[GB_STATE_SIZE], const double body[3], double out[3])
+{
+    double R[9];
+    gb_dynamics_rotation(y + GB_STATE_Q, R);
+    for (int i = 0; i < 3; i++) out[i] = R[3 * i] * body[0] + R[3 * i + 1] * body[1] + R[3 * i + 2] * body[2];
+}
+
 int gb_dyn_field(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], double dydt[GB_STATE_SIZE])
 {
     double zb[3];
@@ -143,9 +153,17 @@ int gb_dyn_field(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], double
     if (!(isfinite(zb[0]) && isfinite(zb[1]) && isfinite(zb[2]))) return gb_dyn_diverged(t); /* a quaternion overflowed */
     double geff, geff_rate, zeta = NAN;
     gb_forcing_geff_with_rate(&d->def.forcing, t, &geff, &geff_rate);
-    const int status = mode->field(d, t, y, omega, zb, geff, dydt + GB_STATE_OMEGA, &zeta);
+    /* on a plane of finite friction the translation is integrated: the mode gives its rates */
+    const int translating = isfinite(d->def.friction);
+    gb_dyn_rates rates = {{0.0, 0.0, 0.0}, 0.0};
+    const int status = mode->field(d, t, y, omega, zb, geff, dydt + GB_STATE_OMEGA, &zeta, translating ? &rates : NULL);
     if (status) return status;
     for (int k = GB_STATE_ZETA; k < GB_STATE_SIZE; k++) dydt[k] = 0.0; /* written by the mode at each accepted step */
+    if (translating) {
+        for (int k = 0; k < 3; k++) dydt[GB_STATE_VELOCITY + k] = rates.acc[k];
+        dydt[GB_STATE_POSITION] = y[GB_STATE_VELOCITY], dydt[GB_STATE_POSITION + 1] = y[GB_STATE_VELOCITY + 1];
+        dydt[GB_STATE_FRICTION] = rates.friction_power;
+    }
     /* q̇ = ½ q ⊗ (0, ω) (eq 23) */
     dydt[0] = -0.5 * (q[1] * omega[0] + q[2] * omega[1] + q[3] * omega[2]);
     dydt[1] = 0.5 * (q[0] * omega[0] + q[2] * omega[2] - q[3] * omega[1]);
@@ -177,7 +195,6 @@ void gb_dynamics_impact_stats(const gb_dynamics *d, size_t *impacts, double *ene
     if (friction_max) *friction_max = d->impact_friction_max;
 }
 
-size_t gb_dynamics_impacts_over_friction(const gb_dynamics *d) { return d->impacts_over_friction; }
 
 void gb_dynamics_two_point_stats(const gb_dynamics *d, double t, gb_dynamics_two_point_summary *out)
 {
@@ -192,6 +209,24 @@ void gb_dynamics_two_point_stats(const gb_dynamics *d, double t, gb_dynamics_two
 size_t gb_dynamics_switch_count(const gb_dynamics *d) { return d->grid_switches + d->branch_switches; }
 
 double gb_dynamics_last_switch_time(const gb_dynamics *d) { return d->last_switch_time; }
+
+int gb_dyn_has_friction(const gb_dynamics *d) { return isfinite(d->def.friction); }
+
+void gb_dyn_observe_free_energy(const gb_dynamics *d, const double y[GB_STATE_SIZE], gb_dynamics_observables *o)
+{
+    const double m = d->def.mass;
+    double Iw[3];
+    gb_dyn_mat_vec((double(*)[3])d->inertia, o->omega, Iw);
+    o->kinetic = 0.5 * m * gb_vec_dot(o->velocity, o->velocity) + 0.5 * gb_vec_dot(o->omega, Iw);
+    o->potential = m * o->geff * o->zeta;
+    o->energy = o->kinetic + o->potential;
+    o->power_gravity = -m * o->geff * o->velocity[2];
+    o->power_damping = -d->def.damping * gb_vec_dot(o->omega, o->omega);
+    o->work = y[GB_STATE_WORK];
+    o->friction_work = y[GB_STATE_FRICTION];
+    o->residual = o->energy - d->energy0 - o->work + d->impact_loss;
+    if (gb_dyn_has_friction(d)) o->residual -= o->friction_work; /* the ledger's L: the impacts' and friction's */
+}
 
 /* ---------------------------------------------------------------- 3 x 3 algebra */
 

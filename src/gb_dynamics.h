@@ -7,9 +7,10 @@
  * translation: its height ζ above the plane and its velocity relative to the plane (inertial axes). Each
  * mode says how the translation follows: on the plane it is fixed by the attitude, ω and the contact
  * (ζ = −z_b·r_c, v = R (ω × (G − P))), in flight it is the closed form under g_eff; the mode writes it at
- * every accepted step and at the start (its rate in the vector field is 0: nothing integrates it yet, and
- * the adaptive steppers' error control sees only what is integrated). A mode that integrates it (sliding)
- * gives its rate instead.
+ * every accepted step and at the start. On a rough plane its rate in the vector field is 0 (the adaptive
+ * steppers' error control sees only what is integrated); on a plane of finite friction (def.friction) the
+ * velocity is integrated, since a sliding body's horizontal velocity is its own, and so are the centroid's
+ * horizontal position and the work of friction (both 0 on a rough plane).
  *
  * Two equations of motion, each a named variant (see docs/rolling.md for the derivation):
  *  GB_VARIANT_PAPER    eq 44 as written: I_P ω̇ + İ_P ω + ω × I_P ω = τ, İ_P from eq 45;
@@ -46,7 +47,9 @@ enum {
     GB_STATE_WORK = 7,
     GB_STATE_ZETA = 8,      /* the centroid's height above the plane [m] */
     GB_STATE_VELOCITY = 9,  /* the centroid's velocity relative to the plane, inertial axes [m/s] (3) */
-    GB_STATE_SIZE = 12,
+    GB_STATE_POSITION = 12, /* finite friction: the centroid's horizontal position on the plane [m] (2) */
+    GB_STATE_FRICTION = 14, /* finite friction: the work of the friction forces since the start [J] (<= 0) */
+    GB_STATE_SIZE = 15,
     GB_STATE_FINGERPRINT = 8, /* the leading components a run's state fingerprint hashes: q, ω, W */
     GB_STATE_TANGENT = 6      /* the variational estimator's tangent: three rotations and ω (the translation
                                * is fixed by them on the plane, and flight is not followed) */
@@ -168,6 +171,10 @@ typedef struct gb_dynamics_impact {
                                            * approach speed (kinds bounce and landing) */
     double return_time;                   /* kind switch or settled: 2 v_n / |a_n| of the point that lifts
                                            * after Moreau's impact (INFINITY when it does not fall back) */
+    /* A plane of finite friction: the new point's slip (tangential velocity, body axes) before and after and
+     * the tangential impulse there (body axes); whether it slides after. 0 on a rough plane. */
+    double slip_before[3], slip_after[3], tangential[3];
+    int slides_after;
 } gb_dynamics_impact;
 
 /* Called with every impact (the run's impacts file); a non-zero return stops the run with that status. */
@@ -220,10 +227,10 @@ typedef struct gb_dynamics_def {
                                     * it would need the plane to pull by more than m g_max settle_time (the weight's
                                     * impulse it stands for): then Moreau's impact stands. One step, so that the
                                     * return the rule removes would fall inside one step. */
-    double friction;               /* μ of the plane, for the monitors only (INFINITY, the default: none). The
-                                    * model's plane is perfectly rough; impacts that need more friction than μ
-                                    * are counted (gb_dynamics_impact_stats), where a plane of that μ would let
-                                    * the body slip, which the model does not follow. */
+    double friction;               /* μ of the plane (INFINITY, the default: perfectly rough, no slip ever). A
+                                    * finite μ > 0 (unilateral law only) is Coulomb's law at every contact, between
+                                    * impacts (a contact sticks inside the cone |F_t| <= μ N and slides on its edge
+                                    * against the slip) and inside them (gb_impact_coulomb); docs/friction.md */
     double restitution;            /* unilateral: Newton's e on the normal approach speed at a landing and at a
                                     * change of contact from one point, 0 <= e <= 1 (0, the default: plastic). A
                                     * third point meeting the two-point mode is plastic whatever e. The end to
@@ -231,8 +238,11 @@ typedef struct gb_dynamics_def {
                                     * g_eff, e v_n < g_eff settle_time / 2, is taken as plastic. */
     double height0;                /* unilateral: the initial gap [m] between the lowest point and the plane
                                     * (0, the default: in contact); > 0 starts in flight */
-    double velocity0[3];           /* with height0 > 0: the centroid's initial velocity relative to the plane,
-                                    * inertial axes [m/s] (default 0) */
+    double velocity0[3];           /* the centroid's initial velocity relative to the plane, inertial axes
+                                    * [m/s] (default 0): with height0 > 0, or on the rough plane, the run starts
+                                    * in flight; on a plane of finite friction with height0 = 0 it starts on the
+                                    * plane at the horizontal part (the vertical follows the attitude), sliding
+                                    * where that differs from rolling */
     gb_atlas_def atlas;            /* certificate = atlas: its cells (its height_tol is certify's) */
 } gb_dynamics_def;
 
@@ -327,8 +337,16 @@ GB_API int gb_dynamics_jump(gb_dynamics *dynamics, double t, const double y[GB_S
 GB_API void gb_dynamics_set_impact_sink(gb_dynamics *dynamics, gb_dynamics_impact_sink sink, void *context);
 GB_API void gb_dynamics_impact_stats(const gb_dynamics *dynamics, size_t *impacts, double *energy_lost,
                                      double *friction_max);
-/* Impacts so far that needed more friction than def.friction (0 when it is INFINITY). */
-GB_API size_t gb_dynamics_impacts_over_friction(const gb_dynamics *dynamics);
+/* A plane of finite friction: the time spent sliding (one or two points slipping) up to t, the changes from
+ * sticking to slipping and back, and the energy friction took so far (−∫ F_t·u_t dt, at the state y). */
+typedef struct gb_dynamics_sliding_summary {
+    double time;
+    size_t slips, sticks;
+    double friction_loss;
+    int sliding; /* sliding at t */
+} gb_dynamics_sliding_summary;
+GB_API void gb_dynamics_sliding_stats(const gb_dynamics *dynamics, double t, const double y[GB_STATE_SIZE],
+                                      gb_dynamics_sliding_summary *out);
 /* The two-point mode up to time t: the time spent in it, how often it was entered from one point, the
  * impacts the settle rule ended (`settled`: entries and third points), how often it was left by a lift
  * and met a third point; when the body came to rest on three points (NAN: it did not). */
@@ -393,6 +411,10 @@ typedef struct gb_dynamics_observables {
     size_t grid_switches, branch_switches;
     size_t branches_lost;    /* continuous: evaluations where the continued branch had no minimum left
                               * (a fold inside a step) and the certified global minimum was taken */
+    /* A plane of finite friction: the points slipping (0 when every contact sticks), the largest slip speed
+     * [m/s], and the work of friction so far [J] (<= 0). */
+    int sliding;
+    double slip_speed, friction_work;
 } gb_dynamics_observables;
 
 GB_API int gb_dynamics_observe(gb_dynamics *dynamics, double t, const double y[GB_STATE_SIZE],

@@ -16,6 +16,10 @@
 
 /* ---- one point ------------------------------------------------------------------------------------ */
 
+static int one_point_margin(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], double *margin);
+static int switch_gap(gb_dynamics *d, const double y[GB_STATE_SIZE], const gb_contact_point *other, double *gap,
+                      gb_contact_point *other_here);
+
 /* The held law's grid has no event (the paper's rule: the lowest node at every evaluation). */
 int gb_dyn_one_point_pending(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], gb_contact_point *other, int *found)
 {
@@ -23,6 +27,12 @@ int gb_dyn_one_point_pending(gb_dynamics *d, double t, const double y[GB_STATE_S
     gb_contact_point continued;
     int status = gb_dyn_competitor(d, t, y, &continued, other, found);
     if (!status && *found) d->event = GB_DYN_EVENT_SWITCH;
+    if (!status && !*found && gb_dyn_has_friction(d)) {
+        /* the force rolling needs at the cone's edge: the point slips (before N can reach 0, unless F_t is 0) */
+        double margin;
+        status = one_point_margin(d, t, y, &margin);
+        if (!status && margin < 0.0) *other = continued, *found = 1, d->event = GB_DYN_EVENT_SLIP;
+    }
     if (!status && !*found && d->law->impacts) {
         /* a plane that can only push cannot hold the body down: where N reaches 0 it leaves the plane */
         double n;
@@ -32,16 +42,36 @@ int gb_dyn_one_point_pending(gb_dynamics *d, double t, const double y[GB_STATE_S
     return status;
 }
 
+/* Rolling on the accepted contact alone at state y: how far its force is inside the cone. */
+static int one_point_margin(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], double *margin)
+{
+    double zb[3], geff, geff_rate, w_dot[3];
+    gb_dyn_contact c;
+    gb_dyn_vertical(y, zb);
+    gb_forcing_geff_with_rate(&d->def.forcing, t, &geff, &geff_rate);
+    int status = gb_dyn_contact_at(d, t, zb, y + GB_STATE_OMEGA, &c);
+    if (!status) status = gb_dyn_angular_acceleration(d, geff, zb, y + GB_STATE_OMEGA, &c, w_dot);
+    *margin = status ? NAN : gb_dyn_one_point_margin(d, geff, zb, y + GB_STATE_OMEGA, w_dot, &c);
+    return status;
+}
+
 int gb_dyn_one_point_gap(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const gb_contact_point *other,
                          double *gap, gb_contact_point *other_here)
 {
-    if (d->event == GB_DYN_EVENT_LIFT_OFF) { /* −N of the contact */
+    if (d->event == GB_DYN_EVENT_LIFT_OFF || d->event == GB_DYN_EVENT_SLIP) { /* −N, or −the cone's margin */
         double n;
-        const int status = gb_dyn_one_point_normal(d, t, y, &n);
+        const int status = d->event == GB_DYN_EVENT_SLIP ? one_point_margin(d, t, y, &n) : gb_dyn_one_point_normal(d, t, y, &n);
         *gap = -n;
         *other_here = *other;
         return status;
     }
+    return switch_gap(d, y, other, gap, other_here);
+}
+
+/* Another minimum against the contact (eq 39): > 0 where it is lower. */
+static int switch_gap(gb_dynamics *d, const double y[GB_STATE_SIZE], const gb_contact_point *other, double *gap,
+                      gb_contact_point *other_here)
+{
     double zb[3];
     gb_dyn_vertical(y, zb);
     gb_contact_point here;
@@ -65,6 +95,10 @@ int gb_dyn_one_point_gap(gb_dynamics *d, double t, const double y[GB_STATE_SIZE]
 /* ---- two points ----------------------------------------------------------------------------------- */
 
 static int two_point_search(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], gb_contact_point *other, int *found);
+static int third_point_search(gb_dynamics *d, const double zb[3], const gb_contact_point *p, const gb_contact_point *q,
+                              gb_contact_point *other, int *found);
+static int third_gap(gb_dynamics *d, const double y[GB_STATE_SIZE], const gb_contact_point *other, double *gap,
+                     gb_contact_point *other_here);
 
 /* Two points at state y: is an event due? A normal force below 0 (GB_DYN_EVENT_LIFT), or a third minimum
  * lower than both points, proved by the certificate (GB_DYN_EVENT_THIRD, *other). */
@@ -95,6 +129,15 @@ static int two_point_search(gb_dynamics *d, double t, const double y[GB_STATE_SI
     *found = 0;
     int status = gb_dyn_two_point_eval(d, t, y, &tp, 1);
     if (status || tp.merged) return status; /* the end of a crease: gb_dynamics_accept leaves the mode */
+    if (gb_dyn_has_friction(d)) { /* the cone holds the crease's forces whatever their open split? */
+        int alone;
+        if (gb_dyn_crease_margin(d->def.friction, tp.normal, (const double(*)[3])tp.tangent, tp.u, &alone) < 0.0) {
+            d->event = GB_DYN_EVENT_SLIP;
+            *other = tp.q;
+            *found = 1;
+            return GB_OK;
+        }
+    }
     if (fmin(tp.normal[0], tp.normal[1]) < 0.0) {
         d->event = GB_DYN_EVENT_LIFT;
         *other = tp.q;
@@ -103,14 +146,22 @@ static int two_point_search(gb_dynamics *d, double t, const double y[GB_STATE_SI
     }
     double zb[3];
     gb_dyn_vertical(y, zb);
+    return third_point_search(d, zb, &tp.p.point, &tp.q, other, found);
+}
+
+/* A third minimum lower than both points p and q, proved by the certificate (a grid body: a node strictly
+ * lower than both): GB_DYN_EVENT_THIRD with *other. */
+static int third_point_search(gb_dynamics *d, const double zb[3], const gb_contact_point *p, const gb_contact_point *q,
+                              gb_contact_point *other, int *found)
+{
+    int status;
     d->event = GB_DYN_EVENT_THIRD;
     if (d->def.contact != GB_CONTACT_MODEL_CONTINUOUS) {
-        /* a grid body on an edge: a third node strictly lower than both */
         status = gb_dyn_next_node(d, zb, other);
-        *found = !status && other->height < fmin(tp.p.point.height, tp.q.height) - GB_DYN_GRID_TIE;
+        *found = !status && other->height < fmin(p->height, q->height) - GB_DYN_GRID_TIE;
         return status;
     }
-    gb_contact_point candidate = tp.p.point.height <= tp.q.height ? tp.p.point : tp.q;
+    gb_contact_point candidate = p->height <= q->height ? *p : *q;
     for (int round = 0; round < 16; round++) {
         gb_certify_result r;
         status = gb_dyn_check_global(d, zb, &candidate, &r);
@@ -120,7 +171,7 @@ static int two_point_search(gb_dynamics *d, double t, const double y[GB_STATE_SI
         *found = 1;
     }
     if (*found) status = gb_dyn_canonical_minimum(d, zb, other);
-    if (!status && *found && (gb_dyn_same_point(other, &tp.p.point) || gb_dyn_same_point(other, &tp.q))) *found = 0; /* P and Q tie */
+    if (!status && *found && (gb_dyn_same_point(other, p) || gb_dyn_same_point(other, q))) *found = 0; /* P and Q tie */
     d->event = GB_DYN_EVENT_THIRD;
     return status;
 }
@@ -128,17 +179,26 @@ static int two_point_search(gb_dynamics *d, double t, const double y[GB_STATE_SI
 int gb_dyn_two_point_gap(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const gb_contact_point *other,
                          double *gap, gb_contact_point *other_here)
 {
-    if (d->event == GB_DYN_EVENT_LIFT) { /* −min(N_P, N_Q) */
+    if (d->event == GB_DYN_EVENT_LIFT || d->event == GB_DYN_EVENT_SLIP) { /* −min(N_P, N_Q), or −the cone's margin */
         gb_dyn_two_point tp;
         int status = gb_dyn_two_point_eval(d, t, y, &tp, 1);
         if (!status && tp.merged)
-            status = gb_error_set(GB_ENUMERIC, "two-point contact at t = %.9g: the crease ends while a lift is located", t);
+            status = gb_error_set(GB_ENUMERIC, "two-point contact at t = %.9g: the crease ends while a lift or a slip is "
+                                  "located", t);
         if (status) return status;
-        *gap = -fmin(tp.normal[0], tp.normal[1]);
+        int alone;
+        *gap = d->event == GB_DYN_EVENT_LIFT ? -fmin(tp.normal[0], tp.normal[1])
+                                             : -gb_dyn_crease_margin(d->def.friction, tp.normal, (const double(*)[3])tp.tangent, tp.u, &alone);
         *other_here = *other;
         return GB_OK;
     }
-    /* a third point against the lower of P and Q */
+    return third_gap(d, y, other, gap, other_here);
+}
+
+/* A third point against the lower of the two the body is on (contact, contact2). */
+static int third_gap(gb_dynamics *d, const double y[GB_STATE_SIZE], const gb_contact_point *other, double *gap,
+                     gb_contact_point *other_here)
+{
     double zb[3];
     gb_dyn_vertical(y, zb);
     gb_contact_point here, q;
@@ -207,4 +267,73 @@ int gb_dyn_flight_gap(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], c
     gb_dyn_flight_state(d, t, &zeta, v);
     *gap = -(zeta + d->def.length * (other_here->height + d->gap_allow));
     return status;
+}
+
+/* ---- sliding -------------------------------------------------------------------------------------- */
+
+/* A slipping point's stop: > 0 where its slip has fallen to the stop's speed (gb_dyn_slip_stop_speed) or
+ * turned against its direction at the accepted state. */
+static double stop_gap(const gb_dynamics *d, const double y[GB_STATE_SIZE], const double zb[3], const double r[3],
+                       const double slip_acc[3], int k)
+{
+    double s[3], body[3];
+    gb_dyn_slip_of(y, zb, r, body);
+    gb_dyn_to_inertial(y, body, s);
+    return -fmin(gb_vec_dot(s, d->slip_ref[k]), gb_vec_norm(body) - gb_dyn_slip_stop_speed(d, y, body, slip_acc));
+}
+
+/* Sliding at state y: a slip stopped or turned back (its slip against its direction at the accepted
+ * state: GB_DYN_EVENT_STICK), a sticking point's force at the cone's edge (GB_DYN_EVENT_SLIP), a normal force
+ * below 0 (a lift, or the lift-off of the last point), a new point on the plane (a switch; a third point). */
+int gb_dyn_sliding_pending(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], gb_contact_point *other, int *found)
+{
+    gb_dyn_friction_point points[2];
+    gb_dyn_friction_forces f;
+    int status = gb_dyn_sliding_eval(d, t, y, points, &f);
+    if (status) return status;
+    double zb[3];
+    gb_dyn_vertical(y, zb);
+    *other = d->contact;
+    for (int k = 0; k < d->slide_count && !*found; k++) {
+        if (!d->slides[k] || !d->slip_armed[k]) continue; /* a slip still at rounding's size has no stop yet */
+        if (stop_gap(d, y, zb, points[k].r, f.slip_acc[k], k) >= 0.0) *found = 1, d->event = GB_DYN_EVENT_STICK, d->event_point = k;
+    }
+    for (int k = 0; k < d->slide_count && !*found; k++)
+        if (!d->slides[k] && f.margin[k] < 0.0) *found = 1, d->event = GB_DYN_EVENT_SLIP, d->event_point = k;
+    for (int k = 0; k < d->slide_count && !*found; k++)
+        if (f.normal[k] < 0.0)
+            *found = 1, d->event = d->slide_count == 2 ? GB_DYN_EVENT_LIFT : GB_DYN_EVENT_LIFT_OFF, d->event_point = k;
+    if (*found) return GB_OK;
+    if (d->slide_count == 1) {
+        gb_contact_point continued;
+        status = gb_dyn_competitor(d, t, y, &continued, other, found);
+        if (!status && *found) d->event = GB_DYN_EVENT_SWITCH;
+        return status;
+    }
+    gb_contact_point p, q;
+    status = gb_dyn_point_at(d, zb, &d->contact, &p);
+    if (!status) status = gb_dyn_second_point(d, zb, &q);
+    if (!status) status = third_point_search(d, zb, &p, &q, other, found);
+    return status;
+}
+
+int gb_dyn_sliding_gap(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const gb_contact_point *other, double *gap,
+                       gb_contact_point *other_here)
+{
+    if (d->event == GB_DYN_EVENT_SWITCH) return switch_gap(d, y, other, gap, other_here);
+    if (d->event == GB_DYN_EVENT_THIRD) return third_gap(d, y, other, gap, other_here);
+    *other_here = *other;
+    const int k = d->event_point;
+    gb_dyn_friction_point points[2];
+    gb_dyn_friction_forces f;
+    const int status = gb_dyn_sliding_eval(d, t, y, points, &f);
+    if (status) return status;
+    if (d->event == GB_DYN_EVENT_STICK) {
+        double zb[3];
+        gb_dyn_vertical(y, zb);
+        *gap = stop_gap(d, y, zb, points[k].r, f.slip_acc[k], k);
+        return GB_OK;
+    }
+    *gap = d->event == GB_DYN_EVENT_SLIP ? -f.margin[k] : -f.normal[k];
+    return GB_OK;
 }

@@ -64,13 +64,14 @@ void gb_dyn_start_flight(gb_dynamics *d, double t, const double y[GB_STATE_SIZE]
 
 /* The centroid's motion is in closed form; only the turning is integrated. */
 int gb_dyn_flight_field(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const double omega[3], const double zb[3],
-                        double geff, double omega_dot[3], double *zeta)
+                        double geff, double omega_dot[3], double *zeta, gb_dyn_rates *rates)
 {
-    (void)y, (void)zb, (void)geff;
+    (void)y, (void)zb;
     const int status = gb_dyn_free_acceleration(d, omega, omega_dot);
     if (status) return status;
     double v[3];
     gb_dyn_flight_state(d, t, zeta, v);
+    if (rates) rates->acc[0] = rates->acc[1] = 0.0, rates->acc[2] = -geff; /* the weight alone, in the plane's frame */
     return GB_OK;
 }
 
@@ -98,8 +99,6 @@ int gb_dyn_flight_accept(gb_dynamics *d, double t, double y[GB_STATE_SIZE])
 /* The lowest point for the clearance; no contact force. */
 int gb_dyn_flight_observe(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], gb_dynamics_observables *o)
 {
-    const double m = d->def.mass;
-    double Iw[3], I[3][3];
     gb_dyn_contact c;
     int status = gb_dyn_contact_at(d, t, o->zb, o->omega, &c);
     if (!status) status = gb_dyn_free_acceleration(d, o->omega, o->omega_dot);
@@ -110,15 +109,7 @@ int gb_dyn_flight_observe(gb_dynamics *d, double t, const double y[GB_STATE_SIZE
     o->index = c.index;
     o->height = gb_vec_dot(o->zb, c.rc);
     o->clearance = o->zeta + o->height;
-    memcpy(I, d->inertia, sizeof I);
-    gb_dyn_mat_vec(I, o->omega, Iw);
-    o->kinetic = 0.5 * m * gb_vec_dot(o->velocity, o->velocity) + 0.5 * gb_vec_dot(o->omega, Iw);
-    o->potential = m * o->geff * o->zeta;
-    o->energy = o->kinetic + o->potential;
-    o->power_gravity = -m * o->geff * o->velocity[2];
-    o->power_damping = -d->def.damping * gb_vec_dot(o->omega, o->omega);
-    o->work = y[GB_STATE_WORK];
-    o->residual = o->energy - d->energy0 - o->work + d->impact_loss;
+    gb_dyn_observe_free_energy(d, y, o);
     o->contacts = 0;
     return GB_OK;
 }

@@ -27,6 +27,9 @@ static const gb_dyn_mode modes[GB_DYN_MODES] = {
                      gb_dyn_rest_event, gb_dyn_no_jump, gb_dyn_rest_observe, gb_dyn_rest_translate},
     [GB_DYN_FLIGHT] = {"flight", 1, gb_dyn_flight_field, gb_dyn_flight_accept, gb_dyn_flight_pending, gb_dyn_flight_gap,
                        gb_dyn_flight_event, gb_dyn_no_jump, gb_dyn_flight_observe, gb_dyn_flight_translate},
+    [GB_DYN_SLIDING] = {"sliding", 1, gb_dyn_sliding_field, gb_dyn_sliding_accept, gb_dyn_sliding_pending,
+                        gb_dyn_sliding_gap, gb_dyn_sliding_event, gb_dyn_no_jump, gb_dyn_sliding_observe,
+                        gb_dyn_sliding_translate},
 };
 
 int gb_dynamics_create_in(const gb_surface *surface, const gb_dynamics_def *def, gb_dynamics_context *context,
@@ -146,6 +149,11 @@ void gb_dynamics_adopt_contact(gb_dynamics *to, const gb_dynamics *from)
     memcpy(to->fly_v0, from->fly_v0, sizeof to->fly_v0);
     to->contact_time = from->contact_time;
     memcpy(to->contact_rate, from->contact_rate, sizeof to->contact_rate);
+    to->slide_count = from->slide_count, to->sliding_since = from->sliding_since;
+    memcpy(to->slides, from->slides, sizeof to->slides);
+    memcpy(to->slip_start, from->slip_start, sizeof to->slip_start);
+    memcpy(to->slip_ref, from->slip_ref, sizeof to->slip_ref);
+    memcpy(to->slip_armed, from->slip_armed, sizeof to->slip_armed);
 }
 
 int gb_dynamics_init_state(gb_dynamics *d, double t0, const double R0[9], const double omega0[3],
@@ -173,7 +181,6 @@ int gb_dynamics_init_state(gb_dynamics *d, double t0, const double R0[9], const 
     d->last_valid = 0;
     d->grid_switches = d->branch_switches = d->branches_lost = 0;
     d->impacts = 0, d->impact_loss = d->impact_friction_max = 0.0;
-    d->impacts_over_friction = 0;
     d->mode = GB_DYN_ONE_POINT, d->event = GB_DYN_EVENT_NONE, d->two_point_time = 0.0;
     d->next_hint = SIZE_MAX;
     d->rest_since = NAN;
@@ -183,8 +190,28 @@ int gb_dynamics_init_state(gb_dynamics *d, double t0, const double R0[9], const 
     d->lift_allow = 0.0;
     d->flight_time = d->hop_max = 0.0;
     d->lift_offs = d->landings = d->bounces = 0;
+    d->slide_count = 0, d->slides[0] = d->slides[1] = 0;
+    d->sliding_time = 0.0, d->slips = d->sticks = 0;
+    for (int k = GB_STATE_POSITION; k < GB_STATE_SIZE; k++) y[k] = 0.0;
     const double *v0 = d->def.velocity0;
-    if (d->def.height0 > 0.0 || v0[0] != 0.0 || v0[1] != 0.0 || v0[2] != 0.0) {
+    const int moving = v0[0] != 0.0 || v0[1] != 0.0 || v0[2] != 0.0;
+    if (gb_dyn_has_friction(d) && d->def.height0 == 0.0 && moving) {
+        /* on the plane at v0 (its horizontal part; the vertical one is the attitude's): the contact point
+         * slips where that differs from rolling */
+        gb_dyn_translate_on_plane(d, t0, y);
+        y[GB_STATE_VELOCITY] = v0[0], y[GB_STATE_VELOCITY + 1] = v0[1];
+        double s[3], rc[3];
+        for (int k = 0; k < 3; k++) rc[k] = d->def.length * d->contact.rc[k];
+        gb_dyn_slip_of(y, zb, rc, s);
+        if (gb_vec_norm(s) > 1e-12 * (gb_vec_norm(v0) + 1e-300)) {
+            double start[2][3] = {{0}};
+            const int slides[2] = {1, 0};
+            const double size = gb_vec_norm(s), unit[3] = {s[0] / size, s[1] / size, s[2] / size};
+            gb_dyn_to_inertial(y, unit, start[0]);
+            gb_dyn_start_sliding(d, t0, y, 1, slides, (const double(*)[3])start);
+            d->slips = 0; /* a start, not a change */
+        }
+    } else if (d->def.height0 > 0.0 || moving) {
         /* in flight: the lowest point (the contact found) at height0 above the plane, the centroid at v0 */
         double vb[3];
         for (int i = 0; i < 3; i++) vb[i] = R[i] * v0[0] + R[3 + i] * v0[1] + R[6 + i] * v0[2]; /* Rᵀ v0 */

@@ -41,7 +41,8 @@ typedef enum gb_dyn_mode_id {
     GB_DYN_TWO_POINT = 1, /* rolling on two points along a crease */
     GB_DYN_REST = 2,      /* at rest on three points */
     GB_DYN_FLIGHT = 3,    /* off the plane */
-    GB_DYN_MODES = 4
+    GB_DYN_SLIDING = 4,   /* on one or two points, at least one slipping (a plane of finite friction) */
+    GB_DYN_MODES = 5
 } gb_dyn_mode_id;
 
 /* The event gb_dynamics_switch_pending found, for gb_dynamics_branch_gap, gb_dynamics_switch_to and
@@ -52,8 +53,17 @@ typedef enum gb_dyn_event {
     GB_DYN_EVENT_LIFT_OFF = 2, /* one point or at rest: the normal force (g_eff at rest) reaches 0 */
     GB_DYN_EVENT_LANDING = 3,  /* flight: the lowest point reaches the plane */
     GB_DYN_EVENT_LIFT = 4,     /* two points: a normal force reaches 0 */
-    GB_DYN_EVENT_THIRD = 5     /* two points: a third point reaches the plane */
+    GB_DYN_EVENT_THIRD = 5,    /* two points: a third point reaches the plane */
+    GB_DYN_EVENT_SLIP = 6,     /* finite friction: a sticking contact's force reaches the cone's edge */
+    GB_DYN_EVENT_STICK = 7     /* finite friction: a slipping contact's slip stops (or turns back) */
 } gb_dyn_event;
+
+/* What a mode's vector field gives besides ω̇ and ζ where the translation is integrated (a plane of finite
+ * friction): the centroid's acceleration relative to the plane (inertial axes) and the power of friction. */
+typedef struct gb_dyn_rates {
+    double acc[3];
+    double friction_power;
+} gb_dyn_rates;
 
 /* What a mode is: its vector field and what ends it. The state's attitude and ω are integrated; `turns`
  * 0 makes ω read as 0 whatever the state holds (at rest). */
@@ -63,7 +73,7 @@ typedef struct gb_dyn_mode {
     /* ω̇ and the centroid's height ζ above the plane at (t, y), with ω (0 where nothing turns), vertical zb and
      * g_eff */
     int (*field)(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const double omega[3], const double zb[3],
-                 double geff, double omega_dot[3], double *zeta);
+                 double geff, double omega_dot[3], double *zeta, gb_dyn_rates *rates /* NULL: not wanted */);
     /* after an accepted step: the contact continued and checked, changes with no jump made */
     int (*accept)(gb_dynamics *d, double t, double y[GB_STATE_SIZE]);
     /* is an event of this mode due at y? (its kind into d->event) */
@@ -83,20 +93,20 @@ typedef struct gb_dyn_mode {
 
 /* The modes' own functions (gb_dynamics_hybrid.c puts them in its table with their events and jumps). */
 int gb_dyn_one_point_field(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const double omega[3], const double zb[3],
-                           double geff, double omega_dot[3], double *zeta);
+                           double geff, double omega_dot[3], double *zeta, gb_dyn_rates *rates);
 int gb_dyn_one_point_accept(gb_dynamics *d, double t, double y[GB_STATE_SIZE]);
 int gb_dyn_one_point_observe(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], gb_dynamics_observables *o);
 int gb_dyn_two_point_field(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const double omega[3], const double zb[3],
-                           double geff, double omega_dot[3], double *zeta);
+                           double geff, double omega_dot[3], double *zeta, gb_dyn_rates *rates);
 int gb_dyn_two_point_accept(gb_dynamics *d, double t, double y[GB_STATE_SIZE]);
 int gb_dyn_two_point_observe(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], gb_dynamics_observables *o);
 int gb_dyn_rest_field(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const double omega[3], const double zb[3],
-                      double geff, double omega_dot[3], double *zeta);
+                      double geff, double omega_dot[3], double *zeta, gb_dyn_rates *rates);
 int gb_dyn_rest_accept(gb_dynamics *d, double t, double y[GB_STATE_SIZE]);
 int gb_dyn_rest_observe(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], gb_dynamics_observables *o);
 void gb_dyn_rest_translate(const gb_dynamics *d, double t, double y[GB_STATE_SIZE]);
 int gb_dyn_flight_field(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const double omega[3], const double zb[3],
-                        double geff, double omega_dot[3], double *zeta);
+                        double geff, double omega_dot[3], double *zeta, gb_dyn_rates *rates);
 int gb_dyn_flight_accept(gb_dynamics *d, double t, double y[GB_STATE_SIZE]);
 int gb_dyn_flight_observe(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], gb_dynamics_observables *o);
 void gb_dyn_flight_translate(const gb_dynamics *d, double t, double y[GB_STATE_SIZE]);
@@ -130,6 +140,7 @@ struct gb_dynamics {
     gb_dyn_mode_id mode;
     gb_dyn_event event;          /* the event gb_dynamics_switch_pending found (GB_DYN_EVENT_NONE: none) */
     double settle_time;   /* the end to chatter [s]: def.settle_time, or the integrator's step where it is 0 */
+    double step;          /* the integrator's step [s] (gb_dynamics_use_step; 0 before a run) */
     double inertia[3][3]; /* I_C [kg m²] */
     double mean_radius;   /* L [m] (eq 53) */
     gb_dynamics_context *context; /* the caller's, or the run's own (own_context) */
@@ -163,7 +174,6 @@ struct gb_dynamics {
     /* Impacts (a law with impacts): how many, the kinetic energy they took (L), the largest friction needed. */
     size_t impacts;
     double impact_loss, impact_friction_max;
-    size_t impacts_over_friction; /* that needed more than def.friction */
     size_t next_hint; /* a grid body: the last next node found (gb_dyn_next_node) */
     gb_dynamics_impact_sink impact_sink;
     void *impact_context;
@@ -190,6 +200,16 @@ struct gb_dynamics {
     double fly_t0, fly_zeta0, fly_v0[3];
     double flight_since, flight_time, hop_max;
     size_t lift_offs, landings, bounces;
+    /* A plane of finite friction (def.friction finite). In the sliding mode the body is on `slide_count`
+     * points (contact, and contact2 when 2), each sticking or slipping (slides[k]); a point that slips from
+     * rest slips first along slip_start[k] (inertial axes, horizontal), after which its slip's own direction
+     * takes over; slip_ref[k] is its direction at the accepted state (the stop's event function). */
+    int slide_count, slides[2];
+    int event_point;             /* the point (0: contact, 1: contact2) the pending slip, stop or lift is of */
+    double slip_start[2][3], slip_ref[2][3];
+    int slip_armed[2];           /* the slip has grown past rounding since it started: its stop is an event */
+    double sliding_since, sliding_time;
+    size_t slips, sticks;
     /* The last competitor() answer and the state it was for: with switch location, the step's end is
      * checked by gb_dynamics_switch_pending and then again by gb_dynamics_accept at the same state. */
     int memo_valid, memo_found;
@@ -212,8 +232,13 @@ int gb_dyn_field(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], double
 void gb_dyn_set_mode(gb_dynamics *d, gb_dyn_mode_id mode, double t);
 /* "t = ...: the state is no longer finite" (GB_ENUMERIC). */
 int gb_dyn_diverged(double t);
+/* A body vector in inertial axes at state y: R b. */
+void gb_dyn_to_inertial(const double y[GB_STATE_SIZE], const double body[3], double out[3]);
 /* A v, and the solution of A x = b for a symmetric positive-definite 3 × 3 A (GB_ENUMERIC when singular). */
 void gb_dyn_mat_vec(double A[3][3], const double v[3], double out[3]);
+/* A body whose centroid moves freely (flight, sliding), o's velocity, ω, g_eff and ζ set: its kinetic,
+ * potential and total energy, the powers, W, friction's work and the ledger E − E0 − W + L. */
+void gb_dyn_observe_free_energy(const gb_dynamics *d, const double y[GB_STATE_SIZE], gb_dynamics_observables *o);
 int gb_dyn_solve3(double A[3][3], const double b[3], double x[3]);
 
 /* ---- the body and its context (gb_dynamics_context.c) --------------------------------------------- */
@@ -284,8 +309,14 @@ typedef struct gb_dyn_two_point {
     double sigma, omega_dot[3];
     double normal[2];         /* N_P, N_Q */
     double friction_needed, balance;
+    double acc[3];            /* with forces: the centroid's acceleration (body axes) */
+    double tangent[2][3];     /* with forces: the tangential forces at P and Q, their open part along PQ split
+                               * as the normal forces (gb_dyn_crease_margin moves it) */
     int merged;               /* the end of a crease: Q merged with P or vanished; only p is filled */
 } gb_dyn_two_point;
+
+/* Q of the two-point mode at vertical zb (Newton from the last Q, by its sensitivity; a grid node as it is). */
+int gb_dyn_second_point(gb_dynamics *d, const double zb[3], gb_contact_point *q);
 
 /* The mode at state y: the points, σ and ω̇; with `forces`, the normal forces, the friction they need and
  * the balance too. */
@@ -307,6 +338,70 @@ int gb_dyn_free_acceleration(const gb_dynamics *d, const double omega[3], double
  * axes) relative to the plane. */
 void gb_dyn_start_flight(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const double v_body[3], double zeta);
 
+/* ---- a plane of finite friction (gb_dynamics_sliding.c) ------------------------------------------ */
+
+/* Coulomb's law at the points of contact between impacts: each point sticks (its material point's
+ * acceleration is the rolling contact's, its force unknown) or slips along `slip` (body axes, horizontal,
+ * unit: its force N (z_b − μ slip), N unknown, and only its height held on the plane). */
+typedef struct gb_dyn_friction_point {
+    double r[3], rdot[3];    /* from the centroid, and its rate on the surface [m, m/s] (body axes) */
+    int slides;
+    double slip[3];
+} gb_dyn_friction_point;
+
+typedef struct gb_dyn_friction_forces {
+    double omega_dot[3], acc[3];  /* ω̇, and the centroid's acceleration (body axes) */
+    double force[2][3];           /* each point's force (body axes) */
+    double normal[2], margin[2];  /* N, and μ N − |F_t| (a sticking point; μ N for a slipping one) */
+    double slip_acc[2][3];        /* each material point's tangential acceleration (body axes) */
+} gb_dyn_friction_forces;
+
+/* The accelerations and forces of 1 or 2 points (one at least slipping, or one sticking alone), by
+ * Newton–Euler with the points' constraints. GB_ENUMERIC on Painlevé's paradox: the normal forces of the
+ * slipping points have no consistent value (their compliance matrix K, ∂(normal acceleration)/∂N, is not a
+ * P-matrix: no solution, or more than one). */
+int gb_dyn_friction_solve(const gb_dynamics *d, double t, double geff, const double zb[3], const double omega[3],
+                          const gb_dyn_friction_point *points, int count, gb_dyn_friction_forces *out);
+/* A plane of finite friction (def.friction finite)? */
+int gb_dyn_has_friction(const gb_dynamics *d);
+/* The slip of a body point r [m] (body axes): its velocity relative to the plane with the centroid at the
+ * state's velocity, less its normal part, in body axes. */
+void gb_dyn_slip_of(const double y[GB_STATE_SIZE], const double zb[3], const double r[3], double slip[3]);
+/* A slip below this speed has stopped: 1e-6 of the speeds the body's motion is made of (√(g_max L), |V|,
+ * |ω| L), or, where the slip turns (its acceleration across it, a_⊥), the speed at which it would turn by a
+ * quarter radian in one step, |a_⊥| h / 0.25. Close to a stop the slip's direction turns fast and the
+ * equations lose their smoothness inside a step (RK4 would lose its order, and the friction's work its
+ * balance with the energy); the stop is taken there, the slip left removed by the impulse friction would
+ * have spent (booked in L) where the cone holds, else the slip restarts. A slip must first grow past twice
+ * this before its stop is watched. `slip` and `slip_acc`: the point's slip and tangential acceleration. */
+double gb_dyn_slip_stop_speed(const gb_dynamics *d, const double y[GB_STATE_SIZE], const double slip[3],
+                              const double slip_acc[3]);
+/* One sticking point (the one-point mode): how far its force is inside the cone, μ N − |F_t|. */
+double gb_dyn_one_point_margin(const gb_dynamics *d, double geff, const double zb[3], const double omega[3],
+                               const double omega_dot[3], const gb_dyn_contact *c);
+/* Two sticking points (the two-point mode's forces, their tangential parts open along PQ): the largest over
+ * that open part of min(μ N_P − |T_P|, μ N_Q − |T_Q|), and which cannot stick whatever the split (bit 0: P,
+ * bit 1: Q; 3: each could, not both at once). */
+double gb_dyn_crease_margin(double mu, const double normal[2], const double tangent[2][3], const double u[3], int *alone);
+/* The points' constraints at velocity level, which the accelerations keep only to the integration's
+ * accuracy: on two points both stay on the plane (ω projected, the least change in I's metric; both
+ * sticking: a turn about PQ keeping the angular momentum about it), a sticking point at rest (the centroid's
+ * velocity the rolling one). The kinetic energy this changes (rounding's size) is booked in L. */
+int gb_dyn_hold_velocities(gb_dynamics *d, double y[GB_STATE_SIZE], int count, const int sticks[2]);
+/* The sliding mode. */
+int gb_dyn_sliding_field(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const double omega[3], const double zb[3],
+                         double geff, double omega_dot[3], double *zeta, gb_dyn_rates *rates);
+int gb_dyn_sliding_accept(gb_dynamics *d, double t, double y[GB_STATE_SIZE]);
+int gb_dyn_sliding_observe(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], gb_dynamics_observables *o);
+void gb_dyn_sliding_translate(const gb_dynamics *d, double t, double y[GB_STATE_SIZE]);
+/* The sliding mode's points at state y and their forces (points[k].slides as d->slides). */
+int gb_dyn_sliding_eval(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], gb_dyn_friction_point *points,
+                        gb_dyn_friction_forces *f);
+/* Enter the sliding mode at t on `count` points (contact, contact2) with these slips; a point slipping from
+ * rest starts along start[k] (inertial axes). */
+void gb_dyn_start_sliding(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], int count, const int slides[2],
+                          const double start[2][3]);
+
 /* ---- the events (gb_dynamics_events.c) ------------------------------------------------------------- */
 
 int gb_dyn_one_point_pending(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], gb_contact_point *other, int *found);
@@ -321,6 +416,9 @@ int gb_dyn_rest_gap(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], con
 int gb_dyn_flight_pending(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], gb_contact_point *other, int *found);
 int gb_dyn_flight_gap(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const gb_contact_point *other,
                       double *gap, gb_contact_point *other_here);
+int gb_dyn_sliding_pending(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], gb_contact_point *other, int *found);
+int gb_dyn_sliding_gap(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const gb_contact_point *other,
+                       double *gap, gb_contact_point *other_here);
 
 /* ---- the jumps (gb_dynamics_jumps.c) --------------------------------------------------------------- */
 
@@ -332,9 +430,30 @@ int gb_dyn_two_point_jump(gb_dynamics *d, double t, const double y[GB_STATE_SIZE
                           double out[GB_STATE_SIZE]);
 int gb_dyn_rest_event(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const gb_contact_point *branch);
 int gb_dyn_flight_event(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const gb_contact_point *branch);
+/* ---- the jumps of a plane of finite friction (gb_dynamics_slips.c) --------------------------------- */
+int gb_dyn_sliding_event(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const gb_contact_point *branch);
+/* A sticking mode's point reaches the cone's edge: the body slides from there (no impulse). */
+int gb_dyn_slip_start(gb_dynamics *d, double t, double y[GB_STATE_SIZE]);
+/* A change of contact or a landing on a plane of finite friction: the impact over `count` points [m] (the
+ * state's velocity before), the point `arriving` the new one, and the mode it leaves (one point, two points,
+ * rest: the points held; sliding; flight), booked as `kind`. */
+int gb_dyn_friction_impact(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const gb_contact_point *points, int count,
+                           int arriving, gb_dynamics_impact_kind kind, int located);
 /* The variational estimator cannot follow flight: the jump from or into it (GB_EINVAL). */
 int gb_dyn_no_jump(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const gb_contact_point *branch,
                    double out[GB_STATE_SIZE]);
+/* Newton's restitution at a point approaching at `approach` (> 0) at time t: def.restitution, or 0 where
+ * the rebound would fall back within the settle time (the end to bouncing). */
+double gb_dyn_restitution_at(const gb_dynamics *d, double t, double approach);
+/* The plane only pushes: GB_OK, or GB_ENUMERIC naming the point an impact would need it to pull at beyond
+ * rounding (and, `settled`, beyond the weight's impulse over the return the settle rule removes). */
+int gb_dyn_plane_pushes(const gb_dynamics *d, double t, const gb_impact_result *r, const double (*points)[3], int count,
+                        int arriving, int settled, const double v_before[3], const double omega_before[3]);
+/* How soon the point rp [m] falls back after an impact that leaves the body rolling on q with ω (y) and the
+ * centroid at v (body axes): 2 v_n / |a_n| (INFINITY when it does not). */
+double gb_dyn_return_time(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const gb_contact_point *q,
+                          const double v[3], const double rp[3]);
+
 /* ---- the ledger (gb_dynamics_ledger.c) ------------------------------------------------------------ */
 
 /* A change of contact with no impulse: the record of nothing changed, the body turning with the ω of y about

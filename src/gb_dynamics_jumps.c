@@ -26,7 +26,7 @@ const char *gb_dynamics_impact_kind_name(gb_dynamics_impact_kind k) { return (un
 /* Newton's restitution at a point approaching the plane with normal speed `approach` (> 0) at time t,
  * and the end to bouncing: a rebound e·approach that would fall back within settle_time under g_eff
  * (2 e approach / g_eff < settle_time) is taken as plastic, so that a bounce sequence ends in finite time. */
-static double restitution_at(const gb_dynamics *d, double t, double approach)
+double gb_dyn_restitution_at(const gb_dynamics *d, double t, double approach)
 {
     const double e = d->def.restitution;
     if (e == 0.0) return 0.0;
@@ -46,8 +46,8 @@ static int impact_solve(const gb_dynamics *d, double t, const double y[GB_STATE_
     gb_impact_body body = {d->def.mass, {{0}}};
     memcpy(body.inertia, d->inertia, sizeof body.inertia);
     if (gb_impact_solve(&body, zb, e, points, count, v_before, y + GB_STATE_OMEGA, r))
-        return gb_error_set(GB_ENUMERIC, "unilateral contact at t = %.9g: %s; a finite friction coefficient is not built yet",
-                            t, gb_error_message());
+        return gb_error_set(GB_ENUMERIC, "unilateral contact at t = %.9g: %s on a perfectly rough plane (a plane of finite "
+                            "friction, [model] friction = mu, lets the point slip)", t, gb_error_message());
     return GB_OK;
 }
 
@@ -72,7 +72,7 @@ static int pulling_point(const gb_dynamics *d, const gb_impact_result *r, const 
     return -1;
 }
 
-static int plane_pushes(const gb_dynamics *d, double t, const gb_impact_result *r, const double (*points)[3], int count,
+int gb_dyn_plane_pushes(const gb_dynamics *d, double t, const gb_impact_result *r, const double (*points)[3], int count,
                         int arriving, int settled, const double v_before[3], const double omega_before[3])
 {
     double allowed;
@@ -151,7 +151,7 @@ static void hold_both(const gb_dynamics *d, const double y[GB_STATE_SIZE], const
 
 /* After an impact at which P lifts and the body rolls on Q with ω (y): how soon P falls back, 2 v_n/|a_n|
  * from P's normal velocity and acceleration under the rolling equation about Q (INFINITY when a_n >= 0). */
-static double return_time(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const gb_contact_point *q,
+double gb_dyn_return_time(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const gb_contact_point *q,
                           const double v[3], const double rp[3])
 {
     const double L = d->def.length, *omega = y + GB_STATE_OMEGA;
@@ -213,7 +213,7 @@ static int impact_outcome(gb_dynamics *d, double t, const double y[GB_STATE_SIZE
         gb_dyn_vertical(y, zb);
         gb_vec_cross(y + GB_STATE_OMEGA, (const double[3]){-points[0][0], -points[0][1], -points[0][2]}, vg);
         gb_vec_cross(y + GB_STATE_OMEGA, points[1], wq);
-        e = restitution_at(d, t, -(gb_vec_dot(zb, vg) + gb_vec_dot(zb, wq)));
+        e = gb_dyn_restitution_at(d, t, -(gb_vec_dot(zb, vg) + gb_vec_dot(zb, wq)));
     }
     int status = impact_solve(d, t, y, points[0], (const double (*)[3])points, 2, e, v, r);
     if (status == GB_ENUMERIC && e == 0.0) {
@@ -274,7 +274,7 @@ static int impact_outcome(gb_dynamics *d, double t, const double y[GB_STATE_SIZE
         double yafter[GB_STATE_SIZE];
         memcpy(yafter, y, sizeof yafter);
         memcpy(yafter + GB_STATE_OMEGA, r->omega, sizeof r->omega);
-        *back = return_time(d, t, yafter, to, r->v, points[0]);
+        *back = gb_dyn_return_time(d, t, yafter, to, r->v, points[0]);
         if (*back < d->settle_time) {
             /* the settle rule lumps the chatter, unless the lumped impact would need the plane to pull beyond
              * the weight's impulse it stands for (P and Q close together, a couple with a short arm): then
@@ -296,7 +296,7 @@ static int impact(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const gb_co
     double points[2][3], v[3], back;
     gb_impact_result r;
     int status = impact_outcome(d, t, y, from, to, points, v, &r, &back, both, bounce);
-    if (!status) status = plane_pushes(d, t, &r, (const double(*)[3])points, 2, 1, *both && isfinite(back), v, y + GB_STATE_OMEGA);
+    if (!status) status = gb_dyn_plane_pushes(d, t, &r, (const double(*)[3])points, 2, 1, *both && isfinite(back), v, y + GB_STATE_OMEGA);
     if (status) return status;
     gb_dynamics_impact e = {.t = t, .located = located, .kind = *both ? GB_DYNAMICS_IMPACT_TWO_POINT : GB_DYNAMICS_IMPACT_SWITCH,
                             .contacts_after = 1 + *both, .settled = *both && isfinite(back), .return_time = back};
@@ -356,7 +356,7 @@ static int lift_off_consistent(gb_dynamics *d, double t, const double y[GB_STATE
         return gb_error_set(GB_ENUMERIC, "lift-off at t = %.9g: the normal force reaches 0 while rolling still needs a "
                             "friction force of %.3g N, without which the contact point is driven %s: on a plane of finite "
                             "friction the body slides before it lifts, which this rough-plane model does not follow "
-                            "(sliding is not built)", t, gb_vec_norm(ft), depth);
+                            "([model] friction = mu follows it)", t, gb_vec_norm(ft), depth);
     }
     /* the flight's landing waits below the dip (twice the estimate) until the gap has opened */
     d->gap_allow = fmax(d->gap_allow, GB_DYN_GAP_TOL + 2.0 * dip / d->def.length);
@@ -404,13 +404,13 @@ static int landing(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const gb_c
     for (int i = 0; i < 3; i++) v[i] = R[i] * v_in[0] + R[3 + i] * v_in[1] + R[6 + i] * v_in[2]; /* Rᵀ v */
     for (int k = 0; k < 3; k++) rq[k] = L * q->rc[k];
     gb_vec_cross(y + GB_STATE_OMEGA, rq, wq);
-    const double e = restitution_at(d, t, -(gb_vec_dot(zb, v) + gb_vec_dot(zb, wq)));
+    const double e = gb_dyn_restitution_at(d, t, -(gb_vec_dot(zb, v) + gb_vec_dot(zb, wq)));
     gb_impact_body body = {d->def.mass, {{0}}};
     memcpy(body.inertia, d->inertia, sizeof body.inertia);
     gb_impact_result r;
     if (gb_impact_rough_point(&body, zb, e, rq, v, y + GB_STATE_OMEGA, &r))
         return gb_error_set(GB_ENUMERIC, "landing at t = %.9g: %s", t, gb_error_message());
-    const int pushes = plane_pushes(d, t, &r, (const double(*)[3])&rq, 1, 0, 0, v, y + GB_STATE_OMEGA);
+    const int pushes = gb_dyn_plane_pushes(d, t, &r, (const double(*)[3])&rq, 1, 0, 0, v, y + GB_STATE_OMEGA);
     if (pushes) return pushes;
     gb_dynamics_impact rec = {.t = t, .located = 1, .kind = GB_DYNAMICS_IMPACT_LANDING, .rebound = e > 0.0 && r.holds[0],
                               .return_time = INFINITY};
@@ -468,8 +468,8 @@ static int third_point_outcome(gb_dynamics *d, double t, const double y[GB_STATE
         double yafter[GB_STATE_SIZE];
         memcpy(yafter, y, sizeof yafter);
         memcpy(yafter + GB_STATE_OMEGA, r->omega, sizeof r->omega);
-        const double back_p = return_time(d, t, yafter, third, r->v, points[0]);
-        const double back_q = return_time(d, t, yafter, third, r->v, points[1]);
+        const double back_p = gb_dyn_return_time(d, t, yafter, third, r->v, points[0]);
+        const double back_q = gb_dyn_return_time(d, t, yafter, third, r->v, points[1]);
         const int k = back_q < back_p;
         *back = fmin(back_p, back_q);
         /* A lumped impact is taken only where it pushes within the weight's impulse it stands for
@@ -542,7 +542,7 @@ static int two_point_located(gb_dynamics *d, double t, double y[GB_STATE_SIZE], 
     gb_impact_result r;
     int held, settled;
     status = third_point_outcome(d, t, y, third, points, v, &r, &held, &back, &settled);
-    if (!status) status = plane_pushes(d, t, &r, points, 3, 2, settled, v, y + GB_STATE_OMEGA);
+    if (!status) status = gb_dyn_plane_pushes(d, t, &r, points, 3, 2, settled, v, y + GB_STATE_OMEGA);
     if (status) return status;
     gb_dynamics_impact e = {.t = t, .located = 1, .kind = GB_DYNAMICS_IMPACT_THIRD, .contacts_after = held,
                             .settled = settled, .return_time = back};
@@ -621,6 +621,16 @@ static int after_switch(gb_dynamics *d, double t)
 int gb_dyn_one_point_event(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const gb_contact_point *branch)
 {
     if (d->event == GB_DYN_EVENT_LIFT_OFF) return after_flight_event(d, lift_off(d, t, y));
+    if (d->event == GB_DYN_EVENT_SLIP) return after_flight_event(d, gb_dyn_slip_start(d, t, y));
+    if (gb_dyn_has_friction(d)) { /* a change of contact: Coulomb's impact from P onto the new point */
+        double zb[3];
+        gb_dyn_vertical(y, zb);
+        gb_contact_point pts[2];
+        int status = gb_dyn_point_at(d, zb, &d->contact, &pts[0]);
+        pts[1] = *branch;
+        if (!status) status = gb_dyn_friction_impact(d, t, y, pts, 2, 1, GB_DYNAMICS_IMPACT_SWITCH, 1);
+        return status ? status : after_switch(d, t);
+    }
     if (d->law->impacts) {
         double zb[3];
         gb_dyn_vertical(y, zb);
@@ -644,6 +654,17 @@ int gb_dyn_one_point_event(gb_dynamics *d, double t, double y[GB_STATE_SIZE], co
 
 int gb_dyn_two_point_event(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const gb_contact_point *branch)
 {
+    if (d->event == GB_DYN_EVENT_SLIP) return after_flight_event(d, gb_dyn_slip_start(d, t, y));
+    if (gb_dyn_has_friction(d) && d->event == GB_DYN_EVENT_THIRD) { /* Coulomb's impact over the three */
+        double zb[3];
+        gb_dyn_vertical(y, zb);
+        gb_contact_point pts[3];
+        int status = gb_dyn_point_at(d, zb, &d->contact, &pts[0]);
+        if (!status) status = gb_dyn_point_at(d, zb, &d->contact2, &pts[1]);
+        pts[2] = *branch;
+        if (!status) status = gb_dyn_friction_impact(d, t, y, pts, 3, 2, GB_DYNAMICS_IMPACT_THIRD, 1);
+        return status ? status : after_switch(d, t);
+    }
     const int status = two_point_located(d, t, y, branch);
     return status ? status : after_switch(d, t);
 }
@@ -656,6 +677,8 @@ int gb_dyn_rest_event(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const g
 
 int gb_dyn_flight_event(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const gb_contact_point *branch)
 {
+    if (gb_dyn_has_friction(d)) /* Coulomb's impact at the landing point */
+        return after_flight_event(d, gb_dyn_friction_impact(d, t, y, branch, 1, 0, GB_DYNAMICS_IMPACT_LANDING, 1));
     return after_flight_event(d, landing(d, t, y, branch));
 }
 
@@ -666,16 +689,15 @@ int gb_dyn_no_jump(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], cons
 {
     (void)d, (void)branch;
     memcpy(out, y, GB_STATE_SIZE * sizeof *out);
-    return gb_error_set(GB_EINVAL, "t = %.9g: the variational estimator does not follow lift-off and flight (the "
-                        "centroid's height and velocity are not in its tangent space); use [lyapunov] estimator = "
-                        "pair", t);
+    return gb_error_set(GB_EINVAL, "t = %.9g: the variational estimator does not follow lift-off, flight or sliding (the "
+                        "centroid's translation is not in its tangent space); use [lyapunov] estimator = pair", t);
 }
 
 /* One point: the held law keeps the state; with impacts, the impact's ω (a lift-off: not followed). */
 int gb_dyn_one_point_jump(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const gb_contact_point *branch,
                           double out[GB_STATE_SIZE])
 {
-    if (d->event == GB_DYN_EVENT_LIFT_OFF) return gb_dyn_no_jump(d, t, y, branch, out);
+    if (d->event == GB_DYN_EVENT_LIFT_OFF || gb_dyn_has_friction(d)) return gb_dyn_no_jump(d, t, y, branch, out);
     memcpy(out, y, GB_STATE_SIZE * sizeof *out);
     if (!d->law->impacts) return GB_OK;
     double zb[3], v[3], points[2][3], back;
@@ -697,6 +719,7 @@ int gb_dyn_one_point_jump(gb_dynamics *d, double t, const double y[GB_STATE_SIZE
 int gb_dyn_two_point_jump(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const gb_contact_point *branch,
                           double out[GB_STATE_SIZE])
 {
+    if (gb_dyn_has_friction(d)) return gb_dyn_no_jump(d, t, y, branch, out);
     memcpy(out, y, GB_STATE_SIZE * sizeof *out);
     if (d->event == GB_DYN_EVENT_LIFT) return GB_OK;
     const double L = d->def.length;

@@ -5,6 +5,8 @@
 
 #include "gb_error.h"
 
+#include <math.h>
+
 static const gb_dyn_law laws[] = {
     [GB_CONTACT_LAW_HELD] = {"held", 0},
     [GB_CONTACT_LAW_UNILATERAL] = {"unilateral", 1},
@@ -30,6 +32,9 @@ int gb_dynamics_contact_law_impacts(gb_contact_law law) { return (unsigned)law <
 int gb_dyn_law_check(const gb_dynamics_def *def)
 {
     const gb_dyn_law *law = gb_dyn_law_of(def->contact_law);
+    if (isfinite(def->friction) && law && !law->impacts) /* a held contact never slips: its plane is rough */
+        return gb_error_set(GB_EINVAL, "friction mu = %g with the held law (allowed: a finite mu with the unilateral law; "
+                            "rough with either)", def->friction);
     if (law && !law->impacts &&
         (def->restitution != 0.0 || def->height0 != 0.0 || def->velocity0[0] != 0.0 || def->velocity0[1] != 0.0 ||
          def->velocity0[2] != 0.0))

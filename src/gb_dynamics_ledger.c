@@ -21,7 +21,6 @@ int gb_dyn_book(gb_dynamics *d, const gb_dynamics_impact *e)
         d->impacts++;
         d->impact_loss += e->kinetic_before - e->kinetic_after - e->potential_jump;
         d->impact_friction_max = fmax(d->impact_friction_max, e->friction_needed);
-        d->impacts_over_friction += e->friction_needed > d->def.friction;
     }
     d->memo_valid = 0; /* ω may have changed */
     return d->impact_sink ? d->impact_sink(d->impact_context, e) : GB_OK;

@@ -10,9 +10,9 @@
 
 /* Nothing turns, whatever rounding is left in the state's ω. */
 int gb_dyn_rest_field(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const double omega[3], const double zb[3],
-                      double geff, double omega_dot[3], double *zeta)
+                      double geff, double omega_dot[3], double *zeta, gb_dyn_rates *rates)
 {
-    (void)y, (void)geff;
+    (void)y, (void)geff, (void)rates; /* at rest nothing moves: the rates stay 0 */
     gb_dyn_contact c;
     const int status = gb_dyn_contact_at(d, t, zb, omega, &c);
     if (status) return status;

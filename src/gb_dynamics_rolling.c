@@ -74,13 +74,17 @@ int gb_dyn_one_point_normal(gb_dynamics *d, double t, const double y[GB_STATE_SI
 
 /* ω̇ and ζ = −z_b·r_c on the contact (eqs 37, 44). */
 int gb_dyn_one_point_field(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const double omega[3], const double zb[3],
-                           double geff, double omega_dot[3], double *zeta)
+                           double geff, double omega_dot[3], double *zeta, gb_dyn_rates *rates)
 {
-    (void)y;
     gb_dyn_contact c;
     int status = gb_dyn_contact_at(d, t, zb, omega, &c);
     if (!status) status = gb_dyn_angular_acceleration(d, geff, zb, omega, &c, omega_dot);
     if (!status) *zeta = -gb_vec_dot(zb, c.rc);
+    if (!status && rates) { /* the centroid's acceleration under rolling, in inertial axes */
+        double acc[3];
+        gb_dyn_normal_force(d, geff, zb, omega, omega_dot, &c, acc);
+        gb_dyn_to_inertial(y, acc, rates->acc);
+    }
     return status;
 }
 
@@ -148,6 +152,8 @@ void gb_dyn_observe_on_plane(gb_dynamics *d, double t, const double y[GB_STATE_S
     o->work = y[GB_STATE_WORK];
     o->residual = o->energy - d->energy0 - o->work;
     if (d->law->impacts) o->residual += d->impact_loss; /* the ledger */
+    o->friction_work = y[GB_STATE_FRICTION];
+    if (gb_dyn_has_friction(d)) o->residual -= o->friction_work; /* and friction's part of L */
     double acc[3];
     o->normal_force = gb_dyn_normal_force(d, o->geff, o->zb, o->omega, o->omega_dot, c, acc);
     const double vertical = gb_vec_dot(acc, o->zb);

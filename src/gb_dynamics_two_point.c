@@ -14,7 +14,7 @@
 /* Q of the two-point mode at vertical zb: Newton (continuous contact) from the last Q found since the
  * accepted state moved by its sensitivity (eq 70), as P is (gb_dyn_contact_at); then Q's sensitivity for its rate
  * and the next start. A grid node as it is. */
-static int second_point(gb_dynamics *d, const double zb[3], gb_contact_point *q)
+int gb_dyn_second_point(gb_dynamics *d, const double zb[3], gb_contact_point *q)
 {
     if (d->def.contact != GB_CONTACT_MODEL_CONTINUOUS) return gb_dyn_point_at(d, zb, &d->contact2, q);
     double unit[3], start[2] = {d->contact2.phi, d->contact2.theta};
@@ -45,7 +45,7 @@ int gb_dyn_two_point_eval(gb_dynamics *d, double t, const double y[GB_STATE_SIZE
     int status = gb_dyn_contact_at(d, t, zb, omega, &tp->p);
     if (!status && d->branches_lost != lost)
         status = gb_error_set(GB_ENUMERIC, "two-point contact at t = %.9g: P has no minimum of height left (a fold)", t);
-    if (!status) status = second_point(d, zb, &tp->q);
+    if (!status) status = gb_dyn_second_point(d, zb, &tp->q);
     if (status) return status;
     double dvec[3];
     for (int k = 0; k < 3; k++) tp->rp[k] = L * tp->p.point.rc[k], tp->rq[k] = L * tp->q.rc[k], dvec[k] = tp->rp[k] - tp->rq[k];
@@ -92,6 +92,7 @@ int gb_dyn_two_point_eval(gb_dynamics *d, double t, const double y[GB_STATE_SIZE
     gb_dyn_contact at_p = {.rc_dot = {s * vp[0], s * vp[1], s * vp[2]}}; /* r_P moving at σ ṙ_P₁ */
     memcpy(at_p.rc, tp->rp, sizeof at_p.rc);
     gb_dyn_normal_force(d, geff, zb, omega, tp->omega_dot, &at_p, acc);
+    memcpy(tp->acc, acc, sizeof tp->acc);
     for (int k = 0; k < 3; k++) F[k] = m * (acc[k] + geff * zb[k]);
     gb_dyn_mat_vec(d->inertia, omega, Iw);
     gb_vec_cross(omega, Iw, gyro);
@@ -108,6 +109,7 @@ int gb_dyn_two_point_eval(gb_dynamics *d, double t, const double y[GB_STATE_SIZE
         tan_p[k] = FP[k] - tp->normal[0] * zb[k] + share * fu * u[k];
         tan_q[k] = F[k] - FP[k] - tp->normal[1] * zb[k] - share * fu * u[k];
     }
+    memcpy(tp->tangent[0], tan_p, sizeof tan_p), memcpy(tp->tangent[1], tan_q, sizeof tan_q);
     tp->friction_needed = tp->normal[0] > 0.0 && tp->normal[1] > 0.0
                               ? fmax(gb_vec_norm(tan_p) / tp->normal[0], gb_vec_norm(tan_q) / tp->normal[1])
                               : INFINITY;
@@ -115,15 +117,21 @@ int gb_dyn_two_point_eval(gb_dynamics *d, double t, const double y[GB_STATE_SIZE
 }
 
 int gb_dyn_two_point_field(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const double omega[3], const double zb[3],
-                           double geff, double omega_dot[3], double *zeta)
+                           double geff, double omega_dot[3], double *zeta, gb_dyn_rates *rates)
 {
     gb_dyn_two_point tp;
-    int status = gb_dyn_two_point_eval(d, t, y, &tp, 0);
+    int status = gb_dyn_two_point_eval(d, t, y, &tp, rates != NULL);
     if (status) return status;
     const gb_dyn_contact c = tp.p;
     if (tp.merged) status = gb_dyn_angular_acceleration(d, geff, zb, omega, &c, omega_dot); /* on P alone */
     else memcpy(omega_dot, tp.omega_dot, sizeof tp.omega_dot);
     if (!status) *zeta = -gb_vec_dot(zb, c.rc);
+    if (!status && rates) {
+        double acc[3];
+        if (tp.merged) gb_dyn_normal_force(d, geff, zb, omega, omega_dot, &c, acc);
+        else memcpy(acc, tp.acc, sizeof acc);
+        gb_dyn_to_inertial(y, acc, rates->acc);
+    }
     return status;
 }
 

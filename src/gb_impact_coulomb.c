@@ -43,7 +43,7 @@ static void dk_slide_rate(const dk *k, const dk_state *s, const double slip[2], 
  * = 0) is then located inside the step. */
 static void dk_slip(const dk_state *s, const double ref[2], double slip[2])
 {
-    const double speed = hypot(s->u[0], s->u[1]);
+    const double speed = sqrt(s->u[0] * s->u[0] + s->u[1] * s->u[1]); /* no overflow at a body's speeds; hypot's care costs a third of an impact */
     if (speed > 0.0 && s->u[0] * ref[0] + s->u[1] * ref[1] > 0.0) slip[0] = s->u[0] / speed, slip[1] = s->u[1] / speed;
     else slip[0] = ref[0], slip[1] = ref[1];
 }
@@ -477,6 +477,7 @@ static int mismatch(const coulomb *c, unsigned mask, unsigned slide, const doubl
 static int feasible(const coulomb *c, unsigned mask, unsigned slide, const double *angle, const double (*P)[3],
                     const double (*u)[3], double velocity_tol, double impulse_tol)
 {
+    const int hold = isinf(impulse_tol); /* gb_impact_coulomb_hold: every point held, a pull allowed */
     for (int k = 0; k < c->count; k++) {
         const double pn = gb_vec_dot(P[k], c->normal), un = gb_vec_dot(u[k], c->normal);
         if (!(mask & (1u << k))) {
@@ -485,11 +486,12 @@ static int feasible(const coulomb *c, unsigned mask, unsigned slide, const doubl
         }
         if (pn < -impulse_tol) return 0;
         const double pt[3] = {P[k][0] - pn * c->normal[0], P[k][1] - pn * c->normal[1], P[k][2] - pn * c->normal[2]};
+        const double bound = c->mu * (hold ? fabs(pn) : fmax(pn, 0.0)) * (1.0 + 1e-9);
         if (slide & (1u << k)) {
             double d[3];
             direction(c, angle[k], d);
             if (!(gb_vec_dot(d, u[k]) > velocity_tol)) return 0;
-        } else if (gb_vec_norm(pt) > c->mu * fmax(pn, 0.0) * (1.0 + 1e-9) + impulse_tol) {
+        } else if (gb_vec_norm(pt) > bound + (hold ? 0.0 : impulse_tol)) {
             return 0;
         }
     }
@@ -548,33 +550,121 @@ static int newton_angles(const coulomb *c, unsigned mask, unsigned slide, double
     return 0;
 }
 
-int gb_impact_coulomb(const gb_impact_body *body, const double normal[3], double e, double mu, const double (*points)[3],
-                      int count, const double v[3], const double omega[3], gb_impact_result *out)
+/* Moreau with the cone over the held contacts `mask`: every split into sticking and sliding, sticking first,
+ * a sliding contact's direction by Newton from the sticking solution's and from a grid of starts, the internal
+ * impulses (which change no velocity) deepest inside the cones. The first split that satisfies the law's
+ * signs (impulse_tol INFINITY: every point held, pulls allowed, gb_impact_coulomb_hold) into *out: 1, or 0. */
+static int moreau(const coulomb *c, unsigned mask, const double v[3], const double omega[3], double speed, double velocity_tol,
+                  double impulse_tol, gb_impact_result *out)
 {
-    if (isinf(mu) && mu > 0.0) return gb_impact_solve(body, normal, e, points, count, v, omega, out);
+    const int size = __builtin_popcount(mask), count = c->count;
+    for (int sliding = 0; sliding <= size; sliding++)
+        for (unsigned slide = 0; slide < (1u << count); slide++) {
+            if ((slide & ~mask) || __builtin_popcount(slide) != sliding) continue;
+            double angle[GB_IMPACT_CONTACTS_MAX] = {0};
+            int starts = 1;
+            const int per = 8;
+            for (int q = 0; q < sliding; q++) starts *= per;
+            starts += 1;
+            for (int start = 0; start < starts; start++) {
+                if (sliding) {
+                    if (start == 0) {
+                        double Ps[GB_IMPACT_CONTACTS_MAX][3];
+                        if (coulomb_solve(c, mask, 0u, angle, Ps, NULL)) continue;
+                        for (int k = 0; k < count; k++)
+                            if (slide & (1u << k)) angle[k] = atan2(-gb_vec_dot(Ps[k], c->t2), -gb_vec_dot(Ps[k], c->t1));
+                    } else {
+                        int code = start - 1;
+                        for (int k = 0; k < count; k++)
+                            if (slide & (1u << k)) angle[k] = 2.0 * M_PI * (code % per) / per, code /= per;
+                    }
+                    if (!newton_angles(c, mask, slide, angle, v, omega, speed + 1e-300)) continue;
+                } else if (start > 0) {
+                    break;
+                }
+                internal open;
+                double P[GB_IMPACT_CONTACTS_MAX][3], v1[3], w1[3], u[GB_IMPACT_CONTACTS_MAX][3];
+                if (coulomb_solve(c, mask, slide, angle, P, &open)) continue;
+                deepest(c, mask, slide, P, &open);
+                after(c, (const double(*)[3])P, v, omega, v1, w1, u);
+                if (!feasible(c, mask, slide, angle, (const double(*)[3])P, (const double(*)[3])u, velocity_tol, impulse_tol))
+                    continue;
+                memcpy(out->v, v1, sizeof out->v), memcpy(out->omega, w1, sizeof out->omega);
+                memset(out->holds, 0, sizeof out->holds), out->friction_needed = 0.0;
+                gb_impact_fill(c->normal, count, mask, (const double(*)[3])P, isinf(impulse_tol) ? 0.0 : impulse_tol, out);
+                for (int k = 0; k < count; k++) out->slides[k] = (slide >> k) & 1;
+                out->stages = 1;
+                return 1;
+            }
+        }
+    return 0;
+}
+
+/* The setup both entries share: the body, the points' velocities before and their normal targets. */
+static int coulomb_setup(coulomb *c, double inv[3][3], double t1[3], double t2[3], const gb_impact_body *body,
+                         const double normal[3], double e, double mu, const double (*points)[3], int count, const double v[3],
+                         const double omega[3], gb_impact_result *out, double *speed)
+{
     memset(out, 0, sizeof *out);
-    double inv[3][3];
     int status = gb_impact_check_body(body, count, inv);
     if (!status) status = gb_impact_restitution_check(e);
     if (!status) status = gb_impact_friction_check(mu);
     if (status) return status;
-    double t1[3], t2[3];
     gb_impact_tangents(normal, t1, t2);
-    coulomb c = {body, (const double(*)[3])inv, normal, t1, t2, points, count, mu, {{0}}, {0}};
-    double speed = 0.0;
+    *c = (coulomb){body, (const double(*)[3])inv, normal, t1, t2, points, count, mu, {{0}}, {0}};
+    *speed = 0.0;
     for (int k = 0; k < count; k++) {
-        gb_impact_point_velocity(v, omega, points[k], c.before[k]);
-        const double un = gb_vec_dot(c.before[k], normal);
-        c.target[k] = -e * fmin(un, 0.0);
-        speed = fmax(speed, gb_vec_norm(c.before[k]));
-        for (int i = 0; i < 3; i++) out->slip_before[k][i] = c.before[k][i] - un * normal[i];
+        gb_impact_point_velocity(v, omega, points[k], c->before[k]);
+        const double un = gb_vec_dot(c->before[k], normal);
+        c->target[k] = -e * fmin(un, 0.0);
+        *speed = fmax(*speed, gb_vec_norm(c->before[k]));
+        for (int i = 0; i < 3; i++) out->slip_before[k][i] = c->before[k][i] - un * normal[i];
     }
-    const double velocity_tol = GB_IMPACT_SIGN_TOL * (speed + 1e-300), impulse_tol = GB_IMPACT_SIGN_TOL * body->mass * (speed + 1e-300);
     out->energy_before = gb_impact_energy(body, v, omega);
-    /* the sets by size, the smallest first; within a size by index */
-    int found = 0, best_size = GB_IMPACT_CONTACTS_MAX + 1;
+    return GB_OK;
+}
+
+/* The slips after and the energy after, from the result's velocities. */
+static void coulomb_finish(const gb_impact_body *body, const double normal[3], const double (*points)[3], int count,
+                           gb_impact_result *out)
+{
+    for (int k = 0; k < count; k++) {
+        double u1[3];
+        gb_impact_point_velocity(out->v, out->omega, points[k], u1);
+        const double un = gb_vec_dot(u1, normal);
+        for (int i = 0; i < 3; i++) out->slip_after[k][i] = u1[i] - un * normal[i];
+    }
+    out->energy_after = gb_impact_energy(body, out->v, out->omega);
+}
+
+int gb_impact_coulomb_hold(const gb_impact_body *body, const double normal[3], double mu, const double (*points)[3], int count,
+                           const double v[3], const double omega[3], gb_impact_result *out)
+{
+    double inv[3][3], t1[3], t2[3], speed;
+    coulomb c;
+    int status = coulomb_setup(&c, inv, t1, t2, body, normal, 0.0, mu, points, count, v, omega, out, &speed);
+    if (status) return status;
+    if (!moreau(&c, (1u << count) - 1u, v, omega, speed, GB_IMPACT_SIGN_TOL * (speed + 1e-300), INFINITY, out))
+        return gb_error_set(GB_ENUMERIC, "impact: no split into sticking and sliding holds all %d points at rest in the "
+                            "normal direction within Coulomb's cone (mu %g)", count, mu);
+    out->feasible_sets = 1;
+    coulomb_finish(body, normal, points, count, out);
+    return GB_OK;
+}
+
+int gb_impact_coulomb(const gb_impact_body *body, const double normal[3], double e, double mu, const double (*points)[3],
+                      int count, const double v[3], const double omega[3], gb_impact_result *out)
+{
+    if (isinf(mu) && mu > 0.0) return gb_impact_solve(body, normal, e, points, count, v, omega, out);
+    double inv[3][3], t1[3], t2[3], speed;
+    coulomb c;
+    int status = coulomb_setup(&c, inv, t1, t2, body, normal, e, mu, points, count, v, omega, out, &speed);
+    if (status) return status;
+    const double velocity_tol = GB_IMPACT_SIGN_TOL * (speed + 1e-300), impulse_tol = GB_IMPACT_SIGN_TOL * body->mass * (speed + 1e-300);
+    /* the sets by size, the smallest first; within a size by index; the first that satisfies the law */
+    int found = 0;
     for (int wanted = 0; wanted <= count && !found; wanted++)
-    for (unsigned mask = 0; mask < (1u << count); mask++) {
+    for (unsigned mask = 0; mask < (1u << count) && !found; mask++) {
         const int size = __builtin_popcount(mask);
         if (size != wanted) continue;
         double P[GB_IMPACT_CONTACTS_MAX][3] = {{0}}, v1[3], w1[3], u[GB_IMPACT_CONTACTS_MAX][3];
@@ -597,7 +687,7 @@ int gb_impact_coulomb(const gb_impact_body *body, const double normal[3], double
             }
             if (dk_ok) {
                 out->feasible_sets++;
-                best_size = size, found = 1;
+                found = 1;
                 memcpy(out->v, v1, sizeof out->v), memcpy(out->omega, w1, sizeof out->omega);
                 gb_impact_fill(normal, count, mask, (const double(*)[3])P, impulse_tol, out);
                 out->stages = one.stages;
@@ -606,61 +696,11 @@ int gb_impact_coulomb(const gb_impact_body *body, const double normal[3], double
             }
             if (size == 0) continue;
         }
-        /* Moreau with the cone: every split of the held contacts into sticking and sliding, sticking first;
-         * internal impulses (which change no velocity) taken deepest inside the cones */
-        int taken = 0;
-        for (int sliding = 0; sliding <= size && !taken; sliding++)
-            for (unsigned slide = 0; slide < (1u << count) && !taken; slide++) {
-                if ((slide & ~mask) || __builtin_popcount(slide) != sliding) continue;
-                double angle[GB_IMPACT_CONTACTS_MAX] = {0};
-                /* starts: the stick solution's slip-opposing directions, then a grid of 8 per angle */
-                int starts = 1, per = 8;
-                for (int q = 0; q < sliding; q++) starts *= per;
-                starts += 1;
-                for (int start = 0; start < starts && !taken; start++) {
-                    if (sliding) {
-                        if (start == 0) {
-                            double Ps[GB_IMPACT_CONTACTS_MAX][3];
-                            if (coulomb_solve(&c, mask, 0u, angle, Ps, NULL)) continue;
-                            for (int k = 0; k < count; k++)
-                                if (slide & (1u << k)) angle[k] = atan2(-gb_vec_dot(Ps[k], t2), -gb_vec_dot(Ps[k], t1));
-                        } else {
-                            int code = start - 1;
-                            for (int k = 0; k < count; k++)
-                                if (slide & (1u << k)) angle[k] = 2.0 * M_PI * (code % per) / per, code /= per;
-                        }
-                        if (!newton_angles(&c, mask, slide, angle, v, omega, speed + 1e-300)) continue;
-                    } else if (start > 0) {
-                        break;
-                    }
-                    internal open;
-                    if (coulomb_solve(&c, mask, slide, angle, P, &open)) continue;
-                    deepest(&c, mask, slide, P, &open);
-                    after(&c, (const double(*)[3])P, v, omega, v1, w1, u);
-                    if (!feasible(&c, mask, slide, angle, (const double(*)[3])P, (const double(*)[3])u, velocity_tol, impulse_tol))
-                        continue;
-                    taken = 1;
-                    out->feasible_sets++;
-                    if (size < best_size) {
-                        best_size = size, found = 1;
-                        memcpy(out->v, v1, sizeof out->v), memcpy(out->omega, w1, sizeof out->omega);
-                        memset(out->holds, 0, sizeof out->holds), out->friction_needed = 0.0;
-                        gb_impact_fill(normal, count, mask, (const double(*)[3])P, impulse_tol, out);
-                        for (int k = 0; k < count; k++) out->slides[k] = (slide >> k) & 1;
-                        out->stages = 1;
-                    }
-                }
-            }
+        if (moreau(&c, mask, v, omega, speed, velocity_tol, impulse_tol, out)) found = 1, out->feasible_sets++;
     }
     if (!found)
         return gb_error_set(GB_ENUMERIC, "impact: no set of contacts satisfies Moreau's law with Coulomb's cone (%d points, "
                             "mu %g)", count, mu);
-    for (int k = 0; k < count; k++) {
-        double u1[3];
-        gb_impact_point_velocity(out->v, out->omega, points[k], u1);
-        const double un = gb_vec_dot(u1, normal);
-        for (int i = 0; i < 3; i++) out->slip_after[k][i] = u1[i] - un * normal[i];
-    }
-    out->energy_after = gb_impact_energy(body, out->v, out->omega);
+    coulomb_finish(body, normal, points, count, out);
     return GB_OK;
 }

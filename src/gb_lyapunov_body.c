@@ -14,7 +14,8 @@ _Static_assert(GB_LYAPUNOV_MAX_EXPONENTS <= GB_INTEGRATE_TANGENT_MAX, "one RK4 s
 
 /* The pair's separation: the rotation and ω (the tangent's GB_STATE_TANGENT), then, where the body may fly,
  * the centroid's height and velocity (the state's translation). */
-enum { PAIR_ROTATION = GB_STATE_TANGENT, PAIR_TRANSLATION = GB_STATE_SIZE - GB_STATE_ZETA,
+enum { PAIR_ROTATION = GB_STATE_TANGENT, PAIR_TRANSLATION = GB_STATE_POSITION - GB_STATE_ZETA, /* ζ and v, not the
+       * position on the plane (which no force depends on) nor the friction's work */
        PAIR_ALL = PAIR_ROTATION + PAIR_TRANSLATION };
 
 struct gb_lyapunov_body {
@@ -131,10 +132,15 @@ static int body_separation(void *context, double *e)
     for (int k = 0; k < 3; k++) e[3 + k] = (b->y[1][GB_STATE_OMEGA + k] - b->y[0][GB_STATE_OMEGA + k]) / b->omega_scale;
     if (!b->translation) return GB_OK;
     gb_dynamics_flight_summary f[2];
+    gb_dynamics_sliding_summary sl[2];
     const double t = gb_integrate_time(b->session[0]);
-    for (int k = 0; k < 2; k++) gb_dynamics_flight_stats(b->dynamics[k], t, &f[k]);
+    for (int k = 0; k < 2; k++) {
+        gb_dynamics_flight_stats(b->dynamics[k], t, &f[k]);
+        gb_dynamics_sliding_stats(b->dynamics[k], t, NULL, &sl[k]);
+    }
     memset(e + PAIR_ROTATION, 0, PAIR_TRANSLATION * sizeof *e);
-    if (!f[0].flying && !f[1].flying) return GB_OK;
+    /* the translation is the body's own in flight and, horizontally, while it slides */
+    if (!f[0].flying && !f[1].flying && !sl[0].sliding && !sl[1].sliding) return GB_OK;
     /* the centroid's height and velocity, as the state holds them at its accepted steps */
     const double L = gb_dynamics_mean_radius(b->dynamics[0]), *ya = b->y[0], *yb = b->y[1];
     e[PAIR_ROTATION] = (yb[GB_STATE_ZETA] - ya[GB_STATE_ZETA]) / L;
@@ -149,16 +155,22 @@ static int body_place(void *context, const double *given)
     double e[PAIR_ALL];
     memcpy(e, given, (b->translation ? PAIR_ALL : PAIR_ROTATION) * sizeof *e);
     gb_dynamics_flight_summary f;
+    gb_dynamics_sliding_summary sl = {0};
     const double t = gb_integrate_time(b->session[0]);
     if (b->translation) {
         gb_dynamics_flight_stats(b->dynamics[0], t, &f);
+        gb_dynamics_sliding_stats(b->dynamics[0], t, NULL, &sl);
         if (!f.flying) {
-            /* on the plane the height and velocity follow from the attitude and ω: the rotational part takes
-             * the whole length */
-            double all = 0.0, rotational = 0.0;
-            for (int k = 0; k < PAIR_ALL; k++) all += e[k] * e[k], rotational += k < PAIR_ROTATION ? e[k] * e[k] : 0.0;
-            const double scale = rotational > 0.0 ? sqrt(all / rotational) : 1.0;
+            /* on the plane the height and velocity follow from the attitude and ω (but for the horizontal
+             * velocity of a sliding body): the rotational part takes the rest of the length */
+            double all = 0.0, kept = 0.0;
+            for (int k = 0; k < PAIR_ALL; k++) {
+                const int free = k < PAIR_ROTATION || (sl.sliding && (k == PAIR_ROTATION + 1 || k == PAIR_ROTATION + 2));
+                all += e[k] * e[k], kept += free ? e[k] * e[k] : 0.0;
+            }
+            const double scale = kept > 0.0 ? sqrt(all / kept) : 1.0;
             for (int k = 0; k < PAIR_ROTATION; k++) e[k] *= scale;
+            if (sl.sliding) e[PAIR_ROTATION + 1] *= scale, e[PAIR_ROTATION + 2] *= scale;
         }
     }
     const double angle = sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
@@ -174,6 +186,11 @@ static int body_place(void *context, const double *given)
         const double *dv = e + PAIR_ROTATION + 1;
         return gb_dynamics_flight_displace(b->dynamics[1], t, L * e[PAIR_ROTATION],
                                            (const double[3]){scale * dv[0], scale * dv[1], scale * dv[2]});
+    }
+    if (b->translation && sl.sliding) { /* the horizontal velocity, the state's own */
+        const double scale = b->omega_scale * gb_dynamics_mean_radius(b->dynamics[0]);
+        b->y[1][GB_STATE_VELOCITY] += scale * e[PAIR_ROTATION + 1];
+        b->y[1][GB_STATE_VELOCITY + 1] += scale * e[PAIR_ROTATION + 2];
     }
     return GB_OK;
 }

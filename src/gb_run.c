@@ -91,7 +91,8 @@ static int observe(void *context, double t, const double y[GB_STATE_SIZE])
         m->geff_nonpositive += o.geff <= 0.0;
         m->lift_off += o.normal_force <= 0.0;
         m->friction_over_half += o.friction_needed > 0.5;
-        m->friction_over_mu += o.friction_needed > s->scene->dynamics.friction;
+        m->sliding += o.sliding > 0;
+        m->slip_max = fmax(m->slip_max, o.slip_speed);
         m->geff_min = fmin(m->geff_min, o.geff);
         m->normal_min = fmin(m->normal_min, o.normal_force);
         if (isfinite(o.friction_needed)) m->friction_max = fmax(m->friction_max, o.friction_needed);
@@ -191,7 +192,8 @@ int gb_run_in(const gb_case *scene, gb_dynamics_context *context, const gb_run_s
     if (!status) {
         out->state_fingerprint = gb_hash_add(GB_HASH_OFFSET, out->y, GB_STATE_FINGERPRINT * sizeof *out->y);
         gb_dynamics_impact_stats(dynamics, &out->impacts, &out->impact_energy_lost, &out->impact_friction_max);
-        out->impacts_over_friction = gb_dynamics_impacts_over_friction(dynamics);
+        out->has_sliding = isfinite(scene->dynamics.friction);
+        gb_dynamics_sliding_stats(dynamics, out->t_end, out->y, &out->sliding);
         gb_dynamics_two_point_stats(dynamics, out->t_end, &out->two_point);
         gb_dynamics_flight_stats(dynamics, out->t_end, &out->flight);
         out->has_certificate = gb_dynamics_certify_stats(dynamics, &out->certificate) == GB_OK;

@@ -48,7 +48,8 @@ typedef struct gb_run_sinks {
 /* The validity monitors of the single-contact model (computed when the scene asks for them). */
 typedef struct gb_run_monitors {
     size_t geff_nonpositive, lift_off, friction_over_half; /* samples with g_eff ≤ 0, N ≤ 0, |F_t|/N > 0.5 */
-    size_t friction_over_mu;                               /* samples with |F_t|/N > the scene's friction μ */
+    size_t sliding;                                        /* samples with a point slipping (finite friction) */
+    double slip_max;                                       /* the largest slip speed sampled [m/s] */
     double geff_min, normal_min, friction_max;
 } gb_run_monitors;
 
@@ -73,7 +74,8 @@ typedef struct gb_run_result {
     size_t impacts;                      /* the unilateral law: impacts, the kinetic energy they took (L of */
     double impact_energy_lost;           /* the ledger; energy_residual is E − E0 − W + L) and the largest */
     double impact_friction_max;          /* friction coefficient an impact needed */
-    size_t impacts_over_friction;        /* impacts that needed more than the scene's friction μ */
+    int has_sliding;                     /* a plane of finite friction: its sliding over the run */
+    gb_dynamics_sliding_summary sliding;
     gb_dynamics_two_point_summary two_point; /* the unilateral law's two-point mode over the run */
     gb_dynamics_flight_summary flight;       /* the unilateral law's flights over the run */
     /* Fingerprints (FNV-1a 64): the bytes of the final state; the (sample, contact index, grid and

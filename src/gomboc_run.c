@@ -33,11 +33,14 @@ static const char *usage_run =
 
 /* The history file: one row a sample. */
 static const char history_header[] = "t,omega_x,omega_y,omega_z,h,E,residual,geff,index,grid_switch,branch_switch,"
-                                     "switch_rate,rc_x,rc_y,rc_z,normal_force,friction_needed,contacts,zeta,clearance\n";
+                                     "switch_rate,rc_x,rc_y,rc_z,normal_force,friction_needed,contacts,zeta,clearance";
+/* A plane of finite friction adds the points slipping and the largest slip speed [m/s]. */
+static const char history_friction_header[] = ",sliding,slip_speed";
 
 /* Where the run's streams go: the history (a sample a row) and the impacts (an impact a row). */
 typedef struct streams {
     FILE *history, *impacts;
+    int friction; /* a plane of finite friction: the slip columns */
 } streams;
 
 static int history_row(void *context, const gb_run_sample *s)
@@ -45,11 +48,13 @@ static int history_row(void *context, const gb_run_sample *s)
     const gb_dynamics_observables *o = s->o;
     FILE *history = ((streams *)context)->history;
     if (!history) return GB_OK;
-    if (fprintf(history, "%.10g,%.12g,%.12g,%.12g,%.15g,%.15g,%.6e,%.12g,%zu,%d,%d,%.6g,%.12g,%.12g,%.12g,%.10g,%.6g,%d,%.12g,%.12g\n",
-                s->t, o->omega[0], o->omega[1], o->omega[2], o->height, o->energy, o->residual, o->geff, o->index,
-                s->grid_switch, s->branch_switch, s->switch_rate, o->rc[0], o->rc[1], o->rc[2], o->normal_force,
-                o->friction_needed, o->contacts, o->zeta, o->clearance) < 0)
-        return gb_error_set(GB_EIO, "cannot write the history: %s", strerror(errno));
+    int bad = fprintf(history, "%.10g,%.12g,%.12g,%.12g,%.15g,%.15g,%.6e,%.12g,%zu,%d,%d,%.6g,%.12g,%.12g,%.12g,%.10g,%.6g,%d,%.12g,%.12g",
+                      s->t, o->omega[0], o->omega[1], o->omega[2], o->height, o->energy, o->residual, o->geff, o->index,
+                      s->grid_switch, s->branch_switch, s->switch_rate, o->rc[0], o->rc[1], o->rc[2], o->normal_force,
+                      o->friction_needed, o->contacts, o->zeta, o->clearance) < 0;
+    if (((streams *)context)->friction) bad |= fprintf(history, ",%d,%.12g", o->sliding, o->slip_speed) < 0;
+    bad |= fputc('\n', history) == EOF;
+    if (bad) return gb_error_set(GB_EIO, "cannot write the history: %s", strerror(errno));
     return GB_OK;
 }
 
@@ -57,18 +62,30 @@ static int history_row(void *context, const gb_run_sample *s)
 static const char impacts_header[] = "t,kind,settled,contacts_after,located,old_x,old_y,old_z,new_x,new_y,new_z,omega_before_x,omega_before_y,"
                                      "omega_before_z,omega_after_x,omega_after_y,omega_after_z,v_before_x,v_before_y,"
                                      "v_before_z,v_after_x,v_after_y,v_after_z,normal_impulse,tangential_impulse,"
-                                     "friction_needed,old_normal_impulse,return_time,kinetic_before,kinetic_after\n";
+                                     "friction_needed,old_normal_impulse,return_time,kinetic_before,kinetic_after";
+
+/* A plane of finite friction adds, per impact, the new point's slip before and after, the tangential impulse
+ * there (body axes) and whether it slides after. */
+static const char impacts_friction_header[] = ",slip_before_x,slip_before_y,slip_before_z,slip_after_x,slip_after_y,"
+                                              "slip_after_z,tangential_x,tangential_y,tangential_z,slides_after";
 
 static int impact_row(void *context, const gb_dynamics_impact *e)
 {
-    FILE *impacts = ((streams *)context)->impacts;
+    const streams *st = context;
+    FILE *impacts = st->impacts;
     if (!impacts) return GB_OK;
     int bad = fprintf(impacts, "%.17g,%s,%d,%d,%d", e->t, gb_dynamics_impact_kind_name(e->kind), e->settled,
                       e->contacts_after, e->located) < 0;
     const double *vectors[] = {e->old_point, e->new_point, e->omega_before, e->omega_after, e->v_before, e->v_after};
     for (int k = 0; k < 6; k++) bad |= fprintf(impacts, ",%.17g,%.17g,%.17g", vectors[k][0], vectors[k][1], vectors[k][2]) < 0;
-    bad |= fprintf(impacts, ",%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", e->normal_impulse, e->tangential_impulse,
+    bad |= fprintf(impacts, ",%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g", e->normal_impulse, e->tangential_impulse,
                    e->friction_needed, e->old_normal_impulse, e->return_time, e->kinetic_before, e->kinetic_after) < 0;
+    if (st->friction) {
+        const double *more[] = {e->slip_before, e->slip_after, e->tangential};
+        for (int k = 0; k < 3; k++) bad |= fprintf(impacts, ",%.17g,%.17g,%.17g", more[k][0], more[k][1], more[k][2]) < 0;
+        bad |= fprintf(impacts, ",%d", e->slides_after) < 0;
+    }
+    bad |= fputc('\n', impacts) == EOF;
     return bad ? gb_error_set(GB_EIO, "cannot write the impacts: %s", strerror(errno)) : GB_OK;
 }
 
@@ -100,7 +117,7 @@ static cJSON *scene_json(const gb_case *c)
     }
     cli_json_add(o, "damping", d->damping);
     if (isfinite(d->friction)) cli_json_add(o, "friction", d->friction);
-    else cJSON_AddStringToObject(o, "friction", "rough (no monitor)");
+    else cJSON_AddStringToObject(o, "friction", "rough");
     cJSON_AddStringToObject(o, "integrator", gb_integrate_name(c->integrate.method));
     cli_json_add(o, "steps_per_period", (double)c->integrate.steps_per_period);
     cli_json_add(o, "periods", c->integrate.periods);
@@ -393,9 +410,10 @@ static cJSON *summary_json(const gb_case *scene, const gb_run_result *r, const w
         cli_json_add(m, "normal_force_min", mo->normal_min);
         cli_json_add(m, "friction_needed_max", mo->friction_max);
         cli_json_add(m, "friction_over_half_fraction", (double)mo->friction_over_half / n);
-        /* the scene's friction μ (null when the plane is left perfectly rough: nothing to compare with) */
-        cli_json_add(m, "friction_over_mu_fraction", isfinite(scene->dynamics.friction)
-                                                         ? (double)mo->friction_over_mu / n : NAN);
+        if (r->has_sliding) {
+            cli_json_add(m, "sliding_fraction", (double)mo->sliding / n);
+            cli_json_add(m, "slip_speed_max", mo->slip_max);
+        }
     }
     if (r->has_certificate) {
         const gb_certify_stats *cs = &r->certificate;
@@ -431,7 +449,7 @@ static cJSON *summary_json(const gb_case *scene, const gb_run_result *r, const w
         cli_json_add(m, "energy_lost", r->impact_energy_lost);
         cli_json_add(m, "friction_needed_max", r->impact_friction_max);
         cli_json_add(m, "settled", (double)r->two_point.settled);
-        cli_json_add(m, "over_friction", isfinite(scene->dynamics.friction) ? (double)r->impacts_over_friction : NAN);
+
         cJSON *tp = cJSON_AddObjectToObject(root, "two_point");
         cli_json_add(tp, "time_fraction", r->two_point.time / r->t_end);
         cli_json_add(tp, "entries", (double)r->two_point.entries);
@@ -448,6 +466,16 @@ static cJSON *summary_json(const gb_case *scene, const gb_run_result *r, const w
         /* the highest gap between the lowest point and the plane at the accepted steps of a flight [m] */
         cli_json_add(fl, "max_hop_height", r->flight.hop_max);
         cJSON_AddBoolToObject(fl, "flying_at_end", r->flight.flying);
+    }
+    if (r->has_sliding) {
+        /* a plane of finite friction: energy_residual_* above is E − E0 − W + L, L the impacts' and friction's */
+        cJSON *sl = cJSON_AddObjectToObject(root, "sliding");
+        cli_json_add(sl, "friction", scene->dynamics.friction);
+        cli_json_add(sl, "time_fraction", r->sliding.time / r->t_end);
+        cli_json_add(sl, "slips", (double)r->sliding.slips);
+        cli_json_add(sl, "sticks", (double)r->sliding.sticks);
+        cli_json_add(sl, "friction_loss", r->sliding.friction_loss);
+        cJSON_AddBoolToObject(sl, "sliding_at_end", r->sliding.sliding);
     }
     if (r->has_strobe) cJSON_AddItemToObject(root, "strobe", strobe_json(&r->strobe));
     if (r->has_spectrum) cJSON_AddItemToObject(root, "spectrum", spectrum_json(scene, &r->spectrum, r->spectrum_samples));
@@ -502,14 +530,18 @@ int command_run(int argc, char **argv)
     if (held) return EXIT_COMPUTE;
 
     run_outputs files = {.dir = dir, .case_path = case_path};
-    streams out = {NULL, NULL};
+    streams out = {NULL, NULL, isfinite(scene.dynamics.friction)};
     if (scene.write_history) {
         out.history = stage_open(&files, OUT_HISTORY, &status);
-        if (out.history && fputs(history_header, out.history) < 0) status = stage_error(&files, OUT_HISTORY);
+        if (out.history && (fputs(history_header, out.history) < 0 ||
+                            (out.friction && fputs(history_friction_header, out.history) < 0) || fputc('\n', out.history) == EOF))
+            status = stage_error(&files, OUT_HISTORY);
     }
     if (scene.write_impacts) {
         out.impacts = stage_open(&files, OUT_IMPACTS, &status);
-        if (out.impacts && fputs(impacts_header, out.impacts) < 0) status = stage_error(&files, OUT_IMPACTS);
+        if (out.impacts && (fputs(impacts_header, out.impacts) < 0 ||
+                            (out.friction && fputs(impacts_friction_header, out.impacts) < 0) || fputc('\n', out.impacts) == EOF))
+            status = stage_error(&files, OUT_IMPACTS);
     }
     const gb_run_sinks sinks = {history_row, &out, impact_row};
     gb_run_result r;
@@ -572,11 +604,9 @@ int command_run(int argc, char **argv)
                 "energy ledger drifted by up to %.3g J against an energy of %.3g J; more [integrator] steps_per_period "
                 "resolve it\n", case_path, r.stats.coarse_steps, r.stats.steps, GB_INTEGRATE_ROTATION_MAX,
                 r.stats.max_step_rotation, r.residual_max, fabs(r.final.energy));
-    const size_t over = r.has_monitors ? r.monitors.friction_over_mu : 0;
-    if (isfinite(scene.dynamics.friction) && (over || r.impacts_over_friction))
-        fprintf(stderr, "gomboc run: %s: %zu of %zu impacts and %.2f %% of the samples need more friction than the scene's "
-                "friction = %g: a plane of that friction would let the body slip there, which this model (a perfectly "
-                "rough plane) does not follow\n", case_path, r.impacts_over_friction, r.impacts,
-                100.0 * (double)over / (double)(r.samples ? r.samples : 1), scene.dynamics.friction);
+    if (r.has_sliding)
+        fprintf(stderr, "gomboc run: %s: friction mu = %g: sliding %.1f %% of the time, %zu slips and %zu sticks, friction took "
+                "%.4g J\n", case_path, scene.dynamics.friction, 100.0 * r.sliding.time / r.t_end, r.sliding.slips,
+                r.sliding.sticks, r.sliding.friction_loss);
     return 0;
 }

@@ -148,6 +148,10 @@ static const bad_row rows[] = {
     {RUN, "[model]\ndamping = 1e300\n", 0, 2, {"case.ini:2: [model] damping", "out of range", "0 <= damping <= 1000 [N m s]"}},
     {RUN, "[model]\nfriction = 0\n", 0, 2, {"case.ini:2: [model] friction", "out of range", "0 < friction <= 1000"}},
     {RUN, "[model]\nfriction = nan\n", 0, 2, {"case.ini:2: [model] friction", "", "0 < friction <= 1000"}},
+    {RUN, "[model]\nfriction = -0.2\n", 0, 2, {"case.ini:2: [model] friction", "out of range", "rough, or 0 < friction <= 1000"}},
+    {RUN, "[model]\nfriction = smooth\n", 0, 2, {"case.ini:2: [model] friction", "smooth", "rough, or 0 < friction <= 1000"}},
+    {RUN, "[model]\nfriction = 0.3\n", 0, 2, {"case.ini:2: [model] friction", "contact_law = held: a held contact never slips",
+                                              "allowed: rough with either law; a finite mu with contact_law = unilateral"}},
     {RUN, "[model]\ncontact = continuous\nequation = rolling\ncontact_law = unilateral\nrestitution = 1.5\n[integrator]\nlocate_switches = yes\n", 0, 2, {"case.ini:5: [model] restitution", "out of range", "0 <= restitution <= 1"}},
     {RUN, "[model]\nrestitution = -0.1\n", 0, 2, {"case.ini:2: [model] restitution", "out of range", "0 <= restitution <= 1"}},
     {RUN, "[model]\nrestitution = nan\n", 0, 2, {"case.ini:2: [model] restitution", "", "0 <= restitution <= 1"}},
@@ -315,7 +319,7 @@ static const bad_row rows[] = {
     /* a computation the rough plane cannot follow (exit 1): a lift-off where the body would slide first */
     {RUN, "[forcing]\namplitude_units = g\n[model]\ncontact = continuous\nequation = rolling\ncontact_law = unilateral\n"
           "restitution = 0.5\n[integrator]\nperiods = 100\nsteps_per_period = 640\nlocate_switches = yes\n", 0, 1,
-     {"lift-off at t = ", "the body slides before it lifts", "sliding is not built"}},
+     {"lift-off at t = ", "the body slides before it lifts", "[model] friction = mu follows it"}},
     /* a computation that diverged (exit 1, not 2: the input was valid): RK4 at one step a period against a damping
      * rate c/I of ~2500 /s */
     {RUN, "[body]\nbeta = 0.12\n[model]\ncontact = continuous\nequation = rolling\ndamping = 1000\n[integrator]\n"
