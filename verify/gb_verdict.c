@@ -16,6 +16,15 @@ gb_verdict gb_verdict_above(double x, double u, double threshold)
     return GB_VERDICT_UNDECIDED;
 }
 
+gb_verdict gb_verdict_above_at(double x, double u, double threshold, double resolution)
+{
+    if (!(isfinite(x) && isfinite(u) && u >= 0.0 && isfinite(threshold) && isfinite(resolution) && resolution >= threshold))
+        return GB_VERDICT_UNDECIDED;
+    if (x - u > threshold) return GB_VERDICT_HOLDS;
+    if (x + u < resolution) return GB_VERDICT_FAILS;
+    return GB_VERDICT_UNDECIDED;
+}
+
 gb_verdict gb_verdict_equivalent(double delta, double sigma, double k, double margin)
 {
     if (!(isfinite(delta) && isfinite(sigma) && sigma >= 0.0 && isfinite(k) && k >= 0.0 && isfinite(margin) && margin > 0.0))

@@ -18,6 +18,13 @@ const char *gb_verdict_name(gb_verdict verdict); /* "holds", "fails", "undecided
  * evidence's uncertainty at the stated confidence). */
 gb_verdict gb_verdict_above(double x, double u, double threshold);
 
+/* Claim: x > threshold, where a positive x can be shown at any size but a zero only bounded: holds when
+ * x − u > threshold; fails when x + u < resolution (resolution ≥ threshold: no x above the resolution, the
+ * smallest value the claim's evidence must be able to exclude, stated with the claim); undecided otherwise.
+ * A value both clearly above the threshold and clearly below the resolution holds (x is shown positive).
+ * gb_verdict_above is the case resolution = threshold. */
+gb_verdict gb_verdict_above_at(double x, double u, double threshold, double resolution);
+
 /* Claim: |delta| ≤ margin (equivalence). Holds when |delta| + k·sigma ≤ margin (the whole confidence
  * interval inside the margin), fails when |delta| − k·sigma > margin (the whole interval outside). */
 gb_verdict gb_verdict_equivalent(double delta, double sigma, double k, double margin);
