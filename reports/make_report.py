@@ -27,6 +27,7 @@ from dynamics_section import dynamics_section  # noqa: E402
 from chaos_section import chaos_section  # noqa: E402
 from melnikov_section import melnikov_section  # noqa: E402
 from scan_section import scan_section  # noqa: E402
+from unilateral_maps import summary_sentence, unilateral_section  # noqa: E402
 from study_section import ensemble_readings, study_section  # noqa: E402
 
 CHECKS_SCHEMA = 4  # verify/gb_check.h GB_CHECK_SCHEMA: {"schema": 4, "tests": [...], "rows": [...]}; findings carry verdict and rule
@@ -47,7 +48,7 @@ GATES = (("fuzz", "make fuzz", "the scene reader, the option parser and the atla
          ("valgrind", "make valgrind", "one short scene of each model, shape and contact under memcheck"),
          ("verify-full", "make verify-full", "every check, the long studies (10000-period records) and the ensembles"),
          ("bench", "make bench", "speed ratios measured side by side in one run"),
-         ("scans", "make scans", "the maps of Figs 10-13 (cases/scans), 25 x 25 points each, and their stability maps"),
+         ("scans", "make scans", "the maps of Figs 10-13 (cases/scans: held and unilateral), 25 x 25 points each, and their stability maps"),
          ("study", "make study", "the ensembles of section 8.2 (cases/studies), 32 initial attitudes each (64 for Gömböc I; 16 in units of g and on planes of finite friction)"),
          ("mpi", "make mpi", "OpenMPI installed; gomboc-mpi's scans on 1, 2 and 3 ranks and after a kill -9, "
           "against one thread"))
@@ -243,7 +244,7 @@ def friction_lines(central, ensembles):
     return [text, ""]
 
 
-def summary_lines(findings, counts, rows, failed, ensembles):
+def summary_lines(findings, counts, rows, failed, ensembles, out):
     """The report's answer first: the verdict counts, the central claim under each model and contact law,
     and every claim of the paper with how its rows came out; all from this run's findings."""
     lines = ["## Summary", "",
@@ -269,7 +270,7 @@ def summary_lines(findings, counts, rows, failed, ensembles):
         central.setdefault(model, {})[body.replace("Gomboc ", "")] = r["verdict"]
     for model, by_body in central.items():
         lines.append(f"| {spell(model)} | {by_body.get('I', '—')} | {by_body.get('II', '—')} |")
-    lines += [""] + friction_lines(central, ensembles)
+    lines += [""] + friction_lines(central, ensembles) + summary_sentence(out)
     lines += ["", "Every claim of the paper the suite tests, with how its rows came out (the table below names what "
               "each row was measured on, the number and the rule):", ""]
     claims = {}
@@ -280,6 +281,11 @@ def summary_lines(findings, counts, rows, failed, ensembles):
         plural = {"holds": "hold", "fails": "fail", "undecided": "undecided"}
         parts = [f"{n} {v if n == 1 else plural[v]}" for v, n in tally.items() if n]
         lines.append(f"- {spell(claim)}: {', '.join(parts)}.")
+    undecided = [r for r in findings if r["verdict"] == "undecided"]
+    if undecided:
+        lines += ["", f"Why each of the {len(undecided)} undecided findings is undecided (its evidence, as the table below "
+                  "gives it):", ""]
+        lines += [spell(f"- {r['quantity']}: {r['detail']}") for r in undecided]
     return lines + [""]
 
 
@@ -290,7 +296,7 @@ def main():
         lines = ["# gomboc — verification report", "",
                  "**No checks in this checkout: `make verify` has not run here.** This report holds only what the "
                  "gates below made; `make verify` writes the whole report.", ""]
-        lines += gate_lines(out) + [""] + study_section(out) + scan_section(out)
+        lines += gate_lines(out) + [""] + study_section(out) + scan_section(out) + unilateral_section(out)
         write_atomically(os.path.join(out, "verification.md"), spell("\n".join(lines)))
         return
     rows, tests = load_checks(os.path.join(out, "checks.json"))
@@ -300,7 +306,7 @@ def main():
     counts = {v: sum(1 for r in findings if r["verdict"] == v) for v in ("holds", "fails", "undecided")}
     error_vs_time(out, rows)
 
-    lines = ["# gomboc — verification report", ""] + summary_lines(findings, counts, rows, failed, ensemble_readings(out))
+    lines = ["# gomboc — verification report", ""] + summary_lines(findings, counts, rows, failed, ensemble_readings(out), out)
     lines += ["## Environment", "", "| item | value |", "|---|---|"]
     lines += [f"| {k} | {v} |" for k, v in environment(cc, cflags, rows)]
     lines += [""] + gate_lines(out)
@@ -368,6 +374,7 @@ def main():
     lines += melnikov_section(out, rows)
     lines += study_section(out)
     lines += scan_section(out)
+    lines += unilateral_section(out)
     lines += ["## Error against run time", "",
               "Each numeric check's relative error against its oracle, against the wall time since the",
               "previous check in the same test (the time of computing that row).", "",

@@ -83,11 +83,16 @@ def crosses_one(a):
     return finite.size > 0 and finite.min() < 1.0 < finite.max()
 
 
-def draw(out, name, title, xlabel, ylabel, xs, ys, grid):
-    fig, axes = plt.subplots(2, 3, figsize=(13, 7.5))
+def cell_extent(xs, ys):
+    """imshow's extent for one cell a point of a regular grid."""
     dx = (xs[1] - xs[0]) / 2 if len(xs) > 1 else 0.5
     dy = (ys[1] - ys[0]) / 2 if len(ys) > 1 else 0.5
-    extent = (xs[0] - dx, xs[-1] + dx, ys[0] - dy, ys[-1] + dy)
+    return (xs[0] - dx, xs[-1] + dx, ys[0] - dy, ys[-1] + dy)
+
+
+def draw(out, name, title, xlabel, ylabel, xs, ys, grid):
+    fig, axes = plt.subplots(2, 3, figsize=(13, 7.5))
+    extent = cell_extent(xs, ys)
     for ax, (key, label) in zip(axes.flat, PANELS):
         a = grid[key]
         im = ax.imshow(a, origin="lower", extent=extent, aspect="auto", interpolation="nearest")
@@ -99,9 +104,18 @@ def draw(out, name, title, xlabel, ylabel, xs, ys, grid):
         for margin, style in zip(MARGINS, ("-", "--")):
             if len(xs) > 1 and len(ys) > 1 and crosses_one(grid[margin]):
                 ax.contour(xs, ys, grid[margin], levels=[1.0], colors="r", linestyles=style, linewidths=1.2)
-        ax.set_title(label, fontsize=9)
-        ax.set_xlabel(xlabel)
-        ax.set_ylabel(ylabel)
+        label_panel(ax, label, xlabel, ylabel)
+    finish_map_figure(fig, out, name, title)
+
+
+def label_panel(ax, label, xlabel, ylabel):
+    ax.set_title(label, fontsize=9)
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+
+
+def finish_map_figure(fig, out, name, title):
+    """A map's figure of panels, titled, written as OUT/NAME.png."""
     fig.suptitle(title, fontsize=10)
     fig.tight_layout()
     save_figure(fig, os.path.join(out, f"{name}.png"))

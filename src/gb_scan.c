@@ -27,9 +27,9 @@ static const struct {
 } metric_names[] = {{GB_SCAN_OMEGA_RMS, "omega_rms"},     {GB_SCAN_SWITCH_RATE, "switch_rate"},
                     {GB_SCAN_STROBE_SD, "strobe_sd"},     {GB_SCAN_MEAN_HEIGHT, "mean_height"},
                     {GB_SCAN_MONITORS, "monitors"},       {GB_SCAN_LAMBDA, "lambda"},
-                    {GB_SCAN_MELNIKOV, "melnikov"}};
+                    {GB_SCAN_MELNIKOV, "melnikov"},       {GB_SCAN_CONTACTS, "contacts"}};
 enum { METRIC_COUNT = sizeof metric_names / sizeof metric_names[0] };
-#define METRIC_LIST "omega_rms, switch_rate, strobe_sd, mean_height, monitors, lambda, melnikov, or all"
+#define METRIC_LIST "omega_rms, switch_rate, strobe_sd, mean_height, monitors, lambda, melnikov, contacts, or all"
 
 size_t gb_scan_metric_names(unsigned metrics, const char **names, size_t max)
 {

@@ -50,7 +50,10 @@ enum {
     GB_SCAN_MONITORS = 1 << 4,    /* fractions of samples with g_eff ≤ 0 and with N ≤ 0 (the whole run) */
     GB_SCAN_LAMBDA = 1 << 5,      /* λ_max and its error bar over the record after the transient [1/s] */
     GB_SCAN_MELNIKOV = 1 << 6,    /* the reduced model's margins (§7): the point's forcing over the threshold */
-    GB_SCAN_METRICS_ALL = (1 << 7) - 1,
+    GB_SCAN_CONTACTS = 1 << 7,    /* the unilateral law's mechanism after the transient: time fractions on one
+                                   * point, on two, at rest, in flight, sliding; impacts, landings and energy lost
+                                   * per period; the contacts at the end (NAN under the held law) */
+    GB_SCAN_METRICS_ALL = (1 << 8) - 1,
     /* What a scan file without `metrics` computes: what the run itself yields (no λ, no margins). */
     GB_SCAN_METRICS_DEFAULT = GB_SCAN_METRICS_ALL & ~(GB_SCAN_LAMBDA | GB_SCAN_MELNIKOV)
 };
@@ -122,6 +125,15 @@ typedef struct gb_scan_metrics {
     /* The Melnikov margins of the point's scene (see gb_scan_melnikov_margins): > 1 where the reduced
      * model's manifolds cross; NAN where the reduced model is not defined (no top to rock over, g ≤ 0). */
     double melnikov_margin, melnikov_margin_eq93;
+    /* GB_SCAN_CONTACTS (the unilateral law; NAN under the held law, which keeps one contact at all times):
+     * fractions of the samples from the transient on with 1, 2, 3 (at rest) and 0 (in flight) points on the
+     * plane and with a point slipping; impacts (the changes of contact the ledger books as impacts: landings
+     * included; lifts, lift-offs and a crease's end not),
+     * landings and the energy impacts and friction took, per forcing period from the transient on; the
+     * points on the plane at the end (0 in flight … 3 at rest). */
+    double one_point, two_point, at_rest, in_flight, sliding;
+    double impacts_per_period, landings_per_period, energy_lost_per_period;
+    double end_contacts;
     size_t certificate_undecided;      /* continuous contact: certificate checks left undecided */
     uint64_t state_fingerprint, switch_fingerprint; /* as `gomboc run` prints them */
 } gb_scan_metrics;

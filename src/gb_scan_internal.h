@@ -48,9 +48,18 @@ typedef struct gb_scan_accumulator {
     size_t samples;
     double omega2_sum, height_sum, t_start, t_last;
     size_t switches_start, switches_last;
+    /* the unilateral law's mechanism (GB_SCAN_CONTACTS): samples by points on the plane (0 … 3) and with a
+     * point slipping, impacts and landings at t ≥ first_t and the kinetic energy they took, friction's work
+     * at the first and the last sample counted */
+    size_t on_plane[4], slipping, impacts, landings;
+    double impact_loss, friction_start, friction_last;
 } gb_scan_accumulator;
 
 void gb_scan_accumulate(gb_scan_accumulator *a, double t, const double omega[3], double height, size_t switches);
+/* A sample's contact mode (points on the plane, points slipping, friction's work so far), after
+ * gb_scan_accumulate of the same sample; and an impact of the unilateral law. */
+void gb_scan_accumulate_mode(gb_scan_accumulator *a, double t, int contacts, int sliding, double friction_work);
+void gb_scan_accumulate_impact(gb_scan_accumulator *a, const gb_dynamics_impact *e);
 /* omega_rms, mean height and switch rate of what was accumulated (NAN when nothing was). */
 void gb_scan_accumulated(const gb_scan_accumulator *a, double *omega_rms, double *mean_height, double *switch_rate);
 

@@ -30,10 +30,51 @@ void gb_scan_accumulated(const gb_scan_accumulator *a, double *omega_rms, double
                        : NAN;
 }
 
+void gb_scan_accumulate_mode(gb_scan_accumulator *a, double t, int contacts, int sliding, double friction_work)
+{
+    if (!(t >= a->first_t)) return;
+    if (a->samples == 1) a->friction_start = friction_work; /* the first sample counted */
+    a->on_plane[contacts >= 0 && contacts <= 3 ? contacts : 0]++;
+    a->slipping += sliding > 0;
+    a->friction_last = friction_work;
+}
+
+void gb_scan_accumulate_impact(gb_scan_accumulator *a, const gb_dynamics_impact *e)
+{
+    /* as the ledger books them: a lift, a lift-off and a crease's end are changes without an impulse */
+    if (!(e->t >= a->first_t) || e->kind == GB_DYNAMICS_IMPACT_LIFT || e->kind == GB_DYNAMICS_IMPACT_LIFT_OFF ||
+        e->kind == GB_DYNAMICS_IMPACT_CREASE_END)
+        return;
+    a->impacts++;
+    a->landings += e->kind == GB_DYNAMICS_IMPACT_LANDING;
+    a->impact_loss += e->kinetic_before - e->kinetic_after - e->potential_jump;
+}
+
 static int accumulate_sample(void *context, const gb_run_sample *s)
 {
     gb_scan_accumulate(context, s->t, s->o->omega, s->o->height, s->o->grid_switches + s->o->branch_switches);
+    gb_scan_accumulate_mode(context, s->t, s->o->contacts, s->o->sliding, s->o->friction_work);
     return GB_OK;
+}
+
+static int accumulate_impact(void *context, const gb_dynamics_impact *e)
+{
+    gb_scan_accumulate_impact(context, e);
+    return GB_OK;
+}
+
+/* The mechanism's metrics (GB_SCAN_CONTACTS) from the accumulator, over `periods` forcing periods from the
+ * transient on. */
+static void mode_metrics(const gb_scan_accumulator *a, double periods, int end_contacts, gb_scan_metrics *m)
+{
+    const double n = (double)a->samples;
+    if (!a->samples) return;
+    m->one_point = (double)a->on_plane[1] / n, m->two_point = (double)a->on_plane[2] / n;
+    m->at_rest = (double)a->on_plane[3] / n, m->in_flight = (double)a->on_plane[0] / n;
+    m->sliding = (double)a->slipping / n;
+    m->impacts_per_period = (double)a->impacts / periods, m->landings_per_period = (double)a->landings / periods;
+    m->energy_lost_per_period = (a->impact_loss - (a->friction_last - a->friction_start)) / periods; /* friction's work <= 0 */
+    m->end_contacts = end_contacts;
 }
 
 int gb_scan_point_run(const gb_scan *scan, size_t index, gb_scan_metrics *out)
@@ -49,7 +90,10 @@ int gb_scan_point_run_in(const gb_scan *scan, const gb_scan_melnikov *melnikov, 
     if (status) return status;
     gb_scan_metrics m = {.omega_rms = NAN, .switch_rate = NAN, .mean_height = NAN, .lambda = NAN, .lambda_error = NAN,
                          .strobe_sd = NAN, .geff_nonpositive = NAN, .lift_off = NAN, .lambda_early = NAN,
-                         .lambda_late = NAN, .chaos_lifetime = NAN, .melnikov_margin = NAN, .melnikov_margin_eq93 = NAN};
+                         .lambda_late = NAN, .chaos_lifetime = NAN, .melnikov_margin = NAN, .melnikov_margin_eq93 = NAN,
+                         .one_point = NAN, .two_point = NAN, .at_rest = NAN, .in_flight = NAN, .sliding = NAN,
+                         .impacts_per_period = NAN, .landings_per_period = NAN, .energy_lost_per_period = NAN,
+                         .end_contacts = NAN};
     gb_scan_coordinates(scan, index, &m.x, &m.y);
     if (scan->metrics & GB_SCAN_MELNIKOV) {
         status = melnikov ? gb_scan_melnikov_planned(melnikov, &scene, &m.melnikov_margin, &m.melnikov_margin_eq93)
@@ -64,7 +108,8 @@ int gb_scan_point_run_in(const gb_scan *scan, const gb_scan_melnikov *melnikov, 
     const double step = gb_forcing_step(&scene.dynamics.forcing, scene.integrate.steps_per_period);
     /* Samples from the first one at the end of the transient (half a step of slack for rounding). */
     gb_scan_accumulator acc = {.first_t = (double)scan->transient_periods * T - 0.5 * step};
-    const gb_run_sinks sinks = {accumulate_sample, &acc, NULL};
+    const int modes = (scan->metrics & GB_SCAN_CONTACTS) && gb_dynamics_contact_law_impacts(scene.dynamics.contact_law);
+    const gb_run_sinks sinks = {accumulate_sample, &acc, modes ? accumulate_impact : NULL};
     gb_run_result r;
     status = gb_run_in(&scene, context, &sinks, &r);
     if (status) return status;
@@ -95,6 +140,7 @@ int gb_scan_point_run_in(const gb_scan *scan, const gb_scan_melnikov *melnikov, 
         m.chaos_lifetime = gb_scan_chaos_lifetime(l->instantaneous, l->intervals,
                                                   l->interval * scene.dynamics.forcing.omega / (2.0 * M_PI));
     }
+    if (modes) mode_metrics(&acc, scene.integrate.periods - (double)scan->transient_periods, r.final.contacts, &m);
     m.certificate_undecided = r.has_certificate ? r.certificate.undecided : 0;
     m.state_fingerprint = r.state_fingerprint;
     m.switch_fingerprint = r.switch_fingerprint;

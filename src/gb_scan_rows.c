@@ -36,7 +36,16 @@ int gb_scan_csv_header(const gb_scan *scan, char *out, size_t size)
     X(lambda_second_half, lambda_late)                                                                                 \
     X(chaos_lifetime_periods, chaos_lifetime)                                                                          \
     X(melnikov_margin, melnikov_margin)                                                                                \
-    X(melnikov_margin_eq93, melnikov_margin_eq93)
+    X(melnikov_margin_eq93, melnikov_margin_eq93)                                                                      \
+    X(one_point_fraction, one_point)                                                                                   \
+    X(two_point_fraction, two_point)                                                                                   \
+    X(rest_fraction, at_rest)                                                                                          \
+    X(flight_fraction, in_flight)                                                                                      \
+    X(sliding_fraction, sliding)                                                                                       \
+    X(impacts_per_period, impacts_per_period)                                                                          \
+    X(landings_per_period, landings_per_period)                                                                        \
+    X(energy_lost_per_period, energy_lost_per_period)                                                                  \
+    X(end_contacts, end_contacts)
 #define COLUMN_OFFSET(name, field) offsetof(gb_scan_metrics, field),
 #define COLUMN_NAME(name, field) #name ","
 static const size_t column_offsets[] = {SCAN_COLUMNS(COLUMN_OFFSET)};

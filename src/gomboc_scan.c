@@ -190,6 +190,12 @@ static int write_outputs(const char *dir, const char *path, const gb_scan *scan,
         const char *names[16];
         const size_t metric_count = gb_scan_metric_names(scan->metrics, names, 16);
         cJSON_AddItemToObject(root, "metrics", cJSON_CreateStringArray(names, (int)metric_count));
+        gb_case first;
+        if ((scan->metrics & GB_SCAN_CONTACTS) && !gb_scan_point_case(scan, 0, &first) &&
+            !gb_dynamics_contact_law_impacts(first.dynamics.contact_law))
+            cJSON_AddStringToObject(cJSON_AddObjectToObject(root, "not_applicable"), "contacts",
+                                    "NaN: the base scene's contact law is held, which keeps one contact at all times "
+                                    "(no impacts, rest, flight or sliding); the mechanism's columns need contact_law = unilateral");
         cli_manifest_add(cJSON_AddArrayToObject(root, "files"), &set.member[0]);
         char fp[17];
         snprintf(fp, sizeof fp, "%016" PRIx64, scan->fingerprint);

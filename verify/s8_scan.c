@@ -6,6 +6,7 @@
  * another scan is refused. The binary comes from $GOMBOC_BIN. */
 #include "gb_check.h"
 #include "gb_error.h"
+#include "gb_run.h"
 #include "gb_scan_internal.h"
 #include "gb_seal.h"
 #include "verify_sections.h"
@@ -142,6 +143,83 @@ static void remove_scan_dir(const scan_dir *d)
     snprintf(command, sizeof command, "rm -rf '%s'", d->path);
     if (system(command) != 0) fprintf(stderr, "verify: cannot remove %s\n", d->path);
 }
+
+/* ---- the unilateral law's mechanism, per point ------------------------------------------------------ */
+
+/* A scan of the shipped scene `base` (cases/, by absolute path), one point at (omega, A1) = (18, 2), 20
+ * periods, no transient, the mechanism's columns; and the same scene run alone by gb_run. */
+static void mechanism_point(const char *base, const char *what)
+{
+    scan_dir d;
+    gb_check c = {"8.3", "-", what, "the run's own summary: impacts and landings (exact), the energy impacts and friction took "
+                  "(1e-9 relative: sums in another order), the time in flight and on two points (the sampled fraction within "
+                  "a step of each change, over the run)", "as stated per column"};
+    if (make_scan_dir(&d, &c)) return;
+    char cwd[512], text[1400];
+    if (!getcwd(cwd, sizeof cwd)) cwd[0] = '\0';
+    snprintf(text, sizeof text, "[scan]\ndescription = the mechanism's columns\nbase = %s/%s\nperiods = 20\ntransient_periods = 0\n"
+             "metrics = contacts\n[x]\nkey = forcing.omega\nfrom = 18\nto = 18\ncount = 1\n[y]\nkey = forcing.A1\nfrom = 2\nto = 2\ncount = 1\n",
+             cwd, base);
+    gb_scan scan;
+    gb_scan_metrics m;
+    gb_case scene;
+    gb_run_result r;
+    memset(&r, 0, sizeof r);
+    int status = spill(d.scan, text) ? GB_EIO : gb_scan_load(d.scan, &scan);
+    if (!status) status = gb_scan_point_run(&scan, 0, &m);
+    if (!status) status = gb_scan_point_case(&scan, 0, &scene);
+    if (!status) status = gb_run(&scene, NULL, &r);
+    if (status) {
+        gb_check_true(&c, 0, "%s", gb_error_message());
+    } else {
+        const double periods = 20.0, h = gb_forcing_step(&scene.dynamics.forcing, scene.integrate.steps_per_period);
+        const double flight_changes = (double)(r.flight.lift_offs + r.flight.landings) + 1.0;
+        const double crease_changes = (double)(2 * r.two_point.entries + r.two_point.lifts + r.two_point.third_points) + 1.0;
+        const double lost = r.impact_energy_lost + (r.has_sliding ? r.sliding.friction_loss : 0.0);
+        const double e_lost = fabs(m.energy_lost_per_period * periods - lost) / fmax(lost, 1e-300);
+        const double e_flight = fabs(m.in_flight - r.flight.time / r.t_end), e_crease = fabs(m.two_point - r.two_point.time / r.t_end);
+        const int ok = (size_t)llround(m.impacts_per_period * periods) == r.impacts &&
+                       (size_t)llround(m.landings_per_period * periods) == r.flight.landings && e_lost <= 1e-9 &&
+                       e_flight <= flight_changes * h / r.t_end && e_crease <= crease_changes * h / r.t_end &&
+                       fabs(m.one_point + m.two_point + m.at_rest + m.in_flight - 1.0) <= 1e-12 && m.end_contacts == r.final.contacts;
+        gb_check_true(&c, ok, "impacts %.0f / %zu, landings %.0f / %zu, energy lost %.6g J / %.6g J, in flight %.4f / %.4f, on two "
+                      "points %.4f / %.4f, at the end %g / %d points", m.impacts_per_period * periods, r.impacts,
+                      m.landings_per_period * periods, r.flight.landings, m.energy_lost_per_period * periods, lost, m.in_flight,
+                      r.flight.time / r.t_end, m.two_point, r.two_point.time / r.t_end, m.end_contacts, r.final.contacts);
+    }
+    if (!status || scan.base_text) gb_scan_free(&scan);
+    gb_run_result_free(&r);
+    gb_error_clear();
+    remove_scan_dir(&d);
+}
+
+static void test_mechanism(void)
+{
+    mechanism_point("cases/table1-gomboc-II-unilateral.ini",
+                    "a scan point's mechanism columns, Table 1 Gomboc II, unilateral contact (A in m/s^2: the crease)");
+    mechanism_point("cases/table1-gomboc-I-g-units-bouncing.ini",
+                    "a scan point's mechanism columns, Table 1 Gomboc I in units of g, flight, e = 0.5");
+    /* under the held law the columns are NaN, and the scan's JSON says why */
+    scan_dir d;
+    gb_check c = {"8.3", "-", "the mechanism's columns of a scan under the held law", "NaN, and the JSON's not_applicable names why",
+                  "exact"};
+    if (make_scan_dir(&d, &c)) return;
+    static const char text[] = "[scan]\ndescription = held\nbase = base.ini\nperiods = 2\ntransient_periods = 0\n"
+                               "metrics = omega_rms, contacts\n[x]\nkey = forcing.omega\nfrom = 18\nto = 18\ncount = 1\n"
+                               "[y]\nkey = forcing.A2\nfrom = 1\nto = 1\ncount = 1\n";
+    char out[4096], json_path[200];
+    const int status = spill(d.scan, text) ? -1 : scan_run(&d, "", out, sizeof out);
+    snprintf(json_path, sizeof json_path, "%s/map-scan.json", d.path);
+    char *json = slurp(json_path), *csv = slurp(d.csv);
+    cJSON *root = json ? cJSON_Parse(json) : NULL;
+    const cJSON *why = cJSON_GetObjectItem(cJSON_GetObjectItem(root, "not_applicable"), "contacts");
+    gb_check_true(&c, status == 0 && cJSON_IsString(why) && csv && strstr(csv, ",nan,nan,nan,nan,nan,nan,nan,nan,nan,"),
+                  "exit %d; %s", status, cJSON_IsString(why) ? why->valuestring : "no reason in the JSON");
+    cJSON_Delete(root);
+    free(json), free(csv);
+    remove_scan_dir(&d);
+}
+
 
 /* The metrics of a history CSV (gomboc run) after the transient, recomputed here. */
 static int history_metrics(const char *path, double first_t, double *rms, double *height, double *rate)
@@ -800,10 +878,10 @@ static void test_journal_verified(void)
     cJSON *root = json_text ? cJSON_Parse(json_text) : NULL;
     const cJSON *metrics = cJSON_GetObjectItem(root, "metrics");
     gb_check cm = {"8.3", "-", "a scan's JSON lists its CSV with size and checksum, and the metrics it computed",
-                   "gomboc check exit 0; 7 metrics, omega_rms first, melnikov last", "exact"};
-    gb_check_true(&cm, checked == 0 && cJSON_GetArraySize(metrics) == 7 &&
+                   "gomboc check exit 0; 8 metrics, omega_rms first, contacts last", "exact"};
+    gb_check_true(&cm, checked == 0 && cJSON_GetArraySize(metrics) == 8 &&
                        !strcmp(cJSON_GetArrayItem(metrics, 0)->valuestring, "omega_rms") &&
-                       !strcmp(cJSON_GetArrayItem(metrics, 6)->valuestring, "melnikov"),
+                       !strcmp(cJSON_GetArrayItem(metrics, 7)->valuestring, "contacts"),
                   "check exit %d: %.200s", checked, out);
     cJSON_Delete(root);
     free(json_text);
@@ -1171,9 +1249,13 @@ static void test_shipped_scans(void)
 {
     static const char *const names[] = {"fig10-gomboc-I-omega-A1", "fig11-gomboc-I-A2-psi", "fig12-gomboc-II-omega-A1",
                                         "fig13-gomboc-II-A2-psi"};
-    static const char *const models[] = {"paper", "rolling"};
+    /* the held maps (paper, rolling), and under a plane that can only push: the rolling model in m/s2 and in
+     * units of g with flight, the grid polyhedron for the (omega, A1) maps; these on the held rolling map's
+     * nodes (checked below), so that the maps compare point by point */
+    static const char *const models[] = {"paper", "rolling", "unilateral", "g-units-bouncing", "grid-unilateral"};
     for (int f = 0; f < 4; f++)
-        for (int m = 0; m < 2; m++) {
+        for (int m = 0; m < 5; m++) {
+            if (m == 4 && (f == 1 || f == 3)) continue; /* the grid polyhedron: Figs 10 and 12 */
             char path[256], q[320];
             snprintf(path, sizeof path, "cases/scans/%s-%s.ini", names[f], models[m]);
             snprintf(q, sizeof q, "%s: every point's scene reads, and Table 1's point is a node", path);
@@ -1198,6 +1280,22 @@ static void test_shipped_scans(void)
             gb_check_true(&c, !status && found >= 0 && base.dynamics.forcing.omega == 18.0 && base.A1 == 2.0 && base.A2 == 1.0,
                           "%zu points; Table 1's point %s%d", gb_scan_points(&scan), found >= 0 ? "is node " : "is missing ",
                           found);
+            if (m >= 2) {
+                char held_path[256];
+                snprintf(held_path, sizeof held_path, "cases/scans/%s-rolling.ini", names[f]);
+                gb_scan held;
+                size_t same = 0;
+                const int loaded = gb_scan_load(held_path, &held);
+                for (size_t k = 0; !loaded && k < gb_scan_points(&scan) && gb_scan_points(&held) == gb_scan_points(&scan); k++) {
+                    double x, y, hx, hy;
+                    gb_scan_coordinates(&scan, k, &x, &y), gb_scan_coordinates(&held, k, &hx, &hy);
+                    same += x == hx && y == hy && !strcmp(scan.axis[0].key, held.axis[0].key) && !strcmp(scan.axis[1].key, held.axis[1].key);
+                }
+                snprintf(q, sizeof q, "%s: its nodes are the held rolling map's", path);
+                gb_check cn = {"8.3", "Figs 10-13", q, held_path, "exact: every point, the same keys and coordinates"};
+                gb_check_true(&cn, !loaded && same == gb_scan_points(&scan), "%zu of %zu nodes", same, gb_scan_points(&scan));
+                if (!loaded) gb_scan_free(&held);
+            }
             gb_scan_free(&scan);
         }
 }
@@ -1411,6 +1509,8 @@ int verify_register_s8_scan(void)
 {
     static const verify_test tests[] = {
         {"section 8.3: scan metrics against closed forms", test_accumulators, NULL},
+        {"section 8.3: the unilateral law's mechanism per point (time on one and two points, flight, impacts, energy lost)",
+         test_mechanism, NULL},
         {"section 8.3: a scan point is the single run of its scene", test_point_is_the_run,
          "every scan point is, bit for bit, the run of the scene it stands for"},
         {"sections 7, 8.3: the Melnikov margin of a scan point", test_melnikov_margins,
