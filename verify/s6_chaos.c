@@ -851,6 +851,17 @@ static void judge_unless_chattering(const char *body, const char *model, const c
                      r.early, r.late);
 }
 
+/* The claim lambda_max > 0 on a long record of `model` (make verify-full). */
+static void judge_positive_long(const char *body, const char *model, estimate e, size_t periods)
+{
+    char q[240];
+    snprintf(q, sizeof q, "Gomboc %s, %s: lambda_max - 4 sigma (%zu periods)", body, model, periods);
+    gb_check c = {"8.2", "77", q, "the no-chaos margin 0.01 1/s", "4 batch-means errors (10 or more batches, chosen from the record)"};
+    gb_check_verdict(&c, "lambda_max > 0 after convergence at baseline, for both bodies (section 8.2, Fig 9)", e.ok, lambda_verdict(e),
+                     RULE_POSITIVE, "lambda_max = %.4f +- %.4f 1/s over %zu periods from R0 = I%s", e.lambda, e.error, periods,
+                     lambda_verdict(e) == GB_VERDICT_UNDECIDED ? "; undecided at the longest record we run" : "");
+}
+
 /* `make verify-full`: what 300 periods cannot decide. Continuous rolling over 10000 periods (baseline,
  * unforced, strictly convex), and the unforced exponent over 5000 periods after a 2000-period transient
  * (is λ > 0 only the body's decay from R0 = I?). 3000 and 1000 periods left II's unforced rows undecided. */
@@ -859,8 +870,10 @@ static void test_chaos_real_long(void)
     if (!gb_check_full) return;
     static const char *const bodies[2] = {"I", "II"};
     const variation *rolling = NULL, *unforced = NULL, *convex = NULL, *paper_unforced = NULL, *unilateral = NULL,
-                    *unilateral_unforced = NULL, *unilateral_convex = NULL;
+                    *unilateral_unforced = NULL, *unilateral_convex = NULL, *friction_03 = NULL, *friction_06 = NULL;
     for (int k = 0; k < VARIATION_COUNT; k++) {
+        if (!strcmp(VARIATIONS[k].name, "continuous rolling, unilateral contact, mu = 0.3")) friction_03 = &VARIATIONS[k];
+        if (!strcmp(VARIATIONS[k].name, "continuous rolling, unilateral contact, mu = 0.6")) friction_06 = &VARIATIONS[k];
         if (!strcmp(VARIATIONS[k].name, "continuous rolling, unilateral contact")) unilateral = &VARIATIONS[k];
         if (!strcmp(VARIATIONS[k].name, "continuous rolling, unilateral, unforced")) unilateral_unforced = &VARIATIONS[k];
         if (!strcmp(VARIATIONS[k].name, "continuous rolling, unilateral, beta = 0.02")) unilateral_convex = &VARIATIONS[k];
@@ -873,11 +886,11 @@ static void test_chaos_real_long(void)
     for (int b = 0; b < 2; b++) {
         /* the held law's rolling runs over 10000 periods, and the unilateral law's over 3000 (each impact
          * and the two-point mode cost more a step; the record's own warm-up rule drops the settling) */
-        enum { LONG_RUNS = 8 };
+        enum { LONG_RUNS = 10 };
         const variation *runs[LONG_RUNS] = {rolling, unforced, convex, paper_unforced, unforced, unilateral, unilateral_unforced,
-                                            unilateral_convex};
-        static const size_t periods[LONG_RUNS] = {10000, 10000, 10000, 5000, 5000, 3000, 3000, 3000},
-                            transient[LONG_RUNS] = {0, 0, 0, 2000, 2000, 0, 0, 0};
+                                            unilateral_convex, friction_03, friction_06};
+        static const size_t periods[LONG_RUNS] = {10000, 10000, 10000, 5000, 5000, 3000, 3000, 3000, 3000, 3000},
+                            transient[LONG_RUNS] = {0, 0, 0, 2000, 2000, 0, 0, 0, 0, 0};
         estimate e[LONG_RUNS];
         switch_rates rate[LONG_RUNS];
         for (int k = 0; k < LONG_RUNS; k++) {
@@ -931,18 +944,14 @@ static void test_chaos_real_long(void)
                                 "positive lambda_max needs the biharmonic forcing (sections 1, 7, 8.2)", e[4], e[0], periods[4],
                                 rate[4], rate[0]);
         /* A plane that can only push: the same claims on the unilateral law's longest records. */
-        char q[200];
-        snprintf(q, sizeof q, "Gomboc %s, continuous contact, rolling equation, unilateral contact: lambda_max - 4 sigma (%zu "
-                 "periods)", bodies[b], periods[5]);
-        gb_check cu = {"8.2", "77", q, "the no-chaos margin 0.01 1/s", "4 batch-means errors (10 or more batches, chosen from the record)"};
-        gb_check_verdict(&cu, "lambda_max > 0 after convergence at baseline, for both bodies (section 8.2, Fig 9)", e[5].ok,
-                         lambda_verdict(e[5]), RULE_POSITIVE, "lambda_max = %.4f +- %.4f 1/s over %zu periods from R0 = I%s",
-                         e[5].lambda, e[5].error, periods[5],
-                         lambda_verdict(e[5]) == GB_VERDICT_UNDECIDED ? "; undecided at the longest record we run" : "");
+        judge_positive_long(bodies[b], "continuous contact, rolling equation, unilateral contact", e[5], periods[5]);
         judge_need_at(bodies[b], "continuous rolling, unilateral contact", "unforced (A1 = A2 = 0)",
                       "positive lambda_max needs the biharmonic forcing (sections 1, 7, 8.2)", e[6], e[5], periods[6], 1);
         judge_need_at(bodies[b], "continuous rolling, unilateral contact", "beta = 0.02 (strictly convex)",
                       "chaos comes from contact-branch competition (absent for a strictly convex body)", e[7], e[5], periods[7], 1);
+        /* a real plane (Coulomb friction), A in m/s^2: the rows 300 periods leave undecided */
+        judge_positive_long(bodies[b], "continuous contact, rolling equation, unilateral contact, friction mu = 0.3", e[8], periods[8]);
+        judge_positive_long(bodies[b], "continuous contact, rolling equation, unilateral contact, friction mu = 0.6", e[9], periods[9]);
     }
     gb_check cw = {"8.2", "77", "long chaos study written for the report", "-", "exact"};
     const int written = gb_check_write_data("chaos-long.json", doc) == 0;
