@@ -298,10 +298,12 @@ references-only:
 	$(PYTHON) references/grid_model.py > references/grid_model.json.tmp && mv references/grid_model.json.tmp references/grid_model.json
 	$(PYTHON) references/switching.py > references/switching.json.tmp && mv references/switching.json.tmp references/switching.json
 	@if $(PYTHON) -c "import siconos.numerics" 2>/dev/null; then \
-	  echo "$(PYTHON) references/siconos_impacts.py > references/siconos_impacts.json"; \
-	  $(PYTHON) references/siconos_impacts.py > references/siconos_impacts.json.tmp && \
-	  mv references/siconos_impacts.json.tmp references/siconos_impacts.json; \
-	else echo "references: Siconos absent (sh scripts/install-deps.sh siconos): references/siconos_impacts.json kept as committed"; fi
+	  for r in impacts bouncing_ball; do \
+	    echo "$(PYTHON) references/siconos/$$r.py > references/siconos/$$r.json"; \
+	    $(PYTHON) references/siconos/$$r.py > references/siconos/$$r.json.tmp && \
+	    mv references/siconos/$$r.json.tmp references/siconos/$$r.json || exit 1; \
+	  done; \
+	else echo "references: Siconos absent (sh scripts/install-deps.sh siconos): references/siconos/*.json kept as committed"; fi
 
 # The command, the static and shared libraries, the public headers (src/gomboc.h includes them all; the
 # internal ones, *_internal.h, gb_interval.h, gb_arena.h, gb_vec.h, gb_hash.h, gb_clock.h, the readers behind gb_case

@@ -12,6 +12,9 @@
  *   Γ₁ = π(1 − e)/(1 + e). The exact impact map's Jacobian there has determinant e² and trace
  *   1 + e² − (1 + e)² √(Γ² − Γ₁²), so the orbit is stable for Γ₁ < Γ < Γ₂ = √(Γ₁² + (2(1 + e²)/(1 + e)²)²).
  *   The check finds both edges by bisection on runs of the sphere started near the orbit;
+ * - a ball dropped on Table 1's plane read in units of g (e = 0.5): its landings in closed form (the ballistic
+ *   height in the plane's frame, references/siconos/bouncing_ball.py), and the same drop in another engine,
+ *   Siconos's Moreau–Jean time stepping, whose landings converge to them at first order in its step;
  * - a Gömböc dropped with spin on a still plane: at every landing the angular momentum about the landing
  *   point is kept and the momentum jump is the plane's impulse; in flight the horizontal velocity is
  *   constant; the ledger E − E0 − W + L closes;
@@ -29,6 +32,7 @@
 #include "gb_surface_internal.h"
 #include "verify_sections.h"
 
+#include <cjson/cJSON.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -407,6 +411,65 @@ static void test_bouncing_ball(void)
     gb_check_close(&c2, status ? NAN : found[1], G2, 0.03, 0.0);
 }
 
+/* ---- against Siconos: the ball on Table 1's plane in units of g ------------------------------------ */
+
+/* references/siconos/bouncing_ball.json: the ball dropped from 0.2 m (its lowest point) on the plane of Table 1
+ * read in units of g, e = 0.5; the landing times in closed form and from Siconos's Moreau-Jean time stepping
+ * at T/160 ... T/2560. gomboc runs the same drop (the sphere, R0 = I, continuous contact, 160 steps a period). */
+static void siconos_bouncing_case(const cJSON *c)
+{
+    const cJSON *exact = cJSON_GetObjectItem(c, "closed_form"), *runs = cJSON_GetObjectItem(c, "siconos");
+    const int n = cJSON_GetArraySize(exact);
+    const gb_forcing plane = {9.81, 2.0 * 9.81, 1.0 * 9.81, 18.0, M_PI / 3.0};
+    const double identity[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1}, zero[3] = {0, 0, 0};
+    landings l = {0};
+    const int status = flight_run("I", 0.0, &plane, 0.5, 8.0, identity, 0.2, zero, zero, &l, 160);
+    double worst = 0.0;
+    int compared = 0;
+    for (int k = 0; !status && k < n && (size_t)k < l.n; k++, compared++)
+        worst = fmax(worst, fabs(l.t[k] - cJSON_GetNumberValue(cJSON_GetObjectItem(cJSON_GetArrayItem(exact, k), "t"))));
+    /* the landing is located where the lowest point is GB_DYNAMICS_LANDING_TOL below the plane (late by that
+     * over the approach speed, >= 1.7 m/s here); a rebound started that much late moves the next landings by
+     * as much again, growing with the flights' sensitivity: 1e-9 s over 8 landings, with room */
+    gb_check cg = {"-", "-", "a ball dropped from 0.2 m on Table 1's plane read in units of g, e = 0.5: gomboc's first 8 landing times",
+                   "closed form (references/siconos/bouncing_ball.py: the ballistic height in the plane's frame, each root to 1e-14 s)",
+                   "1e-9 s: the landing tolerance over the approach speed, carried from landing to landing"};
+    gb_check_true(&cg, !status && compared == n && worst <= 1e-9, "%s; %d of %d landings compared, largest difference %.3g s",
+                  status ? gb_error_message() : "ran", compared, n, worst);
+    landings_free(&l);
+    /* Siconos: its landings are step ends, so each is late by up to a step; the largest error over the 8 falls
+     * with the step */
+    double err[8] = {0}, steps[8] = {0};
+    int m = 0;
+    const cJSON *run;
+    cJSON_ArrayForEach(run, runs) {
+        if (m == 8) break;
+        const cJSON *times = cJSON_GetObjectItem(run, "landings");
+        double e = cJSON_GetArraySize(times) == n ? 0.0 : INFINITY;
+        for (int k = 0; k < n && isfinite(e); k++)
+            e = fmax(e, fabs(cJSON_GetNumberValue(cJSON_GetArrayItem(times, k)) -
+                             cJSON_GetNumberValue(cJSON_GetObjectItem(cJSON_GetArrayItem(exact, k), "t"))));
+        steps[m] = cJSON_GetNumberValue(cJSON_GetObjectItem(run, "steps_per_period")), err[m++] = e;
+    }
+    const double T = 2.0 * M_PI / 18.0;
+    int within = m > 1;
+    for (int k = 0; k < m; k++) within = within && err[k] <= 2.0 * T / steps[k];
+    char detail[400];
+    int len = snprintf(detail, sizeof detail, "largest landing-time error against the closed form:");
+    for (int k = 0; k < m && len < (int)sizeof detail; k++)
+        len += snprintf(detail + len, sizeof detail - (size_t)len, " %.3g s at T/%.0f%s", err[k], steps[k], k + 1 < m ? "," : "");
+    gb_check cs = {"-", "-", "the same drop in Siconos (Moreau-Jean, theta 1/2, LCP): its first 8 landing times",
+                   "the closed form, to within the time-stepping's resolution",
+                   "two steps at every step size: a landing is known to the step that holds it, and the rebound it starts "
+                   "inherits that error (first order)"};
+    gb_check_true(&cs, within, "%s", detail);
+}
+
+static void test_siconos_bouncing(void)
+{
+    gb_check_each_reference_case("siconos/bouncing_ball.json", "-", siconos_bouncing_case);
+}
+
 /* ---- a Gömböc dropped with spin ----------------------------------------------------------------------- */
 
 static void test_gomboc_drop(void)
@@ -665,6 +728,8 @@ int verify_register_s5_flight(void)
         {"flight: the bouncing ball's period-1 orbit and its stable range", test_bouncing_ball,
          "on a vibrating plane a sphere locks onto the period-1 bouncing orbit exactly where the exact impact map says it "
          "is stable"},
+        {"flight: a ball on Table 1's plane in units of g, against the closed form and Siconos", test_siconos_bouncing,
+         "gomboc's landings are the closed form's, and Siconos's converge to them with its step"},
         {"flight: a Gomboc dropped with spin", test_gomboc_drop,
          "a spinning Gomboc's landings obey the impulse-momentum laws, its flights keep the horizontal momentum, and the "
          "ledger closes"},

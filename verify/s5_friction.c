@@ -481,7 +481,7 @@ static void test_ball_lands(void)
 
 /* ---- against Siconos ------------------------------------------------------------------------------- */
 
-/* One reference impact (references/siconos_impacts.json): the inputs into b, p, v, w, and the answer of
+/* One reference impact (references/siconos/impacts.json): the inputs into b, p, v, w, and the answer of
  * Siconos's `solver` as a gb_impact_result (impulses in the body's axes; a point holds where its normal
  * impulse is positive, slides where its tangential velocity after is above 1e-9 of the speed). 1 when
  * the solver converged. */
@@ -534,7 +534,7 @@ static double velocity_gap(const gb_impact_result *a, const gb_impact_result *b,
 static void test_siconos(void)
 {
     cJSON *root = NULL;
-    const cJSON *cases = gb_check_reference_cases("siconos_impacts.json", "-", &root), *c;
+    const cJSON *cases = gb_check_reference_cases("siconos/impacts.json", "-", &root), *c;
     int used = 0, unconverged = 0, failures = 0, moreau = 0, moreau_agree = 0, moreau_second = 0, single = 0, single_agree = 0;
     double worst_siconos = 0.0, worst_ours = 0.0, seconds[2] = {0.0, 0.0}, siconos_seconds[2] = {0.0, 0.0};
     cJSON_ArrayForEach(c, cases) {
@@ -576,7 +576,7 @@ static void test_siconos(void)
     char detail[800];
     snprintf(detail, sizeof detail, "%d impacts (%d not converged in Siconos, left out); Siconos's answers break the law by at most "
              "%.3g of the speed", used, unconverged, worst_siconos);
-    gb_check cs = {"-", "-", "impacts at 2 and 3 points, e = 0, mu 0.05 ... 2.05 (references/siconos_impacts.json): Siconos's answers "
+    gb_check cs = {"-", "-", "impacts at 2 and 3 points, e = 0, mu 0.05 ... 2.05 (references/siconos/impacts.json): Siconos's answers "
                    "(non-smooth Gauss-Seidel) read by this suite's statement of Moreau's law with Coulomb's cone",
                    "the law checked apart (balances, cones, slips against their friction, free points)",
                    "1e-6 of the speed: Siconos's relative residual 1e-12 bounds its error in the impulses only through the Delassus "

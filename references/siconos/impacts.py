@@ -17,7 +17,7 @@ with each case: the inputs, the answer, its residual and iterations, and the CPU
 alone (best of 3, through Python's binding).
 
 Run by `make references` where Siconos is installed (scripts/install-deps.sh siconos); the output (JSON,
-on stdout) is committed as references/siconos_impacts.json and read by verify/s5_friction.c.
+on stdout) is committed as references/siconos/impacts.json and read by verify/s5_friction.c.
 """
 import math
 import os
@@ -26,7 +26,7 @@ import time
 
 import numpy
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 from provenance import emit, versions  # noqa: E402
 
 import siconos  # noqa: E402
