@@ -260,9 +260,9 @@ def summary_sentence(out):
                      f"{(s == -1).sum() / s.size:.0%} regular)")
     if not parts:
         return []
-    text = ("**Where physical chaos lives** (the maps of `make scans` under a plane that can only push, "
+    text = ("**Where physical chaos lives** (the maps of `make scans` under a plane that can only push; section "
             "'Where physical chaos lives'): the share of each map's points with λ − 4σ > 0.01 1/s is " + ", ".join(parts) + "; ")
-    text += (f"{fly} of the {chaotic_total} chaotic points ({fly / chaotic_total:.0%}) have g_eff ≤ 0 in part of the period "
+    text += (f"{fly} of the {chaotic_total} chaotic points ({fly / chaotic_total:.1%}) have g_eff ≤ 0 in part of the period "
              "(the body can fly there)." if chaotic_total else "no point is chaotic.")
     figure = draw_side_by_side(out, maps)
     return [text, ""] + ([f"![where chaos lives: held against unilateral, the dotted line where the body can fly]({figure})", ""]
