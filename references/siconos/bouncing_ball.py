@@ -107,9 +107,9 @@ def main():
         runs.append({"steps_per_period": n, "landings": landings, "seconds": seconds})
     emit({"what": "a ball dropped on Table 1's plane read in units of g, e = 0.5: landing times in closed form and "
                   "from Siconos's Moreau-Jean time stepping",
-          "forcing": {"g": G, "a1": A1, "a2": A2, "omega": OMEGA, "psi": PSI}, "height": H, "restitution": E,
           "versions": dict(versions(), siconos=str(siconos.version)),
-          "cases": [{"closed_form": exact, "siconos": runs}]})
+          "cases": [{"forcing": {"g": G, "a1": A1, "a2": A2, "omega": OMEGA, "psi": PSI}, "height": H, "restitution": E,
+                     "closed_form": exact, "siconos": runs}]})
 
 
 if __name__ == "__main__":
