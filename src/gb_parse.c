@@ -68,7 +68,7 @@ gb_parse_result gb_parse_count(const char *text, unsigned long long max, unsigne
     size_t k = 0;
     for (; is_digit(text[k]); k++) {
         const unsigned digit = (unsigned)(text[k] - '0');
-        if (v > (max - digit) / 10) {
+        if (digit > max || v > (max - digit) / 10) { /* (max − digit) must not wrap below 0 */
             /* Still a count, only too large: say so, once the rest is known to be digits. */
             while (is_digit(text[k])) k++;
             return text[k] == '\0' ? GB_PARSE_LIMIT : GB_PARSE_SYNTAX;
