@@ -1,6 +1,7 @@
 /* gomboc shape — the body-level facts of paper §2 for one morphology and β. */
 #include "gomboc_cli.h"
 
+#include "gb_contact.h"
 #include "gb_error.h"
 #include "gb_massprops.h"
 #include "gb_shape.h"
@@ -13,6 +14,7 @@
 
 static const char *usage_shape =
     "usage: gomboc shape --morphology I|II --beta B [--mass M] [--json] [--radial-map FILE]\n"
+    "                    [--grid-nodes FILE]\n"
     "\n"
     "  --morphology I|II  phase function chi: I is theta - 5 phi (eq 8), II is\n"
     "                     theta - (3 pi/2)(cos phi - cos^3 phi/3) (eq 9)\n"
@@ -21,6 +23,10 @@ static const char *usage_shape =
     "  --json             print one JSON object instead of text\n"
     "  --radial-map FILE  also write r(phi, theta) and x on a 90 x 180 midpoint grid as CSV\n"
     "                     (columns phi, theta, r, x, y, z), for Figure 1\n"
+    "  --grid-nodes FILE  also write the nodes of the scenes' default contact grid (90 x 180,\n"
+    "                     nodes = centred) to the last bit, as CSV (columns index, phi, theta,\n"
+    "                     x, y, z; body axes about the origin): the vertices of the grid\n"
+    "                     polyhedron, for another engine to run the same body\n"
     "\n"
     "Prints: volume, centroid, inertia about the centroid (3x3), L (eq 53), the minimum Gaussian\n"
     "curvature and where, the area fraction of negative curvature, the largest beta at which the\n"
@@ -44,6 +50,34 @@ static int write_radial_map(const gb_surface *surface, const char *path)
                                      phi, theta, gb_surface_radius(surface, phi, theta), x[0], x[1], x[2]);
         }
     int status = cli_write_atomically(path, text);
+    free(text);
+    return status;
+}
+
+/* The default contact grid's nodes, %.17g so that a reader rebuilds every vertex bit for bit. */
+static int write_grid_nodes(const gb_surface *surface, const char *path)
+{
+    const gb_contact_grid_def def = gb_contact_grid_default_def();
+    gb_contact_grid *grid = NULL;
+    int status = gb_contact_grid_create(surface, &def, &grid);
+    if (status) return status;
+    const size_t count = gb_contact_grid_size(grid);
+    size_t cap = 256 + count * 128, used = 0;
+    char *text = malloc(cap);
+    if (!text) {
+        gb_contact_grid_free(grid);
+        return gb_error_set(GB_ENOMEM, "out of memory for the grid nodes");
+    }
+    used += (size_t)snprintf(text, cap, "# gomboc grid nodes: morphology %s, beta %.17g, grid %zux%zu, nodes centred\n"
+                             "index,phi,theta,x,y,z\n", surface->morphology->name, surface->beta, def.n_phi, def.n_theta);
+    for (size_t k = 0; k < count; k++) {
+        double phi, theta, x[3];
+        gb_contact_grid_node(grid, k, &phi, &theta, x);
+        used += (size_t)snprintf(text + used, cap - used, "%zu,%.17g,%.17g,%.17g,%.17g,%.17g\n", k, phi, theta, x[0], x[1],
+                                 x[2]);
+    }
+    gb_contact_grid_free(grid);
+    status = cli_write_atomically(path, text);
     free(text);
     return status;
 }
@@ -151,15 +185,15 @@ static void print_shape(const shape_study *st)
 
 int command_shape(int argc, char **argv)
 {
-    const char *radial_map = NULL;
+    const char *radial_map = NULL, *grid_nodes = NULL;
     double mass = 1.0;
     int json = 0;
     cli_body body = {NULL, NAN, 0};
-    static const char *const valued[] = {"--morphology", "--beta", "--mass", "--radial-map", NULL};
+    static const char *const valued[] = {"--morphology", "--beta", "--mass", "--radial-map", "--grid-nodes", NULL};
     for (int i = 0; i < argc; i++) {
         const char *opt = argv[i], *value = NULL;
         const int kind = cli_next_option("shape", argc, argv, &i, usage_shape, valued,
-                                         " (allowed: --morphology, --beta, --mass, --json, --radial-map, --help)", &body, &json, &value);
+                                         " (allowed: --morphology, --beta, --mass, --json, --radial-map, --grid-nodes, --help)", &body, &json, &value);
         if (kind != CLI_VALUE) {
             if (kind == CLI_NEXT) continue;
             return kind == CLI_HELP ? 0 : kind;
@@ -167,13 +201,16 @@ int command_shape(int argc, char **argv)
         if (!strcmp(opt, "--mass")) {
             if (cli_number("shape", "--mass", value, 1e-6, 1e6, 0, " (allowed: 1e-06 <= mass <= 1000000 [kg])", &mass))
                 return EXIT_INPUT;
-        } else {
+        } else if (!strcmp(opt, "--radial-map")) {
             radial_map = value;
+        } else {
+            grid_nodes = value;
         }
     }
     if (cli_body_required("shape", &body)) return EXIT_INPUT;
-    const gb_file_use uses[] = {GB_FILE_USE(radial_map, "--radial-map", GB_FILE_OUTPUT)};
-    if (cli_files_check("shape", uses, 1)) return EXIT_INPUT;
+    const gb_file_use uses[] = {GB_FILE_USE(radial_map, "--radial-map", GB_FILE_OUTPUT),
+                                GB_FILE_USE(grid_nodes, "--grid-nodes", GB_FILE_OUTPUT)};
+    if (cli_files_check("shape", uses, 2)) return EXIT_INPUT;
     if (cli_parse_only) return 0;
     const char *morphology = body.morphology;
     const double beta = body.beta;
@@ -194,6 +231,7 @@ int command_shape(int argc, char **argv)
     if (!status) status = gb_shape_equilibria(&surface, &sdef, &equilibria);
     if (!status) status = gb_shape_hull_equilibria(&surface, &sdef, &hull);
     if (!status && radial_map) status = write_radial_map(&surface, radial_map);
+    if (!status && grid_nodes) status = write_grid_nodes(&surface, grid_nodes);
     if (status) return cli_failure("shape", status);
     shape_study study = {.surface = surface, .beta = beta, .mass = mass, .props = props, .sdef = sdef, .survey = survey,
                          .equilibria = equilibria, .hull = hull, .beta_limit = beta_limit, .limit_phi = limit_phi,

@@ -2,6 +2,7 @@
  * between runs; a failed write leaves no file behind (bad input: verify/bad_input.c). The binary
  * comes from $GOMBOC_BIN. */
 #include "gb_check.h"
+#include "gb_contact.h"
 #include "verify_sections.h"
 
 #include <cjson/cJSON.h>
@@ -62,6 +63,34 @@ static void test_failed_write_leaves_nothing(void)
     if (f) fclose(f);
     gb_check c2 = {"2", "-", "--radial-map writes the header, column line and 90 x 180 rows", "line count", "exact"};
     gb_check_true(&c2, good == 0 && lines == 2 + 90 * 180, "exit %d, %zu lines", good, lines);
+    remove(path);
+    /* --grid-nodes: the scenes' default contact grid, every node to the last bit (what another engine reads) */
+    snprintf(path, sizeof path, "%s/nodes.csv", dir);
+    snprintf(args, sizeof args, "shape --morphology II --beta 0.12 --grid-nodes %s", path);
+    const int written = run(args, out, sizeof out);
+    gb_contact_grid *grid = NULL;
+    const gb_contact_grid_def def = gb_contact_grid_default_def();
+    size_t rows = 0, equal = 0;
+    f = fopen(path, "r");
+    if (f && !gb_contact_grid_create(gb_check_body("II", 0.12), &def, &grid)) {
+        char line[512];
+        while (fgets(line, sizeof line, f)) {
+            double v[5];
+            unsigned long index;
+            if (sscanf(line, "%lu,%lf,%lf,%lf,%lf,%lf", &index, v, v + 1, v + 2, v + 3, v + 4) != 6) continue;
+            double phi, theta, x[3];
+            rows++;
+            if (index >= gb_contact_grid_size(grid)) continue;
+            gb_contact_grid_node(grid, index, &phi, &theta, x);
+            equal += index == rows - 1 && phi == v[0] && theta == v[1] && x[0] == v[2] && x[1] == v[3] && x[2] == v[4];
+        }
+    }
+    if (f) fclose(f);
+    gb_check c3 = {"4", "29", "--grid-nodes writes every node of the 90 x 180 centred grid, in order, to the last bit",
+                   "the library's own grid (gb_contact_grid_node)", "exact: %.17g reads back to the same double"};
+    gb_check_true(&c3, written == 0 && grid && rows == gb_contact_grid_size(grid) && equal == rows, "exit %d, %zu rows, %zu equal",
+                  written, rows, equal);
+    gb_contact_grid_free(grid);
     remove(path);
     rmdir(dir);
 }
