@@ -196,12 +196,13 @@ fuzz: deps
 	@sh scripts/install-deps.sh fuzz
 	@$(MAKE) --no-print-directory fuzz-only
 
-FUZZ_TARGETS := case options atlas hull scan journal
+FUZZ_TARGETS := case options atlas hull scan journal mesh
 fuzz-only: $(FUZZ_TARGETS:%=$(FUZZ_DIR)/fuzz-%)
 	@mkdir -p $(FUZZ_TARGETS:%=$(FUZZ_DIR)/corpus-%)
 	@n=0; while IFS= read -r line; do n=$$((n+1)); printf '%s' "$$line" | tr ' ' '\000' > $(FUZZ_DIR)/corpus-options/seed-$$n; \
 	  done < verify/fuzz/options.seeds
 	@cp verify/fuzz/hull.seed $(FUZZ_DIR)/corpus-hull/seed
+	@cp verify/fuzz/mesh/* $(FUZZ_DIR)/corpus-mesh/
 	status=0; export GOMBOC_KEY=$(abspath $(FUZZ_DIR))/key; \
 	$(FUZZ_DIR)/fuzz-case -max_total_time=$(FUZZ_SECONDS) -dict=verify/fuzz/case.dict -close_fd_mask=3 \
 	  -artifact_prefix=$(FUZZ_DIR)/crash-case- $(FUZZ_DIR)/corpus-case cases > $(FUZZ_DIR)/fuzz-case.log 2>&1 || status=1; \
@@ -215,13 +216,15 @@ fuzz-only: $(FUZZ_TARGETS:%=$(FUZZ_DIR)/fuzz-%)
 	  -artifact_prefix=$(FUZZ_DIR)/crash-scan- $(FUZZ_DIR)/corpus-scan cases/scans > $(FUZZ_DIR)/fuzz-scan.log 2>&1 || status=1; \
 	$(FUZZ_DIR)/fuzz-journal -max_total_time=$(FUZZ_SECONDS) -close_fd_mask=3 \
 	  -artifact_prefix=$(FUZZ_DIR)/crash-journal- $(FUZZ_DIR)/corpus-journal > $(FUZZ_DIR)/fuzz-journal.log 2>&1 || status=1; \
+	$(FUZZ_DIR)/fuzz-mesh -max_total_time=$(FUZZ_SECONDS) -close_fd_mask=3 \
+	  -artifact_prefix=$(FUZZ_DIR)/crash-mesh- $(FUZZ_DIR)/corpus-mesh > $(FUZZ_DIR)/fuzz-mesh.log 2>&1 || status=1; \
 	runs="$$(grep -h '^Done' $(FUZZ_TARGETS:%=$(FUZZ_DIR)/fuzz-%.log) | tr '\n' ';')"; \
 	tail -n 3 $(FUZZ_TARGETS:%=$(FUZZ_DIR)/fuzz-%.log); \
-	sh scripts/gate-stamp.sh $(GATES) fuzz $$status "$(FUZZ_SECONDS) s per target (case reader; option parser; atlas file reader; hull file reader; scan file reader; scan journal reader): $$runs"; \
+	sh scripts/gate-stamp.sh $(GATES) fuzz $$status "$(FUZZ_SECONDS) s per target (case reader; option parser; atlas file reader; hull file reader; scan file reader; scan journal reader; mesh reader): $$runs"; \
 	echo "fuzz: $$( [ $$status -eq 0 ] && echo 'no crash' || echo 'FAILED: see build-fuzz/*.log and build-fuzz/crash-*')"; \
 	exit $$status
 
-$(FUZZ_DIR)/fuzz-case $(FUZZ_DIR)/fuzz-atlas $(FUZZ_DIR)/fuzz-hull $(FUZZ_DIR)/fuzz-scan $(FUZZ_DIR)/fuzz-journal: $(FUZZ_DIR)/fuzz-%: verify/fuzz/fuzz_%.c $(CORE_SRC) $(wildcard src/*.h verify/fuzz/*.h)
+$(FUZZ_DIR)/fuzz-case $(FUZZ_DIR)/fuzz-atlas $(FUZZ_DIR)/fuzz-hull $(FUZZ_DIR)/fuzz-scan $(FUZZ_DIR)/fuzz-journal $(FUZZ_DIR)/fuzz-mesh: $(FUZZ_DIR)/fuzz-%: verify/fuzz/fuzz_%.c $(CORE_SRC) $(wildcard src/*.h verify/fuzz/*.h)
 	@mkdir -p $(FUZZ_DIR)
 	clang $(FUZZ_CFLAGS) -fsanitize=fuzzer $(shell pkg-config --cflags $(PKGS)) -Isrc -o $@ $< $(CORE_SRC) $(CORE_LIBS)
 

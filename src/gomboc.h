@@ -12,6 +12,8 @@
 #include "gb_file.h"
 #include "gb_surface.h"
 #include "gb_massprops.h"
+#include "gb_mesh.h"
+#include "gb_polyhedron.h"
 #include "gb_shape.h"
 #include "gb_contact.h"
 #include "gb_certify.h"

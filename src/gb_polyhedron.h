@@ -1,0 +1,55 @@
+/* gb_polyhedron — a convex polyhedron as a body: the convex hull of a mesh's vertices (Qhull) and its mass
+ * properties in closed form.
+ *
+ * The body is the hull. A mesh some vertex of which lies inside the hull (farther than GB_POLYHEDRON_FLAT
+ * times the body's size below every face through it) is not convex, and is refused naming that vertex's
+ * line: a rocking body's contact with a plane is its hull's, so a non-convex mesh would silently be
+ * another body than the file shows. A flat mesh (all vertices within that distance of one plane) has no
+ * volume and is refused too.
+ *
+ * Mass properties of a homogeneous body by the divergence theorem over the hull's triangles, each with
+ * the centroid of the vertices as apex (a sum of tetrahedra, exact for a polyhedron but for rounding):
+ * volume V = Σ det(a, b, c)/6; first moment Σ det (a + b + c)/24; second moment (covariance about the
+ * apex) C = Σ det · A C₀ Aᵀ with A = [a b c] and C₀ = (1 + δᵢⱼ)/120; the inertia tensor about the
+ * centroid I = tr(C') E − C' with C' the covariance shifted to the centroid, times the density m/V. */
+#ifndef GB_POLYHEDRON_H
+#define GB_POLYHEDRON_H
+
+#include "gb_export.h"
+#include "gb_massprops.h"
+#include "gb_mesh.h"
+
+#include <stddef.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define GB_POLYHEDRON_FLAT 1e-9 /* relative to the body's size (its largest vertex distance from the centre of the vertices) */
+
+typedef struct gb_polyhedron {
+    size_t vertex_count;
+    double *vertices;        /* the hull's vertices [3 * vertex_count], in the mesh's order */
+    size_t *mesh_index;      /* each one's index in the mesh */
+    size_t triangle_count;
+    size_t *triangles;       /* the hull's faces as triangles [3 * triangle_count], counter-clockwise seen from outside */
+    double size;             /* the largest distance of a vertex from the vertices' mean [m] */
+} gb_polyhedron;
+
+/* The hull of `mesh`; `name` for messages ("NAME:LINE: ..."). GB_EINVAL for a flat or non-convex mesh,
+ * GB_ENUMERIC when Qhull fails. On failure nothing is left to free. */
+GB_API int gb_polyhedron_from_mesh(const gb_mesh *mesh, const char *name, gb_polyhedron *out);
+/* The hull of `count` points [3 * count] (a grid's nodes, a test's cube): the same, without lines. */
+GB_API int gb_polyhedron_from_points(const double *points, size_t count, const char *name, gb_polyhedron *out);
+GB_API void gb_polyhedron_free(gb_polyhedron *polyhedron);
+
+/* Volume, centroid, inertia about the centroid (body axes) of the homogeneous body of `mass` [kg]; the
+ * error fields hold a bound on rounding (64 eps times the sums' magnitudes); L and evaluations are 0.
+ * GB_EDOM for a mass outside [1e-6, 1e6]. */
+GB_API int gb_polyhedron_massprops(const gb_polyhedron *polyhedron, double mass, gb_massprops *out);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif
