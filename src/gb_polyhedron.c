@@ -167,3 +167,88 @@ int gb_polyhedron_massprops(const gb_polyhedron *p, double mass, gb_massprops *o
     }
     return GB_OK;
 }
+
+/* The triangle's outward unit normal and whether the centroid's projection onto its plane lies in it
+ * (barycentric coordinates all >= -tol). */
+static int projects_inside(const gb_polyhedron *p, size_t t, const double c[3], double tol, double n[3])
+{
+    const double *a = p->vertices + 3 * p->triangles[3 * t], *b = p->vertices + 3 * p->triangles[3 * t + 1],
+                 *d = p->vertices + 3 * p->triangles[3 * t + 2];
+    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, w[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
+    double m[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+    const double len = sqrt(m[0] * m[0] + m[1] * m[1] + m[2] * m[2]);
+    if (!(len > 0.0)) return 0;
+    for (int i = 0; i < 3; i++) n[i] = m[i] / len;
+    const double e[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    const double depth = e[0] * n[0] + e[1] * n[1] + e[2] * n[2];
+    const double q[3] = {e[0] - depth * n[0], e[1] - depth * n[1], e[2] - depth * n[2]}; /* the projection, from a */
+    /* barycentric coordinates of q in (u, w), through the Gram matrix */
+    const double uu = u[0] * u[0] + u[1] * u[1] + u[2] * u[2], ww = w[0] * w[0] + w[1] * w[1] + w[2] * w[2];
+    const double uw = u[0] * w[0] + u[1] * w[1] + u[2] * w[2], qu = q[0] * u[0] + q[1] * u[1] + q[2] * u[2];
+    const double qw = q[0] * w[0] + q[1] * w[1] + q[2] * w[2], det = uu * ww - uw * uw;
+    const double s = (qu * ww - qw * uw) / det, r = (qw * uu - qu * uw) / det;
+    /* tolerances as distances: a coordinate times the triangle's height over that edge */
+    const double scale = tol / sqrt(fmax(uu, ww));
+    return s >= -scale && r >= -scale && 1.0 - s - r >= -scale;
+}
+
+/* The distance from point q to the segment a–b. */
+static double segment_distance(const double q[3], const double a[3], const double b[3])
+{
+    const double d[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, e[3] = {q[0] - a[0], q[1] - a[1], q[2] - a[2]};
+    const double dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+    const double s = dd > 0.0 ? fmin(1.0, fmax(0.0, (e[0] * d[0] + e[1] * d[1] + e[2] * d[2]) / dd)) : 0.0;
+    const double f[3] = {e[0] - s * d[0], e[1] - s * d[1], e[2] - s * d[2]};
+    return sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
+}
+
+/* Is the centroid's projection onto the face of triangle t (the triangles of its normal) farther than tol
+ * from the face's boundary, the edges that only one of those triangles has? */
+static int clear_of_boundary(const gb_polyhedron *p, const double n[3], const double c[3], double tol)
+{
+    for (size_t t = 0; t < p->triangle_count; t++) {
+        double m[3];
+        projects_inside(p, t, c, 0.0, m);
+        if (fabs(m[0] - n[0]) + fabs(m[1] - n[1]) + fabs(m[2] - n[2]) > 1e-9) continue;
+        for (int k = 0; k < 3; k++) {
+            const size_t va = p->triangles[3 * t + k], vb = p->triangles[3 * t + (k + 1) % 3];
+            int shared = 0; /* the same edge, reversed, in another triangle of the face */
+            for (size_t u = 0; u < p->triangle_count && !shared; u++) {
+                if (u == t) continue;
+                double mu[3];
+                projects_inside(p, u, c, 0.0, mu);
+                if (fabs(mu[0] - n[0]) + fabs(mu[1] - n[1]) + fabs(mu[2] - n[2]) > 1e-9) continue;
+                for (int j = 0; j < 3 && !shared; j++)
+                    shared = p->triangles[3 * u + j] == vb && p->triangles[3 * u + (j + 1) % 3] == va;
+            }
+            if (shared) continue;
+            const double *a = p->vertices + 3 * va, *b = p->vertices + 3 * vb;
+            const double e[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]}, depth = e[0] * n[0] + e[1] * n[1] + e[2] * n[2];
+            const double q[3] = {c[0] - depth * n[0], c[1] - depth * n[1], c[2] - depth * n[2]};
+            if (segment_distance(q, a, b) <= tol) return 0;
+        }
+    }
+    return 1;
+}
+
+int gb_polyhedron_rest_faces(const gb_polyhedron *p, const double centroid[3], double (*normals)[3], size_t cap, size_t *count)
+{
+    *count = 0;
+    const double tol = GB_POLYHEDRON_FLAT * p->size;
+    double *found = malloc(3 * (p->triangle_count ? p->triangle_count : 1) * sizeof *found);
+    if (!found) return gb_error_set(GB_ENOMEM, "out of memory for the rest faces");
+    size_t n_found = 0;
+    for (size_t t = 0; t < p->triangle_count; t++) {
+        double n[3];
+        if (!projects_inside(p, t, centroid, tol, n)) continue;
+        int known = 0; /* a face of several coplanar triangles counts once */
+        for (size_t k = 0; k < n_found && !known; k++)
+            known = fabs(found[3 * k] - n[0]) + fabs(found[3 * k + 1] - n[1]) + fabs(found[3 * k + 2] - n[2]) <= 1e-9;
+        if (known || !clear_of_boundary(p, n, centroid, tol)) continue; /* on an edge of the face: not a stable rest */
+        memcpy(found + 3 * n_found++, n, sizeof n);
+    }
+    for (size_t k = 0; k < n_found && k < cap; k++) memcpy(normals[k], found + 3 * k, 3 * sizeof(double));
+    *count = n_found;
+    free(found);
+    return GB_OK;
+}

@@ -48,6 +48,14 @@ GB_API void gb_polyhedron_free(gb_polyhedron *polyhedron);
  * GB_EDOM for a mass outside [1e-6, 1e6]. */
 GB_API int gb_polyhedron_massprops(const gb_polyhedron *polyhedron, double mass, gb_massprops *out);
 
+/* The faces the body rests on, stably, on a still plane: those whose plane the vertical through the
+ * centroid meets inside the face (the projection of `centroid` along the face's normal lies inside one of
+ * its triangles, beyond `GB_POLYHEDRON_FLAT` times the size from every edge of the face). Writes up to
+ * `cap` outward unit normals, one per face (coplanar triangles are one face), and their count to *count
+ * (which may exceed cap). */
+GB_API int gb_polyhedron_rest_faces(const gb_polyhedron *polyhedron, const double centroid[3], double (*normals)[3], size_t cap,
+                                    size_t *count);
+
 #ifdef __cplusplus
 }
 #endif

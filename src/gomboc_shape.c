@@ -4,6 +4,8 @@
 #include "gb_contact.h"
 #include "gb_error.h"
 #include "gb_massprops.h"
+#include "gb_mesh.h"
+#include "gb_polyhedron.h"
 #include "gb_shape.h"
 #include "gb_surface.h"
 
@@ -15,6 +17,7 @@
 static const char *usage_shape =
     "usage: gomboc shape --morphology I|II --beta B [--mass M] [--json] [--radial-map FILE]\n"
     "                    [--grid-nodes FILE]\n"
+    "       gomboc shape --mesh FILE [--mass M] [--json]\n"
     "\n"
     "  --morphology I|II  phase function chi: I is theta - 5 phi (eq 8), II is\n"
     "                     theta - (3 pi/2)(cos phi - cos^3 phi/3) (eq 9)\n"
@@ -23,6 +26,9 @@ static const char *usage_shape =
     "  --json             print one JSON object instead of text\n"
     "  --radial-map FILE  also write r(phi, theta) and x on a 90 x 180 midpoint grid as CSV\n"
     "                     (columns phi, theta, r, x, y, z), for Figure 1\n"
+    "  --mesh FILE        instead of a morphology: a convex polyhedron from a mesh file (.off, .obj,\n"
+    "                     .stl ASCII or binary), the hull of its vertices; prints its vertices and\n"
+    "                     faces, volume, centroid, inertia and the faces it rests on stably\n"
     "  --grid-nodes FILE  also write the nodes of the scenes' default contact grid (90 x 180,\n"
     "                     nodes = centred) to the last bit, as CSV (columns index, phi, theta,\n"
     "                     x, y, z; body axes about the origin): the vertices of the grid\n"
@@ -183,17 +189,72 @@ static void print_shape(const shape_study *st)
     printf("mono-monostatic  %s\n", st->mono ? "yes" : "no");
 }
 
+/* gomboc shape --mesh: the polyhedron of a mesh file. */
+static int shape_mesh(const char *path, double mass, int json)
+{
+    gb_mesh mesh;
+    gb_polyhedron p;
+    gb_massprops props;
+    double normals[64][3];
+    size_t rests = 0;
+    int status = gb_mesh_read(path, &mesh);
+    if (status == GB_EIO) return cli_input_error("shape", "--mesh %s (allowed: a readable mesh file)", gb_error_message());
+    if (status) return cli_failure("shape", status);
+    status = gb_polyhedron_from_mesh(&mesh, path, &p);
+    if (!status) {
+        status = gb_polyhedron_massprops(&p, mass, &props);
+        if (!status) status = gb_polyhedron_rest_faces(&p, props.centroid, normals, 64, &rests);
+        if (status) gb_polyhedron_free(&p);
+    }
+    if (status) {
+        gb_mesh_free(&mesh);
+        return cli_failure("shape", status);
+    }
+    cJSON *root = cJSON_CreateObject();
+    cJSON_AddStringToObject(root, "mesh", path);
+    cJSON_AddStringToObject(root, "format", gb_mesh_format_name(mesh.format));
+    cli_json_add(root, "mesh_vertices", (double)mesh.vertex_count);
+    cli_json_add(root, "hull_vertices", (double)p.vertex_count);
+    cli_json_add(root, "hull_triangles", (double)p.triangle_count);
+    cli_json_add(root, "mass", mass);
+    cli_json_add(root, "volume", props.volume);
+    cJSON_AddItemToObject(root, "centroid", cli_json_vector(props.centroid, 3));
+    cJSON *inertia = cJSON_AddArrayToObject(root, "inertia");
+    for (int i = 0; i < 3; i++) cJSON_AddItemToArray(inertia, cli_json_vector(props.inertia[i], 3));
+    cJSON *faces = cJSON_AddArrayToObject(root, "rest_faces");
+    for (size_t k = 0; k < rests && k < 64; k++) cJSON_AddItemToArray(faces, cli_json_vector(normals[k], 3));
+    cli_json_add(root, "rest_face_count", (double)rests);
+    if (json) {
+        cli_print_json(root);
+    } else {
+        printf("mesh             %s (%s): %zu vertices; convex hull %zu vertices, %zu triangles\n", path,
+               gb_mesh_format_name(mesh.format), mesh.vertex_count, p.vertex_count, p.triangle_count);
+        printf("mass             %.10g kg\nvolume           %.10g m^3\n", mass, props.volume);
+        printf("centroid         %.10g %.10g %.10g\n", props.centroid[0], props.centroid[1], props.centroid[2]);
+        for (int i = 0; i < 3; i++)
+            printf("%s %.10g %.10g %.10g\n", i ? "                " : "inertia about G ", props.inertia[i][0] + 0.0,
+                   props.inertia[i][1] + 0.0, props.inertia[i][2] + 0.0);
+        printf("rests stably on  %zu faces (outward normals):\n", rests);
+        for (size_t k = 0; k < rests && k < 64; k++) /* + 0.0: no "-0.000000" */
+            printf("    %.6f %.6f %.6f\n", normals[k][0] + 0.0, normals[k][1] + 0.0, normals[k][2] + 0.0);
+    }
+    cJSON_Delete(root);
+    gb_polyhedron_free(&p);
+    gb_mesh_free(&mesh);
+    return 0;
+}
+
 int command_shape(int argc, char **argv)
 {
-    const char *radial_map = NULL, *grid_nodes = NULL;
+    const char *radial_map = NULL, *grid_nodes = NULL, *mesh = NULL;
     double mass = 1.0;
     int json = 0;
     cli_body body = {NULL, NAN, 0};
-    static const char *const valued[] = {"--morphology", "--beta", "--mass", "--radial-map", "--grid-nodes", NULL};
+    static const char *const valued[] = {"--morphology", "--beta", "--mass", "--radial-map", "--grid-nodes", "--mesh", NULL};
     for (int i = 0; i < argc; i++) {
         const char *opt = argv[i], *value = NULL;
         const int kind = cli_next_option("shape", argc, argv, &i, usage_shape, valued,
-                                         " (allowed: --morphology, --beta, --mass, --json, --radial-map, --grid-nodes, --help)", &body, &json, &value);
+                                         " (allowed: --morphology, --beta, --mass, --json, --radial-map, --grid-nodes, --mesh, --help)", &body, &json, &value);
         if (kind != CLI_VALUE) {
             if (kind == CLI_NEXT) continue;
             return kind == CLI_HELP ? 0 : kind;
@@ -203,9 +264,20 @@ int command_shape(int argc, char **argv)
                 return EXIT_INPUT;
         } else if (!strcmp(opt, "--radial-map")) {
             radial_map = value;
-        } else {
+        } else if (!strcmp(opt, "--grid-nodes")) {
             grid_nodes = value;
+        } else {
+            mesh = value;
         }
+    }
+    if (mesh) {
+        if (body.morphology || body.have_beta || radial_map || grid_nodes)
+            return cli_input_error("shape", "--mesh names the body: not with --morphology, --beta, --radial-map or --grid-nodes "
+                                   "(allowed: --mesh FILE [--mass M] [--json])");
+        const gb_file_use in[] = {GB_FILE_USE(mesh, "--mesh", GB_FILE_INPUT)};
+        if (cli_files_check("shape", in, 1)) return EXIT_INPUT;
+        if (cli_parse_only) return 0;
+        return shape_mesh(mesh, mass, json);
     }
     if (cli_body_required("shape", &body)) return EXIT_INPUT;
     const gb_file_use uses[] = {GB_FILE_USE(radial_map, "--radial-map", GB_FILE_OUTPUT),

@@ -252,6 +252,48 @@ static void test_bad_meshes(void)
     (void)refused;
 }
 
+/* The faces a body rests on: every face of a cube and of a right tetrahedron; of a skew tetrahedron
+ * (0, e_x, e_y, (2, 2, 0.2)), whose centroid (0.75, 0.75, 0.05) stands over none of its base z = 0, the
+ * three others (worked by hand: the projections onto them have barycentric coordinates (0.0025, 0.37),
+ * the same mirrored, and (0.42, 0.17), all inside). */
+static void test_rest_faces(void)
+{
+    static const struct {
+        const char *name;
+        double v[4][3];
+        size_t want;
+    } tetras[] = {{"the right tetrahedron", {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, 4},
+                  {"the skew tetrahedron (0, e_x, e_y, (2, 2, 0.2))", {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {2, 2, 0.2}}, 3}};
+    gb_polyhedron p;
+    gb_massprops m;
+    double normals[8][3];
+    size_t count = 0;
+    int status = gb_polyhedron_from_points(&CUBE[0][0], 8, "cube", &p);
+    if (!status) {
+        status = gb_polyhedron_massprops(&p, 1.0, &m);
+        if (!status) status = gb_polyhedron_rest_faces(&p, m.centroid, normals, 8, &count);
+        gb_polyhedron_free(&p);
+    }
+    gb_check cc = {"2", "-", "a cube's stable rest faces (the centroid over the face, clear of its edges)", "6, every face", "exact"};
+    gb_check_true(&cc, !status && count == 6, "%s, %zu faces", status ? gb_error_message() : "ran", count);
+    for (int k = 0; k < 2; k++) {
+        count = 0;
+        status = gb_polyhedron_from_points(&tetras[k].v[0][0], 4, "tetrahedron", &p);
+        int base = 0;
+        if (!status) {
+            status = gb_polyhedron_massprops(&p, 1.0, &m);
+            if (!status) status = gb_polyhedron_rest_faces(&p, m.centroid, normals, 8, &count);
+            for (size_t f = 0; f < count && f < 8; f++) base |= normals[f][2] < -0.999;
+            gb_polyhedron_free(&p);
+        }
+        char quantity[160];
+        snprintf(quantity, sizeof quantity, "%s: its stable rest faces", tetras[k].name);
+        gb_check ct = {"2", "-", quantity, k ? "3, not the base z = 0 (worked by hand)" : "4, every face", "exact"};
+        gb_check_true(&ct, !status && count == tetras[k].want && (k == 0 || !base), "%s, %zu faces%s",
+                      status ? gb_error_message() : "ran", count, base ? ", the base among them" : "");
+    }
+}
+
 int verify_register_s2_polyhedron(void)
 {
     static const verify_test tests[] = {
@@ -261,6 +303,7 @@ int verify_register_s2_polyhedron(void)
          "the divergence-theorem sums give a polyhedron's volume, centroid and full inertia tensor in closed form"},
         {"a grid surface against the quadrature", test_grid_surface_against_quadrature,
          "the polyhedral sums converge to the smooth body's mass properties at second order in the grid spacing"},
+        {"rest faces", test_rest_faces, "a polyhedron rests stably on exactly the faces over which its centroid stands"},
         {"bad meshes", test_bad_meshes, "a mesh that is not a convex body, or not well formed, is refused naming its line"},
         {NULL, NULL, NULL},
     };
