@@ -116,11 +116,16 @@ verify-only: $(BIN) $(VERIFY_BIN) $(if $(MPICC),$(MPI_BIN))
 
 # --- speed, printed as ratios measured in one run (never asserted in tests)
 bench: deps
+	@sh scripts/install-deps.sh siconos || echo "bench: Siconos could not be installed: its comparison is skipped"
 	@$(MAKE) --no-print-directory bench-only
 
+# gomboc against Siconos (verify/bench/against_siconos.py) where Siconos is installed: the work-precision ratio
 bench-only: $(BENCH_BIN) $(BENCH_NATIVE) $(BIN)
 	@mkdir -p $(OUT)
 	status=0; PYTHON=$(PYTHON) $(BENCH_BIN) $(OUT)/bench.json $(BENCH_NATIVE) $(BIN) || status=$$?; \
+	if $(PYTHON) -c "import siconos.kernel" 2>/dev/null; then \
+	  $(PYTHON) verify/bench/against_siconos.py $(BIN) $(OUT)/bench-siconos.json || status=1; \
+	else echo "bench: gomboc against Siconos skipped: Siconos absent (sh scripts/install-deps.sh siconos)"; fi; \
 	sh scripts/gate-stamp.sh $(GATES) bench $$status "speed ratios measured side by side in one run"; exit $$status
 
 # Everything `make verify` does, plus the long studies (harness --full): continuous rolling over 10000
@@ -293,7 +298,7 @@ valgrind-only: $(BIN) $(VERIFY_BIN)
 references: deps
 	@$(MAKE) --no-print-directory references-only
 
-references-only:
+references-only: $(BIN)
 	$(PYTHON) references/massprops.py > references/massprops.json.tmp && mv references/massprops.json.tmp references/massprops.json
 	$(PYTHON) references/contact.py > references/contact.json.tmp && mv references/contact.json.tmp references/contact.json
 	$(PYTHON) references/dynamics.py > references/dynamics.json.tmp && mv references/dynamics.json.tmp references/dynamics.json
@@ -301,9 +306,9 @@ references-only:
 	$(PYTHON) references/grid_model.py > references/grid_model.json.tmp && mv references/grid_model.json.tmp references/grid_model.json
 	$(PYTHON) references/switching.py > references/switching.json.tmp && mv references/switching.json.tmp references/switching.json
 	@if $(PYTHON) -c "import siconos.numerics" 2>/dev/null; then \
-	  for r in impacts bouncing_ball; do \
+	  for r in impacts bouncing_ball polyhedron; do \
 	    echo "$(PYTHON) references/siconos/$$r.py > references/siconos/$$r.json"; \
-	    $(PYTHON) references/siconos/$$r.py > references/siconos/$$r.json.tmp && \
+	    GOMBOC=$(BIN) $(PYTHON) references/siconos/$$r.py > references/siconos/$$r.json.tmp && \
 	    mv references/siconos/$$r.json.tmp references/siconos/$$r.json || exit 1; \
 	  done; \
 	else echo "references: Siconos absent (sh scripts/install-deps.sh siconos): references/siconos/*.json kept as committed"; fi

@@ -6,9 +6,12 @@ set -eu
 bin=${1:-build/gomboc}
 out=${2:-$(mktemp -d)}
 mkdir -p "$out"
-for scene in cases/*.ini; do
+mkdir -p "$out/siconos"
+for scene in cases/*.ini cases/siconos/*.ini; do
     name=$(basename "$scene" .ini)
-    if "$bin" run "$scene" --out "$out" --json > "$out/$name.json" 2> "$out/$name.log"; then
+    # cases/siconos/table1-gomboc-I.ini shares its name with cases/table1-gomboc-I.ini: its own directory
+    dir=$out; case "$scene" in cases/siconos/*) dir=$out/siconos; name=siconos/$name ;; esac
+    if "$bin" run "$scene" --out "$dir" --json > "$out/$name.json" 2> "$out/$name.log"; then
         /usr/bin/python3 -c 'import json, sys
 d = json.load(open(sys.argv[1]))["fingerprint"]
 print(sys.argv[2], d["final_state"], d["switches"])' "$out/$name.json" "$name"

@@ -20,6 +20,7 @@ int verify_register_s6_chaos(void);
 int verify_register_s6_diagnostics(void);
 int verify_register_s7_melnikov(void);
 int verify_register_s8_scan(void);
+int verify_register_siconos(void);
 int verify_register_command(void);
 int verify_register_bad_input(void);
 
