@@ -3,6 +3,7 @@
  * comes from $GOMBOC_BIN. */
 #include "gb_check.h"
 #include "gb_contact.h"
+#include "gb_scan_internal.h"
 #include "verify_sections.h"
 
 #include <cjson/cJSON.h>
@@ -320,6 +321,93 @@ static void test_conventions(void)
     gb_check_true(&cu, c4 == 2 && strstr(a, "allowed: shape"), "exit %d: %.120s", c4, a);
 }
 
+/* docs/outputs.md's columns of `file` (its "### file" section, the first cell of each table row, every
+ * table until the next section) as one comma-separated line; "" when the section is missing. */
+static void documented_columns(const char *file, char *out, size_t size)
+{
+    out[0] = '\0';
+    FILE *f = fopen("docs/outputs.md", "r");
+    if (!f) return;
+    char line[1024], heading[160];
+    snprintf(heading, sizeof heading, "### %s\n", file);
+    int inside = 0;
+    size_t used = 0;
+    while (fgets(line, sizeof line, f)) {
+        if (!strncmp(line, "### ", 4)) inside = !strcmp(line, heading);
+        if (!inside || strncmp(line, "| `", 3)) continue;
+        const char *end = strchr(line + 3, '`');
+        if (!end) continue;
+        used += (size_t)snprintf(out + used, size - used, "%s%.*s", used ? "," : "", (int)(end - line - 3), line + 3);
+        if (used >= size) break;
+    }
+    fclose(f);
+}
+
+/* The first line of `path` without its newline ("" when unreadable). */
+static void header_of(const char *path, char *out, size_t size)
+{
+    out[0] = '\0';
+    FILE *f = fopen(path, "r");
+    if (f && fgets(out, (int)size, f)) out[strcspn(out, "\n")] = '\0';
+    if (f) fclose(f);
+}
+
+/* Every CSV the command writes has its columns in docs/outputs.md, in order: a run that writes them all
+ * (history, impacts, strobe, spectrum, λ and its windows) on a rough plane and one on a plane of finite
+ * friction, and the scan's header from the library's own list. */
+static void test_outputs_documented(void)
+{
+    char dir[] = "/tmp/gomboc-columns-XXXXXX";
+    if (!mkdtemp(dir)) return;
+    static const char *const scene_text =
+        "[body]\nmorphology = I\nbeta = 0.12\n[forcing]\nA1 = 19.62\nA2 = 9.81\n[integrator]\nsteps_per_period = 40\n"
+        "periods = 8\nlocate_switches = yes\n[model]\ncontact = fast-grid\ncontact_law = unilateral\n%s"
+        "[output]\nimpacts = yes\n[diagnostics]\nstrobe = yes\nspectrum = yes\nlyapunov = yes\n"
+        "[strobe]\ntransient_periods = 0\n[spectrum]\ntransient_periods = 0\n[lyapunov]\nwindow_periods = 4\n";
+    static const char *const files[] = {"history.csv", "impacts.csv", "strobe.csv", "spectrum.csv", "lyapunov.csv",
+                                        "lyapunov-windows.csv"};
+    char text[1024], path[300], args[800], out[1 << 12];
+    for (int friction = 0; friction < 2; friction++) {
+        const char *name = friction ? "mu" : "rough";
+        snprintf(text, sizeof text, scene_text, friction ? "friction = 0.6\n" : "");
+        write_case(dir, name, text, path, sizeof path);
+        snprintf(args, sizeof args, "run %s --out %s", path, dir);
+        const int code = run(args, out, sizeof out);
+        for (size_t k = 0; k < sizeof files / sizeof files[0]; k++) {
+            if (friction && k > 1) break; /* friction adds columns to the history and the impacts only */
+            char file[300], written[2048], documented[2048], key[64];
+            snprintf(file, sizeof file, "%s/%s-%s", dir, name, files[k]);
+            header_of(file, written, sizeof written);
+            snprintf(key, sizeof key, "NAME-%s", files[k]);
+            documented_columns(key, documented, sizeof documented);
+            /* a plane of finite friction: the section's two tables together; rough: the first table alone */
+            if (!friction && (k == 0 || k == 1)) {
+                const char *extra = k == 0 ? ",sliding,slip_speed" : ",slip_before_x";
+                char *cut = strstr(documented, extra);
+                if (cut) *cut = '\0';
+            }
+            char quantity[200];
+            snprintf(quantity, sizeof quantity, "NAME-%s%s: every column in docs/outputs.md, in order", files[k],
+                     friction ? " (friction = 0.6)" : "");
+            gb_check c = {"8", "-", quantity, "the header gomboc run writes", "exact"};
+            gb_check_true(&c, code == 0 && written[0] && !strcmp(written, documented), "exit %d; written '%.300s'; documented '%.300s'",
+                          code, written, documented);
+            remove(file);
+        }
+        remove(path);
+        snprintf(path, sizeof path, "%s/%s-summary.json", dir, name);
+        remove(path);
+    }
+    /* the scan: index, the two axes (documented as X and Y), the metrics from the library's list */
+    char written[2048], documented[2048];
+    snprintf(written, sizeof written, "index,X,Y,%s", gb_scan_csv_metric_columns());
+    written[strcspn(written, "\n")] = '\0';
+    documented_columns("NAME-scan.csv", documented, sizeof documented);
+    gb_check cs = {"8", "-", "NAME-scan.csv: every column in docs/outputs.md, in order", "gb_scan's list of columns", "exact"};
+    gb_check_true(&cs, !strcmp(written, documented), "written '%.300s'; documented '%.300s'", written, documented);
+    rmdir(dir);
+}
+
 int verify_register_command(void)
 {
     static const verify_test tests[] = {
@@ -330,6 +418,8 @@ int verify_register_command(void)
         {"command: gomboc run --hull, the fast grid's hull from its file", test_run_hull,
          "a fast-grid run gives the same state bits with the hull Qhull builds and with the hull read from "
          "its file, and a damaged file is built anew"},
+        {"command: every CSV column documented", test_outputs_documented,
+         "every column of every CSV the command writes is in docs/outputs.md, with its unit, in the header's order"},
         {"command: --version, --option=value, help TOPIC", test_conventions,
          "the command follows the usual conventions: a version, options written either way, help by topic"},
         {NULL, NULL, NULL},
