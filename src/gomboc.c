@@ -33,6 +33,7 @@ static const char *usage_main =
     "            record (section 6, eq 77)\n"
     "  scan      a map over two keys of a scene, parallel and resumable (section 8.3, Figs 10-13)\n"
     "  melnikov  the reduced separatrix-splitting criterion for a scene's body and forcing (section 7)\n"
+    "  check     that every file a run's or a scan's manifest lists stands beside it, whole\n"
     "\n"
     "'gomboc <command> --help' (or 'gomboc help <command>') describes each command's options; an option's\n"
     "value follows it as the next word or after '=' (--beta 0.12, --beta=0.12). 'gomboc --version' prints\n"

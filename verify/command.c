@@ -408,6 +408,29 @@ static void test_outputs_documented(void)
     rmdir(dir);
 }
 
+/* `gomboc help` names every command the program runs: each word a command accepts ("gomboc WORD --help"
+ * answers with its own usage) appears in the list. */
+static void test_help_lists_commands(void)
+{
+    static char list[1 << 13], usage[1 << 13];
+    const int code = run("help", list, sizeof list);
+    static const char *const words[] = {"shape", "contact", "run", "lyapunov", "scan", "melnikov", "check"};
+    int listed = 0, runnable = 0;
+    char missing[256] = "";
+    for (size_t k = 0; k < sizeof words / sizeof words[0]; k++) {
+        char args[64], entry[64];
+        snprintf(args, sizeof args, "%s --help", words[k]);
+        runnable += run(args, usage, sizeof usage) == 0 && strstr(usage, "usage: gomboc ") != NULL;
+        snprintf(entry, sizeof entry, "\n  %s ", words[k]);
+        if (strstr(list, entry)) listed++;
+        else snprintf(missing + strlen(missing), sizeof missing - strlen(missing), " %s", words[k]);
+    }
+    gb_check c = {"-", "-", "gomboc help: every command the program runs is listed", "each command's own --help", "exact"};
+    gb_check_true(&c, code == 0 && listed == runnable && runnable == (int)(sizeof words / sizeof words[0]),
+                  "%d of %d commands run, %d listed; missing:%s", runnable, (int)(sizeof words / sizeof words[0]), listed,
+                  missing[0] ? missing : " none");
+}
+
 int verify_register_command(void)
 {
     static const verify_test tests[] = {
@@ -418,6 +441,7 @@ int verify_register_command(void)
         {"command: gomboc run --hull, the fast grid's hull from its file", test_run_hull,
          "a fast-grid run gives the same state bits with the hull Qhull builds and with the hull read from "
          "its file, and a damaged file is built anew"},
+        {"command: gomboc help lists every command", test_help_lists_commands, NULL},
         {"command: every CSV column documented", test_outputs_documented,
          "every column of every CSV the command writes is in docs/outputs.md, with its unit, in the header's order"},
         {"command: --version, --option=value, help TOPIC", test_conventions,
