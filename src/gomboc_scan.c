@@ -30,7 +30,9 @@ static const char *usage_scan =
     "               point in index order (row-major, x fastest), every metric; NAME-scan.json, the scan\n"
     "               as read, the environment and the timings. NAME is SCAN without .ini\n"
     "  --resume     finish an interrupted scan from its journal (NAME-scan.journal in DIR): the points\n"
-    "               it holds are not run again, and the CSV is byte for byte that of an uninterrupted run\n"
+    "               it holds are not run again, and the CSV is byte for byte that of an uninterrupted run;\n"
+    "               without a journal, a scan whose NAME-scan.json is in DIR is complete: nothing is run\n"
+    "               (said on standard error, exit 0); with neither, the scan starts\n"
     "  --threads N  points run in parallel on N threads (1 ... 256; default: one per online processor);\n"
     "               the results do not depend on N\n"
     "  --atlas FILE ([model] certificate = atlas in the base scene, or [scan] atlas = shared) the points\n"
@@ -521,6 +523,23 @@ static int scan_command(int argc, char **argv, const ranks *r)
         gb_scan_free(&scan);
         free(j.path);
         return EXIT_COMPUTE;
+    }
+    /* --resume without a journal: a scan whose manifest says it is complete has nothing to resume (said,
+     * nothing computed, exit 0); with neither, the scan starts (make scans resumes or starts alike) */
+    int nothing = 0;
+    if (resume && r->rank == 0) {
+        struct stat jst, mst;
+        char *json_path = cli_output_name(dir, scan_path, "scan.json");
+        nothing = lstat(j.path, &jst) != 0 && json_path && lstat(json_path, &mst) == 0 && S_ISREG(mst.st_mode);
+        if (nothing)
+            fprintf(stderr, "gomboc scan: nothing to resume: '%s' holds no journal and the scan is complete ('%s'); "
+                    "run it without --resume to compute it again\n", dir, json_path);
+        free(json_path);
+    }
+    if (shared_status(r, nothing)) {
+        gb_scan_free(&scan);
+        free(j.path);
+        return 0;
     }
     const size_t points = gb_scan_points(&scan);
     gb_scan_metrics *results = calloc(points, sizeof *results);

@@ -702,6 +702,18 @@ static void test_threads_and_resume(void)
                        !strcmp(one, empty_csv[0]) && !strcmp(one, empty_csv[1]) && access(d.journal, F_OK) != 0,
                   "exits %d, %d: %.200s", empty_codes[0], empty_codes[1], out);
     free(empty_csv[0]), free(empty_csv[1]);
+    /* The scan is complete now (its manifest beside the CSV, no journal): --resume has nothing to resume, says
+     * so and runs no point, leaving the CSV as it was; a CSV whose point it ran again would be rewritten. */
+    struct stat before, after;
+    const int had = stat(d.csv, &before);
+    const int cr2 = scan_run(&d, "--resume", out, sizeof out);
+    char *csv_after = slurp(d.csv);
+    const int same = had == 0 && stat(d.csv, &after) == 0 && before.st_mtim.tv_sec == after.st_mtim.tv_sec &&
+                     before.st_mtim.tv_nsec == after.st_mtim.tv_nsec && csv_after && one && !strcmp(csv_after, one);
+    gb_check cn = {"8.3", "-", "--resume on a complete scan", "exit 0, 'nothing to resume' on standard error, no point run, "
+                   "the CSV untouched (same bytes and modification time)", "exact"};
+    gb_check_true(&cn, cr2 == 0 && strstr(out, "nothing to resume") && !strstr(out, "points (") && same, "exit %d: %.200s", cr2, out);
+    free(csv_after);
     free(one);
     remove_scan_dir(&d);
 }
