@@ -31,8 +31,8 @@ static const char *usage_scan =
     "               as read, the environment and the timings. NAME is SCAN without .ini\n"
     "  --resume     finish an interrupted scan from its journal (NAME-scan.journal in DIR): the points\n"
     "               it holds are not run again, and the CSV is byte for byte that of an uninterrupted run;\n"
-    "               without a journal, a scan whose NAME-scan.json is in DIR is complete: nothing is run\n"
-    "               (said on standard error, exit 0); with neither, the scan starts\n"
+    "               without a journal, a scan whose NAME-scan.json in DIR this build wrote for this scan\n"
+    "               and base scene is complete: nothing is run (said, exit 0); else the scan starts\n"
     "  --threads N  points run in parallel on N threads (1 ... 256; default: one per online processor);\n"
     "               the results do not depend on N\n"
     "  --atlas FILE ([model] certificate = atlas in the base scene, or [scan] atlas = shared) the points\n"
@@ -86,6 +86,29 @@ static uint64_t binary_fingerprint(void)
         for (size_t k = 0; k < n; k++) hash = (hash ^ buffer[k]) * 1099511628211ull;
     fclose(f);
     return hash;
+}
+
+/* Is the manifest at `path` that of this scan (the scan file's and base scene's fingerprint) computed by this
+ * build? A manifest it cannot read is not. */
+static int manifest_is_current(const char *path, const gb_scan *scan)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f) return 0;
+    char *text = malloc(1 << 20);
+    const size_t n = text ? fread(text, 1, (1 << 20) - 1, f) : 0;
+    fclose(f);
+    if (!text) return 0;
+    text[n] = '\0';
+    cJSON *root = cJSON_Parse(text);
+    free(text);
+    char want[17], build[17];
+    snprintf(want, sizeof want, "%016" PRIx64, scan->fingerprint);
+    snprintf(build, sizeof build, "%016" PRIx64, binary_fingerprint());
+    const char *have = cJSON_GetStringValue(cJSON_GetObjectItem(root, "fingerprint"));
+    const char *made = cJSON_GetStringValue(cJSON_GetObjectItem(root, "binary"));
+    const int current = have && made && !strcmp(have, want) && !strcmp(made, build);
+    cJSON_Delete(root);
+    return current;
 }
 
 typedef struct journal {
@@ -202,6 +225,8 @@ static int write_outputs(const char *dir, const char *path, const gb_scan *scan,
         char fp[17];
         snprintf(fp, sizeof fp, "%016" PRIx64, scan->fingerprint);
         cJSON_AddStringToObject(root, "fingerprint", fp);
+        snprintf(fp, sizeof fp, "%016" PRIx64, binary_fingerprint());
+        cJSON_AddStringToObject(root, "binary", fp); /* the build that computed it (--resume: complete for it) */
         cJSON *env = cJSON_AddObjectToObject(root, "environment");
         cJSON_AddStringToObject(env, "parallel", "POSIX threads");
 #ifdef GOMBOC_MPI
@@ -530,10 +555,15 @@ static int scan_command(int argc, char **argv, const ranks *r)
     if (resume && r->rank == 0) {
         struct stat jst, mst;
         char *json_path = cli_output_name(dir, scan_path, "scan.json");
-        nothing = lstat(j.path, &jst) != 0 && json_path && lstat(json_path, &mst) == 0 && S_ISREG(mst.st_mode);
-        if (nothing)
-            fprintf(stderr, "gomboc scan: nothing to resume: '%s' holds no journal and the scan is complete ('%s'); "
-                    "run it without --resume to compute it again\n", dir, json_path);
+        if (lstat(j.path, &jst) != 0 && json_path && lstat(json_path, &mst) == 0 && S_ISREG(mst.st_mode)) {
+            nothing = manifest_is_current(json_path, &scan);
+            if (nothing)
+                fprintf(stderr, "gomboc scan: nothing to resume: '%s' holds no journal and the scan is complete ('%s'); "
+                        "run it without --resume to compute it again\n", dir, json_path);
+            else
+                fprintf(stderr, "gomboc scan: '%s' is of another scan file, base scene or build: the scan starts anew\n",
+                        json_path);
+        }
         free(json_path);
     }
     if (shared_status(r, nothing)) {

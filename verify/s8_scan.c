@@ -714,6 +714,13 @@ static void test_threads_and_resume(void)
                    "the CSV untouched (same bytes and modification time)", "exact"};
     gb_check_true(&cn, cr2 == 0 && strstr(out, "nothing to resume") && !strstr(out, "points (") && same, "exit %d: %.200s", cr2, out);
     free(csv_after);
+    /* the same outputs, the scan file changed (a comment appended): they are another scan's, and it starts anew */
+    FILE *edit = fopen(d.scan, "a");
+    if (edit) fputs("; changed\n", edit), fclose(edit);
+    const int cr3 = scan_run(&d, "--resume", out, sizeof out);
+    gb_check cs = {"8.3", "-", "--resume beside the outputs of another scan file (the same one with a comment added)",
+                   "exit 0, the scan run anew", "exact"};
+    gb_check_true(&cs, cr3 == 0 && strstr(out, "starts anew") && strstr(out, "points ("), "exit %d: %.200s", cr3, out);
     free(one);
     remove_scan_dir(&d);
 }
