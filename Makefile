@@ -322,13 +322,19 @@ PRIVATE_HEADERS := %_internal.h src/gb_interval.h src/gb_arena.h src/gb_vec.h sr
                    src/gb_seal.h
 PUBLIC_HEADERS = src/gomboc.h $(filter-out $(PRIVATE_HEADERS),$(wildcard src/gb_*.h))
 
+# Only what it installs is built (not the harness). No public header includes a dependency's, so the
+# dependencies are Libs.private: a shared link needs -lgomboc alone (its NEEDED entries bring the rest),
+# `pkg-config --static` adds them for libgomboc.a, and no dependency's -I reaches a user's flags.
 install: deps
-	@$(MAKE) --no-print-directory build
 	@$(MAKE) --no-print-directory install-only
 
+SHARE_REPORTS := reports/common.py reports/plot_scan.py reports/run_report.py
 install-only: $(BIN) $(LIB) $(SOLIB)
 	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/lib/pkgconfig $(DESTDIR)$(PREFIX)/include/gomboc \
-	  $(DESTDIR)$(PREFIX)/share/man/man1
+	  $(DESTDIR)$(PREFIX)/share/man/man1 $(DESTDIR)$(PREFIX)/share/gomboc/reports
+	install -m 644 cases/README.md $(DESTDIR)$(PREFIX)/share/gomboc/scene-keys.md
+	install -m 644 docs/outputs.md $(DESTDIR)$(PREFIX)/share/gomboc/outputs.md
+	install -m 644 $(SHARE_REPORTS) $(DESTDIR)$(PREFIX)/share/gomboc/reports/
 	install -m 755 $(BIN) $(DESTDIR)$(PREFIX)/bin/gomboc
 	install -m 644 $(LIB) $(DESTDIR)$(PREFIX)/lib/libgomboc.a
 	install -m 755 $(SOLIB) $(DESTDIR)$(PREFIX)/lib/$(notdir $(SOLIB))
@@ -353,6 +359,11 @@ example-only: $(BIN) $(LIB) $(SOLIB)
 	cd / && LD_LIBRARY_PATH=$(STAGE)/usr/local/lib $(abspath $(BUILD))/example
 	$(CXX) -std=c++17 -Wall -Wextra -Werror examples/cxx_link.cpp -o $(BUILD)/example-cxx $$($(STAGED_PC) --cflags --libs gomboc)
 	cd / && LD_LIBRARY_PATH=$(STAGE)/usr/local/lib $(abspath $(BUILD))/example-cxx
+	@case "$$($(STAGED_PC) --cflags gomboc)" in *cjson*|*gsl*) echo "example: a dependency's flags leak into --cflags"; exit 1;; esac
+	$(CC) -std=c11 -Wall -Wextra -Werror examples/contact_and_scene.c -o $(BUILD)/example-static $$($(STAGED_PC) --cflags gomboc) \
+	  $$($(STAGED_PC) --static --libs gomboc | sed 's|-lgomboc|-l:libgomboc.a|')
+	cd / && $(abspath $(BUILD))/example-static > /dev/null
+	@! readelf -d $(BUILD)/example-static | grep -q 'NEEDED.*libgomboc' || { echo "example: the static link took the shared library"; exit 1; }
 	@readelf -d $(BUILD)/example | grep -q 'NEEDED.*\[$(SONAME)\]' && readelf -d $(SOLIB) | grep -q 'SONAME.*\[$(SONAME)\]' \
 	  || { echo "example: not linked against $(SONAME)"; exit 1; }
 	@$(PYTHON) scripts/check_exports.py $(SOLIB) $(PUBLIC_HEADERS)
@@ -361,7 +372,7 @@ example-only: $(BIN) $(LIB) $(SOLIB)
 	  || { echo "example: the man page does not render without warnings"; exit 1; }
 	@$(MAKE) --no-print-directory uninstall DESTDIR=$(STAGE) PREFIX=/usr/local > /dev/null
 	@left=$$(find $(STAGE) -type f -o -type l); test -z "$$left" || { echo "uninstall left: $$left"; exit 1; }
-	@echo "example: built and run against the staged shared library (soname $(SONAME)); man page renders; uninstall leaves no file"
+	@echo "example: built and run against the staged shared library (soname $(SONAME)) and, through pkg-config --static, the static one; man page renders; uninstall leaves no file"
 
 # `make check` is `make verify`, by the usual name.
 check: verify
@@ -372,7 +383,9 @@ uninstall:
 	rm -f $(DESTDIR)$(PREFIX)/lib/$(notdir $(SOLIB)) $(DESTDIR)$(PREFIX)/lib/$(SONAME) $(DESTDIR)$(PREFIX)/lib/libgomboc.so
 	rm -f $(DESTDIR)$(PREFIX)/share/man/man1/gomboc.1
 	rm -f $(addprefix $(DESTDIR)$(PREFIX)/include/gomboc/,$(notdir $(PUBLIC_HEADERS)))
-	-rmdir $(DESTDIR)$(PREFIX)/include/gomboc 2>/dev/null
+	rm -f $(DESTDIR)$(PREFIX)/share/gomboc/scene-keys.md $(DESTDIR)$(PREFIX)/share/gomboc/outputs.md
+	rm -f $(addprefix $(DESTDIR)$(PREFIX)/share/gomboc/reports/,$(notdir $(SHARE_REPORTS)))
+	-rmdir $(DESTDIR)$(PREFIX)/include/gomboc $(DESTDIR)$(PREFIX)/share/gomboc/reports $(DESTDIR)$(PREFIX)/share/gomboc 2>/dev/null
 
 help:
 	@echo "make run          the default scenes (Table 1, both bodies) and their report: reports/out/runs.md"
