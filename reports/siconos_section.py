@@ -102,8 +102,9 @@ def siconos_section(out, rows):
             lines += ["![event times against Siconos](siconos-events.png)", ""]
     ensemble = [s for s in data["rows"] if s.get("kind") == "ensemble"]
     if ensemble:
-        lines += [f"Ensemble on Table 1's plane ({ensemble[0]['members']:.0f} members, 8 attitudes per body, 6 periods, "
-                  "paired):", "", "| statistic | gomboc | Siconos | paired difference ± standard error |", "|---|---|---|---|"]
+        lines += [f"Ensemble on Table 1's plane ({ensemble[0]['members']:.0f} members compared, "
+                  f"{ensemble[0].get('left_out', 0):.0f} left out for a failed solve in Siconos; random attitudes of both "
+                  "bodies, paired):", "", "| statistic | gomboc | Siconos | paired difference ± standard error |", "|---|---|---|---|"]
         for s in ensemble:
             lines.append(f"| {s['statistic'].replace('_', ' ')} | {s['gomboc']:.4g} | {s['siconos']:.4g} | "
                          f"{s['difference']:.3g} ± {s['standard_error']:.2g} |")

@@ -139,8 +139,7 @@ static void test_tetrahedron(void)
     int status = gb_mesh_read_buffer("tetra.off", (const unsigned char *)text, strlen(text), &mesh);
     if (!status) status = gb_polyhedron_from_mesh(&mesh, "tetra.off", &p);
     if (!status) status = gb_polyhedron_massprops(&p, 1.0, &m), gb_polyhedron_free(&p);
-    if (!mesh.vertices) memset(&mesh, 0, sizeof mesh);
-    gb_mesh_free(&mesh);
+    gb_mesh_free(&mesh); /* a failed read leaves it empty */
     gb_check cr = {"2", "-", "the right tetrahedron (0, e_x, e_y, e_z) read and its hull built", "the file", "exact"};
     if (!gb_check_true(&cr, !status, "%s", status ? gb_error_message() : "read")) return;
     /* rho = m/V = 6: about the origin I_xx = rho/30, I_xy = -rho/120; shifted to g = (1/4, 1/4, 1/4) */
@@ -231,7 +230,6 @@ static void test_bad_meshes(void)
         {"short.stl", "not a solid", "short.stl: a binary STL of 11 bytes"},
         {"cube.ply", "ply\n", "cube.ply: the mesh format is unknown"},
     };
-    int refused = 0;
     const int count = (int)(sizeof rows / sizeof rows[0]);
     for (int k = 0; k < count; k++) {
         gb_mesh mesh;
@@ -243,13 +241,11 @@ static void test_bad_meshes(void)
             gb_mesh_free(&mesh);
         }
         const int ok = status && strstr(gb_error_message(), rows[k].expect) && strstr(gb_error_message(), "allowed");
-        refused += ok;
         char quantity[160];
         snprintf(quantity, sizeof quantity, "a bad mesh '%s' is refused naming its line and what is allowed", rows[k].name);
         gb_check c = {"2", "-", quantity, rows[k].expect, "exact"};
         gb_check_true(&c, ok, "%s", status ? gb_error_message() : "accepted");
     }
-    (void)refused;
 }
 
 /* The faces a body rests on: every face of a cube and of a right tetrahedron; of a skew tetrahedron
