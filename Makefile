@@ -5,7 +5,7 @@
 PYTHON    := /usr/bin/python3
 BUILD     := build
 OUT       := reports/out
-PKGS      := gsl cunit inih libcjson qhull_r libsodium
+PKGS      := gsl cunit inih libcjson qhull_r libsodium libmatheval
 CC        ?= cc
 # Loops aligned to 64 bytes: make bench's reference, the paper's plain loop over the grid, is a 63-byte
 # loop that ran 37 % slower (18.5 against 13.7 us a query) when a change elsewhere in the library moved it
@@ -18,7 +18,7 @@ WARN      := -std=c11 -D_GNU_SOURCE -ffp-contract=off -Wall -Wextra $(WERROR)
 # library's scan runner uses POSIX threads (src/gb_scan_run.c says why).
 OPENMP    := $(shell echo 'int main(void){return 0;}' | $(CC) -fopenmp -x c - -o /dev/null 2>/dev/null && echo -fopenmp)
 ALL_CFLAGS = $(WARN) $(CPPFLAGS) $(CFLAGS) $(shell pkg-config --cflags $(PKGS)) -Isrc
-CORE_LIBS  = $(shell pkg-config --libs gsl libcjson inih qhull_r libsodium) -lpthread -lm
+CORE_LIBS  = $(shell pkg-config --libs gsl libcjson inih qhull_r libsodium libmatheval) -lpthread -lm
 TEST_LIBS  = $(shell pkg-config --libs cunit)
 
 CORE_SRC  := $(sort $(wildcard src/gb_*.c))
@@ -70,6 +70,9 @@ run: deps
 # The Table 1 scenes `make run` integrates, and the ones `make verify` adds (both readings of A1, A2,
 # and the harmonic benchmark, eq 94).
 RUN_SCENES    := table1-gomboc-I table1-gomboc-II
+# Bodies of one's own (cases/bodies/): a mesh's polyhedron rocking, tumbling and falling flat; `make run` runs
+# them too, and the shape study covers the body of every scene it runs.
+BODY_SCENES   := bodies/housner-block bodies/die-drop bodies/coin
 VERIFY_SCENES := $(RUN_SCENES) table1-gomboc-I-g-units table1-gomboc-II-g-units harmonic-gomboc-I harmonic-gomboc-II \
                  table1-gomboc-I-rolling table1-gomboc-II-rolling table1-gomboc-I-unilateral table1-gomboc-II-unilateral \
                  table1-gomboc-I-grid-unilateral table1-gomboc-II-grid-unilateral \
@@ -78,11 +81,13 @@ VERIFY_SCENES := $(RUN_SCENES) table1-gomboc-I-g-units table1-gomboc-II-g-units 
 
 run-only: $(BIN)
 	@mkdir -p $(OUT)
-	$(BIN) shape --morphology I --beta 0.12 --json --radial-map $(OUT)/radial-map-I.csv > $(OUT)/shape-I.json.tmp && mv $(OUT)/shape-I.json.tmp $(OUT)/shape-I.json
-	$(BIN) shape --morphology II --beta 0.12 --json --radial-map $(OUT)/radial-map-II.csv > $(OUT)/shape-II.json.tmp && mv $(OUT)/shape-II.json.tmp $(OUT)/shape-II.json
-	$(PYTHON) reports/shape_report.py $(OUT)
-	for s in $(RUN_SCENES); do $(BIN) run cases/$$s.ini --out $(OUT) || exit 1; done
-	$(PYTHON) reports/run_report.py $(OUT) $(RUN_SCENES)
+	for s in $(RUN_SCENES) $(BODY_SCENES); do n=$$(basename $$s); \
+	  map=$$(grep -q '^mesh *=' cases/$$s.ini || echo "--radial-map $(OUT)/radial-map-$$n.csv"); \
+	  $(BIN) shape --scene cases/$$s.ini --json $$map > $(OUT)/shape-$$n.json.tmp && mv $(OUT)/shape-$$n.json.tmp $(OUT)/shape-$$n.json \
+	  || exit 1; done
+	$(PYTHON) reports/shape_report.py $(OUT) $(notdir $(RUN_SCENES) $(BODY_SCENES))
+	for s in $(RUN_SCENES) $(BODY_SCENES); do $(BIN) run cases/$$s.ini --out $(OUT) || exit 1; done
+	$(PYTHON) reports/run_report.py $(OUT) $(notdir $(RUN_SCENES) $(BODY_SCENES))
 	@echo "run: reports written to $(OUT)/shape.md and $(OUT)/runs.md"
 
 # --- every check, then the reproducibility report
@@ -201,14 +206,15 @@ fuzz: deps
 	@sh scripts/install-deps.sh fuzz
 	@$(MAKE) --no-print-directory fuzz-only
 
-FUZZ_TARGETS := case options atlas hull scan journal mesh
+FUZZ_TARGETS := case options atlas hull scan journal mesh expression
 fuzz-only: $(FUZZ_TARGETS:%=$(FUZZ_DIR)/fuzz-%)
 	@mkdir -p $(FUZZ_TARGETS:%=$(FUZZ_DIR)/corpus-%)
 	@n=0; while IFS= read -r line; do n=$$((n+1)); printf '%s' "$$line" | tr ' ' '\000' > $(FUZZ_DIR)/corpus-options/seed-$$n; \
 	  done < verify/fuzz/options.seeds
 	@cp verify/fuzz/hull.seed $(FUZZ_DIR)/corpus-hull/seed
 	@cp verify/fuzz/mesh/* $(FUZZ_DIR)/corpus-mesh/
-	status=0; export GOMBOC_KEY=$(abspath $(FUZZ_DIR))/key; \
+	@cp verify/fuzz/expression/* $(FUZZ_DIR)/corpus-expression/
+	status=0; export GOMBOC_KEY=$(abspath $(FUZZ_DIR))/key LSAN_OPTIONS=suppressions=$(abspath verify/fuzz/lsan.supp); \
 	$(FUZZ_DIR)/fuzz-case -max_total_time=$(FUZZ_SECONDS) -dict=verify/fuzz/case.dict -close_fd_mask=3 \
 	  -artifact_prefix=$(FUZZ_DIR)/crash-case- $(FUZZ_DIR)/corpus-case cases > $(FUZZ_DIR)/fuzz-case.log 2>&1 || status=1; \
 	$(FUZZ_DIR)/fuzz-options -max_total_time=$(FUZZ_SECONDS) -dict=verify/fuzz/options.dict -close_fd_mask=3 \
@@ -223,13 +229,15 @@ fuzz-only: $(FUZZ_TARGETS:%=$(FUZZ_DIR)/fuzz-%)
 	  -artifact_prefix=$(FUZZ_DIR)/crash-journal- $(FUZZ_DIR)/corpus-journal > $(FUZZ_DIR)/fuzz-journal.log 2>&1 || status=1; \
 	$(FUZZ_DIR)/fuzz-mesh -max_total_time=$(FUZZ_SECONDS) -close_fd_mask=3 \
 	  -artifact_prefix=$(FUZZ_DIR)/crash-mesh- $(FUZZ_DIR)/corpus-mesh > $(FUZZ_DIR)/fuzz-mesh.log 2>&1 || status=1; \
+	$(FUZZ_DIR)/fuzz-expression -max_total_time=$(FUZZ_SECONDS) -close_fd_mask=3 \
+	  -artifact_prefix=$(FUZZ_DIR)/crash-expression- $(FUZZ_DIR)/corpus-expression > $(FUZZ_DIR)/fuzz-expression.log 2>&1 || status=1; \
 	runs="$$(grep -h '^Done' $(FUZZ_TARGETS:%=$(FUZZ_DIR)/fuzz-%.log) | tr '\n' ';')"; \
 	tail -n 3 $(FUZZ_TARGETS:%=$(FUZZ_DIR)/fuzz-%.log); \
-	sh scripts/gate-stamp.sh $(GATES) fuzz $$status "$(FUZZ_SECONDS) s per target (case reader; option parser; atlas file reader; hull file reader; scan file reader; scan journal reader; mesh reader): $$runs"; \
+	sh scripts/gate-stamp.sh $(GATES) fuzz $$status "$(FUZZ_SECONDS) s per target (case reader; option parser; atlas file reader; hull file reader; scan file reader; scan journal reader; mesh reader; body expressions): $$runs"; \
 	echo "fuzz: $$( [ $$status -eq 0 ] && echo 'no crash' || echo 'FAILED: see build-fuzz/*.log and build-fuzz/crash-*')"; \
 	exit $$status
 
-$(FUZZ_DIR)/fuzz-case $(FUZZ_DIR)/fuzz-atlas $(FUZZ_DIR)/fuzz-hull $(FUZZ_DIR)/fuzz-scan $(FUZZ_DIR)/fuzz-journal $(FUZZ_DIR)/fuzz-mesh: $(FUZZ_DIR)/fuzz-%: verify/fuzz/fuzz_%.c $(CORE_SRC) $(wildcard src/*.h verify/fuzz/*.h)
+$(FUZZ_DIR)/fuzz-case $(FUZZ_DIR)/fuzz-atlas $(FUZZ_DIR)/fuzz-hull $(FUZZ_DIR)/fuzz-scan $(FUZZ_DIR)/fuzz-journal $(FUZZ_DIR)/fuzz-mesh $(FUZZ_DIR)/fuzz-expression: $(FUZZ_DIR)/fuzz-%: verify/fuzz/fuzz_%.c $(CORE_SRC) $(wildcard src/*.h verify/fuzz/*.h)
 	@mkdir -p $(FUZZ_DIR)
 	clang $(FUZZ_CFLAGS) -fsanitize=fuzzer $(shell pkg-config --cflags $(PKGS)) -Isrc -o $@ $< $(CORE_SRC) $(CORE_LIBS)
 

@@ -50,8 +50,10 @@ def shape_summary_lines(shape):
         f"- minimum Gaussian curvature {shape['curvature_min']:.6f} at (φ, θ) = "
         f"({shape['curvature_min_at'][0]:.6f}, {shape['curvature_min_at'][1]:.6f}); "
         f"K < 0 on {100 * shape['negative_curvature_fraction']:.2f} % of the area",
-        f"- strictly convex only for β < {shape['convexity_beta_limit']:.10f}; convex at this β: "
-        f"**{'yes' if shape['convex'] else 'no'}**",
+        (f"- strictly convex only for β < {shape['convexity_beta_limit']:.10f}; convex at this β: "
+         if shape["convexity_beta_limit"] is not None else
+         f"- convexity limit in β not computed ({shape.get('convexity_beta_limit_note', '')}); convex at this β: ")
+        + f"**{'yes' if shape['convex'] else 'no'}**",
         f"- critical points of r: {eqs}",
         f"- convex hull ({hull['sample'][0]:.0f} × {hull['sample'][1]:.0f} sample, "
         f"{100 * hull['sampled_fraction_on_hull']:.1f} % of the sample on the hull): "

@@ -148,7 +148,7 @@ def lyapunov_figure(out, name, summary):
 
 def summary_lines(name, summary):
     scene, lines = summary["scene"], []
-    lines.append(f"### {scene['description']} (`cases/{name}.ini`)")
+    lines.append(f"### {scene['description']} (`{scene.get('file', f'cases/{name}.ini')}`)")
     lines.append("")
     lines.append("Scene as read: " + ", ".join(f"{k} = {v}" for k, v in scene.items() if k != "description") + ".")
     lines.append("")

@@ -1,6 +1,7 @@
 #!/usr/bin/python3
-"""The shape study of both Table 1 bodies (`make run`): Figure 1 and a summary, from the JSON and
-CSV that `gomboc shape` wrote into OUT. Recomputes no physics."""
+"""The shape study of the body of every scene `make run` runs: Figure 1 for the smooth bodies and a
+summary of each, from the JSON and CSV that `gomboc shape --scene` wrote into OUT (shape-SCENE.json,
+radial-map-SCENE.csv). Usage: shape_report.py OUT SCENE... Recomputes no physics."""
 import os
 import sys
 
@@ -13,8 +14,16 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from common import load_json, load_radial_map, save_figure, shape_summary_lines, write_atomically  # noqa: E402
 
 
+def body_name(shape):
+    """The paper's bodies by their morphology (Gömböc I), one's own by what defines them."""
+    if "mesh" in shape:
+        return f"the polyhedron of {os.path.basename(shape['mesh'])}"
+    m = shape["morphology"]
+    return f"Gömböc {m}" if m in ("I", "II") else m
+
+
 def figure_one(out, maps):
-    fig = plt.figure(figsize=(11, 8))
+    fig = plt.figure(figsize=(11, 4 * len(maps)))
     for row, (name, data) in enumerate(maps):
         shape = (90, 180)
         x, y, z, r = (np.array(data[k]).reshape(shape) for k in ("x", "y", "z", "r"))
@@ -25,7 +34,7 @@ def figure_one(out, maps):
         ax.set_xlabel("x [m]")
         ax.set_ylabel("y [m]")
         ax.set_zlabel("z [m]")
-        ax.set_title(f"Gömböc {name}: surface coloured by r")
+        ax.set_title(f"{name}: surface coloured by r", fontsize=9)
         scale = plt.cm.ScalarMappable(cmap="viridis", norm=plt.Normalize(r.min(), r.max()))
         fig.colorbar(scale, ax=ax, shrink=0.7, pad=0.1, label="r [m]")
         ax2 = fig.add_subplot(2, 2, 2 * row + 2)
@@ -34,23 +43,45 @@ def figure_one(out, maps):
         ax2.invert_yaxis()
         ax2.set_xlabel("θ [rad]")
         ax2.set_ylabel("φ [rad]")
-        ax2.set_title(f"Gömböc {name}: radial map r(φ, θ)")
+        ax2.set_title(f"{name}: radial map r(φ, θ)", fontsize=9)
         fig.colorbar(mesh, ax=ax2, label="r [m]")
     fig.subplots_adjust(hspace=0.35)
     save_figure(fig, os.path.join(out, "fig1-morphologies.png"))
     plt.close(fig)
 
 
+def mesh_summary_lines(shape):
+    """Markdown lines for a polyhedron's study (`gomboc shape --mesh` / `--scene` with a mesh)."""
+    return [
+        f"- {shape['format']} mesh of {shape['mesh_vertices']:.0f} vertices; convex hull of "
+        f"{shape['hull_vertices']:.0f} vertices and {shape['hull_triangles']:.0f} triangles",
+        f"- mass {shape['mass']:g} kg, volume {shape['volume']:.6g} m³ (divergence theorem, closed form)",
+        "- inertia about the centroid: " + "; ".join(
+            "[" + ", ".join(f"{v:.6g}" for v in row) + "]" for row in shape["inertia"]),
+        f"- rests stably on {shape['rest_face_count']:.0f} faces (the centroid over the face, clear of its edges)",
+    ]
+
+
 def main():
-    out = sys.argv[1]
-    shapes = [(name, load_json(os.path.join(out, f"shape-{name}.json"))) for name in ("I", "II")]
-    maps = [(name, load_radial_map(os.path.join(out, f"radial-map-{name}.csv"))) for name in ("I", "II")]
-    figure_one(out, maps)
-    lines = ["# Shape study of the two Table 1 bodies (β = {:g})".format(shapes[0][1]["beta"]), "",
-             "Written by `make run` from `gomboc shape --json` (reports/out/shape-I.json, shape-II.json).", "",
-             "![Figure 1](fig1-morphologies.png)", ""]
-    for name, shape in shapes:
-        lines += [f"## Gömböc {name}", ""] + shape_summary_lines(shape) + [""]
+    out, scenes = sys.argv[1], sys.argv[2:]
+    bodies = {}  # one entry a body: the scenes that use it, and its study
+    for scene in scenes:
+        shape = load_json(os.path.join(out, f"shape-{scene}.json"))
+        key = shape.get("mesh") or (shape["morphology"], shape["beta"])
+        bodies.setdefault(key, ([], shape, scene))[0].append(scene)
+    maps = [(body_name(shape), load_radial_map(os.path.join(out, f"radial-map-{first}.csv")))
+            for _, shape, first in bodies.values() if "mesh" not in shape]
+    if maps:
+        figure_one(out, maps)
+    lines = ["# Shape study of the bodies of the scenes `make run` runs", "",
+             "Written by `make run` from `gomboc shape --scene SCENE --json` (reports/out/shape-SCENE.json), one "
+             "body a section, with the scenes that use it.", ""]
+    if maps:
+        lines += ["![Figure 1](fig1-morphologies.png)", ""]
+    for users, shape, _ in bodies.values():
+        beta = "" if "mesh" in shape else f", β = {shape['beta']:g}"
+        lines += [f"## {body_name(shape)}{beta}", "", "Scenes: " + ", ".join(f"`{u}`" for u in users), ""]
+        lines += (mesh_summary_lines(shape) if "mesh" in shape else shape_summary_lines(shape)) + [""]
     write_atomically(os.path.join(out, "shape.md"), "\n".join(lines))
 
 

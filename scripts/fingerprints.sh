@@ -6,11 +6,12 @@ set -eu
 bin=${1:-build/gomboc}
 out=${2:-$(mktemp -d)}
 mkdir -p "$out"
-mkdir -p "$out/siconos"
-for scene in cases/*.ini cases/siconos/*.ini; do
+mkdir -p "$out/siconos" "$out/bodies"
+for scene in cases/*.ini cases/siconos/*.ini cases/bodies/*.ini; do
     name=$(basename "$scene" .ini)
     # cases/siconos/table1-gomboc-I.ini shares its name with cases/table1-gomboc-I.ini: its own directory
-    dir=$out; case "$scene" in cases/siconos/*) dir=$out/siconos; name=siconos/$name ;; esac
+    dir=$out; case "$scene" in cases/siconos/*) dir=$out/siconos; name=siconos/$name ;;
+                               cases/bodies/*) dir=$out/bodies; name=bodies/$name ;; esac
     if "$bin" run "$scene" --out "$dir" --json > "$out/$name.json" 2> "$out/$name.log"; then
         /usr/bin/python3 -c 'import json, sys
 d = json.load(open(sys.argv[1]))["fingerprint"]

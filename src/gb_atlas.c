@@ -369,6 +369,9 @@ void gb_atlas_faces_reset(gb_atlas *A)
 int gb_atlas_create(const gb_surface *surface, const gb_atlas_def *def, gb_atlas **out)
 {
     *out = NULL;
+    if (!surface->morphology->kernel_jet)
+        return gb_error_set(GB_EINVAL, "the body '%s' has no interval enclosure: no atlas can be proved for it (allowed: a "
+                            "morphology of the paper, I or II)", surface->morphology->name);
     if (!(def->height_tol >= 0.0 && def->height_tol <= 1e-3))
         return gb_error_set(GB_EDOM, "atlas height tolerance %g is out of range (allowed: [0, 1e-3])", def->height_tol);
     if (def->first_level < 0 || def->first_level > 20 || def->max_level < def->first_level || def->max_level > 20)

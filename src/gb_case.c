@@ -2,6 +2,7 @@
  * physical ranges, and the checks no single key can make (see gb_case.h). */
 #include "gb_case.h"
 
+#include "gb_body.h"
 #include "gb_error.h"
 #include "gb_file.h"
 #include "gb_impact.h"
@@ -115,6 +116,9 @@ static const key_def keys[] = {
     {"scene", "description", KEY_TEXT, 0, 0, 0, NULL, AT(description), NULL},
     NAME("body", "morphology", parse_morphology),
     REAL("body", "beta", 0.0, GB_SURFACE_BETA_MAX, OPEN_MAX, "(r^4 = 1 + 4 beta sin(phi) cos(chi) > 0)", body.beta),
+    {"body", "mesh", KEY_TEXT, 0, 0, 0, NULL, AT(mesh), NULL},
+    {"body", "r", KEY_TEXT, 0, 0, 0, NULL, AT(r_text), NULL},
+    {"body", "chi", KEY_TEXT, 0, 0, 0, NULL, AT(chi_text), NULL},
     REAL("body", "mass", 1e-6, 1e6, 0, "[kg]", dynamics.mass),
     REAL("forcing", "g", 0.0, 1000.0, 0, "[m/s2]", dynamics.forcing.g),
     REAL("forcing", "A1", -1000.0, 1000.0, 0, "[amplitude_units]", A1),
@@ -434,8 +438,66 @@ static int cross_fail(const char *path, const gb_case *c, const char *section, c
     return gb_error_set(GB_EDOM, "%s: [%s] %s (default)%s%s", path, section, key, joint, reason);
 }
 
+static int given(const gb_case *c, const char *section, const char *key)
+{
+    const int k = key_index(section, key);
+    return c->key_line[k] || c->key_origin[k];
+}
+
+void gb_case_mesh_path(const char *scene, const gb_case *c, char *out, size_t size)
+{
+    const char *slash = strrchr(scene, '/'), *mesh = c->mesh;
+    if (!mesh[0] || mesh[0] == '/' || !slash) snprintf(out, size, "%s", mesh);
+    else snprintf(out, size, "%.*s/%s", (int)(slash - scene), scene, mesh);
+}
+
+/* [body]: the paper's morphology, or a body of one's own (gb_body.h), made here once every key is read. */
+static int resolve_body(const char *path, gb_case *c)
+{
+    const int mesh = c->mesh[0] != 0, r = c->r_text[0] != 0, chi = c->chi_text[0] != 0;
+    const char *own = mesh ? "mesh" : r ? "r" : chi ? "chi" : NULL;
+    if (!own) return GB_OK;
+    if (mesh + r + chi > 1)
+        return cross_fail(path, c, "body", r && chi ? "chi" : own,
+                          "with [body] %s: a body is one of morphology, mesh, r and chi (allowed: one of them)",
+                          mesh && r ? "r" : mesh ? "chi" : "r");
+    if (given(c, "body", "morphology"))
+        return cross_fail(path, c, "body", own, "with [body] morphology: a body is one of morphology, mesh, r and chi "
+                                                "(allowed: one of them)");
+    if (mesh && given(c, "body", "beta"))
+        return cross_fail(path, c, "body", "beta", "with [body] mesh: a polyhedron has no beta (allowed: beta with "
+                                                   "morphology, r or chi)");
+    if (mesh && (given(c, "model", "grid") || given(c, "model", "nodes")))
+        return cross_fail(path, c, "model", given(c, "model", "grid") ? "grid" : "nodes",
+                          "with [body] mesh: a polyhedron's nodes are its hull's vertices (allowed: no grid or nodes key "
+                          "with a mesh)");
+    if (c->dynamics.contact == GB_CONTACT_MODEL_CONTINUOUS)
+        return cross_fail(path, c, "model", "contact",
+                          "= continuous with [body] %s: %s (allowed: grid or fast-grid with a body of one's own)", own,
+                          mesh ? "a polyhedron's contact is always a vertex, found exactly on its nodes"
+                               : "continuous contact is certified by interval enclosures, which no expression has here");
+    const int line = c->key_line[key_index("body", own)];
+    int status;
+    if (mesh) {
+        char file[2 * GB_CASE_TEXT_MAX + 8];
+        gb_case_mesh_path(path, c, file, sizeof file);
+        status = gb_body_mesh(file, &c->body);
+    } else {
+        status = gb_body_expression(r ? GB_BODY_RADIUS : GB_BODY_PHASE, r ? c->r_text : c->chi_text, c->body.beta, &c->body);
+    }
+    if (!status) return GB_OK;
+    char message[1024];
+    snprintf(message, sizeof message, "%s%s", gb_error_message(),
+             strstr(gb_error_message(), "allowed") ? "" : " (allowed: a readable OFF, OBJ or STL file, its path relative to the scene's folder)");
+    const int index = key_index("body", own);
+    if (c->key_origin[index]) return gb_error_set(GB_EINVAL, "%s: [body] %s: %s (in the scene %s)", c->key_origin[index], own, message, path);
+    return gb_error_set(GB_EINVAL, "%s:%d: [body] %s: %s", path, line, own, message);
+}
+
 static int cross_check(const char *path, gb_case *c)
 {
+    const int body = resolve_body(path, c);
+    if (body) return body;
     const double periods = c->integrate.periods;
     const size_t spp = c->integrate.steps_per_period;
     /* The grid contact is piecewise constant in the attitude: the right-hand side jumps whenever the

@@ -32,11 +32,14 @@ extern "C" {
 /* A scene file holds at most this many bytes; a text value at most GB_CASE_TEXT_MAX - 1. */
 #define GB_CASE_FILE_MAX (1 << 20)
 #define GB_CASE_TEXT_MAX 256
-#define GB_CASE_KEY_MAX 48
+#define GB_CASE_KEY_MAX 56
 
 typedef struct gb_case {
     char description[GB_CASE_TEXT_MAX];
-    gb_surface body;              /* [body] morphology and beta (eqs 3-9): one value, as every module takes it */
+    gb_surface body;              /* [body] morphology and beta (eqs 3-9), or a body of one's own (gb_body.h): one
+                                   * value, as every module takes it */
+    char mesh[GB_CASE_TEXT_MAX];  /* [body] mesh as written ("" when not given; relative to the scene's folder) */
+    char r_text[GB_CASE_TEXT_MAX], chi_text[GB_CASE_TEXT_MAX]; /* [body] r, chi as written ("": not given) */
     gb_dynamics_def dynamics;     /* forcing in m/s² after reading amplitude_units */
     int amplitudes_in_g;          /* 1 when A1, A2 were given in units of g (eq 61) */
     double A1, A2;                /* as written in the file */
@@ -81,6 +84,10 @@ typedef struct gb_case_override {
 GB_API int gb_case_load_with(const char *path, const gb_case_override *overrides, size_t count, gb_case *out);
 GB_API int gb_case_load_text_with(const char *name, const char *text, size_t size, const gb_case_override *overrides,
                                   size_t count, gb_case *out);
+
+/* The path of the scene's [body] mesh as the reader opened it: as written when absolute or when the scene's
+ * path has no folder, else in the scene's folder ("" when the scene has no mesh). */
+GB_API void gb_case_mesh_path(const char *scene_path, const gb_case *c, char *out, size_t size);
 
 /* The keys a scene may set: their count, and for key `index` its section, name and allowed values
  * in words (the text every error message and cases/README.md use). GB_EDOM past the last key. It

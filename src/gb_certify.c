@@ -623,6 +623,9 @@ static void restart_cache(gb_certify *c)
 int gb_certify_create(const gb_surface *surface, const gb_certify_def *def, gb_certify **out)
 {
     *out = NULL;
+    if (!surface->morphology->kernel_jet)
+        return gb_error_set(GB_EINVAL, "the body '%s' has no interval enclosure: it cannot be certified (allowed: a "
+                            "morphology of the paper, I or II)", surface->morphology->name);
     if (!(def->height_tol >= 0.0 && def->height_tol <= 1e-3))
         return gb_error_set(GB_EDOM, "certificate height tolerance %g is out of range (allowed: [0, 1e-3])", def->height_tol);
     if (def->max_depth < 0 || def->max_depth > 40)

@@ -3,6 +3,7 @@
 #include "gb_contact_internal.h"
 
 #include "gb_error.h"
+#include "gb_polyhedron.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -129,10 +130,14 @@ static int32_t patch_build(gb_contact_grid *g, uint32_t i0, uint32_t i1, uint32_
     return id;
 }
 
-int gb_contact_grid_create(const gb_surface *surface, const gb_contact_grid_def *def,
+int gb_contact_grid_create(const gb_surface *surface, const gb_contact_grid_def *grid_def,
                            gb_contact_grid **out)
 {
     *out = NULL;
+    const gb_polyhedron *poly = surface->morphology->polyhedron;
+    gb_contact_grid_def poly_def = *grid_def;
+    if (poly) poly_def.n_phi = 1, poly_def.n_theta = poly->vertex_count, poly_def.nodes = GB_CONTACT_NODES_CENTRED;
+    const gb_contact_grid_def *def = poly ? &poly_def : grid_def;
     const size_t min_phi = def->nodes == GB_CONTACT_NODES_LINSPACE ? 2 : 1;
     const size_t min_theta = def->nodes == GB_CONTACT_NODES_LINSPACE ? 3 : 2;
     if (!gb_contact_nodes_name(def->nodes)) {
@@ -164,7 +169,9 @@ int gb_contact_grid_create(const gb_surface *surface, const gb_contact_grid_def 
         return gb_error_set(GB_ENOMEM, "out of memory for a %zu x %zu contact grid", def->n_phi,
                             def->n_theta);
     }
-    for (size_t i = 0; i < def->n_phi; i++) {
+    if (poly) /* a polyhedron's nodes are its hull's vertices, one row (gb_body.h) */
+        memcpy(g->x, poly->vertices, 3 * g->size * sizeof *g->x);
+    for (size_t i = 0; !poly && i < def->n_phi; i++) {
         const double phi = node_phi(def, i);
         for (size_t j = 0; j < def->n_theta; j++)
             gb_surface_position(surface, phi, node_theta(def, j), g->x + 3 * (i * def->n_theta + j));
@@ -194,9 +201,15 @@ void gb_contact_grid_node(const gb_contact_grid *grid, size_t index, double *phi
                           double x[3])
 {
     const size_t i = index / grid->def.n_theta, j = index % grid->def.n_theta;
-    if (phi) *phi = node_phi(&grid->def, i);
-    if (theta) *theta = node_theta(&grid->def, j);
-    if (x) memcpy(x, grid->x + 3 * index, 3 * sizeof *x);
+    const double *p = grid->x + 3 * index;
+    if (grid->surface.morphology->polyhedron) { /* a vertex: the angles of its direction from the centroid */
+        if (phi) *phi = acos(fmax(-1.0, fmin(1.0, p[2] / gb_vec_norm(p))));
+        if (theta) *theta = atan2(p[1], p[0]) < 0.0 ? atan2(p[1], p[0]) + 2.0 * M_PI : atan2(p[1], p[0]);
+    } else {
+        if (phi) *phi = node_phi(&grid->def, i);
+        if (theta) *theta = node_theta(&grid->def, j);
+    }
+    if (x) memcpy(x, p, 3 * sizeof *x);
 }
 
 void gb_contact_grid_fill_node(const gb_contact_grid *grid, size_t index, double height, size_t visited,

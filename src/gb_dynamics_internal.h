@@ -8,6 +8,7 @@
  *                           observables and translation with its events and jumps), creation and start,
  *                           and every public call that goes to the current mode
  *   gb_dynamics_jumps.c     the jump maps at the events, each calling the generic impact law (gb_impact)
+ *   gb_dynamics_faces.c     a polyhedron's face landing flat: several nodes reaching the plane at once
  *   gb_dynamics_events.c    the events that end a mode: their functions (pending, gap)
  *   gb_dynamics_two_point.c the mode "rolling on two points" (the crease)
  *   gb_dynamics_rest.c      the mode "at rest on three points"
@@ -321,6 +322,11 @@ int gb_dyn_second_point(gb_dynamics *d, const double zb[3], gb_contact_point *q)
 /* The mode at state y: the points, σ and ω̇; with `forces`, the normal forces, the friction they need and
  * the balance too. */
 int gb_dyn_two_point_eval(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], gb_dyn_two_point *tp, int forces);
+
+/* A polyhedron's face landing flat while the body rolls on its edge PQ (gb_dynamics_faces.c): the third
+ * point R of the located event and the nodes tied with it; *handled 0 (nothing done) when no node ties. */
+int gb_dyn_face_landing(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const gb_dyn_two_point *tp,
+                        const gb_contact_point *third, int *handled);
 
 /* ---- flight (gb_dynamics_flight.c) ---------------------------------------------------------------- */
 

@@ -535,6 +535,9 @@ static int two_point_located(gb_dynamics *d, double t, double y[GB_STATE_SIZE], 
         }
         return gb_dyn_book(d, &e);
     }
+    int face = 0;
+    status = gb_dyn_face_landing(d, t, y, &tp, third, &face);
+    if (status || face) return status;
     const double L = d->def.length;
     const double points[3][3] = {{tp.rp[0], tp.rp[1], tp.rp[2]}, {tp.rq[0], tp.rq[1], tp.rq[2]},
                                  {L * third->rc[0], L * third->rc[1], L * third->rc[2]}};

@@ -1,5 +1,7 @@
 #include "gb_massprops.h"
 
+#include "gb_polyhedron.h"
+
 #include "gb_error.h"
 
 #include <gsl/gsl_errno.h>
@@ -96,6 +98,11 @@ int gb_massprops_compute(const gb_surface *surface, const gb_massprops_def *def,
                             "limit > 0 (got epsabs = %g, epsrel = %g, limit = %zu)",
                             def->epsabs, def->epsrel, def->limit);
     *out = (gb_massprops){0};
+    if (surface->morphology->polyhedron) { /* a mesh (gb_body.h): closed form; L the radius of the sphere of its volume */
+        const int status = gb_polyhedron_massprops(surface->morphology->polyhedron, def->mass, out);
+        if (!status) out->L = cbrt(3.0 * out->volume / (4.0 * M_PI)), out->L_err = out->L * out->volume_err / out->volume;
+        return status;
+    }
     int status;
     double first[3], first_err[3], second[3][3], second_err[3][3], l_sum, l_err;
     if ((status = surface_integral(surface, def, (integrand){3, -1, -1}, &out->volume,

@@ -8,8 +8,9 @@
 #include <string.h>
 
 /* Morphology I: χ₁ = θ − 5φ (eq 8); ∂φχ₁ = −5, ∂θχ₁ = 1 (eq 18). */
-static void phase_one(double phi, double theta, gb_phase_value *v)
+static void phase_one(const gb_morphology *self, double phi, double theta, gb_phase_value *v)
 {
+    (void)self;
     v->chi = theta - 5.0 * phi;
     v->chi_phi = -5.0;
     v->chi_theta = 1.0;
@@ -27,26 +28,30 @@ static void phase_two_at(double theta, double s, double c, gb_phase_value *v)
     v->chi_phitheta = v->chi_thetatheta = 0.0;
 }
 
-static void phase_two(double phi, double theta, gb_phase_value *v) { phase_two_at(theta, sin(phi), cos(phi), v); }
+static void phase_two(const gb_morphology *self, double phi, double theta, gb_phase_value *v)
+{
+    (void)self;
+    phase_two_at(theta, sin(phi), cos(phi), v);
+}
 
 /* The same with sin χ and cos χ from the sines and cosines of φ and θ, for gb_surface_eval: one
  * sincos of φ and one of θ serve u, the kernel and (for I) χ, by cos χ = cos θ cos f + sin θ sin f and
  * sin χ = sin θ cos f − cos θ sin f with χ = θ − f(φ). I: cos 5φ = T₅(cos φ), sin 5φ = sin φ U₄(cos φ)
  * (no trigonometric call); II: one sincos of f. */
-static void phase_one_eval(double phi, double theta, double sp, double cp, double st, double ct, gb_phase_value *v,
+static void phase_one_eval(const gb_morphology *self, double phi, double theta, double sp, double cp, double st, double ct, gb_phase_value *v,
                            double *sin_chi, double *cos_chi)
 {
-    phase_one(phi, theta, v);
+    phase_one(self, phi, theta, v);
     const double c2 = cp * cp;
     const double cf = cp * (5.0 + c2 * (-20.0 + 16.0 * c2)), sf = sp * (1.0 + c2 * (-12.0 + 16.0 * c2));
     *cos_chi = ct * cf + st * sf;
     *sin_chi = st * cf - ct * sf;
 }
 
-static void phase_two_eval(double phi, double theta, double sp, double cp, double st, double ct, gb_phase_value *v,
+static void phase_two_eval(const gb_morphology *self, double phi, double theta, double sp, double cp, double st, double ct, gb_phase_value *v,
                            double *sin_chi, double *cos_chi)
 {
-    (void)phi;
+    (void)self, (void)phi;
     phase_two_at(theta, sp, cp, v);
     double sf, cf;
     sincos(1.5 * M_PI * (cp - cp * cp * cp / 3.0), &sf, &cf); /* f, as phase_two_at subtracts it from θ */
@@ -82,9 +87,9 @@ static int kernel_jet_two(const gb_jet s[3], gb_jet *k)
  * of u by π about e_y; for II, (φ,θ) → (π−φ, −θ) keeps χ₂ (its φ-part is odd in cos φ) and rotates
  * u by π about e_x. Both axes pass through the minimum of sinφ cosχ (φ = π/2, χ = π). */
 static const gb_morphology morphologies[] = {
-    {"I", "theta - 5 phi", "3, 4, 8, 18", phase_one, phase_one_eval, kernel_jet_one, {0.0, -1.0, 0.0}},
+    {"I", "theta - 5 phi", "3, 4, 8, 18", phase_one, phase_one_eval, kernel_jet_one, {0.0, -1.0, 0.0}, NULL, NULL, NULL},
     {"II", "theta - (3 pi / 2)(cos phi - cos^3 phi / 3)", "5, 6, 9, 19", phase_two, phase_two_eval,
-     kernel_jet_two, {-1.0, 0.0, 0.0}},
+     kernel_jet_two, {-1.0, 0.0, 0.0}, NULL, NULL, NULL},
 };
 
 size_t gb_surface_morphology_count(void) { return sizeof morphologies / sizeof morphologies[0]; }
@@ -143,6 +148,10 @@ void gb_surface_normal(gb_surface_point *p)
     for (int i = 0; i < 3; i++) p->n_hat[i] = norm > 0.0 ? p->n[i] / norm : 0.0;
 }
 
+static void kernel_from_phase(double beta4, double sp, double cp, double sc, double cc, const gb_phase_value *v,
+                              gb_surface_point *p);
+static void surface_from_kernel(double sp, double cp, double st, double ct, gb_surface_point *p);
+
 void gb_surface_eval_jet(const gb_surface *surface, double phi, double theta, gb_surface_point *p)
 {
     const double beta4 = 4.0 * surface->beta;
@@ -150,11 +159,24 @@ void gb_surface_eval_jet(const gb_surface *surface, double phi, double theta, gb
     sincos(phi, &sp, &cp);
     sincos(theta, &st, &ct);
     gb_phase_value *v = &p->phase;
-    surface->morphology->phase_eval(phi, theta, sp, cp, st, ct, v, &sc, &cc);
-
     p->phi = phi;
     p->theta = theta;
-    /* Kernel and its derivatives (eqs 11, 13; second order by differentiating eq 13 again). */
+    if (surface->morphology->kernel) { /* a body given by r (gb_body.h): no phase */
+        double S[6];
+        memset(v, 0, sizeof *v);
+        surface->morphology->kernel(surface->morphology, surface->beta, phi, theta, S);
+        p->S = S[0], p->S_phi = S[1], p->S_theta = S[2], p->S_phiphi = S[3], p->S_phitheta = S[4], p->S_thetatheta = S[5];
+    } else {
+        surface->morphology->phase_eval(surface->morphology, phi, theta, sp, cp, st, ct, v, &sc, &cc);
+        kernel_from_phase(beta4, sp, cp, sc, cc, v, p);
+    }
+    surface_from_kernel(sp, cp, st, ct, p);
+}
+
+/* Kernel and its derivatives (eqs 11, 13; second order by differentiating eq 13 again). */
+static void kernel_from_phase(double beta4, double sp, double cp, double sc, double cc, const gb_phase_value *v,
+                              gb_surface_point *p)
+{
     p->S = 1.0 + beta4 * sp * cc;
     p->S_phi = beta4 * (cp * cc - sp * sc * v->chi_phi);
     p->S_theta = -beta4 * sp * sc * v->chi_theta;
@@ -163,7 +185,11 @@ void gb_surface_eval_jet(const gb_surface *surface, double phi, double theta, gb
     p->S_phitheta = beta4 * (-cp * sc * v->chi_theta - sp * cc * v->chi_phi * v->chi_theta -
                              sp * sc * v->chi_phitheta);
     p->S_thetatheta = -beta4 * sp * (cc * v->chi_theta * v->chi_theta + sc * v->chi_thetatheta);
+}
 
+/* r, u, x and their derivatives from the kernel's (eqs 1, 2, 10, 12, 14, 15). */
+static void surface_from_kernel(double sp, double cp, double st, double ct, gb_surface_point *p)
+{
     /* Radius (eq 12, 14): r_a = ¼ S^(-3/4) S_a, r_ab = ¼ S^(-3/4) S_ab − (3/16) S^(-7/4) S_a S_b. */
     p->r = sqrt(sqrt(p->S)); /* S^(1/4): two correctly rounded square roots, cheaper than pow */
     const double d1 = 0.25 * p->r / p->S;                 /* ¼ S^(-3/4) */
@@ -201,8 +227,13 @@ void gb_surface_eval_jet(const gb_surface *surface, double phi, double theta, gb
 
 double gb_surface_kernel(const gb_surface *surface, double phi, double theta)
 {
+    if (surface->morphology->kernel) {
+        double S[6];
+        surface->morphology->kernel(surface->morphology, surface->beta, phi, theta, S);
+        return S[0];
+    }
     gb_phase_value v;
-    surface->morphology->phase(phi, theta, &v);
+    surface->morphology->phase(surface->morphology, phi, theta, &v);
     return 1.0 + 4.0 * surface->beta * sin(phi) * cos(v.chi);
 }
 
@@ -220,8 +251,9 @@ void gb_surface_position(const gb_surface *surface, double phi, double theta, do
 
 double gb_surface_radius_dbeta(const gb_surface *surface, double phi, double theta)
 {
+    if (surface->morphology->kernel) return NAN; /* r given as an expression: β enters it as the user wrote it */
     gb_phase_value v;
-    surface->morphology->phase(phi, theta, &v);
+    surface->morphology->phase(surface->morphology, phi, theta, &v);
     const double S = 1.0 + 4.0 * surface->beta * sin(phi) * cos(v.chi);
     return sin(phi) * cos(v.chi) / pow(S, 0.75); /* eq 66 */
 }

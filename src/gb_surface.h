@@ -25,21 +25,34 @@ typedef struct gb_phase_value {
     double chi, chi_phi, chi_theta, chi_phiphi, chi_phitheta, chi_thetatheta;
 } gb_phase_value;
 
+struct gb_morphology;
+struct gb_polyhedron; /* gb_polyhedron.h */
+
 typedef struct gb_morphology {
-    const char *name;        /* "I", "II": the value a scene or the command names */
+    const char *name;        /* "I", "II": the value a scene or the command names; a body of one's own: its file
+                              * or expression (gb_body.h) */
     const char *chi_formula; /* the paper's χ, for reports */
-    const char *equations;   /* where the paper defines it */
-    void (*phase)(double phi, double theta, gb_phase_value *out);
+    const char *equations;   /* where the paper defines it ("" for a body of one's own) */
+    /* χ and its derivatives; `self` is this row (a body of one's own reads its expression from user) */
+    void (*phase)(const struct gb_morphology *self, double phi, double theta, gb_phase_value *out);
     /* The same and sin χ, cos χ, from sin and cos of φ and θ (gb_surface_eval's fast path). */
-    void (*phase_eval)(double phi, double theta, double sin_phi, double cos_phi, double sin_theta, double cos_theta,
-                       gb_phase_value *out, double *sin_chi, double *cos_chi);
+    void (*phase_eval)(const struct gb_morphology *self, double phi, double theta, double sin_phi, double cos_phi,
+                       double sin_theta, double cos_theta, gb_phase_value *out, double *sin_chi, double *cos_chi);
     /* sinφ cos χ as an interval jet of the unit direction s (for gb_surface_enclose); returns 1 when
-     * it is C² over the jet's box, 0 when its second derivatives hold the Hessian only where it exists. */
+     * it is C² over the jet's box, 0 when its second derivatives hold the Hessian only where it exists.
+     * NULL: no enclosure is known (a body given by an expression): the body is not certified. */
     int (*kernel_jet)(const struct gb_jet *s, struct gb_jet *out); /* s: three jets (gb_interval.h) */
     /* A unit vector on the body's two-fold rotation axis through the minimum of r (see
-     * gb_shape): the rotation by π about it maps the surface onto itself. */
+     * gb_shape): the rotation by π about it maps the surface onto itself; 0 when none is known. */
     double symmetry_axis[3];
+    /* A body given by r itself (gb_body.h): the kernel S = r⁴ and its derivatives S, S_φ, S_θ, S_φφ, S_φθ,
+     * S_θθ, in place of the phase (phase and phase_eval NULL). NULL for a body given by χ. */
+    void (*kernel)(const struct gb_morphology *self, double beta, double phi, double theta, double S[6]);
+    const void *user;                         /* a body of one's own: its expression (gb_body.c) */
+    const struct gb_polyhedron *polyhedron;   /* a convex polyhedron ([body] mesh): no phase; its hull's vertices,
+                                               * centred on the centroid, are the body's points (gb_body.h) */
 } gb_morphology;
+
 
 GB_API size_t gb_surface_morphology_count(void);
 GB_API const gb_morphology *gb_surface_morphology_at(size_t index);
@@ -54,6 +67,10 @@ typedef struct gb_surface {
     const gb_morphology *morphology;
     double beta;
 } gb_surface;
+
+/* 1 when the body is a convex polyhedron (a mesh: the grid contact models only, nodes = its vertices), 0 when
+ * it is r(φ, θ) of eq 12; the certificate needs kernel_jet as well. */
+static inline int gb_surface_is_polyhedron(const gb_surface *surface) { return surface->morphology->polyhedron != 0; }
 
 /* Fill `surface`; GB_EINVAL for an unknown morphology, GB_EDOM for β outside [0, 1/4). */
 GB_API int gb_surface_init(gb_surface *surface, const char *morphology, double beta);
@@ -78,7 +95,7 @@ GB_API double gb_surface_radius(const gb_surface *surface, double phi, double th
 GB_API void gb_surface_position(const gb_surface *surface, double phi, double theta, double x[3]);
 
 /* β-sensitivity at fixed (φ, θ): ∂r/∂β (eq 66), ∂x/∂β (eq 67), ∂h/∂β = z_bᵀ ∂x/∂β (eq 68). */
-GB_API double gb_surface_radius_dbeta(const gb_surface *surface, double phi, double theta);
+GB_API double gb_surface_radius_dbeta(const gb_surface *surface, double phi, double theta); /* NaN: r given by an expression */
 GB_API void gb_surface_position_dbeta(const gb_surface *surface, double phi, double theta, double dx[3]);
 GB_API double gb_surface_height_dbeta(const gb_surface *surface, double phi, double theta, const double zb[3]);
 

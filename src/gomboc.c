@@ -4,6 +4,8 @@
  * output included). */
 #include "gomboc_cli.h"
 
+#include "gb_body.h"
+
 #include "gb_error.h"
 #if defined(__has_include)
 #if __has_include("gomboc_version.h")
@@ -120,6 +122,7 @@ int gomboc_main(int argc, char **argv)
             const int status = stdout_written(name, commands[k].run(n, words));
             cli_attached_values(NULL, 0);
             free(words);
+            gb_body_release(); /* the bodies of one's own the command made */
             return status;
         }
     if (help) {

@@ -14,6 +14,7 @@
 #include "gb_massprops.h"
 #include "gb_mesh.h"
 #include "gb_polyhedron.h"
+#include "gb_body.h"
 #include "gb_shape.h"
 #include "gb_contact.h"
 #include "gb_certify.h"

@@ -89,11 +89,22 @@ static int impact_row(void *context, const gb_dynamics_impact *e)
     return bad ? gb_error_set(GB_EIO, "cannot write the impacts: %s", strerror(errno)) : GB_OK;
 }
 
-static cJSON *scene_json(const gb_case *c)
+static cJSON *scene_json(const gb_case *c, const char *path)
 {
     const gb_dynamics_def *d = &c->dynamics;
     cJSON *o = cJSON_CreateObject();
+    cJSON_AddStringToObject(o, "file", path);
     cJSON_AddStringToObject(o, "description", c->description);
+    /* the body: the paper's morphology, or one's own (its kind, and the mesh file as opened or the expression) */
+    cJSON_AddStringToObject(o, "body", c->mesh[0] ? "mesh" : c->r_text[0] ? "r" : c->chi_text[0] ? "chi" : "morphology");
+    if (c->mesh[0]) {
+        char mesh[1024];
+        gb_case_mesh_path(path, c, mesh, sizeof mesh);
+        cJSON_AddStringToObject(o, "mesh", mesh);
+    }
+    cJSON_AddStringToObject(o, "body_certificate", gb_surface_is_polyhedron(&c->body)   ? "exact"
+                                                   : c->body.morphology->kernel_jet ? "certified"
+                                                                                    : "not certified");
     cJSON_AddStringToObject(o, "morphology", c->body.morphology->name);
     cli_json_add(o, "beta", c->body.beta);
     cli_json_add(o, "mass", d->mass);
@@ -374,12 +385,12 @@ static void add_values(cJSON *object, const named_value *values, size_t count)
 
 /* The run's summary (NAME-summary.json) but for its list of files: the scene as read, the final state,
  * counts, residuals, fingerprints, and what the scene's model and diagnostics computed. */
-static cJSON *summary_json(const gb_case *scene, const gb_run_result *r, const windows *w, const char *state_print,
-                           const char *switch_print)
+static cJSON *summary_json(const gb_case *scene, const char *path, const gb_run_result *r, const windows *w,
+                           const char *state_print, const char *switch_print)
 {
     const gb_dynamics_observables *o = &r->final;
     cJSON *root = cJSON_CreateObject();
-    cJSON_AddItemToObject(root, "scene", scene_json(scene));
+    cJSON_AddItemToObject(root, "scene", scene_json(scene, path));
     cli_json_add(root, "t_end", r->t_end);
     cJSON_AddItemToObject(root, "quaternion", cli_json_vector(r->y + GB_STATE_Q, 4));
     cJSON_AddItemToObject(root, "omega", cli_json_vector(r->y + GB_STATE_OMEGA, 3));
@@ -571,7 +582,7 @@ int command_run(int argc, char **argv)
     snprintf(state_print, sizeof state_print, "%016llx", (unsigned long long)r.state_fingerprint);
     snprintf(switch_print, sizeof switch_print, "%016llx", (unsigned long long)r.switch_fingerprint);
     if (!status) {
-        root = summary_json(&scene, &r, &w, state_print, switch_print);
+        root = summary_json(&scene, case_path, &r, &w, state_print, switch_print);
         /* Exactly the files of this run (any other NAME-* output of an earlier run is removed), each
          * with its size and checksum: the summary is the set's manifest. */
         cJSON *list = cJSON_AddArrayToObject(root, "files");

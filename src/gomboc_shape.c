@@ -1,6 +1,8 @@
-/* gomboc shape — the body-level facts of paper §2 for one morphology and β. */
+/* gomboc shape — the body-level facts of paper §2 for one morphology and β, a mesh, or a scene's body. */
 #include "gomboc_cli.h"
 
+#include "gb_body.h"
+#include "gb_case.h"
 #include "gb_contact.h"
 #include "gb_error.h"
 #include "gb_massprops.h"
@@ -18,6 +20,7 @@ static const char *usage_shape =
     "usage: gomboc shape --morphology I|II --beta B [--mass M] [--json] [--radial-map FILE]\n"
     "                    [--grid-nodes FILE]\n"
     "       gomboc shape --mesh FILE [--mass M] [--json]\n"
+    "       gomboc shape --scene FILE [--json] [--radial-map FILE] [--grid-nodes FILE]\n"
     "\n"
     "  --morphology I|II  phase function chi: I is theta - 5 phi (eq 8), II is\n"
     "                     theta - (3 pi/2)(cos phi - cos^3 phi/3) (eq 9)\n"
@@ -29,6 +32,8 @@ static const char *usage_shape =
     "  --mesh FILE        instead of a morphology: a convex polyhedron from a mesh file (.off, .obj,\n"
     "                     .stl ASCII or binary), the hull of its vertices; prints its vertices and\n"
     "                     faces, volume, centroid, inertia and the faces it rests on stably\n"
+    "  --scene FILE       the body of a scene file ([body] morphology and beta, mesh, r or chi, and\n"
+    "                     mass): the study above for a smooth body, the --mesh study for a mesh\n"
     "  --grid-nodes FILE  also write the nodes of the scenes' default contact grid (90 x 180,\n"
     "                     nodes = centred) to the last bit, as CSV (columns index, phi, theta,\n"
     "                     x, y, z; body axes about the origin): the vertices of the grid\n"
@@ -98,6 +103,7 @@ typedef struct shape_study {
     gb_equilibria equilibria;
     gb_hull_equilibria hull;
     double beta_limit, limit_phi, limit_theta;
+    char limit_note[200]; /* why beta_limit is NaN */
     int convex, mono;
 } shape_study;
 
@@ -122,6 +128,7 @@ static cJSON *shape_json(const shape_study *st)
                           cli_json_vector((double[]){st->survey.kappa_min_phi, st->survey.kappa_min_theta}, 2));
     cli_json_add(root, "negative_curvature_fraction", st->survey.negative_fraction);
     cli_json_add(root, "convexity_beta_limit", st->beta_limit);
+    if (isnan(st->beta_limit)) cJSON_AddStringToObject(root, "convexity_beta_limit_note", st->limit_note);
     cJSON_AddItemToObject(root, "convexity_lost_at", cli_json_vector((double[]){st->limit_phi, st->limit_theta}, 2));
     cJSON_AddBoolToObject(root, "convex", st->convex);
     cJSON *eqs = cJSON_AddArrayToObject(root, "equilibria");
@@ -171,7 +178,8 @@ static void print_shape(const shape_study *st)
     printf("curvature min    K = %.10g at (phi, theta) = (%.8f, %.8f)\n", st->survey.K_min, st->survey.K_min_phi, st->survey.K_min_theta);
     printf("                 kappa_1 = %.10g at (%.8f, %.8f)\n", st->survey.kappa_min, st->survey.kappa_min_phi, st->survey.kappa_min_theta);
     printf("negative K       %.6f of the area\n", st->survey.negative_fraction);
-    printf("convex up to     beta = %.12g (lost at phi = %.8f, theta = %.8f)\n", st->beta_limit, st->limit_phi, st->limit_theta);
+    if (isnan(st->beta_limit)) printf("convex up to     (not computed: %s)\n", st->limit_note);
+    else printf("convex up to     beta = %.12g (lost at phi = %.8f, theta = %.8f)\n", st->beta_limit, st->limit_phi, st->limit_theta);
     printf("convex           %s\n", st->convex ? "yes" : "no");
     printf("critical points of r: %d stable, %d saddle, %d unstable (min |grad r| in polar caps %.3g)\n",
            st->equilibria.stable, st->equilibria.saddle, st->equilibria.unstable, st->equilibria.polar_gradient_min);
@@ -246,32 +254,35 @@ static int shape_mesh(const char *path, double mass, int json)
 
 int command_shape(int argc, char **argv)
 {
-    const char *radial_map = NULL, *grid_nodes = NULL, *mesh = NULL;
+    const char *radial_map = NULL, *grid_nodes = NULL, *mesh = NULL, *scene_path = NULL;
     double mass = 1.0;
-    int json = 0;
+    int json = 0, mass_given = 0;
     cli_body body = {NULL, NAN, 0};
-    static const char *const valued[] = {"--morphology", "--beta", "--mass", "--radial-map", "--grid-nodes", "--mesh", NULL};
+    static const char *const valued[] = {"--morphology", "--beta", "--mass", "--radial-map", "--grid-nodes", "--mesh", "--scene", NULL};
     for (int i = 0; i < argc; i++) {
         const char *opt = argv[i], *value = NULL;
         const int kind = cli_next_option("shape", argc, argv, &i, usage_shape, valued,
-                                         " (allowed: --morphology, --beta, --mass, --json, --radial-map, --grid-nodes, --mesh, --help)", &body, &json, &value);
+                                         " (allowed: --morphology, --beta, --mass, --json, --radial-map, --grid-nodes, --mesh, --scene, --help)", &body, &json, &value);
         if (kind != CLI_VALUE) {
             if (kind == CLI_NEXT) continue;
             return kind == CLI_HELP ? 0 : kind;
         }
         if (!strcmp(opt, "--mass")) {
+            mass_given = 1;
             if (cli_number("shape", "--mass", value, 1e-6, 1e6, 0, " (allowed: 1e-06 <= mass <= 1000000 [kg])", &mass))
                 return EXIT_INPUT;
         } else if (!strcmp(opt, "--radial-map")) {
             radial_map = value;
         } else if (!strcmp(opt, "--grid-nodes")) {
             grid_nodes = value;
+        } else if (!strcmp(opt, "--scene")) {
+            scene_path = value;
         } else {
             mesh = value;
         }
     }
     if (mesh) {
-        if (body.morphology || body.have_beta || radial_map || grid_nodes)
+        if (body.morphology || body.have_beta || radial_map || grid_nodes || scene_path)
             return cli_input_error("shape", "--mesh names the body: not with --morphology, --beta, --radial-map or --grid-nodes "
                                    "(allowed: --mesh FILE [--mass M] [--json])");
         const gb_file_use in[] = {GB_FILE_USE(mesh, "--mesh", GB_FILE_INPUT)};
@@ -279,15 +290,35 @@ int command_shape(int argc, char **argv)
         if (cli_parse_only) return 0;
         return shape_mesh(mesh, mass, json);
     }
-    if (cli_body_required("shape", &body)) return EXIT_INPUT;
+    gb_surface surface;
+    gb_case scene;
+    if (scene_path) {
+        if (body.morphology || body.have_beta || mass_given)
+            return cli_input_error("shape", "--scene names the body and its mass: not with --morphology, --beta, --mass or --mesh "
+                                   "(allowed: --scene FILE [--json] [--radial-map FILE] [--grid-nodes FILE])");
+        const gb_file_use in[] = {GB_FILE_USE(scene_path, "--scene", GB_FILE_INPUT)};
+        if (cli_files_check("shape", in, 1)) return EXIT_INPUT;
+        if (gb_case_load(scene_path, &scene)) return cli_input_error("shape", "--scene %s", gb_error_message());
+        mass = scene.dynamics.mass;
+        if (gb_surface_is_polyhedron(&scene.body)) {
+            if (radial_map || grid_nodes)
+                return cli_input_error("shape", "--scene %s has a mesh body: --radial-map and --grid-nodes are for a smooth "
+                                       "body (allowed: --scene FILE [--json] with a mesh)", scene_path);
+            if (cli_parse_only) return 0;
+            char file[1024];
+            gb_case_mesh_path(scene_path, &scene, file, sizeof file);
+            return shape_mesh(file, mass, json);
+        }
+        surface = scene.body;
+    } else if (cli_body_required("shape", &body)) {
+        return EXIT_INPUT;
+    }
     const gb_file_use uses[] = {GB_FILE_USE(radial_map, "--radial-map", GB_FILE_OUTPUT),
                                 GB_FILE_USE(grid_nodes, "--grid-nodes", GB_FILE_OUTPUT)};
     if (cli_files_check("shape", uses, 2)) return EXIT_INPUT;
     if (cli_parse_only) return 0;
-    const char *morphology = body.morphology;
-    const double beta = body.beta;
+    const double beta = scene_path ? surface.beta : body.beta;
 
-    gb_surface surface;
     gb_massprops props;
     gb_massprops_def mdef = gb_massprops_default_def();
     gb_shape_def sdef = gb_shape_default_def();
@@ -296,10 +327,23 @@ int command_shape(int argc, char **argv)
     gb_hull_equilibria hull;
     double beta_limit, limit_phi, limit_theta;
     mdef.mass = mass;
-    int status = gb_surface_init(&surface, morphology, beta);
+    char limit_note[200] = "";
+    int status = scene_path ? GB_OK : gb_surface_init(&surface, body.morphology, beta);
     if (!status) status = gb_massprops_compute(&surface, &mdef, &props);
     if (!status) status = gb_shape_curvature_survey(&surface, &sdef, &survey);
-    if (!status) status = gb_shape_convexity_limit(surface.morphology, &sdef, &beta_limit, &limit_phi, &limit_theta);
+    if (!status && gb_body_is_own(&surface) && gb_body_names_beta(&surface) && surface.morphology->phase) {
+        /* chi(beta) is fixed at the scene's beta in its row: the family in beta is not the one chi names */
+        beta_limit = limit_phi = limit_theta = NAN;
+        snprintf(limit_note, sizeof limit_note, "chi names beta, so the family in beta is not r^4 = 1 + 4 beta sin(phi) cos(chi)");
+    } else if (!status) {
+        status = gb_shape_convexity_limit(surface.morphology, &sdef, &beta_limit, &limit_phi, &limit_theta);
+        if (status && gb_body_is_own(&surface)) { /* a body of one's own need not lose convexity in [0, 1/4) */
+            snprintf(limit_note, sizeof limit_note, "%s", gb_error_message());
+            gb_error_clear();
+            beta_limit = limit_phi = limit_theta = NAN;
+            status = GB_OK;
+        }
+    }
     if (!status) status = gb_shape_equilibria(&surface, &sdef, &equilibria);
     if (!status) status = gb_shape_hull_equilibria(&surface, &sdef, &hull);
     if (!status && radial_map) status = write_radial_map(&surface, radial_map);
@@ -308,6 +352,7 @@ int command_shape(int argc, char **argv)
     shape_study study = {.surface = surface, .beta = beta, .mass = mass, .props = props, .sdef = sdef, .survey = survey,
                          .equilibria = equilibria, .hull = hull, .beta_limit = beta_limit, .limit_phi = limit_phi,
                          .limit_theta = limit_theta};
+    snprintf(study.limit_note, sizeof study.limit_note, "%s", limit_note);
     study.convex = survey.kappa_min > 0.0;
     study.mono = study.convex ? equilibria.stable == 1 && equilibria.unstable == 1 : hull.stable == 1 && hull.unstable == 1;
     cJSON *root = shape_json(&study);

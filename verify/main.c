@@ -1,5 +1,6 @@
 /* The verification harness: every check of every section runs; the process exits non-zero when any
  * failed. CUnit's run summary goes to standard output; the rows go to --results for the report. */
+#include "gb_body.h"
 #include "gb_check.h"
 #include "gb_error.h"
 #include "verify_sections.h"
@@ -53,7 +54,7 @@ int main(int argc, char **argv)
     setenv("GOMBOC_KEY", key, 1);
     if (CU_initialize_registry() != CUE_SUCCESS) return 1;
     if (verify_register_s0_verdicts() || verify_register_s2_surface() || verify_register_s2_massprops() ||
-        verify_register_s2_shape() || verify_register_s2_polyhedron() || verify_register_s4_contact() || verify_register_s4_certify() || verify_register_s4_atlas() ||
+        verify_register_s2_shape() || verify_register_s2_polyhedron() || verify_register_s2_bodies() || verify_register_s4_contact() || verify_register_s4_certify() || verify_register_s4_atlas() ||
         verify_register_s5_dynamics() || verify_register_s5_impact() || verify_register_s5_flight() || verify_register_s5_friction() || verify_register_s6_chaos() || verify_register_s6_diagnostics() ||
         verify_register_s7_melnikov() || verify_register_s8_scan() || verify_register_siconos() ||
         verify_register_command() || verify_register_bad_input()) {
@@ -76,6 +77,7 @@ int main(int argc, char **argv)
     const unsigned failures = CU_get_number_of_failures() + CU_get_number_of_tests_failed();
     const int write_failed = gb_check_write(results);
     CU_cleanup_registry();
+    gb_body_release(); /* the bodies of one's own the checks made */
     printf("\n");
     return failures || write_failed ? 1 : 0;
 }

@@ -236,8 +236,8 @@ static void test_eq7_sphere_and_phase_only(void)
             gb_surface_direction(phi, theta, u);
             for (int k = 0; k < 3; k++) worst_sphere = fmax(worst_sphere, fabs(x[k] - u[k]));
             gb_phase_value v1, v2;
-            one.morphology->phase(phi, theta, &v1);
-            two.morphology->phase(phi, 0.0, &v2);
+            one.morphology->phase(one.morphology, phi, theta, &v1);
+            two.morphology->phase(two.morphology, phi, 0.0, &v2);
             const double theta_two = v1.chi - v2.chi; /* χ_II(φ, θ') = θ' + χ_II(φ, 0) */
             worst_phase = fmax(worst_phase, fabs(gb_surface_radius(&one, phi, theta) - gb_surface_radius(&two, phi, theta_two)));
         }

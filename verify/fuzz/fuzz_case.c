@@ -2,6 +2,7 @@
  *
  * Beyond not crashing (ASan, UBSan), a scene the reader accepts must lie inside every range the
  * reader documents: a value that slipped past its check is a misread, and aborts here. */
+#include "gb_body.h"
 #include "gb_case.h"
 #include "gb_error.h"
 
@@ -20,6 +21,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     gb_case c;
     if (gb_case_load_text("fuzz.ini", (const char *)data, size, &c) != GB_OK) {
         require(gb_error_message()[0] != '\0'); /* every refusal says why */
+        gb_body_release();
         return 0;
     }
     const gb_dynamics_def *d = &c.dynamics;
@@ -36,5 +38,6 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     for (int k = 0; k < 9; k++) require(isfinite(c.attitude[k]));
     require(memchr(c.description, '\0', sizeof c.description) != NULL);
     for (const unsigned char *p = (const unsigned char *)c.description; *p; p++) require((*p >= 0x20 || *p == '\t') && *p != 0x7F);
+    gb_body_release(); /* a body of one's own the scene made (mesh, expression): not kept from input to input */
     return 0;
 }

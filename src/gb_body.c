@@ -1,0 +1,298 @@
+/* gb_body — bodies of one's own as morphology rows made at run time (see gb_body.h). */
+#include "gb_body.h"
+
+#include "gb_error.h"
+#include "gb_file.h"
+#include "gb_massprops.h"
+#include "gb_mesh.h"
+#include "gb_polyhedron.h"
+#include "gb_surface_internal.h"
+
+#include <math.h>
+#include <matheval.h>
+#include <pthread.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* An expression and its symbolic derivatives: value, ∂φ, ∂θ, ∂φφ, ∂φθ, ∂θθ. */
+enum { DERIVATIVES = 6 };
+
+typedef struct own_body {
+    gb_morphology row;
+    char *name;         /* the row's name: "mesh FILE", "r = EXPR", "chi = EXPR" */
+    unsigned char *key; /* what makes it this body: the mesh file's bytes, or the kind and the expression */
+    size_t key_size;
+    gb_polyhedron polyhedron; /* a mesh */
+    void *eval[DERIVATIVES];  /* an expression */
+    struct own_body *next;
+} own_body;
+
+static own_body *bodies;
+/* libmatheval's parser and evaluators keep state of their own: one lock for every call into it and for the
+ * list of rows. */
+static pthread_mutex_t lock = PTHREAD_MUTEX_INITIALIZER;
+
+static void body_free(own_body *b)
+{
+    for (int k = 0; k < DERIVATIVES; k++)
+        if (b->eval[k]) evaluator_destroy(b->eval[k]);
+    gb_polyhedron_free(&b->polyhedron);
+    free(b->name);
+    free(b->key);
+    free(b);
+}
+
+void gb_body_release(void)
+{
+    pthread_mutex_lock(&lock);
+    while (bodies) {
+        own_body *next = bodies->next;
+        body_free(bodies);
+        bodies = next;
+    }
+    pthread_mutex_unlock(&lock);
+}
+
+static const own_body *own_of(const gb_surface *surface)
+{
+    for (const own_body *b = bodies; b; b = b->next)
+        if (&b->row == surface->morphology) return b;
+    return NULL;
+}
+
+int gb_body_is_own(const gb_surface *surface)
+{
+    pthread_mutex_lock(&lock);
+    const int own = own_of(surface) != NULL;
+    pthread_mutex_unlock(&lock);
+    return own;
+}
+
+int gb_body_names_beta(const gb_surface *surface)
+{
+    pthread_mutex_lock(&lock);
+    const own_body *b = own_of(surface);
+    int names = 0;
+    if (b && b->eval[0]) {
+        char **names_list;
+        int count;
+        evaluator_get_variables(b->eval[0], &names_list, &count);
+        for (int k = 0; k < count; k++) names |= !strcmp(names_list[k], "beta");
+    }
+    pthread_mutex_unlock(&lock);
+    return names;
+}
+
+const gb_polyhedron *gb_body_polyhedron(const gb_surface *surface) { return surface->morphology->polyhedron; }
+
+/* The row already made for this key (under the lock), or NULL. */
+static own_body *find_key(const unsigned char *key, size_t size)
+{
+    for (own_body *b = bodies; b; b = b->next)
+        if (b->key_size == size && !memcmp(b->key, key, size)) return b;
+    return NULL;
+}
+
+/* ---- a polyhedron ------------------------------------------------------------------------------- */
+
+int gb_body_mesh(const char *path, gb_surface *out)
+{
+    char *data;
+    size_t size;
+    int status = gb_file_read(path, (size_t)1 << 30, "mesh file", "an OFF, OBJ or STL file", &data, &size);
+    if (status) return status;
+    pthread_mutex_lock(&lock);
+    own_body *b = find_key((const unsigned char *)data, size);
+    if (b) {
+        free(data);
+        pthread_mutex_unlock(&lock);
+        *out = (gb_surface){&b->row, 0.0};
+        return GB_OK;
+    }
+    b = calloc(1, sizeof *b);
+    gb_mesh mesh;
+    status = b ? gb_mesh_read_buffer(path, (const unsigned char *)data, size, &mesh) : gb_error_set(GB_ENOMEM, "out of memory for a body");
+    if (!status) {
+        status = gb_polyhedron_from_mesh(&mesh, path, &b->polyhedron);
+        gb_mesh_free(&mesh);
+    }
+    gb_massprops props;
+    if (!status) status = gb_polyhedron_massprops(&b->polyhedron, 1.0, &props);
+    if (!status) { /* about the centroid: the dynamics take body points relative to it */
+        for (size_t k = 0; k < b->polyhedron.vertex_count; k++)
+            for (int i = 0; i < 3; i++) b->polyhedron.vertices[3 * k + i] -= props.centroid[i];
+        const size_t n = strlen(path) + 6;
+        b->name = malloc(n);
+        if (!b->name) status = gb_error_set(GB_ENOMEM, "out of memory for a body");
+        else snprintf(b->name, n, "mesh %s", path);
+    }
+    if (status) {
+        free(data);
+        if (b) body_free(b);
+        pthread_mutex_unlock(&lock);
+        return status;
+    }
+    b->key = (unsigned char *)data, b->key_size = size;
+    b->row = (gb_morphology){.name = b->name, .chi_formula = "(a convex polyhedron)", .equations = "",
+                             .polyhedron = &b->polyhedron};
+    b->next = bodies, bodies = b;
+    pthread_mutex_unlock(&lock);
+    *out = (gb_surface){&b->row, 0.0};
+    return GB_OK;
+}
+
+/* ---- an expression ------------------------------------------------------------------------------ */
+
+static double evaluate(const own_body *b, int k, double beta, double phi, double theta)
+{
+    static char *names[] = {"phi", "theta", "beta"};
+    double values[3] = {phi, theta, beta};
+    return evaluator_evaluate(b->eval[k], 3, names, values);
+}
+
+/* All six at once (under the lock). */
+static void evaluate_all(const own_body *b, double beta, double phi, double theta, double v[DERIVATIVES])
+{
+    pthread_mutex_lock(&lock);
+    for (int k = 0; k < DERIVATIVES; k++) v[k] = evaluate(b, k, beta, phi, theta);
+    pthread_mutex_unlock(&lock);
+}
+
+static void phase_expression(const gb_morphology *self, double phi, double theta, gb_phase_value *out)
+{
+    double v[DERIVATIVES];
+    /* the surface carries β; a phase of β alone is read at the β the row was made for (user holds it) */
+    evaluate_all(self->user, ((const double *)((const own_body *)self->user)->key)[0], phi, theta, v);
+    *out = (gb_phase_value){v[0], v[1], v[2], v[3], v[4], v[5]};
+}
+
+static void phase_expression_eval(const gb_morphology *self, double phi, double theta, double sp, double cp, double st,
+                                  double ct, gb_phase_value *out, double *sin_chi, double *cos_chi)
+{
+    (void)sp, (void)cp, (void)st, (void)ct;
+    phase_expression(self, phi, theta, out);
+    sincos(out->chi, sin_chi, cos_chi);
+}
+
+/* S = r⁴: S_a = 4r³ r_a, S_ab = 4r³ r_ab + 12 r² r_a r_b. */
+static void kernel_expression(const gb_morphology *self, double beta, double phi, double theta, double S[6])
+{
+    double v[DERIVATIVES];
+    evaluate_all(self->user, beta, phi, theta, v);
+    const double r = v[0], r2 = r * r, r3 = r2 * r;
+    S[0] = copysign(r2 * r2, r); /* r < 0 is no body: S < 0 keeps the sign, so check_surface refuses it */
+    S[1] = 4.0 * r3 * v[1], S[2] = 4.0 * r3 * v[2];
+    S[3] = 4.0 * r3 * v[3] + 12.0 * r2 * v[1] * v[1];
+    S[4] = 4.0 * r3 * v[4] + 12.0 * r2 * v[1] * v[2];
+    S[5] = 4.0 * r3 * v[5] + 12.0 * r2 * v[2] * v[2];
+}
+
+/* Parse `text` and differentiate it (under the lock). GB_EINVAL naming what is wrong. */
+static int parse(own_body *b, const char *what, const char *text)
+{
+    char *copy = strdup(text);
+    if (!copy) return gb_error_set(GB_ENOMEM, "out of memory for an expression");
+    b->eval[0] = evaluator_create(copy);
+    free(copy);
+    if (!b->eval[0])
+        return gb_error_set(GB_EINVAL, "%s = %s does not parse (allowed: an expression in phi, theta, beta with + - * / ^, "
+                                       "pi, e and libmatheval's functions: sin, cos, tan, exp, log, sqrt, abs, ...)", what, text);
+    char **names;
+    int count;
+    evaluator_get_variables(b->eval[0], &names, &count);
+    for (int k = 0; k < count; k++)
+        if (strcmp(names[k], "phi") && strcmp(names[k], "theta") && strcmp(names[k], "beta"))
+            return gb_error_set(GB_EINVAL, "%s = %s names '%s', which is unknown (allowed: phi, theta, beta, pi, e)", what, text,
+                                names[k]);
+    char *phi = "phi", *theta = "theta";
+    b->eval[1] = evaluator_derivative(b->eval[0], phi);
+    b->eval[2] = evaluator_derivative(b->eval[0], theta);
+    if (b->eval[1]) b->eval[3] = evaluator_derivative(b->eval[1], phi);
+    if (b->eval[1]) b->eval[4] = evaluator_derivative(b->eval[1], theta);
+    if (b->eval[2]) b->eval[5] = evaluator_derivative(b->eval[2], theta);
+    for (int k = 1; k < DERIVATIVES; k++)
+        if (!b->eval[k]) return gb_error_set(GB_EINVAL, "%s = %s has no symbolic derivative in libmatheval", what, text);
+    return GB_OK;
+}
+
+/* Every value on a 180 × 360 grid of directions and at the poles finite, r > 0, one r at each pole, and r
+ * periodic in θ (rows at θ = 0 and 2π), to 1e-9 relative: else GB_EDOM naming the first direction that fails. */
+static int check_surface(const gb_surface *s, const char *what, const char *text)
+{
+    enum { NP = 180, NT = 360 };
+    const double tol = 1e-9;
+    for (int i = 0; i <= NP; i++) {
+        const double phi = M_PI * i / NP;
+        const double r_start = gb_surface_radius(s, phi, 0.0);
+        for (int j = 0; j <= NT; j++) {
+            const double theta = 2.0 * M_PI * j / NT;
+            gb_surface_point p;
+            gb_surface_eval_jet(s, phi, theta, &p);
+            if (p.S <= 0.0) /* r ≤ 0 (a NaN S is not finite, below) */
+                return gb_error_set(GB_EDOM, "%s = %s makes r <= 0 at phi = %.6g, theta = %.6g (allowed: r > 0 on the whole "
+                                             "sphere)", what, text, phi, theta);
+            const double d[] = {p.S, p.S_phi, p.S_theta, p.S_phiphi, p.S_phitheta, p.S_thetatheta, p.r};
+            for (size_t k = 0; k < sizeof d / sizeof d[0]; k++)
+                if (!isfinite(d[k]))
+                    return gb_error_set(GB_EDOM, "%s = %s is not finite at phi = %.6g, theta = %.6g (it or a derivative; "
+                                                 "allowed: a smooth, finite body on the whole sphere)", what, text, phi, theta);
+            const int pole = i == 0 || i == NP, end = j == NT;
+            if ((pole || end) && fabs(p.r - r_start) > tol * fabs(r_start))
+                return gb_error_set(GB_EDOM, "%s = %s is not one surface: r = %.17g at phi = %.6g, theta = %.6g but %.17g at "
+                                             "theta = 0 (allowed: one r at each pole, r periodic in theta with period 2 pi)",
+                                    what, text, p.r, phi, theta, r_start);
+        }
+    }
+    return GB_OK;
+}
+
+int gb_body_expression(gb_body_expression_kind kind, const char *text, double beta, gb_surface *out)
+{
+    const char *what = kind == GB_BODY_RADIUS ? "r" : "chi";
+    if (!(beta >= 0.0 && beta < GB_SURFACE_BETA_MAX) && kind == GB_BODY_PHASE)
+        return gb_error_set(GB_EDOM, "beta = %.17g is outside [0, 0.25) (allowed: r^4 = 1 + 4 beta sin(phi) cos(chi) > 0)", beta);
+    /* the key: β, the kind and the text (a phase reads β from it) */
+    const size_t len = strlen(text), size = sizeof(double) + 1 + len;
+    unsigned char *key = malloc(size);
+    if (!key) return gb_error_set(GB_ENOMEM, "out of memory for a body");
+    memcpy(key, &beta, sizeof beta);
+    key[sizeof beta] = (unsigned char)kind;
+    memcpy(key + sizeof beta + 1, text, len);
+    pthread_mutex_lock(&lock);
+    own_body *b = find_key(key, size);
+    if (b) {
+        free(key);
+        pthread_mutex_unlock(&lock);
+        *out = (gb_surface){&b->row, beta};
+        return GB_OK;
+    }
+    b = calloc(1, sizeof *b);
+    int status = b ? parse(b, what, text) : gb_error_set(GB_ENOMEM, "out of memory for a body");
+    if (!status) {
+        const size_t n = len + 8;
+        b->name = malloc(n);
+        if (!b->name) status = gb_error_set(GB_ENOMEM, "out of memory for a body");
+        else snprintf(b->name, n, "%s = %s", what, text);
+    }
+    if (status) {
+        free(key);
+        if (b) body_free(b);
+        pthread_mutex_unlock(&lock);
+        return status;
+    }
+    b->key = key, b->key_size = size;
+    b->row = (gb_morphology){.name = b->name, .chi_formula = kind == GB_BODY_PHASE ? b->name + 6 : "(r given)", .equations = "",
+                             .user = b};
+    if (kind == GB_BODY_PHASE) b->row.phase = phase_expression, b->row.phase_eval = phase_expression_eval;
+    else b->row.kernel = kernel_expression;
+    pthread_mutex_unlock(&lock);
+    const gb_surface s = {&b->row, beta};
+    status = check_surface(&s, what, text); /* evaluates under the lock, call by call */
+    pthread_mutex_lock(&lock);
+    if (status) body_free(b);
+    else b->next = bodies, bodies = b;
+    pthread_mutex_unlock(&lock);
+    if (!status) *out = s;
+    return status;
+}

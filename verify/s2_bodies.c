@@ -1,0 +1,443 @@
+/* Bodies of one's own as scenes: a mesh's polyhedron rocking, tumbling and falling flat under the unilateral
+ * law, and smooth bodies given by expressions, against closed forms and against the paper's own bodies.
+ *
+ * - Housner's block (cases/bodies/housner-block.ini): at every impact the angular velocity keeps its axis
+ *   and shrinks by 1 − (3/2) sin²α (angular momentum about the landing edge conserved, Housner 1963); each
+ *   half-cycle between impacts lasts what the energy integral of the rocking equation gives,
+ *   t = ∫ dθ / √((2 m g R / I_O)(cos(α − θ_m) − cos(α − θ))) (GSL's adaptive quadrature, the root singularity
+ *   removed by θ = θ_m − u²), with the amplitude θ_m from the speed after the impact; the speed before the
+ *   next impact is the speed after this one (no damping).
+ * - a die dropped on a table (cases/bodies/die-drop.ini) comes to rest on a face gb_polyhedron_rest_faces
+ *   lists, its centroid the half side above the plane, ω = 0;
+ * - a coin leaning on its rim edge (cases/bodies/coin.ini) falls flat: its 64-vertex face lands at once and
+ *   the body stops, its centroid the half thickness above the plane;
+ * - the paper's χ₁ and χ₂ given as [body] chi expressions (GNU libmatheval) make the same body: the same mass
+ *   properties and grid nodes bit for bit, and Table 1's grid scenes end in the same fingerprint; r given as
+ *   an expression (r = S^(1/4) written out) makes the same body to rounding (its mass properties to 1e-13);
+ * - every distinct body the shipped scenes name is a closed surface: its critical points of r obey
+ *   Poincare-Hopf (stable - saddle + unstable = 2), a polyhedron's hull Euler's formula (V - E + F = 2) with
+ *   at least one stable rest face;
+ * - a scene with a bad body of its own is refused, naming the scene's line and the mesh's line or the
+ *   expression's fault. */
+#include "gb_body.h"
+#include "gb_case.h"
+#include "gb_check.h"
+#include "gb_contact.h"
+#include "gb_error.h"
+#include "gb_massprops.h"
+#include "gb_polyhedron.h"
+#include "gb_run.h"
+#include "verify_sections.h"
+
+#include "gb_shape.h"
+
+#include <dirent.h>
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_integration.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+enum { MAX_IMPACTS = 64 };
+
+typedef struct impacts {
+    size_t count;
+    gb_dynamics_impact e[MAX_IMPACTS];
+} impacts;
+
+static int on_impact(void *context, const gb_dynamics_impact *impact)
+{
+    impacts *list = context;
+    if (list->count < MAX_IMPACTS) list->e[list->count++] = *impact;
+    return 0;
+}
+
+/* Load the scene at `path` with its text edited: each edits[k][0] (first occurrence) replaced by edits[k][1]. */
+static int load_edited(const char *path, const char *const (*edits)[2], size_t count, gb_case *scene)
+{
+    static char text[1 << 16], edited[1 << 16];
+    FILE *f = fopen(path, "rb");
+    if (!f) return gb_error_set(GB_EIO, "%s: cannot open", path);
+    const size_t n = fread(text, 1, sizeof text - 1, f);
+    fclose(f);
+    text[n] = '\0';
+    for (size_t k = 0; k < count; k++) {
+        const char *at = strstr(text, edits[k][0]);
+        if (!at) return gb_error_set(GB_EINVAL, "%s: no text '%s' to replace", path, edits[k][0]);
+        snprintf(edited, sizeof edited, "%.*s%s%s", (int)(at - text), text, edits[k][1], at + strlen(edits[k][0]));
+        memcpy(text, edited, strlen(edited) + 1);
+    }
+    return gb_case_load_text(path, text, strlen(text), scene);
+}
+
+/* Run the scene at `path` (edited as load_edited does); its impacts into `list` when given. */
+static int run_scene(const char *path, const char *const (*edits)[2], size_t count, impacts *list, gb_run_result *r)
+{
+    gb_case scene;
+    const int status = load_edited(path, edits, count, &scene);
+    if (status) return status;
+    if (list) memset(list, 0, sizeof *list);
+    const gb_run_sinks sinks = {NULL, list, list ? on_impact : NULL};
+    return gb_run(&scene, &sinks, r);
+}
+
+/* ---- Housner's block ---------------------------------------------------------------------------- */
+
+/* The larger of the two, NaN if either is (fmax would drop a NaN: a failed quadrature must fail the check). */
+static double worst_of(double worst, double x) { return isnan(worst) || isnan(x) || x > worst ? (isnan(worst) ? worst : x) : worst; }
+
+typedef struct rocking {
+    double k, alpha, theta_m; /* 2 m g R / I_O [1/s²], the slenderness, the amplitude */
+} rocking;
+
+static double half_swing_integrand(double u, void *params)
+{
+    const rocking *p = params;
+    if (u == 0.0) return 2.0 / sqrt(p->k * sin(p->alpha - p->theta_m)); /* the limit u → 0 */
+    /* cos(α − θ_m) − cos(α − θ) with θ = θ_m − u², written without cancellation */
+    const double gap = 2.0 * sin(p->alpha - p->theta_m + 0.5 * u * u) * sin(0.5 * u * u);
+    return 2.0 * u / sqrt(p->k * gap);
+}
+
+/* The time from the amplitude θ_m back to θ = 0 (a quarter of a rocking cycle), by quadrature. */
+static double quarter_time(const rocking *p, double *abserr)
+{
+    gsl_integration_workspace *w = gsl_integration_workspace_alloc(200);
+    gsl_function f = {half_swing_integrand, (void *)p};
+    double t = NAN;
+    gsl_error_handler_t *old = gsl_set_error_handler_off();
+    if (gsl_integration_qag(&f, 0.0, sqrt(p->theta_m), 1e-15, 1e-13, 200, GSL_INTEG_GAUSS61, w, &t, abserr)) t = NAN;
+    gsl_set_error_handler(old);
+    gsl_integration_workspace_free(w);
+    return t;
+}
+
+static void test_housner(void)
+{
+    const char *path = "cases/bodies/housner-block.ini";
+    gb_case scene;
+    impacts list;
+    gb_run_result r;
+    int status = gb_case_load(path, &scene);
+    if (!status) status = run_scene(path, NULL, 0, &list, &r);
+    gb_check ran = {"2", "-", "Housner's block: the scene runs", "exit 0", "exact"};
+    gb_check_true(&ran, !status, "%s", status ? gb_error_message() : "ran");
+    if (status) return;
+    /* the block: half widths b (x), h (z) from its hull; R, α, I_O about the edge (the y axis) */
+    const gb_polyhedron *poly = gb_body_polyhedron(&scene.body);
+    double b = 0.0, h = 0.0;
+    for (size_t k = 0; k < poly->vertex_count; k++) b = fmax(b, poly->vertices[3 * k]), h = fmax(h, poly->vertices[3 * k + 2]);
+    const double m = scene.dynamics.mass, g = scene.dynamics.forcing.g, R = hypot(b, h), alpha = atan2(b, h);
+    const double I_O = 4.0 / 3.0 * m * R * R, ratio = 1.0 - 1.5 * sin(alpha) * sin(alpha);
+    double worst_ratio = 0.0, worst_axis = 0.0, worst_time = 0.0, worst_energy = 0.0, quad_err = 0.0;
+    size_t rocks = 0;
+    double t_prev = 0.0, omega_after_prev = NAN;
+    rocking p = {2.0 * m * g * R / I_O, alpha, 0.0};
+    /* the release: θ_m = the initial tilt (axis-angle about y), from rest */
+    p.theta_m = acos(scene.attitude[0]);
+    for (size_t k = 0; k < list.count; k++) {
+        const gb_dynamics_impact *e = &list.e[k];
+        if (e->kind != GB_DYNAMICS_IMPACT_THIRD) continue; /* the first rows: the release onto the edge */
+        rocks++;
+        const double before = e->omega_before[1], after = e->omega_after[1];
+        worst_ratio = worst_of(worst_ratio, fabs(after / before - ratio));
+        worst_axis = worst_of(worst_axis, hypot(e->omega_after[0], e->omega_after[2]) / fabs(after));
+        double err;
+        const double predicted = (isnan(omega_after_prev) ? 1.0 : 2.0) * quarter_time(&p, &err);
+        quad_err = worst_of(quad_err, err);
+        worst_time = worst_of(worst_time, fabs((e->t - t_prev) - predicted));
+        if (!isnan(omega_after_prev)) worst_energy = worst_of(worst_energy, fabs(fabs(before) / fabs(omega_after_prev) - 1.0));
+        /* the next swing's amplitude, the centroid raised from R cos α to R cos(α − θ_m): ½ I_O ω² = m g R
+         * (cos(α − θ_m) − cos α) */
+        p.theta_m = alpha - acos(cos(alpha) + 0.5 * I_O * after * after / (m * g * R));
+        t_prev = e->t, omega_after_prev = after;
+    }
+    char measured[96];
+    snprintf(measured, sizeof measured, "%zu impacts", rocks);
+    gb_check cr = {"2", "-", "Housner's block: ω after / ω before at every impact (the face lands flat, the block rocks on the other edge)",
+                   "1 - (3/2) sin^2 alpha (angular momentum about the landing edge)",
+                   "1e-12: the impact's SVD solve in double precision (measured 1e-15)"};
+    gb_check_true(&cr, rocks >= 8, "%s", measured);
+    gb_check_close(&cr, worst_ratio, 0.0, 0.0, 1e-12);
+    gb_check ca = {"2", "-", "Housner's block: the turning axis after every impact stays the edge's (|ω_x, ω_z| / |ω_y|)", "0 (symmetry)",
+                   "1e-12: rounding of the four-point impact"};
+    gb_check_close(&ca, worst_axis, 0.0, 0.0, 1e-12);
+    gb_check ct = {"2", "-", "Housner's block: the time between impacts, impact by impact [s]",
+                   "the energy integral of the rocking equation (GSL qag, 1e-13), amplitude from the speed after the impact",
+                   "1e-10 s: RK4 at h = 5e-4 s, error ~ p^4 t h^4 = 6e-11 s over 3 s (p^2 = 3g/4R); the event located to 1e-13 s"};
+    gb_check_close(&ct, worst_time, 0.0, 0.0, 1e-10 + quad_err);
+    gb_check ce = {"2", "-", "Housner's block: |ω| before an impact / |ω| after the previous one (no damping)", "1 (energy conserved)",
+                   "1e-9: RK4's energy error at h = 5e-4 s"};
+    gb_check_close(&ce, worst_energy, 0.0, 0.0, 1e-9);
+    gb_run_result_free(&r);
+}
+
+/* ---- a die and a coin come to rest -------------------------------------------------------------- */
+
+/* The body's final state: at rest on a face whose outward normal is −z_b (body axes), the centroid at the
+ * face's distance above the plane. Returns the largest |n · (−z_b) − 1| over the rest faces' best match. */
+static void check_rest(const char *path, const char *what, int must_be_listed)
+{
+    gb_case scene;
+    gb_run_result r;
+    int status = gb_case_load(path, &scene);
+    if (!status) status = run_scene(path, NULL, 0, NULL, &r);
+    char quantity[200];
+    snprintf(quantity, sizeof quantity, "%s: the scene runs and ends at rest on three or more vertices", what);
+    gb_check ran = {"2", "-", quantity, "exit 0, contacts = 3, ω = 0", "|ω| <= 1e-12 rad/s: the rounding of the impact that stopped it"};
+    const double spin = status ? NAN : hypot(hypot(r.final.omega[0], r.final.omega[1]), r.final.omega[2]);
+    gb_check_true(&ran, !status && r.final.contacts == 3 && spin <= 1e-12, "%s, %d contacts, |omega| = %.3g rad/s",
+                  status ? gb_error_message() : "ran", status ? 0 : r.final.contacts, spin);
+    if (status) return;
+    const gb_polyhedron *poly = gb_body_polyhedron(&scene.body);
+    gb_massprops m;
+    double normals[128][3];
+    size_t count = 0;
+    status = gb_polyhedron_massprops(poly, 1.0, &m);
+    if (!status) status = gb_polyhedron_rest_faces(poly, m.centroid, normals, 128, &count);
+    const double *zb = r.final.zb;
+    double best = -2.0, distance = 0.0;
+    for (size_t f = 0; f < count && f < 128; f++) {
+        const double c = -(normals[f][0] * zb[0] + normals[f][1] * zb[1] + normals[f][2] * zb[2]);
+        if (c > best) best = c;
+    }
+    for (size_t k = 0; k < poly->vertex_count; k++) { /* the face's distance: the lowest vertex's depth */
+        const double *x = poly->vertices + 3 * k;
+        distance = fmax(distance, -(zb[0] * x[0] + zb[1] * x[1] + zb[2] * x[2]));
+    }
+    snprintf(quantity, sizeof quantity, "%s: the face it rests on against the stable rest faces (1 - n.(-z_b), best face)", what);
+    gb_check cf = {"2", "-", quantity, must_be_listed ? "0: a face gb_polyhedron_rest_faces lists" : "0",
+                   "1e-9: the attitude's drift over the run (orthonormality ~1e-15)"};
+    gb_check_close(&cf, 1.0 - best, 0.0, 0.0, 1e-9);
+    snprintf(quantity, sizeof quantity, "%s: the centroid's height above the plane at rest [m]", what);
+    gb_check cz = {"2", "-", quantity, "the face's distance from the centroid (its lowest vertex)",
+                   "1e-10 body lengths: a face lands flat to the tie of its vertices' heights (GB_DYN_FACE_TIE)"};
+    gb_check_close(&cz, r.final.zeta, distance, 0.0, 1e-10 * scene.dynamics.length);
+    snprintf(quantity, sizeof quantity, "%s: the energy ledger E - E0 - W + L at the end [J]", what);
+    gb_check ce = {"2", "-", quantity, "0", "1e-9 of m g L: the impacts' rounding and RK4's energy error"};
+    gb_check_close(&ce, r.final.residual, 0.0, 0.0, 1e-9 * scene.dynamics.mass * scene.dynamics.forcing.g * poly->size);
+    gb_run_result_free(&r);
+}
+
+static void test_die_and_coin(void)
+{
+    check_rest("cases/bodies/die-drop.ini", "a die dropped 5 cm", 1);
+    check_rest("cases/bodies/coin.ini", "a coin falling flat", 1);
+}
+
+/* ---- expressions -------------------------------------------------------------------------------- */
+
+static const char *const CHI[2] = {"theta - 5*phi", "theta - 3*pi/2*(cos(phi) - cos(phi)*cos(phi)*cos(phi)/3)"};
+
+static void test_expressions_same_body(void)
+{
+    for (int k = 0; k < 2; k++) {
+        const char *name = k ? "II" : "I";
+        gb_surface own, paper;
+        int status = gb_body_expression(GB_BODY_PHASE, CHI[k], 0.12, &own);
+        if (!status) status = gb_surface_init(&paper, name, 0.12);
+        gb_massprops a, b;
+        const gb_massprops_def def = gb_massprops_default_def();
+        if (!status) status = gb_massprops_compute(&own, &def, &a);
+        if (!status) status = gb_massprops_compute(&paper, &def, &b);
+        gb_contact_grid *ga = NULL, *gb = NULL;
+        const gb_contact_grid_def gdef = gb_contact_grid_default_def();
+        if (!status) status = gb_contact_grid_create(&own, &gdef, &ga);
+        if (!status) status = gb_contact_grid_create(&paper, &gdef, &gb);
+        size_t differ = 0;
+        for (size_t i = 0; !status && i < gb_contact_grid_size(ga); i++) {
+            double x[3], y[3];
+            gb_contact_grid_node(ga, i, NULL, NULL, x);
+            gb_contact_grid_node(gb, i, NULL, NULL, y);
+            differ += memcmp(x, y, sizeof x) != 0;
+        }
+        char quantity[200];
+        snprintf(quantity, sizeof quantity, "chi = %s (the paper's chi_%d as an expression): mass properties and 90 x 180 grid nodes", CHI[k], k + 1);
+        gb_check c = {"2", k ? "9" : "8", quantity, "Gomboc's built-in morphology, bit for bit", "exact: libmatheval evaluates the same operations in the same order"};
+        gb_check_true(&c, !status && !memcmp(&a.volume, &b.volume, sizeof a.volume) && !memcmp(a.inertia, b.inertia, sizeof a.inertia) &&
+                              !memcmp(&a.L, &b.L, sizeof a.L) && differ == 0,
+                      "%s; %zu nodes differ, volume %.17g against %.17g", status ? gb_error_message() : "computed", differ, a.volume, b.volume);
+        gb_contact_grid_free(ga);
+        gb_contact_grid_free(gb);
+    }
+    /* r itself: S^(1/4) by pow against two square roots */
+    gb_surface own, paper;
+    int status = gb_body_expression(GB_BODY_RADIUS, "(1 + 4*beta*sin(phi)*cos(theta - 5*phi))^(1/4)", 0.12, &own);
+    if (!status) status = gb_surface_init(&paper, "I", 0.12);
+    gb_massprops a, b;
+    const gb_massprops_def def = gb_massprops_default_def();
+    if (!status) status = gb_massprops_compute(&own, &def, &a);
+    if (!status) status = gb_massprops_compute(&paper, &def, &b);
+    gb_check cr = {"2", "12", "r = (1 + 4 beta sin(phi) cos(theta - 5 phi))^(1/4) as an expression: volume and I_zz",
+                   "Gomboc I's built-in r (eq 12)", "1e-13 relative: pow against sqrt(sqrt), an ulp a node, through the quadrature"};
+    gb_check_true(&cr, !status, "%s", status ? gb_error_message() : "computed");
+    if (!status) {
+        gb_check_close(&cr, a.volume, b.volume, 1e-13, 0.0);
+        gb_check_close(&cr, a.inertia[2][2], b.inertia[2][2], 1e-13, 0.0);
+    }
+}
+
+static void test_expressions_table1(void)
+{
+    static const char *const scenes[2] = {"cases/table1-gomboc-I.ini", "cases/table1-gomboc-II.ini"};
+    for (int k = 0; k < 2; k++) {
+        gb_run_result a, b;
+        char chi[160];
+        snprintf(chi, sizeof chi, "chi = %s\n", CHI[k]);
+        /* without λ: the reference trajectory is the same run bit for bit (gb_run.h) */
+        const char *const paper[1][2] = {{"lyapunov = yes", "lyapunov = no"}};
+        const char *const own[2][2] = {{"lyapunov = yes", "lyapunov = no"}, {k ? "morphology = II\n" : "morphology = I\n", chi}};
+        int status = run_scene(scenes[k], paper, 1, NULL, &a);
+        if (!status) {
+            status = run_scene(scenes[k], own, 2, NULL, &b);
+            if (status) gb_run_result_free(&a);
+        }
+        char quantity[200];
+        snprintf(quantity, sizeof quantity, "%s with chi = %s: the run's fingerprints (final state, switches)", scenes[k] + 6, CHI[k]);
+        gb_check c = {"8", "-", quantity, "the built-in morphology's run", "exact: the same body bit for bit"};
+        gb_check_true(&c, !status && a.state_fingerprint == b.state_fingerprint && a.switch_fingerprint == b.switch_fingerprint,
+                      "%s: %016llx/%016llx against %016llx/%016llx", status ? gb_error_message() : "ran",
+                      status ? 0ULL : (unsigned long long)b.state_fingerprint, status ? 0ULL : (unsigned long long)b.switch_fingerprint,
+                      status ? 0ULL : (unsigned long long)a.state_fingerprint, status ? 0ULL : (unsigned long long)a.switch_fingerprint);
+        if (!status) gb_run_result_free(&a), gb_run_result_free(&b);
+    }
+}
+
+/* ---- bad bodies in a scene ---------------------------------------------------------------------- */
+
+static void test_bad_bodies(void)
+{
+    char dir[] = "/tmp/gomboc-bodies-XXXXXX";
+    if (!mkdtemp(dir)) return;
+    char mesh[512], scene[512];
+    snprintf(mesh, sizeof mesh, "%s/dent.off", dir);
+    /* a cube with its top centre pushed in: the vertex (0, 0, 0.5) inside the hull */
+    FILE *f = fopen(mesh, "w");
+    if (f) {
+        fputs("OFF\n9 14 0\n-1 -1 -1\n1 -1 -1\n1 1 -1\n-1 1 -1\n-1 -1 1\n1 -1 1\n1 1 1\n-1 1 1\n0 0 0.5\n"
+              "3 0 2 1\n3 0 3 2\n3 0 1 5\n3 0 5 4\n3 1 2 6\n3 1 6 5\n3 2 3 7\n3 2 7 6\n3 3 0 4\n3 3 4 7\n"
+              "3 4 5 8\n3 5 6 8\n3 6 7 8\n3 7 4 8\n", f);
+        fclose(f);
+    }
+    static const struct {
+        const char *text, *want[3];
+    } rows[] = {
+        {"[body]\nmesh = dent.off\n", {"scene.ini:2: [body] mesh:", "dent.off:11:", "convex"}},
+        {"[body]\nmesh = none.off\n", {"scene.ini:2: [body] mesh:", "none.off", "allowed"}},
+        {"[body]\nmorphology = II\nmesh = dent.off\n", {"scene.ini:3: [body] mesh", "with [body] morphology", "allowed: one of them"}},
+        {"[body]\nmesh = dent.off\n[model]\ncontact = continuous\n", {"scene.ini:4: [model] contact = continuous", "vertex", "allowed: grid or fast-grid"}},
+        {"[body]\nchi = theta - 5*\n", {"scene.ini:2: [body] chi:", "does not parse", "allowed"}},
+        {"[body]\nchi = theta - 5*psi\n", {"scene.ini:2: [body] chi:", "'psi'", "allowed: phi, theta, beta"}},
+        {"[body]\nr = sin(phi) - 0.5\n", {"scene.ini:2: [body] r:", "r <= 0", "allowed: r > 0"}},
+        {"[body]\nr = 1 + 0.1*theta\n", {"scene.ini:2: [body] r:", "not one surface", "periodic"}},
+        {"[body]\nr = 1 + 1/sin(phi)\n", {"scene.ini:2: [body] r:", "not finite", "allowed"}},
+        {"[body]\nr = 1\nchi = theta\n", {"scene.ini:3: [body] chi", "with [body] r", "allowed: one of them"}},
+    };
+    for (size_t k = 0; k < sizeof rows / sizeof rows[0]; k++) {
+        snprintf(scene, sizeof scene, "%s/scene.ini", dir);
+        f = fopen(scene, "w");
+        if (f) fputs(rows[k].text, f), fclose(f);
+        gb_case c;
+        const int status = gb_case_load(scene, &c);
+        const char *msg = gb_error_message();
+        int found = status == GB_EINVAL || status == GB_EDOM;
+        for (int i = 0; i < 3; i++) found &= strstr(msg, rows[k].want[i]) != NULL;
+        char quantity[200];
+        snprintf(quantity, sizeof quantity, "a scene's bad body: %.*s", (int)strcspn(rows[k].text + 7, "\n"), rows[k].text + 7);
+        gb_check c1 = {"2", "-", quantity, "refused (bad input), naming the scene's line, the fault and what is allowed", "exact"};
+        gb_check_true(&c1, found, "status %d: %s", status, msg);
+        gb_error_clear();
+    }
+    unlink(mesh);
+    unlink(scene);
+    rmdir(dir);
+}
+
+/* ---- every shipped scene's body ------------------------------------------------------------------ */
+
+/* The bodies of the scenes in `dir` not yet in `seen` (by row and β), appended; returns the new count. */
+static size_t scene_bodies(const char *dir, gb_surface *seen, char (*from)[600], size_t count, size_t cap)
+{
+    DIR *d = opendir(dir);
+    if (!d) return count;
+    struct dirent *e;
+    while ((e = readdir(d)) && count < cap) {
+        const size_t n = strlen(e->d_name);
+        if (n < 5 || strcmp(e->d_name + n - 4, ".ini")) continue;
+        char path[512];
+        snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
+        gb_case c;
+        if (gb_case_load(path, &c)) { /* a scene that does not load: its own suites say so */
+            gb_error_clear();
+            continue;
+        }
+        int known = 0;
+        for (size_t k = 0; k < count; k++) known |= seen[k].morphology == c.body.morphology && seen[k].beta == c.body.beta;
+        if (!known) seen[count] = c.body, snprintf(from[count], sizeof from[count], "%s", path), count++;
+    }
+    closedir(d);
+    return count;
+}
+
+static void test_scene_bodies(void)
+{
+    enum { CAP = 32 };
+    gb_surface bodies[CAP];
+    char from[CAP][600];
+    size_t count = 0;
+    static const char *const dirs[] = {"cases", "cases/bodies", "cases/siconos"};
+    for (size_t k = 0; k < 3; k++) count = scene_bodies(dirs[k], bodies, from, count, CAP);
+    gb_check cn = {"2", "-", "the distinct bodies of the shipped scenes (cases/, cases/bodies/, cases/siconos/)", "at least the "
+                   "paper's two and the three meshes", "exact"};
+    gb_check_true(&cn, count >= 5, "%zu bodies", count);
+    for (size_t k = 0; k < count; k++) {
+        const gb_surface *b = &bodies[k];
+        char quantity[512];
+        if (gb_surface_is_polyhedron(b)) {
+            const gb_polyhedron *p = gb_body_polyhedron(b);
+            gb_massprops m;
+            double normals[128][3];
+            size_t rests = 0;
+            int status = gb_polyhedron_massprops(p, 1.0, &m);
+            if (!status) status = gb_polyhedron_rest_faces(p, m.centroid, normals, 128, &rests);
+            snprintf(quantity, sizeof quantity, "%.80s (the body of %.100s): Euler's formula V - E + F on its hull, and a stable face",
+                     b->morphology->name, from[k]);
+            gb_check c = {"2", "-", quantity, "2 (a convex polyhedron is a sphere), at least one rest face", "exact"};
+            /* a triangulated hull: E = 3F/2 */
+            gb_check_true(&c, !status && 2 * p->vertex_count == 4 + p->triangle_count && rests >= 1, "%s: V = %zu, F = %zu, %zu rest faces",
+                          status ? gb_error_message() : "computed", p->vertex_count, p->triangle_count, rests);
+        } else {
+            gb_equilibria eq;
+            const gb_shape_def def = gb_shape_default_def();
+            const int status = gb_shape_equilibria(b, &def, &eq);
+            snprintf(quantity, sizeof quantity, "%.80s, beta = %g (the body of %.100s): critical points of r, stable - saddle + unstable",
+                     b->morphology->name, b->beta, from[k]);
+            gb_check c = {"2", "-", quantity, "2 (Poincare-Hopf on the sphere)", "exact"};
+            gb_check_true(&c, !status && eq.stable - eq.saddle + eq.unstable == 2, "%s: %d stable, %d saddle, %d unstable",
+                          status ? gb_error_message() : "computed", eq.stable, eq.saddle, eq.unstable);
+        }
+        gb_error_clear();
+    }
+}
+
+int verify_register_s2_bodies(void)
+{
+    static const verify_test tests[] = {
+        {"Housner's rocking block", test_housner,
+         "a mesh's polyhedron rocks as Housner's block: omega ratio per impact and the period-amplitude relation in closed form"},
+        {"a die and a coin come to rest", test_die_and_coin,
+         "a dropped die stops on one of its stable faces, a coin falls flat: whole faces land at once"},
+        {"the paper's chi as an expression", test_expressions_same_body,
+         "a body given by an expression is the same body as the built-in morphology, bit for bit (chi) or to rounding (r)"},
+        {"Table 1 with the paper's chi as an expression", test_expressions_table1,
+         "Table 1's grid runs end in the same fingerprint with chi given as an expression"},
+        {"every shipped scene's body", test_scene_bodies,
+         "the bodies the scenes name, whatever they are, are closed surfaces: Euler's formula, Poincare-Hopf"},
+        {"bad bodies in a scene", test_bad_bodies,
+         "a mesh or an expression that is not a body is refused, naming the scene's line and the fault"},
+        {NULL, NULL, NULL},
+    };
+    return verify_register_suite("Section 2: bodies of one's own as scenes", tests);
+}
