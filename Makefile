@@ -28,8 +28,11 @@ CLI_OBJ   := $(CLI_SRC:src/%.c=$(BUILD)/obj/%.o)
 LIB       := $(BUILD)/libgomboc.a
 # The shared library beside the static one: soname libgomboc.so.$(SOMAJOR), built from position-independent
 # objects of their own (build/pic), only for install and the examples.
-SOMAJOR   := 0
-SOMINOR   := 1
+# The release: one semantic version (0.x.y), in the file VERSION alone; `gomboc --version`, gomboc.pc and the
+# shared library's file name read it (CHANGELOG.md says what each release holds).
+VERSION   := $(shell cat VERSION)
+SOMAJOR   := $(word 1,$(subst ., ,$(VERSION)))
+SOMINOR   := $(word 2,$(subst ., ,$(VERSION)))
 SONAME    := libgomboc.so.$(SOMAJOR)
 SOLIB     := $(BUILD)/$(SONAME).$(SOMINOR)
 PIC_OBJ   := $(CORE_SRC:src/%.c=$(BUILD)/pic/%.o)
@@ -326,7 +329,6 @@ references-only: $(BIN)
 # internal ones, *_internal.h, gb_interval.h, gb_arena.h, gb_vec.h, gb_hash.h, gb_clock.h, the readers behind gb_case
 # and gb_scan, gb_ini.h and gb_parse.h, and the caches' seals, gb_seal.h, stay), a pkg-config file and the man page, under $(DESTDIR)$(PREFIX).
 PREFIX  ?= /usr/local
-VERSION := $(shell git describe --always --dirty 2>/dev/null || echo unknown)
 PRIVATE_HEADERS := %_internal.h src/gb_interval.h src/gb_arena.h src/gb_vec.h src/gb_hash.h src/gb_clock.h src/gb_ini.h src/gb_parse.h \
                    src/gb_seal.h
 PUBLIC_HEADERS = src/gomboc.h $(filter-out $(PRIVATE_HEADERS),$(wildcard src/gb_*.h))
@@ -343,6 +345,7 @@ install-only: $(BIN) $(LIB) $(SOLIB)
 	  $(DESTDIR)$(PREFIX)/share/man/man1 $(DESTDIR)$(PREFIX)/share/gomboc/reports
 	install -m 644 cases/README.md $(DESTDIR)$(PREFIX)/share/gomboc/scene-keys.md
 	install -m 644 docs/outputs.md $(DESTDIR)$(PREFIX)/share/gomboc/outputs.md
+	install -m 644 CHANGELOG.md $(DESTDIR)$(PREFIX)/share/gomboc/CHANGELOG.md
 	install -m 644 $(SHARE_REPORTS) $(DESTDIR)$(PREFIX)/share/gomboc/reports/
 	install -m 755 $(BIN) $(DESTDIR)$(PREFIX)/bin/gomboc
 	install -m 644 $(LIB) $(DESTDIR)$(PREFIX)/lib/libgomboc.a
@@ -376,6 +379,9 @@ example-only: $(BIN) $(LIB) $(SOLIB)
 	@readelf -d $(BUILD)/example | grep -q 'NEEDED.*\[$(SONAME)\]' && readelf -d $(SOLIB) | grep -q 'SONAME.*\[$(SONAME)\]' \
 	  || { echo "example: not linked against $(SONAME)"; exit 1; }
 	@$(PYTHON) scripts/check_exports.py $(SOLIB) $(PUBLIC_HEADERS)
+	@test "$$($(STAGED_PC) --modversion gomboc)" = "$(VERSION)" && $(STAGED_PC) --atleast-version=0.1 gomboc && \
+	  test "$$($(STAGE)/usr/local/bin/gomboc --version)" = "gomboc $(VERSION)" \
+	  || { echo "example: gomboc.pc's Version and gomboc --version are not VERSION ($(VERSION))"; exit 1; }
 	@test -z "$$(groff -man -ww -z $(STAGE)/usr/local/share/man/man1/gomboc.1 2>&1)" && \
 	  groff -man -Tutf8 -P-cbou $(STAGE)/usr/local/share/man/man1/gomboc.1 2>/dev/null | grep -q '^       run CASE' \
 	  || { echo "example: the man page does not render without warnings"; exit 1; }
@@ -392,7 +398,7 @@ uninstall:
 	rm -f $(DESTDIR)$(PREFIX)/lib/$(notdir $(SOLIB)) $(DESTDIR)$(PREFIX)/lib/$(SONAME) $(DESTDIR)$(PREFIX)/lib/libgomboc.so
 	rm -f $(DESTDIR)$(PREFIX)/share/man/man1/gomboc.1
 	rm -f $(addprefix $(DESTDIR)$(PREFIX)/include/gomboc/,$(notdir $(PUBLIC_HEADERS)))
-	rm -f $(DESTDIR)$(PREFIX)/share/gomboc/scene-keys.md $(DESTDIR)$(PREFIX)/share/gomboc/outputs.md
+	rm -f $(DESTDIR)$(PREFIX)/share/gomboc/scene-keys.md $(DESTDIR)$(PREFIX)/share/gomboc/outputs.md $(DESTDIR)$(PREFIX)/share/gomboc/CHANGELOG.md
 	rm -f $(addprefix $(DESTDIR)$(PREFIX)/share/gomboc/reports/,$(notdir $(SHARE_REPORTS)))
 	-rmdir $(DESTDIR)$(PREFIX)/include/gomboc $(DESTDIR)$(PREFIX)/share/gomboc/reports $(DESTDIR)$(PREFIX)/share/gomboc 2>/dev/null
 

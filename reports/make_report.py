@@ -143,6 +143,8 @@ def environment(cc, cflags, rows):
     qhull = command_output(["dpkg-query", "-W", "-f=${Version}", "libqhull-dev"]) or "unknown"
     return [
         ("date (UTC)", datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M")),
+        ("gomboc", open(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "VERSION")).read().strip()
+         + " (VERSION; CHANGELOG.md)"),
         ("git commit", command_output(["git", "rev-parse", "HEAD"]) or "not a git checkout"),
         ("working tree", "clean" if not command_output(["git", "status", "--porcelain"]) else "modified"),
         ("machine", f"{platform.machine()}, {os.cpu_count()} cores, {platform.platform()}"),
