@@ -22,7 +22,8 @@ static const char *usage_run =
     "  CASE       a scene file (INI; see cases/README.md for every key and its allowed values)\n"
     "  --out DIR  where to write the outputs the scene asks for (default: the current directory):\n"
     "             NAME-history.csv ([output] history = yes): t, omega, h*, E, energy-balance residual,\n"
-    "             g_eff, contact index, switch markers, switching rate, r_c, N, required friction;\n"
+    "             g_eff, contact index, switch markers, switching rate, r_c, N, required friction,\n"
+    "             points on the plane, centroid height, clearance, attitude quaternion, second point;\n"
     "             NAME-summary.json ([output] summary = yes): the scene as read, the final state,\n"
     "             switch counts, energy residual and validity monitors. NAME is CASE without .ini.\n"
     "  --atlas FILE  ([model] certificate = atlas) load the atlas of verticals from FILE when it was\n"
@@ -33,7 +34,8 @@ static const char *usage_run =
 
 /* The history file: one row a sample. */
 static const char history_header[] = "t,omega_x,omega_y,omega_z,h,E,residual,geff,index,grid_switch,branch_switch,"
-                                     "switch_rate,rc_x,rc_y,rc_z,normal_force,friction_needed,contacts,zeta,clearance";
+                                     "switch_rate,rc_x,rc_y,rc_z,normal_force,friction_needed,contacts,zeta,clearance,"
+                                     "q_w,q_x,q_y,q_z,rq_x,rq_y,rq_z";
 /* A plane of finite friction adds the points slipping and the largest slip speed [m/s]. */
 static const char history_friction_header[] = ",sliding,slip_speed";
 
@@ -52,6 +54,10 @@ static int history_row(void *context, const gb_run_sample *s)
                       s->t, o->omega[0], o->omega[1], o->omega[2], o->height, o->energy, o->residual, o->geff, o->index,
                       s->grid_switch, s->branch_switch, s->switch_rate, o->rc[0], o->rc[1], o->rc[2], o->normal_force,
                       o->friction_needed, o->contacts, o->zeta, o->clearance) < 0;
+    /* the attitude as a unit quaternion (R(q) takes body axes to inertial ones), and the second contact point */
+    const double *q = s->y + GB_STATE_Q, n = sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+    bad |= fprintf(history, ",%.15g,%.15g,%.15g,%.15g,%.12g,%.12g,%.12g", q[0] / n, q[1] / n, q[2] / n, q[3] / n, o->rc_other[0],
+                   o->rc_other[1], o->rc_other[2]) < 0;
     if (((streams *)context)->friction) bad |= fprintf(history, ",%d,%.12g", o->sliding, o->slip_speed) < 0;
     bad |= fputc('\n', history) == EOF;
     if (bad) return gb_error_set(GB_EIO, "cannot write the history: %s", strerror(errno));
