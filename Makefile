@@ -76,6 +76,9 @@ RUN_SCENES    := table1-gomboc-I table1-gomboc-II
 # Bodies of one's own (cases/bodies/): a mesh's polyhedron rocking, tumbling and falling flat; `make run` runs
 # them too, and the shape study covers the body of every scene it runs.
 BODY_SCENES   := bodies/housner-block bodies/die-drop bodies/coin
+# Each Table 1 body under the unilateral law, seen in motion: `make run` runs these and draws a short
+# animation of each (reports/animate.py; an MP4 through ffmpeg where it is installed, else a GIF).
+ANIMATED      := table1-gomboc-I-unilateral table1-gomboc-II-unilateral
 VERIFY_SCENES := $(RUN_SCENES) table1-gomboc-I-g-units table1-gomboc-II-g-units harmonic-gomboc-I harmonic-gomboc-II \
                  table1-gomboc-I-rolling table1-gomboc-II-rolling table1-gomboc-I-unilateral table1-gomboc-II-unilateral \
                  table1-gomboc-I-grid-unilateral table1-gomboc-II-grid-unilateral \
@@ -89,9 +92,11 @@ run-only: $(BIN)
 	  $(BIN) shape --scene cases/$$s.ini --json $$map > $(OUT)/shape-$$n.json.tmp && mv $(OUT)/shape-$$n.json.tmp $(OUT)/shape-$$n.json \
 	  || exit 1; done
 	$(PYTHON) reports/shape_report.py $(OUT) $(notdir $(RUN_SCENES) $(BODY_SCENES))
-	for s in $(RUN_SCENES) $(BODY_SCENES); do $(BIN) run cases/$$s.ini --out $(OUT) || exit 1; done
-	$(PYTHON) reports/run_report.py $(OUT) $(notdir $(RUN_SCENES) $(BODY_SCENES))
-	@echo "run: reports written to $(OUT)/shape.md and $(OUT)/runs.md"
+	for s in $(RUN_SCENES) $(BODY_SCENES) $(ANIMATED); do $(BIN) run cases/$$s.ini --out $(OUT) || exit 1; done
+	for s in $(ANIMATED); do $(PYTHON) reports/animate.py $(OUT) $$s --seconds 4 --fps 15 \
+	  --surface $(OUT)/radial-map-$$(echo $$s | sed 's/-unilateral$$//').csv || exit 1; done
+	$(PYTHON) reports/run_report.py $(OUT) $(notdir $(RUN_SCENES) $(BODY_SCENES)) $(ANIMATED) --page runs.md
+	@echo "run: reports written to $(OUT)/shape.md and $(OUT)/runs.md (with the animations of $(ANIMATED))"
 
 # --- every check, then the reproducibility report
 verify: deps
@@ -105,8 +110,8 @@ verify-only: $(BIN) $(VERIFY_BIN) $(if $(MPICC),$(MPI_BIN))
 	@$(MAKE) --no-print-directory run-only
 	@$(MAKE) --no-print-directory example-only
 	@mkdir -p $(OUT)
-	for s in $(filter-out $(RUN_SCENES),$(VERIFY_SCENES)); do $(BIN) run cases/$$s.ini --out $(OUT) || exit 1; done
-	$(PYTHON) reports/run_report.py $(OUT) $(VERIFY_SCENES)
+	for s in $(filter-out $(RUN_SCENES) $(ANIMATED),$(VERIFY_SCENES)); do $(BIN) run cases/$$s.ini --out $(OUT) || exit 1; done
+	$(PYTHON) reports/run_report.py $(OUT) $(VERIFY_SCENES) $(notdir $(BODY_SCENES)) --page runs.md
 	for m in I II; do \
 	  $(FIG2) --morphology $$m --method continuous --grid 180x360 --landscape $(OUT)/fig2-landscape-$$m.csv \
 	    --zoom $(OUT)/fig2-zoom-$$m.csv --zoom-halfwidth 0.4 > $(OUT)/fig2-contact-$$m.json.tmp && \
@@ -339,7 +344,7 @@ PUBLIC_HEADERS = src/gomboc.h $(filter-out $(PRIVATE_HEADERS),$(wildcard src/gb_
 install: deps
 	@$(MAKE) --no-print-directory install-only
 
-SHARE_REPORTS := reports/common.py reports/plot_scan.py reports/run_report.py
+SHARE_REPORTS := reports/common.py reports/plot_scan.py reports/run_report.py reports/animate.py
 install-only: $(BIN) $(LIB) $(SOLIB)
 	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/lib/pkgconfig $(DESTDIR)$(PREFIX)/include/gomboc \
 	  $(DESTDIR)$(PREFIX)/share/man/man1 $(DESTDIR)$(PREFIX)/share/gomboc/reports

@@ -247,6 +247,69 @@ def friction_lines(central, ensembles):
     return [text, ""]
 
 
+def ensemble_note(where, verdict, ensembles):
+    """The one-trajectory, 300-period chaos verdict of the rolling model (a finding measured `where`) against the
+    ensemble of `make study`: (note, preliminary) or None. One wording, for the summary and the findings table."""
+    for (body, law), reading in ensembles.items():
+        base, _, mu = law.partition(", mu = ")
+        model = {"unilateral": "continuous contact, rolling equation, unilateral contact",
+                 "flight": "continuous rolling, unilateral contact with flight (e = 0), A in units of g",
+                 "bouncing": "continuous rolling, unilateral contact with flight (e = 0.5), A in units of g"}.get(
+                     base, "continuous contact, rolling equation")
+        if mu:
+            model += f", friction mu = {mu}"
+        if where.startswith(f"Gomboc {body}, {model}: lambda_max - 4 sigma"):
+            agrees = (reading == "sustained") == (verdict == "holds")
+            size = ("16 initial attitudes, 1000 periods" if base in ("flight", "bouncing") or mu
+                    else "32 initial attitudes, 64 for Gömböc I; 3000 periods")
+            if not agrees or reading == "undecided":
+                return f"**preliminary: the ensemble of `make study` ({size}) reads {reading}**", True
+            return f"the ensemble of `make study` ({size}) reads {reading}", False
+    return None
+
+
+def readme_state(out):
+    """Does the README quote this run's findings (its block between the markers, scripts/readme_findings.py)?"""
+    here = os.path.dirname(os.path.abspath(__file__))
+    try:
+        result = subprocess.run([sys.executable, os.path.join(here, "..", "scripts", "readme_findings.py"), "--check",
+                                 os.path.join(out, "findings.md")], capture_output=True, text=True, timeout=60)
+    except (OSError, subprocess.TimeoutExpired):
+        return None
+    return ("The README's findings quote this run's words (`scripts/readme_findings.py --check`)." if result.returncode == 0
+            else "**The README's findings are not this run's words**: `scripts/readme_findings.py` copies "
+                 "`reports/out/findings.md` into it.")
+
+
+def findings_block(findings, ensembles):
+    """The findings in the report's own words: the central claim under each model (with the ensembles' word where
+    they read otherwise) and every claim with how its rows came out. The summary prints it, and make_report
+    writes it to OUT/findings.md, the text the README's findings quote (scripts/readme_findings.py)."""
+    lines = ["| measured on (300 periods, R0 = I) | Gömböc I | Gömböc II |", "|---|---|---|"]
+    central = {}
+    for r in findings:
+        if not r["claim"].startswith(CENTRAL):
+            continue
+        where = r["quantity"]
+        body, _, model = where.partition(", ")
+        model = model.replace(": lambda_max - 4 sigma", "")
+        note = ensemble_note(where, r["verdict"], ensembles)
+        cell = r["verdict"] + (" (" + note[0].replace("**", "") + ")" if note and note[1] else "")
+        central.setdefault(model, {})[body.replace("Gomboc ", "")] = cell
+    for model, by_body in central.items():
+        lines.append(f"| {spell(model)} | {by_body.get('I', '—')} | {by_body.get('II', '—')} |")
+    lines += ["", "Every claim of the paper the suite tests, with how its rows came out:", ""]
+    claims = {}
+    for r in findings:
+        tally = claims.setdefault(r["claim"], {"holds": 0, "fails": 0, "undecided": 0})
+        tally[r["verdict"]] = tally.get(r["verdict"], 0) + 1
+    for claim, tally in claims.items():
+        plural = {"holds": "hold", "fails": "fail", "undecided": "undecided"}
+        parts = [f"{n} {v if n == 1 else plural[v]}" for v, n in tally.items() if n]
+        lines.append(f"- {spell(claim)}: {', '.join(parts)}.")
+    return lines, central
+
+
 def summary_lines(findings, counts, rows, failed, ensembles, out):
     """The report's answer first: the verdict counts, the central claim under each model and contact law,
     and every claim of the paper with how its rows came out; all from this run's findings."""
@@ -262,28 +325,15 @@ def summary_lines(findings, counts, rows, failed, ensembles, out):
              "every change of contact an impact, lift-off, flight and landing) on a perfectly rough plane and on "
              "planes of Coulomb friction μ = 0.3 and 0.6, and under both readings of Table 1's amplitudes (m/s² "
              "and units of g):", "",
-             "| measured on (300 periods, R0 = I) | Gömböc I | Gömböc II |", "|---|---|---|"]
-    central = {}
-    for r in findings:
-        if not r["claim"].startswith(CENTRAL):
-            continue
-        where = r["quantity"]
-        body, _, model = where.partition(", ")
-        model = model.replace(": lambda_max - 4 sigma", "")
-        central.setdefault(model, {})[body.replace("Gomboc ", "")] = r["verdict"]
-    for model, by_body in central.items():
-        lines.append(f"| {spell(model)} | {by_body.get('I', '—')} | {by_body.get('II', '—')} |")
-    lines += [""] + friction_lines(central, ensembles) + summary_sentence(out)
-    lines += ["", "Every claim of the paper the suite tests, with how its rows came out (the table below names what "
-              "each row was measured on, the number and the rule):", ""]
-    claims = {}
-    for r in findings:
-        tally = claims.setdefault(r["claim"], {"holds": 0, "fails": 0, "undecided": 0})
-        tally[r["verdict"]] = tally.get(r["verdict"], 0) + 1
-    for claim, tally in claims.items():
-        plural = {"holds": "hold", "fails": "fail", "undecided": "undecided"}
-        parts = [f"{n} {v if n == 1 else plural[v]}" for v, n in tally.items() if n]
-        lines.append(f"- {spell(claim)}: {', '.join(parts)}.")
+             ]
+    block, central = findings_block(findings, ensembles)
+    # the friction comparison reads the bare verdicts
+    bare = {m: {b: v.split(" (")[0] for b, v in by.items()} for m, by in central.items()}
+    lines += block + [""] + friction_lines(bare, ensembles) + summary_sentence(out)
+    write_atomically(os.path.join(out, "findings.md"), "\n".join(block) + "\n")
+    readme = readme_state(out)
+    if readme:
+        lines += ["", readme]
     undecided = [r for r in findings if r["verdict"] == "undecided"]
     if undecided:
         lines += ["", f"Why each of the {len(undecided)} undecided findings is undecided (its evidence, as the table below "
@@ -330,24 +380,9 @@ def main():
         for (body, variation), reading in notes.items():
             if where.startswith(f"Gomboc {body}, {variation}:") and reading != "consistent":
                 detail += f" — {reading} (see 'Convergence')"
-        # The one-trajectory, 300-period chaos verdict of the rolling model against the ensemble of `make study`.
-        for (body, law), reading in ensembles.items():
-            base, _, mu = law.partition(", mu = ")
-            model = {"unilateral": "continuous contact, rolling equation, unilateral contact",
-                     "flight": "continuous rolling, unilateral contact with flight (e = 0), A in units of g",
-                     "bouncing": "continuous rolling, unilateral contact with flight (e = 0.5), A in units of g"}.get(
-                         base, "continuous contact, rolling equation")
-            if mu:
-                model += f", friction mu = {mu}"
-            if where.startswith(f"Gomboc {body}, {model}: lambda_max - 4 sigma"):
-                agrees = (reading == "sustained") == (r["verdict"] == "holds")
-                size = ("16 initial attitudes, 1000 periods" if base in ("flight", "bouncing") or mu
-                        else "32 initial attitudes, 64 for Gömböc I; 3000 periods")
-                if not agrees or reading == "undecided":
-                    detail += (f" — **preliminary: the ensemble of `make study` ({size}) "
-                               f"reads {reading}** (see 'Chaotic for good, for a while, or not at all?')")
-                else:
-                    detail += f" — the ensemble of `make study` ({size}) reads {reading}"
+        note = ensemble_note(where, r["verdict"], ensembles)
+        if note:
+            detail += f" — {note[0]}" + (" (see 'Chaotic for good, for a while, or not at all?')" if note[1] else "")
         rule = r["rule"].replace("|", "/")
         if rule not in rule_names:
             rule_names[rule] = f"R{len(rule_names) + 1} ({rule.split(':', 1)[0].strip()})"

@@ -142,10 +142,8 @@ def melnikov_section(out, rows):
                   "applies it.", ""]
     verdicts = [r for r in rows if r.get("section") == "7" and r.get("claim")]
     if verdicts:
-        lines += ["### Verdicts on the claims of section 7", "", "| claim | measured | quantity | verdict |", "|---|---|---|---|"]
-        for r in verdicts:
-            v = {"holds": "holds", "fails": "**fails**"}.get(r.get("verdict"), "*undecided*")
-            lines.append(f"| {r['claim'].replace('|', '/')} | {r.get('detail', '').replace('|', '/')} | "
-                         f"{r['quantity'].replace('|', '/')} | {v} |")
-        lines.append("")
+        # the verdicts themselves are rows of the findings table at the top (§7): one table, not two
+        tally = {v: sum(1 for r in verdicts if r.get("verdict") == v) for v in ("holds", "fails", "undecided")}
+        lines += [f"The claims of section 7 are judged in the findings table above (its §7 rows): {tally['holds']} hold, "
+                  f"{tally['fails']} fail, {tally['undecided']} undecided.", ""]
     return lines

@@ -1,15 +1,21 @@
 #!/usr/bin/python3
 """Figures 3–9 of the paper from what `gomboc run` wrote, and a summary page.
 
-usage: run_report.py OUT NAME [NAME ...]
-Reads OUT/NAME-summary.json for every scene NAME, and the outputs the scene asked for; writes
-OUT/fig-timeseries-NAME.png (ω, h*, E with switch markers, switching rate: Figs 3 and 5) and
-OUT/fig-contact-NAME.png (contact index and r_c: Figs 4 and 6) from NAME-history.csv;
+usage: run_report.py OUT NAME [NAME ...] [--page FILE.md]
+Reads OUT/NAME-summary.json for every scene NAME, and the outputs that run wrote (the summary's `files`);
+writes OUT/fig-timeseries-NAME.png (ω; h* or, under the unilateral law, the centroid's height and the
+lowest point's gap with the phases shaded and the impacts, landings and lift-offs marked; the energy's
+mean over each period with the ledger's residual; the switching rate under the held law: Figs 3 and 5) and
+OUT/fig-contact-NAME.png (the grid node and r_c: Figs 4 and 6) from NAME-history.csv (and NAME-impacts.csv);
 OUT/fig7-strobe-NAME.png (Poincaré cloud of ω and the return map of ω_x) from NAME-strobe.csv;
 OUT/fig8-spectrum-NAME.png (power spectrum of ω_x in Hz, and the (ω_x, ω_z) phase portrait when the
 history is there) from NAME-spectrum.csv; OUT/fig9-lyapunov-NAME.png (λ_inst and the running λ_max)
-from NAME-lyapunov.csv; and OUT/runs.md. Recomputes no physics.
+from NAME-lyapunov.csv (the running mean after the warm-up, ending at the quoted λ_max, with its error
+bar as a band); OUT/NAME-figures.json (each figure's file, title and the numbers the title quotes); and the
+page OUT/NAME-run.md for one scene, OUT/runs.md for several (or --page FILE.md). A figure of the scene
+that this run did not draw (an earlier run's) is removed, never linked. Recomputes no physics.
 """
+import json
 import os
 import sys
 
@@ -27,68 +33,166 @@ def load_history(path):
     return data
 
 
-def time_series_figure(out, name, h, summary):
-    fig, axes = plt.subplots(4, 1, figsize=(11, 10), sharex=True)
+# Shading of the phases of a unilateral run (the history's `contacts`), and the marks of its events.
+PHASES = ((0, "flight", "tab:cyan"), (2, "on two points", "tab:orange"), (3, "at rest", "0.6"))
+EVENT_MARKS = {"landing": ("v", "tab:blue", "landing"), "lift-off": ("^", "tab:red", "lift-off")}
+
+
+def shade_phases(ax, h):
+    for contacts, label, colour in PHASES:
+        mask = h["contacts"] == contacts
+        if mask.any():
+            ax.fill_between(h["t"], 0, 1, where=mask, transform=ax.get_xaxis_transform(), color=colour, alpha=0.18,
+                            lw=0, label=label)
+
+
+def period_means(t, values, period):
+    """The mean of `values` over each whole forcing period: (period centres, means)."""
+    index = numpy.floor(t / period).astype(int)
+    whole = index < int(numpy.floor(t[-1] / period + 1e-9))
+    counts = numpy.bincount(index[whole])
+    sums = numpy.bincount(index[whole], weights=values[whole])
+    keep = counts > 0
+    return (numpy.arange(len(counts))[keep] + 0.5) * period, sums[keep] / counts[keep]
+
+
+def load_impacts(out, name, written):
+    path = os.path.join(out, f"{name}-impacts.csv")
+    if f"{name}-impacts.csv" not in written or not os.path.exists(path):
+        return None
+    return numpy.genfromtxt(path, delimiter=",", names=True, dtype=None, encoding="utf-8", ndmin=1)
+
+
+def time_series_title(summary):
+    """The title's numbers are the summary's, as the text states them."""
+    scene, impacts, flight = summary["scene"], summary.get("impacts"), summary.get("flight")
+    if scene.get("contact_law") == "unilateral" and impacts:
+        text = f"{impacts['count']:.0f} impacts"
+        if flight and (flight["landings"] or flight["lift_offs"]):
+            text += (f", {flight['lift_offs']:.0f} lift-offs, {flight['landings']:.0f} landings, "
+                     f"{100 * flight['flight_time_fraction']:.1f} % of the time in flight")
+        return text
+    if scene.get("contact") in ("grid", "fast-grid"):
+        return f"{summary['grid_switches']:.0f} grid-node changes"
+    return f"{summary['branch_switches']:.0f} branch switches"
+
+
+def time_series_figure(out, name, h, summary, impacts):
+    scene = summary["scene"]
+    hybrid = scene.get("contact_law") == "unilateral"
+    period = 2 * numpy.pi / scene["omega"]
+    panels = ["omega", "height", "energy"] + ([] if hybrid else ["rate"])
+    fig, axes = plt.subplots(len(panels), 1, figsize=(11, 2.6 * len(panels)), sharex=True)
     for key, label in (("omega_x", "ω_x"), ("omega_y", "ω_y"), ("omega_z", "ω_z")):
         axes[0].plot(h["t"], h[key], lw=0.6, label=label)
     axes[0].set_ylabel("ω [rad/s]")
-    axes[0].legend(fontsize=8, loc="upper right")
-    axes[1].plot(h["t"], h["h"], lw=0.6, color="black")
-    axes[1].set_ylabel("h* [m]")
-    axes[2].plot(h["t"], h["E"], lw=0.6, color="tab:purple")
-    switches = (h["grid_switch"] > 0) | (h["branch_switch"] > 0)
-    axes[2].plot(h["t"][switches], h["E"][switches], ".", ms=2, color="tab:red", label="contact switch")
-    axes[2].set_ylabel("E [J]")
-    axes[2].legend(fontsize=8, loc="upper right")
-    axes[3].plot(h["t"], h["switch_rate"], lw=0.6, color="tab:green")
-    axes[3].set_ylabel("switches / s\n(trailing period)")
-    axes[3].set_xlabel("t [s]")
-    scene = summary["scene"]
-    # the changes of contact the scene's contact model makes: grid-node changes, or continuous branch switches
-    if scene.get("contact") in ("grid", "fast-grid"):
-        changes = f"{summary['grid_switches']:.0f} grid-node changes"
+    ax = axes[1]
+    if hybrid:
+        # the centroid's height above the plane and the lowest point's gap, with the run's phases and events
+        ax.plot(h["t"], h["zeta"], lw=0.7, color="black", label="ζ, centroid above the plane")
+        ax.plot(h["t"], h["clearance"], lw=0.7, color="tab:blue", label="gap of the lowest point")
+        ax.set_ylabel("height [m]")
+        for a in (axes[0], ax):
+            shade_phases(a, h)
+        if impacts is not None and impacts.size:
+            kinds = numpy.atleast_1d(impacts["kind"])
+            times = numpy.atleast_1d(impacts["t"])
+            top = ax.get_ylim()[1]
+            for kind, (marker, colour, label) in EVENT_MARKS.items():
+                at = times[kinds == kind]
+                if at.size:
+                    ax.plot(at, numpy.full(at.size, top), marker, color=colour, ms=4, ls="none", label=f"{label} ({at.size})")
+            other = times[(kinds != "landing") & (kinds != "lift-off") & (kinds != "lift")]
+            if other.size:
+                ax.plot(other, numpy.zeros(other.size), "|", color="tab:red", ms=6, ls="none",
+                        label=f"impact on the plane ({other.size})")
     else:
-        changes = f"{summary['branch_switches']:.0f} branch switches"
-    fig.suptitle(f"{scene['description']}: {changes}", fontsize=10)
+        ax.plot(h["t"], h["h"], lw=0.6, color="black")
+        ax.set_ylabel("h* [m]")
+        switches = (h["grid_switch"] > 0) | (h["branch_switch"] > 0)
+        ax.plot(h["t"][switches], h["h"][switches], ".", ms=2, color="tab:red", label="contact switch")
+    ax.legend(fontsize=7, loc="upper right", ncol=2)
+    axes[0].legend(fontsize=7, loc="upper right", ncol=3)
+    # the energy: its mean over each forcing period (the forcing's own swing of m g_eff ζ would hide it), and
+    # the ledger's residual E − E0 − W (+ L) beside it
+    ax = axes[2]
+    forced = scene.get("a1", 1.0) != 0 or scene.get("a2", 1.0) != 0
+    centres, means = period_means(h["t"], h["E"], period) if forced else (numpy.array([]), None)
+    if centres.size:
+        ax.plot(centres, means, ".-", lw=0.8, ms=3, color="tab:purple", label="E, mean over each period")
+    else:
+        ax.plot(h["t"], h["E"], lw=0.6, color="tab:purple", label="E" if not forced else "E (shorter than one period)")
+    ax.set_ylabel("E [J]")
+    twin = ax.twinx()
+    twin.plot(h["t"], h["residual"], lw=0.6, color="tab:gray", label="ledger residual")
+    twin.set_ylabel("residual [J]", color="tab:gray")
+    ax.legend(fontsize=7, loc="upper left")
+    twin.legend(fontsize=7, loc="upper right")
+    if not hybrid:
+        axes[3].plot(h["t"], h["switch_rate"], lw=0.6, color="tab:green")
+        axes[3].set_ylabel("switches / s\n(trailing period)")
+    axes[-1].set_xlabel("t [s]")
+    title = f"{scene['description']}: {time_series_title(summary)}"
+    fig.suptitle(title, fontsize=10)
     fig.tight_layout()
-    save_figure(fig, os.path.join(out, f"fig-timeseries-{name}.png"))
+    path = f"fig-timeseries-{name}.png"
+    save_figure(fig, os.path.join(out, path))
     plt.close(fig)
+    return path, title
 
 
 def contact_figure(out, name, h, summary):
-    fig, axes = plt.subplots(2, 1, figsize=(11, 6), sharex=True)
-    axes[0].plot(h["t"], h["index"], lw=0.5)
-    axes[0].set_ylabel("contact index (grid node)")
+    scene = summary["scene"]
+    grid = scene.get("contact") in ("grid", "fast-grid")
+    fig, axes = plt.subplots(2 if grid else 1, 1, figsize=(11, 6 if grid else 3.5), sharex=True, squeeze=False)
+    axes = axes[:, 0]
+    if grid:  # the grid node carries the contact; continuous contact has no node to draw
+        axes[0].plot(h["t"], h["index"], lw=0.5)
+        axes[0].set_ylabel("contact node (grid index)")
+    ax = axes[-1]
     for key in ("rc_x", "rc_y", "rc_z"):
-        axes[1].plot(h["t"], h[key], lw=0.6, label=key.replace("rc_", "r_c,"))
-    axes[1].set_ylabel("r_c [m]")
-    axes[1].set_xlabel("t [s]")
-    axes[1].legend(fontsize=8, loc="upper right")
-    fig.suptitle(summary["scene"]["description"], fontsize=10)
+        ax.plot(h["t"], h[key], lw=0.6, label=key.replace("rc_", "r_c,"))
+    two = h["contacts"] == 2
+    if two.any():
+        for key in ("rq_x", "rq_y", "rq_z"):
+            ax.plot(h["t"][two], h[key][two], ".", ms=1, label=key.replace("rq_", "r_Q,") + " (on two points)")
+    ax.set_ylabel("contact point, body axes [m]")
+    ax.set_xlabel("t [s]")
+    ax.legend(fontsize=7, loc="upper right", ncol=2)
+    title = scene["description"]
+    fig.suptitle(title, fontsize=10)
     fig.tight_layout()
-    save_figure(fig, os.path.join(out, f"fig-contact-{name}.png"))
+    path = f"fig-contact-{name}.png"
+    save_figure(fig, os.path.join(out, path))
     plt.close(fig)
+    return path, title
 
 
 def strobe_figure(out, name, summary):
-    data = numpy.genfromtxt(os.path.join(out, f"{name}-strobe.csv"), delimiter=",", names=True)
+    data = numpy.genfromtxt(os.path.join(out, f"{name}-strobe.csv"), delimiter=",", names=True, ndmin=1)
     fig = plt.figure(figsize=(11, 4.8))
     ax = fig.add_subplot(1, 2, 1, projection="3d")
-    ax.scatter(data["omega_x"], data["omega_y"], data["omega_z"], s=4, c=data["n"], cmap="viridis")
-    ax.set_xlabel("ω_x")
-    ax.set_ylabel("ω_y")
-    ax.set_zlabel("ω_z")
-    ax.set_title("Poincaré cloud of ω at t = t0 + (n + phase) T")
+    points = ax.scatter(data["omega_x"], data["omega_y"], data["omega_z"], s=4, c=data["n"], cmap="viridis")
+    ax.set_xlabel("ω_x [rad/s]", fontsize=8, labelpad=6)
+    ax.set_ylabel("ω_y [rad/s]", fontsize=8, labelpad=6)
+    ax.set_zlabel("ω_z [rad/s]", fontsize=8, labelpad=6)
+    ax.tick_params(labelsize=7)
+    ax.set_title("ω at t = t0 + (n + phase) T", fontsize=9)
+    fig.colorbar(points, ax=ax, shrink=0.7, pad=0.12, label="period n")
     ax2 = fig.add_subplot(1, 2, 2)
     ax2.plot(data["omega_x"][:-1], data["omega_x"][1:], ".", ms=3)
     ax2.set_xlabel("ω_x(n) [rad/s]")
     ax2.set_ylabel("ω_x(n+1) [rad/s]")
-    ax2.set_title("one-step return map")
-    fig.suptitle(f"Fig 7: {summary['scene']['description']} ({len(data)} samples after "
-                 f"{summary['scene']['strobe_transient_periods']:.0f} periods)", fontsize=10)
+    ax2.set_title("one-step return map", fontsize=9)
+    strobe = summary["strobe"]
+    title = (f"Fig 7: {summary['scene']['description']} ({strobe['samples']:.0f} samples after "
+             f"{summary['scene']['strobe_transient_periods']:.0f} periods)")
+    fig.suptitle(title, fontsize=10)
     fig.tight_layout()
-    save_figure(fig, os.path.join(out, f"fig7-strobe-{name}.png"))
+    path = f"fig7-strobe-{name}.png"
+    save_figure(fig, os.path.join(out, path))
     plt.close(fig)
+    return path, title
 
 
 def spectrum_figure(out, name, summary, history):
@@ -116,18 +220,34 @@ def spectrum_figure(out, name, summary, history):
         axes[0][1].set_xlabel("ω_x [rad/s]")
         axes[0][1].set_ylabel("ω_z [rad/s]")
         axes[0][1].set_title("phase portrait after the transient")
-    fig.suptitle(f"Fig 8: {summary['scene']['description']}", fontsize=10)
+    title = f"Fig 8: {summary['scene']['description']}"
+    fig.suptitle(title, fontsize=10)
     fig.tight_layout()
-    save_figure(fig, os.path.join(out, f"fig8-spectrum-{name}.png"))
+    path = f"fig8-spectrum-{name}.png"
+    save_figure(fig, os.path.join(out, path))
     plt.close(fig)
+    return path, title
 
 
 def lyapunov_figure(out, name, summary):
-    data = numpy.genfromtxt(os.path.join(out, f"{name}-lyapunov.csv"), delimiter=",", names=True)
+    """Fig 9 as the text quotes it: the running mean after the chosen warm-up, ending at λ_max, with λ_max ±
+    its error bar as a band; the whole record's running mean and λ_inst faded behind."""
+    data = numpy.genfromtxt(os.path.join(out, f"{name}-lyapunov.csv"), delimiter=",", names=True, ndmin=1)
     lyap = summary["lyapunov"]
+    warmup = int(lyap["warmup_intervals"])
+    inst, ends = data["lambda_inst"], data["period_end"]
+    after = numpy.cumsum(inst[warmup:]) / numpy.arange(1, inst.size - warmup + 1)
     fig, ax = plt.subplots(figsize=(9, 4.2))
-    ax.plot(data["period_end"], data["lambda_inst"], lw=0.5, color="0.6", label="λ_inst (per interval)")
-    ax.plot(data["period_end"], data["lambda_running"], lw=1.4, color="tab:blue", label="running λ_max")
+    ax.plot(ends, inst, lw=0.5, color="0.75", label="λ_inst (per interval)")
+    ax.plot(ends, data["lambda_running"], lw=1.0, color="tab:blue", alpha=0.35,
+            label="running mean of the whole record (warm-up included)")
+    ax.plot(ends[warmup:], after, lw=1.6, color="tab:blue", label=f"running mean after the warm-up ({warmup} intervals)")
+    lam, err = lyap["lambda_max"], lyap["error_bar"]
+    ax.axhspan(lam - err, lam + err, xmin=0, xmax=1, color="tab:orange", alpha=0.35,
+               label=f"λ_max ± error bar ({lyap['batches']:.0f} batch means)")
+    ax.axhline(lam, color="tab:orange", lw=0.8)
+    if warmup:
+        ax.axvline(ends[warmup - 1], color="black", lw=0.6, ls="--")
     windows = lyap.get("windows")
     if windows:
         w = numpy.genfromtxt(os.path.join(out, f"{name}-lyapunov-windows.csv"), delimiter=",", names=True, ndmin=1)
@@ -137,16 +257,18 @@ def lyapunov_figure(out, name, summary):
     ax.axhline(0.0, color="black", lw=0.5)
     ax.set_xlabel("forcing period")
     ax.set_ylabel("λ [1/s]")
-    ax.set_ylim(min(-0.5, numpy.percentile(data["lambda_inst"], 1)), max(1.0, numpy.percentile(data["lambda_inst"], 99)) * 1.2)
-    ax.legend(fontsize=8)
-    ax.set_title(f"Fig 9: {summary['scene']['description']}: λ_max = {lyap['lambda_max']:.3f} ± {lyap['error_bar']:.3f} 1/s",
-                 fontsize=10)
+    ax.set_ylim(min(-0.5, numpy.percentile(inst, 1), lam - 2 * err), max(1.0, numpy.percentile(inst, 99), lam + 2 * err) * 1.2)
+    ax.legend(fontsize=7)
+    title = f"Fig 9: {summary['scene']['description']}: λ_max = {lam:.3f} ± {err:.3f} 1/s"
+    ax.set_title(title, fontsize=10)
     fig.tight_layout()
-    save_figure(fig, os.path.join(out, f"fig9-lyapunov-{name}.png"))
+    path = f"fig9-lyapunov-{name}.png"
+    save_figure(fig, os.path.join(out, path))
     plt.close(fig)
+    return path, title, float(after[-1]) if after.size else float("nan")
 
 
-def summary_lines(name, summary):
+def summary_lines(name, summary, figures):
     scene, lines = summary["scene"], []
     lines.append(f"### {scene['description']} (`{scene.get('file', f'cases/{name}.ini')}`)")
     lines.append("")
@@ -164,7 +286,7 @@ def summary_lines(name, summary):
         rest = two_point.get("rest_since")
         lines.append(f"- unilateral contact: {impacts['count']:.0f} impacts took {impacts['energy_lost']:.4g} J (the largest "
                      f"friction one needed: {impacts['friction_needed_max'] if impacts['friction_needed_max'] is not None else 'unbounded'}); "
-                     f"on two points for {100 * two_point['time_fraction']:.1f} % of the run ({two_point['entries']:.0f} entries; "
+                     f"on two points for {100 * two_point['time_fraction']:.1f} % of the run ({two_point['entries']:.0f} {'entry' if two_point['entries'] == 1 else 'entries'}; "
                      f"{impacts['settled']:.0f} impacts ended by the settle rule; {two_point['lifts']:.0f} lifts, "
                      f"{two_point['third_points']:.0f} third points"
                      + (f"; at rest on three points from t = {rest:.4f} s" if rest is not None else "") + ")")
@@ -207,39 +329,99 @@ def summary_lines(name, summary):
                          + f" 1/s; {windows['chaotic_windows']:.0f} of {windows['windows']:.0f} windows above "
                          f"{windows['chaotic_threshold']:g} 1/s: {life}")
     lines.append("")
-    for figure, label in ((f"fig-timeseries-{name}.png", "time histories"), (f"fig-contact-{name}.png", "contact"),
-                          (f"fig7-strobe-{name}.png", "Fig 7"), (f"fig8-spectrum-{name}.png", "Fig 8"),
-                          (f"fig9-lyapunov-{name}.png", "Fig 9")):
-        if os.path.exists(os.path.join(OUT_DIR[0], figure)):
-            lines.append(f"![{label}]({figure})")
-            lines.append("")
+    for label, figure in figures:
+        lines.append(f"![{label}]({figure})")
+        lines.append("")
+    movie = animation_of(name, summary)
+    if movie:
+        lines += [f"![the body in motion]({movie})" if movie.endswith(".gif") else f"[the body in motion]({movie})",
+                  "", "The body in motion (reports/animate.py): the surface in its attitude over the first seconds of "
+                  "this run, its centroid at its height above the plane, the contact point and the crease marked.", ""]
     return lines
+
+
+def animation_of(name, summary):
+    """The scene's animation when it was drawn from this run's history (its checksum), else None."""
+    path = os.path.join(OUT_DIR[0], f"{name}-animation.json")
+    if not os.path.exists(path):
+        return None
+    drawn = load_json(path)
+    history = {f["name"]: f for f in summary.get("files", [])}.get(f"{name}-history.csv")
+    if not history or drawn.get("history_fnv1a64") != history["fnv1a64"]:
+        return None
+    return drawn["file"] if os.path.exists(os.path.join(OUT_DIR[0], drawn["file"])) else None
 
 
 OUT_DIR = ["."]
 
 
+# Every figure this script draws for a scene, by kind: a file of one of these names that this run did not
+# draw is an earlier run's, and is removed (never linked).
+FIGURE_KINDS = ("fig-timeseries", "fig-contact", "fig7-strobe", "fig8-spectrum", "fig9-lyapunov")
+
+
+def scene_figures(out, name, summary):
+    """Draw the figures of the outputs this run of the scene wrote (the summary's `files`), remove the
+    scene's figures it did not draw, and write OUT/NAME-figures.json: each figure's file, title and the
+    numbers its title quotes. Returns [(label, file)]."""
+    written = {f["name"] for f in summary.get("files", [])}
+    drawn, manifest = [], []
+    h = None
+    if f"{name}-history.csv" in written:
+        h = load_history(os.path.join(out, f"{name}-history.csv"))
+        impacts = load_impacts(out, name, written)
+        path, title = time_series_figure(out, name, h, summary, impacts)
+        drawn.append(("time histories", path))
+        quoted = {"grid_switches": summary["grid_switches"], "branch_switches": summary["branch_switches"]}
+        if summary.get("impacts"):
+            quoted["impacts"] = summary["impacts"]["count"]
+        manifest.append({"kind": "fig-timeseries", "file": path, "title": title, "quotes": quoted})
+        path, title = contact_figure(out, name, h, summary)
+        drawn.append(("contact", path))
+        manifest.append({"kind": "fig-contact", "file": path, "title": title, "quotes": {}})
+    if f"{name}-strobe.csv" in written:
+        path, title = strobe_figure(out, name, summary)
+        drawn.append(("Fig 7", path))
+        manifest.append({"kind": "fig7-strobe", "file": path, "title": title, "quotes": {"samples": summary["strobe"]["samples"]}})
+    if f"{name}-spectrum.csv" in written:
+        path, title = spectrum_figure(out, name, summary, h)
+        drawn.append(("Fig 8", path))
+        manifest.append({"kind": "fig8-spectrum", "file": path, "title": title, "quotes": {}})
+    if f"{name}-lyapunov.csv" in written:
+        path, title, end = lyapunov_figure(out, name, summary)
+        drawn.append(("Fig 9", path))
+        manifest.append({"kind": "fig9-lyapunov", "file": path, "title": title,
+                         "quotes": {"lambda_max": summary["lyapunov"]["lambda_max"], "error_bar": summary["lyapunov"]["error_bar"]},
+                         "curve_end": end})
+    files = {path for _, path in drawn}
+    for kind in FIGURE_KINDS:
+        stale = f"{kind}-{name}.png"
+        if stale not in files and os.path.exists(os.path.join(out, stale)):
+            os.remove(os.path.join(out, stale))
+    write_atomically(os.path.join(out, f"{name}-figures.json"), json.dumps({"scene": name, "figures": manifest}, indent=1))
+    return drawn
+
+
 def main():
-    out, names = sys.argv[1], sys.argv[2:]
-    lines = ["# gomboc — scene runs", ""]
+    args = sys.argv[1:]
+    page = None
+    if "--page" in args:
+        k = args.index("--page")
+        page = args[k + 1] if k + 1 < len(args) else None
+        del args[k:k + 2]
+        if not page or "/" in page:
+            sys.exit("run_report.py: --page takes a file name in OUT (allowed: --page NAME.md)")
+    if len(args) < 2:
+        sys.exit("usage: run_report.py OUT NAME [NAME ...] [--page FILE.md]")
+    out, names = args[0], args[1:]
     OUT_DIR[0] = out
+    # one scene's page is named after it, so that scenes run into one directory keep their pages
+    page = page or (f"{names[0]}-run.md" if len(names) == 1 else "runs.md")
+    lines = ["# gomboc — scene runs", ""]
     for name in names:
         summary = load_json(os.path.join(out, f"{name}-summary.json"))
-        history_path = os.path.join(out, f"{name}-history.csv")
-        h = None
-        if os.path.exists(history_path):
-            h = load_history(history_path)
-            time_series_figure(out, name, h, summary)
-            contact_figure(out, name, h, summary)
-        scene = summary["scene"]
-        if scene.get("strobe"):
-            strobe_figure(out, name, summary)
-        if scene.get("spectrum"):
-            spectrum_figure(out, name, summary, h)
-        if scene.get("lyapunov"):
-            lyapunov_figure(out, name, summary)
-        lines += summary_lines(name, summary)
-    write_atomically(os.path.join(out, "runs.md"), "\n".join(lines))
+        lines += summary_lines(name, summary, scene_figures(out, name, summary))
+    write_atomically(os.path.join(out, page), "\n".join(lines))
 
 
 if __name__ == "__main__":

@@ -619,17 +619,6 @@ static void test_temporaries(void)
 
 /* ---- the rule for every file written: inputs by identity, output sets, concurrent writers ---------- */
 
-static char *read_all(const char *path)
-{
-    FILE *f = fopen(path, "rb");
-    if (!f) return NULL;
-    static char text[1 << 20];
-    const size_t n = fread(text, 1, sizeof text - 1, f);
-    fclose(f);
-    text[n] = '\0';
-    return strdup(text);
-}
-
 static int run_here(const char *dir, const char *args, char *out, size_t cap)
 {
     char command[8192];
@@ -650,9 +639,9 @@ static void test_outputs(void)
     char link_path[512];
     snprintf(link_path, sizeof link_path, "%s/same.atlas", dir);
     const int linked = link(path, link_path) == 0;
-    char *before = read_all(path);
+    char *before = gb_check_read_file(path);
     int code = run_here(dir, "run a.ini --atlas same.atlas", out, sizeof out);
-    char *after = read_all(path);
+    char *after = gb_check_read_file(path);
     gb_check ch = {"-", "-", "gomboc run a.ini --atlas L, L a hard link to a.ini", "exit 2 naming --atlas and CASE, the scene unchanged",
                    "exact"};
     gb_check_true(&ch, linked && code == 2 && strstr(out, "--atlas 'same.atlas' is also the CASE file 'a.ini'") && before && after &&
@@ -690,7 +679,7 @@ static void test_outputs(void)
     snprintf(path, sizeof path, "%s/shared.atlas.tmp", dir);
     if (symlink("victim.txt", path) != 0) path[0] = '\0';
     code = run_here(dir, "run a.ini --atlas shared.atlas", out, sizeof out);
-    char *victim_text = read_all(victim);
+    char *victim_text = gb_check_read_file(victim);
     gb_check cl = {"-", "-", "gomboc run --atlas F with a link F.tmp -> victim planted beside it", "exit 0, the victim unchanged",
                    "exact"};
     gb_check_true(&cl, path[0] && code == 0 && victim_text && !strcmp(victim_text, "not an atlas\n"), "exit %d: %.300s", code, out);
@@ -745,7 +734,7 @@ static void test_outputs(void)
     }
     code = code_of[1] ? code_of[1] : code_of[0];
     const long kib = kib_of[1];
-    char *summary = read_all(summary_path);
+    char *summary = gb_check_read_file(summary_path);
     snprintf(out, sizeof out, "%s", summary ? summary : "");
     free(summary);
     struct stat st;
@@ -766,7 +755,7 @@ static void test_outputs(void)
     const int first = run_here(dir, "run set.ini", out, sizeof out);
     char older[512];
     snprintf(older, sizeof older, "%s/set-history.csv", dir);
-    char *old_history = read_all(older);
+    char *old_history = gb_check_read_file(older);
     const char *longer = "[integrator]\nperiods = 3\nsteps_per_period = 40\n[model]\ncontact = fast-grid\n"
                          "[diagnostics]\nstrobe = yes\n[strobe]\ntransient_periods = 0\n";
     write_bytes(path, longer, strlen(longer));
@@ -939,7 +928,7 @@ static void test_file_size_limit(void)
     }
     int wstatus = 0;
     waitpid(child, &wstatus, 0);
-    char *after = snapshot(dir), *message = read_all(log);
+    char *after = snapshot(dir), *message = gb_check_read_file(log);
     remove(log);
     gb_check c = {"-", "-", "gomboc run of a scene with lambda, files limited to 4 KiB (ulimit -f)",
                   "exit 1 (not killed by SIGXFSZ), naming the history and 'File too large', not the Lyapunov pair; no "
@@ -1068,7 +1057,7 @@ static void test_round3_runs(void)
     snprintf(command, sizeof command, "%s run drop.ini --json", binary());
     const int dropped = run_in(dir, command, out, sizeof out);
     snprintf(path, sizeof path, "%s/drop-impacts.csv", dir);
-    char *impacts = read_all(path);
+    char *impacts = gb_check_read_file(path);
     double worst = 0.0, scale = 0.0;
     int rows = 0;
     for (char *line = impacts ? strchr(impacts, '\n') : NULL; line && line[1]; line = strchr(line + 1, '\n')) {

@@ -250,3 +250,16 @@ int gb_check_command(const char *binary, const char *args, char *out, size_t cap
     const char *mark = strstr(out, "@@exit=");
     return mark ? atoi(mark + 7) : -1;
 }
+
+char *gb_check_read_file(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f) return NULL;
+    char *text = NULL;
+    long n = -1;
+    if (!fseek(f, 0, SEEK_END) && (n = ftell(f)) >= 0 && !fseek(f, 0, SEEK_SET)) text = malloc((size_t)n + 1);
+    if (text && fread(text, 1, (size_t)n, f) != (size_t)n) free(text), text = NULL;
+    if (text) text[n] = '\0';
+    fclose(f);
+    return text;
+}

@@ -70,6 +70,9 @@ int gb_check_write(const char *path);
  * NUL-terminated); the exit status, or -1 when it could not be run. */
 int gb_check_command(const char *binary, const char *args, char *out, size_t cap);
 
+/* The whole file at `path`, NUL-terminated, malloc'd (the caller frees it); NULL when it cannot be read. */
+char *gb_check_read_file(const char *path);
+
 /* 1 under `make verify-full` (main's --full): the long studies run too. */
 extern int gb_check_full;
 

@@ -30,20 +30,6 @@ static const char *binary(void) { return getenv("GOMBOC_BIN") ? getenv("GOMBOC_B
 
 static int run(const char *args, char *out, size_t cap) { return gb_check_command(binary(), args, out, cap); }
 
-static char *slurp(const char *path)
-{
-    FILE *f = fopen(path, "rb");
-    if (!f) return NULL;
-    fseek(f, 0, SEEK_END);
-    const long n = ftell(f);
-    rewind(f);
-    char *text = malloc((size_t)n + 1);
-    if (text && fread(text, 1, (size_t)n, f) != (size_t)n) free(text), text = NULL;
-    if (text) text[n] = '\0';
-    fclose(f);
-    return text;
-}
-
 static int spill(const char *path, const char *text)
 {
     FILE *f = fopen(path, "w");
@@ -210,7 +196,7 @@ static void test_mechanism(void)
     char out[4096], json_path[200];
     const int status = spill(d.scan, text) ? -1 : scan_run(&d, "", out, sizeof out);
     snprintf(json_path, sizeof json_path, "%s/map-scan.json", d.path);
-    char *json = slurp(json_path), *csv = slurp(d.csv);
+    char *json = gb_check_read_file(json_path), *csv = gb_check_read_file(d.csv);
     cJSON *root = json ? cJSON_Parse(json) : NULL;
     const cJSON *why = cJSON_GetObjectItem(cJSON_GetObjectItem(root, "not_applicable"), "contacts");
     gb_check_true(&c, status == 0 && cJSON_IsString(why) && csv && strstr(csv, ",nan,nan,nan,nan,nan,nan,nan,nan,nan,"),
@@ -266,7 +252,7 @@ static void test_point_is_the_run(void)
     gb_check cs = {"8.3", "-", "gomboc scan of 3 x 3 points (omega, A2), 12 periods, fast grid, every metric", "-", "exact: exit 0"};
     if (make_scan_dir(&d, &cs)) return;
     const int code = scan_run(&d, "", out, sizeof out);
-    char *csv = slurp(d.csv);
+    char *csv = gb_check_read_file(d.csv);
     gb_check_true(&cs, code == 0 && csv != NULL, "exit %d: %.300s", code, out);
     gb_check ch = {"8.3", "-", "that scan's CSV header", "index, the axes by their keys, then the metrics", "exact"};
     const char *header_start = "index,forcing.omega,forcing.A2,omega_rms,";
@@ -297,7 +283,7 @@ static void test_point_is_the_run(void)
         if (spill(scene, text)) break;
         snprintf(args, sizeof args, "run '%s' --out '%s'", scene, d.path);
         if (run(args, out, sizeof out) != 0) break;
-        char *json = slurp(summary);
+        char *json = gb_check_read_file(summary);
         cJSON *root = json ? cJSON_Parse(json) : NULL;
         free(json);
         char fp[40], sw[40];
@@ -377,9 +363,9 @@ static void test_melnikov_margins(void)
         return;
     }
     const int c1 = scan_run(&d, "--threads 1", out, sizeof out);
-    char *one = slurp(d.csv);
+    char *one = gb_check_read_file(d.csv);
     const int c2 = scan_run(&d, "--threads 2", out, sizeof out);
-    char *two = slurp(d.csv);
+    char *two = gb_check_read_file(d.csv);
     gb_scan_metrics m[4];
     int rows = 0, idle = 0;
     for (const char *line = one ? strchr(one, '\n') : NULL; line && line[1] && rows < 4; line = strchr(line + 1, '\n')) {
@@ -622,9 +608,9 @@ static void test_threads_and_resume(void)
     gb_check ct = {"8.3", "-", "scan CSV on 1 and on 2 threads", "byte for byte", "exact"};
     if (make_scan_dir(&d, &ct)) return;
     const int c1 = scan_run(&d, "--threads 1", out, sizeof out);
-    char *one = slurp(d.csv);
+    char *one = gb_check_read_file(d.csv);
     const int c2 = scan_run(&d, "--threads 2", out, sizeof out);
-    char *two = slurp(d.csv);
+    char *two = gb_check_read_file(d.csv);
     gb_check_true(&ct, c1 == 0 && c2 == 0 && one && two && !strcmp(one, two), "exits %d, %d; %s", c1, c2,
                   one && two && !strcmp(one, two) ? "identical" : "different");
     free(two);
@@ -636,7 +622,7 @@ static void test_threads_and_resume(void)
     FILE *j = fopen(d.journal, "a");
     if (j) fputs("7,18.5,0.7", j), fclose(j); /* a line cut off by the kill */
     const int cr = scan_run(&d, "--resume", out, sizeof out);
-    char *resumed = slurp(d.csv);
+    char *resumed = gb_check_read_file(d.csv);
     gb_check ck = {"8.3", "-", "scan CSV after a kill -9 with 2 or more points in the journal, a half-written line, and --resume",
                    "the uninterrupted run's CSV, byte for byte", "exact"};
     gb_check_true(&ck, WIFSIGNALED(wstatus) && kept >= 3 && kept < 1 + SCAN_POINTS && cr == 0 && resumed && one &&
@@ -651,9 +637,9 @@ static void test_threads_and_resume(void)
     char err[96];
     snprintf(err, sizeof err, "%s/interrupted.txt", d.path);
     const int istatus = signalled_scan(&d, 3, SIGINT, err);
-    char *said = slurp(err);
+    char *said = gb_check_read_file(err);
     const int ci = scan_run(&d, "--resume", out, sizeof out);
-    char *continued = slurp(d.csv);
+    char *continued = gb_check_read_file(d.csv);
     gb_check cint = {"8.3", "-", "scan interrupted by SIGINT (Ctrl-C) with 2 or more points in the journal",
                      "says how to resume (the scan file, --out and --resume on standard error), and --resume gives the "
                      "uninterrupted run's CSV", "exact"};
@@ -694,7 +680,7 @@ static void test_threads_and_resume(void)
         remove(d.csv);
         spill(d.journal, "");
         empty_codes[k] = scan_run(&d, k ? "--threads 1" : "--resume --threads 1", out, sizeof out);
-        empty_csv[k] = slurp(d.csv);
+        empty_csv[k] = gb_check_read_file(d.csv);
     }
     gb_check ce = {"8.3", "-", "an empty journal, then --resume, and then a fresh start", "both exit 0 with the uninterrupted "
                    "run's CSV, byte for byte; no journal left", "exact"};
@@ -707,7 +693,7 @@ static void test_threads_and_resume(void)
     struct stat before, after;
     const int had = stat(d.csv, &before);
     const int cr2 = scan_run(&d, "--resume", out, sizeof out);
-    char *csv_after = slurp(d.csv);
+    char *csv_after = gb_check_read_file(d.csv);
     const int same = had == 0 && stat(d.csv, &after) == 0 && before.st_mtim.tv_sec == after.st_mtim.tv_sec &&
                      before.st_mtim.tv_nsec == after.st_mtim.tv_nsec && csv_after && one && !strcmp(csv_after, one);
     gb_check cn = {"8.3", "-", "--resume on a complete scan", "exit 0, 'nothing to resume' on standard error, no point run, "
@@ -731,7 +717,7 @@ static void test_threads_and_resume(void)
  * '\n'; NULL when there is none. */
 static char **journal_lines(const char *path, size_t *count)
 {
-    char *text = slurp(path);
+    char *text = gb_check_read_file(path);
     *count = 0;
     if (!text) return NULL;
     char **lines = calloc(strlen(text) + 2, sizeof *lines);
@@ -859,9 +845,9 @@ static void test_journal_verified(void)
     char report[4096] = "";
     for (size_t k = 0; k < total; k++) {
         spill_lines(d.journal, lines, count, faults[k].line, faults[k].text, faults[k].size);
-        char *before = slurp(d.journal);
+        char *before = gb_check_read_file(d.journal);
         const int code = scan_run(&d, "--resume --threads 1", out, sizeof out);
-        char *after = slurp(d.journal);
+        char *after = gb_check_read_file(d.journal);
         char where[64];
         snprintf(where, sizeof where, "map-scan.journal:%zu: ", faults[k].line + 1);
         const int ok = code == 2 && strstr(out, faults[k].must) && (faults[k].line == 0 || strstr(out, where)) &&
@@ -879,9 +865,9 @@ static void test_journal_verified(void)
     for (size_t k = 0; f && k < count; k++) fputs(lines[k], f);
     if (f) fputs(lines[2], f), fputs("5,18,", f), fclose(f);
     const int resumed = scan_run(&d, "--resume --threads 1", out, sizeof out);
-    char *csv = slurp(d.csv);
+    char *csv = gb_check_read_file(d.csv);
     const int whole = scan_run(&d, "--threads 1", out, sizeof out); /* the uninterrupted CSV */
-    char *reference = slurp(d.csv);
+    char *reference = gb_check_read_file(d.csv);
     gb_check ci = {"8.3", "-", "--resume with a point twice, identical, and a half-written last line",
                    "accepted; the CSV of an uninterrupted run, byte for byte", "exact"};
     gb_check_true(&ci, resumed == 0 && whole == 0 && csv && reference && !strcmp(csv, reference), "resume exit %d, run exit %d, %s",
@@ -893,7 +879,7 @@ static void test_journal_verified(void)
     snprintf(json_path, sizeof json_path, "%s/map-scan.json", d.path);
     snprintf(args, sizeof args, "check '%s'", json_path);
     const int checked = run(args, out, sizeof out);
-    char *json_text = slurp(json_path);
+    char *json_text = gb_check_read_file(json_path);
     cJSON *root = json_text ? cJSON_Parse(json_text) : NULL;
     const cJSON *metrics = cJSON_GetObjectItem(root, "metrics");
     gb_check cm = {"8.3", "-", "a scan's JSON lists its CSV with size and checksum, and the metrics it computed",
@@ -926,8 +912,8 @@ static void test_journal_verified(void)
     spill(d.scan, "[scan]\nbase = base.ini\nperiods = 2\ntransient_periods = 1\nfailed_points = record\n[x]\nkey = body.mass\n"
                   "from = 1\nto = 2\ncount = 2\n[y]\nkey = forcing.A1\nfrom = 1\nto = 1\ncount = 1\n");
     const int recorded = scan_run(&d, "--threads 1", out, sizeof out);
-    char *csv_text = slurp(d.csv);
-    json_text = slurp(json_path);
+    char *csv_text = gb_check_read_file(d.csv);
+    json_text = gb_check_read_file(json_path);
     root = json_text ? cJSON_Parse(json_text) : NULL;
     const cJSON *mode = cJSON_GetObjectItem(root, "failed_points");
     size_t nan_rows = 0;
@@ -953,7 +939,7 @@ static void test_journal_verified(void)
     spill(d.scan, "[scan]\nbase = base.ini\nperiods = 2\ntransient_periods = 1\nmetrics = omega_rms\n[x]\nkey = initial.attitude\n"
                   "scale = random\ncount = 2\nseed = 5\n[y]\nkey = forcing.A1\nfrom = 1\nto = 1\ncount = 1\n");
     const int random_run = scan_run(&d, "--threads 1", out, sizeof out);
-    json_text = slurp(json_path);
+    json_text = gb_check_read_file(json_path);
     root = json_text ? cJSON_Parse(json_text) : NULL;
     const cJSON *x = cJSON_GetObjectItem(root, "x");
     const cJSON *scale = cJSON_GetObjectItem(x, "scale"), *seed = cJSON_GetObjectItem(x, "seed");
@@ -986,7 +972,7 @@ static int ranks_of(const scan_dir *d)
 {
     char path[200];
     snprintf(path, sizeof path, "%s/map-scan.json", d->path);
-    char *text = slurp(path);
+    char *text = gb_check_read_file(path);
     cJSON *root = text ? cJSON_Parse(text) : NULL;
     free(text);
     const double ranks = number_at(root, "environment", "ranks");
@@ -1035,10 +1021,10 @@ static void test_mpi_ranks(void)
     gb_check c1 = {"8.3", "-", "scan CSV of the MPI build on 1 rank against the plain build on 1 thread", "byte for byte", "exact"};
     if (make_scan_dir(&d, &c1)) return;
     const int plain = scan_run(&d, "--threads 1", out, sizeof out);
-    char *reference = slurp(d.csv);
+    char *reference = gb_check_read_file(d.csv);
     remove(d.csv);
     const int one = mpi_scan_run(&d, 1, "--threads 1", out, sizeof out);
-    char *csv = slurp(d.csv);
+    char *csv = gb_check_read_file(d.csv);
     const int same1 = plain == 0 && one == 0 && reference && csv && !strcmp(reference, csv) && ranks_of(&d) == 1;
     gb_check_true(&c1, same1, "exits %d, %d; %d rank(s); %s%s%.200s", plain, one, ranks_of(&d),
                   reference && csv && !strcmp(reference, csv) ? "identical" : "different", same1 ? "" : ": ", same1 ? "" : out);
@@ -1051,7 +1037,7 @@ static void test_mpi_ranks(void)
     for (size_t k = 0; k < sizeof runs / sizeof runs[0]; k++) {
         remove(d.csv);
         const int code = mpi_scan_run(&d, runs[k].ranks, runs[k].threads, out, sizeof out);
-        csv = slurp(d.csv);
+        csv = gb_check_read_file(d.csv);
         char quantity[160];
         snprintf(quantity, sizeof quantity, "scan CSV on %d MPI ranks (%s) against the plain build on 1 thread",
                  runs[k].ranks, runs[k].threads);
@@ -1084,7 +1070,7 @@ static void test_mpi_ranks(void)
     FILE *j = fopen(d.journal, "a");
     if (j) fputs("5,18,1.", j), fclose(j);
     const int resumed = mpi_scan_run(&d, 2, "--resume --threads 1", out, sizeof out);
-    csv = slurp(d.csv);
+    csv = gb_check_read_file(d.csv);
     gb_check ck = {"8.3", "-", "scan CSV after a kill -9 of every rank with 2 or more points journaled, a half-written line, "
                    "and --resume on 2 ranks", "the plain build's uninterrupted CSV, byte for byte", "exact"};
     size_t journaled = SCAN_POINTS; /* what the resumed run found in the journal */
@@ -1114,7 +1100,7 @@ static void test_disk_full(void)
                   "exact"};
     if (make_scan_dir(&d, &c)) return;
     const int plain = scan_run(&d, "--threads 1", out, sizeof out);
-    char *reference = slurp(d.csv);
+    char *reference = gb_check_read_file(d.csv);
     remove(d.csv);
     char log[200];
     snprintf(log, sizeof log, "%s/full.log", d.path);
@@ -1128,11 +1114,11 @@ static void test_disk_full(void)
     }
     int wstatus = 0;
     waitpid(pid, &wstatus, 0);
-    char *message = slurp(log);
+    char *message = gb_check_read_file(log);
     const size_t kept = lines_of(d.journal);
     const int no_csv = access(d.csv, F_OK) != 0;
     const int resumed = scan_run(&d, "--resume --threads 1", out, sizeof out);
-    char *csv = slurp(d.csv);
+    char *csv = gb_check_read_file(d.csv);
     const int ok = plain == 0 && WIFEXITED(wstatus) && WEXITSTATUS(wstatus) == 1 && message &&
                    strstr(message, "cannot append to the journal") && no_csv && kept >= 2 && kept < 1 + SCAN_POINTS &&
                    resumed == 0 && csv && reference && !strcmp(csv, reference);
@@ -1368,7 +1354,7 @@ static void test_scan_atlas(void)
                  shared ? " --atlas '" : "", shared ? atlas : "", shared ? "'" : "");
         codes[k] = run(args, out, sizeof out);
         snprintf(path, sizeof path, "%s/scan-%s-scan.csv", d.path, names[shared]);
-        csv[k] = slurp(path);
+        csv[k] = gb_check_read_file(path);
     }
     struct stat st;
     const int written = stat(atlas, &st) == 0 && st.st_size > 0;
@@ -1393,9 +1379,9 @@ static void test_scan_atlas(void)
              "key = forcing.A1\nfrom = 1.5\nto = 2\ncount = 2\n");
     const int code = scan_file_run(d.path, "scan-shared", text, " --threads 2", out, sizeof out);
     snprintf(path, sizeof path, "%s/scan-per-vertical-scan.csv", d.path);
-    char *reference = slurp(path);
+    char *reference = gb_check_read_file(path);
     snprintf(path, sizeof path, "%s/scan-shared-scan.csv", d.path);
-    char *shared_csv = slurp(path);
+    char *shared_csv = gb_check_read_file(path);
     snprintf(path, sizeof path, "%s/scan-shared-scan.atlas", d.path);
     const int own = stat(path, &st) == 0 && st.st_size > 0;
     gb_check ck = {"4, 8.3", "29", "[scan] atlas = shared over a base scene that certifies per vertical (2 x 2 points, 2 threads)",
@@ -1414,7 +1400,7 @@ static void test_scan_atlas(void)
                  "count = 2\n[y]\nkey = forcing.A1\nfrom = 1.5\nto = 2\ncount = 2\n");
         named_code[k] = scan_file_run(d.path, k ? "named-again" : "named", text, k ? " --threads 1" : " --threads 2", out, sizeof out);
         snprintf(path, sizeof path, "%s/%s-scan.csv", d.path, k ? "named-again" : "named");
-        char *csv = slurp(path);
+        char *csv = gb_check_read_file(path);
         named_equal &= reference && csv && !strcmp(reference, csv);
         free(csv);
         snprintf(named_path[k], sizeof named_path[k], "%s/body.atlas", d.path);
@@ -1460,7 +1446,7 @@ static void test_scan_atlas(void)
         snprintf(text, sizeof text, nine, k ? "atlas = shared\n" : "");
         nine_code[k] = scan_file_run(d.path, k ? "nine-shared" : "nine-per-vertical", text, " --threads 1", out, sizeof out);
         snprintf(path, sizeof path, "%s/%s-scan.csv", d.path, k ? "nine-shared" : "nine-per-vertical");
-        nine_csv[k] = slurp(path);
+        nine_csv[k] = gb_check_read_file(path);
     }
     snprintf(path, sizeof path, "%s/nine-shared-scan.atlas", d.path);
     const int nine_atlas = stat(path, &st) == 0 && st.st_size > 0;
@@ -1505,14 +1491,14 @@ static void test_scan_atlas(void)
         snprintf(args, sizeof args, "scan '%s/race-a.ini' --out '%s' --threads 2 2>/dev/null & %s scan '%s/race-b.ini' --out '%s' "
                  "--threads 2 2>/dev/null; wait $!", d.path, d.path, binary(), d.path, d.path);
         race_codes += run(args, out, sizeof out) != 0;
-        char *left = slurp(path);
+        char *left = gb_check_read_file(path);
         struct stat before_st;
         const int had = stat(path, &before_st) == 0;
         for (int k = 0; k < 2; k++) {
             snprintf(args, sizeof args, "scan '%s/race-%c.ini' --out '%s' --threads 1", d.path, 'a' + k, d.path);
             race_codes += run(args, out, sizeof out) != 0;
         }
-        char *again = slurp(path);
+        char *again = gb_check_read_file(path);
         race_kept += had && left && again && before_st.st_size > 0 && !memcmp(left, again, (size_t)before_st.st_size) &&
                      strlen(left) == strlen(again);
         free(left), free(again);

@@ -1,0 +1,297 @@
+/* Reports: every figure drawn from the data it names, in this run.
+ *
+ * - reports/run_report.py on two shipped scenes (Table 1's Gömböc I with Figs 7-9, Housner's block under the
+ *   unilateral law): every number a figure's title quotes is the summary's (λ_max and its error bar to the
+ *   three decimals printed, the strobe's samples, the count of impacts or grid-node changes), Fig 9's bold
+ *   curve ends at the quoted λ_max, every figure the manifest lists exists and the page links exactly those,
+ *   and a figure of an earlier run (a Fig 9 the block never asked for, planted) is removed and not linked;
+ * - reports/animate.py on Table 1's Gömböc I under the unilateral law: every frame's attitude is R(q) of its
+ *   history row, its contact point is R r_c lifted by ζ and lies on the plane, and the lowest point of the
+ *   drawn surface touches the plane beside it (to the radial map's sampling).
+ * The commands run in a directory of their own under /tmp. */
+#include "gb_check.h"
+#include "gb_dynamics.h"
+#include "verify_sections.h"
+
+#include <cjson/cJSON.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+static const char *gomboc(void) { return getenv("GOMBOC_BIN") ? getenv("GOMBOC_BIN") : "build/gomboc"; }
+
+/* DIR/NAME read whole (malloc'd, NULL when unreadable), and parsed as JSON. */
+static char *read_text(const char *dir, const char *name)
+{
+    char path[512];
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    return gb_check_read_file(path);
+}
+
+static cJSON *read_json(const char *dir, const char *name)
+{
+    char *text = read_text(dir, name);
+    cJSON *json = text ? cJSON_Parse(text) : NULL;
+    free(text);
+    return json;
+}
+
+static double number(const cJSON *o, const char *a, const char *b)
+{
+    const cJSON *v = cJSON_GetObjectItem(o, a);
+    if (b) v = cJSON_GetObjectItem(v, b);
+    return cJSON_IsNumber(v) ? v->valuedouble : NAN;
+}
+
+/* The number after `mark` in `title` (NAN when absent). */
+static double after(const char *title, const char *mark)
+{
+    const char *at = title ? strstr(title, mark) : NULL;
+    return at ? strtod(at + strlen(mark), NULL) : NAN;
+}
+
+/* The number before the last `mark` in `title` (the title's own numbers follow the scene's description): the
+ * digits that end where mark begins. */
+static double before(const char *title, const char *mark)
+{
+    const char *at = NULL;
+    for (const char *p = title; p && (p = strstr(p, mark)); p++) at = p;
+    if (!at) return NAN;
+    const char *p = at;
+    while (p > title && (p[-1] == '.' || (p[-1] >= '0' && p[-1] <= '9'))) p--;
+    return p < at ? strtod(p, NULL) : NAN;
+}
+
+static void clean(const char *dir)
+{
+    char command[600];
+    snprintf(command, sizeof command, "rm -rf '%s'", dir);
+    if (system(command)) return;
+}
+
+/* Run a reports/ script (its arguments in `args`) and record that it ran; 0 when it did. */
+static int script(const char *args, const char *what, char *out, size_t cap)
+{
+    const int code = gb_check_command("/usr/bin/python3", args, out, cap);
+    gb_check ran = {"-", "-", what, "exit 0", "exact"};
+    gb_check_true(&ran, code == 0, "exit %d: %.300s", code, out);
+    return code;
+}
+
+static void test_figures(void)
+{
+    char dir[] = "/tmp/gomboc-figures-XXXXXX";
+    if (!mkdtemp(dir)) return;
+    char args[1024], out[8192];
+    int code = 0;
+    static const char *const scenes[2] = {"cases/table1-gomboc-I.ini", "cases/bodies/housner-block.ini"};
+    for (int k = 0; k < 2 && !code; k++) {
+        snprintf(args, sizeof args, "run %s --out %s", scenes[k], dir);
+        code = gb_check_command(gomboc(), args, out, sizeof out);
+    }
+    char stale[600];
+    snprintf(stale, sizeof stale, "%s/fig9-lyapunov-housner-block.png", dir);
+    FILE *f = fopen(stale, "w"); /* an earlier run's figure, which this run of the block does not draw */
+    if (f) fputs("not a figure of this run", f), fclose(f);
+    gb_check runs = {"-", "-", "gomboc run on table1-gomboc-I and housner-block", "exit 0", "exact"};
+    gb_check_true(&runs, code == 0, "exit %d: %.300s", code, out);
+    snprintf(args, sizeof args, "reports/run_report.py %s table1-gomboc-I housner-block --page page.md", dir);
+    if (code || script(args, "run_report.py on table1-gomboc-I and housner-block", out, sizeof out)) {
+        clean(dir);
+        return;
+    }
+    cJSON *s1 = read_json(dir, "table1-gomboc-I-summary.json"), *s2 = read_json(dir, "housner-block-summary.json");
+    cJSON *m1 = read_json(dir, "table1-gomboc-I-figures.json"), *m2 = read_json(dir, "housner-block-figures.json");
+    char *page = read_text(dir, "page.md");
+    int kinds = 0, listed = 0, linked = 0, present = 0;
+    double lam_title = NAN, err_title = NAN, curve_end = NAN, samples_title = NAN, switches_title = NAN, impacts_title = NAN;
+    const cJSON *manifests[2] = {m1, m2};
+    for (int k = 0; k < 2; k++) {
+        const cJSON *fig;
+        cJSON_ArrayForEach(fig, cJSON_GetObjectItem(manifests[k], "figures")) {
+            const char *kind = cJSON_GetStringValue(cJSON_GetObjectItem(fig, "kind"));
+            const char *file = cJSON_GetStringValue(cJSON_GetObjectItem(fig, "file"));
+            const char *title = cJSON_GetStringValue(cJSON_GetObjectItem(fig, "title"));
+            if (!kind || !file) continue;
+            listed++;
+            char path[700], link[700];
+            snprintf(path, sizeof path, "%s/%s", dir, file);
+            present += access(path, R_OK) == 0;
+            snprintf(link, sizeof link, "(%s)", file);
+            linked += page && strstr(page, link) != NULL;
+            if (k == 0 && !strcmp(kind, "fig9-lyapunov")) {
+                kinds |= 1;
+                lam_title = after(title, "λ_max = "), err_title = after(title, "± ");
+                curve_end = number(fig, "curve_end", NULL);
+            } else if (k == 0 && !strcmp(kind, "fig7-strobe")) {
+                kinds |= 2;
+                samples_title = after(title, "(");
+            } else if (k == 0 && !strcmp(kind, "fig-timeseries")) {
+                kinds |= 4;
+                switches_title = before(title, " grid-node changes");
+            } else if (k == 1 && !strcmp(kind, "fig-timeseries")) {
+                kinds |= 8;
+                impacts_title = before(title, " impacts");
+            } else if (!strcmp(kind, "fig8-spectrum") || !strcmp(kind, "fig-contact")) {
+                kinds |= !strcmp(kind, "fig8-spectrum") ? 16 : 32;
+            }
+        }
+    }
+    const double lam = number(s1, "lyapunov", "lambda_max"), err = number(s1, "lyapunov", "error_bar");
+    gb_check c9 = {"8.2", "77", "Fig 9's title: lambda_max and its error bar, as printed (3 decimals)", "the summary's lambda_max, error_bar",
+                   "5e-4: the title's rounding to 3 decimals"};
+    gb_check_close(&c9, lam_title, lam, 0.0, 5.000001e-4);
+    gb_check_close(&c9, err_title, err, 0.0, 5.000001e-4);
+    gb_check ce = {"8.2", "77", "Fig 9's bold curve (the running mean after the warm-up): its last value", "the quoted lambda_max",
+                   "1e-9 relative: the mean of the same intervals summed in another order"};
+    gb_check_close(&ce, curve_end, lam, 1e-9, 0.0);
+    gb_check c7 = {"8.1", "73", "Fig 7's title: the strobe's samples", "the summary's strobe samples", "exact"};
+    gb_check_close(&c7, samples_title, number(s1, "strobe", "samples"), 0.0, 0.0);
+    gb_check ct = {"-", "-", "the time series' titles: grid-node changes (held law), impacts (unilateral law)",
+                   "the summary's grid_switches, impacts.count", "exact"};
+    gb_check_close(&ct, switches_title, number(s1, "grid_switches", NULL), 0.0, 0.0);
+    gb_check_close(&ct, impacts_title, number(s2, "impacts", "count"), 0.0, 0.0);
+    gb_check cf = {"-", "-", "every figure kind drawn, every figure the manifest lists present and linked, and only those",
+                   "6 kinds; listed = present = linked = the page's figure links", "exact"};
+    int page_links = 0;
+    for (const char *p = page; p && (p = strstr(p, "](")); p += 2) page_links++;
+    gb_check_true(&cf, kinds == 63 && listed == present && listed == linked && page_links == listed,
+                  "kinds %#x, %d listed, %d present, %d linked, %d links on the page", kinds, listed, present, linked, page_links);
+    gb_check cs = {"-", "-", "a figure of an earlier run (a Fig 9 the block's run did not draw)", "removed, not linked", "exact"};
+    gb_check_true(&cs, access(stale, F_OK) != 0 && page && !strstr(page, "fig9-lyapunov-housner-block"), "%s",
+                  access(stale, F_OK) == 0 ? "still there" : "removed");
+    cJSON_Delete(s1), cJSON_Delete(s2), cJSON_Delete(m1), cJSON_Delete(m2);
+    free(page);
+    clean(dir);
+}
+
+/* ---- the animation ---------------------------------------------------------------------------------- */
+
+enum { COLUMNS = 40 };
+
+/* The history's columns by name, the data rows kept as text lines. */
+typedef struct history {
+    char *text;
+    char **rows;
+    size_t count;
+    char names[COLUMNS][24];
+    int columns;
+} history;
+
+static int history_read(const char *dir, const char *name, history *h)
+{
+    memset(h, 0, sizeof *h);
+    char file[300];
+    snprintf(file, sizeof file, "%s-history.csv", name);
+    h->text = read_text(dir, file);
+    if (!h->text) return -1;
+    size_t lines = 0;
+    for (const char *p = h->text; *p; p++) lines += *p == '\n';
+    h->rows = calloc(lines + 1, sizeof *h->rows);
+    char *save = NULL, *line = strtok_r(h->text, "\n", &save);
+    for (char *col = line; col && h->columns < COLUMNS;) { /* the header */
+        char *comma = strchr(col, ',');
+        snprintf(h->names[h->columns++], sizeof h->names[0], "%.*s", comma ? (int)(comma - col) : (int)strlen(col), col);
+        col = comma ? comma + 1 : NULL;
+    }
+    while ((line = strtok_r(NULL, "\n", &save))) h->rows[h->count++] = line;
+    return 0;
+}
+
+static double history_value(const history *h, size_t row, const char *column)
+{
+    int c = 0;
+    while (c < h->columns && strcmp(h->names[c], column)) c++;
+    if (c == h->columns || row >= h->count) return NAN;
+    const char *p = h->rows[row];
+    for (int k = 0; k < c && p; k++) p = strchr(p, ','), p = p ? p + 1 : NULL;
+    return p ? strtod(p, NULL) : NAN;
+}
+
+static void test_animation(void)
+{
+    char dir[] = "/tmp/gomboc-animation-XXXXXX";
+    if (!mkdtemp(dir)) return;
+    char args[1024], out[8192];
+    snprintf(args, sizeof args, "run cases/table1-gomboc-I-unilateral.ini --out %s", dir);
+    int code = gb_check_command(gomboc(), args, out, sizeof out);
+    if (!code) {
+        snprintf(args, sizeof args, "shape --scene cases/table1-gomboc-I-unilateral.ini --json --radial-map %s/map.csv > /dev/null", dir);
+        code = gb_check_command(gomboc(), args, out, sizeof out);
+    }
+    gb_check runs = {"-", "-", "gomboc run and shape --scene on table1-gomboc-I-unilateral", "exit 0", "exact"};
+    gb_check_true(&runs, code == 0, "exit %d: %.300s", code, out);
+    snprintf(args, sizeof args, "reports/animate.py %s table1-gomboc-I-unilateral --surface %s/map.csv --seconds 1 --fps 10", dir, dir);
+    if (code || script(args, "animate.py on table1-gomboc-I-unilateral (1 s, 10 frames a second)", out, sizeof out)) {
+        clean(dir);
+        return;
+    }
+    cJSON *a = read_json(dir, "table1-gomboc-I-unilateral-animation.json");
+    history h;
+    const int read = history_read(dir, "table1-gomboc-I-unilateral", &h);
+    double worst_R = 0.0, worst_p = 0.0, worst_plane = 0.0, lowest_max = -INFINITY, lowest_min = INFINITY, apart = 0.0;
+    int frames = 0;
+    const cJSON *fr;
+    cJSON_ArrayForEach(fr, cJSON_GetObjectItem(a, "frames")) {
+        const size_t row = (size_t)number(fr, "row", NULL);
+        const double q[4] = {history_value(&h, row, "q_w"), history_value(&h, row, "q_x"), history_value(&h, row, "q_y"),
+                             history_value(&h, row, "q_z")};
+        double R[9];
+        gb_dynamics_rotation(q, R);
+        const cJSON *Rd = cJSON_GetObjectItem(fr, "R");
+        for (int i = 0; i < 3; i++)
+            for (int j = 0; j < 3; j++) {
+                const double v = cJSON_GetArrayItem(cJSON_GetArrayItem(Rd, i), j)->valuedouble;
+                worst_R = fmax(worst_R, isnan(v) ? INFINITY : fabs(v - R[3 * i + j]));
+            }
+        const double rc[3] = {history_value(&h, row, "rc_x"), history_value(&h, row, "rc_y"), history_value(&h, row, "rc_z")};
+        const double zeta = history_value(&h, row, "zeta"), clearance = history_value(&h, row, "clearance");
+        const cJSON *drawn = cJSON_GetObjectItem(fr, "contact_drawn"), *low = cJSON_GetObjectItem(fr, "lowest_drawn");
+        double p[3];
+        for (int i = 0; i < 3; i++) p[i] = R[3 * i] * rc[0] + R[3 * i + 1] * rc[1] + R[3 * i + 2] * rc[2] + (i == 2 ? zeta : 0.0);
+        if (cJSON_IsArray(drawn))
+            for (int i = 0; i < 3; i++) worst_p = fmax(worst_p, fabs(cJSON_GetArrayItem(drawn, i)->valuedouble - p[i]));
+        worst_plane = fmax(worst_plane, fabs(p[2] - clearance));
+        const double lz = cJSON_GetArrayItem(low, 2)->valuedouble;
+        lowest_max = fmax(lowest_max, lz - clearance), lowest_min = fmin(lowest_min, lz - clearance);
+        apart = fmax(apart, hypot(cJSON_GetArrayItem(low, 0)->valuedouble - p[0], cJSON_GetArrayItem(low, 1)->valuedouble - p[1]));
+        frames++;
+    }
+    gb_check cn = {"-", "-", "the animation's frames read back with their history rows", "10 frames", "exact"};
+    gb_check_true(&cn, a && !read && frames == 10, "%d frames", frames);
+    gb_check cr = {"5", "-", "each frame's attitude against R(q) of its history row (max |R_drawn - R(q)|)", "0",
+                   "1e-12: the same formula in Python and C on the same printed q"};
+    gb_check_close(&cr, worst_R, 0.0, 0.0, 1e-12);
+    gb_check cp = {"5", "-", "each frame's contact point against R r_c + zeta e_z from its row [m]", "0", "1e-12: the same"};
+    gb_check_close(&cp, worst_p, 0.0, 0.0, 1e-12);
+    gb_check cz = {"5", "-", "each frame's contact point: its height above the plane minus the row's clearance [m]", "0 (on the plane)",
+                   "1e-9 m: the history's printed digits (12 significant)"};
+    gb_check_close(&cz, worst_plane, 0.0, 0.0, 1e-9);
+    gb_check cl = {"5", "-", "the drawn surface's lowest point: height above the plane [m], highest over the frames",
+                   "0, the sampled surface's lowest point just above the contact",
+                   "1e-3 m: a 90 x 180 midpoint sample misses the true minimum by up to r (pi/90)^2 / 2 ~ 1.7e-3 m, curvature allowing"};
+    gb_check_close(&cl, lowest_max, 0.0, 0.0, 1e-3);
+    gb_check cb = {"5", "-", "the drawn surface never dips below the plane (lowest height over the frames) [m]", ">= 0",
+                   "1e-9 m: the printed digits"};
+    gb_check_true(&cb, lowest_min >= -1e-9, "lowest %.3g m", lowest_min);
+    gb_check ca = {"5", "-", "the drawn lowest point beside the contact point (horizontal distance) [m]", "0",
+                   "0.06 m: a cell of the 90 x 180 sample at r <= 1.1 spans 1.1 pi/90 = 0.038 m"};
+    gb_check_close(&ca, apart, 0.0, 0.0, 0.06);
+    cJSON_Delete(a);
+    free(h.text), free(h.rows);
+    clean(dir);
+}
+
+int verify_register_figures(void)
+{
+    static const verify_test tests[] = {
+        {"figures quote the summary, stale figures never linked", test_figures,
+         "every figure's title quotes the numbers the text states, Fig 9 draws what it quotes, and a page links only this run's figures"},
+        {"the animation's frames against the history", test_animation,
+         "the body in motion is drawn in the attitude the run computed, touching the plane at the contact point"},
+        {NULL, NULL, NULL},
+    };
+    return verify_register_suite("Reports: figures drawn from the data they name", tests);
+}
