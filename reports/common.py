@@ -31,6 +31,11 @@ def load_radial_map(path):
     return columns
 
 
+def digits(value, places):
+    """value with `places` decimals, a value that rounds to zero printed as 0 (no "-0.0000000000")."""
+    return f"{0.0 if abs(value) < 0.5 * 10.0 ** -places else value:.{places}f}"
+
+
 def shape_summary_lines(shape):
     """Markdown lines stating what `gomboc shape --json` measured for one body."""
     hull = shape["hull_equilibria"]
@@ -46,7 +51,7 @@ def shape_summary_lines(shape):
                 abs(c) <= e for c, e in zip(shape["centroid"], shape["centroid_error"]))
             else "**off the origin by more than the quadrature error**"),
         "- inertia about the centroid, m = {:g}: ".format(shape["mass"]) + "; ".join(
-            "[" + ", ".join(f"{v:.10f}" for v in row) + "]" for row in shape["inertia"]),
+            "[" + ", ".join(digits(v, 10) for v in row) + "]" for row in shape["inertia"]),
         f"- minimum Gaussian curvature {shape['curvature_min']:.6f} at (φ, θ) = "
         f"({shape['curvature_min_at'][0]:.6f}, {shape['curvature_min_at'][1]:.6f}); "
         f"K < 0 on {100 * shape['negative_curvature_fraction']:.2f} % of the area",

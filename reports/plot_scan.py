@@ -1,13 +1,19 @@
 #!/usr/bin/python3
 """Draw one metric of any scan: python3 reports/plot_scan.py NAME-scan.csv [METRIC ...] [--out FILE.png]
 
-Each metric is a panel over the scan's two axes, named by their keys (the CSV's second and third columns),
-on the computed grid without interpolation; NaN points (failed, or not computed) are left blank. The
-default metric is lambda_max where the scan computed it, else omega_rms. Without --out the figure goes to
+Each metric is a panel over the scan's two axes, named by their keys (the CSV's second and third columns)
+with their units, on the computed grid without interpolation; NaN points (failed, or not computed) are left
+blank, and a metric with no number at all says so on its panel. The units come from the one table of each
+(docs/outputs.md for the metrics, cases/README.md for the scene keys; installed beside the plotters as
+outputs.md and scene-keys.md). The title is the scan's description (NAME-scan.json beside the CSV). An
+exponent (lambda_*) is drawn on a diverging map centred on 0, so that chaos and order read apart. The default
+metric is lambda_max where the scan computed it, else omega_rms. Without --out the figure goes to
 NAME-scan-METRIC.png beside the CSV."""
 import csv
+import json
 import math
 import os
+import re
 import sys
 
 import matplotlib
@@ -24,6 +30,47 @@ def edges(centres):
         return numpy.array([c[0] - 0.5, c[0] + 0.5])
     mid = 0.5 * (c[1:] + c[:-1])
     return numpy.concatenate(([2 * c[0] - mid[0]], mid, [2 * c[-1] - mid[-1]]))
+
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+
+
+def table_file(*candidates):
+    for parts in candidates:
+        path = os.path.join(HERE, *parts)
+        if os.path.exists(path):
+            return path
+    return None
+
+
+def metric_units():
+    """{column: unit} of NAME-scan.csv, from docs/outputs.md's table for it."""
+    path = table_file(("..", "docs", "outputs.md"), ("..", "outputs.md"))
+    units, inside = {}, False
+    for line in open(path, encoding="utf-8") if path else ():
+        if line.startswith("### "):
+            inside = line.strip() == "### NAME-scan.csv"
+        m = re.match(r"\| `([^`]+)` \| ([^|]*) \|", line)
+        if inside and m and m.group(2).strip() not in ("—", "", "the key's"):
+            units[m.group(1)] = m.group(2).strip()
+    return units
+
+
+def key_units():
+    """{section.key: unit} of the scene keys, from the brackets of cases/README.md's allowed values."""
+    path = table_file(("..", "cases", "README.md"), ("..", "scene-keys.md"))
+    units = {}
+    for line in open(path, encoding="utf-8") if path else ():
+        m = re.match(r"\| `\[(\w+)\]` \| `(\w+)` \| ([^|]*) \|", line)
+        if m:
+            unit = re.search(r"\[([^\]]+)\]\s*(\(|$)", m.group(3).strip())
+            if unit:
+                units[f"{m.group(1)}.{m.group(2)}"] = unit.group(1)
+    return units
+
+
+def label(key, units):
+    return f"{key} [{units[key]}]" if key in units else key
 
 
 def main(argv):
@@ -62,16 +109,39 @@ def main(argv):
         return 2
     xs = sorted({float(r[x_key]) for r in rows})
     ys = sorted({float(r[y_key]) for r in rows})
-    fig, axes = plt.subplots(1, len(metrics), figsize=(5.2 * len(metrics), 4.2), squeeze=False)
+    units = {**key_units(), **metric_units()}
+    description = os.path.basename(path)
+    try:
+        with open(path[:-len(".csv")] + ".json", encoding="utf-8") as f:
+            scan = json.load(f)
+        description = scan.get("description") or description
+        # A1, A2 are in the base scene's amplitude_units (m/s2 unless it says g)
+        with open(scan.get("base", ""), encoding="utf-8") as f:
+            said = re.search(r"^amplitude_units\s*=\s*(\S+)", f.read(), re.M)
+        units.update({k: said.group(1) if said else "m/s2" for k, u in units.items() if u == "amplitude_units"})
+    except (OSError, ValueError):
+        pass
+    fig, axes = plt.subplots(1, len(metrics), figsize=(5.6 * len(metrics), 4.6), squeeze=False)
     for ax, metric in zip(axes[0], metrics):
         grid = numpy.full((len(ys), len(xs)), numpy.nan)
         for r in rows:
             grid[ys.index(float(r[y_key])), xs.index(float(r[x_key]))] = float(r[metric])
-        image = ax.pcolormesh(edges(xs), edges(ys), grid, shading="flat")
-        fig.colorbar(image, ax=ax, label=metric)
-        ax.set_xlabel(x_key)
-        ax.set_ylabel(y_key)
-        ax.set_title(f"{os.path.basename(path)}: {metric}")
+        finite = numpy.isfinite(grid)
+        if metric.startswith("lambda") and finite.any():
+            reach = float(numpy.nanmax(numpy.abs(grid))) or 1.0
+            image = ax.pcolormesh(edges(xs), edges(ys), grid, shading="flat", cmap="RdBu_r", vmin=-reach, vmax=reach)
+            fig.colorbar(image, ax=ax, label=label(metric, units) + " (0 white)")
+        else:
+            image = ax.pcolormesh(edges(xs), edges(ys), grid, shading="flat")
+            if finite.any():
+                fig.colorbar(image, ax=ax, label=label(metric, units))
+        if not finite.any():
+            ax.text(0.5, 0.5, f"{metric}: no number at any of the {grid.size} points\n(not computed by this scan, or every "
+                    "point failed)", ha="center", va="center", transform=ax.transAxes, fontsize=9)
+        ax.set_xlabel(label(x_key, units))
+        ax.set_ylabel(label(y_key, units))
+        ax.set_title(metric, fontsize=9)
+    fig.suptitle(description, fontsize=10)
     fig.tight_layout()
     target = out or os.path.splitext(path)[0] + "-" + "-".join(metrics) + ".png"
     fig.savefig(target, dpi=110)

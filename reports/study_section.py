@@ -121,7 +121,8 @@ def study_section(out):
               "chaotic in the second half | chaos ended (lifetime, periods: median [range]) | reading | the paper's claim |",
               "|---|---|---|---|---|---|---|---|---|---|"]
     ensembles = [e for name in files for e in ensembles_of(folder, name)]
-    fig, ax = plt.subplots(figsize=(max(8.0, 0.6 * len(ensembles)), 4.5))
+    # one row an ensemble, its name written out beside it (tilted names on one axis overlapped)
+    fig, ax = plt.subplots(figsize=(9.5, max(3.0, 0.5 * len(ensembles) + 1.2)))
     for k, (label, rows, _) in enumerate(ensembles):
         lam, err, early, late, chaotic, chaotic_late, kind = classify(rows)
         q1, med, q3 = numpy.percentile(lam, [25, 50, 75])
@@ -134,15 +135,16 @@ def study_section(out):
             ended_text = "—"
         lines.append(f"| {label} | {len(rows)} ({failed_members(rows)}) | {med:.3f} [{q1:.3f}, {q3:.3f}] | {chaotic:.0%} | {numpy.median(early):.3f} | "
                      f"{numpy.median(late):.3f} | {chaotic_late:.0%} | {ended_text} | {kind} | {verdict} |")
-        ax.plot([k - 0.1] * len(early), early, "o", ms=3, color="C0", label="first half" if k == 0 else None)
-        ax.plot([k + 0.1] * len(late), late, "o", ms=3, color="C3", label="second half" if k == 0 else None)
+        ax.plot(early, [k + 0.12] * len(early), "o", ms=3, color="C0", label="first half" if k == 0 else None)
+        ax.plot(late, [k - 0.12] * len(late), "o", ms=3, color="C3", label="second half" if k == 0 else None)
         for e, l in zip(early, late):
-            ax.plot([k - 0.1, k + 0.1], [e, l], color="0.8", lw=0.5)
-    ax.axhline(LATE, color="k", lw=0.5, ls="--")
-    ax.set_xticks(range(len(ensembles)))
-    ax.set_xticklabels([label.replace("ensemble-", "") for label, _, _ in ensembles], fontsize=8, rotation=40, ha="right")
-    ax.set_ylabel("λ over the half record [1/s]")
-    ax.legend(fontsize=8)
+            ax.plot([e, l], [k + 0.12, k - 0.12], color="0.8", lw=0.5)
+    ax.axvline(LATE, color="k", lw=0.5, ls="--")
+    ax.set_yticks(range(len(ensembles)))
+    ax.set_yticklabels([label.replace("ensemble-", "") for label, _, _ in ensembles], fontsize=8)
+    ax.invert_yaxis()
+    ax.set_xlabel(f"λ over the half record [1/s] (dashed: {LATE:g} 1/s, the chaotic threshold)")
+    ax.legend(fontsize=8, loc="lower right")
     ax.set_title("Each member's exponent over the first and the second half of its record", fontsize=9)
     finish_figure(fig, os.path.join(out, "ensembles.png"))
     lines += ["", "![ensembles](ensembles.png)", ""]

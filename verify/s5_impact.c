@@ -587,11 +587,11 @@ static void test_table1_unilateral(void)
         gb_check cm = {"3, 5", "-", q, "measured: impacts until it rolls on two points, the share of the run on two points, "
                        "its exits, the smallest normal force there, the drift off the crease", "exact"};
         gb_check_true(&cm, ran && fabs(lost - l.lost) <= 1e-12 * l.lost && tp.entries >= 1,
-                      "%s: %zu impacts taking %.4g J; on two points from t = %.4g s (%.1f forcing periods), %zu entries, %zu "
+                      "%s: %zu impacts taking %.4g J; on two points from t = %.4g s (%.1f forcing periods), %zu %s, %zu "
                       "impacts ended by the settle rule, %zu lifts, %zu third points, %zu stops on three; %zu impacts needing more friction "
                       "than 1; %.1f %% of the run on two points; "
                       "min normal force there %.4g N; max |h_P - h_Q| %.2g m; %s", ran ? "ran" : "failed", l.impacts, l.lost,
-                      l.first_two_point, l.first_two_point / period, tp.entries, tp.settled, tp.lifts, tp.third_points, l.rests, l.over_mu,
+                      l.first_two_point, l.first_two_point / period, tp.entries, tp.entries == 1 ? "entry" : "entries", tp.settled, tp.lifts, tp.third_points, l.rests, l.over_mu,
                       100.0 * tp.time / (scene.integrate.periods * period), l.normal_min, l.tie_max, why);
     }
 }
