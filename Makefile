@@ -222,7 +222,7 @@ fuzz-only: $(FUZZ_TARGETS:%=$(FUZZ_DIR)/fuzz-%)
 	@cp verify/fuzz/hull.seed $(FUZZ_DIR)/corpus-hull/seed
 	@cp verify/fuzz/mesh/* $(FUZZ_DIR)/corpus-mesh/
 	@cp verify/fuzz/expression/* $(FUZZ_DIR)/corpus-expression/
-	status=0; export GOMBOC_KEY=$(abspath $(FUZZ_DIR))/key LSAN_OPTIONS=suppressions=$(abspath verify/fuzz/lsan.supp); \
+	status=0; export GOMBOC_KEY=$(abspath $(FUZZ_DIR))/key LSAN_OPTIONS=suppressions=$(abspath verify/lsan.supp); \
 	$(FUZZ_DIR)/fuzz-case -max_total_time=$(FUZZ_SECONDS) -dict=verify/fuzz/case.dict -close_fd_mask=3 \
 	  -artifact_prefix=$(FUZZ_DIR)/crash-case- $(FUZZ_DIR)/corpus-case cases > $(FUZZ_DIR)/fuzz-case.log 2>&1 || status=1; \
 	$(FUZZ_DIR)/fuzz-options -max_total_time=$(FUZZ_SECONDS) -dict=verify/fuzz/options.dict -close_fd_mask=3 \
@@ -264,7 +264,7 @@ sanitize-only:
 	@$(MAKE) --no-print-directory BUILD=build-san CFLAGS="$(SAN_FLAGS)" build-san/gomboc build-san/verify-gomboc
 	@mkdir -p build-san/data
 	status=0; \
-	ASAN_OPTIONS=detect_leaks=1:abort_on_error=0 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+	ASAN_OPTIONS=detect_leaks=1:abort_on_error=0 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 LSAN_OPTIONS=suppressions=$(abspath verify/lsan.supp) \
 	  GOMBOC_BIN=build-san/gomboc build-san/verify-gomboc --results build-san/checks.json --data build-san/data \
 	  > build-san/verify.log 2>&1 || status=1; \
 	reports=$$(grep -c -E 'ERROR: (Address|Leak)Sanitizer|runtime error:' build-san/verify.log || true); \
