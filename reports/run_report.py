@@ -39,11 +39,15 @@ EVENT_MARKS = {"landing": ("v", "tab:blue", "landing"), "lift-off": ("^", "tab:r
 
 
 def shade_phases(ax, h):
+    """Shade the phases over the whole height of the panel; the data's limits stay the data's (a span given in
+    axes coordinates would otherwise stretch them to 0..1)."""
+    limits = ax.get_ylim()
     for contacts, label, colour in PHASES:
         mask = h["contacts"] == contacts
         if mask.any():
             ax.fill_between(h["t"], 0, 1, where=mask, transform=ax.get_xaxis_transform(), color=colour, alpha=0.18,
                             lw=0, label=label)
+    ax.set_ylim(limits)
 
 
 def period_means(t, values, period):
