@@ -434,7 +434,8 @@ def main():
         if r["kind"] == "compare":
             measured, error, tol = fmt(r["measured"]), fmt(r["error"]), fmt(r["tolerance"])
         else:
-            measured, error, tol = r.get("detail", "")[:160].replace("|", "/"), "—", "—"
+            # one table cell: a command's output may run over several lines
+            measured, error, tol = " ".join(r.get("detail", "").split())[:160].replace("|", "/"), "—", "—"
         result = "pass" if r["passed"] else "**FAIL**"
         if r["kind"] == "finding":
             result = ("evidence computed" if r["passed"] else "**evidence not computed**") + f", {verdict_text(r['verdict'])}"

@@ -272,11 +272,21 @@ def lyapunov_figure(out, name, summary):
     return path, title, float(after[-1]) if after.size else float("nan")
 
 
+def as_read(value):
+    """A scene's value with the digits it carries: a number to 10 significant digits (psi = pi/3 is 1.047197551,
+    not its 17 binary digits), lists element by element."""
+    if isinstance(value, float):
+        return f"{value:.10g}"
+    if isinstance(value, list):
+        return "[" + ", ".join(str(as_read(v)) for v in value) + "]"
+    return value
+
+
 def summary_lines(name, summary, figures):
     scene, lines = summary["scene"], []
     lines.append(f"### {scene['description']} (`{scene.get('file', f'cases/{name}.ini')}`)")
     lines.append("")
-    lines.append("Scene as read: " + ", ".join(f"{k} = {v}" for k, v in scene.items() if k != "description") + ".")
+    lines.append("Scene as read: " + ", ".join(f"{k} = {as_read(v)}" for k, v in scene.items() if k != "description") + ".")
     lines.append("")
     lines.append(f"- {summary['steps']:.0f} steps to t = {summary['t_end']:.4f} s; final ω = "
                  f"({summary['omega'][0]:.6f}, {summary['omega'][1]:.6f}, {summary['omega'][2]:.6f}) rad/s")
