@@ -16,7 +16,10 @@
  * it is ≥ 0 at all of them — which is checked at every tied vertex after the impact. Its outcomes:
  * R' and S' hold while P and Q lift: the body rolls on the far edge (two points); all hold, or P and Q would
  * fall back within the settle time: the body stops on the face, at rest where the centroid's foot is inside
- * it. Any other outcome is not followed: the run stops saying so (exit 1). */
+ * it. Any other outcome is not followed: the run stops saying so (exit 1). On a plane of finite friction a face
+ * landing is not followed either (gb_dyn_face_ties lets the friction path stop): its impact law (gb_impact_coulomb
+ * through gb_dyn_friction_impact) takes three points, and one vertex of the landing edge alone would break the
+ * face's symmetry (Housner's block at mu = 0.6 chattered through 233 impacts where the rough plane has 12). */
 #include "gb_dynamics_internal.h"
 
 #include "gb_contact.h"
@@ -72,6 +75,22 @@ static int foot_inside(const double zb[3], const double (*pts)[3], int n, double
             if (side < -tol * gb_vec_norm(e)) return 0;
         }
     return 1;
+}
+
+int gb_dyn_face_ties(const gb_dynamics *d, const double zb[3], const gb_contact_point *p, const gb_contact_point *q,
+                     const gb_contact_point *third)
+{
+    if (!gb_surface_is_polyhedron(&d->surface) || !d->grid) return 0;
+    const double h_r = gb_vec_dot(zb, third->rc);
+    const size_t n = gb_contact_grid_size(d->grid);
+    int ties = 0;
+    for (size_t i = 0; i < n; i++) {
+        if (i == third->node || i == p->node || i == q->node) continue;
+        double x[3];
+        gb_contact_grid_node(d->grid, i, NULL, NULL, x);
+        ties += gb_vec_dot(zb, x) - h_r <= GB_DYN_FACE_TIE;
+    }
+    return ties;
 }
 
 int gb_dyn_face_landing(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const gb_dyn_two_point *tp,

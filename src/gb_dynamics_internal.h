@@ -327,6 +327,9 @@ int gb_dyn_two_point_eval(gb_dynamics *d, double t, const double y[GB_STATE_SIZE
  * point R of the located event and the nodes tied with it; *handled 0 (nothing done) when no node ties. */
 int gb_dyn_face_landing(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const gb_dyn_two_point *tp,
                         const gb_contact_point *third, int *handled);
+/* How many nodes other than P, Q and R tie with R's height at vertical zb (0 for a smooth body's grid). */
+int gb_dyn_face_ties(const gb_dynamics *d, const double zb[3], const gb_contact_point *p, const gb_contact_point *q,
+                     const gb_contact_point *third);
 
 /* ---- flight (gb_dynamics_flight.c) ---------------------------------------------------------------- */
 

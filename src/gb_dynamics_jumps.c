@@ -665,6 +665,11 @@ int gb_dyn_two_point_event(gb_dynamics *d, double t, double y[GB_STATE_SIZE], co
         int status = gb_dyn_point_at(d, zb, &d->contact, &pts[0]);
         if (!status) status = gb_dyn_point_at(d, zb, &d->contact2, &pts[1]);
         pts[2] = *branch;
+        const int ties = status ? 0 : gb_dyn_face_ties(d, zb, &pts[0], &pts[1], branch);
+        if (ties)
+            return gb_error_set(GB_ENUMERIC, "a face of %d vertices lands flat at t = %.9g on a plane of friction mu = %g, which "
+                                "is not followed (Coulomb's impact here takes three points; the rough plane, [model] friction "
+                                "= rough, follows a face landing)", ties + 3, t, d->def.friction);
         if (!status) status = gb_dyn_friction_impact(d, t, y, pts, 3, 2, GB_DYNAMICS_IMPACT_THIRD, 1);
         return status ? status : after_switch(d, t);
     }

@@ -174,6 +174,22 @@ static void test_housner(void)
     gb_run_result_free(&r);
 }
 
+/* On a plane of finite friction a face landing is not followed (gb_dynamics_faces.c): the run stops, saying so,
+ * instead of landing one vertex of the edge alone. */
+static void test_face_friction(void)
+{
+    const char *const edits[1][2] = {{"damping = 0\n", "damping = 0\nfriction = 0.6\n"}};
+    gb_run_result r;
+    const int status = run_scene("cases/bodies/housner-block.ini", edits, 1, NULL, &r);
+    gb_check c = {"2", "-", "Housner's block on a plane of friction mu = 0.6: its first face landing",
+                  "stops the run (a computation not followed, exit 1), naming the face and the rough plane", "exact"};
+    gb_check_true(&c, status == GB_ENUMERIC && strstr(gb_error_message(), "lands flat") &&
+                          strstr(gb_error_message(), "friction = rough"),
+                  "status %d: %s", status, status ? gb_error_message() : "ran");
+    if (!status) gb_run_result_free(&r);
+    gb_error_clear();
+}
+
 /* ---- a die and a coin come to rest -------------------------------------------------------------- */
 
 /* The body's final state: at rest on a face whose outward normal is −z_b (body axes), the centroid at the
@@ -427,6 +443,8 @@ int verify_register_s2_bodies(void)
     static const verify_test tests[] = {
         {"Housner's rocking block", test_housner,
          "a mesh's polyhedron rocks as Housner's block: omega ratio per impact and the period-amplitude relation in closed form"},
+        {"a face landing on a plane of finite friction", test_face_friction,
+         "a face landing the friction law cannot follow stops the run saying so, never a wrong motion"},
         {"a die and a coin come to rest", test_die_and_coin,
          "a dropped die stops on one of its stable faces, a coin falls flat: whole faces land at once"},
         {"the paper's chi as an expression", test_expressions_same_body,
