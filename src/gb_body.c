@@ -25,6 +25,7 @@ typedef struct own_body {
     size_t key_size;
     gb_polyhedron polyhedron; /* a mesh */
     void *eval[DERIVATIVES];  /* an expression */
+    double beta;              /* an expression: the β it was made for (a phase reads its β here) */
     struct own_body *next;
 } own_body;
 
@@ -100,7 +101,7 @@ int gb_body_mesh(const char *path, gb_surface *out)
 {
     char *data;
     size_t size;
-    int status = gb_file_read(path, (size_t)1 << 30, "mesh file", "an OFF, OBJ or STL file", &data, &size);
+    int status = gb_file_read(path, GB_MESH_FILE_MAX, "mesh file", "an OFF, OBJ or STL file", &data, &size);
     if (status) return status;
     pthread_mutex_lock(&lock);
     own_body *b = find_key((const unsigned char *)data, size);
@@ -162,8 +163,9 @@ static void evaluate_all(const own_body *b, double beta, double phi, double thet
 static void phase_expression(const gb_morphology *self, double phi, double theta, gb_phase_value *out)
 {
     double v[DERIVATIVES];
-    /* the surface carries β; a phase of β alone is read at the β the row was made for (user holds it) */
-    evaluate_all(self->user, ((const double *)((const own_body *)self->user)->key)[0], phi, theta, v);
+    /* the phase's signature has no β: an expression naming it is read at the β its row was made for */
+    const own_body *b = self->user;
+    evaluate_all(b, b->beta, phi, theta, v);
     *out = (gb_phase_value){v[0], v[1], v[2], v[3], v[4], v[5]};
 }
 
@@ -252,7 +254,7 @@ int gb_body_expression(gb_body_expression_kind kind, const char *text, double be
     const char *what = kind == GB_BODY_RADIUS ? "r" : "chi";
     if (!(beta >= 0.0 && beta < GB_SURFACE_BETA_MAX) && kind == GB_BODY_PHASE)
         return gb_error_set(GB_EDOM, "beta = %.17g is outside [0, 0.25) (allowed: r^4 = 1 + 4 beta sin(phi) cos(chi) > 0)", beta);
-    /* the key: β, the kind and the text (a phase reads β from it) */
+    /* the key: β, the kind and the text */
     const size_t len = strlen(text), size = sizeof(double) + 1 + len;
     unsigned char *key = malloc(size);
     if (!key) return gb_error_set(GB_ENOMEM, "out of memory for a body");
@@ -281,7 +283,7 @@ int gb_body_expression(gb_body_expression_kind kind, const char *text, double be
         pthread_mutex_unlock(&lock);
         return status;
     }
-    b->key = key, b->key_size = size;
+    b->key = key, b->key_size = size, b->beta = beta;
     b->row = (gb_morphology){.name = b->name, .chi_formula = kind == GB_BODY_PHASE ? b->name + 6 : "(r given)", .equations = "",
                              .user = b};
     if (kind == GB_BODY_PHASE) b->row.phase = phase_expression, b->row.phase_eval = phase_expression_eval;

@@ -9,6 +9,7 @@
 #include "gb_ini.h"
 #include "gb_parse.h"
 
+#include <limits.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -444,11 +445,14 @@ static int given(const gb_case *c, const char *section, const char *key)
     return c->key_line[k] || c->key_origin[k];
 }
 
-void gb_case_mesh_path(const char *scene, const gb_case *c, char *out, size_t size)
+int gb_case_mesh_path(const char *scene, const gb_case *c, char *out, size_t size)
 {
     const char *slash = strrchr(scene, '/'), *mesh = c->mesh;
-    if (!mesh[0] || mesh[0] == '/' || !slash) snprintf(out, size, "%s", mesh);
-    else snprintf(out, size, "%.*s/%s", (int)(slash - scene), scene, mesh);
+    const int n = !mesh[0] || mesh[0] == '/' || !slash ? snprintf(out, size, "%s", mesh)
+                                                      : snprintf(out, size, "%.*s/%s", (int)(slash - scene), scene, mesh);
+    return n >= 0 && (size_t)n < size ? GB_OK
+                                      : gb_error_set(GB_EINVAL, "the mesh's path in the scene's folder is longer than %zu bytes "
+                                                                "(allowed: a shorter path)", size - 1);
 }
 
 /* [body]: the paper's morphology, or a body of one's own (gb_body.h), made here once every key is read. */
@@ -479,9 +483,9 @@ static int resolve_body(const char *path, gb_case *c)
     const int line = c->key_line[key_index("body", own)];
     int status;
     if (mesh) {
-        char file[2 * GB_CASE_TEXT_MAX + 8];
-        gb_case_mesh_path(path, c, file, sizeof file);
-        status = gb_body_mesh(file, &c->body);
+        char file[PATH_MAX];
+        status = gb_case_mesh_path(path, c, file, sizeof file);
+        if (!status) status = gb_body_mesh(file, &c->body);
     } else {
         status = gb_body_expression(r ? GB_BODY_RADIUS : GB_BODY_PHASE, r ? c->r_text : c->chi_text, c->body.beta, &c->body);
     }

@@ -86,8 +86,9 @@ GB_API int gb_case_load_text_with(const char *name, const char *text, size_t siz
                                   size_t count, gb_case *out);
 
 /* The path of the scene's [body] mesh as the reader opened it: as written when absolute or when the scene's
- * path has no folder, else in the scene's folder ("" when the scene has no mesh). */
-GB_API void gb_case_mesh_path(const char *scene_path, const gb_case *c, char *out, size_t size);
+ * path has no folder, else in the scene's folder ("" when the scene has no mesh). GB_EINVAL when it does not
+ * fit in `size` bytes (out then holds nothing usable). */
+GB_API int gb_case_mesh_path(const char *scene_path, const gb_case *c, char *out, size_t size);
 
 /* The keys a scene may set: their count, and for key `index` its section, name and allowed values
  * in words (the text every error message and cases/README.md use). GB_EDOM past the last key. It

@@ -77,6 +77,15 @@ static int foot_inside(const double zb[3], const double (*pts)[3], int n, double
     return 1;
 }
 
+/* Does node i reach the plane with R (its height within GB_DYN_FACE_TIE of R's, h_r)? Its position [m] into x. */
+static int tied(const gb_dynamics *d, const double zb[3], double h_r, size_t i, double x[3])
+{
+    gb_contact_grid_node(d->grid, i, NULL, NULL, x);
+    const int tie = gb_vec_dot(zb, x) - h_r <= GB_DYN_FACE_TIE;
+    for (int k = 0; k < 3; k++) x[k] *= d->def.length;
+    return tie;
+}
+
 int gb_dyn_face_ties(const gb_dynamics *d, const double zb[3], const gb_contact_point *p, const gb_contact_point *q,
                      const gb_contact_point *third)
 {
@@ -84,12 +93,8 @@ int gb_dyn_face_ties(const gb_dynamics *d, const double zb[3], const gb_contact_
     const double h_r = gb_vec_dot(zb, third->rc);
     const size_t n = gb_contact_grid_size(d->grid);
     int ties = 0;
-    for (size_t i = 0; i < n; i++) {
-        if (i == third->node || i == p->node || i == q->node) continue;
-        double x[3];
-        gb_contact_grid_node(d->grid, i, NULL, NULL, x);
-        ties += gb_vec_dot(zb, x) - h_r <= GB_DYN_FACE_TIE;
-    }
+    double x[3];
+    for (size_t i = 0; i < n; i++) ties += i != third->node && i != p->node && i != q->node && tied(d, zb, h_r, i, x);
     return ties;
 }
 
@@ -109,35 +114,25 @@ int gb_dyn_face_landing(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const
     for (int k = 0; k < 3; k++) rr[k] = L * third->rc[k];
     best = dist_to_line(rr, tp->rp, tp->rq);
     for (size_t i = 0; i < n; i++) {
-        if (i == third->node || i == stands[0] || i == stands[1]) continue;
-        double x[3];
-        gb_contact_grid_node(d->grid, i, NULL, NULL, x);
-        if (gb_vec_dot(zb, x) - h_r > GB_DYN_FACE_TIE) continue;
+        double x[3], a[3], b[3];
+        if (i == third->node || i == stands[0] || i == stands[1] || !tied(d, zb, h_r, i, x)) continue;
         ties++;
-        for (int k = 0; k < 3; k++) x[k] *= L;
         const double dl = dist_to_line(x, tp->rp, tp->rq);
         if (dl > best * (1.0 + 1e-9)) best = dl, far[0] = i, far[1] = SIZE_MAX;
-        else if (dl >= best * (1.0 - 1e-9)) {
-            /* on the far edge too: keep the two farthest apart */
-            double a[3], b[3];
-            gb_contact_grid_node(d->grid, far[0], NULL, NULL, a);
+        else if (dl >= best * (1.0 - 1e-9)) { /* on the far edge too: keep the two farthest apart */
+            tied(d, zb, h_r, far[0], a);
             if (far[1] == SIZE_MAX) far[1] = i;
-            else {
-                gb_contact_grid_node(d->grid, far[1], NULL, NULL, b);
-                if (dist2(x, a) / (L * L) > dist2(a, b)) far[1] = i;
-            }
+            else if (tied(d, zb, h_r, far[1], b), dist2(x, a) > dist2(a, b)) far[1] = i;
         }
     }
     if (!ties) return GB_OK;
     *handled = 1;
     if (far[1] == SIZE_MAX) { /* one farthest vertex: the tied vertex farthest from it beside it */
         double a[3], x[3], most = -1.0;
-        gb_contact_grid_node(d->grid, far[0], NULL, NULL, a);
-        for (size_t i = 0; i < n; i++) {
-            if (i == far[0] || i == stands[0] || i == stands[1]) continue;
-            gb_contact_grid_node(d->grid, i, NULL, NULL, x);
-            if (gb_vec_dot(zb, x) - h_r <= GB_DYN_FACE_TIE && dist2(x, a) > most) most = dist2(x, a), far[1] = i;
-        }
+        tied(d, zb, h_r, far[0], a);
+        for (size_t i = 0; i < n; i++)
+            if (i != far[0] && i != stands[0] && i != stands[1] && tied(d, zb, h_r, i, x) && dist2(x, a) > most)
+                most = dist2(x, a), far[1] = i;
     }
     gb_contact_point r_pt, s_pt;
     gb_dyn_grid_point(d, far[0], zb, &r_pt);
@@ -184,9 +179,7 @@ int gb_dyn_face_landing(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const
     /* every tied vertex leaves the plane or stays on it after the impact */
     for (size_t i = 0; i < n; i++) {
         double x[3], u[3];
-        gb_contact_grid_node(d->grid, i, NULL, NULL, x);
-        if (gb_vec_dot(zb, x) - h_r > GB_DYN_FACE_TIE) continue;
-        for (int k = 0; k < 3; k++) x[k] *= L;
+        if (!tied(d, zb, h_r, i, x)) continue;
         gb_vec_cross(r.omega, x, u);
         const double un = gb_vec_dot(zb, r.v) + gb_vec_dot(zb, u);
         if (un < -vscale)

@@ -206,6 +206,9 @@ int gb_melnikov_body_create(const gb_surface *surface, double mass, double g, si
     if (!(mass > 0.0 && isfinite(mass))) return gb_error_set(GB_EDOM, "mass = %g (allowed: > 0)", mass);
     if (!(g > 0.0 && isfinite(g))) return gb_error_set(GB_EDOM, "g = %g (allowed: > 0: without gravity U has no saddle)", g);
     if (per_radian < 64) return gb_error_set(GB_EDOM, "table nodes = %zu a radian (allowed: >= 64)", per_radian);
+    if (!surface->morphology->kernel_jet) /* a mesh or an expression (gb_body.h): its orbit's contact cannot be certified */
+        return gb_error_set(GB_EINVAL, "the reduced model certifies the contact along its orbit, and the body '%s' has no "
+                            "interval enclosure (allowed: a morphology of the paper, I or II)", surface->morphology->name);
     gb_melnikov_body *b = calloc(1, sizeof *b);
     if (!b) return gb_error_set(GB_ENOMEM, "out of memory for the reduced model");
     b->surface = *surface, b->mass = mass, b->g = g;

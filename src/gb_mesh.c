@@ -2,6 +2,7 @@
 #include "gb_mesh.h"
 
 #include "gb_error.h"
+#include "gb_file.h"
 #include "gb_parse.h"
 
 #include <ctype.h>
@@ -400,35 +401,11 @@ int gb_mesh_read_buffer(const char *name, const unsigned char *data, size_t size
 int gb_mesh_read(const char *path, gb_mesh *out)
 {
     memset(out, 0, sizeof *out);
-    FILE *f = fopen(path, "rb");
-    if (!f) return gb_error_set(GB_EIO, "%s: cannot be read", path);
-    unsigned char *data = NULL;
-    size_t size = 0, cap = 0;
-    for (;;) {
-        if (size == cap) {
-            cap = cap ? 2 * cap : 65536;
-            if (cap > (size_t)1 << 31) {
-                free(data), fclose(f);
-                return gb_error_set(GB_EDOM, "%s: larger than 2 GiB (allowed: a mesh of at most %d vertices)", path, GB_MESH_MAX_VERTICES);
-            }
-            unsigned char *grown = realloc(data, cap);
-            if (!grown) {
-                free(data), fclose(f);
-                return gb_error_set(GB_ENOMEM, "%s: out of memory reading the mesh", path);
-            }
-            data = grown;
-        }
-        const size_t got = fread(data + size, 1, cap - size, f);
-        size += got;
-        if (got == 0) break;
-    }
-    const int failed = ferror(f);
-    fclose(f);
-    if (failed) {
-        free(data);
-        return gb_error_set(GB_EIO, "%s: cannot be read", path);
-    }
-    const int status = gb_mesh_read_buffer(path, data, size, out);
+    char *data;
+    size_t size;
+    int status = gb_file_read(path, GB_MESH_FILE_MAX, "mesh file", "an OFF, OBJ or STL file", &data, &size);
+    if (status) return status;
+    status = gb_mesh_read_buffer(path, (const unsigned char *)data, size, out);
     free(data);
     return status;
 }

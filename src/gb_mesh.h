@@ -23,6 +23,7 @@ extern "C" {
 #endif
 
 #define GB_MESH_MAX_VERTICES 1000000 /* a larger mesh is refused (the hull and the contact search scale with it) */
+#define GB_MESH_FILE_MAX ((size_t)1 << 30) /* bytes: a binary STL of GB_MESH_MAX_VERTICES vertices is far below it */
 
 typedef enum gb_mesh_format { GB_MESH_OFF = 0, GB_MESH_OBJ = 1, GB_MESH_STL_ASCII = 2, GB_MESH_STL_BINARY = 3 } gb_mesh_format;
 
@@ -39,7 +40,8 @@ typedef struct gb_mesh {
  * starts with "solid" followed by a line with "facet". GB_EINVAL for another extension. */
 GB_API int gb_mesh_format_of(const char *name, const unsigned char *data, size_t size, gb_mesh_format *out);
 
-/* Read `path` (GB_EIO when it cannot be read) or a buffer named `name` (for messages). On failure
+/* Read `path` (a regular file of at most GB_MESH_FILE_MAX bytes, read as gb_file_read reads: GB_EINVAL for a
+ * path that is no such file, GB_EIO for a failed read) or a buffer named `name` (for messages). On failure
  * nothing is left to free, and the message reads "NAME:LINE: what is wrong (allowed: ...)". */
 GB_API int gb_mesh_read(const char *path, gb_mesh *out);
 GB_API int gb_mesh_read_buffer(const char *name, const unsigned char *data, size_t size, gb_mesh *out);

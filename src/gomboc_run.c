@@ -9,6 +9,7 @@
 #include "gb_strobe.h"
 
 #include <errno.h>
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -104,9 +105,8 @@ static cJSON *scene_json(const gb_case *c, const char *path)
     /* the body: the paper's morphology, or one's own (its kind, and the mesh file as opened or the expression) */
     cJSON_AddStringToObject(o, "body", c->mesh[0] ? "mesh" : c->r_text[0] ? "r" : c->chi_text[0] ? "chi" : "morphology");
     if (c->mesh[0]) {
-        char mesh[1024];
-        gb_case_mesh_path(path, c, mesh, sizeof mesh);
-        cJSON_AddStringToObject(o, "mesh", mesh);
+        char mesh[PATH_MAX];
+        if (!gb_case_mesh_path(path, c, mesh, sizeof mesh)) cJSON_AddStringToObject(o, "mesh", mesh); /* it was read so */
     }
     cJSON_AddStringToObject(o, "body_certificate", gb_surface_is_polyhedron(&c->body)   ? "exact"
                                                    : c->body.morphology->kernel_jet ? "certified"

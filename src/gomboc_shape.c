@@ -11,6 +11,7 @@
 #include "gb_shape.h"
 #include "gb_surface.h"
 
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -206,7 +207,9 @@ static int shape_mesh(const char *path, double mass, int json)
     double normals[64][3];
     size_t rests = 0;
     int status = gb_mesh_read(path, &mesh);
-    if (status == GB_EIO) return cli_input_error("shape", "--mesh %s (allowed: a readable mesh file)", gb_error_message());
+    if (status == GB_EIO || status == GB_EINVAL) /* unreadable, no regular file, or not a mesh: bad input */
+        return cli_input_error("shape", "--mesh %s%s", gb_error_message(),
+                               strstr(gb_error_message(), "allowed") ? "" : " (allowed: a readable mesh file)");
     if (status) return cli_failure("shape", status);
     status = gb_polyhedron_from_mesh(&mesh, path, &p);
     if (!status) {
@@ -305,8 +308,8 @@ int command_shape(int argc, char **argv)
                 return cli_input_error("shape", "--scene %s has a mesh body: --radial-map and --grid-nodes are for a smooth "
                                        "body (allowed: --scene FILE [--json] with a mesh)", scene_path);
             if (cli_parse_only) return 0;
-            char file[1024];
-            gb_case_mesh_path(scene_path, &scene, file, sizeof file);
+            char file[PATH_MAX];
+            if (gb_case_mesh_path(scene_path, &scene, file, sizeof file)) return cli_input_error("shape", "--scene %s", gb_error_message());
             return shape_mesh(file, mass, json);
         }
         surface = scene.body;

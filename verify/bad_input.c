@@ -284,6 +284,7 @@ static const bad_row rows[] = {
     {"shape --morphology I --beta 0.02 --grid-nodes @D@/sub", NULL, 0, 2, {"--grid-nodes", "sub' exists and is not a regular file", "a directory, link, device or FIFO"}},
     {"shape --morphology I --beta 0.02 --grid-nodes @D@/missing/nodes.csv", NULL, 0, 2, {"--grid-nodes", "its directory does not exist", "in an existing, writable directory"}},
     {"shape --morphology I --beta 0.02 --grid-nodes @D@/n.csv --radial-map @D@/n.csv", NULL, 0, 2, {"--grid-nodes", "is also the --radial-map file", "not an input or another output"}},
+    {"melnikov @CASE@", "[body]\nchi = theta - 5*phi\n", 0, 2, {"the reduced model certifies", "has no interval enclosure", "allowed: a morphology of the paper"}},
     {"shape --scene @CASE@ --beta 0.1", "[body]\nbeta = 0.1\n", 0, 2, {"--scene names the body and its mass", "allowed: --scene FILE", ""}},
     {"shape --scene @CASE@", "[body]\nchi = theta - 5*psi\n", 0, 2, {"--scene", "case.ini:2: [body] chi", "allowed: phi, theta, beta"}},
     {"shape --scene @CASE@ --radial-map @D@/m.csv", "[body]\nmesh = case.ini\n", 0, 2, {"--scene", "[body] mesh", "allowed: a name ending .off, .obj or .stl"}},
