@@ -2,6 +2,7 @@
 #include "gb_body.h"
 
 #include "gb_error.h"
+#include "gb_expression.h"
 #include "gb_file.h"
 #include "gb_massprops.h"
 #include "gb_mesh.h"
@@ -17,6 +18,7 @@
 
 /* An expression and its symbolic derivatives: value, ∂φ, ∂θ, ∂φφ, ∂φθ, ∂θθ. */
 enum { DERIVATIVES = 6 };
+#define ENCLOSED_FUNCTIONS "exp, log, sqrt, sin, cos, sinh, cosh, tanh, atan, asinh, erf"
 
 typedef struct own_body {
     gb_morphology row;
@@ -25,6 +27,7 @@ typedef struct own_body {
     size_t key_size;
     gb_polyhedron polyhedron; /* a mesh */
     void *eval[DERIVATIVES];  /* an expression */
+    gb_expression *tree;      /* the same expression as a tree to bound on intervals (gb_expression.h) */
     double beta;              /* an expression: the β it was made for (a phase reads its β here) */
     struct own_body *next;
 } own_body;
@@ -38,6 +41,7 @@ static void body_free(own_body *b)
 {
     for (int k = 0; k < DERIVATIVES; k++)
         if (b->eval[k]) evaluator_destroy(b->eval[k]);
+    gb_expression_free(b->tree);
     gb_polyhedron_free(&b->polyhedron);
     free(b->name);
     free(b->key);
@@ -199,7 +203,7 @@ static int parse(own_body *b, const char *what, const char *text)
     free(copy);
     if (!b->eval[0])
         return gb_error_set(GB_EINVAL, "%s = %s does not parse (allowed: an expression in phi, theta, beta with + - * / ^, "
-                                       "pi, e and libmatheval's functions: sin, cos, tan, exp, log, sqrt, abs, ...)", what, text);
+                                       "pi, e and the functions " ENCLOSED_FUNCTIONS ")", what, text);
     char **names;
     int count;
     evaluator_get_variables(b->eval[0], &names, &count);
@@ -215,7 +219,87 @@ static int parse(own_body *b, const char *what, const char *text)
     if (b->eval[2]) b->eval[5] = evaluator_derivative(b->eval[2], theta);
     for (int k = 1; k < DERIVATIVES; k++)
         if (!b->eval[k]) return gb_error_set(GB_EINVAL, "%s = %s has no symbolic derivative in libmatheval", what, text);
+    /* the tree that bounds it between grid points: smooth functions with enclosures only */
+    gb_expression_fault fault;
+    char detail[128];
+    b->tree = gb_expression_parse(text, &fault, detail, sizeof detail);
+    if (fault == GB_EXPRESSION_NOT_SMOOTH)
+        return gb_error_set(GB_EINVAL, "%s = %s names %s, which is not smooth: a body's normal and curvature need derivatives "
+                                       "(allowed: smooth functions: %s)", what, text, detail, ENCLOSED_FUNCTIONS);
+    if (fault == GB_EXPRESSION_NO_ENCLOSURE)
+        return gb_error_set(GB_EINVAL, "%s = %s names %s, which has no interval enclosure here, so the body cannot be bounded "
+                                       "between the checked directions (allowed: %s)", what, text, detail, ENCLOSED_FUNCTIONS);
+    if (fault)
+        return gb_error_set(GB_EINVAL, "%s = %s cannot be read for its bounds: %s (allowed: numbers, phi, theta, beta, pi, e, "
+                                       "+ - * / ^, parentheses and the functions %s)", what, text, detail, ENCLOSED_FUNCTIONS);
     return GB_OK;
+}
+
+/* r > 0 everywhere, not only at the checked directions: r's enclosure (for chi, S = 1 + 4β sinφ cos χ's) over
+ * each cell of a 64 × 128 cover of [0, π] × [0, 2π] is positive, or the cell is halved until it is. A cell
+ * narrower than 1e-7 rad whose enclosure still reaches 0 is decided at its centre: r <= 0 there refuses the body
+ * (a spike between the grid's directions); r > 0 there refuses it as a body that cannot be bounded. At most
+ * BOUND_CELLS cells are enclosed. */
+enum { BOUND_CELLS = 4000000 };
+
+static gb_interval kernel_enclosure(const gb_surface *s, gb_interval phi, gb_interval theta)
+{
+    const own_body *b = s->morphology->user;
+    const gb_interval v = gb_expression_enclose(b->tree, phi, theta, s->beta);
+    if (s->morphology->kernel) return v; /* r itself: r > 0 */
+    const gb_interval term = gb_interval_mul(gb_interval_sin(phi), gb_interval_cos(v));
+    return gb_interval_add(gb_interval_point(1.0), gb_interval_scale(4.0 * s->beta, term)); /* S > 0 */
+}
+
+static int bound_between(const gb_surface *s, const char *what, const char *text)
+{
+    typedef struct cell {
+        double phi_lo, phi_hi, theta_lo, theta_hi;
+    } cell;
+    size_t cap = 1024, top = 0, enclosed = 0;
+    cell *stack = malloc(cap * sizeof *stack);
+    if (!stack) return gb_error_set(GB_ENOMEM, "out of memory to bound %s = %s", what, text);
+    enum { NP = 64, NT = 128 };
+    int status = GB_OK;
+    for (int i = 0; i < NP && !status; i++)
+        for (int j = 0; j < NT && !status; j++) {
+            stack[top++] = (cell){M_PI * i / NP, M_PI * (i + 1) / NP, 2.0 * M_PI * j / NT, 2.0 * M_PI * (j + 1) / NT};
+            while (top && !status) {
+                const cell c = stack[--top];
+                const gb_interval k = kernel_enclosure(s, gb_interval_make(c.phi_lo, c.phi_hi), gb_interval_make(c.theta_lo, c.theta_hi));
+                if (k.lo > 0.0) continue;
+                const double phi = 0.5 * (c.phi_lo + c.phi_hi), theta = 0.5 * (c.theta_lo + c.theta_hi);
+                if (++enclosed > BOUND_CELLS || (c.phi_hi - c.phi_lo < 1e-7 && c.theta_hi - c.theta_lo < 1e-7)) {
+                    const double S = gb_surface_kernel(s, phi, theta);
+                    status = S <= 0.0 || !isfinite(S)
+                                 ? gb_error_set(GB_EDOM, "%s = %s makes r <= 0 at phi = %.9g, theta = %.9g, between the directions "
+                                                "checked (allowed: r > 0 on the whole sphere)", what, text, phi, theta)
+                                 : gb_error_set(GB_EDOM, "%s = %s cannot be bounded above 0 near phi = %.9g, theta = %.9g: its "
+                                                "enclosure reaches %.3g there after %zu cells (allowed: a body whose r is bounded "
+                                                "away from 0)", what, text, phi, theta, k.lo, enclosed);
+                    break;
+                }
+                if (top + 2 > cap) {
+                    cell *grown = realloc(stack, 2 * cap * sizeof *stack);
+                    if (!grown) {
+                        status = gb_error_set(GB_ENOMEM, "out of memory to bound %s = %s", what, text);
+                        break;
+                    }
+                    stack = grown, cap *= 2;
+                }
+                /* halve the wider side, θ's measured on the sphere (sin φ at the cell's widest) */
+                const double width_theta = (c.theta_hi - c.theta_lo) * fmax(sin(c.phi_lo), sin(c.phi_hi));
+                if ((c.phi_hi - c.phi_lo >= width_theta && c.phi_hi - c.phi_lo >= 1e-7) || c.theta_hi - c.theta_lo < 1e-7) {
+                    stack[top++] = (cell){c.phi_lo, phi, c.theta_lo, c.theta_hi};
+                    stack[top++] = (cell){phi, c.phi_hi, c.theta_lo, c.theta_hi};
+                } else {
+                    stack[top++] = (cell){c.phi_lo, c.phi_hi, c.theta_lo, theta};
+                    stack[top++] = (cell){c.phi_lo, c.phi_hi, theta, c.theta_hi};
+                }
+            }
+        }
+    free(stack);
+    return status;
 }
 
 /* Every value on a 180 × 360 grid of directions and at the poles finite, r > 0, one r at each pole, and r
@@ -239,6 +323,17 @@ static int check_surface(const gb_surface *s, const char *what, const char *text
                 if (!isfinite(d[k]))
                     return gb_error_set(GB_EDOM, "%s = %s is not finite at phi = %.6g, theta = %.6g (it or a derivative; "
                                                  "allowed: a smooth, finite body on the whole sphere)", what, text, phi, theta);
+            /* the tree that is bounded below is the expression libmatheval runs: the same value at every point */
+            const own_body *b = s->morphology->user;
+            pthread_mutex_lock(&lock);
+            const double run = evaluate(b, 0, s->beta, phi, theta);
+            pthread_mutex_unlock(&lock);
+            const double read = gb_expression_eval(b->tree, phi, theta, s->beta);
+            if (!(fabs(read - run) <= 1e-12 * (1.0 + fabs(run))))
+                return gb_error_set(GB_EINVAL, "%s = %s is read two ways that disagree at phi = %.6g, theta = %.6g (%.17g by "
+                                               "libmatheval, %.17g by the bounding reader), so it cannot be bounded (allowed: an "
+                                               "expression both read alike; write its operators with parentheses)",
+                                    what, text, phi, theta, run, read);
             const int pole = i == 0 || i == NP, end = j == NT;
             if ((pole || end) && fabs(p.r - r_start) > tol * fabs(r_start))
                 return gb_error_set(GB_EDOM, "%s = %s is not one surface: r = %.17g at phi = %.6g, theta = %.6g but %.17g at "
@@ -246,6 +341,30 @@ static int check_surface(const gb_surface *s, const char *what, const char *text
                                     what, text, p.r, phi, theta, r_start);
         }
     }
+    return bound_between(s, what, text);
+}
+
+/* Every body is taken about its centroid (the dynamics' points, the equilibria, the inertia): an expression's r is
+ * measured from its chart's origin, so the row records where that origin lies from the centroid, −c, and every
+ * position is moved by it (gb_surface_eval, gb_surface_position; gb_massprops reports the centroid at 0). A centroid
+ * within GB_BODY_CENTRED of the body's size (r at φ = π/2, θ = 0), or within its quadrature error, is the origin:
+ * the paper's χ written as an expression keeps the built-in bodies' bits (their centroids are 0 exactly; the
+ * quadrature finds 1e-16). */
+static int move_to_centroid(gb_morphology *row, double beta, const char *what, const char *text)
+{
+    const gb_surface s = {row, beta};
+    gb_massprops_def def = gb_massprops_default_def();
+    gb_massprops props;
+    const int status = gb_massprops_compute(&s, &def, &props);
+    if (status) return gb_error_set(status, "%s = %s: its mass properties: %s", what, text, gb_error_message());
+    const double size = gb_surface_radius(&s, 0.5 * M_PI, 0.0);
+    const double c = sqrt(props.centroid[0] * props.centroid[0] + props.centroid[1] * props.centroid[1] +
+                          props.centroid[2] * props.centroid[2]);
+    const double err = sqrt(props.centroid_err[0] * props.centroid_err[0] + props.centroid_err[1] * props.centroid_err[1] +
+                            props.centroid_err[2] * props.centroid_err[2]);
+    if (c <= fmax(GB_BODY_CENTRED * size, err)) return GB_OK;
+    for (int i = 0; i < 3; i++) row->origin[i] = -props.centroid[i];
+    row->moved = 1;
     return GB_OK;
 }
 
@@ -291,6 +410,7 @@ int gb_body_expression(gb_body_expression_kind kind, const char *text, double be
     pthread_mutex_unlock(&lock);
     const gb_surface s = {&b->row, beta};
     status = check_surface(&s, what, text); /* evaluates under the lock, call by call */
+    if (!status) status = move_to_centroid(&b->row, beta, what, text);
     pthread_mutex_lock(&lock);
     if (status) body_free(b);
     else b->next = bodies, bodies = b;

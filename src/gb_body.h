@@ -15,9 +15,12 @@
  * An expression: parsed by GNU libmatheval (its derivatives symbolic), the names φ, θ, β written phi, theta,
  * beta, and pi, e; r = EXPR is the radius of eq 12 itself (the kernel S = r⁴), chi = EXPR the phase of eq 11
  * (S = 1 + 4β sinφ cos χ). The body is checked on a 180 × 360 grid of directions and the poles: every value
- * finite, r > 0, one value at each pole and r periodic in θ; a body that fails is refused. No interval
- * enclosure of an expression is built: such a body has no certificate (kernel_jet NULL), and only the grid
- * contact models run it. libmatheval keeps its variables in the evaluator: every evaluation holds one lock. */
+ * finite, r > 0, one value at each pole and r periodic in θ; between those directions r (for chi, r⁴) is bounded
+ * above 0 on intervals (gb_expression: the user's text read again as a tree, its value checked against
+ * libmatheval's at every grid point), and a function that is not smooth (abs, step, delta) is refused. A body that
+ * fails is refused. The body is then moved to its centroid: r is measured from the chart's origin, and positions
+ * are taken from the centroid (gb_morphology.origin, GB_BODY_CENTRED). Such a body has no certificate (kernel_jet
+ * NULL), and only the grid contact models run it. libmatheval keeps its variables in the evaluator: every evaluation holds one lock. */
 #ifndef GB_BODY_H
 #define GB_BODY_H
 
@@ -27,6 +30,10 @@
 #ifdef __cplusplus
 extern "C" {
 #endif
+
+/* A body given by an expression whose centroid lies farther than this, times its size, from its chart's origin is
+ * moved to its centroid (gb_morphology.origin); nearer, the centroid is the origin to what the dynamics resolve. */
+#define GB_BODY_CENTRED 1e-12
 
 typedef enum gb_body_expression_kind { GB_BODY_RADIUS = 0, GB_BODY_PHASE = 1 } gb_body_expression_kind;
 

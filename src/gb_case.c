@@ -16,6 +16,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
+#include <sys/resource.h>
 
 gb_case gb_case_default(void)
 {
@@ -458,6 +460,13 @@ int gb_case_mesh_path(const char *scene, const gb_case *c, char *out, size_t siz
 /* [body]: the paper's morphology, or a body of one's own (gb_body.h), made here once every key is read. */
 static int resolve_body(const char *path, gb_case *c)
 {
+    /* a key given with no value names no body: refused, never read as the default body */
+    static const char *const own_keys[] = {"mesh", "r", "chi"};
+    const char *const own_texts[] = {c->mesh, c->r_text, c->chi_text};
+    for (int k = 0; k < 3; k++)
+        if (given(c, "body", own_keys[k]) && !own_texts[k][strspn(own_texts[k], " \t")])
+            return cross_fail(path, c, "body", own_keys[k], "is empty (allowed: %s)",
+                              k == 0 ? "a mesh file's path" : "an expression in phi, theta, beta");
     const int mesh = c->mesh[0] != 0, r = c->r_text[0] != 0, chi = c->chi_text[0] != 0;
     const char *own = mesh ? "mesh" : r ? "r" : chi ? "chi" : NULL;
     if (!own) return GB_OK;
@@ -568,8 +577,41 @@ static int cross_check(const char *path, gb_case *c)
         return cross_fail(path, c, "spectrum", "transient_periods",
                           "= %zu leaves less than one period (allowed: <= [integrator] periods - 1 = %g)",
                           c->spectrum_transient, periods - 1.0);
+    /* What cannot be done: more steps than days of computing, or records larger than the machine can hold. */
+    if ((double)spp * periods > GB_CASE_STEPS_MAX)
+        return cross_fail(path, c, "integrator", "periods",
+                          "= %g with steps_per_period = %zu: %.3g steps (allowed: periods x steps_per_period <= %g, some days "
+                          "of computing at a microsecond a step)", periods, spp, (double)spp * periods, GB_CASE_STEPS_MAX);
+    const double held = gb_case_memory_estimate(c), limit = gb_case_memory_limit();
+    if (held > limit)
+        return cross_fail(path, c, "integrator", "periods",
+                          "= %g: the run would hold about %.3g GB of records (the spectrum's samples of omega_x, 24 bytes "
+                          "each with its transform, and the strobe's) (allowed: at most %.3g GB, half this machine's memory "
+                          "or the address-space limit; fewer periods, a larger [output] sample_every, or no spectrum)",
+                          periods, held / 1e9, limit / 1e9);
     if (c->lyapunov) return gb_case_lyapunov_check(path, c);
     return GB_OK;
+}
+
+double gb_case_memory_estimate(const gb_case *c)
+{
+    const double spp = (double)c->integrate.steps_per_period, periods = c->integrate.periods;
+    const double samples_a_period = spp / (double)c->integrate.sample_every;
+    double bytes = 0.0;
+    if (c->spectrum) /* ω_x samples kept (a growing array, up to twice its fill) and the transform's copy */
+        bytes += 24.0 * samples_a_period * (periods - (double)c->spectrum_transient);
+    if (c->strobe) bytes += 2.0 * 8.0 * 8.0 * (periods - (double)c->strobe_def.transient); /* t and up to 7 coordinates */
+    if (c->lyapunov) bytes += 3.0 * 8.0 * periods; /* per-interval rates, running mean, windows */
+    return bytes;
+}
+
+double gb_case_memory_limit(void)
+{
+    const double pages = (double)sysconf(_SC_PHYS_PAGES), page = (double)sysconf(_SC_PAGESIZE);
+    double limit = pages > 0.0 && page > 0.0 ? 0.5 * pages * page : 1e12;
+    struct rlimit as;
+    if (getrlimit(RLIMIT_AS, &as) == 0 && as.rlim_cur != RLIM_INFINITY) limit = fmin(limit, 0.5 * (double)as.rlim_cur);
+    return limit;
 }
 
 int gb_case_lyapunov_check(const char *path, gb_case *c)

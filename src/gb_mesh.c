@@ -13,7 +13,8 @@
 #include <string.h>
 #include <strings.h>
 
-#define MAX_TOKENS 64
+/* words a line: a face of up to 1024 vertices (a 64-gon coin's face, and more); the words live on the heap */
+#define MAX_TOKENS 1025
 #define MAX_TOKEN 128
 
 /* ---------------------------------------------------------------- the mesh being built */
@@ -70,7 +71,7 @@ typedef struct cursor {
 } cursor;
 
 /* The next line's tokens (white space separated; a '#' starts a comment); 0 at the end of the data. */
-static int next_line(const builder *b, cursor *c, char tokens[MAX_TOKENS][MAX_TOKEN], int *count, int *status)
+static int next_line(const builder *b, cursor *c, char (*tokens)[MAX_TOKEN], int *count, int *status)
 {
     *count = 0;
     if (c->at >= c->size) return 0;
@@ -97,6 +98,13 @@ static int next_line(const builder *b, cursor *c, char tokens[MAX_TOKENS][MAX_TO
         }
         size_t q = p;
         while (q < end && !isspace(c->data[q]) && c->data[q] != '#') q++;
+        for (size_t k = p; k < q; k++) /* every byte of the word, not its first alone: '1<NUL>5' is no number */
+            if (c->data[k] == '\0' || c->data[k] >= 0x80 || !isprint(c->data[k])) {
+                *status = gb_error_set(GB_EINVAL, "%s:%zu: a byte that is not printable ASCII (0x%02x) at column %zu (allowed: a "
+                                       "text mesh)", b->name, c->line, c->data[k], k - c->at + 1);
+                break;
+            }
+        if (*status) break;
         if (*count == MAX_TOKENS || q - p >= MAX_TOKEN) {
             *status = gb_error_set(GB_EINVAL, "%s:%zu: a line of more than %d words or a word of more than %d characters", b->name,
                                    c->line, MAX_TOKENS, MAX_TOKEN - 1);
@@ -119,7 +127,7 @@ static int read_number(const builder *b, size_t line, const char *token, const c
     return GB_OK;
 }
 
-static int read_point(const builder *b, size_t line, char tokens[][MAX_TOKEN], double x[3])
+static int read_point(const builder *b, size_t line, char (*tokens)[MAX_TOKEN], double x[3])
 {
     int status = GB_OK;
     for (int k = 0; k < 3 && !status; k++) status = read_number(b, line, tokens[k], "a coordinate", &x[k]);
@@ -128,9 +136,8 @@ static int read_point(const builder *b, size_t line, char tokens[][MAX_TOKEN], d
 
 /* ---------------------------------------------------------------- OFF */
 
-static int read_off(builder *b, cursor *c)
+static int read_off(builder *b, cursor *c, char (*tokens)[MAX_TOKEN])
 {
-    char tokens[MAX_TOKENS][MAX_TOKEN];
     int n = 0, status = GB_OK;
     while (next_line(b, c, tokens, &n, &status) && !status && n == 0) {}
     if (status) return status;
@@ -206,10 +213,9 @@ static int obj_index(const builder *b, size_t line, const char *token, size_t *o
     return GB_OK;
 }
 
-static int read_obj(builder *b, cursor *c)
+static int read_obj(builder *b, cursor *c, char (*tokens)[MAX_TOKEN])
 {
     static const char *const ignored[] = {"o", "g", "s", "usemtl", "mtllib", "vt", "vn", NULL};
-    char tokens[MAX_TOKENS][MAX_TOKEN];
     int n = 0, status = GB_OK;
     while (!status && next_line(b, c, tokens, &n, &status)) {
         if (status || n == 0) continue;
@@ -283,9 +289,8 @@ static int stl_vertex(builder *b, vertex_table *t, const double x[3], size_t lin
     return status;
 }
 
-static int read_stl_ascii(builder *b, cursor *c)
+static int read_stl_ascii(builder *b, cursor *c, char (*tokens)[MAX_TOKEN])
 {
-    char tokens[MAX_TOKENS][MAX_TOKEN];
     int n = 0, status = GB_OK, stage = 0, corners = 0; /* stage: 0 solid, 1 facet, 2 loop, 3 endloop, 4 endfacet */
     size_t index[3];
     vertex_table table = {0, NULL};
@@ -364,7 +369,15 @@ int gb_mesh_format_of(const char *name, const unsigned char *data, size_t size, 
     if (dot && !strcasecmp(dot, ".off")) return *out = GB_MESH_OFF, GB_OK;
     if (dot && !strcasecmp(dot, ".obj")) return *out = GB_MESH_OBJ, GB_OK;
     if (dot && !strcasecmp(dot, ".stl")) {
-        /* ASCII when it starts with "solid" and a "facet" follows within the first lines; binary otherwise */
+        /* ASCII when it starts with "solid" (after a UTF-8 byte-order mark, if any) and a "facet" follows within the
+         * first lines; binary otherwise, and binary whenever its size is exactly 84 + 50 x the count its header
+         * gives (a binary header may begin "solid ... facet", as some exporters write it) */
+        const size_t bom = size >= 3 && !memcmp(data, "\xEF\xBB\xBF", 3) ? 3 : 0;
+        if (size >= 84) {
+            const uint64_t count = (uint64_t)data[80] | (uint64_t)data[81] << 8 | (uint64_t)data[82] << 16 | (uint64_t)data[83] << 24;
+            if (!bom && 84 + 50 * count == size) return *out = GB_MESH_STL_BINARY, GB_OK;
+        }
+        data += bom, size -= bom;
         int ascii = size >= 5 && !memcmp(data, "solid", 5);
         if (ascii) {
             const size_t look = size < 1024 ? size : 1024;
@@ -384,13 +397,18 @@ int gb_mesh_read_buffer(const char *name, const unsigned char *data, size_t size
     if (status) return status;
     out->format = format;
     builder b = {name, out, 0, 0};
-    cursor c = {data, size, 0, 0};
+    /* a UTF-8 byte-order mark before a text mesh is no part of it */
+    const size_t bom = format != GB_MESH_STL_BINARY && size >= 3 && !memcmp(data, "\xEF\xBB\xBF", 3) ? 3 : 0;
+    cursor c = {data + bom, size - bom, 0, 0};
+    char (*tokens)[MAX_TOKEN] = format == GB_MESH_STL_BINARY ? NULL : malloc(MAX_TOKENS * sizeof *tokens);
+    if (format != GB_MESH_STL_BINARY && !tokens) return gb_error_set(GB_ENOMEM, "%s: out of memory for a line's words", name);
     switch (format) {
-    case GB_MESH_OFF: status = read_off(&b, &c); break;
-    case GB_MESH_OBJ: status = read_obj(&b, &c); break;
-    case GB_MESH_STL_ASCII: status = read_stl_ascii(&b, &c); break;
+    case GB_MESH_OFF: status = read_off(&b, &c, tokens); break;
+    case GB_MESH_OBJ: status = read_obj(&b, &c, tokens); break;
+    case GB_MESH_STL_ASCII: status = read_stl_ascii(&b, &c, tokens); break;
     default: status = read_stl_binary(&b, data, size); break;
     }
+    free(tokens);
     if (!status && (out->vertex_count < 4 || out->triangle_count < 4))
         status = gb_error_set(GB_EINVAL, "%s: %zu vertices and %zu triangles (allowed: a closed body, at least 4 of each)", name,
                               out->vertex_count, out->triangle_count);

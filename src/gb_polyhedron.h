@@ -4,8 +4,12 @@
  * The body is the hull. A mesh some vertex of which lies inside the hull (farther than GB_POLYHEDRON_FLAT
  * times the body's size below every face through it) is not convex, and is refused naming that vertex's
  * line: a rocking body's contact with a plane is its hull's, so a non-convex mesh would silently be
- * another body than the file shows. A flat mesh (all vertices within that distance of one plane) has no
- * volume and is refused too.
+ * another body than the file shows. So is a mesh whose own faces are not its hull's surface: it must be
+ * closed and consistently oriented (each edge in two faces, taken in opposite senses) and enclose the hull's
+ * volume to GB_POLYHEDRON_FLAT × size × the hull's area (Schönhardt's prism, all of whose vertices lie on
+ * its hull, encloses less). A flat mesh (its hull's mean thickness 2V/A within that distance) has no
+ * volume and is refused too. Qhull's precision failures on valid input are retried with wide facets
+ * allowed, then with joggled input, and named as precision failures (with the input's scale) if all fail.
  *
  * Mass properties of a homogeneous body by the divergence theorem over the hull's triangles, each with
  * the centroid of the vertices as apex (a sum of tetrahedra, exact for a polyhedron but for rounding):
@@ -26,6 +30,12 @@ extern "C" {
 #endif
 
 #define GB_POLYHEDRON_FLAT 1e-9 /* relative to the body's size (its largest vertex distance from the centre of the vertices) */
+/* The scale rules [m]: a body's size, and how far from its file's origin it may lie, in sizes. Below 1e-6 m the
+ * dynamics' absolute tolerances (1e-12 m a contact) are the body's own scale; above 1e6 m, or 1e6 sizes from
+ * the origin, the doubles of the coordinates no longer hold the body's shape to GB_POLYHEDRON_FLAT. */
+#define GB_POLYHEDRON_SIZE_MIN 1e-6
+#define GB_POLYHEDRON_SIZE_MAX 1e6
+#define GB_POLYHEDRON_OFFSET_MAX 1e6
 
 typedef struct gb_polyhedron {
     size_t vertex_count;

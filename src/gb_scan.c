@@ -5,6 +5,7 @@
 #include "gb_scan_internal.h"
 
 #include "gb_hash.h"
+#include "gb_mesh.h"
 
 #include "gb_error.h"
 #include "gb_file.h"
@@ -14,6 +15,7 @@
 
 #include <gsl/gsl_rng.h>
 
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -337,6 +339,29 @@ int gb_scan_parse(const char *path, const char *text, size_t size, gb_scan *out)
     return GB_OK;
 }
 
+/* The scan's name, by content: the scan file, its base scene and every file the base reads (a mesh; no axis can
+ * name another), so that no other scan, base or body can be made to carry it — a resumed scan whose mesh changed
+ * is another scan, and starts anew. `scene` is a point's scene, whose body is every point's. */
+static int scan_identity(gb_scan *out, const gb_case *scene, const char *text, size_t size)
+{
+    char *mesh = NULL;
+    size_t mesh_size = 0;
+    if (scene->mesh[0]) {
+        char file[PATH_MAX];
+        int status = gb_case_mesh_path(out->base, scene, file, sizeof file);
+        if (!status) status = gb_file_read(file, GB_MESH_FILE_MAX, "mesh file", "an OFF, OBJ or STL file", &mesh, &mesh_size);
+        if (status) return status;
+    }
+    const uint64_t sizes[3] = {size, out->base_size, mesh_size};
+    /* without a mesh, the name the scans had before meshes counted (two sizes, three pieces) */
+    const gb_seal_piece pieces[4] = {{sizes, mesh ? sizeof sizes : 2 * sizeof sizes[0]}, {text, size}, {out->base_text, out->base_size},
+                                     {mesh, mesh_size}};
+    gb_seal_digest(pieces, mesh ? 4 : 3, out->identity);
+    if (mesh) out->fingerprint = gb_hash_add(out->fingerprint, mesh, mesh_size);
+    free(mesh);
+    return GB_OK;
+}
+
 int gb_scan_load(const char *path, gb_scan *out)
 {
     char *text;
@@ -351,13 +376,8 @@ int gb_scan_load(const char *path, gb_scan *out)
     }
     status = gb_file_read(out->base, GB_CASE_FILE_MAX, "case file", "a scene file, see cases/README.md", &out->base_text,
                           &out->base_size);
-    if (!status) { /* the scan's name: no other scan file and base scene can be made to carry it */
-        const uint64_t sizes[2] = {size, out->base_size};
-        const gb_seal_piece pieces[3] = {{sizes, sizeof sizes}, {text, size}, {out->base_text, out->base_size}};
-        gb_seal_digest(pieces, 3, out->identity);
-    }
-    free(text);
     if (status) {
+        free(text);
         const char *slash = strrchr(path, '/');
         return gb_error_set(status, "%s:%d: [scan] base = %s: %s (a relative base is read from the scan file's directory, "
                             "'%.*s')", path, out->base_line, out->base, gb_error_message(),
@@ -382,6 +402,8 @@ int gb_scan_load(const char *path, gb_scan *out)
                                   path, out->atlas_line, out->base);
     }
     for (size_t k = 0; k < gb_scan_points(out) && !status; k++) status = gb_scan_point_case(out, k, &scene);
+    if (!status) status = scan_identity(out, &scene, text, size);
+    free(text);
     if (status) gb_scan_free(out);
     return status;
 }

@@ -81,7 +81,8 @@ static void load_key(void)
                  "XDG_CONFIG_HOME nor HOME is set (allowed: GOMBOC_KEY=FILE)");
         return;
     }
-    int fd = open(key_file, O_RDONLY | O_NOFOLLOW | O_CLOEXEC);
+    /* O_NONBLOCK: a FIFO at the key's path is refused below (not a regular file), never waited on */
+    int fd = open(key_file, O_RDONLY | O_NOFOLLOW | O_CLOEXEC | O_NONBLOCK);
     if (fd < 0 && errno == ENOENT) {
         if (make_key() != 0) {
             key_status = GB_EIO;
@@ -89,7 +90,7 @@ static void load_key(void)
                      "GOMBOC_KEY=FILE)", key_file, strerror(errno));
             return;
         }
-        fd = open(key_file, O_RDONLY | O_NOFOLLOW | O_CLOEXEC);
+        fd = open(key_file, O_RDONLY | O_NOFOLLOW | O_CLOEXEC | O_NONBLOCK);
     }
     struct stat st;
     const char *why = NULL;
@@ -100,9 +101,10 @@ static void load_key(void)
     else if (st.st_size != (off_t)sizeof key || read(fd, key, sizeof key) != (ssize_t)sizeof key)
         why = "not 32 bytes (allowed: the key file this program made)";
     if (fd >= 0) close(fd);
-    if (why) {
-        key_status = GB_EIO;
-        snprintf(key_message, sizeof key_message, "the key file '%s' is refused: %s", key_file, why);
+    if (why) { /* a key file that is there but not a key is bad input (exit 2), as any other input */
+        key_status = GB_EINVAL;
+        snprintf(key_message, sizeof key_message, "the key file '%s' is refused: %s (allowed: a regular file of 32 bytes, "
+                 "mode 0600, of this user, that this program made; or GOMBOC_KEY=FILE naming a new one)", key_file, why);
     }
 }
 

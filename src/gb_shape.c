@@ -234,6 +234,21 @@ const char *gb_shape_equilibrium_name(int type)
     return type >= 0 && type <= 2 ? names[type] : "unknown";
 }
 
+/* The surface at (φ, θ) with r and its derivatives those of the distance from the centroid, ρ = |x|: for a body
+ * moved to its centroid (gb_morphology.origin) the equilibria are the critical points of ρ, not of the chart's r.
+ * ρ_a = x·x_a / ρ, ρ_ab = (x_a·x_b + x·x_ab) / ρ − ρ_a ρ_b / ρ. The paper's bodies are not moved: r as it is. */
+static void eval_about_centroid(const gb_surface *surface, double phi, double theta, gb_surface_point *p)
+{
+    gb_surface_eval(surface, phi, theta, p);
+    if (!surface->morphology->moved) return;
+    const double rho = sqrt(gb_vec_dot(p->x, p->x));
+    const double ra = gb_vec_dot(p->x, p->x_phi) / rho, rb = gb_vec_dot(p->x, p->x_theta) / rho;
+    p->r_phiphi = (gb_vec_dot(p->x_phi, p->x_phi) + gb_vec_dot(p->x, p->x_phiphi) - ra * ra) / rho;
+    p->r_phitheta = (gb_vec_dot(p->x_phi, p->x_theta) + gb_vec_dot(p->x, p->x_phitheta) - ra * rb) / rho;
+    p->r_thetatheta = (gb_vec_dot(p->x_theta, p->x_theta) + gb_vec_dot(p->x, p->x_thetatheta) - rb * rb) / rho;
+    p->r = rho, p->r_phi = ra, p->r_theta = rb;
+}
+
 static double sphere_gradient(const gb_surface_point *p)
 {
     const double g_theta = p->r_theta / sin(p->phi);
@@ -245,7 +260,7 @@ static int newton_critical_point(const gb_surface *surface, double *phi, double 
                                  gb_surface_point *p)
 {
     for (int iter = 0; iter < 100; iter++) {
-        gb_surface_eval(surface, *phi, *theta, p);
+        eval_about_centroid(surface, *phi, *theta, p);
         const double a = p->r_phiphi, b = p->r_phitheta, d = p->r_thetatheta;
         const double det = a * d - b * b;
         if (det == 0.0) return 0;
@@ -260,7 +275,7 @@ static int newton_critical_point(const gb_surface *surface, double *phi, double 
     }
     *theta = fmod(*theta, 2.0 * M_PI);
     if (*theta < 0.0) *theta += 2.0 * M_PI;
-    gb_surface_eval(surface, *phi, *theta, p);
+    eval_about_centroid(surface, *phi, *theta, p);
     /* converged when the gradient is at round-off level of r ≈ 1 */
     return sphere_gradient(p) < 1e-12;
 }
@@ -282,7 +297,7 @@ int gb_shape_equilibria(const gb_surface *surface, const gb_shape_def *def, gb_e
     for (size_t i = 0; i < nphi; i++)
         for (size_t j = 0; j < ntheta; j++) {
             gb_surface_point p;
-            gb_surface_eval(surface, cap + (i + 0.5) * dphi, (j + 0.5) * dtheta, &p);
+            eval_about_centroid(surface, cap + (i + 0.5) * dphi, (j + 0.5) * dtheta, &p);
             const double g = sphere_gradient(&p);
             g2[i * ntheta + j] = g * g;
         }
@@ -318,7 +333,7 @@ int gb_shape_equilibria(const gb_surface *surface, const gb_shape_def *def, gb_e
             for (size_t j = 0; j < 256; j++) {
                 const double a = (i + 0.5) * cap / 64;
                 gb_surface_point p;
-                gb_surface_eval(surface, cap_side ? M_PI - a : a, (j + 0.5) * 2.0 * M_PI / 256, &p);
+                eval_about_centroid(surface, cap_side ? M_PI - a : a, (j + 0.5) * 2.0 * M_PI / 256, &p);
                 out->polar_gradient_min = fmin(out->polar_gradient_min, sphere_gradient(&p));
             }
     free(g2), free(starts);

@@ -87,9 +87,9 @@ static int kernel_jet_two(const gb_jet s[3], gb_jet *k)
  * of u by π about e_y; for II, (φ,θ) → (π−φ, −θ) keeps χ₂ (its φ-part is odd in cos φ) and rotates
  * u by π about e_x. Both axes pass through the minimum of sinφ cosχ (φ = π/2, χ = π). */
 static const gb_morphology morphologies[] = {
-    {"I", "theta - 5 phi", "3, 4, 8, 18", phase_one, phase_one_eval, kernel_jet_one, {0.0, -1.0, 0.0}, NULL, NULL, NULL},
+    {"I", "theta - 5 phi", "3, 4, 8, 18", phase_one, phase_one_eval, kernel_jet_one, {0.0, -1.0, 0.0}, NULL, NULL, NULL, {0.0, 0.0, 0.0}, 0},
     {"II", "theta - (3 pi / 2)(cos phi - cos^3 phi / 3)", "5, 6, 9, 19", phase_two, phase_two_eval,
-     kernel_jet_two, {-1.0, 0.0, 0.0}, NULL, NULL, NULL},
+     kernel_jet_two, {-1.0, 0.0, 0.0}, NULL, NULL, NULL, {0.0, 0.0, 0.0}, 0},
 };
 
 size_t gb_surface_morphology_count(void) { return sizeof morphologies / sizeof morphologies[0]; }
@@ -171,6 +171,8 @@ void gb_surface_eval_jet(const gb_surface *surface, double phi, double theta, gb
         kernel_from_phase(beta4, sp, cp, sc, cc, v, p);
     }
     surface_from_kernel(sp, cp, st, ct, p);
+    if (surface->morphology->moved) /* about the centroid; the tangents and their derivatives do not move */
+        for (int i = 0; i < 3; i++) p->x[i] += surface->morphology->origin[i];
 }
 
 /* Kernel and its derivatives (eqs 11, 13; second order by differentiating eq 13 again). */
@@ -247,6 +249,8 @@ void gb_surface_position(const gb_surface *surface, double phi, double theta, do
     const double r = gb_surface_radius(surface, phi, theta);
     gb_surface_direction(phi, theta, x);
     for (int i = 0; i < 3; i++) x[i] *= r;
+    if (surface->morphology->moved)
+        for (int i = 0; i < 3; i++) x[i] += surface->morphology->origin[i];
 }
 
 double gb_surface_radius_dbeta(const gb_surface *surface, double phi, double theta)

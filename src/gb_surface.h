@@ -51,6 +51,11 @@ typedef struct gb_morphology {
     const void *user;                         /* a body of one's own: its expression (gb_body.c) */
     const struct gb_polyhedron *polyhedron;   /* a convex polyhedron ([body] mesh): no phase; its hull's vertices,
                                                * centred on the centroid, are the body's points (gb_body.h) */
+    /* Where the chart's origin (the point r is measured from) lies in the body's axes, whose origin is the
+     * centroid: x = r u + origin (eq 2, moved). Zero for the paper's bodies, whose centroid is their chart's
+     * origin exactly (docs/bodies.md); a body given by an expression is moved to its centroid (gb_body.h). */
+    double origin[3];
+    int moved; /* origin is not zero */
 } gb_morphology;
 
 

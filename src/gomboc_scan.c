@@ -149,6 +149,17 @@ static int journal_resume(journal *j, const gb_scan *scan, gb_scan_metrics *resu
     return 0;
 }
 
+/* A test hook: GOMBOC_TEST_PAUSE_AFTER_POINTS=N stops the process (SIGSTOP) once the journal holds its header and
+ * N points of this run, so that a check interrupts the scan at a point the program announces, whatever the
+ * machine's load (verify/s8_scan.c). Unset, or not a count, it does nothing. */
+static void test_pause(size_t points)
+{
+    const char *hook = getenv("GOMBOC_TEST_PAUSE_AFTER_POINTS");
+    char *end;
+    const long after = hook && *hook ? strtol(hook, &end, 10) : -1;
+    if (after >= 0 && !*end && (size_t)after == points) raise(SIGSTOP);
+}
+
 /* A new journal: its header written whole before its name appears (gb_file_write_new), so that a kill
  * never leaves an empty journal in the way; then opened to append. */
 static int journal_create(journal *j)
@@ -163,6 +174,7 @@ static int journal_create(journal *j)
         if (fd >= 0) close(fd);
         return EXIT_COMPUTE;
     }
+    test_pause(0);
     return 0;
 }
 
@@ -295,6 +307,7 @@ static void accept_point(scan_state *st, size_t k, const gb_scan_metrics *m, con
     if (!st->done[k]) st->finished++;
     st->results[k] = *m, st->done[k] = 1;
     st->run_here++;
+    test_pause(st->run_here);
     const double now = gb_wall_seconds();
     if (now - st->last_report >= 2.0 || st->finished == st->points) {
         const double rate = (double)st->run_here / (now - st->points_start);

@@ -118,6 +118,10 @@ static cJSON *shape_json(const shape_study *st)
     cli_json_add(root, "volume_error", st->props.volume_err);
     cJSON_AddItemToObject(root, "centroid", cli_json_vector(st->props.centroid, 3));
     cJSON_AddItemToObject(root, "centroid_error", cli_json_vector(st->props.centroid_err, 3));
+    /* a body given by an expression is moved to its centroid: where its chart's origin (r's) lies from it */
+    const double none[3] = {0.0, 0.0, 0.0};
+    const double *origin = st->surface.morphology->moved ? st->surface.morphology->origin : none;
+    cJSON_AddItemToObject(root, "chart_origin", cli_json_vector(origin, 3));
     cJSON *inertia = cJSON_AddArrayToObject(root, "inertia");
     for (int i = 0; i < 3; i++) cJSON_AddItemToArray(inertia, cli_json_vector(st->props.inertia[i], 3));
     cli_json_add(root, "L", st->props.L);
@@ -172,6 +176,9 @@ static void print_shape(const shape_study *st)
     printf("volume           %.15g  (+- %.1e)\n", st->props.volume, st->props.volume_err);
     printf("centroid         %.3e %.3e %.3e  (+- %.1e)\n", st->props.centroid[0], st->props.centroid[1],
            st->props.centroid[2], st->props.centroid_err[0]);
+    if (st->surface.morphology->moved)
+        printf("moved            to its centroid: r is measured from (%.10g, %.10g, %.10g), the chart's origin\n",
+               st->surface.morphology->origin[0], st->surface.morphology->origin[1], st->surface.morphology->origin[2]);
     for (int i = 0; i < 3; i++)
         printf("%s %15.12f %15.12f %15.12f\n", i ? "                " : "inertia (I_C)   ",
                st->props.inertia[i][0], st->props.inertia[i][1], st->props.inertia[i][2]);
@@ -316,9 +323,11 @@ int command_shape(int argc, char **argv)
     } else if (cli_body_required("shape", &body)) {
         return EXIT_INPUT;
     }
-    const gb_file_use uses[] = {GB_FILE_USE(radial_map, "--radial-map", GB_FILE_OUTPUT),
+    /* no output may be an input: the scene is named beside the outputs (its mesh, if any, was refused above) */
+    const gb_file_use uses[] = {GB_FILE_USE(scene_path, "--scene", GB_FILE_INPUT),
+                                GB_FILE_USE(radial_map, "--radial-map", GB_FILE_OUTPUT),
                                 GB_FILE_USE(grid_nodes, "--grid-nodes", GB_FILE_OUTPUT)};
-    if (cli_files_check("shape", uses, 2)) return EXIT_INPUT;
+    if (cli_files_check("shape", uses, 3)) return EXIT_INPUT;
     if (cli_parse_only) return 0;
     const double beta = scene_path ? surface.beta : body.beta;
 

@@ -25,6 +25,7 @@ int verify_register_s8_scan(void);
 int verify_register_siconos(void);
 int verify_register_command(void);
 int verify_register_bad_input(void);
+int verify_register_bad_input_bodies(void);
 
 /* Register `tests` (NULL-terminated) as one suite whose every test starts the row timer. */
 typedef struct verify_test {
