@@ -27,7 +27,7 @@ from matplotlib import animation  # noqa: E402
 import numpy  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from common import load_json, load_radial_map, write_atomically  # noqa: E402
+from common import input_errors, load_json, load_radial_map, load_table, previous_files, write_atomically  # noqa: E402
 
 
 def rotation(q):
@@ -61,7 +61,7 @@ def main():
     files = {f["name"]: f for f in summary.get("files", [])}
     if f"{name}-history.csv" not in files:
         sys.exit(f"animate.py: the run {name} wrote no history (allowed: a scene with [output] history = yes)")
-    h = numpy.genfromtxt(os.path.join(out, f"{name}-history.csv"), delimiter=",", names=True)
+    h = load_table(os.path.join(out, f"{name}-history.csv"), required=("t",))
     if "q_w" not in h.dtype.names:
         sys.exit(f"animate.py: {name}-history.csv has no attitude columns (rerun the scene with this gomboc)")
     surface_path = opts["--surface"] or os.path.join(out, f"radial-map-{name}.csv")
@@ -126,9 +126,10 @@ def main():
     temporary = os.path.join(out, f".{path}.tmp{os.path.splitext(path)[1]}")
     movie.save(temporary, writer=writer)
     plt.close(fig)
+    earlier = previous_files(out, f"{name}-animation.json", key="file")
     os.replace(temporary, os.path.join(out, path))
-    for other in (f"{name}-animation.mp4", f"{name}-animation.gif"):  # an earlier run's other format
-        if other != path and os.path.exists(os.path.join(out, other)):
+    for other in earlier - {path}:  # an earlier run's other format, as this script's own manifest names it
+        if os.path.exists(os.path.join(out, other)):
             os.remove(os.path.join(out, other))
     frames = frames[-len(rows):]  # matplotlib may draw the first frame twice (its initial draw)
     write_atomically(os.path.join(out, f"{name}-animation.json"), json.dumps(
@@ -138,4 +139,4 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    input_errors(main)

@@ -1,7 +1,88 @@
-"""Helpers shared by the report generators: atomic writes and reading gomboc's outputs."""
+"""Helpers shared by the report generators: atomic writes and reading gomboc's outputs.
+
+A writer removes only what its own previous manifest lists (previous_files), writes every file atomically, and
+answers a malformed input with one line naming the file, the row and the column (InputError, exit 2; input_errors
+turns it into that line), never a traceback."""
 import csv
 import json
+import math
 import os
+import sys
+
+import numpy
+
+
+class InputError(Exception):
+    """A malformed input file: the message names the file, the row and the column."""
+
+
+def input_errors(main):
+    """Run main(); an InputError (or a JSON file that is not JSON) is one line on stderr and exit 2."""
+    try:
+        return main()
+    except InputError as e:
+        sys.stderr.write(f"{os.path.basename(sys.argv[0])}: {e}\n")
+        sys.exit(2)
+
+
+def load_table(path, required=(), text=()):
+    """A CSV gomboc wrote, as a numpy structured array (a row a record, named columns): every row as long as the
+    header, every value a number but those of the `text` columns, the `required` columns present and at least
+    one row; else InputError naming the file, row (the file's line) and column."""
+    try:
+        with open(path, encoding="utf-8", newline="") as handle:
+            rows = list(csv.reader(handle))
+    except OSError as e:
+        raise InputError(f"{path}: {e.strerror}") from None
+    except (UnicodeDecodeError, csv.Error) as e:
+        raise InputError(f"{path}: not a CSV file ({e})") from None
+    if not rows or not rows[0]:
+        raise InputError(f"{path}:1: no header (allowed: a CSV gomboc wrote, its header first)")
+    header = rows[0]
+    for column in required:
+        if column not in header:
+            raise InputError(f"{path}:1: no column '{column}' (allowed: a file this gomboc wrote, whose header has it)")
+    if len(rows) < 2:
+        raise InputError(f"{path}:2: no rows after the header (allowed: at least one row)")
+    columns = {name: [] for name in header}
+    for line, row in enumerate(rows[1:], start=2):
+        if len(row) != len(header):
+            raise InputError(f"{path}:{line}: {len(row)} values where the header names {len(header)} columns")
+        for name, value in zip(header, row):
+            if name in text:
+                columns[name].append(value)
+                continue
+            try:
+                columns[name].append(float(value))
+            except ValueError:
+                raise InputError(f"{path}:{line}: column '{name}': '{value}' is not a number") from None
+    dtype = [(name, "U64" if name in text else "f8") for name in header]
+    table = numpy.zeros(len(rows) - 1, dtype=dtype)
+    for name in header:
+        table[name] = columns[name]
+    return table
+
+
+def finite_column(table, path, name):
+    """The column, every value finite: else InputError naming the first row (the file's line) that is not."""
+    for k, value in enumerate(table[name]):
+        if not math.isfinite(value):
+            raise InputError(f"{path}:{k + 2}: column '{name}': {value} is not a finite number")
+    return table[name]
+
+
+def previous_files(out, manifest, key="figures"):
+    """The files a writer's previous manifest OUT/MANIFEST lists (its own outputs of an earlier run): plain names in
+    OUT, never a path outside it. Nothing when there is no manifest or it is not one."""
+    try:
+        data = load_json(os.path.join(out, manifest))
+    except (OSError, ValueError):
+        return set()
+    entries = data.get(key, []) if isinstance(data, dict) else []
+    if isinstance(entries, dict) or isinstance(entries, str):
+        entries = [entries]
+    names = {e.get("file") if isinstance(e, dict) else e for e in entries}
+    return {n for n in names if isinstance(n, str) and n and os.path.basename(n) == n and n not in (".", "..")}
 
 
 def write_atomically(path, text):
@@ -11,9 +92,9 @@ def write_atomically(path, text):
     os.replace(tmp, path)
 
 
-def save_figure(fig, path):
+def save_figure(fig, path, bbox="tight"):
     tmp = f"{path}.tmp{os.getpid()}.png"
-    fig.savefig(tmp, dpi=110, bbox_inches="tight")
+    fig.savefig(tmp, dpi=110, bbox_inches=bbox)
     os.replace(tmp, path)
 
 

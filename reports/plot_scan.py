@@ -22,6 +22,9 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy  # noqa: E402
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from common import InputError, finite_column, input_errors, load_table, save_figure  # noqa: E402
+
 
 def edges(centres):
     """Cell edges around the grid's points: midway between neighbours, as far out at the ends."""
@@ -89,18 +92,25 @@ def main(argv):
     path, metrics = args[0], args[1:]
     try:
         with open(path) as f:
-            reader = csv.DictReader(f)
-            names = reader.fieldnames or []
-            rows = list(reader)
+            names = next(csv.reader(f), [])
     except OSError as e:
         sys.stderr.write(f"plot_scan: {path}: {e.strerror}\n")
         return 2
-    if len(names) < 4 or names[0] != "index" or not rows:
+    if len(names) < 4 or names[0] != "index":
         sys.stderr.write(f"plot_scan: {path}: not a gomboc scan CSV (allowed: NAME-scan.csv of gomboc scan)\n")
         return 2
+    table = load_table(path, text=tuple(n for n in names if n.endswith("_fingerprint")))
     x_key, y_key = names[1], names[2]
+    for key in (x_key, y_key):  # an axis is finite, and so are the cells' edges drawn between its values
+        values = sorted(set(finite_column(table, path, key).tolist()))
+        with numpy.errstate(over="ignore"):
+            spread = edges(values)
+        if not numpy.isfinite(spread).all():
+            raise InputError(f"{path}: column '{key}': the axis's values {values[0]:g} .. {values[-1]:g} put its cells' edges "
+                             "beyond the range of a double (allowed: an axis whose spacing a double holds)")
+    rows = [{n: table[n][k] for n in names} for k in range(len(table))]
     if not metrics:
-        has_lambda = any(not math.isnan(float(r["lambda_max"])) for r in rows)
+        has_lambda = "lambda_max" in names and any(not math.isnan(float(r["lambda_max"])) for r in rows)
         metrics = ["lambda_max" if has_lambda else "omega_rms"]
     plottable = [n for n in names[3:] if not n.endswith("_fingerprint")]
     unknown = [m for m in metrics if m not in plottable]
@@ -144,10 +154,10 @@ def main(argv):
     fig.suptitle(description, fontsize=10)
     fig.tight_layout()
     target = out or os.path.splitext(path)[0] + "-" + "-".join(metrics) + ".png"
-    fig.savefig(target, dpi=110)
+    save_figure(fig, target, bbox=None)  # atomically: a link or a file at the name is replaced, never written through
     print(target)
     return 0
 
 
 if __name__ == "__main__":
-    sys.exit(main(sys.argv[1:]))
+    sys.exit(input_errors(lambda: main(sys.argv[1:])))

@@ -25,12 +25,11 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from common import load_json, save_figure, write_atomically  # noqa: E402
+from common import input_errors, load_json, load_table, previous_files, save_figure, write_atomically  # noqa: E402
 
 
 def load_history(path):
-    data = numpy.genfromtxt(path, delimiter=",", names=True)
-    return data
+    return load_table(path, required=("t", "contacts"))
 
 
 # Shading of the phases of a unilateral run (the history's `contacts`), and the marks of its events.
@@ -64,7 +63,7 @@ def load_impacts(out, name, written):
     path = os.path.join(out, f"{name}-impacts.csv")
     if f"{name}-impacts.csv" not in written or not os.path.exists(path):
         return None
-    return numpy.genfromtxt(path, delimiter=",", names=True, dtype=None, encoding="utf-8", ndmin=1)
+    return load_table(path, text=("kind",))
 
 
 def time_series_title(summary):
@@ -173,7 +172,7 @@ def contact_figure(out, name, h, summary):
 
 
 def strobe_figure(out, name, summary):
-    data = numpy.genfromtxt(os.path.join(out, f"{name}-strobe.csv"), delimiter=",", names=True, ndmin=1)
+    data = load_table(os.path.join(out, f"{name}-strobe.csv"))
     fig = plt.figure(figsize=(11, 4.8))
     ax = fig.add_subplot(1, 2, 1, projection="3d")
     points = ax.scatter(data["omega_x"], data["omega_y"], data["omega_z"], s=4, c=data["n"], cmap="viridis")
@@ -200,7 +199,7 @@ def strobe_figure(out, name, summary):
 
 
 def spectrum_figure(out, name, summary, history):
-    data = numpy.genfromtxt(os.path.join(out, f"{name}-spectrum.csv"), delimiter=",", names=True)
+    data = load_table(os.path.join(out, f"{name}-spectrum.csv"))
     panels = 2 if history is not None else 1
     fig, axes = plt.subplots(1, panels, figsize=(5.5 * panels, 4.5), squeeze=False)
     ax = axes[0][0]
@@ -236,7 +235,7 @@ def spectrum_figure(out, name, summary, history):
 def lyapunov_figure(out, name, summary):
     """Fig 9 as the text quotes it: the running mean after the chosen warm-up, ending at λ_max, with λ_max ±
     its error bar as a band; the whole record's running mean and λ_inst faded behind."""
-    data = numpy.genfromtxt(os.path.join(out, f"{name}-lyapunov.csv"), delimiter=",", names=True, ndmin=1)
+    data = load_table(os.path.join(out, f"{name}-lyapunov.csv"))
     lyap = summary["lyapunov"]
     warmup = int(lyap["warmup_intervals"])
     inst, ends = data["lambda_inst"], data["period_end"]
@@ -254,7 +253,7 @@ def lyapunov_figure(out, name, summary):
         ax.axvline(ends[warmup - 1], color="black", lw=0.6, ls="--")
     windows = lyap.get("windows")
     if windows:
-        w = numpy.genfromtxt(os.path.join(out, f"{name}-lyapunov-windows.csv"), delimiter=",", names=True, ndmin=1)
+        w = load_table(os.path.join(out, f"{name}-lyapunov-windows.csv"))
         ax.hlines(w["lambda_window"], w["period_start"], w["period_end"], colors="tab:red", lw=2.0,
                   label=f"windowed λ (per {windows['window_periods']:.0f} periods)")
         ax.axhline(windows["chaotic_threshold"], color="tab:red", lw=0.5, ls=":")
@@ -369,9 +368,8 @@ def animation_of(name, summary):
 OUT_DIR = ["."]
 
 
-# Every figure this script draws for a scene, by kind: a file of one of these names that this run did not
-# draw is an earlier run's, and is removed (never linked).
-FIGURE_KINDS = ("fig-timeseries", "fig-contact", "fig7-strobe", "fig8-spectrum", "fig9-lyapunov")
+# A figure this script drew for a scene in an earlier run (its NAME-figures.json lists it) that this run does not
+# draw is removed, never linked; a file it did not write, whatever its name, is left alone.
 
 
 def scene_figures(out, name, summary):
@@ -379,6 +377,7 @@ def scene_figures(out, name, summary):
     scene's figures it did not draw, and write OUT/NAME-figures.json: each figure's file, title and the
     numbers its title quotes. Returns [(label, file)]."""
     written = {f["name"] for f in summary.get("files", [])}
+    earlier = previous_files(out, f"{name}-figures.json")
     drawn, manifest = [], []
     h = None
     if f"{name}-history.csv" in written:
@@ -408,9 +407,8 @@ def scene_figures(out, name, summary):
                          "quotes": {"lambda_max": summary["lyapunov"]["lambda_max"], "error_bar": summary["lyapunov"]["error_bar"]},
                          "curve_end": end})
     files = {path for _, path in drawn}
-    for kind in FIGURE_KINDS:
-        stale = f"{kind}-{name}.png"
-        if stale not in files and os.path.exists(os.path.join(out, stale)):
+    for stale in earlier - files:  # only what this script drew before, as its own manifest says
+        if os.path.exists(os.path.join(out, stale)):
             os.remove(os.path.join(out, stale))
     write_atomically(os.path.join(out, f"{name}-figures.json"), json.dumps({"scene": name, "figures": manifest}, indent=1))
     return drawn
@@ -439,4 +437,4 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    input_errors(main)

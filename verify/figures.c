@@ -18,6 +18,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 static const char *gomboc(void) { return getenv("GOMBOC_BIN") ? getenv("GOMBOC_BIN") : "build/gomboc"; }
@@ -91,10 +92,19 @@ static void test_figures(void)
         snprintf(args, sizeof args, "run %s --out %s", scenes[k], dir);
         code = gb_check_command(gomboc(), args, out, sizeof out);
     }
-    char stale[600];
+    char stale[600], users[600], manifest[600];
     snprintf(stale, sizeof stale, "%s/fig9-lyapunov-housner-block.png", dir);
-    FILE *f = fopen(stale, "w"); /* an earlier run's figure, which this run of the block does not draw */
+    snprintf(users, sizeof users, "%s/fig7-strobe-housner-block.png", dir);
+    snprintf(manifest, sizeof manifest, "%s/housner-block-figures.json", dir);
+    /* an earlier run's figure, which its manifest lists and this run of the block does not draw; and a user's file
+     * named like a figure this script could draw, which no manifest of it lists */
+    FILE *f = fopen(stale, "w");
     if (f) fputs("not a figure of this run", f), fclose(f);
+    f = fopen(users, "w");
+    if (f) fputs("a user's own file", f), fclose(f);
+    f = fopen(manifest, "w");
+    if (f) fputs("{\"scene\": \"housner-block\", \"figures\": [{\"kind\": \"fig9-lyapunov\", \"file\": "
+                 "\"fig9-lyapunov-housner-block.png\"}, {\"kind\": \"x\", \"file\": \"../outside.png\"}]}", f), fclose(f);
     gb_check runs = {"-", "-", "gomboc run on table1-gomboc-I and housner-block", "exit 0", "exact"};
     gb_check_true(&runs, code == 0, "exit %d: %.300s", code, out);
     snprintf(args, sizeof args, "reports/run_report.py %s table1-gomboc-I housner-block --page page.md", dir);
@@ -159,11 +169,90 @@ static void test_figures(void)
     for (const char *p = page; p && (p = strstr(p, "](")); p += 2) page_links++;
     gb_check_true(&cf, kinds == 63 && listed == present && listed == linked && page_links == listed,
                   "kinds %#x, %d listed, %d present, %d linked, %d links on the page", kinds, listed, present, linked, page_links);
-    gb_check cs = {"-", "-", "a figure of an earlier run (a Fig 9 the block's run did not draw)", "removed, not linked", "exact"};
-    gb_check_true(&cs, access(stale, F_OK) != 0 && page && !strstr(page, "fig9-lyapunov-housner-block"), "%s",
-                  access(stale, F_OK) == 0 ? "still there" : "removed");
+    gb_check cs = {"-", "-", "a figure of an earlier run (a Fig 9 the block's run did not draw, listed in its previous "
+                   "NAME-figures.json), and a user's file named like a Fig 7 of the block, which no manifest lists",
+                   "the earlier figure removed and not linked; the user's file left as it was", "exact"};
+    char *kept = gb_check_read_file(users);
+    gb_check_true(&cs, access(stale, F_OK) != 0 && page && !strstr(page, "fig9-lyapunov-housner-block") && kept &&
+                       !strcmp(kept, "a user's own file"),
+                  "earlier figure %s; user's file %s", access(stale, F_OK) == 0 ? "still there" : "removed",
+                  kept ? "kept" : "REMOVED");
+    free(kept);
     cJSON_Delete(s1), cJSON_Delete(s2), cJSON_Delete(m1), cJSON_Delete(m2);
     free(page);
+    clean(dir);
+}
+
+/* The report writers against bad input: a malformed CSV is one line naming the file, row and column, exit 2,
+ * never a traceback; a link at an output's name is replaced, never written through. */
+static void test_writers_bad_input(void)
+{
+    char dir[] = "/tmp/gomboc-writers-XXXXXX";
+    if (!mkdtemp(dir)) return;
+    char args[1024], out[8192], path[700];
+    snprintf(args, sizeof args, "run cases/bodies/housner-block.ini --out %s", dir);
+    const int ran = gb_check_command(gomboc(), args, out, sizeof out);
+    snprintf(path, sizeof path, "%s/housner-block-history.csv", dir);
+    char *history = gb_check_read_file(path);
+    const char *body = history ? strchr(history, '\n') : NULL;
+    static const struct {
+        const char *what, *file, *text, *script, *expect;
+    } cases[] = {
+        {"a history without its 'contacts' column", "housner-block-history.csv", "t,omega_x\n0,1\n", "run_report.py @D@ housner-block",
+         "housner-block-history.csv:1: no column 'contacts'"},
+        {"a history of its header alone", "housner-block-history.csv", "@HEADER@", "run_report.py @D@ housner-block",
+         "housner-block-history.csv:2: no rows after the header"},
+        {"a scan CSV whose axis holds inf", "a-scan.csv", "index,forcing.omega,forcing.A1,omega_rms\n0,inf,1,0.5\n1,2,1,0.6\n",
+         "plot_scan.py @D@/a-scan.csv", "a-scan.csv:2: column 'forcing.omega': inf is not a finite number"},
+        {"a scan CSV whose axis spans -1e308 .. 1e308", "b-scan.csv", "index,forcing.omega,forcing.A1,omega_rms\n0,1e308,1,0.5\n1,-1e308,1,0.6\n",
+         "plot_scan.py @D@/b-scan.csv", "beyond the range of a double"},
+        {"a scan CSV whose axis holds NaN", "c-scan.csv", "index,forcing.omega,forcing.A1,omega_rms\n0,nan,1,0.5\n",
+         "plot_scan.py @D@/c-scan.csv", "c-scan.csv:2: column 'forcing.omega': nan is not a finite number"},
+        {"a scan CSV with a short row", "d-scan.csv", "index,forcing.omega,forcing.A1,omega_rms\n0,1,1\n", "plot_scan.py @D@/d-scan.csv",
+         "d-scan.csv:2: 3 values where the header names 4 columns"},
+    };
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+        snprintf(path, sizeof path, "%s/%s", dir, cases[k].file);
+        FILE *f = fopen(path, "w");
+        if (f && !strcmp(cases[k].text, "@HEADER@") && history && body) fwrite(history, 1, (size_t)(body - history + 1), f);
+        else if (f) fputs(cases[k].text, f);
+        if (f) fclose(f);
+        char script_args[800];
+        const char *at = strstr(cases[k].script, "@D@");
+        snprintf(script_args, sizeof script_args, "reports/%.*s%s%s", (int)(at - cases[k].script), cases[k].script, dir, at + 3);
+        const int code = gb_check_command("/usr/bin/python3", script_args, out, sizeof out);
+        char q[200];
+        snprintf(q, sizeof q, "%s of %s", strchr(cases[k].script, ' ') ? "a report writer" : cases[k].script, cases[k].what);
+        gb_check c = {"-", "-", q, "exit 2, one line naming the file, the row and the column, no traceback", "exact"};
+        const char *mark = strstr(out, "@@exit="), *first_end = strchr(out, '\n'); /* the writer's output, then the status */
+        gb_check_true(&c, ran == 0 && code == 2 && strstr(out, cases[k].expect) && !strstr(out, "Traceback") && mark &&
+                          first_end && first_end + 1 == mark,
+                      "exit %d: %.400s", code, out);
+        if (history && !strcmp(cases[k].file, "housner-block-history.csv")) { /* the run's own history back */
+            f = fopen(path, "w");
+            if (f) fputs(history, f), fclose(f);
+        }
+    }
+    /* a link at plot_scan's output name: replaced by the figure, the file it pointed at left as it was */
+    snprintf(path, sizeof path, "%s/e-scan.csv", dir);
+    FILE *f = fopen(path, "w");
+    if (f) fputs("index,forcing.omega,forcing.A1,omega_rms\n0,1,1,0.5\n1,2,1,0.7\n", f), fclose(f);
+    char target[700], link[700];
+    snprintf(target, sizeof target, "%s/keep.txt", dir);
+    snprintf(link, sizeof link, "%s/e-scan-omega_rms.png", dir);
+    f = fopen(target, "w");
+    if (f) fputs("keep", f), fclose(f);
+    const int linked = symlink("keep.txt", link);
+    snprintf(args, sizeof args, "reports/plot_scan.py %s", path);
+    const int code = gb_check_command("/usr/bin/python3", args, out, sizeof out);
+    char *kept = gb_check_read_file(target);
+    struct stat st;
+    const int replaced = lstat(link, &st) == 0 && S_ISREG(st.st_mode) && st.st_size > 1000;
+    gb_check cl = {"-", "-", "plot_scan.py whose output name is a symbolic link to another file",
+                   "the link replaced by the figure (an atomic rename), the file it pointed at unchanged", "exact"};
+    gb_check_true(&cl, linked == 0 && code == 0 && replaced && kept && !strcmp(kept, "keep"), "exit %d, %s, target %s: %.200s", code,
+                  replaced ? "replaced" : "not replaced", kept && !strcmp(kept, "keep") ? "unchanged" : "CHANGED", out);
+    free(kept), free(history);
     clean(dir);
 }
 
@@ -223,11 +312,23 @@ static void test_animation(void)
     }
     gb_check runs = {"-", "-", "gomboc run and shape --scene on table1-gomboc-I-unilateral", "exit 0", "exact"};
     gb_check_true(&runs, code == 0, "exit %d: %.300s", code, out);
+    /* files of the animation's names that no manifest of animate.py lists: a user's, left alone */
+    char own_mp4[600], own_gif[600];
+    snprintf(own_mp4, sizeof own_mp4, "%s/table1-gomboc-I-unilateral-animation.mp4", dir);
+    snprintf(own_gif, sizeof own_gif, "%s/table1-gomboc-I-unilateral-animation.gif", dir);
+    const int has_ffmpeg = system("command -v ffmpeg > /dev/null 2>&1") == 0;
+    FILE *planted = fopen(has_ffmpeg ? own_gif : own_mp4, "w"); /* the format this machine's animate.py does not draw */
+    if (planted) fputs("a user's own file", planted), fclose(planted);
     snprintf(args, sizeof args, "reports/animate.py %s table1-gomboc-I-unilateral --surface %s/map.csv --seconds 1 --fps 10", dir, dir);
     if (code || script(args, "animate.py on table1-gomboc-I-unilateral (1 s, 10 frames a second)", out, sizeof out)) {
         clean(dir);
         return;
     }
+    char *kept = gb_check_read_file(has_ffmpeg ? own_gif : own_mp4);
+    gb_check ck = {"-", "-", "animate.py beside a user's file named like its other format's output, which no manifest of it lists",
+                   "the user's file left as it was", "exact"};
+    gb_check_true(&ck, kept && !strcmp(kept, "a user's own file"), "%s", kept ? "kept" : "REMOVED");
+    free(kept);
     cJSON *a = read_json(dir, "table1-gomboc-I-unilateral-animation.json");
     history h;
     const int read = history_read(dir, "table1-gomboc-I-unilateral", &h);
@@ -287,6 +388,7 @@ static void test_animation(void)
 int verify_register_figures(void)
 {
     static const verify_test tests[] = {
+        {"report writers: malformed CSVs named in one line, links replaced", test_writers_bad_input, NULL},
         {"figures quote the summary, stale figures never linked", test_figures,
          "every figure's title quotes the numbers the text states, Fig 9 draws what it quotes, and a page links only this run's figures"},
         {"the animation's frames against the history", test_animation,
