@@ -31,7 +31,7 @@ from unilateral_maps import summary_sentence, unilateral_section  # noqa: E402
 from siconos_section import SUITE as SICONOS_SUITE, siconos_section  # noqa: E402
 from study_section import ensemble_readings, study_section  # noqa: E402
 
-CHECKS_SCHEMA = 4  # verify/gb_check.h GB_CHECK_SCHEMA: {"schema": 4, "tests": [...], "rows": [...]}; findings carry verdict and rule
+CHECKS_SCHEMA = 5  # verify/gb_check.h GB_CHECK_SCHEMA: {"schema": 5, "tests": [...], "rows": [...]}; rows carry file and line; findings carry verdict and rule
 
 
 def load_checks(path):
@@ -342,6 +342,53 @@ def summary_lines(findings, counts, rows, failed, ensembles, out):
     return lines + [""]
 
 
+def equation_keys(text):
+    """The paper's equations and figures a row names: "46-51" is 46 … 51, "4, 6" is 4 and 6, "13 (2nd order)" is 13,
+    "Figs 10-13" is Figs 10 … 13; "-" is none."""
+    keys = []
+    for part in re.split(r",|;", text):
+        part = re.sub(r"\(.*?\)", "", part).strip()
+        figure = re.match(r"Figs?\s+(\d+)(?:\s*-\s*(\d+))?$", part)
+        numbers = re.match(r"(\d+)(?:\s*-\s*(\d+))?$", part)
+        match, label = (figure, "Fig") if figure else (numbers, "eq") if numbers else (None, None)
+        if not match:
+            continue
+        first = int(match.group(1))
+        last = int(match.group(2)) if match.group(2) else first
+        keys += [(label, k) for k in range(first, min(last, first + 60) + 1)]
+    return keys
+
+
+def equation_index(rows):
+    """The report's index: each equation and figure of the paper, the checks that name it and where each is written
+    (file:line, as the harness recorded it); then the records that name none, by suite."""
+    index = {}
+    for r in rows:
+        for key in equation_keys(r["equation"]):
+            index.setdefault(key, []).append(r)
+    lines = ["## Checks by equation", "",
+             "Each equation and figure of the paper that a check names, the number of its records, and where the checks "
+             "are written (file:line; a line that records several rows is listed once).", "",
+             "| equation | records | checks (file:line) |", "|---|---|---|"]
+    for (label, number) in sorted(index, key=lambda k: (k[0] != "eq", k[1])):
+        found = index[(label, number)]
+        places = []
+        for r in found:
+            place = f"`{r['file']}:{r.get('line', '?')}`"
+            if place not in places:
+                places.append(place)
+        shown = ", ".join(places[:8]) + (f", and {len(places) - 8} more" if len(places) > 8 else "")
+        lines.append(f"| {label} {number} | {len(found)} | {shown} |")
+    unnamed = [r for r in rows if not equation_keys(r["equation"])]
+    by_suite = {}
+    for r in unnamed:
+        by_suite[r["suite"]] = by_suite.get(r["suite"], 0) + 1
+    lines += ["", f"{len(unnamed)} of {len(rows)} records ({100 * len(unnamed) / max(len(rows), 1):.0f} %) name no equation "
+              "or figure of the paper; by suite:", ""]
+    lines += [f"- {suite}: {count}" for suite, count in sorted(by_suite.items(), key=lambda kv: -kv[1])] + [""]
+    return lines
+
+
 def main():
     out, cc, cflags = sys.argv[1], sys.argv[2], sys.argv[3]
     if not os.path.exists(os.path.join(out, "checks.json")):
@@ -450,6 +497,7 @@ def main():
             where[r["suite"]].append(r["file"])
     lines += ["", "## Where the checks live", ""] + \
              [f"- {suite}: " + ", ".join(f"`{f}`" for f in files) for suite, files in where.items()] + [""]
+    lines += equation_index(rows)
     write_atomically(os.path.join(out, "verification.md"), spell("\n".join(lines)))
 
 

@@ -159,13 +159,21 @@ static int body_grid(gb_dynamics *d, gb_dynamics_context *c, const gb_surface *s
     return status;
 }
 
+/* Field by field: the struct's padding holds no value (memcmp read it: valgrind's uninitialised-value error). The
+ * tolerance by its bits, as the atlas file records it. */
+static int same_atlas_def(const gb_atlas_def *a, const gb_atlas_def *b)
+{
+    return !memcmp(&a->height_tol, &b->height_tol, sizeof a->height_tol) && a->first_level == b->first_level &&
+           a->max_level == b->max_level && a->max_depth == b->max_depth;
+}
+
 /* The atlas of verticals: the context's when it was made for this body and definition, made there (and read
  * from the atlas file, when it holds this atlas) when the context has none, else the run's own. */
 static int body_atlas(gb_dynamics *d, gb_dynamics_context *c, const gb_surface *surface, const gb_dynamics_def *def)
 {
     gb_atlas_def adef = def->atlas;
     adef.height_tol = def->certify.height_tol;
-    if (c->atlas && same_body(&c->atlas_surface, surface) && !memcmp(&c->atlas_def, &adef, sizeof adef)) {
+    if (c->atlas && same_body(&c->atlas_surface, surface) && same_atlas_def(&c->atlas_def, &adef)) {
         d->atlas = c->atlas, d->atlas_borrowed = 1;
         return GB_OK;
     }

@@ -23,7 +23,13 @@ const char *gb_error_message(void) { return error_message; }
 
 void gb_error_clear(void) { error_message[0] = '\0'; }
 
-void gb_error_init_gsl(void) { gsl_set_error_handler_off(); }
+void gb_error_init_gsl(void)
+{
+    /* GSL's default (no handler set) aborts the process: only that is replaced; a handler the host program
+     * installed is put back as it was */
+    gsl_error_handler_t *previous = gsl_set_error_handler_off();
+    if (previous) gsl_set_error_handler(previous);
+}
 
 int gb_error_parse_name(const char *name, const char *const *names, int count, const char *what, int *index)
 {

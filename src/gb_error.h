@@ -40,8 +40,10 @@ GB_API void gb_error_clear(void);
  * GB_EINVAL with the message "<what> '<name>' is unknown (allowed: a, b, c)". */
 GB_API int gb_error_parse_name(const char *name, const char *const *names, int count, const char *what, int *index);
 
-/* Install a GSL error handler that does not abort: GSL failures come back as status codes, and the
- * callers turn them into gb_ messages. Call once before using GSL-backed modules. */
+/* Opt-in, once, before the GSL-backed modules: where the program has left GSL's default handler (which aborts
+ * the process on any GSL failure), turn GSL's handler off, so that GSL failures come back as status codes that
+ * the library turns into gb_ messages. A handler the host program installed itself is left in place (the host
+ * then decides what a GSL failure does: its own handler may abort). Not calling it leaves GSL's handler alone. */
 GB_API void gb_error_init_gsl(void);
 
 #ifdef __cplusplus

@@ -3,10 +3,12 @@
  * comes from $GOMBOC_BIN. */
 #include "gb_check.h"
 #include "gb_contact.h"
+#include "gb_error.h"
 #include "gb_scan_internal.h"
 #include "verify_sections.h"
 
 #include <cjson/cJSON.h>
+#include <gsl/gsl_errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -410,6 +412,26 @@ static void test_outputs_documented(void)
 
 /* `gomboc help` names every command the program runs: each word a command accepts ("gomboc WORD --help"
  * answers with its own usage) appears in the list. */
+/* gb_error_init_gsl and a host program's own GSL handler: the library's opt-in turns off only GSL's aborting
+ * default, never a handler the host installed. The harness's own state (handler off) is restored after. */
+static void host_handler(const char *reason, const char *file, int line, int gsl_errno)
+{
+    (void)reason, (void)file, (void)line, (void)gsl_errno;
+}
+
+static void test_gsl_handler_of_host(void)
+{
+    gsl_error_handler_t *saved = gsl_set_error_handler(host_handler);
+    gb_error_init_gsl();
+    gsl_error_handler_t *kept = gsl_set_error_handler(NULL); /* GSL's default: abort */
+    gb_error_init_gsl();
+    gsl_error_handler_t *replaced = gsl_set_error_handler(saved);
+    gb_check c = {"-", "-", "gb_error_init_gsl with a host's own GSL handler installed, and with GSL's default",
+                  "the host's handler left in place; GSL's aborting default turned off (a handler that is not NULL)", "exact"};
+    gb_check_true(&c, kept == host_handler && replaced != NULL && replaced != host_handler, "kept %s, default %s",
+                  kept == host_handler ? "the host's" : "ANOTHER", replaced ? "turned off" : "LEFT TO ABORT");
+}
+
 static void test_help_lists_commands(void)
 {
     static char list[1 << 13], usage[1 << 13];
@@ -442,6 +464,7 @@ int verify_register_command(void)
          "a fast-grid run gives the same state bits with the hull Qhull builds and with the hull read from "
          "its file, and a damaged file is built anew"},
         {"command: gomboc help lists every command", test_help_lists_commands, NULL},
+        {"library: gb_error_init_gsl leaves a host's own GSL handler in place", test_gsl_handler_of_host, NULL},
         {"command: every CSV column documented", test_outputs_documented,
          "every column of every CSV the command writes is in docs/outputs.md, with its unit, in the header's order"},
         {"command: --version, --option=value, help TOPIC", test_conventions,

@@ -33,7 +33,7 @@ static double lap(void)
     return dt;
 }
 
-static cJSON *new_row(const gb_check *c, const char *kind, int passed, double seconds, const char *file)
+static cJSON *new_row(const gb_check *c, const char *kind, int passed, double seconds, const char *file, int line)
 {
     if (!rows) rows = cJSON_CreateArray();
     cJSON *row = cJSON_CreateObject();
@@ -46,6 +46,7 @@ static cJSON *new_row(const gb_check *c, const char *kind, int passed, double se
     cJSON_AddStringToObject(row, "test", CU_get_current_test() ? CU_get_current_test()->pName : "");
     cJSON_AddStringToObject(row, "suite", CU_get_current_suite() ? CU_get_current_suite()->pName : "");
     cJSON_AddStringToObject(row, "file", file);
+    cJSON_AddNumberToObject(row, "line", line);
     cJSON_AddNumberToObject(row, "seconds", seconds);
     cJSON_AddBoolToObject(row, "passed", passed);
     cJSON_AddItemToArray(rows, row);
@@ -58,7 +59,7 @@ static cJSON *assert_and_record(const gb_check *c, const char *kind, int passed,
 {
     if (!passed) fprintf(stdout, "\n%s %s:%d %s\n", label, file, line, message);
     CU_assertImplementation(passed ? CU_TRUE : CU_FALSE, (unsigned)line, message, file, "", CU_FALSE);
-    return new_row(c, kind, passed, seconds, file);
+    return new_row(c, kind, passed, seconds, file, line);
 }
 
 /* JSON has no NaN or infinity: those go as strings. */

@@ -58,8 +58,8 @@ void gb_check_test_start(void);
 
 /* Write every registered test and every recorded row to `path` (atomically) as {"schema":
  * GB_CHECK_SCHEMA, "tests": [...], "rows": [...]}; each row also names its CUnit suite and test and the
- * source file of the check. Returns 0 on success. */
-#define GB_CHECK_SCHEMA 4
+ * source file and line of the check (the report's index from equation to checks). Returns 0 on success. */
+#define GB_CHECK_SCHEMA 5
 
 /* Record a registered test: its suite, its name and what it establishes when all its rows pass (may be
  * NULL); written as "tests" beside the rows. Returns 0, or 1 when out of memory. */
