@@ -527,32 +527,34 @@ static int cross_check(const char *path, gb_case *c)
                           "= %s with [model] contact = %s: only continuous contact is certified (allowed: "
                           "per-vertical with any contact; atlas with contact = continuous)",
                           gb_dynamics_certificate_name(c->dynamics.certificate), gb_contact_model_name(c->dynamics.contact));
-    if (gb_dynamics_contact_law_impacts(c->dynamics.contact_law) && c->dynamics.contact == GB_CONTACT_MODEL_CONTINUOUS &&
-        c->dynamics.variant != GB_VARIANT_ROLLING)
+    /* the contact law's traits on a rough plane (a finite mu is judged below, naming its own key) */
+    const gb_dynamics_law *law = gb_dynamics_law_of(c->dynamics.contact_law, INFINITY);
+    if (law->impacts && c->dynamics.contact == GB_CONTACT_MODEL_CONTINUOUS && c->dynamics.variant != GB_VARIANT_ROLLING)
         return cross_fail(path, c, "model", "contact_law",
                           "= unilateral with [model] contact = continuous, equation = %s: eq 44 makes and takes energy "
                           "where the contact moves on the surface, which the impacts' energy ledger cannot close (allowed: "
                           "held with any model; unilateral with equation = rolling, or with a grid model and either "
                           "equation)", gb_dynamics_variant_name(c->dynamics.variant));
-    if (gb_dynamics_contact_law_impacts(c->dynamics.contact_law) && !c->integrate.locate_switches)
+    if (law->several_events_per_step && !c->integrate.locate_switches)
         return cross_fail(path, c, "integrator", "locate_switches",
                           "= no with [model] contact_law = unilateral: every impact is located inside its step (allowed: "
                           "yes with contact_law = unilateral)");
-    if (!gb_dynamics_contact_law_impacts(c->dynamics.contact_law)) {
+    {
         const double *v = c->dynamics.velocity0;
-        const char *key = c->dynamics.restitution != 0.0 ? "restitution" : c->dynamics.height0 != 0.0 ? "height"
-                          : (v[0] != 0.0 || v[1] != 0.0 || v[2] != 0.0)                             ? "velocity"
-                                                                                                  : NULL;
+        const char *key = !law->impacts && c->dynamics.restitution != 0.0                          ? "restitution"
+                          : !law->translates && c->dynamics.height0 != 0.0                         ? "height"
+                          : !law->translates && (v[0] != 0.0 || v[1] != 0.0 || v[2] != 0.0)       ? "velocity"
+                                                                                                   : NULL;
         if (key)
             return cross_fail(path, c, strcmp(key, "restitution") ? "initial" : "model", key,
                               "with [model] contact_law = held: a held contact never leaves the plane and has no impacts "
                               "(allowed: the default, 0, with contact_law = held; any value in range with unilateral)");
     }
-    if (isfinite(c->dynamics.friction) && !gb_dynamics_contact_law_impacts(c->dynamics.contact_law))
+    if (!gb_dynamics_law_of(c->dynamics.contact_law, c->dynamics.friction))
         return cross_fail(path, c, "model", "friction",
                           "= %g with [model] contact_law = held: a held contact never slips (allowed: rough with either "
                           "law; a finite mu with contact_law = unilateral)", c->dynamics.friction);
-    if (c->write_impacts && !gb_dynamics_contact_law_impacts(c->dynamics.contact_law))
+    if (c->write_impacts && !law->impacts)
         return cross_fail(path, c, "output", "impacts",
                           "= yes with [model] contact_law = held: a held contact has no impacts (allowed: yes with "
                           "contact_law = unilateral)");

@@ -71,6 +71,8 @@ void gb_dyn_set_mode(gb_dynamics *d, gb_dyn_mode_id mode, double t)
 }
 
 const gb_dynamics_def *gb_dynamics_get_def(const gb_dynamics *d) { return &d->def; }
+
+const gb_dynamics_law *gb_dynamics_get_law(const gb_dynamics *d) { return d->law; }
 double gb_dynamics_mean_radius(const gb_dynamics *d) { return d->mean_radius; }
 
 void gb_dynamics_use_step(gb_dynamics *d, double h)
@@ -153,8 +155,8 @@ int gb_dyn_field(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], double
     if (!(isfinite(zb[0]) && isfinite(zb[1]) && isfinite(zb[2]))) return gb_dyn_diverged(t); /* a quaternion overflowed */
     double geff, geff_rate, zeta = NAN;
     gb_forcing_geff_with_rate(&d->def.forcing, t, &geff, &geff_rate);
-    /* on a plane of finite friction the translation is integrated: the mode gives its rates */
-    const int translating = isfinite(d->def.friction);
+    /* under a law that slips the horizontal translation is integrated: the mode gives its rates */
+    const int translating = d->law->slips;
     gb_dyn_rates rates = {{0.0, 0.0, 0.0}, 0.0};
     const int status = mode->field(d, t, y, omega, zb, geff, dydt + GB_STATE_OMEGA, &zeta, translating ? &rates : NULL);
     if (status) return status;
@@ -210,8 +212,6 @@ size_t gb_dynamics_switch_count(const gb_dynamics *d) { return d->grid_switches 
 
 double gb_dynamics_last_switch_time(const gb_dynamics *d) { return d->last_switch_time; }
 
-int gb_dyn_has_friction(const gb_dynamics *d) { return isfinite(d->def.friction); }
-
 void gb_dyn_observe_free_energy(const gb_dynamics *d, const double y[GB_STATE_SIZE], gb_dynamics_observables *o)
 {
     const double m = d->def.mass;
@@ -225,7 +225,7 @@ void gb_dyn_observe_free_energy(const gb_dynamics *d, const double y[GB_STATE_SI
     o->work = y[GB_STATE_WORK];
     o->friction_work = y[GB_STATE_FRICTION];
     o->residual = o->energy - d->energy0 - o->work + d->impact_loss;
-    if (gb_dyn_has_friction(d)) o->residual -= o->friction_work; /* the ledger's L: the impacts' and friction's */
+    if (d->law->slips) o->residual -= o->friction_work; /* the ledger's L: the impacts' and friction's */
 }
 
 /* ---------------------------------------------------------------- 3 x 3 algebra */

@@ -107,11 +107,25 @@ typedef enum gb_contact_law { GB_CONTACT_LAW_HELD = 0, GB_CONTACT_LAW_UNILATERAL
 
 GB_API const char *gb_dynamics_contact_law_name(gb_contact_law law);
 GB_API int gb_dynamics_contact_law_parse(const char *name, gb_contact_law *law);
-/* Is a change of contact an impact under `law` (the plane can only push: impacts, two points, rest, flight,
- * the ledger's L)? 1 for unilateral, 0 for held. What a caller asks instead of naming a law: with
- * impacts, several changes of contact may follow inside one step, each jumps the state, and the body may
- * leave the plane (its centroid's height and velocity are then state too). */
-GB_API int gb_dynamics_contact_law_impacts(gb_contact_law law);
+/* A contact law as the questions every module asks of it, never its name: the held law (the paper's), the
+ * unilateral law on a rough plane, and the unilateral law with Coulomb's friction (a plane of finite μ) are three
+ * rows of one table (gb_dynamics_laws.c, the one file that tells one law from another). */
+typedef struct gb_dynamics_law {
+    const char *name;
+    int impacts;                 /* a change of contact is an impact (ω jumps): the body rolls on two points, rests on
+                                  * three, coincident minima are one contact, and the energy ledger books what impacts
+                                  * take (L); the held law keeps ω and one contact at all times */
+    int translates;              /* the body may leave the plane: the centroid's height and velocity are state, and a
+                                  * separation of two states (the pair estimator's) measures them */
+    int pivots;                  /* a grid body pivots about its node between events (ṙ_c = 0) */
+    int several_events_per_step; /* every change of contact is located, and several may follow inside one step */
+    int slips;                   /* Coulomb's friction: sliding modes, the centroid's horizontal motion, friction's work
+                                  * in the ledger; a rough plane never slips */
+} gb_dynamics_law;
+
+/* The law of `contact_law` on a plane of `friction` (INFINITY: rough), or NULL for none (the held law on a
+ * plane of finite friction: a held contact never slips). */
+GB_API const gb_dynamics_law *gb_dynamics_law_of(gb_contact_law contact_law, double friction);
 
 /* The unilateral law: a landing is located where the lowest point is this far below the plane [body
  * lengths] (far above the rounding of its height, far below any length of the problem). */
@@ -265,6 +279,8 @@ GB_API void gb_dynamics_free(gb_dynamics *dynamics);
 GB_API void gb_dynamics_use_step(gb_dynamics *dynamics, double h);
 
 GB_API const gb_dynamics_def *gb_dynamics_get_def(const gb_dynamics *dynamics);
+/* Its contact law (gb_dynamics_law_of of its definition). */
+GB_API const gb_dynamics_law *gb_dynamics_get_law(const gb_dynamics *dynamics);
 /* L of eq 53 [m], for this length. */
 GB_API double gb_dynamics_mean_radius(const gb_dynamics *dynamics);
 /* The nodes of the grid built: the contact grid for grid models; 0 for continuous contact, which

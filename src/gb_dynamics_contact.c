@@ -13,7 +13,7 @@
 
 int gb_dyn_pivots(const gb_dynamics *d)
 {
-    return d->def.contact != GB_CONTACT_MODEL_CONTINUOUS && d->law->impacts;
+    return d->def.contact != GB_CONTACT_MODEL_CONTINUOUS && d->law->pivots;
 }
 
 /* Grid node `index` as a contact point at vertical zb: fixed in the body, its height ẑ_b·x. */

@@ -27,13 +27,13 @@ int gb_dyn_one_point_pending(gb_dynamics *d, double t, const double y[GB_STATE_S
     gb_contact_point continued;
     int status = gb_dyn_competitor(d, t, y, &continued, other, found);
     if (!status && *found) d->event = GB_DYN_EVENT_SWITCH;
-    if (!status && !*found && gb_dyn_has_friction(d)) {
+    if (!status && !*found && d->law->slips) {
         /* the force rolling needs at the cone's edge: the point slips (before N can reach 0, unless F_t is 0) */
         double margin;
         status = one_point_margin(d, t, y, &margin);
         if (!status && margin < 0.0) *other = continued, *found = 1, d->event = GB_DYN_EVENT_SLIP;
     }
-    if (!status && !*found && d->law->impacts) {
+    if (!status && !*found && d->law->translates) {
         /* a plane that can only push cannot hold the body down: where N reaches 0 it leaves the plane */
         double n;
         status = gb_dyn_one_point_normal(d, t, y, &n);
@@ -129,7 +129,7 @@ static int two_point_search(gb_dynamics *d, double t, const double y[GB_STATE_SI
     *found = 0;
     int status = gb_dyn_two_point_eval(d, t, y, &tp, 1);
     if (status || tp.merged) return status; /* the end of a crease: gb_dynamics_accept leaves the mode */
-    if (gb_dyn_has_friction(d)) { /* the cone holds the crease's forces whatever their open split? */
+    if (d->law->slips) { /* the cone holds the crease's forces whatever their open split? */
         int alone;
         if (gb_dyn_crease_margin(d->def.friction, tp.normal, (const double(*)[3])tp.tangent, tp.u, &alone) < 0.0) {
             d->event = GB_DYN_EVENT_SLIP;

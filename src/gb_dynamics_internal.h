@@ -114,19 +114,8 @@ void gb_dyn_flight_translate(const gb_dynamics *d, double t, double y[GB_STATE_S
 
 /* ---- the contact laws ------------------------------------------------------------------------------ */
 
-/* What a contact law makes of a change of contact, and what follows from that. gb_dynamics_laws.c holds
- * the table; the rest of the library reads these properties and never tells one law from another. */
-typedef struct gb_dyn_law {
-    const char *name;
-    /* 0: the paper's rule, one contact at all times and ω kept at a change of contact; 1: the plane can only
-     * push: a change of contact is an impact (ω jumps), the body may roll on two points, rest on three and
-     * fly, a grid body pivots about its node until an event, every change is located and several may
-     * follow inside one step, coincident minima are one contact, and the energy ledger books what the
-     * impacts took */
-    int impacts;
-} gb_dyn_law;
-
-const gb_dyn_law *gb_dyn_law_of(gb_contact_law law);
+/* The laws are rows of gb_dynamics_law (gb_dynamics.h): the rest of the library reads their traits and never tells
+ * one law from another. */
 /* The definition's law against its contact model and equation: GB_OK, or GB_EINVAL saying what is allowed. */
 int gb_dyn_law_check(const gb_dynamics_def *def);
 
@@ -136,7 +125,7 @@ int gb_dyn_law_check(const gb_dynamics_def *def);
 struct gb_dynamics {
     gb_surface surface;
     gb_dynamics_def def;
-    const gb_dyn_law *law;
+    const gb_dynamics_law *law;
     const gb_dyn_mode *modes;    /* the one table of modes (gb_dynamics_hybrid.c), indexed by mode */
     gb_dyn_mode_id mode;
     gb_dyn_event event;          /* the event gb_dynamics_switch_pending found (GB_DYN_EVENT_NONE: none) */
@@ -371,8 +360,6 @@ typedef struct gb_dyn_friction_forces {
  * P-matrix: no solution, or more than one). */
 int gb_dyn_friction_solve(const gb_dynamics *d, double t, double geff, const double zb[3], const double omega[3],
                           const gb_dyn_friction_point *points, int count, gb_dyn_friction_forces *out);
-/* A plane of finite friction (def.friction finite)? */
-int gb_dyn_has_friction(const gb_dynamics *d);
 /* The slip of a body point r [m] (body axes): its velocity relative to the plane with the centroid at the
  * state's velocity, less its normal part, in body axes. */
 void gb_dyn_slip_of(const double y[GB_STATE_SIZE], const double zb[3], const double r[3], double slip[3]);

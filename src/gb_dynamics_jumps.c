@@ -625,7 +625,7 @@ int gb_dyn_one_point_event(gb_dynamics *d, double t, double y[GB_STATE_SIZE], co
 {
     if (d->event == GB_DYN_EVENT_LIFT_OFF) return after_flight_event(d, lift_off(d, t, y));
     if (d->event == GB_DYN_EVENT_SLIP) return after_flight_event(d, gb_dyn_slip_start(d, t, y));
-    if (gb_dyn_has_friction(d)) { /* a change of contact: Coulomb's impact from P onto the new point */
+    if (d->law->slips) { /* a change of contact: Coulomb's impact from P onto the new point */
         double zb[3];
         gb_dyn_vertical(y, zb);
         gb_contact_point pts[2];
@@ -658,7 +658,7 @@ int gb_dyn_one_point_event(gb_dynamics *d, double t, double y[GB_STATE_SIZE], co
 int gb_dyn_two_point_event(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const gb_contact_point *branch)
 {
     if (d->event == GB_DYN_EVENT_SLIP) return after_flight_event(d, gb_dyn_slip_start(d, t, y));
-    if (gb_dyn_has_friction(d) && d->event == GB_DYN_EVENT_THIRD) { /* Coulomb's impact over the three */
+    if (d->law->slips && d->event == GB_DYN_EVENT_THIRD) { /* Coulomb's impact over the three */
         double zb[3];
         gb_dyn_vertical(y, zb);
         gb_contact_point pts[3];
@@ -685,7 +685,7 @@ int gb_dyn_rest_event(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const g
 
 int gb_dyn_flight_event(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const gb_contact_point *branch)
 {
-    if (gb_dyn_has_friction(d)) /* Coulomb's impact at the landing point */
+    if (d->law->slips) /* Coulomb's impact at the landing point */
         return after_flight_event(d, gb_dyn_friction_impact(d, t, y, branch, 1, 0, GB_DYNAMICS_IMPACT_LANDING, 1));
     return after_flight_event(d, landing(d, t, y, branch));
 }
@@ -705,7 +705,7 @@ int gb_dyn_no_jump(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], cons
 int gb_dyn_one_point_jump(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const gb_contact_point *branch,
                           double out[GB_STATE_SIZE])
 {
-    if (d->event == GB_DYN_EVENT_LIFT_OFF || gb_dyn_has_friction(d)) return gb_dyn_no_jump(d, t, y, branch, out);
+    if (d->event == GB_DYN_EVENT_LIFT_OFF || d->law->slips) return gb_dyn_no_jump(d, t, y, branch, out);
     memcpy(out, y, GB_STATE_SIZE * sizeof *out);
     if (!d->law->impacts) return GB_OK;
     double zb[3], v[3], points[2][3], back;
@@ -727,7 +727,7 @@ int gb_dyn_one_point_jump(gb_dynamics *d, double t, const double y[GB_STATE_SIZE
 int gb_dyn_two_point_jump(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const gb_contact_point *branch,
                           double out[GB_STATE_SIZE])
 {
-    if (gb_dyn_has_friction(d)) return gb_dyn_no_jump(d, t, y, branch, out);
+    if (d->law->slips) return gb_dyn_no_jump(d, t, y, branch, out);
     memcpy(out, y, GB_STATE_SIZE * sizeof *out);
     if (d->event == GB_DYN_EVENT_LIFT) return GB_OK;
     const double L = d->def.length;

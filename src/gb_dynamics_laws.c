@@ -7,32 +7,38 @@
 
 #include <math.h>
 
-static const gb_dyn_law laws[] = {
-    [GB_CONTACT_LAW_HELD] = {"held", 0},
-    [GB_CONTACT_LAW_UNILATERAL] = {"unilateral", 1},
-};
-enum { LAW_COUNT = sizeof laws / sizeof laws[0] };
+/* The scene's contact_law names; a unilateral contact on a plane of finite friction is Coulomb's law, a row of its
+ * own. */
+static const char *const law_names[] = {[GB_CONTACT_LAW_HELD] = "held", [GB_CONTACT_LAW_UNILATERAL] = "unilateral"};
+enum { LAW_COUNT = sizeof law_names / sizeof law_names[0] };
 
-const char *gb_dynamics_contact_law_name(gb_contact_law l) { return (unsigned)l < LAW_COUNT ? laws[l].name : NULL; }
+/*                                                  impacts translates pivots several slips */
+static const gb_dynamics_law held = {"held", 0, 0, 0, 0, 0};
+static const gb_dynamics_law unilateral_rough = {"unilateral", 1, 1, 1, 1, 0};
+static const gb_dynamics_law unilateral_coulomb = {"unilateral with Coulomb friction", 1, 1, 1, 1, 1};
+
+const char *gb_dynamics_contact_law_name(gb_contact_law l) { return (unsigned)l < LAW_COUNT ? law_names[l] : NULL; }
 
 int gb_dynamics_contact_law_parse(const char *name, gb_contact_law *law)
 {
-    const char *names[LAW_COUNT];
-    for (int k = 0; k < LAW_COUNT; k++) names[k] = laws[k].name;
     int k = 0;
-    const int status = gb_error_parse_name(name, names, LAW_COUNT, "contact law", &k);
+    const int status = gb_error_parse_name(name, law_names, LAW_COUNT, "contact law", &k);
     if (!status) *law = (gb_contact_law)k;
     return status;
 }
 
-const gb_dyn_law *gb_dyn_law_of(gb_contact_law law) { return (unsigned)law < LAW_COUNT ? &laws[law] : NULL; }
-
-int gb_dynamics_contact_law_impacts(gb_contact_law law) { return (unsigned)law < LAW_COUNT && laws[law].impacts; }
+const gb_dynamics_law *gb_dynamics_law_of(gb_contact_law contact_law, double friction)
+{
+    const int rough = !isfinite(friction);
+    if (contact_law == GB_CONTACT_LAW_HELD) return rough ? &held : NULL; /* a held contact never slips */
+    if (contact_law == GB_CONTACT_LAW_UNILATERAL) return rough ? &unilateral_rough : &unilateral_coulomb;
+    return NULL;
+}
 
 int gb_dyn_law_check(const gb_dynamics_def *def)
 {
-    const gb_dyn_law *law = gb_dyn_law_of(def->contact_law);
-    if (isfinite(def->friction) && law && !law->impacts) /* a held contact never slips: its plane is rough */
+    const gb_dynamics_law *law = gb_dynamics_law_of(def->contact_law, def->friction);
+    if (!law && def->contact_law == GB_CONTACT_LAW_HELD) /* a held contact never slips: its plane is rough */
         return gb_error_set(GB_EINVAL, "friction mu = %g with the held law (allowed: a finite mu with the unilateral law; "
                             "rough with either)", def->friction);
     if (law && !law->impacts &&

@@ -108,7 +108,7 @@ int gb_dyn_one_point_accept(gb_dynamics *d, double t, double y[GB_STATE_SIZE])
     int status = gb_dyn_competitor(d, t, y, &continued, &other, &found);
     /* Under a law with impacts every contact change is located inside its step; one found here is a second
      * change inside one step: the body chatters between two points, coming to rest on both. */
-    if (!status && found && d->law->impacts)
+    if (!status && found && d->law->several_events_per_step)
         status = gb_error_set(GB_ENUMERIC, "unilateral contact at t = %.9g: a change of contact at the step's end that the "
                               "step's event location did not find (%zu impacts so far)", t, d->impacts);
     /* (N < 0 at the step's end was a lift-off event, located by gb_dynamics_switch_pending) */
@@ -153,7 +153,7 @@ void gb_dyn_observe_on_plane(gb_dynamics *d, double t, const double y[GB_STATE_S
     o->residual = o->energy - d->energy0 - o->work;
     if (d->law->impacts) o->residual += d->impact_loss; /* the ledger */
     o->friction_work = y[GB_STATE_FRICTION];
-    if (gb_dyn_has_friction(d)) o->residual -= o->friction_work; /* and friction's part of L */
+    if (d->law->slips) o->residual -= o->friction_work; /* and friction's part of L */
     double acc[3];
     o->normal_force = gb_dyn_normal_force(d, o->geff, o->zb, o->omega, o->omega_dot, c, acc);
     const double vertical = gb_vec_dot(acc, o->zb);

@@ -188,7 +188,7 @@ int gb_integrate_locate_next(gb_dynamics *d, double t, double h, const double y[
 static int located_step(gb_dynamics *d, double t, double h, const double y[], const gb_contact_point *other,
                         substep_fn substep, void *context, double out[], gb_integrate_stats *stats)
 {
-    const int again = gb_dynamics_contact_law_impacts(gb_dynamics_get_def(d)->contact_law);
+    const int again = gb_dynamics_get_law(d)->several_events_per_step;
     double tc = t, hc = h, yc[GB_STATE_SIZE];
     gb_contact_point next = *other;
     memcpy(yc, y, sizeof yc);

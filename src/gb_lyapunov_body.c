@@ -46,7 +46,8 @@ int gb_lyapunov_body_create_in(const gb_surface *surface, const gb_dynamics_def 
     b->method = integrate->method;
     b->steps_per_period = integrate->steps_per_period;
     b->omega_scale = omega_scale;
-    b->translation = gb_dynamics_contact_law_impacts(dynamics->contact_law);
+    const gb_dynamics_law *law = gb_dynamics_law_of(dynamics->contact_law, dynamics->friction);
+    b->translation = law && law->translates;
     int status = GB_OK;
     /* the two share one body (mass properties, grid, hull, atlas) through the caller's context or their own */
     if (!context) status = gb_dynamics_context_create(&b->context), context = b->context;
@@ -423,7 +424,7 @@ static int tangent_steps(gb_lyapunov_body *b, double t, double interval, size_t 
         if (!status && found) {
             memcpy(y, start, sizeof start);
             memcpy(Y, Ystart, k * GB_STATE_SIZE * sizeof *Y);
-            status = gb_dynamics_contact_law_impacts(gb_dynamics_get_def(d)->contact_law)
+            status = gb_dynamics_get_law(d)->impacts /* a change of contact is a jump with its saltation */
                          ? tangent_impact_step(b, tn, h, y, k, Y, &other)
                          : tangent_switch_step(b, tn, h, y, k, Y, &other);
         }
@@ -455,7 +456,7 @@ gb_lyapunov_tangent_system gb_lyapunov_body_tangent(void)
 int gb_lyapunov_body_tangent_ready(const gb_lyapunov_body *body)
 {
     const gb_dynamics_def *def = gb_dynamics_get_def(body->dynamics[0]);
-    if ((def->contact != GB_CONTACT_MODEL_CONTINUOUS && !gb_dynamics_contact_law_impacts(def->contact_law)) ||
+    if ((def->contact != GB_CONTACT_MODEL_CONTINUOUS && !gb_dynamics_get_law(body->dynamics[0])->several_events_per_step) ||
         body->method != GB_INTEGRATOR_RK4)
         return gb_error_set(GB_EINVAL,
                             "the variational estimator needs RK4 and continuous contact or the unilateral law (got %s, %s, "

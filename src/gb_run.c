@@ -192,7 +192,7 @@ int gb_run_in(const gb_case *scene, gb_dynamics_context *context, const gb_run_s
     if (!status) {
         out->state_fingerprint = gb_hash_add(GB_HASH_OFFSET, out->y, GB_STATE_FINGERPRINT * sizeof *out->y);
         gb_dynamics_impact_stats(dynamics, &out->impacts, &out->impact_energy_lost, &out->impact_friction_max);
-        out->has_sliding = isfinite(scene->dynamics.friction);
+        out->has_sliding = gb_dynamics_get_law(dynamics)->slips;
         gb_dynamics_sliding_stats(dynamics, out->t_end, out->y, &out->sliding);
         gb_dynamics_two_point_stats(dynamics, out->t_end, &out->two_point);
         gb_dynamics_flight_stats(dynamics, out->t_end, &out->flight);

@@ -108,7 +108,8 @@ int gb_scan_point_run_in(const gb_scan *scan, const gb_scan_melnikov *melnikov, 
     const double step = gb_forcing_step(&scene.dynamics.forcing, scene.integrate.steps_per_period);
     /* Samples from the first one at the end of the transient (half a step of slack for rounding). */
     gb_scan_accumulator acc = {.first_t = (double)scan->transient_periods * T - 0.5 * step};
-    const int modes = (scan->metrics & GB_SCAN_CONTACTS) && gb_dynamics_contact_law_impacts(scene.dynamics.contact_law);
+    const gb_dynamics_law *law = gb_dynamics_law_of(scene.dynamics.contact_law, scene.dynamics.friction);
+    const int modes = (scan->metrics & GB_SCAN_CONTACTS) && law && law->impacts; /* the impacts' mode accounting */
     const gb_run_sinks sinks = {accumulate_sample, &acc, modes ? accumulate_impact : NULL};
     gb_run_result r;
     status = gb_run_in(&scene, context, &sinks, &r);

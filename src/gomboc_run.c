@@ -17,6 +17,12 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+/* The scene's contact law (gb_dynamics_law_of): what it does, never its name. */
+static const gb_dynamics_law *scene_law(const gb_case *scene)
+{
+    return gb_dynamics_law_of(scene->dynamics.contact_law, scene->dynamics.friction);
+}
+
 /* The step judged by the ledger too: under a law whose ledger closes to integration accuracy (the unilateral law:
  * E − E0 − W + L), a residual beyond LEDGER_FRACTION of the energy the run holds and its impacts took is a step too
  * coarse, whatever the turn of each step (steps_per_period = 2: 94.6 J on a 12 J body). The held law's residual
@@ -25,7 +31,7 @@
 
 static int ledger_too_coarse(const gb_case *scene, const gb_run_result *r)
 {
-    return gb_dynamics_contact_law_impacts(scene->dynamics.contact_law) &&
+    return scene_law(scene)->impacts &&
            r->residual_max > LEDGER_FRACTION * (fabs(r->final.energy) + r->impact_energy_lost);
 }
 
@@ -145,7 +151,7 @@ static cJSON *scene_json(const gb_case *c, const char *path)
         cJSON_AddStringToObject(o, "nodes", gb_contact_nodes_name(d->grid.nodes));
     }
     cli_json_add(o, "damping", d->damping);
-    if (isfinite(d->friction)) cli_json_add(o, "friction", d->friction);
+    if (scene_law(c)->slips) cli_json_add(o, "friction", d->friction);
     else cJSON_AddStringToObject(o, "friction", "rough");
     cJSON_AddStringToObject(o, "integrator", gb_integrate_name(c->integrate.method));
     cli_json_add(o, "steps_per_period", (double)c->integrate.steps_per_period);
@@ -157,7 +163,7 @@ static cJSON *scene_json(const gb_case *c, const char *path)
     }
     cJSON_AddStringToObject(o, "attitude", c->attitude_text);
     cJSON_AddItemToObject(o, "omega0", cli_json_vector(c->omega0, 3));
-    if (gb_dynamics_contact_law_impacts(d->contact_law)) {
+    if (scene_law(c)->impacts) {
         cli_json_add(o, "restitution", d->restitution);
         cli_json_add(o, "height0", d->height0);
         cJSON_AddItemToObject(o, "velocity0", cli_json_vector(d->velocity0, 3));
@@ -472,7 +478,7 @@ static cJSON *summary_json(const gb_case *scene, const char *path, const gb_run_
         cli_json_add(h, "vertices", (double)r->hull_vertices);
         cli_json_add(h, "loaded", r->hull_loaded);
     }
-    if (gb_dynamics_contact_law_impacts(scene->dynamics.contact_law)) {
+    if (scene_law(scene)->impacts) {
         /* energy_residual_* above is the ledger E − E0 − W + L, L the energy the impacts took */
         cJSON *m = cJSON_AddObjectToObject(root, "impacts");
         cli_json_add(m, "count", (double)r->impacts);
@@ -560,7 +566,7 @@ int command_run(int argc, char **argv)
     if (held) return EXIT_COMPUTE;
 
     run_outputs files = {.dir = dir, .case_path = case_path};
-    streams out = {NULL, NULL, isfinite(scene.dynamics.friction)};
+    streams out = {NULL, NULL, scene_law(&scene)->slips};
     if (scene.write_history) {
         out.history = stage_open(&files, OUT_HISTORY, &status);
         if (out.history && (fputs(history_header, out.history) < 0 ||
@@ -624,7 +630,7 @@ int command_run(int argc, char **argv)
     gb_run_result_free(&r);
     if (status) return cli_failure("run", status);
     fprintf(stderr, "gomboc run: %s: contact law %s", case_path, gb_dynamics_contact_law_name(scene.dynamics.contact_law));
-    if (gb_dynamics_contact_law_impacts(scene.dynamics.contact_law))
+    if (scene_law(&scene)->impacts)
         fprintf(stderr, " (restitution %g; %zu impacts, %zu landings, %.1f %% of the time in flight)",
                 scene.dynamics.restitution, r.impacts, r.flight.landings, 100.0 * r.flight.time / r.t_end);
     fprintf(stderr, "; %zu steps in %.2f s CPU; fingerprint %s/%s\n", r.stats.steps, r.seconds, state_print, switch_print);

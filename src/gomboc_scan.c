@@ -229,7 +229,7 @@ static int write_outputs(const char *dir, const char *path, const gb_scan *scan,
         cJSON_AddItemToObject(root, "metrics", cJSON_CreateStringArray(names, (int)metric_count));
         gb_case first;
         if ((scan->metrics & GB_SCAN_CONTACTS) && !gb_scan_point_case(scan, 0, &first) &&
-            !gb_dynamics_contact_law_impacts(first.dynamics.contact_law))
+            !gb_dynamics_law_of(first.dynamics.contact_law, first.dynamics.friction)->impacts)
             cJSON_AddStringToObject(cJSON_AddObjectToObject(root, "not_applicable"), "contacts",
                                     "NaN: the base scene's contact law is held, which keeps one contact at all times "
                                     "(no impacts, rest, flight or sliding); the mechanism's columns need contact_law = unilateral");
