@@ -389,6 +389,7 @@ int gb_scan_load(const char *path, gb_scan *out)
     if (out->atlas_name[0] && !out->atlas_shared) {
         status = gb_error_set(GB_EINVAL, "%s:%d: [scan] atlas_file = %s without atlas = shared (allowed: atlas_file with "
                               "[scan] atlas = shared)", path, out->atlas_name_line, out->atlas_name);
+        free(text);
         gb_scan_free(out);
         return status;
     }

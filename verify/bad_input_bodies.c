@@ -21,6 +21,8 @@
 #define HULL_SCENE "[model]\ncontact = fast-grid\n[integrator]\nperiods = 1\n"
 #define CUBE_VERTICES "-1 -1 -1\n1 -1 -1\n-1 1 -1\n1 1 -1\n-1 -1 1\n1 -1 1\n-1 1 1\n1 1 1\n"
 #define CUBE_FACES "4 0 2 3 1\n4 4 5 7 6\n4 0 1 5 4\n4 2 6 7 3\n4 0 4 6 2\n4 1 3 7 5\n"
+/* a cube whose second vertex's first coordinate holds a NUL byte: its length is the literal's, NUL and all */
+#define NUL_MESH "OFF\n8 6 0\n-1 -1 -1\n1\0005 -1 -1\n-1 1 -1\n1 1 -1\n-1 -1 1\n1 -1 1\n-1 1 1\n1 1 1\n" CUBE_FACES
 
 typedef struct round4_row {
     const char *args, *env, *text, *file_name, *file_text;
@@ -79,7 +81,7 @@ static const round4_row rows[] = {
      "10000.001 10000.001 10000.001\n" CUBE_FACES, 0, 2,
      {"case.ini:2: [body] mesh", "from the mesh's origin", "allowed: the vertices' mean within 1e+06 sizes"}},
     /* (16) a NUL inside a number is no number */
-    {RUN, NULL, MESH_SCENE, "m.off", "OFF\n8 6 0\n-1 -1 -1\n1\0005 -1 -1\n-1 1 -1\n1 1 -1\n-1 -1 1\n1 -1 1\n-1 1 1\n1 1 1\n" CUBE_FACES, 140, 2,
+    {RUN, NULL, MESH_SCENE, "m.off", NUL_MESH, sizeof NUL_MESH - 1, 2,
      {"m.off:4: a byte that is not printable ASCII (0x00) at column 2", "allowed: a text mesh", ""}},
     /* (13) what cannot be done: a record beyond the machine's memory, more steps than days */
     {RUN, NULL, "[integrator]\nperiods = 1e7\n[diagnostics]\nspectrum = yes\n", NULL, NULL, 0, 2,
