@@ -10,6 +10,7 @@ int verify_register_s2_massprops(void);
 int verify_register_s2_shape(void);
 int verify_register_s2_polyhedron(void);
 int verify_register_s2_bodies(void);
+int verify_register_s2_expression(void);
 int verify_register_figures(void);
 int verify_register_s4_contact(void);
 int verify_register_s4_certify(void);
