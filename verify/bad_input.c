@@ -32,7 +32,7 @@
 #include <unistd.h>
 
 /* The binary as an absolute path: every row runs in its own directory. */
-static const char *binary(void)
+const char *bad_input_binary(void)
 {
     static char path[4096];
     if (!path[0] && !realpath(getenv("GOMBOC_BIN") ? getenv("GOMBOC_BIN") : "build/gomboc", path))
@@ -49,7 +49,7 @@ static unsigned long long fnv1a(const unsigned char *p, size_t n, unsigned long 
 }
 
 /* A text that changes when anything in `dir` (not below it) changes. malloc'd. */
-static char *snapshot(const char *dir)
+char *bad_input_snapshot(const char *dir)
 {
     size_t cap = 4096, used = 0;
     char *out = calloc(cap, 1);
@@ -87,10 +87,10 @@ static int remove_entry(const char *path, const struct stat *st, int flag, struc
     (void)st, (void)flag, (void)ftw;
     return remove(path);
 }
-static void remove_tree(const char *dir) { nftw(dir, remove_entry, 16, FTW_DEPTH | FTW_PHYS); }
+void bad_input_remove_tree(const char *dir) { nftw(dir, remove_entry, 16, FTW_DEPTH | FTW_PHYS); }
 
 /* Run `command` (a shell fragment) in `dir`, its standard error and output captured in `out`. */
-static int run_in(const char *dir, const char *command, char *out, size_t cap)
+int bad_input_run_in(const char *dir, const char *command, char *out, size_t cap)
 {
     size_t size = strlen(dir) + strlen(command) + 64;
     char *shell = malloc(size);
@@ -412,7 +412,7 @@ static char *expand(const char *args, const char *dir)
     return out;
 }
 
-static void write_bytes(const char *path, const char *text, size_t len)
+void bad_input_write_bytes(const char *path, const char *text, size_t len)
 {
     FILE *f = fopen(path, "wb");
     if (!f) return;
@@ -430,7 +430,7 @@ static void prepare(char *dir, const bad_row *row)
     if (!mkdtemp(dir)) return;
     char path[512];
     snprintf(path, sizeof path, "%s/keep.txt", dir);
-    write_bytes(path, "a file the command must leave alone\n", 36);
+    bad_input_write_bytes(path, "a file the command must leave alone\n", 36);
     snprintf(path, sizeof path, "%s/link.csv", dir);
     if (symlink("keep.txt", path) != 0) return;
     snprintf(path, sizeof path, "%s/sub", dir);
@@ -453,10 +453,10 @@ static void prepare(char *dir, const bad_row *row)
         memcpy(text, "; ", 2);
         const char *tail = " beta = 0.2\n";
         memcpy(text + 300, tail, strlen(tail));
-        write_bytes(path, text, 300 + strlen(tail));
+        bad_input_write_bytes(path, text, 300 + strlen(tail));
         return;
     }
-    write_bytes(path, row->text, row->text_len ? row->text_len : strlen(row->text));
+    bad_input_write_bytes(path, row->text, row->text_len ? row->text_len : strlen(row->text));
 }
 
 /* One bad input: `args` after `gomboc` with `env` (VAR=VALUE words, or NULL) in a fresh row directory holding the
@@ -472,21 +472,21 @@ int bad_input_row(const char *args, const char *env, const char *text, size_t te
     if (file_name) {
         char path[256];
         snprintf(path, sizeof path, "%s/%s", dir, file_name);
-        write_bytes(path, file_text, file_len ? file_len : strlen(file_text));
+        bad_input_write_bytes(path, file_text, file_len ? file_len : strlen(file_text));
     }
-    char *before = snapshot(dir), *expanded = expand(args, dir), *environment = expand(env ? env : "", dir);
-    size_t size = strlen(binary()) + strlen(expanded) + strlen(environment) + 16;
+    char *before = bad_input_snapshot(dir), *expanded = expand(args, dir), *environment = expand(env ? env : "", dir);
+    size_t size = strlen(bad_input_binary()) + strlen(expanded) + strlen(environment) + 16;
     char *command = malloc(size);
-    snprintf(command, size, "%s%s %s %s", env ? "env " : "", environment, binary(), expanded);
+    snprintf(command, size, "%s%s %s %s", env ? "env " : "", environment, bad_input_binary(), expanded);
     free(environment);
-    const int code = run_in(dir, command, out, cap);
-    char *after = snapshot(dir);
+    const int code = bad_input_run_in(dir, command, out, cap);
+    char *after = bad_input_snapshot(dir);
     int named = 1;
     for (int m = 0; m < 3; m++)
         if (must[m] && must[m][0] && !strstr(out, must[m])) named = 0;
     const int unchanged = !strcmp(before, after);
     free(before), free(after), free(expanded), free(command);
-    remove_tree(dir);
+    bad_input_remove_tree(dir);
     return code == exit && named && unchanged;
 }
 
@@ -538,11 +538,11 @@ static void test_strict_but_fair(void)
         char dir[64];
         prepare(dir, &row);
         char *args = expand(good[k].args, dir);
-        size_t size = strlen(binary()) + strlen(args) + 4;
+        size_t size = strlen(bad_input_binary()) + strlen(args) + 4;
         char *command = malloc(size);
-        snprintf(command, size, "%s %s", binary(), args);
+        snprintf(command, size, "%s %s", bad_input_binary(), args);
         static char out[1 << 16];
-        const int code = run_in(dir, command, out, sizeof out);
+        const int code = bad_input_run_in(dir, command, out, sizeof out);
         char q[300];
         static const char *const why[] = {"a subnormal beta", "CRLF lines", "an axis of subnormal components",
                                           "BOM, spaced list, -2*pi/3, UTF-8 text with quotes, an inline ; comment stripped"};
@@ -550,7 +550,7 @@ static void test_strict_but_fair(void)
         gb_check c = {"-", "-", q, "exit 0 and the value as written", "exact"};
         gb_check_true(&c, code == 0 && strstr(out, good[k].expect), "exit %d: %.300s", code, out);
         free(args), free(command);
-        remove_tree(dir);
+        bad_input_remove_tree(dir);
     }
 
     /* An output directory 1190 characters deep and a case file of 240 characters: no path is cut. */
@@ -564,22 +564,22 @@ static void test_strict_but_fair(void)
     char case_path[1800];
     snprintf(case_path, sizeof case_path, "%s/%s", dir, name);
     const char *scene = "[integrator]\nperiods = 1\nsteps_per_period = 20\n[model]\ncontact = fast-grid\n";
-    write_bytes(case_path, scene, strlen(scene));
+    bad_input_write_bytes(case_path, scene, strlen(scene));
     char command[4000], out[8192];
-    snprintf(command, sizeof command, "%s run '%s' --out '%s'", binary(), case_path, deep);
-    const int code = run_in(dir, command, out, sizeof out);
+    snprintf(command, sizeof command, "%s run '%s' --out '%s'", bad_input_binary(), case_path, deep);
+    const int code = bad_input_run_in(dir, command, out, sizeof out);
     char history[1800];
     snprintf(history, sizeof history, "%s/%.236s-history.csv", deep, name);
     gb_check cl = {"-", "-", "gomboc run into a 1190-character --out with a 240-character case name writes the full names",
                    "file system", "exact"};
     gb_check_true(&cl, code == 0 && access(history, F_OK) == 0, "exit %d, %zu-character output path: %.200s", code,
                   strlen(history), out);
-    remove_tree(dir);
+    bad_input_remove_tree(dir);
 }
 
 /* A run writes NAME-* outputs only through temporaries ".gomboc-PID-XXXXXX": none may survive a
  * SIGTERM, and one left by a process killed outright is removed by the next command writing there. */
-static int count_temporaries(const char *dir)
+int bad_input_count_temporaries(const char *dir)
 {
     int n = 0;
     DIR *d = opendir(dir);
@@ -595,16 +595,16 @@ static void test_temporaries(void)
     char case_path[128];
     snprintf(case_path, sizeof case_path, "%s/long.ini", dir);
     const char *scene = "[integrator]\nperiods = 100000\n[model]\ncontact = fast-grid\n";
-    write_bytes(case_path, scene, strlen(scene));
+    bad_input_write_bytes(case_path, scene, strlen(scene));
     const pid_t child = fork();
     if (child == 0) {
         freopen("/dev/null", "w", stderr);
-        execl(binary(), "gomboc", "run", case_path, "--out", dir, (char *)NULL);
+        execl(bad_input_binary(), "gomboc", "run", case_path, "--out", dir, (char *)NULL);
         _exit(127);
     }
     int seen = 0;
     for (int k = 0; k < 200 && !seen; k++) { /* up to 10 s for the history's temporary to appear */
-        seen = count_temporaries(dir) > 0;
+        seen = bad_input_count_temporaries(dir) > 0;
         if (!seen) usleep(50000);
     }
     kill(child, SIGTERM);
@@ -613,9 +613,9 @@ static void test_temporaries(void)
     gb_check ct = {"-", "-", "SIGTERM during gomboc run: its temporary existed and is removed, no output appears", "file system", "exact"};
     char history[160];
     snprintf(history, sizeof history, "%s/long-history.csv", dir);
-    gb_check_true(&ct, seen && WIFSIGNALED(wstatus) && WTERMSIG(wstatus) == SIGTERM && count_temporaries(dir) == 0 &&
+    gb_check_true(&ct, seen && WIFSIGNALED(wstatus) && WTERMSIG(wstatus) == SIGTERM && bad_input_count_temporaries(dir) == 0 &&
                        access(history, F_OK) != 0,
-                  "temporary seen %d, signalled %d, temporaries left %d", seen, WIFSIGNALED(wstatus), count_temporaries(dir));
+                  "temporary seen %d, signalled %d, temporaries left %d", seen, WIFSIGNALED(wstatus), bad_input_count_temporaries(dir));
 
     /* A temporary of a process that is gone (a child that has exited: its pid is free). */
     const pid_t gone = fork();
@@ -624,18 +624,18 @@ static void test_temporaries(void)
     char stale[160], other[160];
     snprintf(stale, sizeof stale, "%s/.gomboc-%ld-Ab3dEf", dir, (long)gone);
     snprintf(other, sizeof other, "%s/.gomboc-notours", dir);
-    write_bytes(stale, "half", 4);
-    write_bytes(other, "not a temporary of ours", 23);
+    bad_input_write_bytes(stale, "half", 4);
+    bad_input_write_bytes(other, "not a temporary of ours", 23);
     const char *quick = "[integrator]\nperiods = 1\nsteps_per_period = 20\n[model]\ncontact = fast-grid\n";
-    write_bytes(case_path, quick, strlen(quick));
+    bad_input_write_bytes(case_path, quick, strlen(quick));
     char command[400], out[4096];
-    snprintf(command, sizeof command, "%s run '%s' --out '%s'", binary(), case_path, dir);
-    const int code = run_in(dir, command, out, sizeof out);
+    snprintf(command, sizeof command, "%s run '%s' --out '%s'", bad_input_binary(), case_path, dir);
+    const int code = bad_input_run_in(dir, command, out, sizeof out);
     gb_check cs = {"-", "-", "a temporary left by a killed process is removed by the next run in its directory; other files stay",
                    "file system", "exact"};
     gb_check_true(&cs, code == 0 && access(stale, F_OK) != 0 && access(other, F_OK) == 0, "exit %d, stale %s, other %s", code,
                   access(stale, F_OK) ? "removed" : "LEFT", access(other, F_OK) ? "REMOVED" : "kept");
-    remove_tree(dir);
+    bad_input_remove_tree(dir);
 }
 
 /* ---- the rule for every file written: inputs by identity, output sets, concurrent writers ---------- */
@@ -643,8 +643,8 @@ static void test_temporaries(void)
 static int run_here(const char *dir, const char *args, char *out, size_t cap)
 {
     char command[8192];
-    snprintf(command, sizeof command, "%s %s", binary(), args);
-    return run_in(dir, command, out, cap);
+    snprintf(command, sizeof command, "%s %s", bad_input_binary(), args);
+    return bad_input_run_in(dir, command, out, cap);
 }
 
 static void test_outputs(void)
@@ -654,7 +654,7 @@ static void test_outputs(void)
     char path[512], out[1 << 14];
     const char *atlas_scene = "[model]\nequation = rolling\ncontact = continuous\ncertificate = atlas\n[integrator]\nperiods = 1\n";
     snprintf(path, sizeof path, "%s/a.ini", dir);
-    write_bytes(path, atlas_scene, strlen(atlas_scene));
+    bad_input_write_bytes(path, atlas_scene, strlen(atlas_scene));
 
     /* A hard link to the scene is the scene: compared by device and inode, not by name. */
     char link_path[512];
@@ -674,10 +674,10 @@ static void test_outputs(void)
      * for minutes; the refusal comes at once, and nothing is written. */
     const char *long_scene = "[integrator]\nperiods = 100000\n[model]\ncontact = fast-grid\n";
     snprintf(path, sizeof path, "%s/long.ini", dir);
-    write_bytes(path, long_scene, strlen(long_scene));
+    bad_input_write_bytes(path, long_scene, strlen(long_scene));
     snprintf(path, sizeof path, "%s/long-summary.json", dir);
     mkdir(path, 0755);
-    char *listing = snapshot(dir);
+    char *listing = bad_input_snapshot(dir);
     const double start = (double)clock() / CLOCKS_PER_SEC;
     struct timespec t0, t1;
     clock_gettime(CLOCK_MONOTONIC, &t0);
@@ -685,7 +685,7 @@ static void test_outputs(void)
     clock_gettime(CLOCK_MONOTONIC, &t1);
     (void)start;
     const double seconds = (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
-    char *listing_after = snapshot(dir);
+    char *listing_after = bad_input_snapshot(dir);
     gb_check cd = {"-", "-", "gomboc run with a directory where NAME-summary.json goes (a 10^5-period scene)",
                    "exit 2 naming the output before the run (under 5 s; the run takes minutes), the directory unchanged", "exact"};
     gb_check_true(&cd, code == 2 && strstr(out, "long-summary.json' exists and is not a regular file") && seconds < 5.0 &&
@@ -696,7 +696,7 @@ static void test_outputs(void)
     /* A link planted where an older version put its temporary (FILE.tmp) is never followed. */
     char victim[512];
     snprintf(victim, sizeof victim, "%s/victim.txt", dir);
-    write_bytes(victim, "not an atlas\n", 13);
+    bad_input_write_bytes(victim, "not an atlas\n", 13);
     snprintf(path, sizeof path, "%s/shared.atlas.tmp", dir);
     if (symlink("victim.txt", path) != 0) path[0] = '\0';
     code = run_here(dir, "run a.ini --atlas shared.atlas", out, sizeof out);
@@ -716,8 +716,8 @@ static void test_outputs(void)
         snprintf(command, sizeof command,
                  "mkdir -p o1 o2 && { %s run a.ini --out o1 --atlas race.atlas & %s run a.ini --out o2 --atlas race.atlas & "
                  "wait %%1; e1=$?; wait %%2; e2=$?; test $e1 -eq 0 -a $e2 -eq 0 -a -f o1/a-summary.json -a -f o2/a-summary.json; }",
-                 binary(), binary());
-        failures += run_in(dir, command, out, sizeof out) != 0;
+                 bad_input_binary(), bad_input_binary());
+        failures += bad_input_run_in(dir, command, out, sizeof out) != 0;
     }
     code = run_here(dir, "run a.ini --atlas race.atlas --json", out, sizeof out);
     gb_check cr = {"-", "-", "two gomboc run writing one atlas file at once, 12 trials",
@@ -744,7 +744,7 @@ static void test_outputs(void)
         const pid_t child = fork();
         if (child == 0) {
             if (chdir(dir) != 0 || !freopen("/dev/null", "w", stderr)) _exit(127);
-            execl(binary(), "gomboc", "run", "a.ini", "--atlas", atlas_of[run], (char *)NULL);
+            execl(bad_input_binary(), "gomboc", "run", "a.ini", "--atlas", atlas_of[run], (char *)NULL);
             _exit(127);
         }
         int wstatus = 0;
@@ -772,23 +772,23 @@ static void test_outputs(void)
     const char *set_scene = "[integrator]\nperiods = 2\nsteps_per_period = 40\n[model]\ncontact = fast-grid\n"
                             "[diagnostics]\nstrobe = yes\n[strobe]\ntransient_periods = 0\n";
     snprintf(path, sizeof path, "%s/set.ini", dir);
-    write_bytes(path, set_scene, strlen(set_scene));
+    bad_input_write_bytes(path, set_scene, strlen(set_scene));
     const int first = run_here(dir, "run set.ini", out, sizeof out);
     char older[512];
     snprintf(older, sizeof older, "%s/set-history.csv", dir);
     char *old_history = gb_check_read_file(older);
     const char *longer = "[integrator]\nperiods = 3\nsteps_per_period = 40\n[model]\ncontact = fast-grid\n"
                          "[diagnostics]\nstrobe = yes\n[strobe]\ntransient_periods = 0\n";
-    write_bytes(path, longer, strlen(longer));
+    bad_input_write_bytes(path, longer, strlen(longer));
     const int second = run_here(dir, "run set.ini", out, sizeof out);
     const int whole = run_here(dir, "check set-summary.json", out, sizeof out);
     char whole_text[512];
     snprintf(whole_text, sizeof whole_text, "%.500s", out);
-    if (old_history) write_bytes(older, old_history, strlen(old_history));
+    if (old_history) bad_input_write_bytes(older, old_history, strlen(old_history));
     const int mixed = run_here(dir, "check set-summary.json", out, sizeof out);
     const int named = strstr(out, "CHANGED set-history.csv") && strstr(out, "ok set-strobe.csv") && strstr(out, "MIXED");
     snprintf(path, sizeof path, "%s/set-spectrum.csv", dir);
-    write_bytes(path, "stale\n", 6);
+    bad_input_write_bytes(path, "stale\n", 6);
     const int stale = run_here(dir, "check set-summary.json", out, sizeof out);
     gb_check cs = {"-", "-", "gomboc check on a run's summary: the set whole; an older history put back; a stale output added",
                    "exit 0; exit 1 naming the history; exit 1 naming the stale file", "exact"};
@@ -810,300 +810,7 @@ static void test_outputs(void)
                    "exact"};
     gb_check_true(&cp, code == 2 && strstr(out, whole_path), "exit %d, %zu-character path, message of %zu characters", code,
                   strlen(deep) + 18, strlen(out));
-    remove_tree(dir);
-}
-
-/* ---- round 3: what needs a second process, a lock, a signal or a file-size limit --------------------- */
-
-/* A scene that runs for minutes, its history's temporary appearing at once. */
-static const char *const long_scene = "[integrator]\nperiods = 100000\n[model]\ncontact = fast-grid\n";
-
-/* Start `gomboc run CASE --out DIR` with signal `ignored` ignored (0: none) and wait until its first
- * temporary appears in `dir` (up to 10 s): the child's pid, or -1. */
-static pid_t start_run(const char *dir, const char *case_path, int ignored)
-{
-    const pid_t child = fork();
-    if (child == 0) {
-        if (ignored) signal(ignored, SIG_IGN); /* as nohup, or a shell's background job, leaves it */
-        if (!freopen("/dev/null", "w", stderr)) _exit(127);
-        execl(binary(), "gomboc", "run", case_path, "--out", dir, (char *)NULL);
-        _exit(127);
-    }
-    for (int k = 0; k < 200 && child > 0 && count_temporaries(dir) == 0; k++) usleep(50000);
-    return child;
-}
-
-/* (3) A signal the parent ignored stays ignored: SIGHUP under nohup, SIGINT for a background job. */
-static void test_signals_ignored(void)
-{
-    char dir[64] = "/tmp/gomboc-sig-XXXXXX";
-    if (!mkdtemp(dir)) return;
-    char case_path[128];
-    snprintf(case_path, sizeof case_path, "%s/long.ini", dir);
-    write_bytes(case_path, long_scene, strlen(long_scene));
-    static const int signals[] = {SIGHUP, SIGINT};
-    char report[512] = "";
-    int kept = 0;
-    for (int k = 0; k < 2; k++) {
-        const pid_t child = start_run(dir, case_path, signals[k]);
-        const int started = count_temporaries(dir) > 0;
-        kill(child, signals[k]);
-        usleep(300000);
-        int wstatus = 0;
-        const int alive = waitpid(child, &wstatus, WNOHANG) == 0;
-        kill(child, SIGTERM); /* still ours to end */
-        if (alive) waitpid(child, &wstatus, 0);
-        const int ok = started && alive && WIFSIGNALED(wstatus) && WTERMSIG(wstatus) == SIGTERM && count_temporaries(dir) == 0;
-        kept += ok;
-        snprintf(report + strlen(report), sizeof report - strlen(report), "%s%s: started %d, alive after it %d, ended by "
-                 "SIGTERM %d, temporaries left %d", k ? "; " : "", strsignal(signals[k]), started, alive,
-                 WIFSIGNALED(wstatus) && WTERMSIG(wstatus) == SIGTERM, count_temporaries(dir));
-    }
-    gb_check c = {"-", "-", "gomboc run with SIGHUP ignored by its parent (nohup), then with SIGINT ignored (a background job)",
-                  "the signal changes nothing; SIGTERM still ends the run and removes its temporaries", "exact"};
-    gb_check_true(&c, kept == 2, "%s", report);
-    remove_tree(dir);
-}
-
-/* (4) A lock held by another process is waited for a bounded time, then named; the run says so before its
- * computation. */
-static void test_lock_bounded(void)
-{
-    char dir[64] = "/tmp/gomboc-lock-XXXXXX";
-    if (!mkdtemp(dir)) return;
-    char path[256], out[4096], command[1024];
-    snprintf(path, sizeof path, "%s/a.ini", dir);
-    const char *atlas_scene = "[model]\nequation = rolling\ncontact = continuous\ncertificate = atlas\n[integrator]\nperiods = 1\n";
-    write_bytes(path, atlas_scene, strlen(atlas_scene));
-    const int held = open(dir, O_RDONLY | O_DIRECTORY);
-    const int locked = held >= 0 && flock(held, LOCK_EX) == 0; /* as a writer stopped with Ctrl-Z while merging holds it */
-    char *before = snapshot(dir);
-    struct timespec t0, t1;
-    clock_gettime(CLOCK_MONOTONIC, &t0);
-    snprintf(command, sizeof command, "env GOMBOC_LOCK_SECONDS=1 %s run a.ini --atlas shared.atlas", binary());
-    const int code = run_in(dir, command, out, sizeof out);
-    clock_gettime(CLOCK_MONOTONIC, &t1);
-    char *after = snapshot(dir);
-    const double seconds = (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
-    if (held >= 0) close(held); /* the lock goes with it */
-    snprintf(command, sizeof command, "env GOMBOC_LOCK_SECONDS=1 %s run a.ini --atlas shared.atlas", binary());
-    const int freed = run_in(dir, command, out + 2048, sizeof out - 2048);
-    gb_check c = {"-", "-", "gomboc run --atlas F while another process holds the lock of F's directory (GOMBOC_LOCK_SECONDS=1)",
-                  "exit 1 within a few seconds, naming the directory and the wait, nothing written; exit 0 once it is free",
-                  "exact; the bound: 1 s of wait, 10 s in all for the start of the process"};
-    gb_check_true(&c, locked && code == 1 && seconds < 10.0 && strstr(out, "stayed locked for 1 s") && strstr(out, dir) &&
-                       before && after && !strcmp(before, after) && freed == 0,
-                  "exit %d after %.2f s (then %d once free): %.300s", code, seconds, freed, out);
-    free(before), free(after);
-    remove_tree(dir);
-}
-
-/* (5) A temporary whose writer lives where its PID cannot be seen (another PID namespace, another host on
- * NFS): its lock says it is alive, and it is left; once the lock goes, the next run removes it. */
-static void test_foreign_temporary(void)
-{
-    char dir[64] = "/tmp/gomboc-ns-XXXXXX";
-    if (!mkdtemp(dir)) return;
-    char case_path[128], temp[160], command[512], out[4096];
-    snprintf(case_path, sizeof case_path, "%s/quick.ini", dir);
-    const char *quick = "[integrator]\nperiods = 1\nsteps_per_period = 20\n[model]\ncontact = fast-grid\n";
-    write_bytes(case_path, quick, strlen(quick));
-    /* a PID that names no process here: the writer is in another namespace, alive */
-    snprintf(temp, sizeof temp, "%s/.gomboc-%d-Ab3dEf", dir, 4194302);
-    write_bytes(temp, "half", 4);
-    const int fd = open(temp, O_RDONLY);
-    const int locked = fd >= 0 && flock(fd, LOCK_EX) == 0;
-    snprintf(command, sizeof command, "%s run '%s' --out '%s'", binary(), case_path, dir);
-    const int live = run_in(dir, command, out, sizeof out);
-    const int kept = access(temp, F_OK) == 0;
-    if (fd >= 0) close(fd);
-    const int gone = run_in(dir, command, out, sizeof out);
-    const int removed = access(temp, F_OK) != 0;
-    gb_check c = {"-", "-", "a temporary '.gomboc-PID-XXXXXX' of a PID that names no process here, its lock held (a live writer "
-                  "in another PID namespace or on another host)", "left while locked; removed by the next run once its lock "
-                  "is free", "exact"};
-    gb_check_true(&c, locked && live == 0 && kept && gone == 0 && removed, "locked %d; run exit %d, temporary %s; after its "
-                  "lock went: run exit %d, temporary %s", locked, live, kept ? "kept" : "REMOVED", gone,
-                  removed ? "removed" : "LEFT");
-    remove_tree(dir);
-}
-
-/* (8, 14) Files limited to 4 KiB (ulimit -f, RLIMIT_FSIZE): the write fails with EFBIG, which the run
- * reports as any failed write (exit 1, naming the file), with no temporary left and nothing written. */
-static void test_file_size_limit(void)
-{
-    char dir[64] = "/tmp/gomboc-fsize-XXXXXX";
-    if (!mkdtemp(dir)) return;
-    char case_path[128], log[160];
-    snprintf(case_path, sizeof case_path, "%s/l.ini", dir);
-    snprintf(log, sizeof log, "%s/../%s.log", dir, strrchr(dir, '/') + 1);
-    const char *scene = "[model]\ncontact = fast-grid\n[integrator]\nperiods = 20\n[diagnostics]\nlyapunov = yes\n";
-    write_bytes(case_path, scene, strlen(scene));
-    char *before = snapshot(dir);
-    const pid_t child = fork();
-    if (child == 0) {
-        const struct rlimit limit = {4096, 4096};
-        if (setrlimit(RLIMIT_FSIZE, &limit) || !freopen(log, "w", stderr)) _exit(127);
-        execl(binary(), "gomboc", "run", case_path, "--out", dir, (char *)NULL);
-        _exit(127);
-    }
-    int wstatus = 0;
-    waitpid(child, &wstatus, 0);
-    char *after = snapshot(dir), *message = gb_check_read_file(log);
-    remove(log);
-    gb_check c = {"-", "-", "gomboc run of a scene with lambda, files limited to 4 KiB (ulimit -f)",
-                  "exit 1 (not killed by SIGXFSZ), naming the history and 'File too large', not the Lyapunov pair; no "
-                  "temporary left, the directory unchanged", "exact"};
-    gb_check_true(&c, WIFEXITED(wstatus) && WEXITSTATUS(wstatus) == 1 && message && strstr(message, "l-history.csv") &&
-                       strstr(message, "File too large") && !strstr(message, "sampler") && count_temporaries(dir) == 0 &&
-                       before && after && !strcmp(before, after),
-                  "%s %d, temporaries %d, directory %s: %.300s", WIFEXITED(wstatus) ? "exit" : "signal",
-                  WIFEXITED(wstatus) ? WEXITSTATUS(wstatus) : WTERMSIG(wstatus), count_temporaries(dir),
-                  before && after && !strcmp(before, after) ? "unchanged" : "CHANGED", message ? message : "(none)");
-    free(before), free(after), free(message);
-    remove_tree(dir);
-}
-
-/* (18) Two runs of one scene name, from two directories, into one output directory at once: each set is
- * renamed into place with the directory locked, so the outputs are one whole set, whichever came last. */
-static void test_concurrent_runs(void)
-{
-    char dir[64] = "/tmp/gomboc-race-XXXXXX";
-    if (!mkdtemp(dir)) return;
-    char path[256], out[8192], command[2048];
-    static const char *const scenes[2] = {
-        "[integrator]\nperiods = 2\nsteps_per_period = 40\n[model]\ncontact = fast-grid\n[diagnostics]\nstrobe = yes\n"
-        "spectrum = yes\n[strobe]\ntransient_periods = 0\n[spectrum]\ntransient_periods = 0\n",
-        "[integrator]\nperiods = 3\nsteps_per_period = 40\n[model]\ncontact = fast-grid\n[diagnostics]\nstrobe = yes\n"
-        "spectrum = yes\n[strobe]\ntransient_periods = 0\n[spectrum]\ntransient_periods = 0\n"};
-    for (int k = 0; k < 2; k++) {
-        snprintf(path, sizeof path, "%s/%c", dir, 'a' + k);
-        mkdir(path, 0755);
-        snprintf(path, sizeof path, "%s/%c/s.ini", dir, 'a' + k);
-        write_bytes(path, scenes[k], strlen(scenes[k]));
-    }
-    snprintf(path, sizeof path, "%s/o", dir);
-    mkdir(path, 0755);
-    int whole = 0;
-    const int trials = 12;
-    for (int trial = 0; trial < trials; trial++) {
-        snprintf(command, sizeof command, "sh -c '%s run a/s.ini --out o 2>/dev/null & %s run b/s.ini --out o 2>/dev/null & "
-                 "wait %%1 && wait %%2 && %s check o/s-summary.json'", binary(), binary(), binary());
-        whole += run_in(dir, command, out, sizeof out) == 0;
-    }
-    gb_check c = {"-", "-", "two runs of one scene name (2 and 3 periods, history, strobe, spectrum) into one directory at once, "
-                  "12 trials", "both exit 0 and gomboc check finds the set whole, every trial", "exact"};
-    gb_check_true(&c, whole == trials, "%d of %d trials whole: %.300s", whole, trials, out);
-    remove_tree(dir);
-}
-
-/* The rest: a cache sealed under another key, an axis the base refuses, a FIFO beside a run's outputs, a
- * step too coarse for the spin, and (6) the impact of two points 1e-15 apart. */
-static void test_round3_runs(void)
-{
-    char dir[64] = "/tmp/gomboc-r3-XXXXXX";
-    if (!mkdtemp(dir)) return;
-    char path[256], out[8192], command[2048];
-    /* (7) a hull sealed under another user's key is rebuilt, as a damaged one is */
-    snprintf(path, sizeof path, "%s/h.ini", dir);
-    const char *hull_scene = "[model]\ncontact = fast-grid\n[integrator]\nperiods = 1\nsteps_per_period = 20\n";
-    write_bytes(path, hull_scene, strlen(hull_scene));
-    snprintf(command, sizeof command, "%s run h.ini --hull h.hull --json | grep -A2 '\"hull\"' && env GOMBOC_KEY=%s/other.key "
-             "%s run h.ini --hull h.hull --json | grep -A2 '\"hull\"'", binary(), dir, binary());
-    const int code = run_in(dir, command, out, sizeof out);
-    const char *second = strstr(out, "\"loaded\"") ? strstr(strstr(out, "\"loaded\"") + 1, "\"loaded\"") : NULL;
-    gb_check ck = {"-", "-", "gomboc run --hull F, F sealed under another key (GOMBOC_KEY of another user)",
-                   "not loaded (its seal does not verify), built anew and written back", "exact"};
-    gb_check_true(&ck, code == 0 && second && strstr(second, "\"loaded\":\t0"), "exit %d: %.300s", code, out);
-
-    /* (16) a scan axis whose value the base refuses is named by the scan file's line, not the base's default */
-    snprintf(path, sizeof path, "%s/b.ini", dir);
-    write_bytes(path, "[integrator]\nperiods = 5\n", 25);
-    snprintf(path, sizeof path, "%s/s.ini", dir);
-    const char *scan = "[scan]\nbase = b.ini\nperiods = 5\ntransient_periods = 1\n[x]\nkey = model.restitution\nfrom = 0\n"
-                       "to = 0.5\ncount = 2\n[y]\nkey = forcing.A1\nfrom = 1\nto = 2\ncount = 2\n";
-    write_bytes(path, scan, strlen(scan));
-    char *before = snapshot(dir);
-    snprintf(command, sizeof command, "%s scan s.ini", binary());
-    const int axis = run_in(dir, command, out, sizeof out);
-    char *after = snapshot(dir);
-    gb_check ca = {"-", "-", "gomboc scan with [x] key = model.restitution over a base of the held law",
-                   "exit 2 naming the scan file's [x] line and the point, the base as the scene, nothing written", "exact"};
-    gb_check_true(&ca, axis == 2 && strstr(out, "s.ini:6 (point 1): [model] restitution") && strstr(out, "(in the scene b.ini)") &&
-                       !strstr(out, "(default)") && before && after && !strcmp(before, after),
-                  "exit %d: %.300s", axis, out);
-    free(before), free(after);
-
-    /* (2) a scan's shared atlas named by [scan] atlas_file over another scan's finished CSV */
-    snprintf(path, sizeof path, "%s/other-scan.csv", dir);
-    write_bytes(path, "index,x,y\n0,1,2\n", 16);
-    snprintf(path, sizeof path, "%s/rolling.ini", dir);
-    write_bytes(path, "[model]\nequation = rolling\ncontact = continuous\n", 48);
-    snprintf(path, sizeof path, "%s/shared.ini", dir);
-    const char *shared = "[scan]\nbase = rolling.ini\nperiods = 5\ntransient_periods = 1\natlas = shared\n"
-                         "atlas_file = other-scan.csv\n[x]\nkey = forcing.omega\nfrom = 17\nto = 19\ncount = 2\n[y]\n"
-                         "key = forcing.A1\nfrom = 1\nto = 2\ncount = 2\n";
-    write_bytes(path, shared, strlen(shared));
-    before = snapshot(dir);
-    snprintf(command, sizeof command, "%s scan shared.ini", binary());
-    const int foreign = run_in(dir, command, out, sizeof out);
-    after = snapshot(dir);
-    gb_check cs = {"-", "-", "gomboc scan with [scan] atlas_file = other-scan.csv, another scan's finished CSV",
-                   "exit 2 naming atlas_file and the file, which is left as it was; nothing written", "exact"};
-    gb_check_true(&cs, foreign == 2 && strstr(out, "shared.ini:6: [scan] atlas_file './other-scan.csv' exists and is not an atlas file") &&
-                       before && after && !strcmp(before, after),
-                  "exit %d: %.300s", foreign, out);
-    free(before), free(after);
-
-    /* (19) a FIFO named like an output the run does not write is no output of its set */
-    snprintf(path, sizeof path, "%s/h-lyapunov.csv", dir);
-    mkfifo(path, 0644);
-    snprintf(command, sizeof command, "%s run h.ini && %s check h-summary.json", binary(), binary());
-    const int fifo = run_in(dir, command, out, sizeof out);
-    gb_check cf = {"-", "-", "gomboc check of a run's set beside a FIFO named NAME-lyapunov.csv (the run leaves it alone)",
-                   "exit 0: the set is whole", "exact"};
-    gb_check_true(&cf, fifo == 0 && strstr(out, "the set is whole"), "exit %d: %.300s", fifo, out);
-    remove(path);
-
-    /* (6) a drop at 4 km/s that meets the plane with two points 9e-16 m apart: one point, no pull; and every
-     * step turns the body by radians: warned, counted, the ledger's drift stated */
-    snprintf(path, sizeof path, "%s/drop.ini", dir);
-    const char *drop = "[model]\ncontact = continuous\nequation = rolling\ncontact_law = unilateral\n[integrator]\n"
-                       "locate_switches = yes\nperiods = 2\n[initial]\nheight = 0.04067970569418181\n"
-                       "velocity = 2482.079522183096,-2908.913684460292,-1537.2646754640605\n"
-                       "omega = 16.481121288668746,-44.288031336110755,-12.051011432581646\n"
-                       "attitude = axis-angle -0.20014281332391626,0.7600603375468236,0.5171210564083513,0.47204654708929905\n"
-                       "[output]\nimpacts = yes\nhistory = no\n";
-    write_bytes(path, drop, strlen(drop));
-    snprintf(command, sizeof command, "%s run drop.ini --json", binary());
-    const int dropped = run_in(dir, command, out, sizeof out);
-    snprintf(path, sizeof path, "%s/drop-impacts.csv", dir);
-    char *impacts = gb_check_read_file(path);
-    double worst = 0.0, scale = 0.0;
-    int rows = 0;
-    for (char *line = impacts ? strchr(impacts, '\n') : NULL; line && line[1]; line = strchr(line + 1, '\n')) {
-        double field[30];
-        int n = 0;
-        for (char *p = line + 1; n < 30 && p && *p != '\n'; n++) {
-            field[n] = strtod(p, NULL);
-            p = strchr(p, ',');
-            if (p) p++;
-        }
-        if (n < 27) continue;
-        rows++;
-        worst = fmin(worst, fmin(field[23], field[26])); /* normal_impulse, old_normal_impulse */
-        scale = fmax(scale, fabs(field[23]));
-    }
-    free(impacts);
-    gb_check cd = {"-", "-", "a unilateral drop at 4 km/s spinning at 50 rad/s whose impact meets two points 9e-16 m apart "
-                   "(one point: GB_IMPACT_SAME_POINT = 1e-9 of the body)", "exit 0; no normal impulse below -1e-9 of the "
-                   "largest (a pull of 5.5e18 N s before); the summary counts the steps too coarse and the run warns with the "
-                   "ledger's drift", "exact; the pull's bound is rounding, 1e-9 of the impulses"};
-    gb_check_true(&cd, dropped == 0 && rows >= 2 && worst >= -1e-9 * scale && strstr(out, "\"steps_too_coarse\":\t320") &&
-                       strstr(out, "the step is too coarse for the body's spin") && strstr(out, "energy ledger drifted"),
-                  "exit %d, %d impacts, the most negative normal impulse %.3g of %.3g: %.200s", dropped, rows, worst, scale,
-                  strstr(out, "warning") ? strstr(out, "warning") : out);
-    remove_tree(dir);
+    bad_input_remove_tree(dir);
 }
 
 /* cases/README.md states, for every key, the allowed values the reader enforces, in the same words. */
@@ -1138,12 +845,6 @@ int verify_register_bad_input(void)
         {"bad input: temporaries removed after SIGTERM and after a kill -9", test_temporaries, NULL},
         {"bad input: outputs never an input, checked before the run, written as sets, safe to race", test_outputs, NULL},
         {"bad input: the documented ranges are the enforced ranges", test_documented_ranges, NULL},
-        {"bad input: signals a parent ignored stay ignored", test_signals_ignored, NULL},
-        {"bad input: a lock held elsewhere is waited for a bounded time, then named", test_lock_bounded, NULL},
-        {"bad input: a temporary is removed only when its writer's lock is free, whatever its PID", test_foreign_temporary, NULL},
-        {"bad input: a file-size limit is a failed write, not a kill", test_file_size_limit, NULL},
-        {"bad input: two runs of one name into one directory leave one whole set", test_concurrent_runs, NULL},
-        {"bad input: foreign caches, axes the base refuses, FIFOs, coarse steps and coincident impact points", test_round3_runs, NULL},
         {NULL, NULL, NULL},
     };
     return verify_register_suite("Bad input, never misread", tests);

@@ -10,4 +10,14 @@
 int bad_input_row(const char *args, const char *env, const char *text, size_t text_len, const char *file_name,
                   const char *file_text, size_t file_len, int exit, const char *const must[3], char *out, size_t cap);
 
+/* The table's helpers, for the checks of bad_input_processes.c: the binary (an absolute path), `command` run in
+ * `dir` with its output (exit status, 124 after 60 s), a file written, a directory removed, a text that changes
+ * with anything in a directory, the program's temporaries (".gomboc-*") in it. */
+const char *bad_input_binary(void);
+int bad_input_run_in(const char *dir, const char *command, char *out, size_t cap);
+void bad_input_write_bytes(const char *path, const char *text, size_t len);
+void bad_input_remove_tree(const char *dir);
+char *bad_input_snapshot(const char *dir);
+int bad_input_count_temporaries(const char *dir);
+
 #endif

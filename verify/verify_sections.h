@@ -27,6 +27,7 @@ int verify_register_siconos(void);
 int verify_register_command(void);
 int verify_register_bad_input(void);
 int verify_register_bad_input_bodies(void);
+int verify_register_bad_input_processes(void);
 
 /* Register `tests` (NULL-terminated) as one suite whose every test starts the row timer. */
 typedef struct verify_test {
