@@ -40,6 +40,19 @@ const char *bad_input_binary(void)
     return path;
 }
 
+/* A started command's signals as a check needs them, whatever this harness inherited (nohup, a background
+ * job): SIGHUP, SIGINT, SIGQUIT and SIGTERM at their defaults and none blocked; then `ignored` (0: none) ignored,
+ * as a parent that ignores it leaves it. */
+void bad_input_child_signals(int ignored)
+{
+    static const int reset[] = {SIGHUP, SIGINT, SIGQUIT, SIGTERM};
+    for (size_t k = 0; k < sizeof reset / sizeof reset[0]; k++) signal(reset[k], SIG_DFL);
+    sigset_t none;
+    sigemptyset(&none);
+    sigprocmask(SIG_SETMASK, &none, NULL);
+    if (ignored) signal(ignored, SIG_IGN);
+}
+
 /* ---- a directory's state: every entry's name, type, size, link target and content hash ---------- */
 
 static unsigned long long fnv1a(const unsigned char *p, size_t n, unsigned long long h)
@@ -598,6 +611,7 @@ static void test_temporaries(void)
     bad_input_write_bytes(case_path, scene, strlen(scene));
     const pid_t child = fork();
     if (child == 0) {
+        bad_input_child_signals(0);
         freopen("/dev/null", "w", stderr);
         execl(bad_input_binary(), "gomboc", "run", case_path, "--out", dir, (char *)NULL);
         _exit(127);
@@ -743,6 +757,7 @@ static void test_outputs(void)
         remove(summary_path);
         const pid_t child = fork();
         if (child == 0) {
+            bad_input_child_signals(0);
             if (chdir(dir) != 0 || !freopen("/dev/null", "w", stderr)) _exit(127);
             execl(bad_input_binary(), "gomboc", "run", "a.ini", "--atlas", atlas_of[run], (char *)NULL);
             _exit(127);

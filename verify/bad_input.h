@@ -19,5 +19,8 @@ void bad_input_write_bytes(const char *path, const char *text, size_t len);
 void bad_input_remove_tree(const char *dir);
 char *bad_input_snapshot(const char *dir);
 int bad_input_count_temporaries(const char *dir);
+/* In a started command's child: SIGHUP, SIGINT, SIGQUIT, SIGTERM at their defaults, none blocked, then `ignored`
+ * (0: none) ignored; the dispositions a check depends on, never the harness's. */
+void bad_input_child_signals(int ignored);
 
 #endif

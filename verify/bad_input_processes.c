@@ -33,7 +33,7 @@ static pid_t start_run(const char *dir, const char *case_path, int ignored)
 {
     const pid_t child = fork();
     if (child == 0) {
-        if (ignored) signal(ignored, SIG_IGN); /* as nohup, or a shell's background job, leaves it */
+        bad_input_child_signals(ignored); /* as nohup, or a shell's background job, leaves it */
         if (!freopen("/dev/null", "w", stderr)) _exit(127);
         execl(bad_input_binary(), "gomboc", "run", case_path, "--out", dir, (char *)NULL);
         _exit(127);
@@ -151,6 +151,7 @@ static void test_file_size_limit(void)
     char *before = bad_input_snapshot(dir);
     const pid_t child = fork();
     if (child == 0) {
+        bad_input_child_signals(0);
         const struct rlimit limit = {4096, 4096};
         if (setrlimit(RLIMIT_FSIZE, &limit) || !freopen(log, "w", stderr)) _exit(127);
         execl(bad_input_binary(), "gomboc", "run", case_path, "--out", dir, (char *)NULL);
