@@ -16,7 +16,7 @@
 static pthread_once_t key_once = PTHREAD_ONCE_INIT;
 static unsigned char key[crypto_generichash_KEYBYTES];
 static int key_status = GB_OK;
-static char key_message[1024];
+static char key_message[4096 + 1024]; /* the key file's path (up to 4096 bytes) and what is wrong */
 static char key_file[4096];
 
 /* The key file's path: $GOMBOC_KEY, $XDG_CONFIG_HOME/gomboc/key or $HOME/.config/gomboc/key. */
