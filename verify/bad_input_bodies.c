@@ -9,7 +9,6 @@
 #include "gb_check.h"
 #include "verify_sections.h"
 
-#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -179,15 +178,6 @@ static void test_round4_accepted(void)
     }
 }
 
-/* The binary as an absolute path: the checks below run in their own directories. */
-static const char *binary_path(void)
-{
-    static char path[4096];
-    const char *bin = getenv("GOMBOC_BIN") ? getenv("GOMBOC_BIN") : "build/gomboc";
-    if (!path[0] && !realpath(bin, path)) snprintf(path, sizeof path, "%s", bin);
-    return path;
-}
-
 /* `command` through the shell, its output in `out`; the wait status. */
 static int shell(const char *command, char *out, size_t cap)
 {
@@ -195,14 +185,6 @@ static int shell(const char *command, char *out, size_t cap)
     const size_t used = p ? fread(out, 1, cap - 1, p) : 0;
     out[used] = '\0';
     return p ? pclose(p) : -1;
-}
-
-static void remove_directory(const char *dir)
-{
-    char command[256];
-    snprintf(command, sizeof command, "rm -rf '%s'", dir);
-    if (system(command)) {
-    }
 }
 
 static void write_text(const char *path, const char *text)
@@ -226,8 +208,8 @@ static void test_expression_centroid(void)
                      "periods = 3\nsteps_per_period = 400\n[initial]\nattitude = axis-angle 0,1,0,1.0\n");
     snprintf(path, sizeof path, "%s/egg.ini", dir);
     write_text(path, "[body]\nr = (1 + 0.4*sin(phi)*cos(theta))^0.25\n");
-    snprintf(command, sizeof command, "cd %s && %s run off.ini --json && %s shape --scene egg.ini --json", dir, binary_path(),
-             binary_path());
+    snprintf(command, sizeof command, "cd %s && %s run off.ini --json && %s shape --scene egg.ini --json", dir, bad_input_binary(),
+             bad_input_binary());
     const int code = shell(command, out, sizeof out);
     double origin[3] = {NAN, NAN, NAN}, centroid[3] = {NAN, NAN, NAN}, omega[3] = {NAN, NAN, NAN}, residual = NAN;
     const char *o = strstr(out, "\"chart_origin\":"), *g = strstr(out, "\"centroid\":"), *w = strstr(out, "\n\t\"omega\":"),
@@ -248,7 +230,7 @@ static void test_expression_centroid(void)
     gb_check_true(&c, code == 0 && spin < 0.1 && residual < 1e-6 && origin[0] < -0.09 && origin[0] > -0.11 && moved < 1e-9,
                   "exit %d; final |omega| %.3g rad/s; ledger %.3g J; egg's origin (%.12g, %.3g, %.3g), moved centroid %.3g m",
                   code, spin, residual, origin[0], origin[1], origin[2], moved);
-    remove_directory(dir);
+    bad_input_remove_tree(dir);
 }
 
 /* (3) A scan's identity holds its base's mesh: a finished scan of a block, the block made twice as tall, --resume
@@ -258,7 +240,7 @@ static void test_scan_mesh_identity(void)
     char dir[64] = "/tmp/gomboc-r4s-XXXXXX";
     if (!mkdtemp(dir)) return;
     char path[128], command[2048], out[1 << 14];
-    const char *bin = binary_path();
+    const char *bin = bad_input_binary();
     static const char *const block[2] = {"OFF\n8 6 0\n-0.1 -0.15 -0.4\n0.1 -0.15 -0.4\n-0.1 0.15 -0.4\n0.1 0.15 -0.4\n-0.1 -0.15 0.4\n"
                                          "0.1 -0.15 0.4\n-0.1 0.15 0.4\n0.1 0.15 0.4\n" CUBE_FACES,
                                          "OFF\n8 6 0\n-0.1 -0.15 -0.8\n0.1 -0.15 -0.8\n-0.1 0.15 -0.8\n0.1 0.15 -0.8\n-0.1 -0.15 0.8\n"
@@ -281,7 +263,7 @@ static void test_scan_mesh_identity(void)
                   "not 'nothing to resume': the scan starts anew, its CSV the fresh scan's of the tall block and not the small "
                   "block's", "exact"};
     gb_check_true(&c, code == 0 && !strstr(out, "nothing to resume") && strstr(out, "SAME-AS-FRESH"), "exit %d: %.400s", code, out);
-    remove_directory(dir);
+    bad_input_remove_tree(dir);
 }
 
 /* (14) A step too coarse that turns the body little: Table 1's Gömböc I under the unilateral law at 2 steps a
@@ -296,7 +278,7 @@ static void test_ledger_and_scale(void)
     snprintf(command, sizeof command, "cd %s && sed 's/^steps_per_period = .*/steps_per_period = 2/' %s/cases/table1-gomboc-I-unilateral.ini"
              " > coarse.ini && %s run coarse.ini --json 2>&1 && %s run %s/cases/table1-gomboc-I-unilateral.ini --out . --json 2>&1 && "
              "printf '[body]\\nr = 1e3\\n' > big.ini && %s shape --scene big.ini --json 2>&1",
-             dir, here, binary_path(), binary_path(), here, binary_path());
+             dir, here, bad_input_binary(), bad_input_binary(), here, bad_input_binary());
     const int code = shell(command, out, sizeof out);
     const char *first = strstr(out, "\"ledger_too_coarse\":"), *second = first ? strstr(first + 1, "\"ledger_too_coarse\":") : NULL;
     const char *rotation = strstr(out, "\"steps_too_coarse\":");
@@ -314,7 +296,7 @@ static void test_ledger_and_scale(void)
     gb_check cb = {"2", "53", "a body given by r = 1e3 m (a sphere): its volume", "4/3 pi 1e9 m^3",
                    "1e-10 relative: the quadrature's 1e-11 target per integral"};
     gb_check_close(&cb, v, sphere, 1e-10, 0.0);
-    remove_directory(dir);
+    bad_input_remove_tree(dir);
 }
 
 int verify_register_bad_input_bodies(void)
