@@ -174,6 +174,24 @@ static const key_def keys[] = {
 enum { KEY_TOTAL = sizeof keys / sizeof keys[0] };
 _Static_assert(KEY_TOTAL <= GB_CASE_KEY_MAX, "gb_case.key_line has a slot for every key");
 
+/* Every key: this table's, then each contact law's own (gb_dynamics_law_key_at: [model] reals in the law's slots of
+ * law_coefficients), numbered after them. */
+static size_t key_total(void)
+{
+    const size_t n = KEY_TOTAL + gb_dynamics_law_key_count();
+    return n <= GB_CASE_KEY_MAX ? n : GB_CASE_KEY_MAX; /* gb_case_key_count's check sees a law's key cut */
+}
+
+/* Key `index` (< key_total()), into *scratch for a law's key. */
+static const key_def *key_at(size_t index, key_def *scratch)
+{
+    if (index < KEY_TOTAL) return &keys[index];
+    const gb_dynamics_law_key *k = gb_dynamics_law_key_at(index - KEY_TOTAL, NULL);
+    *scratch = (key_def){"model", k->name, KEY_REAL, k->min, k->max, k->open_min ? OPEN_MIN : 0, k->meaning,
+                         AT(dynamics.law_coefficients) + (size_t)k->slot * sizeof(double), NULL};
+    return scratch;
+}
+
 static const char *const sections[] = {"scene", "body", "forcing", "model", "integrator", "initial",
                                        "output", "diagnostics", "strobe", "spectrum", "lyapunov"};
 enum { SECTION_TOTAL = sizeof sections / sizeof sections[0] };
@@ -194,16 +212,20 @@ static void range_text(const key_def *k, char *out, size_t size)
 
 int gb_case_key_numeric(const char *section, const char *name)
 {
-    for (size_t k = 0; k < KEY_TOTAL; k++)
-        if (!strcmp(keys[k].section, section) && !strcmp(keys[k].name, name))
-            return keys[k].kind == KEY_REAL || keys[k].kind == KEY_ANGLE || keys[k].kind == KEY_COUNT;
+    key_def scratch;
+    for (size_t i = 0; i < key_total(); i++) {
+        const key_def *k = key_at(i, &scratch);
+        if (!strcmp(k->section, section) && !strcmp(k->name, name))
+            return k->kind == KEY_REAL || k->kind == KEY_ANGLE || k->kind == KEY_COUNT;
+    }
     return -1;
 }
 
 int gb_case_key_allowed(size_t index, const char **section, const char **name, char *allowed, size_t size)
 {
-    if (index >= KEY_TOTAL) return GB_EDOM;
-    const key_def *k = &keys[index];
+    if (index >= key_total()) return GB_EDOM;
+    key_def scratch;
+    const key_def *k = key_at(index, &scratch);
     *section = k->section;
     *name = k->name;
     char range[160];
@@ -238,7 +260,7 @@ int gb_case_key_allowed(size_t index, const char **section, const char **name, c
     return GB_OK;
 }
 
-size_t gb_case_key_count(void) { return KEY_TOTAL; }
+size_t gb_case_key_count(void) { return KEY_TOTAL + gb_dynamics_law_key_count(); }
 
 /* ---- the reader -------------------------------------------------------------------------------- */
 
@@ -394,30 +416,36 @@ static int set_value(reader *r, const key_def *k, size_t index, const char *valu
 static int handler(gb_ini_reader *ini, void *user, const char *section, const char *name, const char *value)
 {
     reader *r = &(reader){.ini = ini, .scene = user};
-    size_t index = KEY_TOTAL;
-    char allowed[512] = "";
+    const size_t total = key_total();
+    size_t index = total;
+    char allowed[640] = "";
     size_t used = 0;
-    for (size_t k = 0; k < KEY_TOTAL; k++) {
-        if (strcmp(keys[k].section, section)) continue;
-        if (!strcmp(keys[k].name, name)) index = k;
-        used += (size_t)snprintf(allowed + used, sizeof allowed - used, "%s%s", used ? ", " : "", keys[k].name);
+    key_def scratch, found;
+    for (size_t k = 0; k < total; k++) {
+        const key_def *key = key_at(k, &scratch);
+        if (strcmp(key->section, section)) continue;
+        if (!strcmp(key->name, name)) index = k, found = *key;
+        used += (size_t)snprintf(allowed + used, sizeof allowed - used, "%s%s", used ? ", " : "", key->name);
         if (used >= sizeof allowed) used = sizeof allowed - 1;
     }
-    if (index == KEY_TOTAL) return reader_fail(r, "[%s] %s = %s: unknown key (allowed in [%s]: %s)", section, name, value, section, allowed);
+    if (index == total) return reader_fail(r, "[%s] %s = %s: unknown key (allowed in [%s]: %s)", section, name, value, section, allowed);
     gb_case *c = r->scene;
     if (c->key_line[index])
         return reader_fail(r, "[%s] %s = %s: given twice (first at line %d; allowed: each key once)", section, name, value,
                            c->key_line[index]);
     c->key_line[index] = gb_ini_line(ini);
-    return set_value(r, &keys[index], index, value);
+    return set_value(r, &found, index, value);
 }
 
 /* ---- what no single key can say ---------------------------------------------------------------- */
 
 static int key_index(const char *section, const char *name)
 {
-    for (size_t k = 0; k < KEY_TOTAL; k++)
-        if (!strcmp(keys[k].section, section) && !strcmp(keys[k].name, name)) return (int)k;
+    key_def scratch;
+    for (size_t k = 0; k < key_total(); k++) {
+        const key_def *key = key_at(k, &scratch);
+        if (!strcmp(key->section, section) && !strcmp(key->name, name)) return (int)k;
+    }
     return -1;
 }
 
@@ -516,29 +544,33 @@ static int cross_check(const char *path, gb_case *c)
     /* The grid contact is piecewise constant in the attitude: the right-hand side jumps whenever the
      * lowest node changes, and an adaptive stepper's error control shrinks its step at every jump
      * (millions of steps a period). Such a pair has no useful result. */
-    if (c->integrate.method != GB_INTEGRATOR_RK4 && c->dynamics.contact != GB_CONTACT_MODEL_CONTINUOUS)
+    const gb_dynamics_law *law = gb_dynamics_law_of(c->dynamics.contact_law, INFINITY);
+    const int without_jumps = law->pushes_every_vertex && c->mesh[0]; /* a polyhedron pushed at every vertex */
+    if (c->integrate.method != GB_INTEGRATOR_RK4 && c->dynamics.contact != GB_CONTACT_MODEL_CONTINUOUS && !without_jumps)
         return cross_fail(path, c, "integrator", "method",
                           "= %s with [model] contact = %s: an adaptive stepper cannot cross the jumps of a grid "
                           "contact (its steps collapse at every node change) (allowed: rk4 with grid or fast-grid; "
-                          "any method with contact = continuous)",
+                          "any method with contact = continuous, or with a mesh body under a law that pushes every vertex)",
                           gb_integrate_name(c->integrate.method), gb_contact_model_name(c->dynamics.contact));
     if (c->dynamics.certificate != GB_CERTIFICATE_PER_VERTICAL && c->dynamics.contact != GB_CONTACT_MODEL_CONTINUOUS)
         return cross_fail(path, c, "model", "certificate",
                           "= %s with [model] contact = %s: only continuous contact is certified (allowed: "
                           "per-vertical with any contact; atlas with contact = continuous)",
                           gb_dynamics_certificate_name(c->dynamics.certificate), gb_contact_model_name(c->dynamics.contact));
-    /* the contact law's traits on a rough plane (a finite mu is judged below, naming its own key) */
-    const gb_dynamics_law *law = gb_dynamics_law_of(c->dynamics.contact_law, INFINITY);
+    /* the contact law's traits (whatever the plane's friction; a friction the law cannot take is judged below, naming
+     * its own key) */
+    const char *law_name = gb_dynamics_contact_law_name(c->dynamics.contact_law);
     if (law->impacts && c->dynamics.contact == GB_CONTACT_MODEL_CONTINUOUS && c->dynamics.variant != GB_VARIANT_ROLLING)
         return cross_fail(path, c, "model", "contact_law",
-                          "= unilateral with [model] contact = continuous, equation = %s: eq 44 makes and takes energy "
+                          "= %s with [model] contact = continuous, equation = %s: eq 44 makes and takes energy "
                           "where the contact moves on the surface, which the impacts' energy ledger cannot close (allowed: "
                           "held with any model; unilateral with equation = rolling, or with a grid model and either "
-                          "equation)", gb_dynamics_variant_name(c->dynamics.variant));
+                          "equation)", law_name, gb_dynamics_variant_name(c->dynamics.variant));
     if (law->several_events_per_step && !c->integrate.locate_switches)
         return cross_fail(path, c, "integrator", "locate_switches",
-                          "= no with [model] contact_law = unilateral: every impact is located inside its step (allowed: "
-                          "yes with contact_law = unilateral)");
+                          "= no with [model] contact_law = %s: every %s is located inside its step (allowed: "
+                          "yes with contact_law = %s)", law_name,
+                          law->impacts ? "impact" : "change of the lowest point", law_name);
     {
         const double *v = c->dynamics.velocity0;
         const char *key = !law->impacts && c->dynamics.restitution != 0.0                          ? "restitution"
@@ -547,17 +579,31 @@ static int cross_check(const char *path, gb_case *c)
                                                                                                    : NULL;
         if (key)
             return cross_fail(path, c, strcmp(key, "restitution") ? "initial" : "model", key,
-                              "with [model] contact_law = held: a held contact never leaves the plane and has no impacts "
-                              "(allowed: the default, 0, with contact_law = held; any value in range with unilateral)");
+                              "with [model] contact_law = %s: %s (allowed: the default, 0, with contact_law = %s; any "
+                              "value in range with unilateral)", law_name,
+                              law->translates ? "its impacts are its own forces, with no Newton's restitution"
+                                              : "a held contact never leaves the plane and has no impacts",
+                              law_name);
     }
-    if (!gb_dynamics_law_of(c->dynamics.contact_law, c->dynamics.friction))
+    const gb_dynamics_law *on_plane = gb_dynamics_law_of(c->dynamics.contact_law, c->dynamics.friction);
+    if (!on_plane || (on_plane->needs_friction && !isfinite(c->dynamics.friction)))
         return cross_fail(path, c, "model", "friction",
-                          "= %g with [model] contact_law = held: a held contact never slips (allowed: rough with either "
-                          "law; a finite mu with contact_law = unilateral)", c->dynamics.friction);
+                          "= %g with [model] contact_law = %s: %s (allowed: rough with either held or unilateral; a "
+                          "finite mu with contact_law = unilateral)", c->dynamics.friction, law_name,
+                          law->needs_friction ? "its friction is Coulomb's, regularised, and needs a finite mu"
+                                              : "a held contact never slips");
     if (c->write_impacts && !law->impacts)
         return cross_fail(path, c, "output", "impacts",
-                          "= yes with [model] contact_law = held: a held contact has no impacts (allowed: yes with "
-                          "contact_law = unilateral)");
+                          "= yes with [model] contact_law = %s: a %s contact has no impacts (allowed: yes with "
+                          "contact_law = unilateral)", law_name, law_name);
+    /* a law's own keys need that law */
+    for (size_t k = KEY_TOTAL; k < key_total(); k++) {
+        const gb_dynamics_law *owner;
+        const gb_dynamics_law_key *key = gb_dynamics_law_key_at(k - KEY_TOTAL, &owner);
+        if ((c->key_line[k] || c->key_origin[k]) && owner->id != c->dynamics.contact_law)
+            return cross_fail(path, c, "model", key->name, "needs [model] contact_law = %s (allowed: with that law only)",
+                              gb_dynamics_contact_law_name(owner->id));
+    }
     if (c->strobe || c->spectrum || c->lyapunov) {
         if (spp % c->integrate.sample_every)
             return cross_fail(path, c, "output", "sample_every",
@@ -661,7 +707,8 @@ static int apply_override(gb_case *scene, const gb_case_override *o)
         return gb_error_set(GB_EINVAL, "%s: [%s] %s: unknown scene key (allowed: the keys of cases/README.md)", o->origin,
                             o->section, o->key);
     reader r = {.scene = scene};
-    if (!set_value(&r, &keys[index], (size_t)index, o->value)) return gb_error_set(GB_EINVAL, "%s: %s", o->origin, r.message);
+    key_def scratch;
+    if (!set_value(&r, key_at((size_t)index, &scratch), (size_t)index, o->value)) return gb_error_set(GB_EINVAL, "%s: %s", o->origin, r.message);
     scene->key_line[index] = 0; /* no line of the scene file */
     scene->key_origin[index] = o->origin;
     return GB_OK;

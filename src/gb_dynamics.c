@@ -50,6 +50,7 @@ gb_dynamics_def gb_dynamics_default_def(void)
         .certify = gb_certify_default_def(),
         .friction = INFINITY,
         .atlas = gb_atlas_default_def(),
+        .law_coefficients = {NAN, NAN, NAN, NAN},
     };
     /* Leaves of 16 nodes were the fastest of 8–32 for the patch tree's searches (make bench); the leaf
      * size changes no result, only the work. */
@@ -155,13 +156,14 @@ int gb_dyn_field(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], double
     if (!(isfinite(zb[0]) && isfinite(zb[1]) && isfinite(zb[2]))) return gb_dyn_diverged(t); /* a quaternion overflowed */
     double geff, geff_rate, zeta = NAN;
     gb_forcing_geff_with_rate(&d->def.forcing, t, &geff, &geff_rate);
-    /* under a law that slips the horizontal translation is integrated: the mode gives its rates */
-    const int translating = d->law->slips;
-    gb_dyn_rates rates = {{0.0, 0.0, 0.0}, 0.0};
+    /* under a law with a free centroid the translation is integrated: the mode gives its rates */
+    const int translating = d->law->free_centroid;
+    gb_dyn_rates rates = {{0.0, 0.0, 0.0}, 0.0, 0.0};
     const int status = mode->field(d, t, y, omega, zb, geff, dydt + GB_STATE_OMEGA, &zeta, translating ? &rates : NULL);
     if (status) return status;
     for (int k = GB_STATE_ZETA; k < GB_STATE_SIZE; k++) dydt[k] = 0.0; /* written by the mode at each accepted step */
     if (translating) {
+        dydt[GB_STATE_ZETA] = rates.zeta_rate;
         for (int k = 0; k < 3; k++) dydt[GB_STATE_VELOCITY + k] = rates.acc[k];
         dydt[GB_STATE_POSITION] = y[GB_STATE_VELOCITY], dydt[GB_STATE_POSITION + 1] = y[GB_STATE_VELOCITY + 1];
         dydt[GB_STATE_FRICTION] = rates.friction_power;
@@ -225,7 +227,7 @@ void gb_dyn_observe_free_energy(const gb_dynamics *d, const double y[GB_STATE_SI
     o->work = y[GB_STATE_WORK];
     o->friction_work = y[GB_STATE_FRICTION];
     o->residual = o->energy - d->energy0 - o->work + d->impact_loss;
-    if (d->law->slips) o->residual -= o->friction_work; /* the ledger's L: the impacts' and friction's */
+    if (d->law->free_centroid) o->residual -= o->friction_work; /* the ledger's L: the impacts' and friction's */
 }
 
 /* ---------------------------------------------------------------- 3 x 3 algebra */

@@ -103,15 +103,33 @@ GB_API int gb_dynamics_certificate_parse(const char *name, gb_dynamics_certifica
  * over 1e-6 body lengths into the plane), and a change of contact the step's event location missed. A chatter of impacts between P and Q (the lifted
  * point falling back ever sooner, as a bouncing ball's) is ended by def.settle_time, and so is a bounce
  * sequence (a rebound that would return within it is plastic). */
-typedef enum gb_contact_law { GB_CONTACT_LAW_HELD = 0, GB_CONTACT_LAW_UNILATERAL = 1 } gb_contact_law;
+typedef enum gb_contact_law {
+    GB_CONTACT_LAW_HELD = 0,
+    GB_CONTACT_LAW_UNILATERAL = 1
+} gb_contact_law;
 
 GB_API const char *gb_dynamics_contact_law_name(gb_contact_law law);
 GB_API int gb_dynamics_contact_law_parse(const char *name, gb_contact_law *law);
 /* A contact law as the questions every module asks of it, never its name: the held law (the paper's), the
  * unilateral law on a rough plane, and the unilateral law with Coulomb's friction (a plane of finite μ) are three
  * rows of one table (gb_dynamics_laws.c, the one file that tells one law from another). */
+/* A coefficient of a law of its own, set by a [model] key of the scene (gb_case reads the laws' keys from here): its
+ * key, its slot in gb_dynamics_def.law_coefficients, its range (min excluded when open_min), its default and its
+ * meaning in words with units. */
+typedef struct gb_dynamics_law_key {
+    const char *name;
+    int slot;
+    double min, max;
+    int open_min;
+    double fallback;
+    const char *meaning;
+} gb_dynamics_law_key;
+
+struct gb_dyn_mode; /* a law's own mode (gb_dynamics_internal.h) */
+
 typedef struct gb_dynamics_law {
     const char *name;
+    gb_contact_law id;           /* the scene's contact_law that names it */
     int impacts;                 /* a change of contact is an impact (ω jumps): the body rolls on two points, rests on
                                   * three, coincident minima are one contact, and the energy ledger books what impacts
                                   * take (L); the held law keeps ω and one contact at all times */
@@ -121,7 +139,24 @@ typedef struct gb_dynamics_law {
     int several_events_per_step; /* every change of contact is located, and several may follow inside one step */
     int slips;                   /* Coulomb's friction: sliding modes, the centroid's horizontal motion, friction's work
                                   * in the ledger; a rough plane never slips */
+    int free_centroid;           /* the centroid's translation is integrated (its velocity and horizontal position are
+                                  * state, and the work of the contact's dissipative forces is booked in the ledger):
+                                  * a law that slips, or one whose contact forces follow from the state */
+    int needs_friction;          /* the law needs a finite μ (its friction is regularised, never rough) */
+    int pushes_every_vertex;     /* a polyhedron is pushed at each vertex below the plane, found by no search: its vector
+                                  * field has no jumps where the lowest vertex changes, and an adaptive stepper takes it */
+    const struct gb_dyn_mode *mode; /* a law that is one smooth mode of its own (the run stays in it: no events, no
+                                     * jumps); NULL: the hybrid system of modes, events and impacts */
+    const gb_dynamics_law_key *keys; /* its own coefficients, as [model] keys (NULL: none) */
+    size_t key_count;
 } gb_dynamics_law;
+
+/* The coefficients' slots in gb_dynamics_def.law_coefficients (a law names its own by its keys). */
+#define GB_DYNAMICS_LAW_COEFFICIENTS 4
+
+/* The keys of every law, in one list (gb_case's scene table reads them): the count, and key i with its law. */
+GB_API size_t gb_dynamics_law_key_count(void);
+GB_API const gb_dynamics_law_key *gb_dynamics_law_key_at(size_t i, const gb_dynamics_law **law);
 
 /* The law of `contact_law` on a plane of `friction` (INFINITY: rough), or NULL for none (the held law on a
  * plane of finite friction: a held contact never slips). */
@@ -258,6 +293,9 @@ typedef struct gb_dynamics_def {
                                     * plane at the horizontal part (the vertical follows the attitude), sliding
                                     * where that differs from rolling */
     gb_atlas_def atlas;            /* certificate = atlas: its cells (its height_tol is certify's) */
+    double law_coefficients[GB_DYNAMICS_LAW_COEFFICIENTS]; /* a law's own coefficients by its keys' slots (NAN, the
+                                                            * default: the key's fallback); a law with no keys
+                                                            * ignores them */
 } gb_dynamics_def;
 
 /* Table 1 with the paper's model: variant paper, the paper's 90 × 180 grid by the exact fast search

@@ -62,7 +62,7 @@ int gb_dynamics_create_in(const gb_surface *surface, const gb_dynamics_def *def,
     d->def = *def;
     d->refine = gb_contact_refine_default_def();
     d->law = gb_dynamics_law_of(def->contact_law, def->friction);
-    d->modes = modes;
+    d->modes = d->law->mode ? d->law->mode : modes; /* a law of its own is one mode, index 0 */
     d->settle_time = def->settle_time;
     d->context = context;
     status = gb_dyn_body_create(d);
@@ -195,7 +195,10 @@ int gb_dynamics_init_state(gb_dynamics *d, double t0, const double R0[9], const 
     for (int k = GB_STATE_POSITION; k < GB_STATE_SIZE; k++) y[k] = 0.0;
     const double *v0 = d->def.velocity0;
     const int moving = v0[0] != 0.0 || v0[1] != 0.0 || v0[2] != 0.0;
-    if (d->law->slips && d->def.height0 == 0.0 && moving) {
+    if (gb_dyn_current(d)->start) { /* a law of its own starts its mode */
+        status = gb_dyn_current(d)->start(d, t0, y);
+        if (status) return status;
+    } else if (d->law->slips && d->def.height0 == 0.0 && moving) {
         /* on the plane at v0 (its horizontal part; the vertical one is the attitude's): the contact point
          * slips where that differs from rolling */
         gb_dyn_translate_on_plane(d, t0, y);

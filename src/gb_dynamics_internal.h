@@ -63,7 +63,9 @@ typedef enum gb_dyn_event {
  * friction): the centroid's acceleration relative to the plane (inertial axes) and the power of friction. */
 typedef struct gb_dyn_rates {
     double acc[3];
-    double friction_power;
+    double friction_power; /* the power of the contact's dissipative forces (<= 0) */
+    double zeta_rate;      /* ζ̇ where the mode integrates the height too (a law of its own); else 0, the mode
+                            * writing ζ at each accepted step */
 } gb_dyn_rates;
 
 /* What a mode is: its vector field and what ends it. The state's attitude and ω are integrated; `turns`
@@ -90,6 +92,9 @@ typedef struct gb_dyn_mode {
     int (*observe)(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], gb_dynamics_observables *o);
     /* the translation the mode fixes, written into y at an accepted state (time t) */
     void (*translate)(const gb_dynamics *d, double t, double y[GB_STATE_SIZE]);
+    /* a law's own mode: its start at t0 from the definition's height0 and velocity0, the contact found and y's
+     * attitude and ω set (NULL: the hybrid system's start in gb_dynamics_init_state) */
+    int (*start)(gb_dynamics *d, double t0, double y[GB_STATE_SIZE]);
 } gb_dyn_mode;
 
 /* The modes' own functions (gb_dynamics_hybrid.c puts them in its table with their events and jumps). */
@@ -118,6 +123,8 @@ void gb_dyn_flight_translate(const gb_dynamics *d, double t, double y[GB_STATE_S
  * one law from another. */
 /* The definition's law against its contact model and equation: GB_OK, or GB_EINVAL saying what is allowed. */
 int gb_dyn_law_check(const gb_dynamics_def *def);
+/* The run's law coefficient in `slot`: the definition's, or its key's fallback where it is NAN. */
+double gb_dyn_coefficient(const gb_dynamics *d, int slot);
 
 /* ---- the state ----------------------------------------------------------------------------------- */
 

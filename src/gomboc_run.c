@@ -151,8 +151,13 @@ static cJSON *scene_json(const gb_case *c, const char *path)
         cJSON_AddStringToObject(o, "nodes", gb_contact_nodes_name(d->grid.nodes));
     }
     cli_json_add(o, "damping", d->damping);
-    if (scene_law(c)->slips) cli_json_add(o, "friction", d->friction);
+    if (isfinite(d->friction)) cli_json_add(o, "friction", d->friction);
     else cJSON_AddStringToObject(o, "friction", "rough");
+    for (size_t k = 0; k < scene_law(c)->key_count; k++) { /* the law's own coefficients, as its keys name them */
+        const gb_dynamics_law_key *key = &scene_law(c)->keys[k];
+        const double value = d->law_coefficients[key->slot];
+        cli_json_add(o, key->name, isnan(value) ? key->fallback : value);
+    }
     cJSON_AddStringToObject(o, "integrator", gb_integrate_name(c->integrate.method));
     cli_json_add(o, "steps_per_period", (double)c->integrate.steps_per_period);
     cli_json_add(o, "periods", c->integrate.periods);

@@ -165,7 +165,7 @@ static const bad_row rows[] = {
     {RUN, "[model]\nfriction = -0.2\n", 0, 2, {"case.ini:2: [model] friction", "out of range", "rough, or 0 < friction <= 1000"}},
     {RUN, "[model]\nfriction = smooth\n", 0, 2, {"case.ini:2: [model] friction", "smooth", "rough, or 0 < friction <= 1000"}},
     {RUN, "[model]\nfriction = 0.3\n", 0, 2, {"case.ini:2: [model] friction", "contact_law = held: a held contact never slips",
-                                              "allowed: rough with either law; a finite mu with contact_law = unilateral"}},
+                                              "allowed: rough with either held or unilateral; a finite mu with contact_law = unilateral"}},
     {RUN, "[model]\ncontact = continuous\nequation = rolling\ncontact_law = unilateral\nrestitution = 1.5\n[integrator]\nlocate_switches = yes\n", 0, 2, {"case.ini:5: [model] restitution", "out of range", "0 <= restitution <= 1"}},
     {RUN, "[model]\nrestitution = -0.1\n", 0, 2, {"case.ini:2: [model] restitution", "out of range", "0 <= restitution <= 1"}},
     {RUN, "[model]\nrestitution = nan\n", 0, 2, {"case.ini:2: [model] restitution", "", "0 <= restitution <= 1"}},
