@@ -8,14 +8,15 @@
 #include <stdlib.h>
 #include <string.h>
 
-static const char *const names[] = {"rk4", "rk8pd", "rkf45", "rk4imp"};
+static const char *const names[] = {"rk4", "rk8pd", "rkf45", "rk4imp", "bsimp", "msbdf"};
+enum { METHODS = sizeof names / sizeof names[0] };
 
-const char *gb_integrate_name(gb_integrator m) { return (unsigned)m < 4 ? names[m] : NULL; }
+const char *gb_integrate_name(gb_integrator m) { return (unsigned)m < METHODS ? names[m] : NULL; }
 
 int gb_integrate_parse(const char *name, gb_integrator *method)
 {
     int k = 0;
-    const int status = gb_error_parse_name(name, names, 4, "integrator", &k);
+    const int status = gb_error_parse_name(name, names, METHODS, "integrator", &k);
     if (!status) *method = (gb_integrator)k;
     return status;
 }
@@ -280,7 +281,16 @@ static int gsl_substep(void *context, gb_dynamics *d, double t, double h, const 
     memcpy(out, y, GB_STATE_SIZE * sizeof *out);
     gsl_odeiv2_step_reset(s->driver->s);
     if (h == 0.0) return GB_OK;
-    const int gsl_status = gsl_odeiv2_step_apply(s->driver->s, t, h, out, err, NULL, NULL, &s->system);
+    int gsl_status;
+    if (s->def.method == GB_INTEGRATOR_MSBDF) {
+        /* a multistep method has no one step from a fresh start: the driver takes [t, t + h] under its control */
+        double tt = t;
+        gsl_odeiv2_driver_reset(s->driver);
+        gsl_odeiv2_driver_reset_hstart(s->driver, fmin(h, s->dt));
+        gsl_status = gsl_odeiv2_driver_apply(s->driver, &tt, t + h, out);
+    } else {
+        gsl_status = gsl_odeiv2_step_apply(s->driver->s, t, h, out, err, NULL, NULL, &s->system);
+    }
     if (gsl_status != GSL_SUCCESS)
         return s->gsl->status ? s->gsl->status
                               : gb_error_set(GB_ENUMERIC, "GSL odeiv2 (%s) failed locating a switch at t = %.17g: %s",
@@ -323,6 +333,8 @@ static const gsl_odeiv2_step_type *stepper_type(gb_integrator method)
     case GB_INTEGRATOR_RK8PD: return gsl_odeiv2_step_rk8pd;
     case GB_INTEGRATOR_RKF45: return gsl_odeiv2_step_rkf45;
     case GB_INTEGRATOR_RK4IMP: return gsl_odeiv2_step_rk4imp;
+    case GB_INTEGRATOR_BSIMP: return gsl_odeiv2_step_bsimp;
+    case GB_INTEGRATOR_MSBDF: return gsl_odeiv2_step_msbdf;
     default: return NULL;
     }
 }
@@ -342,6 +354,7 @@ static int advance_adaptive(gb_integrate_session *s, size_t steps, double y[], g
             const double before = s->t;
             double y_before[GB_STATE_SIZE];
             memcpy(y_before, y, sizeof y_before);
+            int located = 0;
             const int gsl_status = gsl_odeiv2_evolve_apply(evolve, control, step, &s->system, &s->t, target, &s->dt, y);
             if (gsl_status != GSL_SUCCESS) {
                 status = s->gsl->status ? s->gsl->status
@@ -369,14 +382,19 @@ static int advance_adaptive(gb_integrate_session *s, size_t steps, double y[], g
                 status = gb_dynamics_switch_pending(d, s->t, y, &other, &found);
                 if (!status && found) status = located_step(d, before, s->t - before, y_before, &other, gsl_substep, s, y, &s->stats);
                 if (status) break;
+                located = found;
             }
             double drift;
             status = gb_dynamics_accept(d, s->t, y, &drift);
             note_drift(&s->stats, drift);
             note_rotation(&s->stats, y, s->t - before, 0);
-            /* y was renormalised and the contact may have changed: the stepper must not reuse derivatives. */
-            gsl_odeiv2_evolve_reset(evolve);
-            gsl_odeiv2_step_reset(step);
+            /* y was renormalised and the contact may have changed: the stepper must not reuse derivatives; the
+             * multistep BDF keeps its history (a renormalisation is rounding's size to it, and the vector field
+             * reads q/|q|) unless an event was located in the step. */
+            if (s->def.method != GB_INTEGRATOR_MSBDF || located) {
+                gsl_odeiv2_evolve_reset(evolve);
+                gsl_odeiv2_step_reset(step);
+            }
         }
         s->stats.failed_steps = evolve->failed_steps;
         if (!status && (s->n + 1) % s->def.sample_every == 0 && sample && sample(context, s->t, y)) {

@@ -5,6 +5,10 @@
  *  GB_INTEGRATOR_RK8PD   GSL odeiv2 Prince–Dormand 8(9), adaptive
  *  GB_INTEGRATOR_RKF45   GSL odeiv2 Runge–Kutta–Fehlberg 4(5), adaptive
  *  GB_INTEGRATOR_RK4IMP  GSL odeiv2 implicit Gauss 4th order, adaptive, Jacobian by central differences
+ *  GB_INTEGRATOR_BSIMP   GSL odeiv2 implicit Bulirsch–Stoer (Bader–Deuflhard), adaptive, the same Jacobian
+ *  GB_INTEGRATOR_MSBDF   GSL odeiv2 multistep BDF of variable order 1–5, adaptive, the same Jacobian; its
+ *                        history is kept from step to step (the other steppers restart at each accepted
+ *                        step), and restarted at a located event
  *
  * After every accepted step gb_dynamics_accept renormalises the quaternion and updates the contact.
  * With locate_switches (continuous contact, any method) a branch switch found at the end of a step is
@@ -28,7 +32,9 @@ typedef enum gb_integrator {
     GB_INTEGRATOR_RK4 = 0,
     GB_INTEGRATOR_RK8PD = 1,
     GB_INTEGRATOR_RKF45 = 2,
-    GB_INTEGRATOR_RK4IMP = 3
+    GB_INTEGRATOR_RK4IMP = 3,
+    GB_INTEGRATOR_BSIMP = 4,
+    GB_INTEGRATOR_MSBDF = 5
 } gb_integrator;
 
 GB_API const char *gb_integrate_name(gb_integrator method);
