@@ -75,7 +75,7 @@ run: deps
 RUN_SCENES    := table1-gomboc-I table1-gomboc-II
 # Bodies of one's own (cases/bodies/): a mesh's polyhedron rocking, tumbling and falling flat; `make run` runs
 # them too, and the shape study covers the body of every scene it runs.
-BODY_SCENES   := bodies/housner-block bodies/die-drop bodies/coin
+BODY_SCENES   := bodies/housner-block bodies/die-drop bodies/coin bodies/housner-block-compliant
 # Each Table 1 body under the unilateral law, seen in motion: `make run` runs these and draws a short
 # animation of each (reports/animate.py; an MP4 through ffmpeg where it is installed, else a GIF).
 ANIMATED      := table1-gomboc-I-unilateral table1-gomboc-II-unilateral

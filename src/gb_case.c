@@ -136,7 +136,7 @@ static const key_def keys[] = {
     {"model", "grid", KEY_GRID, 0, 0, 0, NULL, 0, NULL},
     NAME("model", "nodes", parse_nodes),
     REAL("model", "damping", 0.0, 1000.0, 0, "[N m s]", dynamics.damping),
-    REAL("model", "friction", 0.0, 1000.0, OPEN_MIN | REAL_ROUGH, "(the plane's Coulomb mu; needs contact_law = unilateral)",
+    REAL("model", "friction", 0.0, 1000.0, OPEN_MIN | REAL_ROUGH, "(the plane's Coulomb mu; needs contact_law = unilateral or compliant)",
          dynamics.friction),
     REAL("model", "restitution", 0.0, GB_IMPACT_RESTITUTION_MAX, 0, "(Newton's e; needs contact_law = unilateral)", dynamics.restitution),
     NAME("integrator", "method", parse_method),
@@ -550,7 +550,7 @@ static int cross_check(const char *path, gb_case *c)
         return cross_fail(path, c, "integrator", "method",
                           "= %s with [model] contact = %s: an adaptive stepper cannot cross the jumps of a grid "
                           "contact (its steps collapse at every node change) (allowed: rk4 with grid or fast-grid; "
-                          "any method with contact = continuous, or with a mesh body under a law that pushes every vertex)",
+                          "any method with contact = continuous, or with a mesh body under contact_law = compliant)",
                           gb_integrate_name(c->integrate.method), gb_contact_model_name(c->dynamics.contact));
     if (c->dynamics.certificate != GB_CERTIFICATE_PER_VERTICAL && c->dynamics.contact != GB_CONTACT_MODEL_CONTINUOUS)
         return cross_fail(path, c, "model", "certificate",
@@ -565,7 +565,7 @@ static int cross_check(const char *path, gb_case *c)
                           "= %s with [model] contact = continuous, equation = %s: eq 44 makes and takes energy "
                           "where the contact moves on the surface, which the impacts' energy ledger cannot close (allowed: "
                           "held with any model; unilateral with equation = rolling, or with a grid model and either "
-                          "equation)", law_name, gb_dynamics_variant_name(c->dynamics.variant));
+                          "equation; compliant with any model)", law_name, gb_dynamics_variant_name(c->dynamics.variant));
     if (law->several_events_per_step && !c->integrate.locate_switches)
         return cross_fail(path, c, "integrator", "locate_switches",
                           "= no with [model] contact_law = %s: every %s is located inside its step (allowed: "
@@ -589,7 +589,7 @@ static int cross_check(const char *path, gb_case *c)
     if (!on_plane || (on_plane->needs_friction && !isfinite(c->dynamics.friction)))
         return cross_fail(path, c, "model", "friction",
                           "= %g with [model] contact_law = %s: %s (allowed: rough with either held or unilateral; a "
-                          "finite mu with contact_law = unilateral)", c->dynamics.friction, law_name,
+                          "finite mu with contact_law = unilateral or compliant)", c->dynamics.friction, law_name,
                           law->needs_friction ? "its friction is Coulomb's, regularised, and needs a finite mu"
                                               : "a held contact never slips");
     if (c->write_impacts && !law->impacts)

@@ -105,7 +105,8 @@ GB_API int gb_dynamics_certificate_parse(const char *name, gb_dynamics_certifica
  * sequence (a rebound that would return within it is plastic). */
 typedef enum gb_contact_law {
     GB_CONTACT_LAW_HELD = 0,
-    GB_CONTACT_LAW_UNILATERAL = 1
+    GB_CONTACT_LAW_UNILATERAL = 1,
+    GB_CONTACT_LAW_COMPLIANT = 2 /* the plane pushes where the body dips into it (gb_dynamics_compliant.c) */
 } gb_contact_law;
 
 GB_API const char *gb_dynamics_contact_law_name(gb_contact_law law);

@@ -121,6 +121,9 @@ void gb_dyn_flight_translate(const gb_dynamics *d, double t, double y[GB_STATE_S
 
 /* The laws are rows of gb_dynamics_law (gb_dynamics.h): the rest of the library reads their traits and never tells
  * one law from another. */
+/* The compliant law's row and its one mode (gb_dynamics_compliant.c). */
+extern const gb_dynamics_law gb_dyn_compliant_law;
+extern const gb_dyn_mode gb_dyn_compliant_mode;
 /* The definition's law against its contact model and equation: GB_OK, or GB_EINVAL saying what is allowed. */
 int gb_dyn_law_check(const gb_dynamics_def *def);
 /* The run's law coefficient in `slot`: the definition's, or its key's fallback where it is NAN. */

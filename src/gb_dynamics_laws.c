@@ -9,17 +9,19 @@
 
 /* The scene's contact_law names; a unilateral contact on a plane of finite friction is Coulomb's law, a row of its
  * own. */
-static const char *const law_names[] = {[GB_CONTACT_LAW_HELD] = "held", [GB_CONTACT_LAW_UNILATERAL] = "unilateral"};
+static const char *const law_names[] = {[GB_CONTACT_LAW_HELD] = "held", [GB_CONTACT_LAW_UNILATERAL] = "unilateral",
+                                        [GB_CONTACT_LAW_COMPLIANT] = "compliant"};
 enum { LAW_COUNT = sizeof law_names / sizeof law_names[0] };
 
 /* The traits in gb_dynamics_law's order: impacts, translates, pivots, several events per step, slips, free centroid,
- * needs friction, pushes every vertex; then the law's own mode and keys (none: the hybrid system's). */
+ * needs friction, pushes every vertex; then the law's own mode and keys (none: the hybrid system's). The compliant
+ * law's row is its own file's (gb_dynamics_compliant.c). */
 static const gb_dynamics_law held = {"held", GB_CONTACT_LAW_HELD, 0, 0, 0, 0, 0, 0, 0, 0, NULL, NULL, 0};
 static const gb_dynamics_law unilateral_rough = {"unilateral", GB_CONTACT_LAW_UNILATERAL, 1, 1, 1, 1, 0, 0, 0, 0, NULL, NULL, 0};
 static const gb_dynamics_law unilateral_coulomb = {"unilateral with Coulomb friction", GB_CONTACT_LAW_UNILATERAL, 1, 1, 1, 1, 1, 1,
                                                    0, 0, NULL, NULL, 0};
 /* Every law with keys of its own, in the order their keys are listed (NULL ends the list). */
-static const gb_dynamics_law *const keyed[] = {NULL};
+static const gb_dynamics_law *const keyed[] = {&gb_dyn_compliant_law, NULL};
 
 const char *gb_dynamics_contact_law_name(gb_contact_law l) { return (unsigned)l < LAW_COUNT ? law_names[l] : NULL; }
 
@@ -36,6 +38,7 @@ const gb_dynamics_law *gb_dynamics_law_of(gb_contact_law contact_law, double fri
     const int rough = !isfinite(friction);
     if (contact_law == GB_CONTACT_LAW_HELD) return rough ? &held : NULL; /* a held contact never slips */
     if (contact_law == GB_CONTACT_LAW_UNILATERAL) return rough ? &unilateral_rough : &unilateral_coulomb;
+    if (contact_law == GB_CONTACT_LAW_COMPLIANT) return &gb_dyn_compliant_law; /* needs a finite μ (gb_dyn_law_check) */
     return NULL;
 }
 
