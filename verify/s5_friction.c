@@ -625,15 +625,16 @@ static int painleve_start(double mu, const double R0[9], const double v[3], int 
     return status;
 }
 
-static void test_painleve(void)
+/* The closed form: one point sliding along s (horizontal, unit) with ω = 0 takes the force N (z − μ s), and its
+ * normal acceleration is −g + N K(μ), K(μ) = 1/m + (r × z)·I⁻¹(r × z) − μ (r × z)·I⁻¹(r × s): the normal force
+ * N = g / K grows without bound as μ rises to μ* = (1/m + (r × z)·I⁻¹(r × z)) / ((r × z)·I⁻¹(r × s)), and beyond
+ * it no N ≥ 0 keeps the point on the plane (or two do): Painlevé's paradox. s is chosen to make the last term
+ * largest: the horizontal part of (I⁻¹(r × z)) × r. The attitude R0: a tilt of 0.7 rad about x, where the normal's
+ * line passes far from the centroid; v the launch, 0.5 m/s along s (inertial axes); d1, d2 the two terms. */
+int verify_painleve_launch(double R0[9], double *mu_star, double *d1, double *d2, double v[3])
 {
-    /* The closed form: one point sliding along s (horizontal, unit) with ω = 0 takes the force N (z − μ s),
-     * and its normal acceleration is −g + N K(μ), K(μ) = 1/m + (r × z)·I⁻¹(r × z) − μ (r × z)·I⁻¹(r × s): the
-     * normal force N = g / K grows without bound as μ rises to μ* = (1/m + (r × z)·I⁻¹(r × z)) / ((r × z)·I⁻¹(r × s)),
-     * and beyond it no N ≥ 0 keeps the point on the plane (or two do): Painlevé's paradox. s is chosen to make
-     * the last term largest: the horizontal part of (I⁻¹(r × z)) × r. The attitude: a tilt of 0.7 rad about
-     * x, where the normal's line passes far from the centroid. */
-    const double a = 0.7, R0[9] = {1, 0, 0, 0, cos(a), -sin(a), 0, sin(a), cos(a)}, still[3] = {0, 0, 0};
+    const double a = 0.7, R[9] = {1, 0, 0, 0, cos(a), -sin(a), 0, sin(a), cos(a)}, still[3] = {0, 0, 0};
+    memcpy(R0, R, sizeof R);
     gb_dynamics_observables o0;
     int status = painleve_start(INFINITY, R0, still, 0, &o0);
     gb_surface body;
@@ -641,7 +642,9 @@ static void test_painleve(void)
     gb_massprops_def mdef = gb_massprops_default_def();
     if (!status) status = gb_surface_init(&body, "I", 0.12);
     if (!status) status = gb_massprops_compute(&body, &mdef, &mp);
-    double mu_star = NAN, s[3] = {0, 0, 0}, v[3] = {0, 0, 0}, d1 = NAN, d2 = NAN;
+    double s[3] = {0, 0, 0};
+    *mu_star = *d1 = *d2 = NAN;
+    for (int i = 0; i < 3; i++) v[i] = 0.0;
     if (!status) {
         gsl_matrix_view I = gsl_matrix_view_array(&mp.inertia[0][0], 3, 3);
         double inv[9];
@@ -662,11 +665,18 @@ static void test_painleve(void)
         for (int i = 0; i < 3; i++) s[i] = w[i] - wz * z[i];
         const double size = norm(s);
         for (int i = 0; i < 3; i++) s[i] /= size;
-        d1 = 1.0 / mp.mass + dot(rz, u);
-        d2 = dot(s, w); /* (r × z)·I⁻¹(r × s) = s·((I⁻¹(r × z)) × r) */
-        mu_star = d1 / d2;
+        *d1 = 1.0 / mp.mass + dot(rz, u);
+        *d2 = dot(s, w); /* (r × z)·I⁻¹(r × s) = s·((I⁻¹(r × z)) × r) */
+        *mu_star = *d1 / *d2;
         for (int i = 0; i < 3; i++) v[i] = 0.5 * (R0[3 * i] * s[0] + R0[3 * i + 1] * s[1] + R0[3 * i + 2] * s[2]);
     }
+    return status;
+}
+
+static void test_painleve(void)
+{
+    double R0[9], mu_star, d1, d2, v[3];
+    int status = verify_painleve_launch(R0, &mu_star, &d1, &d2, v);
     /* below μ*: the run's normal force is the closed form's, and the slide runs on */
     const double below[3] = {0.25, 0.5, 0.9};
     double worst = 0.0;

@@ -19,6 +19,7 @@ int verify_register_s5_dynamics(void);
 int verify_register_s5_impact(void);
 int verify_register_s5_flight(void);
 int verify_register_s5_friction(void);
+int verify_register_s5_compliant(void);
 int verify_register_s6_chaos(void);
 int verify_register_s6_diagnostics(void);
 int verify_register_s7_melnikov(void);
@@ -28,6 +29,11 @@ int verify_register_command(void);
 int verify_register_bad_input(void);
 int verify_register_bad_input_bodies(void);
 int verify_register_bad_input_processes(void);
+
+/* Painlevé's launch of s5_friction.c (Gömböc I, β = 0.12, tilted 0.7 rad about x, ω = 0): the attitude R0, the
+ * friction μ* beyond which the rigid law has no consistent normal force, the closed form's two terms (N = g / (d1 −
+ * μ d2)) and the launch velocity (0.5 m/s, inertial axes). gb_ status. */
+int verify_painleve_launch(double R0[9], double *mu_star, double *d1, double *d2, double v[3]);
 
 /* Register `tests` (NULL-terminated) as one suite whose every test starts the row timer. */
 typedef struct verify_test {
