@@ -74,6 +74,16 @@ void gb_dyn_set_mode(gb_dynamics *d, gb_dyn_mode_id mode, double t)
 const gb_dynamics_def *gb_dynamics_get_def(const gb_dynamics *d) { return &d->def; }
 
 const gb_dynamics_law *gb_dynamics_get_law(const gb_dynamics *d) { return d->law; }
+
+double gb_dyn_coefficient(const gb_dynamics *d, int slot)
+{
+    const double value = d->def.law_coefficients[slot];
+    if (!isnan(value)) return value;
+    for (size_t k = 0; k < d->law->key_count; k++)
+        if (d->law->keys[k].slot == slot) return d->law->keys[k].fallback;
+    return NAN;
+}
+
 double gb_dynamics_mean_radius(const gb_dynamics *d) { return d->mean_radius; }
 
 void gb_dynamics_use_step(gb_dynamics *d, double h)

@@ -156,16 +156,47 @@ static int compliant_accept(gb_dynamics *d, double t, double y[GB_STATE_SIZE])
 
 /* A polyhedron's vertices are pushed by no search: no events. A smooth body's lowest point changes where another
  * minimum of height passes below it (a non-convex body's): that change is an event, located (locate_switches) where
- * the two tie so that the force moves to the new point at equal depth (the elastic energy continuous), and made as
- * the held law makes it (gb_dyn_one_point_gap, _event, _jump: the contact moves, the state is kept). */
+ * the two tie so that the force moves to the new point at equal depth (the elastic energy continuous); the contact
+ * moves there and the state is kept. */
 static int compliant_pending(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], gb_contact_point *other, int *found)
 {
     *found = 0;
     if ((gb_surface_is_polyhedron(&d->surface) && d->grid) || d->def.contact != GB_CONTACT_MODEL_CONTINUOUS) return GB_OK;
     gb_contact_point continued;
-    const int status = gb_dyn_competitor(d, t, y, &continued, other, found);
-    if (!status && *found) d->event = GB_DYN_EVENT_SWITCH;
+    return gb_dyn_competitor(d, t, y, &continued, other, found);
+}
+
+/* The lowest point's height less the other minimum's, both continued to y: > 0 once the other is lower. */
+static int compliant_gap(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const gb_contact_point *other,
+                         double *gap, gb_contact_point *other_here)
+{
+    (void)t;
+    double zb[3];
+    gb_dyn_vertical(y, zb);
+    gb_contact_point here;
+    int status = gb_dyn_point_at(d, zb, &d->contact, &here);
+    if (!status) status = gb_dyn_point_at(d, zb, other, other_here);
+    *gap = status ? NAN : here.height - other_here->height;
     return status;
+}
+
+/* The force moves to the other minimum at the tie; the state is kept (no jump). */
+static int compliant_switch(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const gb_contact_point *branch)
+{
+    (void)y;
+    gb_dyn_set_contact(d, branch);
+    d->branch_switches++, d->last_switch_time = t;
+    d->memo_valid = d->last_valid = 0;
+    d->contact_rate[0] = d->contact_rate[1] = 0.0; /* no predictor until the next accepted step */
+    return GB_OK;
+}
+
+static int compliant_jump(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const gb_contact_point *branch,
+                          double out[GB_STATE_SIZE])
+{
+    (void)d, (void)t, (void)branch;
+    memcpy(out, y, GB_STATE_SIZE * sizeof *out);
+    return GB_OK;
 }
 
 static int compliant_observe(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], gb_dynamics_observables *o)
@@ -214,11 +245,11 @@ static int compliant_start(gb_dynamics *d, double t0, double y[GB_STATE_SIZE])
     return GB_OK;
 }
 
-const gb_dyn_mode gb_dyn_compliant_mode = {"compliant",          1,
-                                           compliant_field,      compliant_accept,
-                                           compliant_pending,    gb_dyn_one_point_gap,
-                                           gb_dyn_one_point_event, gb_dyn_one_point_jump,
-                                           compliant_observe,    compliant_translate,
+const gb_dyn_mode gb_dyn_compliant_mode = {"compliant",       1,
+                                           compliant_field,   compliant_accept,
+                                           compliant_pending, compliant_gap,
+                                           compliant_switch,  compliant_jump,
+                                           compliant_observe, compliant_translate,
                                            compliant_start};
 
 const gb_dynamics_law gb_dyn_compliant_law = {

@@ -126,8 +126,6 @@ extern const gb_dynamics_law gb_dyn_compliant_law;
 extern const gb_dyn_mode gb_dyn_compliant_mode;
 /* The definition's law against its contact model and equation: GB_OK, or GB_EINVAL saying what is allowed. */
 int gb_dyn_law_check(const gb_dynamics_def *def);
-/* The run's law coefficient in `slot`: the definition's, or its key's fallback where it is NAN. */
-double gb_dyn_coefficient(const gb_dynamics *d, int slot);
 
 /* ---- the state ----------------------------------------------------------------------------------- */
 
@@ -228,6 +226,8 @@ void gb_dyn_vertical(const double y[GB_STATE_SIZE], double zb[3]);
 void gb_dyn_vertical_of_quaternion(const double q[4], double zb[3]);
 /* The current mode's vector field: dy/dt at (t, y) (the one way a mode asks for another's accelerations). */
 int gb_dyn_field(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], double dydt[GB_STATE_SIZE]);
+/* The run's law coefficient in `slot`: the definition's, or its key's fallback where it is NAN. */
+double gb_dyn_coefficient(const gb_dynamics *d, int slot);
 /* Enter mode `mode` at time t: the time spent in the mode left is booked, the new one's start noted. */
 void gb_dyn_set_mode(gb_dynamics *d, gb_dyn_mode_id mode, double t);
 /* "t = ...: the state is no longer finite" (GB_ENUMERIC). */

@@ -61,15 +61,6 @@ const gb_dynamics_law_key *gb_dynamics_law_key_at(size_t i, const gb_dynamics_la
     return NULL;
 }
 
-double gb_dyn_coefficient(const gb_dynamics *d, int slot)
-{
-    const double value = d->def.law_coefficients[slot];
-    if (!isnan(value)) return value;
-    for (size_t k = 0; k < d->law->key_count; k++)
-        if (d->law->keys[k].slot == slot) return d->law->keys[k].fallback;
-    return NAN;
-}
-
 int gb_dyn_law_check(const gb_dynamics_def *def)
 {
     const gb_dynamics_law *law = gb_dynamics_law_of(def->contact_law, def->friction);
