@@ -101,6 +101,15 @@ static own_body *find_key(const unsigned char *key, size_t size)
 
 /* ---- a polyhedron ------------------------------------------------------------------------------- */
 
+/* A polyhedron's mass properties in closed form (gb_polyhedron_massprops); L the radius of the sphere of its
+ * volume. */
+static int polyhedron_massprops(const gb_morphology *self, double mass, gb_massprops *out)
+{
+    const int status = gb_polyhedron_massprops(self->polyhedron, mass, out);
+    if (!status) out->L = cbrt(3.0 * out->volume / (4.0 * M_PI)), out->L_err = out->L * out->volume_err / out->volume;
+    return status;
+}
+
 int gb_body_mesh(const char *path, gb_surface *out)
 {
     char *data;
@@ -140,7 +149,7 @@ int gb_body_mesh(const char *path, gb_surface *out)
     }
     b->key = (unsigned char *)data, b->key_size = size;
     b->row = (gb_morphology){.name = b->name, .chi_formula = "(a convex polyhedron)", .equations = "",
-                             .polyhedron = &b->polyhedron};
+                             .polyhedron = &b->polyhedron, .massprops = polyhedron_massprops};
     b->next = bodies, bodies = b;
     pthread_mutex_unlock(&lock);
     *out = (gb_surface){&b->row, 0.0};

@@ -1,6 +1,5 @@
 #include "gb_massprops.h"
 
-#include "gb_polyhedron.h"
 
 #include "gb_error.h"
 
@@ -101,11 +100,8 @@ int gb_massprops_compute(const gb_surface *surface, const gb_massprops_def *def,
                             "limit > 0 (got epsabs = %g, epsrel = %g, limit = %zu)",
                             def->epsabs, def->epsrel, def->limit);
     *out = (gb_massprops){0};
-    if (surface->morphology->polyhedron) { /* a mesh (gb_body.h): closed form; L the radius of the sphere of its volume */
-        const int status = gb_polyhedron_massprops(surface->morphology->polyhedron, def->mass, out);
-        if (!status) out->L = cbrt(3.0 * out->volume / (4.0 * M_PI)), out->L_err = out->L * out->volume_err / out->volume;
-        return status;
-    }
+    if (surface->morphology->massprops) /* a body kind's own (a mesh's closed form, gb_body.c) */
+        return surface->morphology->massprops(surface->morphology, def->mass, out);
     int status;
     double first[3], first_err[3], second[3][3], second_err[3][3], l_sum, l_err;
     /* the body's scale: the power of two nearest its radius at (pi/2, 0), so that an integral of r^p meets an

@@ -87,9 +87,9 @@ static int kernel_jet_two(const gb_jet s[3], gb_jet *k)
  * of u by π about e_y; for II, (φ,θ) → (π−φ, −θ) keeps χ₂ (its φ-part is odd in cos φ) and rotates
  * u by π about e_x. Both axes pass through the minimum of sinφ cosχ (φ = π/2, χ = π). */
 static const gb_morphology morphologies[] = {
-    {"I", "theta - 5 phi", "3, 4, 8, 18", phase_one, phase_one_eval, kernel_jet_one, {0.0, -1.0, 0.0}, NULL, NULL, NULL, {0.0, 0.0, 0.0}, 0},
+    {"I", "theta - 5 phi", "3, 4, 8, 18", phase_one, phase_one_eval, kernel_jet_one, {0.0, -1.0, 0.0}, NULL, NULL, NULL, {0.0, 0.0, 0.0}, 0, NULL},
     {"II", "theta - (3 pi / 2)(cos phi - cos^3 phi / 3)", "5, 6, 9, 19", phase_two, phase_two_eval,
-     kernel_jet_two, {-1.0, 0.0, 0.0}, NULL, NULL, NULL, {0.0, 0.0, 0.0}, 0},
+     kernel_jet_two, {-1.0, 0.0, 0.0}, NULL, NULL, NULL, {0.0, 0.0, 0.0}, 0, NULL},
 };
 
 size_t gb_surface_morphology_count(void) { return sizeof morphologies / sizeof morphologies[0]; }

@@ -28,6 +28,8 @@ typedef struct gb_phase_value {
 struct gb_morphology;
 struct gb_polyhedron; /* gb_polyhedron.h */
 
+struct gb_massprops; /* gb_massprops.h */
+
 typedef struct gb_morphology {
     const char *name;        /* "I", "II": the value a scene or the command names; a body of one's own: its file
                               * or expression (gb_body.h) */
@@ -56,6 +58,9 @@ typedef struct gb_morphology {
      * origin exactly (docs/bodies.md); a body given by an expression is moved to its centroid (gb_body.h). */
     double origin[3];
     int moved; /* origin is not zero */
+    /* The body kind's own mass properties for `mass` (its volume, centroid, inertia and L; gb_massprops.h), in closed
+     * form (a polyhedron's: gb_body.c); NULL: gb_massprops integrates the surface. */
+    int (*massprops)(const struct gb_morphology *self, double mass, struct gb_massprops *out);
 } gb_morphology;
 
 
