@@ -448,6 +448,8 @@ int gb_dyn_friction_impact(gb_dynamics *d, double t, double y[GB_STATE_SIZE], co
 /* The variational estimator cannot follow flight: the jump from or into it (GB_EINVAL). */
 int gb_dyn_no_jump(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const gb_contact_point *branch,
                    double out[GB_STATE_SIZE]);
+/* ---- the impulses every jump shares (gb_dynamics_impulses.c) ------------------------------------- */
+
 /* Newton's restitution at a point approaching at `approach` (> 0) at time t: def.restitution, or 0 where
  * the rebound would fall back within the settle time (the end to bouncing). */
 double gb_dyn_restitution_at(const gb_dynamics *d, double t, double approach);
@@ -455,6 +457,9 @@ double gb_dyn_restitution_at(const gb_dynamics *d, double t, double approach);
  * rounding (and, `settled`, beyond the weight's impulse over the return the settle rule removes). */
 int gb_dyn_plane_pushes(const gb_dynamics *d, double t, const gb_impact_result *r, const double (*points)[3], int count,
                         int arriving, int settled, const double v_before[3], const double omega_before[3]);
+/* The first of the `count` points whose normal impulse is a pull beyond what is allowed there (*allowed), or −1. */
+int gb_dyn_pulling_point(const gb_dynamics *d, const gb_impact_result *r, const double (*points)[3], int count,
+                         int arriving, int settled, const double v_before[3], const double omega_before[3], double *allowed);
 /* How soon the point rp [m] falls back after an impact that leaves the body rolling on q with ω (y) and the
  * centroid at v (body axes): 2 v_n / |a_n| (INFINITY when it does not). */
 double gb_dyn_return_time(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const gb_contact_point *q,
