@@ -137,6 +137,7 @@ bench-only: $(BENCH_BIN) $(BENCH_NATIVE) $(BIN)
 	@mkdir -p $(OUT)
 	status=0; PYTHON=$(PYTHON) $(BENCH_BIN) $(OUT)/bench.json $(BENCH_NATIVE) $(BIN) || status=$$?; \
 	$(PYTHON) verify/bench/rest_faces.py $(BIN) $(OUT)/bench-rest-faces.json || status=1; \
+	$(PYTHON) verify/bench/compliant.py $(BIN) $(OUT)/bench-compliant.json || status=1; \
 	if $(PYTHON) -c "import siconos.kernel" 2>/dev/null; then \
 	  $(PYTHON) verify/bench/against_siconos.py $(BIN) $(OUT)/bench-siconos.json || status=1; \
 	else echo "bench: gomboc against Siconos skipped: Siconos absent (sh scripts/install-deps.sh siconos)"; fi; \
