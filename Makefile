@@ -336,8 +336,7 @@ references-only: $(BIN)
 # internal ones, *_internal.h, gb_interval.h, gb_arena.h, gb_vec.h, gb_hash.h, gb_clock.h, the readers behind gb_case
 # and gb_scan, gb_ini.h and gb_parse.h, and the caches' seals, gb_seal.h, stay), a pkg-config file and the man page, under $(DESTDIR)$(PREFIX).
 PREFIX  ?= /usr/local
-PRIVATE_HEADERS := %_internal.h src/gb_interval.h src/gb_arena.h src/gb_vec.h src/gb_hash.h src/gb_clock.h src/gb_ini.h src/gb_parse.h \
-                   src/gb_seal.h
+PRIVATE_HEADERS := %_internal.h src/gb_interval.h src/gb_arena.h src/gb_vec.h src/gb_hash.h src/gb_clock.h src/gb_ini.h src/gb_seal.h
 PUBLIC_HEADERS = src/gomboc.h $(filter-out $(PRIVATE_HEADERS),$(wildcard src/gb_*.h))
 
 # Only what it installs is built (not the harness). No public header includes a dependency's, so the
@@ -385,7 +384,11 @@ example-only: $(BIN) $(LIB) $(SOLIB)
 	@! readelf -d $(BUILD)/example-static | grep -q 'NEEDED.*libgomboc' || { echo "example: the static link took the shared library"; exit 1; }
 	@readelf -d $(BUILD)/example | grep -q 'NEEDED.*\[$(SONAME)\]' && readelf -d $(SOLIB) | grep -q 'SONAME.*\[$(SONAME)\]' \
 	  || { echo "example: not linked against $(SONAME)"; exit 1; }
-	@$(PYTHON) scripts/check_exports.py $(SOLIB) $(PUBLIC_HEADERS)
+	@$(PYTHON) scripts/check_exports.py $(SOLIB) $(PUBLIC_HEADERS) --callers $(CLI_SRC) $(VERIFY_SRC) \
+	  $(wildcard verify/fuzz/*.c verify/bench/*.c examples/*.c examples/*.cpp)
+	$(CC) $(LDFLAGS) -o $(BUILD)/gomboc-shared $(CLI_OBJ) $$($(STAGED_PC) --libs gomboc) $(shell pkg-config --libs libcjson) -lm
+	@readelf -d $(BUILD)/gomboc-shared | grep -q 'NEEDED.*\[$(SONAME)\]' || { echo "example: gomboc-shared not linked against $(SONAME)"; exit 1; }
+	cd / && LD_LIBRARY_PATH=$(STAGE)/usr/local/lib $(abspath $(BUILD))/gomboc-shared contact --morphology I --beta 0.12 --method continuous --zb 0,0,-1 --json > /dev/null
 	@test "$$($(STAGED_PC) --modversion gomboc)" = "$(VERSION)" && $(STAGED_PC) --atleast-version=0.1 gomboc && \
 	  test "$$($(STAGE)/usr/local/bin/gomboc --version)" = "gomboc $(VERSION)" \
 	  || { echo "example: gomboc.pc's Version and gomboc --version are not VERSION ($(VERSION))"; exit 1; }
@@ -394,7 +397,7 @@ example-only: $(BIN) $(LIB) $(SOLIB)
 	  || { echo "example: the man page does not render without warnings"; exit 1; }
 	@$(MAKE) --no-print-directory uninstall DESTDIR=$(STAGE) PREFIX=/usr/local > /dev/null
 	@left=$$(find $(STAGE) -type f -o -type l); test -z "$$left" || { echo "uninstall left: $$left"; exit 1; }
-	@echo "example: built and run against the staged shared library (soname $(SONAME)) and, through pkg-config --static, the static one; man page renders; uninstall leaves no file"
+	@echo "example: built and run against the staged shared library (soname $(SONAME)) and, through pkg-config --static, the static one; the command linked against the shared library runs; man page renders; uninstall leaves no file"
 
 # `make check` is `make verify`, by the usual name.
 check: verify

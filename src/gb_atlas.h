@@ -108,8 +108,8 @@ GB_API void gb_atlas_cells(const gb_atlas *atlas, gb_atlas_cell_info *out, size_
  * one file never cost each other their outputs (the last complete one wins; gb_atlas_merge_save
  * merges the file's cells first, under a lock, so that they add up). Load a saved atlas (its
  * cells replace the ones held): GB_EIO for a file that is not a regular file, is larger than
- * gb_atlas_file_limit, is not an atlas of this body, β, η and build parameters, or whose seal does not
- * verify (damaged, edited, or sealed under another key): the caller then builds anew. GB_EIO too when the
+ * an atlas of its levels can be (gb_atlas_file.c), is not an atlas of this body, β, η and build
+ * parameters, or whose seal does not verify (damaged, edited, or sealed under another key): the caller then builds anew. GB_EIO too when the
  * file cannot be sealed (no key: gb_seal_key_ready). */
 GB_API int gb_atlas_save(const gb_atlas *atlas, const char *path);
 /* Every atlas file starts with these bytes (the string with its NUL). */
@@ -118,17 +118,11 @@ GB_API int gb_atlas_load(gb_atlas *atlas, const char *path);
 /* The largest file an atlas of these levels can be (every cell split down to max_level, every leaf
  * certified with two sites), and never more than GB_ATLAS_FILE_MAX: a larger file is refused unread. */
 #define GB_ATLAS_FILE_MAX ((size_t)64 << 20)
-GB_API size_t gb_atlas_file_limit(const gb_atlas *atlas);
 /* The cells of the atlas file at `path` that this atlas lacks, added to it (a cell both hold is kept as
  * it is: its proof does not depend on the run that made it). What gb_dynamics_context_save does before it
  * writes, so that concurrent runs sharing one file add up their cells. GB_EIO when the file is missing,
  * of another atlas or damaged (the atlas is then unchanged, or holds the cells read before the fault). */
 GB_API int gb_atlas_merge(gb_atlas *atlas, const char *path);
-/* gb_atlas_merge, then gb_atlas_save, with the file's directory locked (gb_file_lock) in between, so
- * that writers of one file, threads or processes, take turns and every cell any of them proved stays in
- * it. A file that is missing, of another atlas or damaged is replaced. GB_EIO when the lock stays held
- * beyond gb_file_lock_seconds (nothing is written then). */
-GB_API int gb_atlas_merge_save(gb_atlas *atlas, const char *path);
 
 /* gb_atlas_load on the bytes of a file already read (`name` for messages). */
 GB_API int gb_atlas_load_buffer(gb_atlas *atlas, const unsigned char *data, size_t size, const char *name);

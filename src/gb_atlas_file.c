@@ -144,7 +144,9 @@ static int take_cell(gb_atlas *A, reader *r, cell *c)
     return state == CELL_UNBUILT;
 }
 
-size_t gb_atlas_file_limit(const gb_atlas *A)
+/* The largest file an atlas of these levels can be (every cell split down to max_level, every leaf certified
+ * with two sites), and never more than GB_ATLAS_FILE_MAX. */
+static size_t file_limit(const gb_atlas *A)
 {
     /* Every cell of every face split down to max_level, each leaf certified with two sites: no file of
      * these levels is larger; and none beyond GB_ATLAS_FILE_MAX, whatever its levels declare. */
@@ -158,7 +160,7 @@ int gb_atlas_load(gb_atlas *A, const char *path)
 {
     char *data;
     size_t size;
-    const int status = gb_file_read(path, gb_atlas_file_limit(A), "atlas file", "an atlas file this command wrote", &data, &size);
+    const int status = gb_file_read(path, file_limit(A), "atlas file", "an atlas file this command wrote", &data, &size);
     if (status) return gb_error_set(GB_EIO, "atlas file refused: %s", gb_error_message());
     const int parsed = gb_atlas_load_buffer(A, (const unsigned char *)data, size, path);
     free(data);
@@ -253,7 +255,7 @@ int gb_atlas_merge(gb_atlas *A, const char *path)
 {
     char *data;
     size_t size;
-    int status = gb_file_read(path, gb_atlas_file_limit(A), "atlas file", "an atlas file this command wrote", &data, &size);
+    int status = gb_file_read(path, file_limit(A), "atlas file", "an atlas file this command wrote", &data, &size);
     if (status) return gb_error_set(GB_EIO, "atlas file refused: %s", gb_error_message());
     const char *why = refused(A, (const unsigned char *)data, size);
     if (!why) {

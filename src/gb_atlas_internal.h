@@ -75,5 +75,10 @@ int gb_atlas_cell_split(gb_atlas *A, cell *c);
 /* Is every direction of a polar-x site box inside the (φ, θ) band (gb_atlas.c says why a check then need
  * not look in it)? */
 int gb_atlas_site_in_band(const gb_atlas_site_box *b);
+/* gb_atlas_merge, then gb_atlas_save, with the file's directory locked (gb_file_lock) in between, so
+ * that writers of one file, threads or processes, take turns and every cell any of them proved stays in
+ * it. A file that is missing, of another atlas or damaged is replaced. GB_EIO when the lock stays held
+ * beyond GB_FILE_LOCK_SECONDS or $GOMBOC_LOCK_SECONDS (nothing is written then). */
+int gb_atlas_merge_save(gb_atlas *atlas, const char *path);
 
 #endif

@@ -437,6 +437,9 @@ static int handler(gb_ini_reader *ini, void *user, const char *section, const ch
     return set_value(r, &found, index, value);
 }
 
+static double memory_estimate(const gb_case *c);
+static double memory_limit(void);
+
 /* ---- what no single key can say ---------------------------------------------------------------- */
 
 static int key_index(const char *section, const char *name)
@@ -630,7 +633,7 @@ static int cross_check(const char *path, gb_case *c)
         return cross_fail(path, c, "integrator", "periods",
                           "= %g with steps_per_period = %zu: %.3g steps (allowed: periods x steps_per_period <= %g, some days "
                           "of computing at a microsecond a step)", periods, spp, (double)spp * periods, GB_CASE_STEPS_MAX);
-    const double held = gb_case_memory_estimate(c), limit = gb_case_memory_limit();
+    const double held = memory_estimate(c), limit = memory_limit();
     if (held > limit)
         return cross_fail(path, c, "integrator", "periods",
                           "= %g: the run would hold about %.3g GB of records (the spectrum's samples of omega_x, 24 bytes "
@@ -641,7 +644,8 @@ static int cross_check(const char *path, gb_case *c)
     return GB_OK;
 }
 
-double gb_case_memory_estimate(const gb_case *c)
+/* The bytes a scene's records (spectrum, strobe, λ) would take. */
+static double memory_estimate(const gb_case *c)
 {
     const double spp = (double)c->integrate.steps_per_period, periods = c->integrate.periods;
     const double samples_a_period = spp / (double)c->integrate.sample_every;
@@ -653,7 +657,8 @@ double gb_case_memory_estimate(const gb_case *c)
     return bytes;
 }
 
-double gb_case_memory_limit(void)
+/* Half the machine's memory, or of RLIMIT_AS: the most a scene's records may take. */
+static double memory_limit(void)
 {
     const double pages = (double)sysconf(_SC_PHYS_PAGES), page = (double)sysconf(_SC_PAGESIZE);
     double limit = pages > 0.0 && page > 0.0 ? 0.5 * pages * page : 1e12;

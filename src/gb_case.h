@@ -103,11 +103,9 @@ GB_API int gb_case_key_numeric(const char *section, const char *name);
  * omega_scale. GB_EDOM with "FILE:LINE: [lyapunov] key: reason (allowed: ...)". */
 GB_API int gb_case_lyapunov_check(const char *path, gb_case *c);
 /* What a scene may ask: at most GB_CASE_STEPS_MAX steps, and records (spectrum, strobe, λ) of at most
- * gb_case_memory_limit() bytes — half the machine's memory, or of RLIMIT_AS — by gb_case_memory_estimate.
+ * half the machine's memory (or of RLIMIT_AS) bytes, as gb_case.c estimates them.
  * gb_case_load refuses more (GB_EDOM naming [integrator] periods). */
 #define GB_CASE_STEPS_MAX 1e12
-GB_API double gb_case_memory_estimate(const gb_case *c);
-GB_API double gb_case_memory_limit(void);
 
 #ifdef __cplusplus
 }

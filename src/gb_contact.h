@@ -116,10 +116,9 @@ GB_API size_t gb_contact_tracker_vertices(const gb_contact_tracker *tracker);
 #define GB_CONTACT_HULL_MAGIC {'G', 'B', 'H', 'U', 'L', 'L', '\0', '\0'}
 GB_API int gb_contact_tracker_save(const gb_contact_tracker *tracker, const char *path);
 GB_API int gb_contact_tracker_load(const gb_contact_grid *grid, const char *path, gb_contact_tracker **out);
-/* The same from a file's bytes (`name` for the message), and the largest file of this grid's hull. */
+/* The same from a file's bytes (`name` for the message). */
 GB_API int gb_contact_tracker_load_buffer(const gb_contact_grid *grid, const unsigned char *data, size_t size,
                                           const char *name, gb_contact_tracker **out);
-GB_API size_t gb_contact_tracker_file_limit(const gb_contact_grid *grid);
 GB_API int gb_contact_tracker_find(gb_contact_tracker *tracker, const double zb[3], gb_contact_node *out);
 
 #define GB_CONTACT_POLAR_CAP 1e-2 /* sin φ below which Newton works in the POLAR_X chart */
@@ -154,12 +153,6 @@ typedef struct gb_contact_refine_def {
 
 GB_API gb_contact_refine_def gb_contact_refine_default_def(void);
 
-/* The (φ, θ) of the point at chart offsets (Δa, Δb) from `p` in p's chart: a predictor's start, such as
- * p + (∂q/∂z_b)·Δz_b with the sensitivity of gb_contact_sensitivity. For POLAR_Z it is (φ + Δa, θ + Δb)
- * unwrapped (gb_contact_refine wraps its start). */
-GB_API void gb_contact_chart_offset(const gb_contact_point *p, double da, double db, double *phi, double *theta);
-/* The length of a chart step (Δa, Δb) at `p` on the unit sphere of directions, √(Δa² + sin²a Δb²). */
-GB_API double gb_contact_chart_step_length(const gb_contact_point *p, double da, double db);
 
 /* The local minimum of h reached from (φ0, θ0): safeguarded Newton (positive-definite Hessian or a
  * shifted one, backtracking on h), falling back to GSL's nmsimplex2 in a pole-free tangent chart
@@ -202,6 +195,7 @@ typedef struct gb_contact_switch {
     gb_contact_point global;     /* the global minimum at zb_to */
 } gb_contact_switch;
 
+/* The kind's name ("same-branch", "overtaken", "branch-lost"), or "unknown" for another value. */
 GB_API const char *gb_contact_switch_name(gb_contact_switch_kind kind);
 
 GB_API int gb_contact_switch_detect(const gb_contact_grid *grid, const double zb_from[3],
@@ -219,11 +213,6 @@ GB_API int gb_contact_sensitivity(const gb_surface *surface, const double zb[3],
  * and ṙ_c = ∂φx φ̇* + ∂θx θ̇*, which eq 45 needs. `q_dot` may be NULL. */
 GB_API int gb_contact_rate(const gb_surface *surface, const double zb[3], const gb_contact_point *contact,
                            const double omega[3], double rc_dot[3], double q_dot[2]);
-/* gb_contact_rate for a contact whose sensitivity ∂(φ, θ)/∂z_b (gb_contact_sensitivity) is already known, at
- * the unit vertical d: ṙ_c and the chart rates (q_dot may be NULL), eq 72; for a caller that keeps the
- * sensitivity (the dynamics reuse it as the next Newton start's predictor). */
-GB_API void gb_contact_rate_from(const double dq_dzb[2][3], const double d[3], const gb_contact_point *contact,
-                                 const double omega[3], double rc_dot[3], double q_dot[2]);
 
 /* Normalise z_b into `unit`; GB_EDOM for a zero or non-finite vector. */
 GB_API int gb_contact_unit_vertical(const double zb[3], double unit[3]);

@@ -109,5 +109,14 @@ void gb_contact_grid_fill_node(const gb_contact_grid *grid, size_t index, double
 /* The exact lowest node for the unit vertical d by branch and bound; `hint` (a node index, or
  * SIZE_MAX) seeds the best height with a real node. */
 int gb_contact_grid_search(const gb_contact_grid *grid, const double d[3], size_t hint, gb_contact_node *out);
+/* The (φ, θ) of the point at chart offsets (Δa, Δb) from `p` in p's chart: a predictor's start, such as
+ * p + (∂q/∂z_b)·Δz_b with the sensitivity of gb_contact_sensitivity. For POLAR_Z it is (φ + Δa, θ + Δb)
+ * unwrapped (gb_contact_refine wraps its start). */
+void gb_contact_chart_offset(const gb_contact_point *p, double da, double db, double *phi, double *theta);
+/* gb_contact_rate for a contact whose sensitivity ∂(φ, θ)/∂z_b (gb_contact_sensitivity) is already known, at
+ * the unit vertical d: ṙ_c and the chart rates (q_dot may be NULL), eq 72; for a caller that keeps the
+ * sensitivity (the dynamics reuse it as the next Newton start's predictor). */
+void gb_contact_rate_from(const double dq_dzb[2][3], const double d[3], const gb_contact_point *contact,
+                          const double omega[3], double rc_dot[3], double q_dot[2]);
 
 #endif

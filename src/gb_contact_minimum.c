@@ -379,7 +379,8 @@ void gb_contact_chart_offset(const gb_contact_point *p, double da, double db, do
     gb_surface_chart_angles(p->chart, a, b, phi, theta);
 }
 
-double gb_contact_chart_step_length(const gb_contact_point *p, double da, double db)
+/* The length of a chart step (Δa, Δb) at `p` on the unit sphere of directions, √(Δa² + sin²a Δb²). */
+static double chart_step_length(const gb_contact_point *p, double da, double db)
 {
     return hypot(da, sin(p->chart == GB_SURFACE_CHART_POLAR_Z ? p->phi : p->chart_a) * db);
 }
@@ -507,7 +508,7 @@ int gb_contact_switch_detect(const gb_contact_grid *grid, const double zb_from[3
         if (gb_contact_sensitivity(surface, current_zb, &current, dq) == GB_OK) {
             const double dz[3] = {z[0] - current_zb[0], z[1] - current_zb[1], z[2] - current_zb[2]};
             gb_contact_chart_offset(&current, gb_vec_dot(dq[0], dz), gb_vec_dot(dq[1], dz), &predicted[0], &predicted[1]);
-            step_norm = gb_contact_chart_step_length(&current, gb_vec_dot(dq[0], dz), gb_vec_dot(dq[1], dz));
+            step_norm = chart_step_length(&current, gb_vec_dot(dq[0], dz), gb_vec_dot(dq[1], dz));
         } else {
             lost = 1;
             break;

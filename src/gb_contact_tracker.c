@@ -390,7 +390,8 @@ int gb_contact_tracker_load_buffer(const gb_contact_grid *grid, const unsigned c
     return GB_OK;
 }
 
-size_t gb_contact_tracker_file_limit(const gb_contact_grid *grid)
+/* The largest hull file of this grid. */
+static size_t file_limit(const gb_contact_grid *grid)
 {
     /* no hull of this grid is larger: every node a vertex and coplanar, fewer than 6 directed edges a vertex */
     return sizeof(hull_header) + (9 * grid->size + 1) * sizeof(uint32_t) + GB_SEAL_BYTES;
@@ -401,7 +402,7 @@ int gb_contact_tracker_load(const gb_contact_grid *grid, const char *path, gb_co
     *out = NULL;
     char *data;
     size_t size;
-    const int status = gb_file_read(path, gb_contact_tracker_file_limit(grid), "hull file", "a hull file this command wrote",
+    const int status = gb_file_read(path, file_limit(grid), "hull file", "a hull file this command wrote",
                                     &data, &size);
     if (status) return gb_error_set(GB_EIO, "hull file refused: %s", gb_error_message());
     const int loaded = gb_contact_tracker_load_buffer(grid, (const unsigned char *)data, size, path, out);

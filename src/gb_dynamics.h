@@ -253,10 +253,6 @@ GB_API void gb_dynamics_context_lowest(gb_dynamics_context *context, gb_dynamics
  * (gb_atlas_merge_save: runs that share one file add up their cells), unless the file holds it already (it
  * was read or written and no cell was proved since); the hull when Qhull built it. gb_ status. */
 GB_API int gb_dynamics_context_save(gb_dynamics_context *context);
-/* The atlas's memory [bytes], and letting it go (a run then reads the file anew): a scan's thread bounds
- * its memory so. */
-GB_API size_t gb_dynamics_context_atlas_bytes(const gb_dynamics_context *context);
-GB_API void gb_dynamics_context_forget_atlas(gb_dynamics_context *context);
 
 typedef struct gb_dynamics_def {
     gb_dynamics_variant variant;
@@ -313,9 +309,6 @@ GB_API int gb_dynamics_create_in(const gb_surface *surface, const gb_dynamics_de
                                  gb_dynamics **out);
 GB_API int gb_dynamics_create(const gb_surface *surface, const gb_dynamics_def *def, gb_dynamics **out);
 GB_API void gb_dynamics_free(gb_dynamics *dynamics);
-/* The step h of the integrator the run uses: the end to chatter where def.settle_time is 0 (gb_integrate
- * calls it when a run begins). */
-GB_API void gb_dynamics_use_step(gb_dynamics *dynamics, double h);
 
 GB_API const gb_dynamics_def *gb_dynamics_get_def(const gb_dynamics *dynamics);
 /* Its contact law (gb_dynamics_law_of of its definition). */
@@ -337,9 +330,6 @@ GB_API int gb_dynamics_certify_stats(const gb_dynamics *dynamics, gb_certify_sta
 /* certificate = atlas: its counters, how many checks fell back to gb_certify, and whether it was read from
  * the context's atlas file (1) or built (0). */
 GB_API int gb_dynamics_atlas_stats(const gb_dynamics *dynamics, gb_atlas_stats *out, size_t *fallbacks, int *loaded);
-/* contact = fast-grid: the tracker's hull vertices (0: no hull, the patch-tree search) and whether the hull
- * came from the context's hull file (1) or Qhull (0); GB_EINVAL for another model. */
-GB_API int gb_dynamics_hull_stats(const gb_dynamics *dynamics, size_t *vertices, int *loaded);
 
 /* The initial state: attitude R0 (row-major 3 × 3, orthonormal), ω0; W = 0. Establishes the
  * initial contact (the global minimum) and E(0). */
@@ -352,40 +342,12 @@ GB_API int gb_dynamics_start_in(const gb_surface *body, const gb_dynamics_def *d
 GB_API int gb_dynamics_start(const gb_surface *body, const gb_dynamics_def *def, const double R0[9],
                              const double omega0[3], gb_dynamics **out, double y[GB_STATE_SIZE]);
 
-/* GB_ENUMERIC, with a message that names t and says the integration diverged, when a component of y is
- * not finite (the steppers check each step's result, gb_dynamics_rhs its argument); GB_OK otherwise. */
-GB_API int gb_dynamics_state_finite(double t, const double y[GB_STATE_SIZE]);
 
 /* dy/dt (eqs 23, 44 or rolling, and Ẇ). GB_ENOCONV when the contact cannot be found; GB_ENUMERIC for a
  * state that is not finite. */
 GB_API int gb_dynamics_rhs(gb_dynamics *dynamics, double t, const double y[GB_STATE_SIZE], double dydt[GB_STATE_SIZE]);
 
-/* After an accepted step to (t, y): renormalise q (returns the |q| − 1 it removed), update the
- * contact and count switches. Continuous contact: the branch is continued by Newton, then gb_certify
- * proves it the global minimum or returns a lower minimum, which becomes the contact (a branch
- * switch). A check left undecided keeps the continued branch and is counted. */
-GB_API int gb_dynamics_accept(gb_dynamics *dynamics, double t, double y[GB_STATE_SIZE], double *norm_drift);
 
-/* Switch-event location (continuous contact; gb_integrate uses these). At state y, is another branch
- * lower than the continued one? Then *found = 1 and *other is that minimum. */
-GB_API int gb_dynamics_switch_pending(gb_dynamics *dynamics, double t, const double y[GB_STATE_SIZE],
-                                      gb_contact_point *other, int *found);
-/* Δh = h(current branch) − h(the branch of `other`) at state y, both continued by Newton (eq 39);
- * *other_here is the other branch at y. In the two-point mode the event's own function, < 0 before it
- * and > 0 after: a third point's Δh against the lower of the two, or −min(N_P, N_Q). */
-GB_API int gb_dynamics_branch_gap(gb_dynamics *dynamics, double t, const double y[GB_STATE_SIZE],
-                                  const gb_contact_point *other, double *gap, gb_contact_point *other_here);
-/* Make `branch` the contact from time t on (a located switch at state y). Under the unilateral law this
- * is an impact: ω in y jumps. GB_ENUMERIC for an impact the law cannot take (see gb_contact_law). */
-GB_API int gb_dynamics_switch_to(gb_dynamics *dynamics, double t, double y[GB_STATE_SIZE],
-                                 const gb_contact_point *branch);
-
-/* What gb_dynamics_switch_to would make of the state y at time t (the impact's ω after, under the
- * unilateral law; y itself under the held law and at a lift), into out, changing nothing: the jump map
- * whose derivative the variational estimator's saltation needs. The contacts are continued to y from
- * the accepted ones and from `branch`. */
-GB_API int gb_dynamics_jump(gb_dynamics *dynamics, double t, const double y[GB_STATE_SIZE],
-                            const gb_contact_point *branch, double out[GB_STATE_SIZE]);
 
 /* The unilateral law: a sink for every impact (NULL: none), and the impacts so far, the kinetic
  * energy they took (L) and the largest friction they needed. */
@@ -424,14 +386,7 @@ typedef struct gb_dynamics_flight_summary {
 } gb_dynamics_flight_summary;
 
 GB_API void gb_dynamics_flight_stats(const gb_dynamics *dynamics, double t, gb_dynamics_flight_summary *out);
-/* In flight: move the centroid by dzeta [m] up and change its velocity by dv [m/s] (inertial) at time t (a
- * Lyapunov perturbation). GB_EINVAL when the body is not in flight. */
-GB_API int gb_dynamics_flight_displace(gb_dynamics *dynamics, double t, double dzeta, const double dv[3]);
 
-/* Take over the accepted contact of `from` (same body and model): for a trajectory placed next to
- * another one (a Lyapunov perturbation), whose contact is then continued from there. The next accepted
- * step re-checks it as every step does. Switch counters are left alone. */
-GB_API void gb_dynamics_adopt_contact(gb_dynamics *to, const gb_dynamics *from);
 
 /* Grid-index changes plus branch switches so far. */
 GB_API size_t gb_dynamics_switch_count(const gb_dynamics *dynamics);

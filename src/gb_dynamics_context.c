@@ -4,6 +4,7 @@
  * run first needs them and written by gb_dynamics_context_save. The dynamics never touch a file. */
 #include "gb_dynamics_internal.h"
 
+#include "gb_atlas_internal.h"
 #include "gb_contact.h"
 #include "gb_error.h"
 

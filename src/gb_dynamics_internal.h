@@ -30,6 +30,8 @@
 #define GB_DYNAMICS_INTERNAL_H
 
 #include "gb_dynamics.h"
+#include "gb_contact_internal.h"
+#include "gb_dynamics_protocol_internal.h"
 #include "gb_impact.h"
 #include "gb_massprops.h"
 

@@ -7,6 +7,7 @@
 #include "gb_dynamics_internal.h"
 
 #include "gb_error.h"
+#include "gb_impact_internal.h"
 #include "gb_vec.h"
 
 #include <math.h>

@@ -225,7 +225,7 @@ int gb_file_check(const gb_file_use *uses, size_t count)
 
 /* ---- locks -------------------------------------------------------------------------------------- */
 
-double gb_file_lock_seconds(void)
+static double lock_seconds(void)
 {
     const char *text = getenv("GOMBOC_LOCK_SECONDS");
     char *end;
@@ -250,7 +250,7 @@ int gb_file_lock(const char *path, const char *what, int *fd)
         free(dir);
         return GB_OK; /* not lockable here: written as by a single writer */
     }
-    const double limit = gb_file_lock_seconds(), start = monotonic_seconds();
+    const double limit = lock_seconds(), start = monotonic_seconds();
     for (;;) {
         if (flock(d, LOCK_EX | LOCK_NB) == 0) {
             free(dir);

@@ -80,14 +80,13 @@ GB_API int gb_file_check(const gb_file_use *uses, size_t count);
 GB_API int gb_file_reserved_name(const char *name);
 
 /* The lock of the directory that holds `path`: an exclusive flock on the directory, waited for at most
- * gb_file_lock_seconds(). *fd is the lock to give to gb_file_unlock (-1 when the directory could not be
+ * GB_FILE_LOCK_SECONDS (or $GOMBOC_LOCK_SECONDS). *fd is the lock to give to gb_file_unlock (-1 when the directory could not be
  * locked at all, which is not an error). GB_EIO after the wait, naming the directory and `what` it was
  * to be locked for. */
 GB_API int gb_file_lock(const char *path, const char *what, int *fd);
 GB_API void gb_file_unlock(int fd);
 /* GB_FILE_LOCK_SECONDS, or $GOMBOC_LOCK_SECONDS when it is a number from 0 to 86400. */
 #define GB_FILE_LOCK_SECONDS 60.0
-GB_API double gb_file_lock_seconds(void);
 
 /* --out DIR: an existing, writable directory. GB_EINVAL with "WHAT 'DIR' ... (allowed: ...)". */
 GB_API int gb_file_check_directory(const char *dir, const char *what);

@@ -108,11 +108,6 @@ GB_API int gb_impact_coulomb_point(const gb_impact_body *body, const double norm
 GB_API int gb_impact_coulomb(const gb_impact_body *body, const double normal[3], double e, double mu,
                              const double (*points)[3], int count, const double v[3], const double omega[3],
                              gb_impact_result *out);
-/* The settle rule's lumped impact on a plane of finite friction: every point held at rest in the normal
- * direction (plastic), each sticking or sliding by the cone, a pull allowed (the caller bounds it) — as
- * gb_impact_hold_all on the rough plane. GB_ENUMERIC when no split into sticking and sliding does it. */
-GB_API int gb_impact_coulomb_hold(const gb_impact_body *body, const double normal[3], double mu, const double (*points)[3],
-                                  int count, const double v[3], const double omega[3], gb_impact_result *out);
 /* μ's range: 0 < μ (INFINITY: rough). GB_OK, or GB_EDOM naming it. */
 GB_API int gb_impact_friction_check(double mu);
 

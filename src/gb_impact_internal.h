@@ -49,5 +49,10 @@ int gb_impact_distinct(const double (*points)[3], int count, double (*unique)[3]
 void gb_impact_spread(const gb_impact_result *reduced, const int *twin, int count, gb_impact_result *out);
 /* A tangent basis t1, t2 of the plane of unit normal n (right-handed with n). */
 void gb_impact_tangents(const double n[3], double t1[3], double t2[3]);
+/* The settle rule's lumped impact on a plane of finite friction: every point held at rest in the normal
+ * direction (plastic), each sticking or sliding by the cone, a pull allowed (the caller bounds it) — as
+ * gb_impact_hold_all on the rough plane. GB_ENUMERIC when no split into sticking and sliding does it. */
+int gb_impact_coulomb_hold(const gb_impact_body *body, const double normal[3], double mu, const double (*points)[3],
+                           int count, const double v[3], const double omega[3], gb_impact_result *out);
 
 #endif

@@ -1,5 +1,6 @@
 #include "gb_integrate_internal.h"
 
+#include "gb_dynamics_protocol_internal.h"
 #include "gb_error.h"
 
 #include <gsl/gsl_errno.h>

@@ -92,9 +92,6 @@ GB_API size_t gb_integrate_steps_for(const gb_integrate_session *session, double
 GB_API double gb_integrate_time(const gb_integrate_session *session);
 GB_API int gb_integrate_stopped(const gb_integrate_session *session);
 GB_API const gb_integrate_stats *gb_integrate_session_stats(const gb_integrate_session *session);
-/* Put `to` (a session of a second copy of the same scene) at the time, step count and step size of
- * `from`: for a trajectory placed next to another one. */
-GB_API void gb_integrate_follow(gb_integrate_session *to, const gb_integrate_session *from);
 GB_API void gb_integrate_end(gb_integrate_session *session);
 
 #ifdef __cplusplus

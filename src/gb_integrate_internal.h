@@ -44,5 +44,8 @@ int gb_integrate_locate_switch(gb_dynamics *dynamics, double t, double h, const 
  * a gap ≥ 0 at the start is the tie the change left, and the crossing after it is located. */
 int gb_integrate_locate_next(gb_dynamics *dynamics, double t, double h, const double y[GB_STATE_SIZE],
                              const gb_contact_point *other, gb_integrate_switch *out, gb_integrate_stats *stats);
+/* Put `to` (a session of a second copy of the same scene) at the time, step count and step size of
+ * `from`: for a trajectory placed next to another one. */
+void gb_integrate_follow(gb_integrate_session *to, const gb_integrate_session *from);
 
 #endif

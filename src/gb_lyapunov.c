@@ -20,7 +20,8 @@ void gb_lyapunov_result_free(gb_lyapunov_result *result)
     result->instantaneous = result->running = NULL;
 }
 
-size_t gb_lyapunov_mser5(const double *x, size_t n, int *found)
+/* MSER-5's warm-up of x[0..n) (a multiple of 5, at most n/2), and whether its minimum is interior. */
+static size_t mser5(const double *x, size_t n, int *found)
 {
     const size_t m = n / 5;
     *found = 0;
@@ -78,7 +79,7 @@ int gb_lyapunov_statistics(const double *x, size_t n, const gb_lyapunov_def *def
     for (size_t i = 0; i < n; i++) whole += x[i];
     out->whole_record = n ? whole / (double)n : NAN;
     if (def->warmup == GB_LYAPUNOV_CHOSEN) {
-        out->warmup = gb_lyapunov_mser5(x, n, &out->warmup_found);
+        out->warmup = mser5(x, n, &out->warmup_found);
     } else {
         if (2 * def->warmup >= n) {
             return gb_error_set(GB_EDOM, "warm-up = %zu intervals is out of range (allowed: < half the record of %zu)",

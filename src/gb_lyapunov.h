@@ -116,8 +116,6 @@ GB_API int gb_lyapunov_tangent(const gb_lyapunov_tangent_system *system, void *c
 GB_API int gb_lyapunov_statistics(const double *x, size_t n, const gb_lyapunov_def *def, gb_lyapunov_result *out,
                                   double *mean);
 
-/* MSER-5's warm-up of x[0..n) (a multiple of 5, at most n/2), and whether its minimum is interior. */
-GB_API size_t gb_lyapunov_mser5(const double *x, size_t n, int *found);
 
 /* Windowed exponents: the record λ_inst[0..n) cut into consecutive windows of `per_window` intervals
  * from its start (an incomplete last window is left out), and the mean of each in mean[0..n/per_window).

@@ -1,6 +1,7 @@
 /* gb_lyapunov_body — a Gömböc as a pair system and as a tangent system (see gb_lyapunov_body.h). */
 #include "gb_lyapunov_body.h"
 
+#include "gb_dynamics_protocol_internal.h"
 #include "gb_error.h"
 #include "gb_integrate_internal.h"
 

@@ -363,7 +363,10 @@ const char *gb_mesh_format_name(gb_mesh_format format)
     return format >= GB_MESH_OFF && format <= GB_MESH_STL_BINARY ? names[format] : "?";
 }
 
-int gb_mesh_format_of(const char *name, const unsigned char *data, size_t size, gb_mesh_format *out)
+/* The format from the name's extension (.off, .obj, .stl; any case); an .stl file is binary when its size is
+ * exactly 84 + 50 × the count its header gives (whatever the header's words), else unless it starts with "solid"
+ * (after a UTF-8 byte-order mark, if any) followed by a line with "facet". GB_EINVAL for another extension. */
+static int format_of(const char *name, const unsigned char *data, size_t size, gb_mesh_format *out)
 {
     const char *dot = strrchr(name, '.');
     if (dot && !strcasecmp(dot, ".off")) return *out = GB_MESH_OFF, GB_OK;
@@ -392,8 +395,8 @@ int gb_mesh_format_of(const char *name, const unsigned char *data, size_t size, 
 int gb_mesh_read_buffer(const char *name, const unsigned char *data, size_t size, gb_mesh *out)
 {
     memset(out, 0, sizeof *out);
-    gb_mesh_format format;
-    int status = gb_mesh_format_of(name, data, size, &format);
+    gb_mesh_format format = GB_MESH_OFF; /* set by format_of on success */
+    int status = format_of(name, data, size, &format);
     if (status) return status;
     out->format = format;
     builder b = {name, out, 0, 0};

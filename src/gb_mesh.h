@@ -36,12 +36,6 @@ typedef struct gb_mesh {
     size_t *triangles;     /* [3 * triangle_count], indices into vertices */
 } gb_mesh;
 
-/* The format from the name's extension (.off, .obj, .stl; any case); an .stl file is binary when its size is
- * exactly 84 + 50 × the count its header gives (whatever the header's words), else unless it starts with "solid"
- * (after a UTF-8 byte-order mark, if any) followed by a line with "facet". GB_EINVAL for another extension. A text
- * mesh may start with a byte-order mark, and holds printable ASCII only (a NUL inside a word is refused with its
- * column); a line holds at most 1025 words (a face of 1024 vertices). */
-GB_API int gb_mesh_format_of(const char *name, const unsigned char *data, size_t size, gb_mesh_format *out);
 
 /* Read `path` (a regular file of at most GB_MESH_FILE_MAX bytes, read as gb_file_read reads: GB_EINVAL for a
  * path that is no such file, GB_EIO for a failed read) or a buffer named `name` (for messages). On failure

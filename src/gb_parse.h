@@ -12,6 +12,8 @@
 #ifndef GB_PARSE_H
 #define GB_PARSE_H
 
+#include "gb_export.h"
+
 #include <stddef.h>
 
 #ifdef __cplusplus
@@ -26,23 +28,23 @@ typedef enum gb_parse_result {
 } gb_parse_result;
 
 /* "not a number", "beyond the range of a double", ... for GB_PARSE_SYNTAX ("not " + what). */
-const char *gb_parse_describe(gb_parse_result result, const char *what);
+GB_API const char *gb_parse_describe(gb_parse_result result, const char *what);
 
 /* A decimal number, the whole of `text`. */
-gb_parse_result gb_parse_double(const char *text, double *value);
+GB_API gb_parse_result gb_parse_double(const char *text, double *value);
 
 /* A count: decimal digits only, at most `max` (else GB_PARSE_LIMIT). */
-gb_parse_result gb_parse_count(const char *text, unsigned long long max, unsigned long long *value);
+GB_API gb_parse_result gb_parse_count(const char *text, unsigned long long max, unsigned long long *value);
 
 /* `n` numbers separated by commas; spaces or tabs may stand around each comma. */
-gb_parse_result gb_parse_list(const char *text, double *values, int n);
+GB_API gb_parse_result gb_parse_list(const char *text, double *values, int n);
 
 /* An angle in radians: a number, or a multiple of pi written P*pi/Q, Ppi/Q, P*pi, pi/Q or pi, with P
  * and Q numbers (Q not zero), e.g. "pi/3", "2*pi/3", "-0.5pi". */
-gb_parse_result gb_parse_angle(const char *text, double *value);
+GB_API gb_parse_result gb_parse_angle(const char *text, double *value);
 
 /* Two counts written AxB (e.g. "90x180"), each at most `max`. */
-gb_parse_result gb_parse_pair(const char *text, unsigned long long max, unsigned long long *a, unsigned long long *b);
+GB_API gb_parse_result gb_parse_pair(const char *text, unsigned long long max, unsigned long long *a, unsigned long long *b);
 
 #ifdef __cplusplus
 }

@@ -2,6 +2,7 @@
 
 #include "gb_hash.h"
 
+#include "gb_dynamics_protocol_internal.h"
 #include "gb_error.h"
 #include "gb_lyapunov_body.h"
 

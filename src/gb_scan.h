@@ -214,6 +214,23 @@ GB_API int gb_scan_run(const gb_scan *scan, const gb_scan_runner *runner, size_t
 /* The threads gb_scan_run uses for runner->threads = `threads` (0: one per online processor). */
 GB_API unsigned gb_scan_threads(unsigned threads);
 
+/* The journal of an interrupted scan. Its first line names the scan (the BLAKE2b-256 identity of the scan
+ * file and base scene), the binary and the number of points; each further line is one finished point:
+ * its CSV row (gb_scan_csv_row) and the seal (gb_seal: keyed BLAKE2b-256) of the header and the row. A
+ * journal is verified, never trusted: every line must carry a seal that verifies under this user's key (so
+ * an edited value is refused even when whoever edited it recomputed a checksum), read back to the same row,
+ * hold the point's own coordinates, and name a point of the scan; a point twice must be the same twice.
+ * Only a half-written last line (no '\n') may go; an empty journal holds no points. */
+#define GB_SCAN_JOURNAL_LINE_MAX 1200
+GB_API void gb_scan_journal_header(const gb_scan *scan, uint64_t binary, char *out, size_t size);
+/* The journal line of a CSV row (GB_EIO when there is no key to seal it). */
+GB_API int gb_scan_journal_line(const char *header, const char *row, char *out, size_t size);
+/* Read a journal's bytes (`name` for messages) into results/done (each of gb_scan_points entries,
+ * done zeroed by the caller): GB_OK with the points read in *count and in *keep the bytes to keep
+ * (all but a half-written last line), or GB_EINVAL naming the line and what is wrong with it. */
+GB_API int gb_scan_journal_read(const gb_scan *scan, const char *name, const char *header, const char *text, size_t size,
+                                gb_scan_metrics *results, unsigned char *done, size_t *count, size_t *keep);
+
 #ifdef __cplusplus
 }
 #endif

@@ -8,6 +8,7 @@
 #include "gb_scan_internal.h"
 
 #include "gb_clock.h"
+#include "gb_dynamics_protocol_internal.h"
 #include "gb_error.h"
 
 #include <pthread.h>

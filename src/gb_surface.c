@@ -279,7 +279,7 @@ double gb_surface_height_dbeta(const gb_surface *surface, double phi, double the
 
 /* ---------------------------------------------------------------- enclosures over chart boxes */
 
-void gb_surface_chart_direction(gb_surface_chart chart, double a, double b, double u[3])
+static void chart_direction(gb_surface_chart chart, double a, double b, double u[3])
 {
     const double sa = sin(a), ca = cos(a), sb = sin(b), cb = cos(b);
     if (chart == GB_SURFACE_CHART_POLAR_Z)
@@ -307,7 +307,7 @@ void gb_surface_chart_angles(gb_surface_chart chart, double a, double b, double 
         *phi = a, *theta = b;
     } else {
         double u[3];
-        gb_surface_chart_direction(chart, a, b, u);
+        chart_direction(chart, a, b, u);
         *phi = acos(fmax(-1.0, fmin(1.0, u[2])));
         *theta = atan2(u[1], u[0]);
     }
@@ -337,7 +337,7 @@ static double centre(gb_interval v) { return 0.5 * v.lo + 0.5 * v.hi; }
 void gb_surface_eval_chart(const gb_surface *surface, gb_surface_chart chart, double a, double b, gb_surface_point *p)
 {
     memset(p, 0, sizeof *p);
-    gb_surface_chart_direction(chart, a, b, p->u);
+    chart_direction(chart, a, b, p->u);
     gb_surface_chart_angles(chart, a, b, &p->phi, &p->theta);
     if (surface->beta == 0.0 && chart == GB_SURFACE_CHART_POLAR_X) {
         /* the sphere: r ≡ 1 and x = u(a, b) = (cos a, sin a cos b, sin a sin b), derivatives in closed form */

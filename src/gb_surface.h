@@ -120,7 +120,6 @@ GB_API void gb_surface_direction(double phi, double theta, double u[3]);
  *                            so it covers the (φ, θ) poles ±e_z regularly. */
 typedef enum gb_surface_chart { GB_SURFACE_CHART_POLAR_Z = 0, GB_SURFACE_CHART_POLAR_X = 1 } gb_surface_chart;
 
-GB_API void gb_surface_chart_direction(gb_surface_chart chart, double a, double b, double u[3]);
 /* Chart coordinates of the direction (φ, θ) (b in [0, 2π) for POLAR_X), and back (θ in [0, 2π)). */
 GB_API void gb_surface_chart_coordinates(gb_surface_chart chart, double phi, double theta, double *a, double *b);
 GB_API void gb_surface_chart_angles(gb_surface_chart chart, double a, double b, double *phi, double *theta);

@@ -10,6 +10,7 @@
 
 #include "gb_error.h"
 #include "gb_file.h"
+#include "gb_parse.h"
 #include "gb_surface.h"
 #include "gb_massprops.h"
 #include "gb_mesh.h"

@@ -10,6 +10,7 @@
 #include "gb_case.h"
 #include "gb_check.h"
 #include "gb_dynamics.h"
+#include "gb_dynamics_protocol_internal.h"
 #include "gb_error.h"
 #include "gb_integrate.h"
 #include "gb_nondim.h"

@@ -17,6 +17,7 @@
 #include "gb_error.h"
 #include "gb_case.h"
 #include "gb_dynamics.h"
+#include "gb_dynamics_protocol_internal.h"
 #include "gb_impact.h"
 #include "gb_integrate_internal.h"
 #include "gb_massprops.h"

@@ -26,6 +26,7 @@ int verify_register_s7_melnikov(void);
 int verify_register_s8_scan(void);
 int verify_register_siconos(void);
 int verify_register_command(void);
+int verify_register_surface(void);
 int verify_register_bad_input(void);
 int verify_register_bad_input_bodies(void);
 int verify_register_bad_input_processes(void);

@@ -1,0 +1,62 @@
+/* gb_dynamics_protocol_internal — what the library's other modules call of a dynamics (internal): the steppers
+ * (gb_integrate) and the Lyapunov pair (gb_lyapunov_body) accept a step, ask for the event pending at its end, its
+ * function and its jump, and place one trajectory beside another; a scan's threads bound the memory of a context's
+ * atlas; gb_run reports the fast grid's hull. A caller of the library runs scenes through gb_integrate, gb_run or
+ * gb_lyapunov_body and never needs these; the harness checks them through this header. */
+#ifndef GB_DYNAMICS_PROTOCOL_INTERNAL_H
+#define GB_DYNAMICS_PROTOCOL_INTERNAL_H
+
+#include "gb_dynamics.h"
+
+/* The step h of the integrator the run uses: the end to chatter where def.settle_time is 0 (gb_integrate
+ * calls it when a run begins). */
+void gb_dynamics_use_step(gb_dynamics *dynamics, double h);
+
+/* GB_ENUMERIC, with a message that names t and says the integration diverged, when a component of y is
+ * not finite (the steppers check each step's result, gb_dynamics_rhs its argument); GB_OK otherwise. */
+int gb_dynamics_state_finite(double t, const double y[GB_STATE_SIZE]);
+
+/* After an accepted step to (t, y): renormalise q (returns the |q| − 1 it removed), update the
+ * contact and count switches. Continuous contact: the branch is continued by Newton, then gb_certify
+ * proves it the global minimum or returns a lower minimum, which becomes the contact (a branch
+ * switch). A check left undecided keeps the continued branch and is counted. */
+int gb_dynamics_accept(gb_dynamics *dynamics, double t, double y[GB_STATE_SIZE], double *norm_drift);
+
+/* Switch-event location (continuous contact; gb_integrate uses these). At state y, is another branch
+ * lower than the continued one? Then *found = 1 and *other is that minimum. */
+int gb_dynamics_switch_pending(gb_dynamics *dynamics, double t, const double y[GB_STATE_SIZE],
+                               gb_contact_point *other, int *found);
+/* Δh = h(current branch) − h(the branch of `other`) at state y, both continued by Newton (eq 39);
+ * *other_here is the other branch at y. In the two-point mode the event's own function, < 0 before it
+ * and > 0 after: a third point's Δh against the lower of the two, or −min(N_P, N_Q). */
+int gb_dynamics_branch_gap(gb_dynamics *dynamics, double t, const double y[GB_STATE_SIZE],
+                           const gb_contact_point *other, double *gap, gb_contact_point *other_here);
+/* Make `branch` the contact from time t on (a located switch at state y). Under the unilateral law this
+ * is an impact: ω in y jumps. GB_ENUMERIC for an impact the law cannot take (see gb_contact_law). */
+int gb_dynamics_switch_to(gb_dynamics *dynamics, double t, double y[GB_STATE_SIZE],
+                          const gb_contact_point *branch);
+
+/* What gb_dynamics_switch_to would make of the state y at time t (the impact's ω after, under the
+ * unilateral law; y itself under the held law and at a lift), into out, changing nothing: the jump map
+ * whose derivative the variational estimator's saltation needs. The contacts are continued to y from
+ * the accepted ones and from `branch`. */
+int gb_dynamics_jump(gb_dynamics *dynamics, double t, const double y[GB_STATE_SIZE],
+                     const gb_contact_point *branch, double out[GB_STATE_SIZE]);
+
+/* In flight: move the centroid by dzeta [m] up and change its velocity by dv [m/s] (inertial) at time t (a
+ * Lyapunov perturbation). GB_EINVAL when the body is not in flight. */
+int gb_dynamics_flight_displace(gb_dynamics *dynamics, double t, double dzeta, const double dv[3]);
+
+/* Take over the accepted contact of `from` (same body and model): for a trajectory placed next to
+ * another one (a Lyapunov perturbation), whose contact is then continued from there. The next accepted
+ * step re-checks it as every step does. Switch counters are left alone. */
+void gb_dynamics_adopt_contact(gb_dynamics *to, const gb_dynamics *from);
+/* The atlas's memory [bytes], and letting it go (a run then reads the file anew): a scan's thread bounds
+ * its memory so. */
+size_t gb_dynamics_context_atlas_bytes(const gb_dynamics_context *context);
+void gb_dynamics_context_forget_atlas(gb_dynamics_context *context);
+/* contact = fast-grid: the tracker's hull vertices (0: no hull, the patch-tree search) and whether the hull
+ * came from the context's hull file (1) or Qhull (0); GB_EINVAL for another model. */
+int gb_dynamics_hull_stats(const gb_dynamics *dynamics, size_t *vertices, int *loaded);
+
+#endif
