@@ -61,14 +61,14 @@ gb_dynamics_def gb_dynamics_default_def(void)
 void gb_dyn_set_mode(gb_dynamics *d, gb_dyn_mode_id mode, double t)
 {
     if (d->mode == mode) return;
-    if (d->mode == GB_DYN_TWO_POINT) d->two_point_time += t - d->two_point_since;
-    if (d->mode == GB_DYN_FLIGHT) d->flight_time += t - d->flight_since;
-    if (d->mode == GB_DYN_SLIDING) d->sliding_time += t - d->sliding_since;
-    if (mode == GB_DYN_SLIDING) d->sliding_since = t;
-    if (mode == GB_DYN_TWO_POINT) d->two_point_since = t;
-    if (mode == GB_DYN_FLIGHT) d->flight_since = t;
-    if (mode == GB_DYN_REST) d->rest_since = t;
+    d->mode_time[d->mode] += t - d->mode_since[d->mode];
+    d->mode_since[mode] = t;
     d->mode = mode;
+}
+
+double gb_dyn_mode_time(const gb_dynamics *d, gb_dyn_mode_id mode, double t)
+{
+    return d->mode_time[mode] + (d->mode == mode ? t - d->mode_since[mode] : 0.0);
 }
 
 const gb_dynamics_def *gb_dynamics_get_def(const gb_dynamics *d) { return &d->def; }
@@ -212,12 +212,12 @@ void gb_dynamics_impact_stats(const gb_dynamics *d, size_t *impacts, double *ene
 
 void gb_dynamics_two_point_stats(const gb_dynamics *d, double t, gb_dynamics_two_point_summary *out)
 {
-    out->time = d->two_point_time + (d->mode == GB_DYN_TWO_POINT ? t - d->two_point_since : 0.0);
+    out->time = gb_dyn_mode_time(d, GB_DYN_TWO_POINT, t);
     out->entries = d->two_point_entries;
     out->settled = d->settled;
     out->lifts = d->lifts;
     out->third_points = d->third_points;
-    out->rest_since = d->rest_since;
+    out->rest_since = d->mode_since[GB_DYN_REST];
 }
 
 size_t gb_dynamics_switch_count(const gb_dynamics *d) { return d->grid_switches + d->branch_switches; }

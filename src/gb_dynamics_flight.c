@@ -117,7 +117,7 @@ int gb_dyn_flight_observe(gb_dynamics *d, double t, const double y[GB_STATE_SIZE
 void gb_dynamics_flight_stats(const gb_dynamics *d, double t, gb_dynamics_flight_summary *out)
 {
     const int flying = d->mode == GB_DYN_FLIGHT;
-    out->time = d->flight_time + (flying ? t - d->flight_since : 0.0);
+    out->time = gb_dyn_mode_time(d, GB_DYN_FLIGHT, t);
     out->lift_offs = d->lift_offs;
     out->landings = d->landings;
     out->bounces = d->bounces;

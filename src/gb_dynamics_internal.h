@@ -177,16 +177,16 @@ struct gb_dynamics {
     size_t next_hint; /* a grid body: the last next node found (gb_dyn_next_node) */
     gb_dynamics_impact_sink impact_sink;
     void *impact_context;
-    /* Two points: the body rolls on `contact` (P) and `contact2` (Q) at once, since two_point_since; the time
-     * spent there before, and how often it was entered. */
+    /* The time booked to each mode (gb_dyn_set_mode): since when the body is in it (the last entry; NAN before
+     * the first), and how long it was in it before. */
+    double mode_since[GB_DYN_MODES], mode_time[GB_DYN_MODES];
+    /* Two points: the body rolls on `contact` (P) and `contact2` (Q) at once; how often it was entered. */
     gb_contact_point contact2;
-    double two_point_since, two_point_time;
     size_t two_point_entries, settled, lifts, third_points;
     /* Q's Newton predictor, as last_* for P: the last Q found, its vertical and sensitivity (q_valid) */
     int q_valid;
     double q_zb[3], q_dq[2][3];
     gb_contact_point q_last; /* that Q (its chart and coordinates start the predictor) */
-    double rest_since;       /* at rest on three points since (NAN: never) */
     /* After a lift from two points (continuous contact): the point that lifted, and how far below the
      * contact it may dip before its return counts as a change of contact (GB_DYN_LIFT_OFF_DIP_MAX), until
      * its gap has opened (lift_allow is 0 when none is pending). */
@@ -198,7 +198,7 @@ struct gb_dynamics {
     double gap_allow; /* a landing is the lowest point this far below the plane [body lengths]: GB_DYN_GAP_TOL,
                        * or a lift-off's dip until the gap has opened */
     double fly_t0, fly_zeta0, fly_v0[3];
-    double flight_since, flight_time, hop_max;
+    double hop_max;
     size_t lift_offs, landings, bounces;
     /* A plane of finite friction (def.friction finite). In the sliding mode the body is on `slide_count`
      * points (contact, and contact2 when 2), each sticking or slipping (slides[k]); a point that slips from
@@ -208,7 +208,6 @@ struct gb_dynamics {
     int event_point;             /* the point (0: contact, 1: contact2) the pending slip, stop or lift is of */
     double slip_start[2][3], slip_ref[2][3];
     int slip_armed[2];           /* the slip has grown past rounding since it started: its stop is an event */
-    double sliding_since, sliding_time;
     size_t slips, sticks;
     /* The last competitor() answer and the state it was for: with switch location, the step's end is
      * checked by gb_dynamics_switch_pending and then again by gb_dynamics_accept at the same state. */
@@ -232,6 +231,8 @@ int gb_dyn_field(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], double
 double gb_dyn_coefficient(const gb_dynamics *d, int slot);
 /* Enter mode `mode` at time t: the time spent in the mode left is booked, the new one's start noted. */
 void gb_dyn_set_mode(gb_dynamics *d, gb_dyn_mode_id mode, double t);
+/* The time spent in mode `mode` up to t. */
+double gb_dyn_mode_time(const gb_dynamics *d, gb_dyn_mode_id mode, double t);
 /* "t = ...: the state is no longer finite" (GB_ENUMERIC). */
 int gb_dyn_diverged(double t);
 /* A body vector in inertial axes at state y: R b. */

@@ -401,7 +401,7 @@ void gb_dyn_sliding_translate(const gb_dynamics *d, double t, double y[GB_STATE_
 void gb_dynamics_sliding_stats(const gb_dynamics *d, double t, const double y[GB_STATE_SIZE], gb_dynamics_sliding_summary *out)
 {
     const int sliding = d->mode == GB_DYN_SLIDING;
-    out->time = d->sliding_time + (sliding ? t - d->sliding_since : 0.0);
+    out->time = gb_dyn_mode_time(d, GB_DYN_SLIDING, t);
     out->slips = d->slips;
     out->sticks = d->sticks;
     out->friction_loss = y ? 0.0 - y[GB_STATE_FRICTION] : 0.0;
