@@ -213,10 +213,10 @@ void gb_dynamics_impact_stats(const gb_dynamics *d, size_t *impacts, double *ene
 void gb_dynamics_two_point_stats(const gb_dynamics *d, double t, gb_dynamics_two_point_summary *out)
 {
     out->time = gb_dyn_mode_time(d, GB_DYN_TWO_POINT, t);
-    out->entries = d->two_point_entries;
-    out->settled = d->settled;
-    out->lifts = d->lifts;
-    out->third_points = d->third_points;
+    out->entries = d->crease.entries;
+    out->settled = d->crease.settled;
+    out->lifts = d->crease.lifts;
+    out->third_points = d->crease.third_points;
     out->rest_since = d->mode_since[GB_DYN_REST];
 }
 

@@ -279,7 +279,7 @@ static double stop_gap(const gb_dynamics *d, const double y[GB_STATE_SIZE], cons
     double s[3], body[3];
     gb_dyn_slip_of(y, zb, r, body);
     gb_dyn_to_inertial(y, body, s);
-    return -fmin(gb_vec_dot(s, d->slip_ref[k]), gb_vec_norm(body) - gb_dyn_slip_stop_speed(d, y, body, slip_acc));
+    return -fmin(gb_vec_dot(s, d->slide.ref[k]), gb_vec_norm(body) - gb_dyn_slip_stop_speed(d, y, body, slip_acc));
 }
 
 /* Sliding at state y: a slip stopped or turned back (its slip against its direction at the accepted
@@ -294,17 +294,17 @@ int gb_dyn_sliding_pending(gb_dynamics *d, double t, const double y[GB_STATE_SIZ
     double zb[3];
     gb_dyn_vertical(y, zb);
     *other = d->contact;
-    for (int k = 0; k < d->slide_count && !*found; k++) {
-        if (!d->slides[k] || !d->slip_armed[k]) continue; /* a slip still at rounding's size has no stop yet */
+    for (int k = 0; k < d->slide.count && !*found; k++) {
+        if (!d->slide.slides[k] || !d->slide.armed[k]) continue; /* a slip still at rounding's size has no stop yet */
         if (stop_gap(d, y, zb, points[k].r, f.slip_acc[k], k) >= 0.0) *found = 1, d->event = GB_DYN_EVENT_STICK, d->event_point = k;
     }
-    for (int k = 0; k < d->slide_count && !*found; k++)
-        if (!d->slides[k] && f.margin[k] < 0.0) *found = 1, d->event = GB_DYN_EVENT_SLIP, d->event_point = k;
-    for (int k = 0; k < d->slide_count && !*found; k++)
+    for (int k = 0; k < d->slide.count && !*found; k++)
+        if (!d->slide.slides[k] && f.margin[k] < 0.0) *found = 1, d->event = GB_DYN_EVENT_SLIP, d->event_point = k;
+    for (int k = 0; k < d->slide.count && !*found; k++)
         if (f.normal[k] < 0.0)
-            *found = 1, d->event = d->slide_count == 2 ? GB_DYN_EVENT_LIFT : GB_DYN_EVENT_LIFT_OFF, d->event_point = k;
+            *found = 1, d->event = d->slide.count == 2 ? GB_DYN_EVENT_LIFT : GB_DYN_EVENT_LIFT_OFF, d->event_point = k;
     if (*found) return GB_OK;
-    if (d->slide_count == 1) {
+    if (d->slide.count == 1) {
         gb_contact_point continued;
         status = gb_dyn_competitor(d, t, y, &continued, other, found);
         if (!status && *found) d->event = GB_DYN_EVENT_SWITCH;

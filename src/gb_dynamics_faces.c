@@ -202,8 +202,8 @@ int gb_dyn_face_landing(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const
     } else {
         gb_dyn_set_contact(d, &r_pt);
         d->contact2 = s_pt;
-        d->q_valid = 0;
-        d->two_point_entries++;
+        d->crease.q_valid = 0;
+        d->crease.entries++;
     }
     return gb_dyn_book(d, &e);
 }

@@ -33,9 +33,9 @@ static void geff_integrals(const gb_forcing *f, double t0, double t, double *onc
 void gb_dyn_flight_state(const gb_dynamics *d, double t, double *zeta, double v[3])
 {
     double once, twice;
-    geff_integrals(&d->def.forcing, d->fly_t0, t, &once, &twice);
-    *zeta = d->fly_zeta0 + d->fly_v0[2] * (t - d->fly_t0) - twice;
-    v[0] = d->fly_v0[0], v[1] = d->fly_v0[1], v[2] = d->fly_v0[2] - once;
+    geff_integrals(&d->def.forcing, d->flight.t0, t, &once, &twice);
+    *zeta = d->flight.zeta0 + d->flight.v0[2] * (t - d->flight.t0) - twice;
+    v[0] = d->flight.v0[0], v[1] = d->flight.v0[1], v[2] = d->flight.v0[2] - once;
 }
 
 /* Torque-free but for the damping torque −c ω (eq 42, which the scene keeps in flight): I_G ω̇ + ω × I_G ω = −c ω. */
@@ -56,9 +56,9 @@ void gb_dyn_start_flight(gb_dynamics *d, double t, const double y[GB_STATE_SIZE]
     d->gap_allow = GB_DYN_GAP_TOL;
     double R[9];
     gb_dynamics_rotation(y + GB_STATE_Q, R);
-    for (int i = 0; i < 3; i++) d->fly_v0[i] = R[3 * i] * v_body[0] + R[3 * i + 1] * v_body[1] + R[3 * i + 2] * v_body[2];
-    d->fly_t0 = t;
-    d->fly_zeta0 = zeta;
+    for (int i = 0; i < 3; i++) d->flight.v0[i] = R[3 * i] * v_body[0] + R[3 * i + 1] * v_body[1] + R[3 * i + 2] * v_body[2];
+    d->flight.t0 = t;
+    d->flight.zeta0 = zeta;
     gb_dyn_set_mode(d, GB_DYN_FLIGHT, t);
 }
 
@@ -92,7 +92,7 @@ int gb_dyn_flight_accept(gb_dynamics *d, double t, double y[GB_STATE_SIZE])
     if (clearance < -d->def.length * d->gap_allow)
         return gb_error_set(GB_ENUMERIC, "flight at t = %.9g: the lowest point is %.3g m below the plane, a landing "
                             "that the step's event location did not find", t, -clearance);
-    d->hop_max = fmax(d->hop_max, clearance);
+    d->flight.hop_max = fmax(d->flight.hop_max, clearance);
     return gb_dyn_remember_rate(d, t, y);
 }
 
@@ -118,10 +118,10 @@ void gb_dynamics_flight_stats(const gb_dynamics *d, double t, gb_dynamics_flight
 {
     const int flying = d->mode == GB_DYN_FLIGHT;
     out->time = gb_dyn_mode_time(d, GB_DYN_FLIGHT, t);
-    out->lift_offs = d->lift_offs;
-    out->landings = d->landings;
-    out->bounces = d->bounces;
-    out->hop_max = d->hop_max;
+    out->lift_offs = d->flight.lift_offs;
+    out->landings = d->flight.landings;
+    out->bounces = d->flight.bounces;
+    out->hop_max = d->flight.hop_max;
     out->flying = flying;
 }
 
@@ -130,9 +130,9 @@ int gb_dynamics_flight_displace(gb_dynamics *d, double t, double dzeta, const do
     if (d->mode != GB_DYN_FLIGHT) return gb_error_set(GB_EINVAL, "the body is not in flight at t = %.9g", t);
     double zeta, v[3];
     gb_dyn_flight_state(d, t, &zeta, v);
-    d->fly_t0 = t;
-    d->fly_zeta0 = zeta + dzeta;
-    for (int k = 0; k < 3; k++) d->fly_v0[k] = v[k] + dv[k];
+    d->flight.t0 = t;
+    d->flight.zeta0 = zeta + dzeta;
+    for (int k = 0; k < 3; k++) d->flight.v0[k] = v[k] + dv[k];
     d->memo_valid = 0;
     return GB_OK;
 }

@@ -141,18 +141,18 @@ void gb_dynamics_adopt_contact(gb_dynamics *to, const gb_dynamics *from)
     to->mode = from->mode, to->event = GB_DYN_EVENT_NONE;
     memcpy(to->mode_since, from->mode_since, sizeof to->mode_since);
     to->contact2 = from->contact2;
-    to->q_valid = 0;
+    to->crease.q_valid = 0;
     to->gap_allow = from->gap_allow;
     to->lifted = from->lifted, to->lift_allow = from->lift_allow;
-    to->fly_t0 = from->fly_t0, to->fly_zeta0 = from->fly_zeta0;
-    memcpy(to->fly_v0, from->fly_v0, sizeof to->fly_v0);
+    to->flight.t0 = from->flight.t0, to->flight.zeta0 = from->flight.zeta0;
+    memcpy(to->flight.v0, from->flight.v0, sizeof to->flight.v0);
     to->contact_time = from->contact_time;
     memcpy(to->contact_rate, from->contact_rate, sizeof to->contact_rate);
-    to->slide_count = from->slide_count;
-    memcpy(to->slides, from->slides, sizeof to->slides);
-    memcpy(to->slip_start, from->slip_start, sizeof to->slip_start);
-    memcpy(to->slip_ref, from->slip_ref, sizeof to->slip_ref);
-    memcpy(to->slip_armed, from->slip_armed, sizeof to->slip_armed);
+    to->slide.count = from->slide.count;
+    memcpy(to->slide.slides, from->slide.slides, sizeof to->slide.slides);
+    memcpy(to->slide.start, from->slide.start, sizeof to->slide.start);
+    memcpy(to->slide.ref, from->slide.ref, sizeof to->slide.ref);
+    memcpy(to->slide.armed, from->slide.armed, sizeof to->slide.armed);
 }
 
 int gb_dynamics_init_state(gb_dynamics *d, double t0, const double R0[9], const double omega0[3],
@@ -184,14 +184,14 @@ int gb_dynamics_init_state(gb_dynamics *d, double t0, const double R0[9], const 
     for (int m = 0; m < GB_DYN_MODES; m++) d->mode_since[m] = NAN, d->mode_time[m] = 0.0;
     d->mode_since[GB_DYN_ONE_POINT] = t0;
     d->next_hint = SIZE_MAX;
-    d->q_valid = 0;
-    d->two_point_entries = d->settled = d->lifts = d->third_points = 0;
+    d->crease.q_valid = 0;
+    d->crease.entries = d->crease.settled = d->crease.lifts = d->crease.third_points = 0;
     d->gap_allow = GB_DYN_GAP_TOL;
     d->lift_allow = 0.0;
-    d->hop_max = 0.0;
-    d->lift_offs = d->landings = d->bounces = 0;
-    d->slide_count = 0, d->slides[0] = d->slides[1] = 0;
-    d->slips = d->sticks = 0;
+    d->flight.hop_max = 0.0;
+    d->flight.lift_offs = d->flight.landings = d->flight.bounces = 0;
+    d->slide.count = 0, d->slide.slides[0] = d->slide.slides[1] = 0;
+    d->slide.slips = d->slide.sticks = 0;
     for (int k = GB_STATE_POSITION; k < GB_STATE_SIZE; k++) y[k] = 0.0;
     const double *v0 = d->def.velocity0;
     const int moving = v0[0] != 0.0 || v0[1] != 0.0 || v0[2] != 0.0;
@@ -212,14 +212,14 @@ int gb_dynamics_init_state(gb_dynamics *d, double t0, const double R0[9], const 
             const double size = gb_vec_norm(s), unit[3] = {s[0] / size, s[1] / size, s[2] / size};
             gb_dyn_to_inertial(y, unit, start[0]);
             gb_dyn_start_sliding(d, t0, y, 1, slides, (const double(*)[3])start);
-            d->slips = 0; /* a start, not a change */
+            d->slide.slips = 0; /* a start, not a change */
         }
     } else if (d->def.height0 > 0.0 || moving) {
         /* in flight: the lowest point (the contact found) at height0 above the plane, the centroid at v0 */
         double vb[3];
         for (int i = 0; i < 3; i++) vb[i] = R[i] * v0[0] + R[3 + i] * v0[1] + R[6 + i] * v0[2]; /* Rᵀ v0 */
         gb_dyn_start_flight(d, t0, y, vb, d->def.height0 - d->def.length * gb_vec_dot(zb, d->contact.rc));
-        d->hop_max = d->def.height0;
+        d->flight.hop_max = d->def.height0;
     }
     d->last_switch_time = NAN;
     d->memo_valid = 0;

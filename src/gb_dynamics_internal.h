@@ -129,6 +129,40 @@ extern const gb_dyn_mode gb_dyn_compliant_mode;
 /* The definition's law against its contact model and equation: GB_OK, or GB_EINVAL saying what is allowed. */
 int gb_dyn_law_check(const gb_dynamics_def *def);
 
+/* ---- the modes' own state --------------------------------------------------------------------------- */
+
+/* Flight's (gb_dynamics_flight.c): since t0 the centroid moves under g_eff alone, from height zeta0 above the
+ * plane with velocity v0 (inertial, relative to the plane): closed form (gb_dyn_flight_state); the highest gap
+ * between the lowest point and the plane at an accepted step of a flight, and the lift-offs, landings and
+ * bounces so far. */
+typedef struct gb_dyn_flight {
+    double t0, zeta0, v0[3];
+    double hop_max;
+    size_t lift_offs, landings, bounces;
+} gb_dyn_flight;
+
+/* The two-point mode's (gb_dynamics_two_point.c): how often it was entered from one point, the impacts the settle
+ * rule ended (`settled`), the lifts and the third points that ended it; and Q's Newton predictor, as the state's
+ * last_* for P: the last Q found, its vertical and sensitivity (q_valid). */
+typedef struct gb_dyn_crease {
+    size_t entries, settled, lifts, third_points;
+    int q_valid;
+    double q_zb[3], q_dq[2][3];
+    gb_contact_point q_last; /* that Q (its chart and coordinates start the predictor) */
+} gb_dyn_crease;
+
+/* The sliding mode's (a plane of finite friction, gb_dynamics_sliding.c): the body is on `count` points (contact,
+ * and contact2 when 2), each sticking or slipping (slides[k]); a point that slips from rest slips first along
+ * start[k] (inertial axes, horizontal), after which its slip's own direction takes over; ref[k] is its direction at
+ * the accepted state (the stop's event function), armed[k] whether the slip has grown past rounding since it
+ * started (its stop is then an event); the changes from sticking to slipping and back so far. */
+typedef struct gb_dyn_sliding {
+    int count, slides[2];
+    double start[2][3], ref[2][3];
+    int armed[2];
+    size_t slips, sticks;
+} gb_dyn_sliding;
+
 /* ---- the state ----------------------------------------------------------------------------------- */
 
 
@@ -180,35 +214,20 @@ struct gb_dynamics {
     /* The time booked to each mode (gb_dyn_set_mode): since when the body is in it (the last entry; NAN before
      * the first), and how long it was in it before. */
     double mode_since[GB_DYN_MODES], mode_time[GB_DYN_MODES];
-    /* Two points: the body rolls on `contact` (P) and `contact2` (Q) at once; how often it was entered. */
+    /* On two points (rolling on a crease, sliding on two): `contact` (P) and `contact2` (Q) at once. */
     gb_contact_point contact2;
-    size_t two_point_entries, settled, lifts, third_points;
-    /* Q's Newton predictor, as last_* for P: the last Q found, its vertical and sensitivity (q_valid) */
-    int q_valid;
-    double q_zb[3], q_dq[2][3];
-    gb_contact_point q_last; /* that Q (its chart and coordinates start the predictor) */
+    gb_dyn_crease crease; /* the two-point mode's own (gb_dynamics_two_point.c) */
     /* After a lift from two points (continuous contact): the point that lifted, and how far below the
      * contact it may dip before its return counts as a change of contact (GB_DYN_LIFT_OFF_DIP_MAX), until
      * its gap has opened (lift_allow is 0 when none is pending). */
     gb_contact_point lifted;
     double lift_allow;
-    /* Flight: since fly_t0 the centroid moves under g_eff alone, from height fly_zeta0 above the plane with
-     * velocity fly_v0 (inertial, relative to the plane): closed form (gb_dyn_flight_state). `contact` is
-     * then the lowest point, continued and certified as a contact is. */
-    double gap_allow; /* a landing is the lowest point this far below the plane [body lengths]: GB_DYN_GAP_TOL,
-                       * or a lift-off's dip until the gap has opened */
-    double fly_t0, fly_zeta0, fly_v0[3];
-    double hop_max;
-    size_t lift_offs, landings, bounces;
-    /* A plane of finite friction (def.friction finite). In the sliding mode the body is on `slide_count`
-     * points (contact, and contact2 when 2), each sticking or slipping (slides[k]); a point that slips from
-     * rest slips first along slip_start[k] (inertial axes, horizontal), after which its slip's own direction
-     * takes over; slip_ref[k] is its direction at the accepted state (the stop's event function). */
-    int slide_count, slides[2];
-    int event_point;             /* the point (0: contact, 1: contact2) the pending slip, stop or lift is of */
-    double slip_start[2][3], slip_ref[2][3];
-    int slip_armed[2];           /* the slip has grown past rounding since it started: its stop is an event */
-    size_t slips, sticks;
+    /* In flight `contact` is the lowest point, continued and certified as a contact is; a landing is that point
+     * gap_allow below the plane [body lengths]: GB_DYN_GAP_TOL, or a lift-off's dip until the gap has opened. */
+    double gap_allow;
+    gb_dyn_flight flight;  /* flight's own (gb_dynamics_flight.c) */
+    gb_dyn_sliding slide;  /* the sliding mode's own (gb_dynamics_sliding.c) */
+    int event_point;       /* the point (0: contact, 1: contact2) the pending slip, stop or lift is of */
     /* The last competitor() answer and the state it was for: with switch location, the step's end is
      * checked by gb_dynamics_switch_pending and then again by gb_dynamics_accept at the same state. */
     int memo_valid, memo_found;

@@ -508,12 +508,12 @@ static int two_point_located(gb_dynamics *d, double t, double y[GB_STATE_SIZE], 
         const gb_contact_point *const pts[3] = {&tp.p.point, &tp.q, third};
         gb_dyn_set_contact(d, pts[(tip + 1) % 3]);
         d->contact2 = *pts[(tip + 2) % 3];
-        d->q_valid = 0;
+        d->crease.q_valid = 0;
         return gb_dyn_book(d, &e);
     }
     if (held == 2) {
         d->contact2 = r.holds[0] ? tp.p.point : tp.q;
-        d->q_valid = 0;
+        d->crease.q_valid = 0;
     } else {
         gb_dyn_set_mode(d, GB_DYN_ONE_POINT, t);
     }
@@ -573,8 +573,8 @@ int gb_dyn_one_point_event(gb_dynamics *d, double t, double y[GB_STATE_SIZE], co
         if (both) {
             gb_dyn_set_mode(d, GB_DYN_TWO_POINT, t);
             d->contact2 = here;
-            d->q_valid = 0;
-            d->two_point_entries++;
+            d->crease.q_valid = 0;
+            d->crease.entries++;
         }
     } else {
         d->contact = *branch;

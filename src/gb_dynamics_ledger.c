@@ -11,12 +11,12 @@
 
 int gb_dyn_book(gb_dynamics *d, const gb_dynamics_impact *e)
 {
-    d->settled += (size_t)e->settled;
-    d->lifts += e->kind == GB_DYNAMICS_IMPACT_LIFT;
-    d->third_points += e->kind == GB_DYNAMICS_IMPACT_THIRD;
-    d->lift_offs += e->kind == GB_DYNAMICS_IMPACT_LIFT_OFF;
-    d->landings += e->kind == GB_DYNAMICS_IMPACT_LANDING;
-    d->bounces += e->kind == GB_DYNAMICS_IMPACT_BOUNCE || (e->kind == GB_DYNAMICS_IMPACT_LANDING && e->rebound);
+    d->crease.settled += (size_t)e->settled;
+    d->crease.lifts += e->kind == GB_DYNAMICS_IMPACT_LIFT;
+    d->crease.third_points += e->kind == GB_DYNAMICS_IMPACT_THIRD;
+    d->flight.lift_offs += e->kind == GB_DYNAMICS_IMPACT_LIFT_OFF;
+    d->flight.landings += e->kind == GB_DYNAMICS_IMPACT_LANDING;
+    d->flight.bounces += e->kind == GB_DYNAMICS_IMPACT_BOUNCE || (e->kind == GB_DYNAMICS_IMPACT_LANDING && e->rebound);
     if (e->kind != GB_DYNAMICS_IMPACT_LIFT && e->kind != GB_DYNAMICS_IMPACT_LIFT_OFF && e->kind != GB_DYNAMICS_IMPACT_CREASE_END) {
         d->impacts++;
         d->impact_loss += e->kinetic_before - e->kinetic_after - e->potential_jump;

@@ -236,7 +236,7 @@ int gb_dyn_sliding_eval(gb_dynamics *d, double t, const double y[GB_STATE_SIZE],
     int status = gb_dyn_contact_at(d, t, zb, omega, &c);
     if (status) return status;
     memcpy(points[0].r, c.rc, sizeof c.rc), memcpy(points[0].rdot, c.rc_dot, sizeof c.rc_dot);
-    if (d->slide_count == 2) {
+    if (d->slide.count == 2) {
         gb_contact_point q;
         double rate[3];
         status = gb_dyn_second_point(d, zb, &q);
@@ -246,12 +246,12 @@ int gb_dyn_sliding_eval(gb_dynamics *d, double t, const double y[GB_STATE_SIZE],
     }
     gb_dynamics_rotation(y + GB_STATE_Q, R);
     const double floor = slip_floor(d, y);
-    for (int k = 0; k < d->slide_count; k++) {
-        points[k].slides = d->slides[k];
+    for (int k = 0; k < d->slide.count; k++) {
+        points[k].slides = d->slide.slides[k];
         if (!points[k].slides) continue;
         double s[3], ref[3];
         gb_dyn_slip_of(y, zb, points[k].r, s);
-        const double speed = gb_vec_norm(s), *w = d->slip_armed[k] ? d->slip_ref[k] : d->slip_start[k];
+        const double speed = gb_vec_norm(s), *w = d->slide.armed[k] ? d->slide.ref[k] : d->slide.start[k];
         for (int i = 0; i < 3; i++) ref[i] = R[i] * w[0] + R[3 + i] * w[1] + R[6 + i] * w[2]; /* into body axes */
         /* the slip's own direction; along the accepted state's where the slip is rounding's size or has turned
          * back against it, so that a step carries the slip smoothly through its stop and the stop's event
@@ -261,7 +261,7 @@ int gb_dyn_sliding_eval(gb_dynamics *d, double t, const double y[GB_STATE_SIZE],
         else
             memcpy(points[k].slip, ref, sizeof ref);
     }
-    return gb_dyn_friction_solve(d, t, geff, zb, omega, points, d->slide_count, f);
+    return gb_dyn_friction_solve(d, t, geff, zb, omega, points, d->slide.count, f);
 }
 
 int gb_dyn_sliding_field(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const double omega[3], const double zb[3],
@@ -277,7 +277,7 @@ int gb_dyn_sliding_field(gb_dynamics *d, double t, const double y[GB_STATE_SIZE]
     if (rates) {
         gb_dyn_to_inertial(y, f.acc, rates->acc);
         rates->friction_power = 0.0;
-        for (int k = 0; k < d->slide_count; k++) {
+        for (int k = 0; k < d->slide.count; k++) {
             if (!points[k].slides) continue;
             double s[3];
             gb_dyn_slip_of(y, zb, points[k].r, s);
@@ -291,13 +291,13 @@ void gb_dyn_start_sliding(gb_dynamics *d, double t, const double y[GB_STATE_SIZE
                           const double start[2][3])
 {
     (void)y;
-    d->slide_count = count;
+    d->slide.count = count;
     for (int k = 0; k < 2; k++) {
-        d->slides[k] = k < count && slides[k];
-        d->slip_armed[k] = 0;
-        for (int i = 0; i < 3; i++) d->slip_start[k][i] = start[k][i], d->slip_ref[k][i] = start[k][i];
+        d->slide.slides[k] = k < count && slides[k];
+        d->slide.armed[k] = 0;
+        for (int i = 0; i < 3; i++) d->slide.start[k][i] = start[k][i], d->slide.ref[k][i] = start[k][i];
     }
-    if (d->mode != GB_DYN_SLIDING) d->slips++;
+    if (d->mode != GB_DYN_SLIDING) d->slide.slips++;
     gb_dyn_set_mode(d, GB_DYN_SLIDING, t);
 }
 
@@ -310,7 +310,7 @@ int gb_dyn_sliding_accept(gb_dynamics *d, double t, double y[GB_STATE_SIZE])
     gb_dyn_vertical(y, zb);
     gb_contact_point continued, other;
     int found = 0, status;
-    if (d->slide_count == 1) {
+    if (d->slide.count == 1) {
         status = gb_dyn_competitor(d, t, y, &continued, &other, &found);
         if (!status && found)
             status = gb_error_set(GB_ENUMERIC, "sliding at t = %.9g: a change of contact at the step's end that the "
@@ -321,20 +321,20 @@ int gb_dyn_sliding_accept(gb_dynamics *d, double t, double y[GB_STATE_SIZE])
     if (status) return status;
     gb_dyn_set_contact(d, &continued);
     d->memo_valid = 0;
-    if (d->slide_count == 2) {
+    if (d->slide.count == 2) {
         gb_contact_point q;
         status = gb_dyn_second_point(d, zb, &q);
         if (status) return status;
         const double gap[3] = {q.rc[0] - continued.rc[0], q.rc[1] - continued.rc[1], q.rc[2] - continued.rc[2]};
         if (!q.is_minimum || !(gb_vec_norm(gap) > 1e-9)) { /* the crease's end: on the first point alone */
-            d->slide_count = 1;
-            d->slides[1] = 0;
+            d->slide.count = 1;
+            d->slide.slides[1] = 0;
         } else {
             d->contact2 = q;
         }
     }
-    const int sticks[2] = {!d->slides[0], d->slide_count == 2 && !d->slides[1]};
-    status = gb_dyn_hold_velocities(d, y, d->slide_count, sticks);
+    const int sticks[2] = {!d->slide.slides[0], d->slide.count == 2 && !d->slide.slides[1]};
+    status = gb_dyn_hold_velocities(d, y, d->slide.count, sticks);
     if (status) return status;
     gb_dynamics_rotation(y + GB_STATE_Q, R);
     const double floor = slip_floor(d, y);
@@ -342,14 +342,14 @@ int gb_dyn_sliding_accept(gb_dynamics *d, double t, double y[GB_STATE_SIZE])
     gb_dyn_friction_forces f;
     status = gb_dyn_sliding_eval(d, t, y, points, &f);
     if (status) return status;
-    for (int k = 0; k < d->slide_count; k++) {
-        if (!d->slides[k]) continue;
+    for (int k = 0; k < d->slide.count; k++) {
+        if (!d->slide.slides[k]) continue;
         double s[3];
         gb_dyn_slip_of(y, zb, points[k].r, s);
         const double speed = gb_vec_norm(s);
         if (speed > floor) {
-            for (int i = 0; i < 3; i++) d->slip_ref[k][i] = (R[3 * i] * s[0] + R[3 * i + 1] * s[1] + R[3 * i + 2] * s[2]) / speed;
-            d->slip_armed[k] = d->slip_armed[k] || speed > 2.0 * gb_dyn_slip_stop_speed(d, y, s, f.slip_acc[k]);
+            for (int i = 0; i < 3; i++) d->slide.ref[k][i] = (R[3 * i] * s[0] + R[3 * i + 1] * s[1] + R[3 * i + 2] * s[2]) / speed;
+            d->slide.armed[k] = d->slide.armed[k] || speed > 2.0 * gb_dyn_slip_stop_speed(d, y, s, f.slip_acc[k]);
         }
     }
     return gb_dyn_remember_rate(d, t, y);
@@ -364,22 +364,22 @@ int gb_dyn_sliding_observe(gb_dynamics *d, double t, const double y[GB_STATE_SIZ
     memcpy(o->omega_dot, f.omega_dot, sizeof o->omega_dot);
     memcpy(o->rc, points[0].r, sizeof o->rc);
     memcpy(o->rc_dot, points[0].rdot, sizeof o->rc_dot);
-    if (d->slide_count == 2) memcpy(o->rc_other, points[1].r, sizeof o->rc_other);
+    if (d->slide.count == 2) memcpy(o->rc_other, points[1].r, sizeof o->rc_other);
     o->index = d->index;
     o->height = gb_vec_dot(o->zb, points[0].r);
     o->zeta = -o->height;
     memcpy(o->velocity, y + GB_STATE_VELOCITY, sizeof o->velocity);
     gb_dyn_observe_free_energy(d, y, o);
-    o->contacts = d->slide_count;
-    o->normal_force = f.normal[0] + (d->slide_count == 2 ? f.normal[1] : 0.0);
-    o->normal_forces[0] = f.normal[0], o->normal_forces[1] = d->slide_count == 2 ? f.normal[1] : 0.0;
+    o->contacts = d->slide.count;
+    o->normal_force = f.normal[0] + (d->slide.count == 2 ? f.normal[1] : 0.0);
+    o->normal_forces[0] = f.normal[0], o->normal_forces[1] = d->slide.count == 2 ? f.normal[1] : 0.0;
     o->friction_needed = d->def.friction;
     o->sliding = 0, o->slip_speed = 0.0;
-    for (int k = 0; k < d->slide_count; k++) {
+    for (int k = 0; k < d->slide.count; k++) {
         double s[3];
         gb_dyn_slip_of(y, o->zb, points[k].r, s);
-        o->sliding += d->slides[k];
-        if (d->slides[k]) o->slip_speed = fmax(o->slip_speed, gb_vec_norm(s));
+        o->sliding += d->slide.slides[k];
+        if (d->slide.slides[k]) o->slip_speed = fmax(o->slip_speed, gb_vec_norm(s));
     }
     return GB_OK;
 }
@@ -402,8 +402,8 @@ void gb_dynamics_sliding_stats(const gb_dynamics *d, double t, const double y[GB
 {
     const int sliding = d->mode == GB_DYN_SLIDING;
     out->time = gb_dyn_mode_time(d, GB_DYN_SLIDING, t);
-    out->slips = d->slips;
-    out->sticks = d->sticks;
+    out->slips = d->slide.slips;
+    out->sticks = d->slide.sticks;
     out->friction_loss = y ? 0.0 - y[GB_STATE_FRICTION] : 0.0;
     out->sliding = sliding;
 }

@@ -58,11 +58,11 @@ static void against(const double y[GB_STATE_SIZE], const double zb[3], const dou
  * rolling one (the slip left is the located event's rounding). */
 static int stick_all(gb_dynamics *d, double t, double y[GB_STATE_SIZE], int count)
 {
-    if (d->mode == GB_DYN_SLIDING) d->sticks++;
+    if (d->mode == GB_DYN_SLIDING) d->slide.sticks++;
     const int sticks[2] = {1, 1};
     const int status = gb_dyn_hold_velocities(d, y, count, sticks);
     gb_dyn_set_mode(d, count == 2 ? GB_DYN_TWO_POINT : GB_DYN_ONE_POINT, t);
-    if (count == 2) d->two_point_entries++, d->q_valid = 0;
+    if (count == 2) d->crease.entries++, d->crease.q_valid = 0;
     return status;
 }
 
@@ -137,19 +137,19 @@ static int slip_stops(gb_dynamics *d, double t, double y[GB_STATE_SIZE], int k)
         const double speed = gb_vec_norm(s);
         gb_dyn_to_inertial(y, s, w);
         const double stop = gb_dyn_slip_stop_speed(d, y, s, f.slip_acc[k]);
-        if (gb_vec_dot(w, d->slip_ref[k]) < speed - stop && speed > 2.0 * stop) {
+        if (gb_vec_dot(w, d->slide.ref[k]) < speed - stop && speed > 2.0 * stop) {
             for (int i = 0; i < 3; i++) s[i] /= speed;
             gb_dyn_to_inertial(y, s, w);
-            memcpy(d->slip_ref[k], w, sizeof w);
+            memcpy(d->slide.ref[k], w, sizeof w);
             return GB_OK;
         }
     }
-    const int was = d->slides[k];
-    d->slides[k] = 0;
+    const int was = d->slide.slides[k];
+    d->slide.slides[k] = 0;
     int any = 0, status;
-    for (int q = 0; q < d->slide_count; q++) any |= d->slides[q];
+    for (int q = 0; q < d->slide.count; q++) any |= d->slide.slides[q];
     double margin;
-    if (!any && d->slide_count == 2) {
+    if (!any && d->slide.count == 2) {
         /* both would stick: the crease's forces, their open split taken deepest in the cones */
         gb_dyn_two_point tp;
         int alone;
@@ -176,14 +176,14 @@ static int slip_stops(gb_dynamics *d, double t, double y[GB_STATE_SIZE], int k)
         memcpy(force, f.force[k], sizeof force);
     }
     if (margin >= 0.0) {
-        if (any) d->sticks++; /* one of two sticks, the other slips on */
-        else return stick_all(d, t, y, d->slide_count);
+        if (any) d->slide.sticks++; /* one of two sticks, the other slips on */
+        else return stick_all(d, t, y, d->slide.count);
         return GB_OK;
     }
     /* the cone cannot hold it stopped: it slips on, against the force that would have held it */
-    d->slides[k] = was, d->slip_armed[k] = 0;
-    against(y, zb, force, d->slip_start[k]);
-    memcpy(d->slip_ref[k], d->slip_start[k], sizeof d->slip_ref[k]);
+    d->slide.slides[k] = was, d->slide.armed[k] = 0;
+    against(y, zb, force, d->slide.start[k]);
+    memcpy(d->slide.ref[k], d->slide.start[k], sizeof d->slide.ref[k]);
     return GB_OK;
 }
 
@@ -340,11 +340,11 @@ int gb_dyn_friction_impact(gb_dynamics *d, double t, double y[GB_STATE_SIZE], co
         return gb_dyn_book(d, &rec);
     }
     gb_dyn_set_contact(d, &points[which[0]]);
-    if (n == 2) d->contact2 = points[which[1]], d->q_valid = 0;
+    if (n == 2) d->contact2 = points[which[1]], d->crease.q_valid = 0;
     if (!sliding) {
-        if (d->mode == GB_DYN_SLIDING) d->sticks++;
+        if (d->mode == GB_DYN_SLIDING) d->slide.sticks++;
         gb_dyn_set_mode(d, n == 2 ? GB_DYN_TWO_POINT : GB_DYN_ONE_POINT, t);
-        if (n == 2) d->two_point_entries++;
+        if (n == 2) d->crease.entries++;
     } else {
         int slides[2] = {res.slides[which[0]], n == 2 ? res.slides[which[1]] : 0};
         double start[2][3] = {{0}};
@@ -376,9 +376,9 @@ int gb_dyn_sliding_event(gb_dynamics *d, double t, double y[GB_STATE_SIZE], cons
         const int status = gb_dyn_sliding_eval(d, t, y, points, &f);
         if (status) return status;
         gb_dyn_vertical(y, zb);
-        d->slides[k] = 1, d->slips++, d->slip_armed[k] = 0;
-        against(y, zb, f.force[k], d->slip_start[k]);
-        memcpy(d->slip_ref[k], d->slip_start[k], sizeof d->slip_ref[k]);
+        d->slide.slides[k] = 1, d->slide.slips++, d->slide.armed[k] = 0;
+        against(y, zb, f.force[k], d->slide.start[k]);
+        memcpy(d->slide.ref[k], d->slide.start[k], sizeof d->slide.ref[k]);
         return GB_OK;
     }
     if (event == GB_DYN_EVENT_LIFT) { /* one of two points leaves: the other goes on as it was */
@@ -397,12 +397,12 @@ int gb_dyn_sliding_event(gb_dynamics *d, double t, double y[GB_STATE_SIZE], cons
         gb_dynamics_impact rec = {.t = t, .located = 1, .kind = GB_DYNAMICS_IMPACT_LIFT, .contacts_after = 1,
                                   .return_time = INFINITY};
         gb_dyn_record(&rec, y, rp, (const double[3]){L * left->rc[0], L * left->rc[1], L * left->rc[2]}, v, &none, 0, -1);
-        const int slides = d->slides[1 - k];
+        const int slides = d->slide.slides[1 - k];
         gb_dyn_set_contact(d, left);
-        d->slide_count = 1, d->slides[0] = slides, d->slides[1] = 0;
-        memcpy(d->slip_start[0], d->slip_start[1 - k], sizeof d->slip_start[0]);
-        memcpy(d->slip_ref[0], d->slip_ref[1 - k], sizeof d->slip_ref[0]);
-        d->slip_armed[0] = d->slip_armed[1 - k], d->slip_armed[1] = 0;
+        d->slide.count = 1, d->slide.slides[0] = slides, d->slide.slides[1] = 0;
+        memcpy(d->slide.start[0], d->slide.start[1 - k], sizeof d->slide.start[0]);
+        memcpy(d->slide.ref[0], d->slide.ref[1 - k], sizeof d->slide.ref[0]);
+        d->slide.armed[0] = d->slide.armed[1 - k], d->slide.armed[1] = 0;
         status = slides ? GB_OK : stick_all(d, t, y, 1);
         return status ? status : gb_dyn_book(d, &rec);
     }
@@ -428,7 +428,7 @@ int gb_dyn_sliding_event(gb_dynamics *d, double t, double y[GB_STATE_SIZE], cons
     gb_dyn_vertical(y, zb);
     gb_contact_point pts[3];
     int status = gb_dyn_point_at(d, zb, &d->contact, &pts[0]), count = 2;
-    if (!status && d->slide_count == 2) status = gb_dyn_second_point(d, zb, &pts[1]), count = 3;
+    if (!status && d->slide.count == 2) status = gb_dyn_second_point(d, zb, &pts[1]), count = 3;
     if (status) return status;
     pts[count - 1] = *branch;
     if (d->def.contact == GB_CONTACT_MODEL_CONTINUOUS) d->branch_switches++;

@@ -20,16 +20,16 @@ int gb_dyn_second_point(gb_dynamics *d, const double zb[3], gb_contact_point *q)
     double unit[3], start[2] = {d->contact2.phi, d->contact2.theta};
     int status = gb_contact_unit_vertical(zb, unit);
     if (status) return status;
-    if (d->q_valid) {
-        const double step[3] = {unit[0] - d->q_zb[0], unit[1] - d->q_zb[1], unit[2] - d->q_zb[2]};
-        gb_contact_chart_offset(&d->q_last, gb_vec_dot(d->q_dq[0], step), gb_vec_dot(d->q_dq[1], step), &start[0],
+    if (d->crease.q_valid) {
+        const double step[3] = {unit[0] - d->crease.q_zb[0], unit[1] - d->crease.q_zb[1], unit[2] - d->crease.q_zb[2]};
+        gb_contact_chart_offset(&d->crease.q_last, gb_vec_dot(d->crease.q_dq[0], step), gb_vec_dot(d->crease.q_dq[1], step), &start[0],
                                 &start[1]);
     }
     status = gb_contact_refine(&d->surface, unit, start[0], start[1], &d->refine, q);
     if (status || !q->is_minimum) return status;
-    d->q_valid = gb_contact_sensitivity(&d->surface, unit, q, d->q_dq) == GB_OK;
-    memcpy(d->q_zb, unit, sizeof d->q_zb);
-    d->q_last = *q;
+    d->crease.q_valid = gb_contact_sensitivity(&d->surface, unit, q, d->crease.q_dq) == GB_OK;
+    memcpy(d->crease.q_zb, unit, sizeof d->crease.q_zb);
+    d->crease.q_last = *q;
     return GB_OK;
 }
 
@@ -62,7 +62,7 @@ int gb_dyn_two_point_eval(gb_dynamics *d, double t, const double y[GB_STATE_SIZE
     /* each point's rate from the sensitivity its Newton solve left (gb_dyn_contact_at's for P, second_point's for Q) */
     if (d->def.contact == GB_CONTACT_MODEL_CONTINUOUS && d->last_valid) gb_contact_rate_from(d->last_dq, d->last_zb, &tp->p.point, u, vp, NULL);
     else status = gb_dyn_point_rate(d, zb, &tp->p.point, u, vp);
-    if (!status && d->q_valid) gb_contact_rate_from(d->q_dq, d->q_zb, &tp->q, u, vq, NULL);
+    if (!status && d->crease.q_valid) gb_contact_rate_from(d->crease.q_dq, d->crease.q_zb, &tp->q, u, vq, NULL);
     else if (!status) status = gb_dyn_point_rate(d, zb, &tp->q, u, vq);
     if (status) return status;
     for (int k = 0; k < 3; k++) vp[k] *= L, vq[k] *= L;
