@@ -86,12 +86,6 @@ double gb_dyn_coefficient(const gb_dynamics *d, int slot)
 
 double gb_dynamics_mean_radius(const gb_dynamics *d) { return d->mean_radius; }
 
-void gb_dynamics_use_step(gb_dynamics *d, double h)
-{
-    if (d->def.settle_time == 0.0) d->settle_time = h;
-    d->step = h;
-}
-
 /* ---------------------------------------------------------------- attitude */
 
 /* z_b = Rᵀ e_z, the third row of R (eq 21), alone: the same arithmetic as gb_dynamics_rotation's. */
@@ -140,7 +134,7 @@ int gb_dyn_diverged(double t)
                         "large for the scene's stiffest rate, such as the damping c over the inertia?)", t);
 }
 
-int gb_dynamics_state_finite(double t, const double y[GB_STATE_SIZE])
+int gb_dyn_state_finite(double t, const double y[GB_STATE_SIZE])
 {
     for (int i = 0; i < GB_STATE_SIZE; i++)
         if (!isfinite(y[i])) return gb_dyn_diverged(t);
@@ -161,7 +155,7 @@ int gb_dyn_field(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], double
     const gb_dyn_mode *mode = gb_dyn_current(d);
     /* where nothing turns (at rest), ω is 0 whatever rounding is left in the state's */
     const double *q = y + GB_STATE_Q, *omega = mode->turns ? y + GB_STATE_OMEGA : at_rest;
-    if (gb_dynamics_state_finite(t, y)) return GB_ENUMERIC;
+    if (gb_dyn_state_finite(t, y)) return GB_ENUMERIC;
     gb_dyn_vertical_of_quaternion(q, zb);
     if (!(isfinite(zb[0]) && isfinite(zb[1]) && isfinite(zb[2]))) return gb_dyn_diverged(t); /* a quaternion overflowed */
     double geff, geff_rate, zeta = NAN;

@@ -6,6 +6,7 @@
 
 #include "gb_atlas_internal.h"
 #include "gb_contact.h"
+#include "gb_dynamics_protocol_internal.h"
 #include "gb_error.h"
 
 #include <stdlib.h>

@@ -5,6 +5,7 @@
  * landing in gb_dynamics_jumps.c). */
 #include "gb_dynamics_internal.h"
 
+#include "gb_dynamics_protocol_internal.h"
 #include "gb_error.h"
 #include "gb_vec.h"
 

@@ -4,6 +4,7 @@
  * observables). */
 #include "gb_dynamics_internal.h"
 
+#include "gb_dynamics_protocol_internal.h"
 #include "gb_error.h"
 #include "gb_vec.h"
 
@@ -91,6 +92,14 @@ static void zb_of(const double R[9], double zb[3])
 {
     zb[0] = R[6], zb[1] = R[7], zb[2] = R[8];
 }
+
+void gb_dynamics_use_step(gb_dynamics *d, double h)
+{
+    if (d->def.settle_time == 0.0) d->settle_time = h;
+    d->step = h;
+}
+
+int gb_dynamics_state_finite(double t, const double y[GB_STATE_SIZE]) { return gb_dyn_state_finite(t, y); }
 
 int gb_dynamics_accept(gb_dynamics *d, double t, double y[GB_STATE_SIZE], double *norm_drift)
 {

@@ -13,14 +13,17 @@
  *   gb_dynamics_two_point.c the mode "rolling on two points" (the crease)
  *   gb_dynamics_rest.c      the mode "at rest on three points"
  *   gb_dynamics_flight.c    the mode "flight"
+ *   gb_dynamics_compliant.c the compliant law: its row, its keys and its one smooth mode
  *   gb_dynamics_rolling.c   the mode "rolling on one point" (eq 44 and the rolling equation)
+ *   gb_dynamics_impulses.c  what every jump shares: restitution, the plane only pushing, a return's time
+ *   gb_dynamics_on_plane.c  the kinematics every mode on the plane shares (eq 40, ω̇, N, the translation)
  *   gb_dynamics_ledger.c    what every change of contact leaves: its record, the counters, the energy taken,
  *                           the caller's sink
  *   gb_dynamics_contact.c   the contact at a state: the grid's nodes, Newton's continuation, the
  *                           certificate's competitor
  *   gb_dynamics_context.c   the body's set-up (mass properties, grid, tracker, certificate, atlas), kept in
  *                           the caller's context with the files of its caches
- *   gb_dynamics_laws.c      the contact laws (held, unilateral) as a table of what each law does; the only
+ *   gb_dynamics_laws.c      the contact laws (held, unilateral, compliant) as a table of what each does; the only
  *                           file that tells one law from another
  *   gb_dynamics.c           the state: the definition, the attitude, the mode and its time, the vector
  *                           field of the current mode through the table the state carries, the counters
@@ -31,7 +34,6 @@
 
 #include "gb_dynamics.h"
 #include "gb_contact_internal.h"
-#include "gb_dynamics_protocol_internal.h"
 #include "gb_impact.h"
 #include "gb_massprops.h"
 
@@ -254,6 +256,8 @@ void gb_dyn_set_mode(gb_dynamics *d, gb_dyn_mode_id mode, double t);
 double gb_dyn_mode_time(const gb_dynamics *d, gb_dyn_mode_id mode, double t);
 /* "t = ...: the state is no longer finite" (GB_ENUMERIC). */
 int gb_dyn_diverged(double t);
+/* GB_ENUMERIC (gb_dyn_diverged) when a component of y is not finite; GB_OK otherwise. */
+int gb_dyn_state_finite(double t, const double y[GB_STATE_SIZE]);
 /* A body vector in inertial axes at state y: R b. */
 void gb_dyn_to_inertial(const double y[GB_STATE_SIZE], const double body[3], double out[3]);
 /* A v, and the solution of A x = b for a symmetric positive-definite 3 × 3 A (GB_ENUMERIC when singular). */
@@ -303,7 +307,7 @@ int gb_dyn_competitor(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], g
                       gb_contact_point *other, int *found);
 void gb_dyn_set_contact(gb_dynamics *d, const gb_contact_point *p);
 
-/* ---- rolling on one point (gb_dynamics_rolling.c) --------------------------------------------------- */
+/* ---- on the plane (gb_dynamics_on_plane.c): what every mode on the plane shares ------------------------ */
 
 /* I_P = I_C − m [r_c]×[r_c]× (eq 40). */
 void gb_dyn_inertia_about(const gb_dynamics *d, const double rc[3], double IP[3][3]);
@@ -313,13 +317,16 @@ int gb_dyn_angular_acceleration(const gb_dynamics *d, double geff, const double 
 /* The centroid's acceleration under rolling kinematics into acc, and the normal force N = m (g_eff + z_b·a_G). */
 double gb_dyn_normal_force(const gb_dynamics *d, double geff, const double zb[3], const double omega[3],
                            const double omega_dot[3], const gb_dyn_contact *c, double acc[3]);
-/* Rolling on the accepted contact alone at state y: its normal force. */
-int gb_dyn_one_point_normal(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], double *n);
 /* On the plane: the centroid's height −z_b·r_c and velocity R (ω × (G − P)) about the accepted contact P. */
 void gb_dyn_translate_on_plane(const gb_dynamics *d, double t, double y[GB_STATE_SIZE]);
 /* The observables every mode on the plane shares, from its contact c, ω̇ (in o) and point count. */
 void gb_dyn_observe_on_plane(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const gb_dyn_contact *c, int contacts,
                              gb_dynamics_observables *o);
+
+/* ---- rolling on one point (gb_dynamics_rolling.c) --------------------------------------------------- */
+
+/* Rolling on the accepted contact alone at state y: its normal force. */
+int gb_dyn_one_point_normal(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], double *n);
 
 /* ---- rolling on two points (gb_dynamics_two_point.c) ------------------------------------------------ */
 
