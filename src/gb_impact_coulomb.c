@@ -192,7 +192,7 @@ int gb_impact_coulomb_point(const gb_impact_body *body, const double normal[3], 
     const double slip_floor = 1e-13 * (speed + 1e-300);
     while (!sticking) {
         /* slip: RK4 steps until an event; the event found by bisection on the step from its start */
-        const double ref[2] = {slip[0], slip[1]}, slip_speed = hypot(s.u[0], s.u[1]);
+        const double slip_speed = hypot(s.u[0], s.u[1]);
         if (slip_speed <= slip_floor && steps > 0) { /* stopped */
             s.u[0] = s.u[1] = 0.0;
             out->stages++;
@@ -200,6 +200,9 @@ int gb_impact_coulomb_point(const gb_impact_body *body, const double normal[3], 
             else dk_restart(&k, slip);
             if (sticking) break;
         }
+        /* the stretch's direction: the slip's, or the restart's after a stop (taken before the stop, it would be put
+         * back by the step's closing dk_slip, and friction would go on opposing the slip that stopped) */
+        const double ref[2] = {slip[0], slip[1]};
         const double step = slip_speed > slip_floor ? fmin(h, 0.05 * slip_speed / turn_rate) : h;
         double g0[DK_EVENTS], g1[DK_EVENTS];
         dk_state next;

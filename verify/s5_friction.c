@@ -276,6 +276,53 @@ static void test_one_point_energy(void)
     gb_check_true(&cs, failures == 0 && turned > 0, "%d failures; %s", failures, detail);
 }
 
+/* The same invariant where it bites: impacts whose slip stops inside the impact and, the cone unable to hold it,
+ * slips on in a new direction (a reversal). The slip before is drawn small against the normal speed (|u_t| from
+ * 1e-4 to 1e-1 of |u_n|, log-uniform) with μ from 0.05 to 0.55, so that many impacts stop their slip; each is
+ * counted by whether it stopped (stages > 1) and slides after. 10 000 impacts under make verify, 100 000 under
+ * make verify-full. An impact whose normal velocity friction keeps from growing (a jam) is refused by the law
+ * (GB_ENUMERIC, named), and counted apart. */
+static void test_one_point_energy_reversal(void)
+{
+    unsigned long long s = 0x5717ed7e7e75ull;
+    const int n = gb_check_full ? 100000 : 10000;
+    int failures = 0, jams = 0, stopped = 0, restarted = 0, gained = 0;
+    double worst = -INFINITY;
+    for (int it = 0; it < n; it++) {
+        gb_impact_body b;
+        double p[1][3], v[3], w[3], wr[3];
+        random_impact(&s, 1, &b, p, v, w);
+        cross(w, p[0], wr);
+        const double un = v[2] + wr[2], size = fabs(un) * pow(10.0, -1.0 - 3.0 * fabs(draw(&s))), angle = M_PI * draw(&s);
+        v[0] = size * cos(angle) - wr[0], v[1] = size * sin(angle) - wr[1]; /* u_t of that size */
+        const double mu = 0.05 + 0.5 * fabs(draw(&s)), e = fabs(draw(&s));
+        gb_impact_result r;
+        const int status = gb_impact_coulomb_point(&b, UP, e, mu, p[0], v, w, &r);
+        if (status) {
+            if (status == GB_ENUMERIC && strstr(gb_error_message(), "a jam")) jams++;
+            else failures++;
+            gb_error_clear();
+            continue;
+        }
+        const double before = energy(&b, v, w), after = energy(&b, r.v, r.omega), gain = (after - before) / before;
+        worst = fmax(worst, gain);
+        gained += gain > 1e-12;
+        stopped += r.stages > 1;
+        restarted += r.stages > 1 && r.slides[0];
+    }
+    char q[240];
+    snprintf(q, sizeof q, "%d one-point impacts drawn to stop their slip (|u_t| 1e-4 ... 1e-1 of |u_n|, mu 0.05 ... 0.55, e 0 ... 1): "
+             "the largest (T+ - T-)/T-", n);
+    gb_check c = {"-", "-", q, "Stronge's energetic coefficient: never above 0, a slip that stops and slides on in a new "
+                  "direction included", "1e-12: rounding of the energies"};
+    gb_check_close(&c, failures ? NAN : fmax(worst, 0.0), 0.0, 0.0, 1e-12);
+    gb_check cs = {"-", "-", "the same impacts", "every one solved or refused as a jam; some stop their slip and slide on after it",
+                   "exact"};
+    gb_check_true(&cs, failures == 0 && restarted > 0,
+                  "%d failures, %d jams refused; %d of %d stopped their slip, %d of them sliding on after it; %d gained energy",
+                  failures, jams, stopped, n, restarted, gained);
+}
+
 /* ---- several points ----------------------------------------------------------------------------- */
 
 /* The law checked apart on a solution: the balances, then per point. Several held points: Moreau's law with
@@ -816,6 +863,8 @@ int verify_register_s5_friction(void)
          "the cone decides stick or slide at a block's edge as the closed form says"},
         {"friction: mu -> infinity is the rough law, mu -> 0 the frictionless one", test_limits, NULL},
         {"friction: Stronge's coefficient never adds energy", test_one_point_energy, NULL},
+        {"friction: Stronge's coefficient never adds energy where the slip stops and turns (1e4 impacts; 1e5 full)",
+         test_one_point_energy_reversal, "a one-point impact with friction never gains kinetic energy"},
         {"friction: several points at once satisfy Moreau's law with Coulomb's cone", test_several_points, NULL},
         {"friction: a ball launched with backspin slides, then rolls (closed form)", test_ball_slides_then_rolls,
          "the sliding mode gives a ball the closed form of its slide and its roll, and books friction's work"},
