@@ -41,6 +41,7 @@ VERIFY_SRC := $(sort $(wildcard verify/*.c))
 VERIFY_OBJ := $(VERIFY_SRC:verify/%.c=$(BUILD)/obj/verify_%.o)
 VERIFY_BIN := $(BUILD)/verify-gomboc
 BENCH_BIN  := $(BUILD)/bench-gomboc
+BENCH_SRC  := $(sort $(wildcard verify/bench/bench*.c))
 # make bench's baseline: the best plain loop (verify/bench/plain.c) with the bench and the library around
 # it, built apart with the best flags of this compiler
 NATIVE_FLAGS := -O3 -march=native -falign-loops=64
@@ -480,8 +481,8 @@ $(BUILD)/obj/verify_s6_chaos.o: ALL_CFLAGS += $(OPENMP)
 $(VERIFY_BIN): $(VERIFY_OBJ) $(LIB)
 	$(CC) $(ALL_CFLAGS) $(OPENMP) $(LDFLAGS) -o $@ $^ $(TEST_LIBS) $(CORE_LIBS)
 
-$(BENCH_BIN): verify/bench/bench.c verify/bench/plain.c $(LIB) $(wildcard src/*.h verify/bench/*.h) | $(BUILD)/obj
-	$(CC) $(ALL_CFLAGS) -fopenmp-simd -o $@ verify/bench/bench.c verify/bench/plain.c $(LIB) $(CORE_LIBS)
+$(BENCH_BIN): $(BENCH_SRC) verify/bench/plain.c $(LIB) $(wildcard src/*.h verify/bench/*.h) | $(BUILD)/obj
+	$(CC) $(ALL_CFLAGS) -fopenmp-simd -o $@ $(BENCH_SRC) verify/bench/plain.c $(LIB) $(CORE_LIBS)
 
 $(BUILD)/mpi/gomboc_scan.o: src/gomboc_scan.c $(wildcard src/*.h)
 	@mkdir -p $(BUILD)/mpi
@@ -498,8 +499,8 @@ $(BUILD)/native/plain.o: verify/bench/plain.c verify/bench/plain.h $(wildcard sr
 	@mkdir -p $(BUILD)/native
 	$(CC) $(WARN) $(NATIVE_FLAGS) -fopenmp-simd $(shell pkg-config --cflags $(PKGS)) -Isrc -c $< -o $@
 
-$(BENCH_NATIVE): verify/bench/bench.c $(BUILD)/native/plain.o $(NATIVE_OBJ) $(wildcard src/*.h verify/bench/*.h)
-	$(CC) $(WARN) $(NATIVE_FLAGS) $(shell pkg-config --cflags $(PKGS)) -Isrc -o $@ $< $(BUILD)/native/plain.o $(NATIVE_OBJ) $(CORE_LIBS)
+$(BENCH_NATIVE): $(BENCH_SRC) $(BUILD)/native/plain.o $(NATIVE_OBJ) $(wildcard src/*.h verify/bench/*.h)
+	$(CC) $(WARN) $(NATIVE_FLAGS) $(shell pkg-config --cflags $(PKGS)) -Isrc -o $@ $(BENCH_SRC) $(BUILD)/native/plain.o $(NATIVE_OBJ) $(CORE_LIBS)
 
 $(BUILD)/obj:
 	mkdir -p $@
