@@ -265,7 +265,8 @@ static void test_housner(void)
     gb_check_close(&ch, status ? NAN : rest.zeta, 0.4 - depth, 0.0, 1e-12);
     gb_check cg = {"-", "-", "the same run: the ledger's worst |residual| over samples at rtol 1e-10, against the run at 1e-8",
                    "integration error: it falls as the tolerance tightens, by 10 at least over the factor 100",
-                   "a factor 10: msbdf's global error follows its tolerance at order 1 at least"};
+                   "a factor 10 = sqrt(100): a tolerance-controlled method of order p >= 1 has a global error "
+                   "of order tol^(p/(p+1)), at least the square root of the tolerance"};
     gb_check_true(&cg, !status && rest.ledger.residual_max * 10.0 <= coarse.ledger.residual_max,
                   "ledger %.3g J at rtol 1e-8, %.3g J at 1e-10 (E0 %.4g J)", coarse.ledger.residual_max,
                   rest.ledger.residual_max, rest.ledger.energy0);
@@ -423,7 +424,8 @@ static void test_table1(void)
                   "0.5), 5 periods by msbdf at rtol 1e-10 and 1e-8: the ledger's worst |residual|",
                   "E + elastic - E0 - W - W_contact, W the forcing's and damping's work (eqs 46-51), W_contact friction's: "
                   "integration error, falling by 10 at least as the tolerance tightens by 100",
-                  "a factor 10: msbdf's global error follows its tolerance at order 1 at least"};
+                  "a factor 10 = sqrt(100): a tolerance-controlled method of order p >= 1 has a global error "
+                   "of order tol^(p/(p+1)), at least the square root of the tolerance"};
     gb_check_true(&c, !status && fine * 10.0 <= coarse, "%s; ledger %.3g J at rtol 1e-8, %.3g J at 1e-10 (E %.4g J)",
                   status ? gb_error_message() : "ran", coarse, fine, energy);
 }

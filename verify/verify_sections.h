@@ -18,6 +18,7 @@ int verify_register_s4_atlas(void);
 int verify_register_s5_dynamics(void);
 int verify_register_s5_impact(void);
 int verify_register_s5_flight(void);
+int verify_register_s5_friction_impact(void);
 int verify_register_s5_friction(void);
 int verify_register_s5_compliant(void);
 int verify_register_s6_estimators(void);
