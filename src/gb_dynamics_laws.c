@@ -1,6 +1,7 @@
-/* gb_dynamics_laws — the contact laws, as a table of what each one does (gb_dynamics_internal.h): the one
- * file that tells one law from another. A new law is a row here, the modes and jumps it adds, a key of the
- * scene table (gb_case) and its pages in the docs. */
+/* gb_dynamics_laws — the contact laws, as a table of what each one does (gb_dynamics.h): the one file that tells
+ * one law from another. A law of its own (one smooth mode, as the compliant law) is one file holding its row, mode
+ * and keys, named here; a law that adds to the hybrid system is a row here with the modes and jumps it adds. The
+ * scene table reads every law's keys from its row; the docs give each its page. */
 #include "gb_dynamics_internal.h"
 
 #include "gb_error.h"

@@ -168,6 +168,13 @@ static const bad_row rows[] = {
                                               "allowed: rough with either held or unilateral; a finite mu with contact_law = unilateral"}},
     {RUN, "[model]\ncontact = continuous\nequation = rolling\ncontact_law = unilateral\nrestitution = 1.5\n[integrator]\nlocate_switches = yes\n", 0, 2, {"case.ini:5: [model] restitution", "out of range", "0 <= restitution <= 1"}},
     {RUN, "[model]\nrestitution = -0.1\n", 0, 2, {"case.ini:2: [model] restitution", "out of range", "0 <= restitution <= 1"}},
+    /* the compliant law's own keys (its row's, read by the scene table) */
+    {RUN, "[model]\nstiffness = 1e6\n", 0, 2, {"case.ini:2: [model] stiffness", "needs [model] contact_law = compliant", "allowed: with that law only"}},
+    {RUN, "[model]\ncontact_law = compliant\nfriction = 0.5\nstiffness = 0\n[integrator]\nlocate_switches = yes\n", 0, 2, {"case.ini:4: [model] stiffness = 0", "out of range", "0 < stiffness <= 1e+15 [N/m^exponent]"}},
+    {RUN, "[model]\ncontact_law = compliant\nfriction = 0.5\nexponent = 0.5\n[integrator]\nlocate_switches = yes\n", 0, 2, {"case.ini:4: [model] exponent = 0.5", "out of range", "1 <= exponent <= 3"}},
+    {RUN, "[model]\ncontact_law = compliant\n[integrator]\nlocate_switches = yes\n", 0, 2, {"[model] friction (default)", "contact_law = compliant: its friction is Coulomb's, regularised, and needs a finite mu", "a finite mu with contact_law = unilateral or compliant"}},
+    {RUN, "[model]\ncontact_law = compliant\nfriction = 0.5\nrestitution = 0.5\n[integrator]\nlocate_switches = yes\n", 0, 2, {"case.ini:4: [model] restitution", "contact_law = compliant", "allowed: the default, 0, with contact_law = compliant"}},
+    {RUN, "[model]\ncontact_law = compliant\nfriction = 0.5\n", 0, 2, {"[integrator] locate_switches (default) = no", "every change of the lowest point is located", "allowed: yes with contact_law = compliant"}},
     {RUN, "[model]\nrestitution = nan\n", 0, 2, {"case.ini:2: [model] restitution", "", "0 <= restitution <= 1"}},
     {RUN, "[model]\nrestitution = 0.5\n", 0, 2, {"case.ini:2: [model] restitution: with [model] contact_law = held", "never leaves the plane", "allowed: the default, 0, with contact_law = held"}},
     {RUN, "[initial]\nheight = 0.1\n", 0, 2, {"case.ini:2: [initial] height: with [model] contact_law = held", "never leaves the plane", "any value in range with unilateral"}},
