@@ -17,8 +17,12 @@ WARN      := -std=c11 -D_GNU_SOURCE -ffp-contract=off -Wall -Wextra $(WERROR)
 # OpenMP for the harness's independent long computations (s6_chaos) where the compiler has it; the
 # library's scan runner uses POSIX threads (src/gb_scan_run.c says why).
 OPENMP    := $(shell echo 'int main(void){return 0;}' | $(CC) -fopenmp -x c - -o /dev/null 2>/dev/null && echo -fopenmp)
-ALL_CFLAGS = $(WARN) $(CPPFLAGS) $(CFLAGS) $(shell pkg-config --cflags $(PKGS)) -Isrc
-CORE_LIBS  = $(shell pkg-config --libs gsl libcjson inih qhull_r libsodium libmatheval) -lpthread -lm
+# Siconos's numerics (the time-stepping strategy's contact problems) ships no pkg-config file: its headers' folders
+# and its library by name.
+SICONOS_CFLAGS := -I/usr/include/siconos/numerics -I/usr/include/siconos
+SICONOS_LIBS   := -lsiconos_numerics
+ALL_CFLAGS = $(WARN) $(CPPFLAGS) $(CFLAGS) $(shell pkg-config --cflags $(PKGS)) $(SICONOS_CFLAGS) -Isrc
+CORE_LIBS  = $(shell pkg-config --libs gsl libcjson inih qhull_r libsodium libmatheval) $(SICONOS_LIBS) -lpthread -lm
 TEST_LIBS  = $(shell pkg-config --libs cunit)
 
 CORE_SRC  := $(sort $(wildcard src/gb_*.c))
@@ -76,7 +80,7 @@ run: deps
 RUN_SCENES    := table1-gomboc-I table1-gomboc-II
 # Bodies of one's own (cases/bodies/): a mesh's polyhedron rocking, tumbling and falling flat; `make run` runs
 # them too, and the shape study covers the body of every scene it runs.
-BODY_SCENES   := bodies/housner-block bodies/die-drop bodies/coin bodies/housner-block-compliant
+BODY_SCENES   := bodies/housner-block bodies/die-drop bodies/coin bodies/housner-block-compliant bodies/coin-friction
 # Each Table 1 body under the unilateral law, seen in motion: `make run` runs these and draws a short
 # animation of each (reports/animate.py; an MP4 through ffmpeg where it is installed, else a GIF).
 ANIMATED      := table1-gomboc-I-unilateral table1-gomboc-II-unilateral
@@ -250,11 +254,11 @@ fuzz-only: $(FUZZ_TARGETS:%=$(FUZZ_DIR)/fuzz-%)
 
 $(FUZZ_DIR)/fuzz-case $(FUZZ_DIR)/fuzz-atlas $(FUZZ_DIR)/fuzz-hull $(FUZZ_DIR)/fuzz-scan $(FUZZ_DIR)/fuzz-journal $(FUZZ_DIR)/fuzz-mesh $(FUZZ_DIR)/fuzz-expression: $(FUZZ_DIR)/fuzz-%: verify/fuzz/fuzz_%.c $(CORE_SRC) $(wildcard src/*.h verify/fuzz/*.h)
 	@mkdir -p $(FUZZ_DIR)
-	clang $(FUZZ_CFLAGS) -fsanitize=fuzzer $(shell pkg-config --cflags $(PKGS)) -Isrc -o $@ $< $(CORE_SRC) $(CORE_LIBS)
+	clang $(FUZZ_CFLAGS) -fsanitize=fuzzer $(shell pkg-config --cflags $(PKGS)) $(SICONOS_CFLAGS) -Isrc -o $@ $< $(CORE_SRC) $(CORE_LIBS)
 
 $(FUZZ_DIR)/fuzz-options: verify/fuzz/fuzz_options.c $(CORE_SRC) $(CLI_SRC) $(wildcard src/*.h)
 	@mkdir -p $(FUZZ_DIR)
-	clang $(FUZZ_CFLAGS) -fsanitize=fuzzer -DGOMBOC_NO_MAIN $(shell pkg-config --cflags $(PKGS)) -Isrc -o $@ $< \
+	clang $(FUZZ_CFLAGS) -fsanitize=fuzzer -DGOMBOC_NO_MAIN $(shell pkg-config --cflags $(PKGS)) $(SICONOS_CFLAGS) -Isrc -o $@ $< \
 	  $(CORE_SRC) $(CLI_SRC) $(CORE_LIBS)
 
 # Every check of the harness under AddressSanitizer and UndefinedBehaviorSanitizer (a separate build in
@@ -493,14 +497,14 @@ $(MPI_BIN): $(filter-out %/gomboc_scan.o,$(CLI_OBJ)) $(BUILD)/mpi/gomboc_scan.o 
 
 $(BUILD)/native/%.o: src/%.c $(wildcard src/*.h)
 	@mkdir -p $(BUILD)/native
-	$(CC) $(WARN) $(NATIVE_FLAGS) $(shell pkg-config --cflags $(PKGS)) -Isrc -c $< -o $@
+	$(CC) $(WARN) $(NATIVE_FLAGS) $(shell pkg-config --cflags $(PKGS)) $(SICONOS_CFLAGS) -Isrc -c $< -o $@
 
 $(BUILD)/native/plain.o: verify/bench/plain.c verify/bench/plain.h $(wildcard src/*.h)
 	@mkdir -p $(BUILD)/native
-	$(CC) $(WARN) $(NATIVE_FLAGS) -fopenmp-simd $(shell pkg-config --cflags $(PKGS)) -Isrc -c $< -o $@
+	$(CC) $(WARN) $(NATIVE_FLAGS) -fopenmp-simd $(shell pkg-config --cflags $(PKGS)) $(SICONOS_CFLAGS) -Isrc -c $< -o $@
 
 $(BENCH_NATIVE): $(BENCH_SRC) $(BUILD)/native/plain.o $(NATIVE_OBJ) $(wildcard src/*.h verify/bench/*.h)
-	$(CC) $(WARN) $(NATIVE_FLAGS) $(shell pkg-config --cflags $(PKGS)) -Isrc -o $@ $(BENCH_SRC) $(BUILD)/native/plain.o $(NATIVE_OBJ) $(CORE_LIBS)
+	$(CC) $(WARN) $(NATIVE_FLAGS) $(shell pkg-config --cflags $(PKGS)) $(SICONOS_CFLAGS) -Isrc -o $@ $(BENCH_SRC) $(BUILD)/native/plain.o $(NATIVE_OBJ) $(CORE_LIBS)
 
 $(BUILD)/obj:
 	mkdir -p $@

@@ -294,8 +294,22 @@ def summary_lines(name, summary, figures):
     impacts, two_point = summary.get("impacts"), summary.get("two_point")
     ledger = " + L (the energy the impacts took)" if impacts else ""
     lines.append(f"- energy-balance residual E − E(0) − ∫(P_d + m ġ ζ) dt{ledger}: final {summary['energy_residual_final']:.3g} J, "
-                 f"largest {summary['energy_residual_max']:.3g} J")
-    if impacts and two_point:
+                 f"largest {summary['energy_residual_max']:.3g} J"
+                 + (f"; its largest change between two samples {summary['energy_residual_largest_jump']:.3g} J, at "
+                    f"t = {summary['energy_residual_largest_jump_t']:.6g} s" if summary.get("energy_residual_largest_jump_t") is not None else "")
+                 + (" — **the ledger drifted beyond 1 % of the run's energy: the step is too coarse here**"
+                    if summary.get("ledger_too_coarse") else ""))
+    stepping = summary.get("stepping")
+    if stepping:
+        # time-stepping: impulses at every step, no impact events; its "impacts" are the points that arrived
+        lines.append(f"- time-stepping (Moreau–Jean, θ = {stepping['theta']:g}, docs/stepping.md): {stepping['problems']:.0f} "
+                     f"contact problems of up to {stepping['contacts_max']:.0f} points, "
+                     f"{stepping['sweeps'] / max(stepping['problems'], 1):.1f} sweeps each (Siconos's fc3d), residual "
+                     f"≤ {stepping['residual_max']:.2g}; the impulses took {impacts['energy_lost']:.4g} J at the "
+                     f"{impacts['count']:.0f} points that arrived and after, and gave {stepping['energy_given']:.3g} J "
+                     f"in {stepping['steps_giving_energy']:.0f} step{'' if stepping['steps_giving_energy'] == 1 else 's'} "
+                     f"(a body turning about a held point: O(h))")
+    if impacts and two_point and not stepping:
         rest = two_point.get("rest_since")
         lines.append(f"- unilateral contact: {impacts['count']:.0f} impacts took {impacts['energy_lost']:.4g} J (the largest "
                      f"friction one needed: {impacts['friction_needed_max'] if impacts['friction_needed_max'] is not None else 'unbounded'}); "

@@ -103,6 +103,7 @@ static int parse_contact_law(const char *value, gb_case *c)
 }
 static int parse_nodes(const char *value, gb_case *c) { return gb_contact_nodes_parse(value, &c->dynamics.grid.nodes); }
 static int parse_method(const char *value, gb_case *c) { return gb_integrate_parse(value, &c->integrate.method); }
+static int parse_strategy(const char *value, gb_case *c) { return gb_integrate_strategy_parse(value, &c->integrate.strategy); }
 static int parse_window(const char *value, gb_case *c) { return gb_spectrum_window_parse(value, &c->spectrum_window); }
 
 #define AT(field) offsetof(gb_case, field)
@@ -145,6 +146,12 @@ static const key_def keys[] = {
     REAL("integrator", "rtol", 1e-15, 0.1, 0, "", integrate.rtol),
     REAL("integrator", "atol", 1e-15, 0.1, 0, "", integrate.atol),
     FLAG("integrator", "locate_switches", integrate.locate_switches),
+    NAME("integrator", "strategy", parse_strategy),
+    REAL("integrator", "theta", 0.5, 1.0, 0, "(the theta-method's weight of the step's end; needs strategy = time-stepping)",
+         integrate.theta),
+    REAL("integrator", "solver_tolerance", 1e-16, 1e-3, 0, "(the contact problem's relative residual; needs strategy = "
+         "time-stepping)", integrate.solver_tolerance),
+    COUNT("integrator", "solver_iterations", 1, 100000000, integrate.solver_iterations),
     {"initial", "attitude", KEY_ATTITUDE, 0, 0, 0, NULL, 0, NULL},
     {"initial", "omega", KEY_VECTOR, -1000.0, 1000.0, 0, "[rad/s]", AT(omega0), NULL},
     REAL("initial", "height", 0.0, 1e6, 0, "[m] (the lowest point above the plane; needs contact_law = unilateral)",
@@ -179,7 +186,7 @@ _Static_assert(KEY_TOTAL <= GB_CASE_KEY_MAX, "gb_case.key_line has a slot for ev
 static size_t key_total(void)
 {
     const size_t n = KEY_TOTAL + gb_dynamics_law_key_count();
-    return n <= GB_CASE_KEY_MAX ? n : GB_CASE_KEY_MAX; /* gb_case_key_count's check sees a law's key cut */
+    return n <= GB_CASE_KEY_MAX ? n : GB_CASE_KEY_MAX; /* more: every scene is refused (gb_case_load_text_with) */
 }
 
 /* Key `index` (< key_total()), into *scratch for a law's key. */
@@ -549,7 +556,9 @@ static int cross_check(const char *path, gb_case *c)
      * (millions of steps a period). Such a pair has no useful result. */
     const gb_dynamics_law *law = gb_dynamics_law_of(c->dynamics.contact_law, INFINITY);
     const int without_jumps = law->pushes_every_vertex && c->mesh[0]; /* a polyhedron pushed at every vertex */
-    if (c->integrate.method != GB_INTEGRATOR_RK4 && c->dynamics.contact != GB_CONTACT_MODEL_CONTINUOUS && !without_jumps)
+    const int stepping = c->integrate.strategy == GB_STRATEGY_TIME_STEPPING; /* its own scheme: judged below */
+    if (c->integrate.method != GB_INTEGRATOR_RK4 && c->dynamics.contact != GB_CONTACT_MODEL_CONTINUOUS && !without_jumps &&
+        !stepping)
         return cross_fail(path, c, "integrator", "method",
                           "= %s with [model] contact = %s: an adaptive stepper cannot cross the jumps of a grid "
                           "contact (its steps collapse at every node change) (allowed: rk4 with grid or fast-grid; "
@@ -569,7 +578,41 @@ static int cross_check(const char *path, gb_case *c)
                           "where the contact moves on the surface, which the impacts' energy ledger cannot close (allowed: "
                           "held with any model; unilateral with equation = rolling, or with a grid model and either "
                           "equation; compliant with any model)", law_name, gb_dynamics_variant_name(c->dynamics.variant));
-    if (law->several_events_per_step && !c->integrate.locate_switches)
+    if (stepping) {
+        const gb_dynamics_law *posed = gb_dynamics_law_of(c->dynamics.contact_law, c->dynamics.friction);
+        if (!posed || !posed->time_steps)
+            return cross_fail(path, c, "integrator", "strategy",
+                              "= time-stepping with [model] contact_law = %s, friction = %g: that law poses no one-step "
+                              "contact problem (allowed: contact_law = unilateral with a finite friction; a rough plane's "
+                              "unbounded tangential impulse is no cone Siconos's fc3d takes)",
+                              law_name, c->dynamics.friction);
+        if (c->dynamics.contact == GB_CONTACT_MODEL_CONTINUOUS)
+            return cross_fail(path, c, "model", "contact",
+                              "= continuous with [integrator] strategy = time-stepping: its points are the grid's nodes "
+                              "(allowed: grid or fast-grid, the nodes a mesh's vertices or a smooth body's grid polyhedron)");
+        if (c->integrate.locate_switches)
+            return cross_fail(path, c, "integrator", "locate_switches",
+                              "= yes with strategy = time-stepping, which locates no event (allowed: no)");
+        if (c->integrate.method != GB_INTEGRATOR_RK4)
+            return cross_fail(path, c, "integrator", "method",
+                              "= %s with strategy = time-stepping, which steps by its own theta-method (allowed: rk4, "
+                              "the default, which it ignores)", gb_integrate_name(c->integrate.method));
+        if (c->write_impacts)
+            return cross_fail(path, c, "output", "impacts",
+                              "= yes with [integrator] strategy = time-stepping: its impulses act at every step and make "
+                              "no impact events (allowed: no; the summary counts its touches and their loss)");
+        if (c->lyapunov)
+            return cross_fail(path, c, "diagnostics", "lyapunov",
+                              "= yes with [integrator] strategy = time-stepping: the Lyapunov estimators follow the "
+                              "event-driven strategy's events and jumps (allowed: no; yes with strategy = event-driven)");
+    } else {
+        static const char *const own[] = {"theta", "solver_tolerance", "solver_iterations"};
+        for (size_t k = 0; k < sizeof own / sizeof own[0]; k++)
+            if (given(c, "integrator", own[k]))
+                return cross_fail(path, c, "integrator", own[k], "needs [integrator] strategy = time-stepping (allowed: "
+                                  "with that strategy only)");
+    }
+    if (law->several_events_per_step && !c->integrate.locate_switches && !stepping)
         return cross_fail(path, c, "integrator", "locate_switches",
                           "= no with [model] contact_law = %s: every %s is located inside its step (allowed: "
                           "yes with contact_law = %s)", law_name,
@@ -722,6 +765,10 @@ static int apply_override(gb_case *scene, const gb_case_override *o)
 int gb_case_load_text_with(const char *name, const char *text, size_t size, const gb_case_override *overrides,
                            size_t count, gb_case *out)
 {
+    /* a key with no slot of its own would read as unknown: the table and the laws' keys must fit */
+    if (KEY_TOTAL + gb_dynamics_law_key_count() > GB_CASE_KEY_MAX)
+        return gb_error_set(GB_EINVAL, "the scene table holds %zu keys, more than GB_CASE_KEY_MAX = %d (gb_case.h)",
+                            KEY_TOTAL + gb_dynamics_law_key_count(), GB_CASE_KEY_MAX);
     gb_case scene = gb_case_default();
     int status = gb_ini_read(name, text, size, sections, SECTION_TOTAL, handler, &scene);
     for (size_t k = 0; k < count && !status; k++) status = apply_override(&scene, &overrides[k]);

@@ -32,7 +32,7 @@ extern "C" {
 /* A scene file holds at most this many bytes; a text value at most GB_CASE_TEXT_MAX - 1. */
 #define GB_CASE_FILE_MAX (1 << 20)
 #define GB_CASE_TEXT_MAX 256
-#define GB_CASE_KEY_MAX 56
+#define GB_CASE_KEY_MAX 64
 
 typedef struct gb_case {
     char description[GB_CASE_TEXT_MAX];

@@ -146,6 +146,8 @@ typedef struct gb_dynamics_law {
     int needs_friction;          /* the law needs a finite μ (its friction is regularised, never rough) */
     int pushes_every_vertex;     /* a polyhedron is pushed at each vertex below the plane, found by no search: its vector
                                   * field has no jumps where the lowest vertex changes, and an adaptive stepper takes it */
+    int time_steps;              /* the law poses a one-step contact problem that the time-stepping strategy solves at every
+                                  * step (Newton's impact law on the normal velocity, Coulomb's cone: Siconos's fc3d) */
     const struct gb_dyn_mode *mode; /* a law that is one smooth mode of its own (the run stays in it: no events, no
                                      * jumps); NULL: the hybrid system of modes, events and impacts */
     const gb_dynamics_law_key *keys; /* its own coefficients, as [model] keys (NULL: none) */
@@ -386,6 +388,23 @@ typedef struct gb_dynamics_flight_summary {
 } gb_dynamics_flight_summary;
 
 GB_API void gb_dynamics_flight_stats(const gb_dynamics *dynamics, double t, gb_dynamics_flight_summary *out);
+
+/* The time-stepping strategy's work (gb_integrate's strategy = time-stepping): its steps, the contact problems it
+ * solved and the points they held (in all, and the most in one), the solver's sweeps and its largest residual, the
+ * least energy one step's impulses took (D = −Σ P·(u⁺ + ũ)/2 over its points, ũ the free velocity without gravity's
+ * kick; negative when they gave energy), the steps where they gave energy beyond rounding and the energy so given in
+ * all [J], and the problems the Gauss–Seidel left to another of Siconos's methods (gb_contact_problem). A contact held while the body
+ * turns about it gives energy: the point's velocity at the step's new attitude separates by h ω² r (the centripetal
+ * part), on which the next impulse works, ½ P_n h ω² r a step: O(h²) a step, O(h) over a run (docs/stepping.md). */
+typedef struct gb_dynamics_stepping_stats {
+    size_t steps, problems, contact_points, contacts_max, sweeps;
+    double residual_max, dissipation_min;
+    size_t negative_dissipation;
+    double energy_gained;
+    size_t fallbacks;
+} gb_dynamics_stepping_stats;
+/* NULL when time was not stepped. */
+GB_API const gb_dynamics_stepping_stats *gb_dynamics_stepping_stats_of(const gb_dynamics *dynamics);
 
 
 /* Grid-index changes plus branch switches so far. */

@@ -83,6 +83,7 @@ int gb_dynamics_create(const gb_surface *surface, const gb_dynamics_def *def, gb
 void gb_dynamics_free(gb_dynamics *d)
 {
     if (!d) return;
+    gb_dyn_stepping_free(d);
     gb_dyn_body_free(d);
     free(d);
 }

@@ -236,7 +236,12 @@ struct gb_dynamics {
     gb_dyn_event memo_event;
     double memo_key[8];
     gb_contact_point memo_continued, memo_other;
+    struct gb_dyn_stepper *stepper; /* the time-stepping strategy's (gb_dynamics_stepping.c; NULL: events) */
 };
+
+typedef struct gb_dyn_stepper gb_dyn_stepper;
+/* The time-stepping strategy's state, released (gb_dynamics_stepping.c). */
+void gb_dyn_stepping_free(gb_dynamics *d);
 
 /* ---- the state (gb_dynamics.c) --------------------------------------------------------------------- */
 

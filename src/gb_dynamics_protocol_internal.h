@@ -6,11 +6,19 @@
 #ifndef GB_DYNAMICS_PROTOCOL_INTERNAL_H
 #define GB_DYNAMICS_PROTOCOL_INTERNAL_H
 
+#include "gb_contact_problem.h"
 #include "gb_dynamics.h"
 
 /* The step h of the integrator the run uses: the end to chatter where def.settle_time is 0 (gb_integrate
  * calls it when a run begins). */
 void gb_dynamics_use_step(gb_dynamics *dynamics, double h);
+
+/* The time-stepping strategy (gb_dynamics_stepping.c): begin it at t0 with step h, the θ of its θ-method and its
+ * contact problem's solver (the dynamics stays in its one stepped mode from then on); advance y by one step from t.
+ * GB_EINVAL for a law that poses no one-step problem or a contact model with no points; GB_ENOCONV naming the step,
+ * its contact points and the residual when the solver does not converge. */
+int gb_dynamics_stepping_begin(gb_dynamics *dynamics, double t0, double h, double theta, const gb_contact_problem_def *solver);
+int gb_dynamics_stepping_step(gb_dynamics *dynamics, double t, double h, double y[GB_STATE_SIZE]);
 
 /* GB_ENUMERIC, with a message that names t and says the integration diverged, when a component of y is
  * not finite (the steppers check each step's result, gb_dynamics_rhs its argument); GB_OK otherwise. */

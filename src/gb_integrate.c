@@ -22,10 +22,25 @@ int gb_integrate_parse(const char *name, gb_integrator *method)
     return status;
 }
 
+static const char *const strategy_names[] = {"event-driven", "time-stepping"};
+enum { STRATEGIES = sizeof strategy_names / sizeof strategy_names[0] };
+
+const char *gb_integrate_strategy_name(gb_strategy s) { return (unsigned)s < STRATEGIES ? strategy_names[s] : NULL; }
+
+int gb_integrate_strategy_parse(const char *name, gb_strategy *strategy)
+{
+    int k = 0;
+    const int status = gb_error_parse_name(name, strategy_names, STRATEGIES, "strategy", &k);
+    if (!status) *strategy = (gb_strategy)k;
+    return status;
+}
+
 gb_integrate_def gb_integrate_default_def(void)
 {
     return (gb_integrate_def){.method = GB_INTEGRATOR_RK4, .steps_per_period = 160, .periods = 300.0,
-                              .rtol = 1e-10, .atol = 1e-12, .sample_every = 1};
+                              .rtol = 1e-10, .atol = 1e-12, .sample_every = 1,
+                              .strategy = GB_STRATEGY_EVENT_DRIVEN, .theta = 0.5, .solver_tolerance = 1e-12,
+                              .solver_iterations = 20000};
 }
 
 static int validate(const gb_integrate_def *def)
@@ -39,6 +54,10 @@ static int validate(const gb_integrate_def *def)
         return gb_error_set(GB_EDOM, "tolerances rtol = %g, atol = %g are out of range (allowed: 0 < tol < 1)",
                             def->rtol, def->atol);
     if (def->sample_every < 1) return gb_error_set(GB_EDOM, "sample_every must be >= 1");
+    if (!gb_integrate_strategy_name(def->strategy)) return gb_error_set(GB_EINVAL, "strategy %d is unknown", (int)def->strategy);
+    if (def->strategy == GB_STRATEGY_TIME_STEPPING && def->method != GB_INTEGRATOR_RK4)
+        return gb_error_set(GB_EINVAL, "integrator %s with the time-stepping strategy, which steps by its own θ-method "
+                            "(allowed: rk4, the default, which it ignores)", names[def->method]);
     return GB_OK;
 }
 
@@ -407,6 +426,35 @@ static int advance_adaptive(gb_integrate_session *s, size_t steps, double y[], g
     return status;
 }
 
+/* Time-stepping: one Moreau–Jean step on each step of the nominal grid. */
+static int advance_stepping(gb_integrate_session *s, size_t steps, double y[], gb_integrate_sample sample, void *context)
+{
+    const double h = s->h;
+    for (size_t end = s->n + steps; s->n < end; s->n++) {
+        const double t = s->t0 + (double)s->n * h, t_next = s->t0 + (double)(s->n + 1) * h;
+        const int status = gb_dynamics_stepping_step(s->dynamics, t, h, y);
+        if (status) return status;
+        s->stats.steps++;
+        s->t = t_next;
+        note_rotation(&s->stats, y, h, 0);
+        if ((s->n + 1) % s->def.sample_every == 0 && sample && sample(context, t_next, y)) {
+            s->n++;
+            s->stopped = 1;
+            break;
+        }
+    }
+    return GB_OK;
+}
+
+/* The strategies and the event-driven steppers as rows: how a session advances. */
+typedef int (*advance_fn)(gb_integrate_session *s, size_t steps, double y[], gb_integrate_sample sample, void *context);
+
+static advance_fn advance_of(const gb_integrate_def *def)
+{
+    if (def->strategy == GB_STRATEGY_TIME_STEPPING) return advance_stepping;
+    return def->method == GB_INTEGRATOR_RK4 ? advance_rk4 : advance_adaptive;
+}
+
 int gb_integrate_begin(gb_dynamics *d, const gb_integrate_def *def, double t0, gb_integrate_session **out)
 {
     *out = NULL;
@@ -421,7 +469,14 @@ int gb_integrate_begin(gb_dynamics *d, const gb_integrate_def *def, double t0, g
     s->h = gb_forcing_step(&gb_dynamics_get_def(d)->forcing, def->steps_per_period);
     s->dt = s->h;
     gb_dynamics_use_step(d, s->h); /* the end to chatter, where the definition leaves it to the step */
-    if (def->method != GB_INTEGRATOR_RK4) {
+    if (def->strategy == GB_STRATEGY_TIME_STEPPING) {
+        const gb_contact_problem_def solver = {def->solver_tolerance, def->solver_iterations};
+        status = gb_dynamics_stepping_begin(d, t0, s->h, def->theta, &solver);
+        if (status) {
+            gb_integrate_end(s);
+            return status;
+        }
+    } else if (def->method != GB_INTEGRATOR_RK4) {
         s->gsl = malloc(sizeof *s->gsl);
         if (s->gsl) {
             *s->gsl = (struct gsl_context){d, &s->stats, GB_OK};
@@ -442,8 +497,7 @@ int gb_integrate_advance(gb_integrate_session *s, size_t steps, double y[GB_STAT
                          void *context)
 {
     if (s->stopped) return GB_OK;
-    return s->def.method == GB_INTEGRATOR_RK4 ? advance_rk4(s, steps, y, sample, context)
-                                              : advance_adaptive(s, steps, y, sample, context);
+    return advance_of(&s->def)(s, steps, y, sample, context);
 }
 
 size_t gb_integrate_steps_for(const gb_integrate_session *s, double periods)

@@ -40,6 +40,19 @@ typedef enum gb_integrator {
 GB_API const char *gb_integrate_name(gb_integrator method);
 GB_API int gb_integrate_parse(const char *name, gb_integrator *method);
 
+/* How time is stepped (docs/stepping.md):
+ *  GB_STRATEGY_EVENT_DRIVEN  the modes' smooth equations by `method`, every event located and its jump applied
+ *                            exactly (the default: exact, cheap while events are few)
+ *  GB_STRATEGY_TIME_STEPPING Moreau–Jean: at each step of T / steps_per_period one frictional contact problem over
+ *                            every point of the body that the step would bring into the plane, at the level of
+ *                            velocities and impulses (Siconos's fc3d), the θ-method for the smooth forces; first
+ *                            order, no event located, robust where events crowd (chatter, faces, many points,
+ *                            Painlevé). Needs a law that poses such a problem (gb_dynamics_law.time_steps). */
+typedef enum gb_strategy { GB_STRATEGY_EVENT_DRIVEN = 0, GB_STRATEGY_TIME_STEPPING = 1 } gb_strategy;
+
+GB_API const char *gb_integrate_strategy_name(gb_strategy strategy);
+GB_API int gb_integrate_strategy_parse(const char *name, gb_strategy *strategy);
+
 typedef struct gb_integrate_def {
     gb_integrator method;
     size_t steps_per_period; /* RK4 step and sampling grid (Table 1: 160) */
@@ -49,6 +62,10 @@ typedef struct gb_integrate_def {
     size_t max_steps;        /* adaptive steppers: give up (GB_ENOCONV) after this many steps; 0: no limit */
     int locate_switches;     /* continuous contact: find the time where Δh = 0 inside the step (Illinois on
                                 the step fraction), switch there, finish the step (default 0) */
+    gb_strategy strategy;    /* event-driven (default) or time-stepping */
+    double theta;            /* time-stepping: the θ of the θ-method, 1/2 <= θ <= 1 (default 1/2) */
+    double solver_tolerance; /* time-stepping: the contact problem's relative residual (default 1e-12) */
+    size_t solver_iterations; /* time-stepping: its most sweeps (default 20000) */
 } gb_integrate_def;
 
 GB_API gb_integrate_def gb_integrate_default_def(void);

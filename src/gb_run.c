@@ -23,6 +23,7 @@ typedef struct observer {
     size_t *window;
     size_t window_size, window_fill, window_next;
     size_t last_grid, last_branch;
+    double last_residual; /* the ledger at the previous sample (NAN before the first) */
     /* spectrum: ω_x from its first sample after the transient on */
     double *spectrum_x;
     size_t spectrum_capacity, spectrum_first_step;
@@ -86,6 +87,9 @@ static int observe(void *context, double t, const double y[GB_STATE_SIZE])
     if (s->scene->strobe && (s->status = gb_strobe_offer(&r->strobe, t, o.omega, NULL))) return stopped(s);
     if (s->scene->spectrum && (s->status = collect_spectrum(s, t, o.omega[0]))) return stopped(s);
     r->residual_max = fmax(r->residual_max, fabs(o.residual));
+    if (!isnan(s->last_residual) && fabs(o.residual - s->last_residual) > r->residual_jump)
+        r->residual_jump = fabs(o.residual - s->last_residual), r->residual_jump_t = t;
+    s->last_residual = o.residual;
     r->orthonormality_max = fmax(r->orthonormality_max, o.orthonormality);
     if (s->scene->monitors) {
         gb_run_monitors *m = &r->monitors;
@@ -150,7 +154,8 @@ int gb_run_in(const gb_case *scene, gb_dynamics_context *context, const gb_run_s
     out->switch_fingerprint = GB_HASH_OFFSET;
     out->has_monitors = scene->monitors;
     out->monitors = (gb_run_monitors){.geff_min = INFINITY, .normal_min = INFINITY};
-    observer s = {.scene = scene, .sinks = sinks, .out = out};
+    observer s = {.scene = scene, .sinks = sinks, .out = out, .last_residual = NAN};
+    out->residual_jump_t = NAN;
     s.period = gb_forcing_period(&scene->dynamics.forcing);
     s.step = gb_forcing_step(&scene->dynamics.forcing, scene->integrate.steps_per_period);
     s.spectrum_first_step = scene->spectrum_transient * scene->integrate.steps_per_period;
@@ -197,6 +202,9 @@ int gb_run_in(const gb_case *scene, gb_dynamics_context *context, const gb_run_s
         gb_dynamics_sliding_stats(dynamics, out->t_end, out->y, &out->sliding);
         gb_dynamics_two_point_stats(dynamics, out->t_end, &out->two_point);
         gb_dynamics_flight_stats(dynamics, out->t_end, &out->flight);
+        const gb_dynamics_stepping_stats *stepping = gb_dynamics_stepping_stats_of(dynamics);
+        out->has_stepping = stepping != NULL;
+        if (stepping) out->stepping = *stepping;
         out->has_certificate = gb_dynamics_certify_stats(dynamics, &out->certificate) == GB_OK;
         gb_error_clear(); /* a grid model has no certificate: not an error of the run */
         out->has_atlas = gb_dynamics_atlas_stats(dynamics, &out->atlas, &out->atlas_fallbacks, &out->atlas_loaded) == GB_OK;

@@ -60,6 +60,8 @@ typedef struct gb_run_result {
     gb_integrate_stats stats;            /* of the (reference) trajectory */
     size_t samples;
     double residual_max, orthonormality_max;
+    double residual_jump, residual_jump_t; /* the ledger's largest change between two samples [J], and the sample's
+                                            * time it ended at [s] (0, NAN: none): where a drifting ledger grew */
     int has_monitors;
     gb_run_monitors monitors;
     int has_certificate;                 /* continuous contact */
@@ -78,6 +80,8 @@ typedef struct gb_run_result {
     gb_dynamics_sliding_summary sliding;
     gb_dynamics_two_point_summary two_point; /* the unilateral law's two-point mode over the run */
     gb_dynamics_flight_summary flight;       /* the unilateral law's flights over the run */
+    int has_stepping;                        /* strategy = time-stepping: its steps, problems and energy */
+    gb_dynamics_stepping_stats stepping;
     /* Fingerprints (FNV-1a 64): the bytes of the final state; the (sample, contact index, grid and
      * branch switch counts) of every sample with a switch. Equal runs have equal fingerprints. */
     uint64_t state_fingerprint, switch_fingerprint;

@@ -158,7 +158,14 @@ static cJSON *scene_json(const gb_case *c, const char *path)
         const double value = d->law_coefficients[key->slot];
         cli_json_add(o, key->name, isnan(value) ? key->fallback : value);
     }
-    cJSON_AddStringToObject(o, "integrator", gb_integrate_name(c->integrate.method));
+    if (c->integrate.strategy == GB_STRATEGY_TIME_STEPPING) { /* its own scheme: no stepper of the event-driven one */
+        cJSON_AddStringToObject(o, "strategy", gb_integrate_strategy_name(c->integrate.strategy));
+        cli_json_add(o, "theta", c->integrate.theta);
+        cli_json_add(o, "solver_tolerance", c->integrate.solver_tolerance);
+        cli_json_add(o, "solver_iterations", (double)c->integrate.solver_iterations);
+    } else {
+        cJSON_AddStringToObject(o, "integrator", gb_integrate_name(c->integrate.method));
+    }
     cli_json_add(o, "steps_per_period", (double)c->integrate.steps_per_period);
     cli_json_add(o, "periods", c->integrate.periods);
     if (c->dynamics.contact == GB_CONTACT_MODEL_CONTINUOUS) cJSON_AddBoolToObject(o, "locate_switches", c->integrate.locate_switches);
@@ -434,6 +441,9 @@ static cJSON *summary_json(const gb_case *scene, const char *path, const gb_run_
     cli_json_add(root, "step_rotation_max", r->stats.max_step_rotation);
     cli_json_add(root, "steps_too_coarse", (double)r->stats.coarse_steps);
     cJSON_AddBoolToObject(root, "ledger_too_coarse", ledger_too_coarse(scene, r));
+    /* where the ledger grew most: its largest change between two samples and the time of the later one */
+    cli_json_add(root, "energy_residual_largest_jump", r->residual_jump);
+    cli_json_add(root, "energy_residual_largest_jump_t", r->residual_jump_t);
     cli_json_add(root, "rhs_evaluations", (double)r->stats.rhs_evaluations);
     cli_json_add(root, "samples", (double)r->samples);
     cJSON *fp = cJSON_AddObjectToObject(root, "fingerprint");
@@ -517,6 +527,20 @@ static cJSON *summary_json(const gb_case *scene, const char *path, const gb_run_
         cli_json_add(sl, "sticks", (double)r->sliding.sticks);
         cli_json_add(sl, "friction_loss", r->sliding.friction_loss);
         cJSON_AddBoolToObject(sl, "sliding_at_end", r->sliding.sliding);
+    }
+    if (r->has_stepping) {
+        /* the time-stepping strategy: its contact problems (Siconos's fc3d) and the energy its impulses took and gave */
+        const gb_dynamics_stepping_stats *st = &r->stepping;
+        cJSON *ts = cJSON_AddObjectToObject(root, "stepping");
+        cJSON_AddStringToObject(ts, "strategy", gb_integrate_strategy_name(scene->integrate.strategy));
+        const named_value stepping[] = {
+            {"theta", scene->integrate.theta},            {"steps", (double)st->steps},
+            {"problems", (double)st->problems},           {"contact_points", (double)st->contact_points},
+            {"contacts_max", (double)st->contacts_max},   {"sweeps", (double)st->sweeps},
+            {"residual_max", st->residual_max},           {"fallbacks", (double)st->fallbacks},
+            {"dissipation_min", st->dissipation_min},     {"steps_giving_energy", (double)st->negative_dissipation},
+            {"energy_given", st->energy_gained}};
+        add_values(ts, stepping, sizeof stepping / sizeof stepping[0]);
     }
     if (r->has_strobe) cJSON_AddItemToObject(root, "strobe", strobe_json(&r->strobe));
     if (r->has_spectrum) cJSON_AddItemToObject(root, "spectrum", spectrum_json(scene, &r->spectrum, r->spectrum_samples));
@@ -647,9 +671,18 @@ int command_run(int argc, char **argv)
                 r.stats.max_step_rotation, r.residual_max, fabs(r.final.energy));
     else if (ledger_too_coarse(&scene, &r))
         fprintf(stderr, "gomboc run: %s: warning: the energy ledger drifted by up to %.3g J, more than %g of the %.3g J the run "
-                "holds and its impacts took: the step is too coarse (no step turned the body by more than %g rad); more "
-                "[integrator] steps_per_period resolve it\n", case_path, r.residual_max, LEDGER_FRACTION,
-                fabs(r.final.energy) + r.impact_energy_lost, GB_INTEGRATE_ROTATION_MAX);
+                "holds and its impacts took, most (%.3g J) in the samples ending at t = %.9g s: the step is too coarse (no "
+                "step turned the body by more than %g rad); more [integrator] steps_per_period resolve it%s\n", case_path,
+                r.residual_max, LEDGER_FRACTION, fabs(r.final.energy) + r.impact_energy_lost, r.residual_jump,
+                r.residual_jump_t, GB_INTEGRATE_ROTATION_MAX,
+                scene.integrate.strategy == GB_STRATEGY_EVENT_DRIVEN && isfinite(scene.dynamics.friction)
+                    ? ", or [integrator] strategy = time-stepping where impacts crowd (docs/stepping.md)" : "");
+    if (r.has_stepping)
+        fprintf(stderr, "gomboc run: %s: time-stepping (theta %g): %zu contact problems, up to %zu points, %.1f sweeps each, "
+                "residual <= %.3g; the impulses gave %.3g J in %zu step%s (a body turning about a held point: O(h))\n",
+                case_path, scene.integrate.theta, r.stepping.problems, r.stepping.contacts_max,
+                r.stepping.problems ? (double)r.stepping.sweeps / (double)r.stepping.problems : 0.0, r.stepping.residual_max,
+                r.stepping.energy_gained, r.stepping.negative_dissipation, r.stepping.negative_dissipation == 1 ? "" : "s");
     if (r.has_sliding)
         fprintf(stderr, "gomboc run: %s: friction mu = %g: sliding %.1f %% of the time, %zu slips and %zu sticks, friction took "
                 "%.4g J\n", case_path, scene.dynamics.friction, 100.0 * r.sliding.time / r.t_end, r.sliding.slips,

@@ -87,6 +87,41 @@ static const round4_row rows[] = {
      {"case.ini:2: [integrator] periods = 1e+07: the run would hold about 38.4 GB", "allowed: at most", "half this machine's memory"}},
     {RUN, NULL, "[integrator]\nperiods = 1e7\nsteps_per_period = 100000000\n", NULL, NULL, 0, 2,
      {"case.ini:2: [integrator] periods = 1e+07 with steps_per_period = 100000000: 1e+15 steps", "allowed: periods x steps_per_period <= 1e+12", ""}},
+    /* the time-stepping strategy's keys (issue 54): names, ranges, what it needs and what it cannot do */
+    {RUN, NULL, "[integrator]\nstrategy = moreau\n", NULL, NULL, 0, 2,
+     {"case.ini:2: [integrator] strategy", "moreau", "allowed: event-driven, time-stepping"}},
+    {RUN, NULL, "[integrator]\ntheta = 0.7\n", NULL, NULL, 0, 2,
+     {"case.ini:2: [integrator] theta", "needs [integrator] strategy = time-stepping", "allowed: with that strategy only"}},
+    {RUN, NULL, "[model]\ncontact_law = unilateral\nfriction = 0.5\n[integrator]\nstrategy = time-stepping\ntheta = 0.3\n", NULL,
+     NULL, 0, 2, {"case.ini:6: [integrator] theta = 0.3", "out of range", "0.5 <= theta <= 1"}},
+    {RUN, NULL, "[model]\ncontact_law = unilateral\nfriction = 0.5\n[integrator]\nstrategy = time-stepping\nsolver_tolerance = 0.1\n",
+     NULL, NULL, 0, 2, {"case.ini:6: [integrator] solver_tolerance = 0.1", "out of range", "1e-16 <= solver_tolerance <= 0.001"}},
+    {RUN, NULL, "[model]\ncontact_law = unilateral\nfriction = 0.5\n[integrator]\nstrategy = time-stepping\nsolver_iterations = 0\n",
+     NULL, NULL, 0, 2, {"case.ini:6: [integrator] solver_iterations", "out of range", "100000000"}},
+    {RUN, NULL, "[model]\ncontact_law = unilateral\n[integrator]\nstrategy = time-stepping\n", NULL, NULL, 0, 2,
+     {"case.ini:4: [integrator] strategy = time-stepping with [model] contact_law = unilateral, friction = inf",
+      "poses no one-step contact problem", "allowed: contact_law = unilateral with a finite friction"}},
+    {RUN, NULL, "[model]\ncontact_law = held\n[integrator]\nstrategy = time-stepping\n", NULL, NULL, 0, 2,
+     {"case.ini:4: [integrator] strategy = time-stepping with [model] contact_law = held", "poses no one-step contact problem", "allowed"}},
+    {RUN, NULL, "[model]\ncontact = continuous\nequation = rolling\ncontact_law = unilateral\nfriction = 0.5\n[integrator]\n"
+     "strategy = time-stepping\n", NULL, NULL, 0, 2,
+     {"case.ini:2: [model] contact = continuous with [integrator] strategy = time-stepping", "its points are the grid's nodes",
+      "allowed: grid or fast-grid"}},
+    {RUN, NULL, "[model]\ncontact_law = unilateral\nfriction = 0.5\n[integrator]\nstrategy = time-stepping\nlocate_switches = yes\n",
+     NULL, NULL, 0, 2, {"case.ini:6: [integrator] locate_switches = yes with strategy = time-stepping", "locates no event", "allowed: no"}},
+    {RUN, NULL, "[model]\ncontact_law = unilateral\nfriction = 0.5\n[integrator]\nstrategy = time-stepping\nmethod = rk8pd\n",
+     NULL, NULL, 0, 2, {"case.ini:6: [integrator] method = rk8pd with strategy = time-stepping", "its own theta-method", "allowed: rk4"}},
+    {RUN, NULL, "[model]\ncontact_law = unilateral\nfriction = 0.5\n[integrator]\nstrategy = time-stepping\n[diagnostics]\nlyapunov = yes\n",
+     NULL, NULL, 0, 2, {"case.ini:7: [diagnostics] lyapunov = yes with [integrator] strategy = time-stepping", "events and jumps",
+                        "allowed: no; yes with strategy = event-driven"}},
+    {RUN, NULL, "[model]\ncontact_law = unilateral\nfriction = 0.5\n[integrator]\nstrategy = time-stepping\n[output]\nimpacts = yes\n",
+     NULL, NULL, 0, 2, {"case.ini:7: [output] impacts = yes with [integrator] strategy = time-stepping", "no impact events", "allowed: no"}},
+    /* a solver held to one sweep and no residual at all: the computation fails (exit 1), naming the step, its points and
+     * the residual, and leaves no output */
+    {RUN, NULL, "[body]\nmesh = m.off\n[model]\ncontact = fast-grid\ncontact_law = unilateral\nfriction = 0.5\n[integrator]\n"
+     "strategy = time-stepping\nsolver_iterations = 1\nsolver_tolerance = 1e-16\nperiods = 1\n[output]\nhistory = yes\nsummary = yes\n",
+     "m.off", "OFF\n8 6 0\n" CUBE_VERTICES CUBE_FACES, 0, 1,
+     {"time-stepping at t = ", "(step 1, 4 contact points)", "did not converge on 4 contacts"}},
 };
 
 static void test_round4_table(void)

@@ -21,6 +21,7 @@ int verify_register_s5_flight(void);
 int verify_register_s5_friction_impact(void);
 int verify_register_s5_friction(void);
 int verify_register_s5_compliant(void);
+int verify_register_s5_stepping(void);
 int verify_register_s6_estimators(void);
 int verify_register_s6_chaos(void);
 int verify_register_s6_diagnostics(void);

@@ -1,0 +1,493 @@
+/* gb_dynamics_stepping — the time-stepping strategy (Moreau–Jean), docs/stepping.md: at each step one frictional
+ * contact problem over every point of the body the step would bring into the plane, at the level of velocities and
+ * impulses; no event is located, no mode is followed. The law poses the problem (its row's time_steps: Newton's
+ * impact law on the normal velocity, Coulomb's cone); Siconos's fc3d solves it (gb_contact_problem).
+ *
+ * One step from (t, q, ω, ζ, v) of size h, with the generalised velocity V = (v, ω) (v inertial, relative to the
+ * plane; ω body axes) and the θ-method for the smooth forces:
+ *   free velocities   v_f = v − h g_θ e_z,  (I + hθc) ω_f = I ω − h ω × I ω − h (1 − θ) c ω    (g_θ = θ g₁ + (1−θ) g₀)
+ *   candidates        the grid's nodes r_i (a mesh's vertices, a grid polyhedron's nodes) whose gap after half a
+ *                     step at today's speed, g_i + h u_n,i / 2, is ≤ 0 (Siconos's MoreauJeanOSI's index set, γ = 1/2)
+ *   relation          u_i = v + R(ω × r_i) = v + B_i ω, B_i = −[R r_i]× R, in the frame (e_z, e_x, e_y)
+ *   problem           u = W P + q, W_ij = 1/m + B_i M_ω⁻¹ B_jᵀ (3 × 3 blocks) (M_ω = I + hθc), q_i = u_i(V_f) + e u_n,i(V) e_z
+ *   impulses          V⁺ = V_f + M̂⁻¹ Σ H_iᵀ P_i
+ *   positions         x⁺ = x + h (θ v⁺ + (1−θ) v), q⁺ = q ⊗ exp(h ω_θ / 2)
+ * The ledger: a free flight of the centroid under a constant g keeps E = T + m g ζ exactly at θ = 1/2; the contacts'
+ * impulses take D = −Σ P_i · (u_i⁺ + ũ_i) / 2, ũ_i the free velocity without gravity's kick (a body at rest takes 0),
+ * booked as the impacts' loss (normal part) and friction's work (tangential part); the forcing's work
+ * m (g₁ − g₀)(ζ₀ + ζ₁)/2 and damping's −c h ω_θ·ω̄ enter W. What the ledger leaves is the scheme's first-order error. */
+#include "gb_dynamics_internal.h"
+#include "gb_dynamics_protocol_internal.h"
+
+#include "gb_contact_problem.h"
+#include "gb_error.h"
+#include "gb_vec.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* The candidates' threshold above the plane [body lengths]: far above the rounding of a height (1e-16 of the body),
+ * far below any length of the problem; a gap the step closes to this is a contact. */
+#define GB_DYNAMICS_STEPPING_ACTIVATION 1e-12
+
+/* The contacts one step solves, and what the last step left. */
+struct gb_dyn_stepper {
+    double theta, h;
+    size_t nodes;                  /* the grid's nodes, the body's points [m] (body axes): the candidates */
+    double (*points)[3];
+    double radius;                 /* the farthest point's distance from the centroid [m] */
+    double *gaps;                  /* every point's gap above the plane at the state `scanned` (scanned_valid) */
+    double scanned[GB_STATE_SIZE];
+    int scanned_valid;
+    gb_contact_problem *problem;
+    size_t capacity;               /* of the buffers below, in contacts */
+    double *W, *q, *mu, *r, *u;    /* the problem (W: (3 capacity)², column-major) */
+    size_t *node;                  /* the candidates' nodes */
+    double (*B)[3][3];             /* their relations' rotational parts */
+    double (*C)[3][3];             /* M_ω⁻¹ B_iᵀ */
+    /* the last step */
+    int touching, sliding;         /* points with a normal impulse; of them, points slipping after the step */
+    double normal_impulse, tangential[3], slip_max; /* Σ P_n, Σ P_t (inertial), the largest slip after [m/s] */
+    size_t lowest;                 /* the lowest node after the step */
+    double clearance;              /* its height above the plane [m] */
+    size_t *touched, *touching_now; /* the nodes touching after the previous step (to count new touches), and this one's */
+    int touched_count;
+    size_t *last_node;              /* the previous problem's points and impulses: the solver starts from them (a body
+                                     * at rest needs a sweep or two, not hundreds) */
+    double *last_r;
+    int last_count;
+    gb_dynamics_stepping_stats stats;
+};
+
+static void stepper_free(gb_dyn_stepper *s)
+{
+    if (!s) return;
+    gb_contact_problem_free(s->problem);
+    free(s->W), free(s->q), free(s->mu), free(s->r), free(s->u), free(s->node), free(s->B), free(s->C), free(s->touched), free(s->touching_now), free(s->last_node), free(s->last_r), free(s->points), free(s->gaps);
+    free(s);
+}
+
+void gb_dyn_stepping_free(gb_dynamics *d)
+{
+    stepper_free(d->stepper);
+    d->stepper = NULL;
+}
+
+static int grow(gb_dyn_stepper *s, size_t count)
+{
+    if (count <= s->capacity) return GB_OK;
+    size_t capacity = s->capacity ? s->capacity : 8;
+    while (capacity < count) capacity *= 2;
+    const size_t n = 3 * capacity;
+    double *W = realloc(s->W, n * n * sizeof *W), *q = realloc(s->q, n * sizeof *q);
+    if (W) s->W = W;
+    if (q) s->q = q;
+    double *mu = realloc(s->mu, capacity * sizeof *mu), *r = realloc(s->r, n * sizeof *r), *u = realloc(s->u, n * sizeof *u);
+    if (mu) s->mu = mu;
+    if (r) s->r = r;
+    if (u) s->u = u;
+    size_t *node = realloc(s->node, capacity * sizeof *node), *touched = realloc(s->touched, capacity * sizeof *touched);
+    size_t *now = realloc(s->touching_now, capacity * sizeof *now), *last = realloc(s->last_node, capacity * sizeof *last);
+    double *last_r = realloc(s->last_r, n * sizeof *last_r);
+    if (last) s->last_node = last;
+    if (last_r) s->last_r = last_r;
+    if (node) s->node = node;
+    if (touched) s->touched = touched;
+    if (now) s->touching_now = now;
+    double(*B)[3][3] = realloc(s->B, capacity * sizeof *B), (*C)[3][3] = realloc(s->C, capacity * sizeof *C);
+    if (B) s->B = B;
+    if (C) s->C = C;
+    if (!(W && q && mu && r && u && node && touched && now && last && last_r && B && C))
+        return gb_error_set(GB_ENOMEM, "out of memory for a contact problem of %zu points", count);
+    s->capacity = capacity;
+    return GB_OK;
+}
+
+/* ---- the mode the dynamics is in while time is stepped: its field is the free motion (no contact), its observables
+ * the last step's --------------------------------------------------------------------------------------------- */
+
+static int stepped_field(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const double omega[3], const double zb[3],
+                         double geff, double omega_dot[3], double *zeta, gb_dyn_rates *rates)
+{
+    (void)t, (void)zb;
+    const int status = gb_dyn_free_acceleration(d, omega, omega_dot);
+    *zeta = y[GB_STATE_ZETA];
+    if (rates) {
+        rates->acc[0] = rates->acc[1] = 0.0, rates->acc[2] = -geff;
+        rates->zeta_rate = y[GB_STATE_VELOCITY + 2];
+    }
+    return status;
+}
+
+static int stepped_accept(gb_dynamics *d, double t, double y[GB_STATE_SIZE])
+{
+    (void)d, (void)t, (void)y;
+    return GB_OK;
+}
+
+static int stepped_pending(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], gb_contact_point *other, int *found)
+{
+    (void)d, (void)t, (void)y, (void)other;
+    *found = 0;
+    return GB_OK;
+}
+
+static int stepped_gap(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const gb_contact_point *other, double *gap,
+                       gb_contact_point *other_here)
+{
+    (void)d, (void)y, (void)other, (void)gap, (void)other_here;
+    return gb_error_set(GB_EINVAL, "t = %.9g: time-stepping locates no event", t);
+}
+
+static int stepped_event(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const gb_contact_point *branch)
+{
+    (void)d, (void)y, (void)branch;
+    return gb_error_set(GB_EINVAL, "t = %.9g: time-stepping applies no jump at an event", t);
+}
+
+static int stepped_jump(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const gb_contact_point *branch,
+                        double out[GB_STATE_SIZE])
+{
+    (void)out;
+    return stepped_event(d, t, (double *)y, branch);
+}
+
+/* Every point's gap above the plane at state y (vertical zb), the lowest point and its clearance: one pass over the
+ * points, kept for the same state (the step that follows it, and the observer of the step that made it). */
+static void scan(gb_dyn_stepper *s, const double y[GB_STATE_SIZE], const double zb[3])
+{
+    if (s->scanned_valid && !memcmp(s->scanned, y, sizeof s->scanned)) return;
+    double best = INFINITY;
+    for (size_t i = 0; i < s->nodes; i++) {
+        const double *x = s->points[i];
+        const double gap = y[GB_STATE_ZETA] + zb[0] * x[0] + zb[1] * x[1] + zb[2] * x[2];
+        s->gaps[i] = gap;
+        if (gap < best) best = gap, s->lowest = i;
+    }
+    s->clearance = best;
+    memcpy(s->scanned, y, sizeof s->scanned);
+    s->scanned_valid = 1;
+}
+
+/* The vertical of state y. */
+static void vertical_of(const double y[GB_STATE_SIZE], double zb[3])
+{
+    double R[9];
+    gb_dynamics_rotation(y + GB_STATE_Q, R);
+    zb[0] = R[6], zb[1] = R[7], zb[2] = R[8];
+}
+
+static int stepped_observe(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], gb_dynamics_observables *o)
+{
+    (void)t;
+    gb_dyn_stepper *s = d->stepper;
+    scan(s, y, o->zb);
+    o->index = s->lowest;
+    memcpy(o->rc, s->points[s->lowest], sizeof o->rc);
+    const int status = gb_dyn_free_acceleration(d, o->omega, o->omega_dot);
+    o->zeta = y[GB_STATE_ZETA];
+    memcpy(o->velocity, y + GB_STATE_VELOCITY, sizeof o->velocity);
+    o->height = gb_vec_dot(o->zb, o->rc);
+    o->clearance = fmax(0.0, s->clearance);
+    gb_dyn_observe_free_energy(d, y, o);
+    if (s->stats.steps) {
+        o->contacts = s->touching;
+    } else { /* no step yet: the points on the plane to the activation threshold */
+        o->contacts = 0;
+        for (size_t i = 0; i < s->nodes; i++) o->contacts += s->gaps[i] <= GB_DYNAMICS_STEPPING_ACTIVATION * d->mean_radius;
+    }
+    if (s->touching && s->h > 0.0) {
+        o->normal_force = s->normal_impulse / s->h; /* the step's mean */
+        o->normal_forces[0] = o->normal_force;
+        o->friction_needed = hypot(s->tangential[0], s->tangential[1]) / s->normal_impulse;
+    }
+    o->sliding = s->sliding;
+    o->slip_speed = s->slip_max;
+    return status;
+}
+
+static void stepped_translate(const gb_dynamics *d, double t, double y[GB_STATE_SIZE])
+{
+    (void)d, (void)t, (void)y;
+}
+
+#define STEPPED {"time-stepping", 1, stepped_field, stepped_accept, stepped_pending, stepped_gap, stepped_event, \
+                 stepped_jump, stepped_observe, stepped_translate, NULL}
+/* Every mode index is the stepped mode: the modes' time accounting (flight, sliding, on one, two, three points) follows
+ * the steps, and every call goes to the one mode. */
+static const gb_dyn_mode stepped_modes[GB_DYN_MODES] = {STEPPED, STEPPED, STEPPED, STEPPED, STEPPED};
+
+/* ---- the step ----------------------------------------------------------------------------------------------- */
+
+int gb_dynamics_stepping_begin(gb_dynamics *d, double t0, double h, double theta, const gb_contact_problem_def *solver)
+{
+    if (!d->law->time_steps)
+        return gb_error_set(GB_EINVAL, "the %s law poses no one-step contact problem (allowed with time-stepping: "
+                            "contact_law = unilateral on a plane of finite friction)", d->law->name);
+    if (!d->grid)
+        return gb_error_set(GB_EINVAL, "contact = %s gives time-stepping no points to test (allowed: grid or fast-grid, "
+                            "whose nodes are a mesh's vertices or a smooth body's grid polyhedron)",
+                            gb_contact_model_name(d->def.contact));
+    if (!(theta >= 0.5 && theta <= 1.0))
+        return gb_error_set(GB_EDOM, "theta = %g is out of range (allowed: 0.5 <= theta <= 1)", theta);
+    gb_dyn_stepper *s = calloc(1, sizeof *s);
+    if (!s) return gb_error_set(GB_ENOMEM, "out of memory for the time-stepping strategy");
+    s->theta = theta, s->h = h;
+    int status = gb_contact_problem_create(solver, &s->problem);
+    if (!status) status = grow(s, 8);
+    s->nodes = gb_contact_grid_size(d->grid);
+    s->points = status ? NULL : malloc(s->nodes * sizeof *s->points);
+    s->gaps = status ? NULL : malloc(s->nodes * sizeof *s->gaps);
+    if (!status && !(s->points && s->gaps)) status = gb_error_set(GB_ENOMEM, "out of memory for %zu points", s->nodes);
+    for (size_t i = 0; !status && i < s->nodes; i++) {
+        double phi, theta, x[3];
+        gb_contact_grid_node(d->grid, i, &phi, &theta, x);
+        for (int k = 0; k < 3; k++) s->points[i][k] = d->def.length * x[k];
+        s->radius = fmax(s->radius, gb_vec_norm(s->points[i]));
+    }
+    if (status) {
+        stepper_free(s);
+        return status;
+    }
+    gb_dyn_stepping_free(d);
+    d->stepper = s;
+    d->modes = stepped_modes;
+    s->stats.dissipation_min = 0.0;
+    d->last_switch_time = NAN;
+    (void)t0;
+    return GB_OK;
+}
+
+/* (I + hθc)⁻¹ as a matrix, by columns. */
+static int rotational_mass_inverse(const gb_dynamics *d, double k, double out[3][3])
+{
+    double A[3][3];
+    memcpy(A, d->inertia, sizeof A);
+    for (int i = 0; i < 3; i++) A[i][i] += k;
+    for (int j = 0; j < 3; j++) {
+        const double e[3] = {j == 0, j == 1, j == 2};
+        double x[3];
+        const int status = gb_dyn_solve3(A, e, x);
+        if (status) return status;
+        for (int i = 0; i < 3; i++) out[i][j] = x[i];
+    }
+    return GB_OK;
+}
+
+/* The local frame's order: the normal e_z first, then e_x, e_y. */
+static const int axis[3] = {2, 0, 1};
+
+/* u = v + B ω at a point, inertial. */
+static void point_velocity(const double v[3], double B[3][3], const double w[3], double u[3])
+{
+    for (int i = 0; i < 3; i++) u[i] = v[i] + B[i][0] * w[0] + B[i][1] * w[1] + B[i][2] * w[2];
+}
+
+/* The mode whose time the step books: flight, sliding, or on one, two, three points. */
+static gb_dyn_mode_id mode_of(int touching, int sliding)
+{
+    if (!touching) return GB_DYN_FLIGHT;
+    if (sliding) return GB_DYN_SLIDING;
+    return touching == 1 ? GB_DYN_ONE_POINT : touching == 2 ? GB_DYN_TWO_POINT : GB_DYN_REST;
+}
+
+int gb_dynamics_stepping_step(gb_dynamics *d, double t, double h, double y[GB_STATE_SIZE])
+{
+    gb_dyn_stepper *s = d->stepper;
+    if (!s) return gb_error_set(GB_EINVAL, "time-stepping was not begun");
+    const double m = d->def.mass, c = d->def.damping, th = s->theta;
+    const double g0 = gb_forcing_geff(&d->def.forcing, t), g1 = gb_forcing_geff(&d->def.forcing, t + h);
+    const double gth = th * g1 + (1.0 - th) * g0;
+    double R[9];
+    gb_dynamics_rotation(y + GB_STATE_Q, R);
+    const double zb[3] = {R[6], R[7], R[8]};
+    const double *v = y + GB_STATE_VELOCITY, *w = y + GB_STATE_OMEGA;
+
+    /* free velocities */
+    double Minv[3][3], Iw[3], gyro[3], b[3], wf[3], vf[3] = {v[0], v[1], v[2] - h * gth};
+    int status = rotational_mass_inverse(d, h * th * c, Minv);
+    if (status) return status;
+    gb_dyn_mat_vec(d->inertia, w, Iw);
+    gb_vec_cross(w, Iw, gyro);
+    for (int i = 0; i < 3; i++) b[i] = Iw[i] - h * gyro[i] - h * (1.0 - th) * c * w[i];
+    gb_dyn_mat_vec(Minv, b, wf);
+
+    /* the candidates: nodes whose gap, half a step ahead at today's speed, is closed */
+    const double wi[3] = {R[0] * w[0] + R[1] * w[1] + R[2] * w[2], R[3] * w[0] + R[4] * w[1] + R[5] * w[2],
+                          R[6] * w[0] + R[7] * w[1] + R[8] * w[2]};
+    /* a point on the plane to rounding is on it: its gap is the rounding of ζ and of the attitude */
+    const double activation = GB_DYNAMICS_STEPPING_ACTIVATION * d->mean_radius;
+    /* no point moves faster than |v_z| + |ω| r_max towards the plane: one farther than a step of that is far above */
+    const double reach = activation + h * (fabs(v[2]) + gb_vec_norm(wi) * s->radius);
+    scan(s, y, zb);
+    const size_t lowest_before = s->lowest;
+    int n = 0;
+    for (size_t i = 0; i < s->nodes; i++) {
+        const double *x = s->points[i], gap = s->gaps[i];
+        if (gap > reach) continue;
+        const double a[3] = {R[0] * x[0] + R[1] * x[1] + R[2] * x[2], R[3] * x[0] + R[4] * x[1] + R[5] * x[2],
+                             R[6] * x[0] + R[7] * x[1] + R[8] * x[2]};
+        const double un = v[2] + wi[0] * a[1] - wi[1] * a[0]; /* (v + ω × a)_z */
+        if (gap + 0.5 * h * un > activation) continue;
+        if ((size_t)n == GB_CONTACT_PROBLEM_MAX)
+            return gb_error_set(GB_ENUMERIC, "t = %.9g: more than %d points of the body within a step of the plane",
+                                t, GB_CONTACT_PROBLEM_MAX);
+        if ((status = grow(s, (size_t)n + 1))) return status;
+        s->node[n] = i;
+        /* B = −[a]× R: column j is −a × R e_j = R e_j × a */
+        for (int j = 0; j < 3; j++) {
+            const double col[3] = {R[j], R[3 + j], R[6 + j]};
+            double bc[3];
+            gb_vec_cross(col, a, bc);
+            for (int k = 0; k < 3; k++) s->B[n][k][j] = bc[k];
+        }
+        for (int k = 0; k < 3; k++) /* C = M_ω⁻¹ Bᵀ */
+            for (int j = 0; j < 3; j++)
+                s->C[n][k][j] = Minv[k][0] * s->B[n][j][0] + Minv[k][1] * s->B[n][j][1] + Minv[k][2] * s->B[n][j][2];
+        n++;
+    }
+
+    /* the problem and its solution */
+    double P[3] = {0}, vplus[3], wplus[3];
+    memcpy(vplus, vf, sizeof vplus);
+    memcpy(wplus, wf, sizeof wplus);
+    const double e = d->def.restitution, mu = d->def.friction;
+    if (n > 0) {
+        const int N = 3 * n;
+        for (int i = 0; i < n; i++) {
+            double uf[3], uk[3];
+            point_velocity(vf, s->B[i], wf, uf);
+            point_velocity(v, s->B[i], w, uk);
+            for (int k = 0; k < 3; k++) s->q[3 * i + k] = uf[axis[k]];
+            s->q[3 * i] += e * uk[2];
+            s->mu[i] = mu;
+            for (int j = 0; j < n; j++) {
+                double BC[3][3];
+                for (int a = 0; a < 3; a++)
+                    for (int bb = 0; bb < 3; bb++)
+                        BC[a][bb] = (a == bb) / m + s->B[i][a][0] * s->C[j][0][bb] + s->B[i][a][1] * s->C[j][1][bb] +
+                                    s->B[i][a][2] * s->C[j][2][bb];
+                for (int a = 0; a < 3; a++)
+                    for (int bb = 0; bb < 3; bb++) s->W[(size_t)(3 * j + bb) * (size_t)N + (size_t)(3 * i + a)] = BC[axis[a]][axis[bb]];
+            }
+        }
+        /* warm start: a point of the previous problem starts from its impulse there */
+        for (int i = 0; i < n; i++) {
+            int k = 0;
+            while (k < s->last_count && s->last_node[k] != s->node[i]) k++;
+            for (int a = 0; a < 3; a++) s->r[3 * i + a] = k < s->last_count ? s->last_r[3 * k + a] : 0.0;
+        }
+        gb_contact_problem_report report;
+        status = gb_contact_problem_solve(s->problem, n, s->W, s->q, s->mu, s->r, s->u, &report);
+        s->stats.problems++;
+        s->stats.sweeps += report.iterations;
+        s->stats.fallbacks += (size_t)report.fallback;
+        s->stats.residual_max = fmax(s->stats.residual_max, report.residual);
+        if ((size_t)n > s->stats.contacts_max) s->stats.contacts_max = (size_t)n;
+        if (status)
+            return gb_error_set(GB_ENOCONV, "time-stepping at t = %.9g (step %zu, %d contact points): %s", t,
+                                s->stats.steps + 1, n, gb_error_message());
+        memcpy(s->last_node, s->node, (size_t)n * sizeof *s->node);
+        s->last_count = n;
+        memcpy(s->last_r, s->r, (size_t)N * sizeof *s->r);
+        for (int i = 0; i < n; i++) {
+            const double Pi[3] = {s->r[3 * i + 1], s->r[3 * i + 2], s->r[3 * i]}; /* inertial x, y, z */
+            for (int k = 0; k < 3; k++) {
+                P[k] += Pi[k];
+                for (int j = 0; j < 3; j++) wplus[k] += s->C[i][k][j] * Pi[j];
+            }
+        }
+        for (int k = 0; k < 3; k++) vplus[k] += P[k] / m;
+    } else {
+        s->last_count = 0;
+    }
+
+    /* what the contacts did: who touches, who slips, the energy the impulses took */
+    const double slip_tol = 1e-6 * (fabs(gth) + 1.0) * h;
+    int touching = 0, sliding = 0, new_touches = 0;
+    double loss = 0.0, friction = 0.0, slip_max = 0.0;
+    for (int i = 0; i < n; i++) {
+        const double Pi[3] = {s->r[3 * i + 1], s->r[3 * i + 2], s->r[3 * i]};
+        if (!(Pi[2] > 0.0)) continue;
+        double up[3], uf[3];
+        point_velocity(vplus, s->B[i], wplus, up);
+        point_velocity(vf, s->B[i], wf, uf);
+        uf[2] += h * gth; /* without gravity's kick: a body at rest takes nothing */
+        const double dn = -Pi[2] * (up[2] + uf[2]) / 2.0, dt = -(Pi[0] * (up[0] + uf[0]) + Pi[1] * (up[1] + uf[1])) / 2.0;
+        loss += dn, friction -= dt;
+        const double slip = hypot(up[0], up[1]);
+        slip_max = fmax(slip_max, slip);
+        sliding += slip > slip_tol;
+        int before = 0;
+        for (int k = 0; k < s->touched_count && !before; k++) before = s->touched[k] == s->node[i];
+        double uk[3];
+        point_velocity(v, s->B[i], w, uk);
+        new_touches += !before && uk[2] < -slip_tol; /* an impact: a point that was not touching arrives */
+        s->touching_now[touching++] = s->node[i];
+    }
+    size_t *swap = s->touched;
+    s->touched = s->touching_now, s->touching_now = swap, s->touched_count = touching;
+    /* the step's dissipation: the impulses' work at all points together (at one of several points that share a load it
+     * has no meaning: the impulses the solver spreads over a face are not unique) */
+    const double dissipation = loss - friction;
+    s->stats.dissipation_min = fmin(s->stats.dissipation_min, dissipation);
+    s->stats.energy_gained += fmax(0.0, -dissipation);
+    s->stats.negative_dissipation += dissipation < -1e-12 * (m * fabs(gth) * fabs(gth) * h * h + fabs(loss) + fabs(friction));
+    d->impacts += (size_t)new_touches;
+    d->impact_loss += loss;
+    if (touching) d->impact_friction_max = fmax(d->impact_friction_max, hypot(P[0], P[1]) / P[2]);
+
+    /* positions */
+    double vt[3], wt[3];
+    for (int k = 0; k < 3; k++) vt[k] = th * vplus[k] + (1.0 - th) * v[k], wt[k] = th * wplus[k] + (1.0 - th) * w[k];
+    const double zeta0 = y[GB_STATE_ZETA], zeta1 = zeta0 + h * vt[2];
+    double wbar[3];
+    for (int k = 0; k < 3; k++) wbar[k] = 0.5 * (wplus[k] + w[k]);
+    y[GB_STATE_WORK] += m * (g1 - g0) * (zeta0 + zeta1) / 2.0 - c * h * gb_vec_dot(wt, wbar);
+    y[GB_STATE_ZETA] = zeta1;
+    y[GB_STATE_POSITION] += h * vt[0];
+    y[GB_STATE_POSITION + 1] += h * vt[1];
+    y[GB_STATE_FRICTION] += friction;
+    memcpy(y + GB_STATE_VELOCITY, vplus, sizeof vplus);
+    const double angle = gb_vec_norm(wt) * h;
+    double dq[4] = {1.0, 0.0, 0.0, 0.0}, qn[4];
+    if (angle > 0.0) {
+        const double sn = sin(angle / 2.0) / (angle / h);
+        dq[0] = cos(angle / 2.0), dq[1] = sn * wt[0], dq[2] = sn * wt[1], dq[3] = sn * wt[2];
+    }
+    const double *q = y + GB_STATE_Q; /* q ⊗ dq */
+    qn[0] = q[0] * dq[0] - q[1] * dq[1] - q[2] * dq[2] - q[3] * dq[3];
+    qn[1] = q[0] * dq[1] + q[1] * dq[0] + q[2] * dq[3] - q[3] * dq[2];
+    qn[2] = q[0] * dq[2] - q[1] * dq[3] + q[2] * dq[0] + q[3] * dq[1];
+    qn[3] = q[0] * dq[3] + q[1] * dq[2] - q[2] * dq[1] + q[3] * dq[0];
+    const double norm = sqrt(qn[0] * qn[0] + qn[1] * qn[1] + qn[2] * qn[2] + qn[3] * qn[3]);
+    for (int k = 0; k < 4; k++) y[GB_STATE_Q + k] = qn[k] / norm;
+    memcpy(y + GB_STATE_OMEGA, wplus, sizeof wplus);
+    status = gb_dyn_state_finite(t + h, y);
+    if (status) return status;
+
+    /* the counters: the mode booked, lift-offs and landings, slips and sticks, the lowest node's changes */
+    const gb_dyn_mode_id before = d->mode, after = mode_of(touching, sliding);
+    if (before != GB_DYN_FLIGHT && after == GB_DYN_FLIGHT) d->flight.lift_offs++;
+    if (before == GB_DYN_FLIGHT && after != GB_DYN_FLIGHT) d->flight.landings++;
+    if (before != GB_DYN_SLIDING && after == GB_DYN_SLIDING) d->slide.slips++;
+    if (before == GB_DYN_SLIDING && after != GB_DYN_SLIDING && after != GB_DYN_FLIGHT) d->slide.sticks++;
+    gb_dyn_set_mode(d, after, t + h);
+    double zb1[3];
+    vertical_of(y, zb1);
+    scan(s, y, zb1); /* the next step's and the observer's */
+    if (s->lowest != lowest_before) d->grid_switches++, d->last_switch_time = t + h;
+    if (after == GB_DYN_FLIGHT) d->flight.hop_max = fmax(d->flight.hop_max, s->clearance);
+    s->touching = touching, s->sliding = sliding, s->slip_max = slip_max;
+    s->normal_impulse = P[2];
+    memcpy(s->tangential, P, sizeof s->tangential);
+    s->stats.steps++;
+    s->stats.contact_points += (size_t)n;
+    return GB_OK;
+}
+
+const gb_dynamics_stepping_stats *gb_dynamics_stepping_stats_of(const gb_dynamics *d)
+{
+    return d->stepper ? &d->stepper->stats : NULL;
+}

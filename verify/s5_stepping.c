@@ -1,0 +1,344 @@
+/* The time-stepping strategy (Moreau–Jean, [integrator] strategy = time-stepping; gb_dynamics_stepping.c): one
+ * frictional contact problem over every point near the plane at each step, solved by Siconos's fc3d. Its one-step
+ * problem is checked against the law and the enumeration in s5_friction_impact.c; here, the motions it must follow
+ * to the end, each against a closed form or the event-driven strategy:
+ * - a box sliding flat on its face stops after v0²/(2μg) at v0/(μg) (the block of cases/bodies/housner-block.off,
+ *   half-sides b = 0.1 along the slide and h = 0.4 up);
+ * - the same box tips instead where the friction's moment about the centroid beats the weight's about the leading
+ *   edge: μ > b/h;
+ * - Housner's block released tilted on a plane of finite μ: above μ_c = 3bh/(b² + 4h²) the first impact keeps
+ *   ω⁺/ω⁻ = 1 − (3/2) sin²α (α = atan(b/h)) as h → 0; below it the new edge slides;
+ * - the die and the coin of cases/bodies on planes of μ = 0.3 and 0.6 come to rest on a face;
+ * - Gömböc II's grid polyhedron under Table 1's forcing at μ = 0.5, one period: the state tends to the event-driven
+ *   strategy's as the step falls, at order 1 at least;
+ * - energy: the ledger E − E0 − W + L closes to rounding (the impulses' work is booked exactly); the impulses take
+ *   energy at every step of a box sliding flat, and where the body turns about a held point they give O(h²) a step,
+ *   O(h) over the run (docs/stepping.md: the centripetal separation at the step's new attitude). */
+#include "gb_case.h"
+#include "gb_check.h"
+#include "gb_dynamics.h"
+#include "gb_error.h"
+#include "gb_integrate.h"
+#include "gb_run.h"
+#include "verify_sections.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const double G = 9.81;
+
+/* What a run's samples show: the largest tilt of the body's z axis [rad], the first sample (after sliding) where
+ * nothing slides on the plane, and around the first impact of a rocking block (ω falling by more than 1 % between
+ * two samples): the rate before and after, and the friction the impact's step needed (|Σ P_t| / Σ P_n). */
+typedef struct motion {
+    double tilt_max, stop;
+    int slid;
+    double rate_before, rate_after, last_rate, impact_friction;
+    int impacts_seen;
+    double kinetic_end, energy0, energy_end;
+    int contacts_end;
+} motion;
+
+static int observe(void *context, const gb_run_sample *s)
+{
+    motion *m = context;
+    const gb_dynamics_observables *o = s->o;
+    m->tilt_max = fmax(m->tilt_max, acos(fmin(1.0, o->R[8])));
+    if (o->sliding) m->slid = 1;
+    else if (m->slid && isnan(m->stop) && o->contacts) m->stop = s->t;
+    const double rate = fabs(o->omega[1]);
+    if (!m->impacts_seen && m->last_rate > 0.0 && rate < 0.99 * m->last_rate && s->t > 0.01) {
+        m->impacts_seen = 1;
+        m->rate_before = m->last_rate, m->rate_after = rate, m->impact_friction = o->friction_needed;
+    }
+    m->last_rate = rate;
+    m->kinetic_end = o->kinetic;
+    m->contacts_end = o->contacts;
+    if (s->t == 0.0) m->energy0 = o->energy;
+    m->energy_end = o->energy;
+    return GB_OK;
+}
+
+/* Run the scene text (its mesh relative to cases/bodies), the samples into *m. */
+static int run_text(const char *text, motion *m, gb_run_result *result)
+{
+    memset(m, 0, sizeof *m);
+    m->stop = NAN;
+    gb_case scene;
+    const gb_run_sinks sinks = {observe, m, NULL};
+    int status = gb_case_load_text("cases/bodies/stepping.ini", text, strlen(text), &scene);
+    if (!status) status = gb_run(&scene, &sinks, result);
+    return status;
+}
+
+/* The block of housner-block.off standing on its face (or tilted `tilt` rad about y onto its bottom edge) on a
+ * still plane of friction mu, launched along x at v0, `spp` steps of time-stepping over `seconds`. */
+static int block(double mu, double v0, double tilt, size_t spp, double seconds, motion *m, gb_run_result *result)
+{
+    char text[1200];
+    snprintf(text, sizeof text,
+             "[body]\nmesh = housner-block.off\nmass = 1\n[forcing]\ng = %.17g\nA1 = 0\nA2 = 0\nomega = 6.283185307179586\n"
+             "[model]\ncontact = fast-grid\ncontact_law = unilateral\ndamping = 0\nfriction = %.17g\n[integrator]\n"
+             "strategy = time-stepping\nsteps_per_period = %zu\nperiods = %.17g\n[initial]\nattitude = axis-angle 0,1,0,%.17g\n"
+             "velocity = %.17g,0,0\n", G, mu, spp, seconds, tilt, v0);
+    return run_text(text, m, result);
+}
+
+static void test_sliding_box(void)
+{
+    const double mu = 0.2, v0 = 1.0, distance = v0 * v0 / (2.0 * mu * G), stop = v0 / (mu * G);
+    static const size_t spp[3] = {250, 1000, 4000};
+    double error[3] = {NAN, NAN, NAN}, stop_error[3] = {NAN, NAN, NAN}, ledger = 0.0;
+    size_t negative = 0;
+    int status = GB_OK;
+    for (int k = 0; k < 3 && !status; k++) {
+        motion m;
+        gb_run_result r;
+        status = block(mu, v0, 0.0, spp[k], 1.0, &m, &r);
+        if (status) break;
+        error[k] = fabs(r.y[GB_STATE_POSITION] - distance);
+        stop_error[k] = fabs(m.stop - stop) * (double)spp[k]; /* in steps */
+        negative += r.stepping.negative_dissipation;
+        ledger = fmax(ledger, r.residual_max / (0.5 * v0 * v0));
+        gb_run_result_free(&r);
+    }
+    const double order = gb_check_observed_order(error[1], error[2], 1.0 / 1000.0, 1.0 / 4000.0);
+    gb_check c = {"-", "-", "a box (cases/bodies/housner-block.off) sliding flat on its face, v0 = 1 m/s, mu = 0.2, time-stepping at "
+                  "250, 1000, 4000 steps a second: the distance to rest, observed order between the two finest",
+                  "v0^2 / (2 mu g) = 0.2548 m (Coulomb's law, constant deceleration mu g)",
+                  "the scheme's order 1 (Moreau-Jean; 2 for this motion at theta = 1/2 with constant forces), as a lower "
+                  "bound with 10 % for the rounding of the finest error"};
+    gb_check_true(&c, !status && order >= 0.9, "%s; errors %.3g, %.3g, %.3g m, order %.3f", status ? gb_error_message() : "ran",
+                  error[0], error[1], error[2], order);
+    gb_check ct = {"-", "-", "the same runs: the time the slide stops, in steps", "v0 / (mu g) = 0.5097 s",
+                   "one step: the slide stops inside the step whose end first sees it stopped"};
+    gb_check_true(&ct, !status && stop_error[0] <= 1.0 && stop_error[1] <= 1.0 && stop_error[2] <= 1.0,
+                  "%.3g, %.3g, %.3g steps off", stop_error[0], stop_error[1], stop_error[2]);
+    gb_check ce = {"-", "-", "the same runs: the steps whose impulses gave energy, and the ledger's worst |E - E0 - W + L| over "
+                   "the kinetic energy", "none: sliding flat, friction only takes (the impulses' work is -mu P_n |u_t| <= 0); the ledger "
+                   "books the impulses' work exactly", "exact count; the ledger to 1e-12, rounding over a thousand steps"};
+    gb_check_true(&ce, !status && negative == 0 && ledger <= 1e-12, "%zu steps gave energy; ledger %.3g", negative, ledger);
+}
+
+static void test_tipping_box(void)
+{
+    const double b = 0.1, h = 0.4, threshold = b / h;
+    motion below, above;
+    gb_run_result r;
+    int status = block(threshold - 0.005, 1.0, 0.0, 1000, 1.0, &below, &r);
+    if (!status) gb_run_result_free(&r), status = block(threshold + 0.005, 1.0, 0.0, 1000, 1.0, &above, &r);
+    if (!status) gb_run_result_free(&r);
+    gb_check c = {"-", "-", "the same box launched at 1 m/s on planes of mu = 0.245 and 0.255: the largest tilt of its axis",
+                  "it slides flat below mu = b/h = 0.25 (the normal force's resultant reaches the leading edge there: mu N h = N b) "
+                  "and tips above", "flat: 1e-9 rad (rounding of the attitude); tips: more than 0.01 rad"};
+    gb_check_true(&c, !status && below.tilt_max <= 1e-9 && above.tilt_max > 0.01, "%s; tilt %.3g rad at mu = 0.245, %.3g rad at 0.255",
+                  status ? gb_error_message() : "ran", below.tilt_max, above.tilt_max);
+}
+
+static void test_housner(void)
+{
+    const double b = 0.1, h = 0.4, alpha = atan(b / h), ratio = 1.0 - 1.5 * sin(alpha) * sin(alpha);
+    const double critical = 3.0 * b * h / (b * b + 4.0 * h * h);
+    static const size_t spp[3] = {2000, 8000, 32000};
+    double error[3] = {NAN, NAN, NAN}, needed[3] = {NAN, NAN, NAN};
+    int status = GB_OK;
+    for (int k = 0; k < 3 && !status; k++) {
+        motion m;
+        gb_run_result r;
+        status = block(0.5, 0.0, 0.1, spp[k], 0.3, &m, &r);
+        if (status) break;
+        gb_run_result_free(&r);
+        error[k] = m.impacts_seen ? fabs(m.rate_after / m.rate_before - ratio) : NAN;
+        needed[k] = m.impacts_seen ? fabs(m.impact_friction - critical) : NAN;
+    }
+    const double order = gb_check_observed_order(error[1], error[2], 1.0 / 8000.0, 1.0 / 32000.0);
+    gb_check c = {"-", "-", "Housner's block (housner-block.off) released tilted 0.1 rad on a plane of mu = 0.5 > mu_c, time-stepping "
+                  "at 2000, 8000, 32000 steps a second: omega after over before its first impact, observed order",
+                  "1 - (3/2) sin^2(alpha) = 0.911765 (Housner 1963: angular momentum about the new edge kept)",
+                  "order 1 (the impact falls in the step that first sees the face closed, O(h) from the instant), as a lower "
+                  "bound with 20 % for the samples' rates"};
+    gb_check_true(&c, !status && order >= 0.8 && error[2] <= 1e-3, "%s; errors %.3g, %.3g, %.3g, order %.3f",
+                  status ? gb_error_message() : "ran", error[0], error[1], error[2], order);
+    const double friction_order = gb_check_observed_order(needed[1], needed[2], 1.0 / 8000.0, 1.0 / 32000.0);
+    gb_check cs = {"-", "-", "the same runs: the friction the impact's step needed, |sum P_t| / sum P_n, observed order",
+                   "mu_c = 3bh/(b^2 + 4h^2) = 0.184615: the friction Housner's impact needs at the new edge, the threshold "
+                   "between sticking and sliding there (the event-driven strategy's impact on the rough plane needs it to 1e-13)",
+                   "order 1 (the step's impulses hold the weight's m g h beside the impact's), as a lower bound with 20 %"};
+    gb_check_true(&cs, !status && friction_order >= 0.8 && needed[2] <= 1e-2 * critical, "%s; |needed - mu_c| %.3g, %.3g, %.3g, "
+                  "order %.3f", status ? gb_error_message() : "ran", needed[0], needed[1], needed[2], friction_order);
+}
+
+static void test_energy(void)
+{
+    static const size_t spp[4] = {500, 1000, 2000, 4000};
+    double gained[4] = {NAN, NAN, NAN, NAN}, worst[4] = {NAN, NAN, NAN, NAN}, ledger = 0.0;
+    int status = GB_OK;
+    for (int k = 0; k < 4 && !status; k++) {
+        motion m;
+        gb_run_result r;
+        status = block(0.255, 1.0, 0.0, spp[k], 1.0, &m, &r);
+        if (status) break;
+        gained[k] = r.stepping.energy_gained, worst[k] = -r.stepping.dissipation_min;
+        ledger = fmax(ledger, r.residual_max / 0.5);
+        gb_run_result_free(&r);
+    }
+    const double order = gb_check_observed_order(gained[2], gained[3], 1.0 / 2000.0, 1.0 / 4000.0);
+    const double step_order = gb_check_observed_order(worst[2], worst[3], 1.0 / 2000.0, 1.0 / 4000.0);
+    gb_check c = {"-", "-", "the box that tips (mu = 0.255), 500 ... 4000 steps a second: the energy the impulses gave over the run, "
+                  "observed order between the two finest; the most one step gave, its order",
+                  "a held point the body turns about separates by h omega^2 r at the step's new attitude: 1/2 P_n h omega^2 r a step, "
+                  "O(h^2) a step and O(h) over the run, vanishing with h",
+                  "orders 1 and 2 within 0.2 (the rates vary along the run)"};
+    gb_check_true(&c, !status && fabs(order - 1.0) <= 0.2 && fabs(step_order - 2.0) <= 0.2,
+                  "%s; gained %.3g, %.3g, %.3g, %.3g J (order %.3f); worst step %.3g, %.3g, %.3g, %.3g J (order %.3f)",
+                  status ? gb_error_message() : "ran", gained[0], gained[1], gained[2], gained[3], order, worst[0], worst[1],
+                  worst[2], worst[3], step_order);
+    gb_check cl = {"-", "-", "the same runs: the ledger's worst |E - E0 - W + L| over the launch's kinetic energy",
+                   "0: L books each step's impulses' work exactly, W the forcing's and damping's", "1e-12: rounding over 4000 steps"};
+    gb_check_close(&cl, status ? NAN : ledger, 0.0, 0.0, 1e-12);
+}
+
+/* The shipped scene `name` (cases/bodies) on a plane of friction mu, time-stepping: its text without the keys the
+ * strategy refuses or replaces, and those keys set. */
+static int shipped(const char *name, double mu, motion *m, gb_run_result *r)
+{
+    static const char *const dropped[] = {"method", "locate_switches", "impacts", "friction"};
+    char path[256];
+    snprintf(path, sizeof path, "cases/bodies/%s.ini", name);
+    char *base = gb_check_read_file(path);
+    if (!base) return gb_error_set(GB_EIO, "cannot read %s", path);
+    const size_t size = strlen(base) + 400;
+    char *text = malloc(size);
+    if (!text) {
+        free(base);
+        return gb_error_set(GB_ENOMEM, "out of memory");
+    }
+    size_t used = 0;
+    for (char *line = strtok(base, "\n"); line; line = strtok(NULL, "\n")) {
+        int keep = 1;
+        for (size_t k = 0; k < sizeof dropped / sizeof dropped[0]; k++)
+            keep = keep && !(strncmp(line, dropped[k], strlen(dropped[k])) == 0 && strchr(" =", line[strlen(dropped[k])]));
+        if (!keep) continue;
+        used += (size_t)snprintf(text + used, size - used, "%s\n%s", line,
+                                 strcmp(line, "[model]") ? (strcmp(line, "[integrator]") ? "" : "strategy = time-stepping\n") : "");
+        if (!strcmp(line, "[model]")) used += (size_t)snprintf(text + used, size - used, "friction = %.17g\n", mu);
+    }
+    free(base);
+    memset(m, 0, sizeof *m);
+    m->stop = NAN;
+    gb_case scene;
+    const gb_run_sinks sinks = {observe, m, NULL};
+    int status = gb_case_load_text(path, text, strlen(text), &scene);
+    free(text);
+    if (!status) status = gb_run(&scene, &sinks, r);
+    return status;
+}
+
+static void test_die_and_coin(void)
+{
+    static const char *const bodies[2] = {"die-drop", "coin"};
+    static const double mus[2] = {0.3, 0.6};
+    char detail[800] = "";
+    int ok = 1;
+    for (int b = 0; b < 2; b++)
+        for (int k = 0; k < 2; k++) {
+            motion m;
+            gb_run_result r;
+            const int status = shipped(bodies[b], mus[k], &m, &r);
+            const size_t used = strlen(detail);
+            if (status) {
+                ok = 0;
+                snprintf(detail + used, sizeof detail - used, "%s at mu %g: %s; ", bodies[b], mus[k], gb_error_message());
+                continue;
+            }
+            const int rests = m.contacts_end >= 3 && m.kinetic_end <= 1e-12 * (m.energy0 - m.energy_end) && !r.final.sliding;
+            ok = ok && rests;
+            snprintf(detail + used, sizeof detail - used, "%s at mu %g: %d points, kinetic %.3g J, %zu touches, most %zu points a step; ",
+                     bodies[b], mus[k], m.contacts_end, m.kinetic_end, r.impacts, r.stepping.contacts_max);
+            gb_run_result_free(&r);
+        }
+    gb_check c = {"-", "-", "the die dropped 5 cm and the coin falling from its rim (cases/bodies), on planes of mu = 0.3 and 0.6, "
+                  "time-stepping at the scenes' steps: the end", "at rest on a face: three points or more on the plane, nothing "
+                  "sliding, the kinetic energy gone", "1e-12 of the energy it fell through: rounding"};
+    gb_check_true(&c, ok, "%s", detail);
+}
+
+/* Gömböc II's grid polyhedron (Table 1's scene, the m/s2 reading) on a plane of μ = 0.5, one period. */
+static int table1(int stepping, size_t spp, double y[GB_STATE_SIZE])
+{
+    char text[1600];
+    snprintf(text, sizeof text,
+             "[body]\nmorphology = II\nbeta = 0.12\nmass = 1\n[forcing]\ng = 9.81\nA1 = 2.0\nA2 = 1.0\namplitude_units = m/s2\n"
+             "omega = 18.0\npsi = pi/3\n[model]\nequation = paper\ncontact = fast-grid\ngrid = 90x180\nnodes = centred\n"
+             "damping = 0.02\ncontact_law = unilateral\nfriction = 0.5\n[integrator]\n%s\nsteps_per_period = %zu\nperiods = 1\n",
+             stepping ? "strategy = time-stepping" : "method = rk4\nlocate_switches = yes", spp);
+    gb_case scene;
+    gb_run_result r;
+    int status = gb_case_load_text("table1-stepping.ini", text, strlen(text), &scene);
+    if (!status) status = gb_run(&scene, NULL, &r);
+    if (!status) memcpy(y, r.y, sizeof r.y), gb_run_result_free(&r);
+    return status;
+}
+
+static void test_table1_agrees(void)
+{
+    static const size_t spp[3] = {640, 2560, 10240};
+    double reference[GB_STATE_SIZE], y[GB_STATE_SIZE], error[3] = {NAN, NAN, NAN};
+    int status = table1(0, 2560, reference);
+    for (int k = 0; k < 3 && !status; k++) {
+        status = table1(1, spp[k], y);
+        if (status) break;
+        error[k] = 0.0;
+        for (int i = 0; i < 3; i++) error[k] = fmax(error[k], fabs(y[GB_STATE_OMEGA + i] - reference[GB_STATE_OMEGA + i]));
+    }
+    const double order = gb_check_observed_order(error[1], error[2], 1.0 / 2560.0, 1.0 / 10240.0);
+    gb_check c = {"5", "44", "Gomboc II's grid polyhedron, Table 1's forcing (m/s2), mu = 0.5, one period from rest: |omega - "
+                  "omega_event-driven| at the end, time-stepping at 640, 2560, 10240 steps a period, observed order",
+                  "the event-driven strategy (rk4, 2560 steps, every impact and slip located): the same law",
+                  "order 1 at least (Moreau-Jean is first order), with 10 % for the reference's own error"};
+    gb_check_true(&c, !status && order >= 0.9 && error[2] <= 1e-4, "%s; errors %.3g, %.3g, %.3g rad/s, order %.3f",
+                  status ? gb_error_message() : "ran", error[0], error[1], error[2], order);
+}
+
+static void test_names(void)
+{
+    gb_strategy strategy = GB_STRATEGY_EVENT_DRIVEN;
+    const int parsed = gb_integrate_strategy_parse("time-stepping", &strategy) == GB_OK && strategy == GB_STRATEGY_TIME_STEPPING &&
+                       !strcmp(gb_integrate_strategy_name(strategy), "time-stepping");
+    const int refused = gb_integrate_strategy_parse("moreau", &strategy) == GB_EINVAL &&
+                        strstr(gb_error_message(), "allowed: event-driven, time-stepping") != NULL;
+    gb_error_clear();
+    /* a dynamics stepped in time reports its work; one driven by events has none */
+    const gb_dynamics_def def = gb_dynamics_default_def();
+    const double R0[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1}, w0[3] = {0, 0, 0};
+    double y[GB_STATE_SIZE];
+    gb_dynamics *d = NULL;
+    const int status = gb_dynamics_start(gb_check_body("II", 0.12), &def, R0, w0, &d, y);
+    const int none = !status && gb_dynamics_stepping_stats_of(d) == NULL;
+    gb_dynamics_free(d);
+    gb_check c = {"-", "-", "the strategies' names; the time-stepping statistics of an event-driven run",
+                  "event-driven and time-stepping read and written back, another name refused naming both; none for events",
+                  "exact"};
+    gb_check_true(&c, parsed && refused && none, "parsed %d, refused %d, no statistics %d", parsed, refused, none);
+}
+
+int verify_register_s5_stepping(void)
+{
+    static const verify_test tests[] = {
+        {"time-stepping: a box slides flat to v0^2/(2 mu g) in v0/(mu g)", test_sliding_box,
+         "the time-stepping strategy follows sliding on a face (four points) to rest as Coulomb's law does"},
+        {"time-stepping: a box tips instead of sliding above mu = b/h", test_tipping_box, NULL},
+        {"time-stepping: Housner's block on finite mu rocks with Housner's ratio above mu_c and slides below", test_housner, NULL},
+        {"time-stepping: the impulses' energy, exact in the ledger; gained only where the body turns about a held point, O(h)",
+         test_energy, NULL},
+        {"time-stepping: the die and the coin at mu = 0.3 and 0.6 come to rest on a face", test_die_and_coin,
+         "bodies the event-driven strategy cannot follow on a plane of finite friction run to the end under time-stepping"},
+        {"time-stepping: Table 1's grid polyhedron at mu = 0.5 tends to the event-driven strategy's", test_table1_agrees,
+         "where both strategies run they agree, the time-stepping at its order"},
+        {"time-stepping: the strategies' names", test_names, NULL},
+        {NULL, NULL, NULL},
+    };
+    return verify_register_suite("Time-stepping: Moreau-Jean with Siconos's fc3d on every point near the plane", tests);
+}
