@@ -305,6 +305,10 @@ int main(int argc, char **argv)
         bench_unilateral();
         return 0;
     }
+    if (argc > 1 && !strcmp(argv[1], "--stepping")) { /* that section alone, for development */
+        bench_stepping();
+        return 0;
+    }
     if (argc > 1 && !strcmp(argv[1], "--friction")) { /* that section alone, for development */
         bench_friction();
         return 0;
@@ -394,6 +398,7 @@ int main(int argc, char **argv)
     bench_unilateral();
     bench_flight();
     bench_friction();
+    bench_stepping();
     bench_headroom();
     failures += bench_melnikov();
     failures += bench_work_precision(getenv("PYTHON") ? getenv("PYTHON") : "python3");

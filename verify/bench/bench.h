@@ -42,6 +42,7 @@ void bench_friction(void);
 void bench_headroom(void);
 int bench_melnikov(void);
 int bench_scans(const char *gomboc, FILE *out);
+void bench_stepping(void);
 void bench_unilateral(void);
 int bench_unilateral_maps(const char *gomboc, FILE *out);
 int bench_whole_process(const char *native, const char *gomboc, FILE *out);
