@@ -597,14 +597,6 @@ static int cross_check(const char *path, gb_case *c)
             return cross_fail(path, c, "integrator", "method",
                               "= %s with strategy = time-stepping, which steps by its own theta-method (allowed: rk4, "
                               "the default, which it ignores)", gb_integrate_name(c->integrate.method));
-        if (c->write_impacts)
-            return cross_fail(path, c, "output", "impacts",
-                              "= yes with [integrator] strategy = time-stepping: its impulses act at every step and make "
-                              "no impact events (allowed: no; the summary counts its touches and their loss)");
-        if (c->lyapunov)
-            return cross_fail(path, c, "diagnostics", "lyapunov",
-                              "= yes with [integrator] strategy = time-stepping: the Lyapunov estimators follow the "
-                              "event-driven strategy's events and jumps (allowed: no; yes with strategy = event-driven)");
     } else {
         static const char *const own[] = {"theta", "solver_tolerance", "solver_iterations"};
         for (size_t k = 0; k < sizeof own / sizeof own[0]; k++)

@@ -163,6 +163,7 @@ void gb_dynamics_adopt_contact(gb_dynamics *to, const gb_dynamics *from)
     memcpy(to->slide.start, from->slide.start, sizeof to->slide.start);
     memcpy(to->slide.ref, from->slide.ref, sizeof to->slide.ref);
     memcpy(to->slide.armed, from->slide.armed, sizeof to->slide.armed);
+    gb_dyn_stepping_adopt(to, from);
 }
 
 int gb_dynamics_init_state(gb_dynamics *d, double t0, const double R0[9], const double omega0[3],

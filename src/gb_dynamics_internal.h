@@ -240,8 +240,10 @@ struct gb_dynamics {
 };
 
 typedef struct gb_dyn_stepper gb_dyn_stepper;
-/* The time-stepping strategy's state, released (gb_dynamics_stepping.c). */
+/* The time-stepping strategy's state, released (gb_dynamics_stepping.c); and copied from another dynamics of the same
+ * body (the points that carried the body, the impulses the solver starts from: gb_dynamics_adopt_contact). */
 void gb_dyn_stepping_free(gb_dynamics *d);
+void gb_dyn_stepping_adopt(gb_dynamics *to, const gb_dynamics *from);
 
 /* ---- the state (gb_dynamics.c) --------------------------------------------------------------------- */
 

@@ -18,6 +18,9 @@ void gb_dynamics_use_step(gb_dynamics *dynamics, double h);
  * GB_EINVAL for a law that poses no one-step problem or a contact model with no points; GB_ENOCONV naming the step,
  * its contact points and the residual when the solver does not converge. */
 int gb_dynamics_stepping_begin(gb_dynamics *dynamics, double t0, double h, double theta, const gb_contact_problem_def *solver);
+/* Put a new dynamics in the stepped mode before its start (gb_dynamics_init_state): the start then only places the
+ * body (no mode's checks, such as Painlevé's at a launch on the plane). gb_dynamics_stepping_begin does it if not done. */
+int gb_dynamics_stepping_prepare(gb_dynamics *dynamics);
 int gb_dynamics_stepping_step(gb_dynamics *dynamics, double t, double h, double y[GB_STATE_SIZE]);
 
 /* GB_ENUMERIC, with a message that names t and says the integration diverged, when a component of y is

@@ -53,6 +53,7 @@ struct gb_dyn_stepper {
     double clearance;              /* its height above the plane [m] */
     size_t *touched, *touching_now; /* the nodes touching after the previous step (to count new touches), and this one's */
     int touched_count;
+    int *starts;                    /* this step's points (problem indices) that begin to carry the body */
     size_t *last_node;              /* the previous problem's points and impulses: the solver starts from them (a body
                                      * at rest needs a sweep or two, not hundreds) */
     double *last_r;
@@ -64,7 +65,7 @@ static void stepper_free(gb_dyn_stepper *s)
 {
     if (!s) return;
     gb_contact_problem_free(s->problem);
-    free(s->W), free(s->q), free(s->mu), free(s->r), free(s->u), free(s->node), free(s->B), free(s->C), free(s->touched), free(s->touching_now), free(s->last_node), free(s->last_r), free(s->points), free(s->gaps);
+    free(s->W), free(s->q), free(s->mu), free(s->r), free(s->u), free(s->node), free(s->B), free(s->C), free(s->touched), free(s->touching_now), free(s->last_node), free(s->last_r), free(s->points), free(s->gaps), free(s->starts);
     free(s);
 }
 
@@ -90,6 +91,8 @@ static int grow(gb_dyn_stepper *s, size_t count)
     size_t *node = realloc(s->node, capacity * sizeof *node), *touched = realloc(s->touched, capacity * sizeof *touched);
     size_t *now = realloc(s->touching_now, capacity * sizeof *now), *last = realloc(s->last_node, capacity * sizeof *last);
     double *last_r = realloc(s->last_r, n * sizeof *last_r);
+    int *starts = realloc(s->starts, capacity * sizeof *starts);
+    if (starts) s->starts = starts;
     if (last) s->last_node = last;
     if (last_r) s->last_r = last_r;
     if (node) s->node = node;
@@ -98,7 +101,7 @@ static int grow(gb_dyn_stepper *s, size_t count)
     double(*B)[3][3] = realloc(s->B, capacity * sizeof *B), (*C)[3][3] = realloc(s->C, capacity * sizeof *C);
     if (B) s->B = B;
     if (C) s->C = C;
-    if (!(W && q && mu && r && u && node && touched && now && last && last_r && B && C))
+    if (!(W && q && mu && r && u && node && touched && now && last && last_r && starts && B && C))
         return gb_error_set(GB_ENOMEM, "out of memory for a contact problem of %zu points", count);
     s->capacity = capacity;
     return GB_OK;
@@ -212,15 +215,16 @@ static void stepped_translate(const gb_dynamics *d, double t, double y[GB_STATE_
     (void)d, (void)t, (void)y;
 }
 
+static int stepped_start(gb_dynamics *d, double t0, double y[GB_STATE_SIZE]);
 #define STEPPED {"time-stepping", 1, stepped_field, stepped_accept, stepped_pending, stepped_gap, stepped_event, \
-                 stepped_jump, stepped_observe, stepped_translate, NULL}
+                 stepped_jump, stepped_observe, stepped_translate, stepped_start}
 /* Every mode index is the stepped mode: the modes' time accounting (flight, sliding, on one, two, three points) follows
  * the steps, and every call goes to the one mode. */
 static const gb_dyn_mode stepped_modes[GB_DYN_MODES] = {STEPPED, STEPPED, STEPPED, STEPPED, STEPPED};
 
 /* ---- the step ----------------------------------------------------------------------------------------------- */
 
-int gb_dynamics_stepping_begin(gb_dynamics *d, double t0, double h, double theta, const gb_contact_problem_def *solver)
+int gb_dynamics_stepping_prepare(gb_dynamics *d)
 {
     if (!d->law->time_steps)
         return gb_error_set(GB_EINVAL, "the %s law poses no one-step contact problem (allowed with time-stepping: "
@@ -229,13 +233,10 @@ int gb_dynamics_stepping_begin(gb_dynamics *d, double t0, double h, double theta
         return gb_error_set(GB_EINVAL, "contact = %s gives time-stepping no points to test (allowed: grid or fast-grid, "
                             "whose nodes are a mesh's vertices or a smooth body's grid polyhedron)",
                             gb_contact_model_name(d->def.contact));
-    if (!(theta >= 0.5 && theta <= 1.0))
-        return gb_error_set(GB_EDOM, "theta = %g is out of range (allowed: 0.5 <= theta <= 1)", theta);
+    if (d->stepper) return GB_OK;
     gb_dyn_stepper *s = calloc(1, sizeof *s);
     if (!s) return gb_error_set(GB_ENOMEM, "out of memory for the time-stepping strategy");
-    s->theta = theta, s->h = h;
-    int status = gb_contact_problem_create(solver, &s->problem);
-    if (!status) status = grow(s, 8);
+    int status = grow(s, 8);
     s->nodes = gb_contact_grid_size(d->grid);
     s->points = status ? NULL : malloc(s->nodes * sizeof *s->points);
     s->gaps = status ? NULL : malloc(s->nodes * sizeof *s->gaps);
@@ -250,12 +251,58 @@ int gb_dynamics_stepping_begin(gb_dynamics *d, double t0, double h, double theta
         stepper_free(s);
         return status;
     }
-    gb_dyn_stepping_free(d);
     d->stepper = s;
     d->modes = stepped_modes;
-    s->stats.dissipation_min = 0.0;
-    d->last_switch_time = NAN;
+    return GB_OK;
+}
+
+int gb_dynamics_stepping_begin(gb_dynamics *d, double t0, double h, double theta, const gb_contact_problem_def *solver)
+{
     (void)t0;
+    if (!(theta >= 0.5 && theta <= 1.0))
+        return gb_error_set(GB_EDOM, "theta = %g is out of range (allowed: 0.5 <= theta <= 1)", theta);
+    int status = gb_dynamics_stepping_prepare(d);
+    if (status) return status;
+    gb_dyn_stepper *s = d->stepper;
+    gb_contact_problem *problem = NULL;
+    status = gb_contact_problem_create(solver, &problem);
+    if (status) return status;
+    gb_contact_problem_free(s->problem);
+    s->problem = problem;
+    s->theta = theta, s->h = h;
+    s->stats = (gb_dynamics_stepping_stats){0};
+    s->touched_count = s->last_count = 0, s->scanned_valid = 0;
+    return GB_OK;
+}
+
+/* The stepped mode's start, from the definition's height0 and velocity0 (gb_dynamics_init_state, the attitude and ω
+ * set): the lowest node height0 above the plane, the centroid at velocity0 (all three components: no mode fixes any),
+ * the horizontal position and friction's work 0. No mode's checks: what the plane does is the first step's problem. */
+static int stepped_start(gb_dynamics *d, double t0, double y[GB_STATE_SIZE])
+{
+    double zb[3];
+    vertical_of(y, zb);
+    y[GB_STATE_ZETA] = 0.0;
+    d->stepper->scanned_valid = 0;
+    scan(d->stepper, y, zb);
+    y[GB_STATE_ZETA] = d->def.height0 - d->stepper->clearance;
+    const double *v0 = d->def.velocity0;
+    memcpy(y + GB_STATE_VELOCITY, v0, 3 * sizeof *y);
+    if (d->def.height0 == 0.0) {
+        /* on the plane, as the event-driven start reads the scene: the body rolls about its lowest node, at v0's
+         * horizontal part where v0 is given (the vertical one the attitude's) */
+        double R[9], a[3], wi[3], roll[3];
+        gb_dynamics_rotation(y + GB_STATE_Q, R);
+        const double *r = d->stepper->points[d->stepper->lowest], *w = y + GB_STATE_OMEGA;
+        for (int i = 0; i < 3; i++)
+            a[i] = R[3 * i] * r[0] + R[3 * i + 1] * r[1] + R[3 * i + 2] * r[2], wi[i] = R[3 * i] * w[0] + R[3 * i + 1] * w[1] + R[3 * i + 2] * w[2];
+        gb_vec_cross(a, wi, roll); /* ω × (G − P) = −ω × a = a × ω */
+        const int moving = v0[0] != 0.0 || v0[1] != 0.0 || v0[2] != 0.0;
+        y[GB_STATE_VELOCITY + 2] = roll[2];
+        if (!moving) y[GB_STATE_VELOCITY] = roll[0], y[GB_STATE_VELOCITY + 1] = roll[1];
+    }
+    d->stepper->scanned_valid = 0;
+    if (d->def.height0 > 0.0) gb_dyn_set_mode(d, GB_DYN_FLIGHT, t0), d->flight.hop_max = d->def.height0;
     return GB_OK;
 }
 
@@ -292,6 +339,37 @@ static gb_dyn_mode_id mode_of(int touching, int sliding)
     return touching == 1 ? GB_DYN_ONE_POINT : touching == 2 ? GB_DYN_TWO_POINT : GB_DYN_REST;
 }
 
+/* The kinetic energy of (v, ω). */
+static double kinetic(const gb_dynamics *d, const double v[3], const double w[3])
+{
+    double Iw[3];
+    gb_dyn_mat_vec((double(*)[3])d->inertia, w, Iw);
+    return 0.5 * d->def.mass * gb_vec_dot(v, v) + 0.5 * gb_vec_dot(w, Iw);
+}
+
+/* The points that began to carry the body in the step ending at t, each as a record to the caller's sink (kind landing
+ * from flight, else switch; the point, its impulses, the body's velocities and kinetic energy before and after the
+ * step); the sink's status. */
+static int touches(gb_dynamics *d, double t, int from_flight, int count, int touching, const double v[3], const double w[3],
+                   const double vplus[3], const double wplus[3])
+{
+    const gb_dyn_stepper *s = d->stepper;
+    for (int k = 0; k < count && d->impact_sink; k++) {
+        const int i = s->starts[k];
+        const double Pn = s->r[3 * i], Pt = hypot(s->r[3 * i + 1], s->r[3 * i + 2]);
+        gb_dynamics_impact e = {.t = t, .kind = from_flight ? GB_DYNAMICS_IMPACT_LANDING : GB_DYNAMICS_IMPACT_SWITCH,
+                                .normal_impulse = Pn, .tangential_impulse = Pt, .friction_needed = Pt / Pn,
+                                .kinetic_before = kinetic(d, v, w), .kinetic_after = kinetic(d, vplus, wplus),
+                                .contacts_after = touching, .return_time = INFINITY};
+        memcpy(e.new_point, s->points[s->node[i]], sizeof e.new_point);
+        memcpy(e.omega_before, w, sizeof e.omega_before), memcpy(e.omega_after, wplus, sizeof e.omega_after);
+        memcpy(e.v_before, v, sizeof e.v_before), memcpy(e.v_after, vplus, sizeof e.v_after);
+        const int status = d->impact_sink(d->impact_context, &e);
+        if (status) return status;
+    }
+    return GB_OK;
+}
+
 int gb_dynamics_stepping_step(gb_dynamics *d, double t, double h, double y[GB_STATE_SIZE])
 {
     gb_dyn_stepper *s = d->stepper;
@@ -302,7 +380,8 @@ int gb_dynamics_stepping_step(gb_dynamics *d, double t, double h, double y[GB_ST
     double R[9];
     gb_dynamics_rotation(y + GB_STATE_Q, R);
     const double zb[3] = {R[6], R[7], R[8]};
-    const double *v = y + GB_STATE_VELOCITY, *w = y + GB_STATE_OMEGA;
+    double v[3], w[3]; /* the step's start (y is overwritten at its end) */
+    memcpy(v, y + GB_STATE_VELOCITY, sizeof v), memcpy(w, y + GB_STATE_OMEGA, sizeof w);
 
     /* free velocities */
     double Minv[3][3], Iw[3], gyro[3], b[3], wf[3], vf[3] = {v[0], v[1], v[2] - h * gth};
@@ -329,7 +408,12 @@ int gb_dynamics_stepping_step(gb_dynamics *d, double t, double h, double y[GB_ST
         const double a[3] = {R[0] * x[0] + R[1] * x[1] + R[2] * x[2], R[3] * x[0] + R[4] * x[1] + R[5] * x[2],
                              R[6] * x[0] + R[7] * x[1] + R[8] * x[2]};
         const double un = v[2] + wi[0] * a[1] - wi[1] * a[0]; /* (v + ω × a)_z */
-        if (gap + 0.5 * h * un > activation) continue;
+        /* a point that carried the body in the last step stays in the problem within a step's reach: one the body pivots
+         * on drifts off the plane by O(h² ω² r) a step (the relation is taken at the step's start), and would otherwise
+         * leave it for a step of spurious flight; a point that separates takes no impulse and leaves by its velocity */
+        int carried = 0;
+        for (int k = 0; k < s->touched_count && !carried; k++) carried = s->touched[k] == i;
+        if (gap + 0.5 * h * un > activation && !carried) continue;
         if ((size_t)n == GB_CONTACT_PROBLEM_MAX)
             return gb_error_set(GB_ENUMERIC, "t = %.9g: more than %d points of the body within a step of the plane",
                                 t, GB_CONTACT_PROBLEM_MAX);
@@ -421,9 +505,7 @@ int gb_dynamics_stepping_step(gb_dynamics *d, double t, double h, double y[GB_ST
         sliding += slip > slip_tol;
         int before = 0;
         for (int k = 0; k < s->touched_count && !before; k++) before = s->touched[k] == s->node[i];
-        double uk[3];
-        point_velocity(v, s->B[i], w, uk);
-        new_touches += !before && uk[2] < -slip_tol; /* an impact: a point that was not touching arrives */
+        if (!before) s->starts[new_touches++] = i; /* a point begins to carry the body */
         s->touching_now[touching++] = s->node[i];
     }
     size_t *swap = s->touched;
@@ -484,10 +566,26 @@ int gb_dynamics_stepping_step(gb_dynamics *d, double t, double h, double y[GB_ST
     memcpy(s->tangential, P, sizeof s->tangential);
     s->stats.steps++;
     s->stats.contact_points += (size_t)n;
-    return GB_OK;
+    return touches(d, t + h, before == GB_DYN_FLIGHT, new_touches, touching, v, w, vplus, wplus);
 }
 
 const gb_dynamics_stepping_stats *gb_dynamics_stepping_stats_of(const gb_dynamics *d)
 {
     return d->stepper ? &d->stepper->stats : NULL;
+}
+
+void gb_dyn_stepping_adopt(gb_dynamics *to, const gb_dynamics *from)
+{
+    gb_dyn_stepper *t = to->stepper;
+    const gb_dyn_stepper *f = from->stepper;
+    if (!t || !f || grow(t, f->capacity)) return; /* a failed growth: the copy starts cold, as a fresh run does */
+    t->touched_count = f->touched_count, t->last_count = f->last_count;
+    memcpy(t->touched, f->touched, (size_t)f->touched_count * sizeof *t->touched);
+    memcpy(t->last_node, f->last_node, (size_t)f->last_count * sizeof *t->last_node);
+    memcpy(t->last_r, f->last_r, 3 * (size_t)f->last_count * sizeof *t->last_r);
+    t->touching = f->touching, t->sliding = f->sliding, t->slip_max = f->slip_max;
+    t->normal_impulse = f->normal_impulse;
+    memcpy(t->tangential, f->tangential, sizeof t->tangential);
+    t->lowest = f->lowest;
+    t->scanned_valid = 0;
 }

@@ -25,6 +25,7 @@ struct gb_lyapunov_body {
     double y[2][GB_STATE_SIZE];
     double period, omega_scale;
     int translation; /* the unilateral law: the separation has the centroid's height and velocity too */
+    int stepped;     /* time-stepping: the centroid's height and velocity are always the state's own */
     gb_integrate_sample sample; /* the reference's samples (gb_lyapunov_body_observe) */
     void *sample_context;
     /* the variational estimator's own RK4 stepping of the reference */
@@ -52,8 +53,12 @@ int gb_lyapunov_body_create_in(const gb_surface *surface, const gb_dynamics_def 
     int status = GB_OK;
     /* the two share one body (mass properties, grid, hull, atlas) through the caller's context or their own */
     if (!context) status = gb_dynamics_context_create(&b->context), context = b->context;
+    b->stepped = integrate->strategy == GB_STRATEGY_TIME_STEPPING;
     for (int k = 0; k < 2 && !status; k++) {
-        status = gb_dynamics_start_in(surface, dynamics, context, R0, omega0, &b->dynamics[k], b->y[k]);
+        status = gb_dynamics_create_in(surface, dynamics, context, &b->dynamics[k]);
+        /* time-stepping: placed as the first step's problem finds it, no mode's start (as gb_run) */
+        if (!status && b->stepped) status = gb_dynamics_stepping_prepare(b->dynamics[k]);
+        if (!status) status = gb_dynamics_init_state(b->dynamics[k], 0.0, R0, omega0, b->y[k]);
         if (!status) status = gb_integrate_begin(b->dynamics[k], integrate, 0.0, &b->session[k]);
     }
     if (status) {
@@ -141,8 +146,8 @@ static int body_separation(void *context, double *e)
         gb_dynamics_sliding_stats(b->dynamics[k], t, NULL, &sl[k]);
     }
     memset(e + PAIR_ROTATION, 0, PAIR_TRANSLATION * sizeof *e);
-    /* the translation is the body's own in flight and, horizontally, while it slides */
-    if (!f[0].flying && !f[1].flying && !sl[0].sliding && !sl[1].sliding) return GB_OK;
+    /* the translation is the body's own in flight and, horizontally, while it slides; stepped in time, always */
+    if (!b->stepped && !f[0].flying && !f[1].flying && !sl[0].sliding && !sl[1].sliding) return GB_OK;
     /* the centroid's height and velocity, as the state holds them at its accepted steps */
     const double L = gb_dynamics_mean_radius(b->dynamics[0]), *ya = b->y[0], *yb = b->y[1];
     e[PAIR_ROTATION] = (yb[GB_STATE_ZETA] - ya[GB_STATE_ZETA]) / L;
@@ -162,7 +167,7 @@ static int body_place(void *context, const double *given)
     if (b->translation) {
         gb_dynamics_flight_stats(b->dynamics[0], t, &f);
         gb_dynamics_sliding_stats(b->dynamics[0], t, NULL, &sl);
-        if (!f.flying) {
+        if (!f.flying && !b->stepped) {
             /* on the plane the height and velocity follow from the attitude and ω (but for the horizontal
              * velocity of a sliding body): the rotational part takes the rest of the length */
             double all = 0.0, kept = 0.0;
@@ -183,6 +188,12 @@ static int body_place(void *context, const double *given)
     for (int k = 0; k < 3; k++) b->y[1][GB_STATE_OMEGA + k] = b->y[0][GB_STATE_OMEGA + k] + b->omega_scale * e[3 + k];
     gb_dynamics_adopt_contact(b->dynamics[1], b->dynamics[0]);
     gb_integrate_follow(b->session[1], b->session[0]);
+    if (b->stepped) { /* the height and velocity are the state's own: displaced as they are */
+        const double L = gb_dynamics_mean_radius(b->dynamics[0]), scale = b->omega_scale * L;
+        b->y[1][GB_STATE_ZETA] += L * e[PAIR_ROTATION];
+        for (int k = 0; k < 3; k++) b->y[1][GB_STATE_VELOCITY + k] += scale * e[PAIR_ROTATION + 1 + k];
+        return GB_OK;
+    }
     if (b->translation && f.flying) {
         const double L = gb_dynamics_mean_radius(b->dynamics[0]), scale = b->omega_scale * L;
         const double *dv = e + PAIR_ROTATION + 1;
@@ -457,6 +468,9 @@ gb_lyapunov_tangent_system gb_lyapunov_body_tangent(void)
 int gb_lyapunov_body_tangent_ready(const gb_lyapunov_body *body)
 {
     const gb_dynamics_def *def = gb_dynamics_get_def(body->dynamics[0]);
+    if (body->stepped)
+        return gb_error_set(GB_EINVAL, "the variational estimator follows the event-driven strategy's events and jumps, "
+                            "and time is stepped here (allowed: the pair estimator with time-stepping)");
     if ((def->contact != GB_CONTACT_MODEL_CONTINUOUS && !gb_dynamics_get_law(body->dynamics[0])->several_events_per_step) ||
         body->method != GB_INTEGRATOR_RK4)
         return gb_error_set(GB_EINVAL,

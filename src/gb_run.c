@@ -174,8 +174,10 @@ int gb_run_in(const gb_case *scene, gb_dynamics_context *context, const gb_run_s
     if (!status && scene->lyapunov) {
         status = run_with_lyapunov(scene, context, &s, &dynamics, &body);
     } else if (!status) {
-        status = gb_dynamics_start_in(&scene->body, &scene->dynamics, context, scene->attitude, scene->omega0, &dynamics,
-                                      out->y);
+        status = gb_dynamics_create_in(&scene->body, &scene->dynamics, context, &dynamics);
+        /* time-stepping: the body placed as the first step's problem will find it, no mode's start */
+        if (!status && scene->integrate.strategy == GB_STRATEGY_TIME_STEPPING) status = gb_dynamics_stepping_prepare(dynamics);
+        if (!status) status = gb_dynamics_init_state(dynamics, 0.0, scene->attitude, scene->omega0, out->y);
         s.dynamics = dynamics;
         if (!status && sinks && sinks->impact) gb_dynamics_set_impact_sink(dynamics, sinks->impact, sinks->context);
         if (!status) status = gb_integrate_run(dynamics, &scene->integrate, 0.0, out->y, observe, &s, &out->stats);

@@ -111,11 +111,6 @@ static const round4_row rows[] = {
      NULL, NULL, 0, 2, {"case.ini:6: [integrator] locate_switches = yes with strategy = time-stepping", "locates no event", "allowed: no"}},
     {RUN, NULL, "[model]\ncontact_law = unilateral\nfriction = 0.5\n[integrator]\nstrategy = time-stepping\nmethod = rk8pd\n",
      NULL, NULL, 0, 2, {"case.ini:6: [integrator] method = rk8pd with strategy = time-stepping", "its own theta-method", "allowed: rk4"}},
-    {RUN, NULL, "[model]\ncontact_law = unilateral\nfriction = 0.5\n[integrator]\nstrategy = time-stepping\n[diagnostics]\nlyapunov = yes\n",
-     NULL, NULL, 0, 2, {"case.ini:7: [diagnostics] lyapunov = yes with [integrator] strategy = time-stepping", "events and jumps",
-                        "allowed: no; yes with strategy = event-driven"}},
-    {RUN, NULL, "[model]\ncontact_law = unilateral\nfriction = 0.5\n[integrator]\nstrategy = time-stepping\n[output]\nimpacts = yes\n",
-     NULL, NULL, 0, 2, {"case.ini:7: [output] impacts = yes with [integrator] strategy = time-stepping", "no impact events", "allowed: no"}},
     /* a solver held to one sweep and no residual at all: the computation fails (exit 1), naming the step, its points and
      * the residual, and leaves no output */
     {RUN, NULL, "[body]\nmesh = m.off\n[model]\ncontact = fast-grid\ncontact_law = unilateral\nfriction = 0.5\n[integrator]\n"

@@ -15,7 +15,9 @@
  *   times and the kinetic energy after them within the tolerance above; the same rest face at the same
  *   time; the time on two points against Moreau–Jean's (a documented comparison, not an assertion:
  *   gomboc's settle rule against Moreau–Jean's holding and chatter);
- * - the same on a plane of Coulomb friction μ = 0.6 for 3 s;
+ * - the same on a plane of Coulomb friction μ = 0.6 for 3 s; and there gomboc's time-stepping strategy (Moreau–Jean as
+ *   Siconos's) at Siconos's finest step, its touches read as Siconos's runs are (a return within one step of gomboc's
+ *   event-driven integrator is chatter, not an event);
  * - Table 1's plane for 6 periods: the same rule until the runs part, the time they part and what parts
  *   them;
  * - an ensemble of random attitudes of both bodies on Table 1's plane: impacts and energy lost per period and the time
@@ -97,8 +99,8 @@ static int on_sample(void *context, const gb_run_sample *s)
     return 0;
 }
 
-/* The nodes within 1e-9 m of the lowest in attitude R: the face the body rests on. */
-static size_t lowest_nodes(const gb_contact_grid *grid, const double R[9], size_t *face, size_t cap)
+/* The nodes within `within` [m] of the lowest in attitude R (1e-9: the face the body rests on). */
+static size_t lowest_nodes(const gb_contact_grid *grid, const double R[9], double within, size_t *face, size_t cap)
 {
     const size_t n = gb_contact_grid_size(grid);
     double low = INFINITY;
@@ -111,8 +113,19 @@ static size_t lowest_nodes(const gb_contact_grid *grid, const double R[9], size_
     for (size_t k = 0; k < n; k++) {
         double p[3];
         gb_contact_grid_node(grid, k, NULL, NULL, p);
-        if (R[6] * p[0] + R[7] * p[1] + R[8] * p[2] <= low + 1e-9 && count < cap) face[count++] = k;
+        if (R[6] * p[0] + R[7] * p[1] + R[8] * p[2] <= low + within && count < cap) face[count++] = k;
     }
+    return count;
+}
+
+/* The nodes within 1e-12 m of the lowest in the scene's initial attitude: those on the plane at the start. */
+static size_t lowest_nodes_at(const gb_case *scene, size_t *face, size_t cap)
+{
+    gb_contact_grid *grid = NULL;
+    const gb_contact_grid_def def = gb_contact_grid_default_def();
+    if (gb_contact_grid_create(&scene->body, &def, &grid)) return 0;
+    const size_t count = lowest_nodes(grid, scene->attitude, 1e-12, face, cap);
+    gb_contact_grid_free(grid);
     return count;
 }
 
@@ -140,7 +153,7 @@ static int run_gomboc(const char *path, const gb_case_override *overrides, size_
         out->energy_lost = result.impact_energy_lost;
         out->seconds = result.seconds;
         memcpy(out->final_R, run.R, sizeof run.R);
-        if (!isnan(out->rest_time)) out->rest_count = lowest_nodes(grid, run.R, out->rest_face, 8);
+        if (!isnan(out->rest_time)) out->rest_count = lowest_nodes(grid, run.R, 1e-9, out->rest_face, 8);
         out->ok = !run.unknown_node;
         gb_run_result_free(&result);
     }
@@ -458,6 +471,99 @@ static void test_coulomb(void)
     cJSON_Delete(root);
 }
 
+/* ---- time-stepping against Siconos's Moreau–Jean at the same step ------------------------------------- */
+
+/* gomboc's touches (every node that begins to carry the body) read as Siconos's runs are (polyhedron.py `events`):
+ * a return within `chatter` of the node's last carry (or of the start, for the nodes on the plane then) is not an
+ * event. */
+static void drop_chatter(trace *g, const size_t *initial, size_t initial_count, double chatter)
+{
+    enum { SEEN = 64 };
+    size_t seen[SEEN], kept = 0, n = 0;
+    double last[SEEN];
+    for (size_t k = 0; k < initial_count && n < SEEN; k++) seen[n] = initial[k], last[n++] = 0.0;
+    for (size_t i = 0; i < g->count; i++) {
+        size_t k = 0;
+        while (k < n && seen[k] != g->vertex[i]) k++;
+        const int event = k == n || g->t[i] - last[k] > chatter;
+        if (k == n && n < SEEN) seen[n] = g->vertex[i], n++;
+        if (k < n) last[k] = g->t[i];
+        if (event) g->t[kept] = g->t[i], g->kinetic[kept] = g->kinetic[i], g->vertex[kept++] = g->vertex[i];
+    }
+    g->count = kept;
+}
+
+/* gomboc's time-stepping run of the scene at step h on a plane of μ = 0.6 for 3 s, its touches read as Siconos's
+ * events. The still plane's omega only counts the steps: a period of 2000 steps puts gomboc's steps on Siconos's
+ * times (T / 6981 = 5.00023e-5 s instead would drift 7e-5 s from them in 1.6 s). */
+static int stepping_run(const char *path, const gb_case *scene, double h, trace *g)
+{
+    char omega[64], periods[64];
+    const double T = 2000.0 * h;
+    snprintf(omega, sizeof omega, "%.17g", 2.0 * M_PI / T);
+    snprintf(periods, sizeof periods, "%.17g", 3.0 / T);
+    const gb_case_override o[6] = {{"model", "friction", "0.6", "siconos.c"}, {"integrator", "periods", periods, "siconos.c"},
+                                   {"integrator", "strategy", "time-stepping", "siconos.c"},
+                                   {"integrator", "locate_switches", "no", "siconos.c"},
+                                   {"integrator", "steps_per_period", "2000", "siconos.c"}, {"forcing", "omega", omega, "siconos.c"}};
+    const int status = run_gomboc(path, o, 6, g);
+    if (status || !g->ok) return status ? status : gb_error_set(GB_EINVAL, "a touch's point is no node of the grid");
+    size_t initial[8];
+    const size_t initial_count = lowest_nodes_at(scene, initial, 8);
+    drop_chatter(g, initial, initial_count, 2.0 * M_PI / scene->dynamics.forcing.omega / (double)scene->integrate.steps_per_period);
+    g->h = h;
+    return GB_OK;
+}
+
+static void stepping_body(const cJSON *cases, const char *body)
+{
+    char path[256], scene_name[256];
+    snprintf(path, sizeof path, "cases/siconos/still-gomboc-%s.ini", body);
+    snprintf(scene_name, sizeof scene_name, "Gomboc %s on a still plane, mu = 0.6, time-stepping at Siconos's steps", body);
+    const cJSON *runs[4];
+    const size_t n = siconos_runs(cases, "coulomb", path, NULL, runs, 4);
+    static trace store[3], ours[3];
+    reference_runs r;
+    gb_case scene;
+    gb_check cr = {"5", "-", scene_name, "Siconos's runs at three steps, and the scene", "exact"};
+    if (!gb_check_true(&cr, n >= 3 && load_reference(path, runs, n, store, &r) && !gb_case_load(path, &scene), "%zu runs", n)) return;
+    const double h = r.fine->h;
+    int status = GB_OK;
+    static const double multiple[3] = {4.0, 2.0, 1.0};
+    for (int k = 0; k < 3 && !status; k++) status = stepping_run(path, &scene, multiple[k] * h, &ours[k]);
+    gb_check cg = {"5", "-", scene_name, "gomboc's time-stepping runs it at 4h, 2h and h, every touch's point a node of the grid", "exact"};
+    if (!gb_check_true(&cg, !status, "%s", status ? gb_error_message() : "ran")) return;
+    /* the same vertices in order as far as both engines have settled their own sequences (their runs at 2h and h agree) */
+    const reference_runs mine = {&ours[0], &ours[1], &ours[2], r.mass, r.g_max, r.omega};
+    const size_t settled = settled_prefix(&r), own = settled_prefix(&mine), agree = common_prefix(&ours[2], r.fine);
+    const size_t compared = settled < own ? settled : own;
+    double worst = 0.0;
+    for (size_t i = 0; i < compared && i < agree; i++) {
+        const double tol = 3.0 * (siconos_error(&r, i, 0) + siconos_error(&mine, i, 0)) + 2.0 * h;
+        worst = fmax(worst, fabs(ours[2].t[i] - r.fine->t[i]) / tol);
+    }
+    char quantity[512];
+    snprintf(quantity, sizeof quantity, "%s: the vertices that start to carry the body, in order, and their times", scene_name);
+    gb_check c = {"5", "-", quantity,
+                  "Siconos's Moreau-Jean at the same step h (references/siconos/polyhedron.json): the same scheme, not the same "
+                  "steps to the solver's tolerance (the damping torque theta-implicit here, explicit there; the index set kept "
+                  "for a point that carried the body; the attitude by the exponential map)",
+                  "the same vertices as far as both engines settle them (their runs at 2h and h agree), each time within "
+                  "3 (e_Siconos + e_gomboc) + 2h, e each engine's first-order error from its own runs at 4h, 2h, h"};
+    gb_check_true(&c, compared > 0 && agree >= compared && worst <= 1.0,
+                  "the same first %zu vertices (gomboc %zu, Siconos %zu events); settled: Siconos %zu, gomboc %zu; times within "
+                  "%.3g of the tolerance; gomboc's first event %.6f s against Siconos's %.6f s", agree, ours[2].count,
+                  r.fine->count, settled, own, worst, ours[2].count ? ours[2].t[0] : NAN, r.fine->count ? r.fine->t[0] : NAN);
+}
+
+static void test_stepping(void)
+{
+    cJSON *root;
+    const cJSON *cases = reference(&root);
+    if (cases) stepping_body(cases, "I"), stepping_body(cases, "II");
+    cJSON_Delete(root);
+}
+
 /* ---- Table 1's plane -------------------------------------------------------------------------------- */
 
 static void table1_body(const cJSON *cases, const char *body)
@@ -604,6 +710,9 @@ int verify_register_siconos(void)
          "gomboc's impacts, their times and energies, and the rest face and time are Siconos's, converged in its step"},
         {"the same on a plane of Coulomb friction", test_coulomb,
          "with mu = 0.6 the sequence of contacts and its times agree as far as Siconos's own steps agree"},
+        {"time-stepping against Siconos's Moreau-Jean at the same step (mu = 0.6)", test_stepping,
+         "gomboc's time-stepping and Siconos's, the same scheme in two engines, agree on the touches' sequence, times and "
+         "energies as far as Siconos's own steps agree"},
         {"Table 1's plane, until the runs part", test_table1,
          "on the vibrated plane the two engines agree event by event until Siconos's own steps part"},
         {"an ensemble on Table 1's plane", test_ensemble, NULL},
