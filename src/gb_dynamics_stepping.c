@@ -488,6 +488,8 @@ int gb_dynamics_stepping_step(gb_dynamics *d, double t, double h, double y[GB_ST
     }
 
     /* what the contacts did: who touches, who slips, the energy the impulses took */
+    /* a slip is a slip above a millionth of the speed the weight gives in one step (1 m/s² standing in for a plane
+     * without weight): far above the solver's residual (1e-12 of the problem's velocities), far below any slide */
     const double slip_tol = 1e-6 * (fabs(gth) + 1.0) * h;
     int touching = 0, sliding = 0, new_touches = 0;
     double loss = 0.0, friction = 0.0, slip_max = 0.0;

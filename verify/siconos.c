@@ -478,9 +478,10 @@ static void test_coulomb(void)
  * event. */
 static void drop_chatter(trace *g, const size_t *initial, size_t initial_count, double chatter)
 {
-    enum { SEEN = 64 };
-    size_t seen[SEEN], kept = 0, n = 0;
-    double last[SEEN];
+    enum { SEEN = MAX_EVENTS }; /* every vertex of the trace fits */
+    static size_t seen[SEEN];
+    static double last[SEEN];
+    size_t kept = 0, n = 0;
     for (size_t k = 0; k < initial_count && n < SEEN; k++) seen[n] = initial[k], last[n++] = 0.0;
     for (size_t i = 0; i < g->count; i++) {
         size_t k = 0;
