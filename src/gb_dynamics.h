@@ -148,6 +148,8 @@ typedef struct gb_dynamics_law {
                                   * field has no jumps where the lowest vertex changes, and an adaptive stepper takes it */
     int time_steps;              /* the law poses a one-step contact problem that the time-stepping strategy solves at every
                                   * step (Newton's impact law on the normal velocity, Coulomb's cone: Siconos's fc3d) */
+    const struct gb_dyn_impact_map *impact_map; /* what a change of contact does to the state (NULL: a law of one
+                                                 * smooth mode has none) */
     const struct gb_dyn_mode *mode; /* a law that is one smooth mode of its own (the run stays in it: no events, no
                                      * jumps); NULL: the hybrid system of modes, events and impacts */
     const gb_dynamics_law_key *keys; /* its own coefficients, as [model] keys (NULL: none) */

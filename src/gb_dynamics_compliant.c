@@ -264,6 +264,7 @@ const gb_dynamics_law gb_dyn_compliant_law = {
     1, /* needs a finite μ */
     1, /* pushes every vertex of a polyhedron */
     0, /* time steps: none, its forces are smooth and any stepper takes them */
+    NULL, /* impact map: no impacts */
     &gb_dyn_compliant_mode,
     compliant_keys,
     sizeof compliant_keys / sizeof compliant_keys[0],

@@ -464,6 +464,25 @@ int gb_dyn_sliding_gap(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], 
 
 /* ---- the jumps (gb_dynamics_jumps.c) --------------------------------------------------------------- */
 
+/* A law's impact map: what a change of contact does to the state, where the hybrid modes meet one (the law row's
+ * `impact_map`; the held, rough and Coulomb maps are in gb_dynamics_jumps.c). Events every law shares (a lift-off,
+ * a lift from two points, a slip starting) stay the modes'; nothing else tells the laws apart at a jump. */
+typedef struct gb_dyn_impact_map {
+    /* one point: the contact changes onto `branch` (ω kept, Newton's impact, or Coulomb's) */
+    int (*change)(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const gb_contact_point *branch);
+    /* two points: a third point `branch` reaches the plane */
+    int (*third)(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const gb_contact_point *branch);
+    /* flight: the lowest point `branch` lands */
+    int (*landing)(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const gb_contact_point *branch);
+    /* the variational estimator's saltation at a one-point change and at a two-point event (gb_dyn_no_jump: not
+     * followed) */
+    int (*change_jump)(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const gb_contact_point *branch,
+                       double out[GB_STATE_SIZE]);
+    int (*two_point_jump)(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const gb_contact_point *branch,
+                          double out[GB_STATE_SIZE]);
+} gb_dyn_impact_map;
+extern const gb_dyn_impact_map gb_dyn_held_impacts, gb_dyn_rough_impacts, gb_dyn_coulomb_impacts;
+
 int gb_dyn_one_point_event(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const gb_contact_point *branch);
 int gb_dyn_one_point_jump(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const gb_contact_point *branch,
                           double out[GB_STATE_SIZE]);

@@ -545,96 +545,70 @@ static int after_switch(gb_dynamics *d, double t)
     return GB_OK;
 }
 
-/* One point: the lift-off; or the change of contact onto `branch`: the held law makes it the contact with ω
- * kept (the paper's rule), a law with impacts makes it an impact from the point P the body rolls about (the
- * old contact, continued), after which the body may roll on both points. */
-int gb_dyn_one_point_event(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const gb_contact_point *branch)
+/* ---- the laws' impact maps ------------------------------------------------------------------------ */
+
+/* The held law: the contact moves onto `branch` with ω kept (the paper's rule). */
+static int held_change(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const gb_contact_point *branch)
 {
-    if (d->event == GB_DYN_EVENT_LIFT_OFF) return after_flight_event(d, lift_off(d, t, y));
-    if (d->event == GB_DYN_EVENT_SLIP) return after_flight_event(d, gb_dyn_slip_start(d, t, y));
-    if (d->law->slips) { /* a change of contact: Coulomb's impact from P onto the new point */
-        double zb[3];
-        gb_dyn_vertical(y, zb);
-        gb_contact_point pts[2];
-        int status = gb_dyn_point_at(d, zb, &d->contact, &pts[0]);
-        pts[1] = *branch;
-        if (!status) status = gb_dyn_friction_impact(d, t, y, pts, 2, 1, GB_DYNAMICS_IMPACT_SWITCH, 1);
-        return status ? status : after_switch(d, t);
-    }
-    if (d->law->impacts) {
-        double zb[3];
-        gb_dyn_vertical(y, zb);
-        gb_contact_point here;
-        int both = 0, bounce = 0;
-        int status = gb_dyn_point_at(d, zb, &d->contact, &here);
-        if (!status) status = impact(d, t, y, &here, branch, 1, &both, &bounce);
-        if (status) return status;
-        if (bounce != 1) gb_dyn_set_contact(d, branch); /* a rebound of Q off P that holds: the body rolls on about P */
-        if (both) {
-            gb_dyn_set_mode(d, GB_DYN_TWO_POINT, t);
-            d->contact2 = here;
-            d->crease.q_valid = 0;
-            d->crease.entries++;
-        }
-    } else {
-        d->contact = *branch;
+    (void)y;
+    d->contact = *branch;
+    return after_switch(d, t);
+}
+
+/* The held law keeps one contact: no two-point mode and no flight, so these are never reached. */
+static int held_never(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const gb_contact_point *branch)
+{
+    (void)d, (void)y, (void)branch;
+    return gb_error_set(GB_EINVAL, "t = %.9g: the held law keeps one contact (no third point, no landing)", t);
+}
+
+/* The held law's saltation at a change of contact: none, ω is kept. */
+static int held_change_jump(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const gb_contact_point *branch,
+                            double out[GB_STATE_SIZE])
+{
+    (void)d, (void)t, (void)branch;
+    memcpy(out, y, GB_STATE_SIZE * sizeof *out);
+    return GB_OK;
+}
+
+/* Newton's impact on a rough plane, from the point P the body rolls about (the old contact, continued) onto
+ * `branch`, after which the body may roll on both points. */
+static int rough_change(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const gb_contact_point *branch)
+{
+    double zb[3];
+    gb_dyn_vertical(y, zb);
+    gb_contact_point here;
+    int both = 0, bounce = 0;
+    int status = gb_dyn_point_at(d, zb, &d->contact, &here);
+    if (!status) status = impact(d, t, y, &here, branch, 1, &both, &bounce);
+    if (status) return status;
+    if (bounce != 1) gb_dyn_set_contact(d, branch); /* a rebound of Q off P that holds: the body rolls on about P */
+    if (both) {
+        gb_dyn_set_mode(d, GB_DYN_TWO_POINT, t);
+        d->contact2 = here;
+        d->crease.q_valid = 0;
+        d->crease.entries++;
     }
     return after_switch(d, t);
 }
 
-int gb_dyn_two_point_event(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const gb_contact_point *branch)
+/* A third point on a rough plane (or a lift from two points: the located event's own case). */
+static int rough_third(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const gb_contact_point *branch)
 {
-    if (d->event == GB_DYN_EVENT_SLIP) return after_flight_event(d, gb_dyn_slip_start(d, t, y));
-    if (d->law->slips && d->event == GB_DYN_EVENT_THIRD) { /* Coulomb's impact over the three */
-        double zb[3];
-        gb_dyn_vertical(y, zb);
-        gb_contact_point pts[3];
-        int status = gb_dyn_point_at(d, zb, &d->contact, &pts[0]);
-        if (!status) status = gb_dyn_point_at(d, zb, &d->contact2, &pts[1]);
-        pts[2] = *branch;
-        const int ties = status ? 0 : gb_dyn_face_ties(d, zb, &pts[0], &pts[1], branch);
-        if (ties)
-            return gb_error_set(GB_ENUMERIC, "a face of %d vertices lands flat at t = %.9g on a plane of friction mu = %g, which "
-                                "is not followed (Coulomb's impact here takes three points; the rough plane, [model] friction "
-                                "= rough, follows a face landing)", ties + 3, t, d->def.friction);
-        if (!status) status = gb_dyn_friction_impact(d, t, y, pts, 3, 2, GB_DYNAMICS_IMPACT_THIRD, 1);
-        return status ? status : after_switch(d, t);
-    }
     const int status = two_point_located(d, t, y, branch);
     return status ? status : after_switch(d, t);
 }
 
-int gb_dyn_rest_event(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const gb_contact_point *branch)
+static int rough_landing(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const gb_contact_point *branch)
 {
-    (void)branch;
-    return after_flight_event(d, lift_off(d, t, y));
-}
-
-int gb_dyn_flight_event(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const gb_contact_point *branch)
-{
-    if (d->law->slips) /* Coulomb's impact at the landing point */
-        return after_flight_event(d, gb_dyn_friction_impact(d, t, y, branch, 1, 0, GB_DYNAMICS_IMPACT_LANDING, 1));
     return after_flight_event(d, landing(d, t, y, branch));
 }
 
-/* ---- the jump maps, nothing booked (the variational estimator's saltation) ------------------------ */
-
-int gb_dyn_no_jump(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const gb_contact_point *branch,
-                   double out[GB_STATE_SIZE])
+/* The rough impact's ω at a change of contact (a hop: not followed). */
+static int rough_change_jump(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const gb_contact_point *branch,
+                             double out[GB_STATE_SIZE])
 {
-    (void)d, (void)branch;
     memcpy(out, y, GB_STATE_SIZE * sizeof *out);
-    return gb_error_set(GB_EINVAL, "t = %.9g: the variational estimator does not follow lift-off, flight or sliding (the "
-                        "centroid's translation is not in its tangent space); use [lyapunov] estimator = pair", t);
-}
-
-/* One point: the held law keeps the state; with impacts, the impact's ω (a lift-off: not followed). */
-int gb_dyn_one_point_jump(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const gb_contact_point *branch,
-                          double out[GB_STATE_SIZE])
-{
-    if (d->event == GB_DYN_EVENT_LIFT_OFF || d->law->slips) return gb_dyn_no_jump(d, t, y, branch, out);
-    memcpy(out, y, GB_STATE_SIZE * sizeof *out);
-    if (!d->law->impacts) return GB_OK;
     double zb[3], v[3], points[2][3], back;
     gb_dyn_vertical(y, zb);
     gb_contact_point p, q;
@@ -650,11 +624,10 @@ int gb_dyn_one_point_jump(gb_dynamics *d, double t, const double y[GB_STATE_SIZE
     return status;
 }
 
-/* Two points: a lift keeps the state (no impulse); a third point's impact, its ω. */
-int gb_dyn_two_point_jump(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const gb_contact_point *branch,
-                          double out[GB_STATE_SIZE])
+/* Two points on a rough plane: a lift keeps the state (no impulse); a third point's impact, its ω. */
+static int rough_two_point_jump(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const gb_contact_point *branch,
+                                double out[GB_STATE_SIZE])
 {
-    if (d->law->slips) return gb_dyn_no_jump(d, t, y, branch, out);
     memcpy(out, y, GB_STATE_SIZE * sizeof *out);
     if (d->event == GB_DYN_EVENT_LIFT) return GB_OK;
     const double L = d->def.length;
@@ -672,4 +645,98 @@ int gb_dyn_two_point_jump(gb_dynamics *d, double t, const double y[GB_STATE_SIZE
     if (!status) status = third_point_outcome(d, t, y, &r, points, v, &res, &held, &back, &settled);
     if (!status) memcpy(out + GB_STATE_OMEGA, res.omega, sizeof res.omega);
     return status;
+}
+
+/* Coulomb's impact from P onto the new point. */
+static int coulomb_change(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const gb_contact_point *branch)
+{
+    double zb[3];
+    gb_dyn_vertical(y, zb);
+    gb_contact_point pts[2];
+    int status = gb_dyn_point_at(d, zb, &d->contact, &pts[0]);
+    pts[1] = *branch;
+    if (!status) status = gb_dyn_friction_impact(d, t, y, pts, 2, 1, GB_DYNAMICS_IMPACT_SWITCH, 1);
+    return status ? status : after_switch(d, t);
+}
+
+/* Coulomb's impact over the three (a face landing flat is not followed). */
+static int coulomb_third(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const gb_contact_point *branch)
+{
+    double zb[3];
+    gb_dyn_vertical(y, zb);
+    gb_contact_point pts[3];
+    int status = gb_dyn_point_at(d, zb, &d->contact, &pts[0]);
+    if (!status) status = gb_dyn_point_at(d, zb, &d->contact2, &pts[1]);
+    pts[2] = *branch;
+    const int ties = status ? 0 : gb_dyn_face_ties(d, zb, &pts[0], &pts[1], branch);
+    if (ties)
+        return gb_error_set(GB_ENUMERIC, "a face of %d vertices lands flat at t = %.9g on a plane of friction mu = %g, which "
+                            "is not followed (Coulomb's impact here takes three points; the rough plane, [model] friction "
+                            "= rough, follows a face landing)", ties + 3, t, d->def.friction);
+    if (!status) status = gb_dyn_friction_impact(d, t, y, pts, 3, 2, GB_DYNAMICS_IMPACT_THIRD, 1);
+    return status ? status : after_switch(d, t);
+}
+
+/* Coulomb's impact at the landing point. */
+static int coulomb_landing(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const gb_contact_point *branch)
+{
+    return after_flight_event(d, gb_dyn_friction_impact(d, t, y, branch, 1, 0, GB_DYNAMICS_IMPACT_LANDING, 1));
+}
+
+const gb_dyn_impact_map gb_dyn_held_impacts = {held_change, held_never, held_never, held_change_jump, gb_dyn_no_jump};
+const gb_dyn_impact_map gb_dyn_rough_impacts = {rough_change, rough_third, rough_landing, rough_change_jump,
+                                                rough_two_point_jump};
+const gb_dyn_impact_map gb_dyn_coulomb_impacts = {coulomb_change, coulomb_third, coulomb_landing, gb_dyn_no_jump,
+                                                  gb_dyn_no_jump};
+
+/* ---- the modes' events and jumps: the events every law shares, then the law's impact map -------------- */
+
+int gb_dyn_one_point_event(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const gb_contact_point *branch)
+{
+    if (d->event == GB_DYN_EVENT_LIFT_OFF) return after_flight_event(d, lift_off(d, t, y));
+    if (d->event == GB_DYN_EVENT_SLIP) return after_flight_event(d, gb_dyn_slip_start(d, t, y));
+    return d->law->impact_map->change(d, t, y, branch);
+}
+
+int gb_dyn_two_point_event(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const gb_contact_point *branch)
+{
+    if (d->event == GB_DYN_EVENT_SLIP) return after_flight_event(d, gb_dyn_slip_start(d, t, y));
+    if (d->event == GB_DYN_EVENT_THIRD) return d->law->impact_map->third(d, t, y, branch);
+    const int status = two_point_located(d, t, y, branch); /* a lift: no impulse */
+    return status ? status : after_switch(d, t);
+}
+
+int gb_dyn_rest_event(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const gb_contact_point *branch)
+{
+    (void)branch;
+    return after_flight_event(d, lift_off(d, t, y));
+}
+
+int gb_dyn_flight_event(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const gb_contact_point *branch)
+{
+    return d->law->impact_map->landing(d, t, y, branch);
+}
+
+/* ---- the jump maps, nothing booked (the variational estimator's saltation) ------------------------ */
+
+int gb_dyn_no_jump(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const gb_contact_point *branch,
+                   double out[GB_STATE_SIZE])
+{
+    (void)d, (void)branch;
+    memcpy(out, y, GB_STATE_SIZE * sizeof *out);
+    return gb_error_set(GB_EINVAL, "t = %.9g: the variational estimator does not follow lift-off, flight or sliding (the "
+                        "centroid's translation is not in its tangent space); use [lyapunov] estimator = pair", t);
+}
+
+int gb_dyn_one_point_jump(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const gb_contact_point *branch,
+                          double out[GB_STATE_SIZE])
+{
+    if (d->event == GB_DYN_EVENT_LIFT_OFF) return gb_dyn_no_jump(d, t, y, branch, out);
+    return d->law->impact_map->change_jump(d, t, y, branch, out);
+}
+
+int gb_dyn_two_point_jump(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], const gb_contact_point *branch,
+                          double out[GB_STATE_SIZE])
+{
+    return d->law->impact_map->two_point_jump(d, t, y, branch, out);
 }

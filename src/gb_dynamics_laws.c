@@ -15,12 +15,15 @@ static const char *const law_names[] = {[GB_CONTACT_LAW_HELD] = "held", [GB_CONT
 enum { LAW_COUNT = sizeof law_names / sizeof law_names[0] };
 
 /* The traits in gb_dynamics_law's order: impacts, translates, pivots, several events per step, slips, free centroid,
- * needs friction, pushes every vertex, time steps; then the law's own mode and keys (none: the hybrid system's). The compliant
+ * needs friction, pushes every vertex, time steps; then its impact map (gb_dynamics_jumps.c: what a change of contact
+ * does), the law's own mode and keys (none: the hybrid system's). The compliant
  * law's row is its own file's (gb_dynamics_compliant.c). */
-static const gb_dynamics_law held = {"held", GB_CONTACT_LAW_HELD, 0, 0, 0, 0, 0, 0, 0, 0, 0, NULL, NULL, 0};
-static const gb_dynamics_law unilateral_rough = {"unilateral", GB_CONTACT_LAW_UNILATERAL, 1, 1, 1, 1, 0, 0, 0, 0, 0, NULL, NULL, 0};
+static const gb_dynamics_law held = {"held", GB_CONTACT_LAW_HELD, 0, 0, 0, 0, 0, 0, 0, 0, 0, &gb_dyn_held_impacts,
+                                     NULL, NULL, 0};
+static const gb_dynamics_law unilateral_rough = {"unilateral", GB_CONTACT_LAW_UNILATERAL, 1, 1, 1, 1, 0, 0, 0, 0, 0,
+                                                 &gb_dyn_rough_impacts, NULL, NULL, 0};
 static const gb_dynamics_law unilateral_coulomb = {"unilateral with Coulomb friction", GB_CONTACT_LAW_UNILATERAL, 1, 1, 1, 1, 1, 1,
-                                                   0, 0, 1, NULL, NULL, 0};
+                                                   0, 0, 1, &gb_dyn_coulomb_impacts, NULL, NULL, 0};
 /* Every law with keys of its own, in the order their keys are listed (NULL ends the list). */
 static const gb_dynamics_law *const keyed[] = {&gb_dyn_compliant_law, NULL};
 
