@@ -196,19 +196,19 @@ static void test_grid_surface_against_quadrature(void)
     int status = gb_massprops_compute(s, &def, &quad);
     if (!status) status = grid_surface_massprops(s, 90, 180, &coarse);
     if (!status) status = grid_surface_massprops(s, 180, 360, &fine);
-    gb_check cr = {"2", "-", "Gomboc I's grid surface (90 x 180 and 180 x 360 nodes, the poles added) as a polyhedron", "runs", "exact"};
+    gb_check cr = {"2", "12, 29", "Gomboc I's grid surface (90 x 180 and 180 x 360 nodes, the poles added) as a polyhedron", "runs", "exact"};
     if (!gb_check_true(&cr, !status, "%s", status ? gb_error_message() : "ran")) return;
     const double e1 = fabs(coarse.volume - quad.volume), e2 = fabs(fine.volume - quad.volume);
-    gb_check co = {"2", "-", "the polyhedral volume's error against the quadrature, observed order from 90 x 180 to 180 x 360",
+    gb_check co = {"2", "12, 29", "the polyhedral volume's error against the quadrature, observed order from 90 x 180 to 180 x 360",
                    "gb_massprops (nested GSL quadrature, its error ~1e-12, below both errors)",
                    "2 +- 0.2: a surface interpolated linearly between nodes is second order in the spacing"};
     gb_check_close(&co, gb_check_observed_order(e1, e2, 1.0, 0.5), 2.0, 0.0, 0.2);
     const double i1 = fabs(coarse.inertia[0][0] - quad.inertia[0][0]), i2 = fabs(fine.inertia[0][0] - quad.inertia[0][0]);
-    gb_check ci = {"2", "-", "the polyhedral I_xx's error against the quadrature, observed order", "gb_massprops",
+    gb_check ci = {"2", "12, 29", "the polyhedral I_xx's error against the quadrature, observed order", "gb_massprops",
                    "2 +- 0.2, as the volume"};
     gb_check_close(&ci, gb_check_observed_order(i1, i2, 1.0, 0.5), 2.0, 0.0, 0.2);
     /* Richardson: the second-order extrapolation of the two is the smooth body's, to the next order */
-    gb_check cx = {"2", "-", "the volume extrapolated from the two grids (4 V_fine - V_coarse)/3", "the quadrature",
+    gb_check cx = {"2", "12, 29", "the volume extrapolated from the two grids (4 V_fine - V_coarse)/3", "the quadrature",
                    "e2/10: the extrapolation removes the second-order term, leaving a tenth of the fine grid's error at most"};
     gb_check_close(&cx, (4.0 * fine.volume - coarse.volume) / 3.0, quad.volume, 0.0, e2 / 10.0);
 }

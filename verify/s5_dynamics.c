@@ -503,7 +503,7 @@ static void test_work_precision(void)
             }
         }
     }
-    gb_check c = {"8", "-", "work-precision runs (4 integrators x 4 settings x grid and continuous contact): no unexpected failure",
+    gb_check c = {"8", "23, 44", "work-precision runs (4 integrators x 4 settings x grid and continuous contact): no unexpected failure",
                   "every GSL status checked; an adaptive run that hits the 3000-step limit is recorded, not hidden", "exact"};
     gb_check_true(&c, failures == 0 && gb_check_write_data("work-precision.json", document) == 0, "%d of %d failed: %s", failures,
                   points, failures ? gb_error_message() : "");
@@ -523,7 +523,7 @@ static void test_extreme_scenes(void)
         snprintf(path, sizeof path, "cases/extreme-%s.ini", names[n]);
         gb_case scene;
         int status = gb_case_load(path, &scene);
-        gb_check cl = {"8", "-", path, "the scene file loads", "exact"};
+        gb_check cl = {"8", "44", path, "the scene file loads", "exact"};
         if (!gb_check_true(&cl, status == GB_OK, "%s", status ? gb_error_message() : scene.description)) continue;
         for (int m = 0; m < 4; m++) {
             gb_dynamics *d = NULL;
@@ -626,7 +626,7 @@ static void test_scene_builds_what_it_needs(void)
         else
             snprintf(q, sizeof q, "%s contact builds exactly one grid, of %zu x %zu nodes, and no certificate",
                      gb_contact_model_name(models[k]), def.grid.n_phi, def.grid.n_theta);
-        gb_check c = {"8", "-", q, "node count of the grid the dynamics built; certificate present", "exact"};
+        gb_check c = {"8", "29", q, "node count of the grid the dynamics built; certificate present", "exact"};
         gb_check_true(&c, !status && built == expected && has_certificate == continuous,
                       "%zu nodes built, %zu expected; certificate %s", built, expected, has_certificate ? "built" : "not built");
         gb_dynamics_free(d);
