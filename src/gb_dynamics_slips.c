@@ -121,6 +121,10 @@ static int slip_stops(gb_dynamics *d, double t, double y[GB_STATE_SIZE], int k)
 {
     double zb[3], force[3];
     gb_dyn_vertical(y, zb);
+    gb_dyn_friction_point points[2];
+    gb_dyn_friction_forces f;
+    int status = gb_dyn_sliding_eval(d, t, y, points, &f);
+    if (status) return status;
     {
         /* the event is the slip down to the stop's speed (gb_dyn_slip_stop_speed), or turned against its
          * direction at the accepted state: then, its speed well above, a slip that swung by a right angle in a
@@ -128,10 +132,6 @@ static int slip_stops(gb_dynamics *d, double t, double y[GB_STATE_SIZE], int k)
          * event was is read from the gap's terms at the located state (stop_gap: the slip along its direction
          * against its speed less the stop's): a slip whose speed met the stop's stops, even where the stop's
          * speed jumps just after the located state (as where another point starts to slip). */
-        gb_dyn_friction_point points[2];
-        gb_dyn_friction_forces f;
-        int status = gb_dyn_sliding_eval(d, t, y, points, &f);
-        if (status) return status;
         double s[3], w[3];
         gb_dyn_slip_of(y, zb, points[k].r, s);
         const double speed = gb_vec_norm(s);
@@ -144,9 +144,18 @@ static int slip_stops(gb_dynamics *d, double t, double y[GB_STATE_SIZE], int k)
             return GB_OK;
         }
     }
-    const int was = d->slide.slides[k];
+    const int was[2] = {d->slide.slides[0], d->slide.slides[1]};
     d->slide.slides[k] = 0;
-    int any = 0, status;
+    /* Points that stop together: another slipping point whose slip is within twice its own stop's speed at this
+     * state (the band below which a slip is not armed, gb_dyn_sliding_accept) stops with k: a body sliding on an
+     * edge, its two ends' slips one slip, whose second event would never come, left "sliding" at a rounding's speed. */
+    for (int q = 0; q < d->slide.count; q++) {
+        if (q == k || !d->slide.slides[q]) continue;
+        double sq[3];
+        gb_dyn_slip_of(y, zb, points[q].r, sq);
+        if (gb_vec_norm(sq) <= 2.0 * gb_dyn_slip_stop_speed(d, y, sq, f.slip_acc[q])) d->slide.slides[q] = 0;
+    }
+    int any = 0;
     for (int q = 0; q < d->slide.count; q++) any |= d->slide.slides[q];
     double margin;
     if (!any && d->slide.count == 2) {
@@ -168,10 +177,6 @@ static int slip_stops(gb_dynamics *d, double t, double y[GB_STATE_SIZE], int k)
         gb_dyn_normal_force(d, geff, zb, y + GB_STATE_OMEGA, w_dot, &c, acc);
         for (int i = 0; i < 3; i++) force[i] = d->def.mass * (acc[i] + geff * zb[i]);
     } else {
-        gb_dyn_friction_point points[2];
-        gb_dyn_friction_forces f;
-        status = gb_dyn_sliding_eval(d, t, y, points, &f);
-        if (status) return status;
         margin = f.margin[k];
         memcpy(force, f.force[k], sizeof force);
     }
@@ -180,8 +185,11 @@ static int slip_stops(gb_dynamics *d, double t, double y[GB_STATE_SIZE], int k)
         else return stick_all(d, t, y, d->slide.count);
         return GB_OK;
     }
-    /* the cone cannot hold it stopped: it slips on, against the force that would have held it */
-    d->slide.slides[k] = was, d->slide.armed[k] = 0;
+    /* the cone cannot hold it stopped: it slips on, against the force that would have held it (and a point that
+     * stopped with it slips on as it was) */
+    for (int q = 0; q < d->slide.count; q++)
+        if (q != k) d->slide.slides[q] = was[q];
+    d->slide.slides[k] = was[k], d->slide.armed[k] = 0;
     against(y, zb, force, d->slide.start[k]);
     memcpy(d->slide.ref[k], d->slide.start[k], sizeof d->slide.ref[k]);
     return GB_OK;

@@ -24,8 +24,10 @@
 #include <gsl/gsl_linalg.h>
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <unistd.h>
 
 /* ---- the dynamics: a ball on a plane of finite friction ----------------------------------------- */
 
@@ -301,6 +303,59 @@ static void test_zeno(void)
     }
 }
 
+/* ---- two points that stop together ------------------------------------------------------------------ */
+
+/* A wedge (a triangular prism 0.4 m long, its cross-section 0.2 m wide and 0.3 m high, apex down) standing on its
+ * sharp edge, its centroid above it, launched at v0 along the edge on a plane of μ: both ends of the edge slip
+ * as one, decelerate at μg and stop together at v0/(μg), after which the wedge stands. The second end's stop
+ * is no event of its own (its slip is the first one's): it must stop with the first, not stay "sliding" at a
+ * rounding's speed. */
+static void test_edge_stops(void)
+{
+    const double v0 = 1.0, mu = 0.3, g = 9.81, periods = 0.51;
+    static const char mesh[] = "OFF\n6 5 0\n0 -0.2 0\n0.1 -0.2 0.3\n-0.1 -0.2 0.3\n0 0.2 0\n0.1 0.2 0.3\n-0.1 0.2 0.3\n"
+                               "3 0 2 1\n3 3 4 5\n4 0 1 4 3\n4 1 2 5 4\n4 2 0 3 5\n";
+    char dir[] = "/tmp/gomboc-wedge-XXXXXX", path[64], scene_path[64], text[900];
+    gb_check c = {"-", "-", "a wedge on its edge sliding along it at v0 = 1 m/s on mu = 0.3, event-driven (rk4, 2000 steps/s): the "
+                  "time spent sliding [s]",
+                  "v0/(mu g) = 0.33979 s, both ends stopped together (not sliding at the end, one stop)",
+                  "1e-5 s: the stop is located where the slip falls to its stop speed, ~2e-6 m/s here, which mu g = 2.94 "
+                  "m/s^2 reaches within 1e-6 s"};
+    if (!mkdtemp(dir)) {
+        gb_check_true(&c, 0, "cannot make a temporary directory");
+        return;
+    }
+    snprintf(path, sizeof path, "%s/wedge.off", dir);
+    snprintf(scene_path, sizeof scene_path, "%s/wedge.ini", dir);
+    FILE *f = fopen(path, "w");
+    const int written = f && fputs(mesh, f) >= 0;
+    if (f) fclose(f);
+    snprintf(text, sizeof text,
+             "[body]\nmesh = wedge.off\nmass = 1\n[forcing]\ng = %.17g\nA1 = 0\nA2 = 0\nomega = 6.283185307179586\n"
+             "[model]\ncontact = fast-grid\ndamping = 0\ncontact_law = unilateral\nfriction = %.17g\n[integrator]\n"
+             "method = rk4\nsteps_per_period = 2000\nperiods = %.17g\nlocate_switches = yes\n[initial]\nvelocity = 0,%.17g,0\n",
+             g, mu, periods, v0);
+    gb_case scene;
+    gb_run_result r;
+    memset(&r, 0, sizeof r);
+    int status = written ? gb_case_load_text(scene_path, text, strlen(text), &scene) : gb_error_set(GB_EIO, "cannot write %s", path);
+    if (!status) status = gb_run(&scene, NULL, &r);
+    const double expected = v0 / (mu * g);
+    gb_check_close(&c, status || !r.has_sliding || r.sliding.sliding || r.sliding.sticks != 1 ? NAN : r.sliding.time, expected,
+                   0.0, 1e-5);
+    if (status || !r.has_sliding || r.sliding.sliding || r.sliding.sticks != 1)
+        gb_check_true(&c, 0, "%s; sliding %s at the end, %zu stops, %.6f s", status ? gb_error_message() : "ran",
+                      r.has_sliding && r.sliding.sliding ? "still" : "not", r.has_sliding ? r.sliding.sticks : 0,
+                      r.has_sliding ? r.sliding.time : NAN);
+    gb_check cl = {"-", "-", "the same run: what friction and the impacts took, against the kinetic energy at the launch [J]",
+                   "m v0^2 / 2 = 0.5 J: the wedge stands still at the end, and its centroid never rose or fell",
+                   "1e-6 J: the ledger's integration error at 2000 steps/s (its largest residual is recorded)"};
+    gb_check_close(&cl, status ? NAN : r.sliding.friction_loss + r.impact_energy_lost, 0.5 * v0 * v0, 0.0, 1e-6);
+    if (!status) gb_run_result_free(&r);
+    remove(path);
+    rmdir(dir);
+}
+
 /* ---- Table 1 on a plane of finite friction --------------------------------------------------------- */
 
 static int table1_friction_run(double mu, size_t steps, double periods, gb_run_result *r)
@@ -356,6 +411,8 @@ int verify_register_s5_friction(void)
          "a sliding Gomboc's normal force follows the closed form and the paradox beyond mu* stops the run"},
         {"friction: two runs that once had no end (a flight from the plane, a chatter while sliding)", test_zeno, NULL},
         {"friction: Table 1 at mu -> infinity is the rough plane's; the ledger closes with friction", test_table1_friction, NULL},
+        {"friction: two points that stop slipping together stop together (a wedge on its edge)", test_edge_stops,
+         "a body sliding on two points whose slips are one stops sliding on both at v0/(mu g), reported so"},
         {NULL, NULL, NULL},
     };
     return verify_register_suite("A plane of finite friction: Coulomb's law", tests);
