@@ -25,6 +25,8 @@
 /* The most contacts one step takes (the candidates within the gap threshold of a step): a mesh's face or a grid
  * polyhedron's few lowest nodes are far fewer. */
 #define GB_CONTACT_PROBLEM_MAX 256
+/* the Gauss–Seidel sweeps a problem is given before the proximal point method takes it from there (gb_contact_problem.c) */
+#define GB_CONTACT_PROBLEM_NSGS_SWEEPS 200
 
 typedef struct gb_contact_problem_def {
     double tolerance;  /* Siconos's relative error of the solution (its natural-map residual over |q|) */
@@ -36,7 +38,7 @@ typedef struct gb_contact_problem_report {
     size_t iterations;
     double residual;
     int converged;
-    int fallback; /* the Gauss–Seidel stalled and another of Siconos's methods (ADMM, the proximal point method) finished */
+    int fallback; /* the Gauss–Seidel stalled and another of Siconos's methods (the proximal point method, ADMM) finished */
 } gb_contact_problem_report;
 
 typedef struct gb_contact_problem gb_contact_problem;
