@@ -3,6 +3,7 @@
 #include "gb_dynamics_protocol_internal.h"
 #include "gb_error.h"
 
+#include <dlfcn.h>
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_odeiv2.h>
 #include <math.h>
@@ -20,6 +21,16 @@ int gb_integrate_parse(const char *name, gb_integrator *method)
     const int status = gb_error_parse_name(name, names, METHODS, "integrator", &k);
     if (!status) *method = (gb_integrator)k;
     return status;
+}
+
+int gb_integrate_blas_single_thread(void)
+{
+    void *symbol = dlsym(RTLD_DEFAULT, "openblas_set_num_threads");
+    if (!symbol) return 0;
+    void (*set_threads)(int);
+    memcpy(&set_threads, &symbol, sizeof set_threads); /* POSIX: a function's address through dlsym's object pointer */
+    set_threads(1);
+    return 1;
 }
 
 static const char *const strategy_names[] = {"event-driven", "time-stepping"};

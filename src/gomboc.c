@@ -7,6 +7,7 @@
 #include "gb_body.h"
 
 #include "gb_error.h"
+#include "gb_integrate.h"
 #if defined(__has_include)
 #if __has_include("gomboc_version.h")
 #include "gomboc_version.h" /* GOMBOC_VERSION, written by the Makefile */
@@ -91,6 +92,7 @@ static char **split_equals(int argc, char **argv, int *out_argc)
 int gomboc_main(int argc, char **argv)
 {
     gb_error_init_gsl();
+    gb_integrate_blas_single_thread();
     if (argc < 2) {
         fputs(usage_main, stderr);
         return EXIT_INPUT;

@@ -3,6 +3,7 @@
 #include "gb_body.h"
 #include "gb_check.h"
 #include "gb_error.h"
+#include "gb_integrate.h"
 #include "verify_sections.h"
 
 #include <CUnit/Basic.h>
@@ -43,6 +44,7 @@ int main(int argc, char **argv)
         }
     }
     gb_error_init_gsl();
+    gb_integrate_blas_single_thread(); /* as the command: the harness time-steps in its own process */
     snprintf(key_dir, sizeof key_dir, "/tmp/gomboc-key-XXXXXX");
     if (!mkdtemp(key_dir)) {
         perror("verify: cannot make a directory for the seals' key");

@@ -9,7 +9,8 @@
  * - a run's contact law and the laws' keys; a mesh as a body, with its mass properties in closed form;
  * - a scene read with an override; the certificate's counters; the program's reserved file names;
  * - an integration session driven in pieces (its nominal steps, its counters, a sampler that stops it);
- * - the Lyapunov pair observed by a caller's sampler: the same λ as gb_run's. */
+ * - the Lyapunov pair observed by a caller's sampler: the same λ as gb_run's;
+ * - the BLAS on one thread where OpenBLAS serves. */
 #include "gb_body.h"
 #include "gb_case.h"
 #include "gb_certify.h"
@@ -27,9 +28,27 @@
 #include "gb_run.h"
 #include "verify_sections.h"
 
+#include <dlfcn.h>
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
+
+/* The BLAS on one thread: where OpenBLAS serves (found by name, as the library finds it), its own count reads 1. */
+static void test_blas_single_thread(void)
+{
+    const int found = gb_integrate_blas_single_thread();
+    void *symbol = dlsym(RTLD_DEFAULT, "openblas_get_num_threads");
+    int threads = -1;
+    if (symbol) {
+        int (*get_threads)(void);
+        memcpy(&get_threads, &symbol, sizeof get_threads);
+        threads = get_threads();
+    }
+    gb_check c = {"-", "-", "gb_integrate_blas_single_thread, then OpenBLAS's openblas_get_num_threads",
+                  "1 thread where OpenBLAS is the BLAS (and the call says it found it); 0 and nothing changed where it is not",
+                  "exact"};
+    gb_check_true(&c, found ? threads == 1 : symbol == NULL, "OpenBLAS %s; its threads %d", found ? "found" : "not found", threads);
+}
 
 static void test_names(void)
 {
@@ -296,6 +315,7 @@ int verify_register_surface(void)
         {"surface: a scene with an override, the certificate's counters, reserved file names", test_scene_and_files, NULL},
         {"surface: an integration session in pieces", test_session, NULL},
         {"surface: a Lyapunov pair observed by its caller", test_lyapunov_observed, NULL},
+        {"surface: the BLAS behind Siconos's solvers on one thread", test_blas_single_thread, NULL},
         {NULL, NULL, NULL},
     };
     return verify_register_suite("The public surface: every exported function called", tests);
