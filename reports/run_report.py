@@ -303,7 +303,10 @@ def summary_lines(name, summary, figures):
     if stepping:
         # time-stepping: impulses at every step, no impact events; its "impacts" are the points that arrived
         lines.append(f"- time-stepping (Moreau–Jean, θ = {stepping['theta']:g}, docs/stepping.md): {stepping['problems']:.0f} "
-                     f"contact problems of up to {stepping['contacts_max']:.0f} points, "
+                     f"contact problems of up to {stepping['contacts_max']:.0f} points"
+                     + (f" (of up to {stepping['candidates_max']:.0f} candidates, the most urgent first; "
+                        f"{stepping['grown']:.0f} posed again with a point that went through)"
+                        if stepping.get('candidates_max', 0) > stepping['contacts_max'] else "") + ", "
                      f"{stepping['sweeps'] / max(stepping['problems'], 1):.1f} sweeps each (Siconos's fc3d), residual "
                      f"≤ {stepping['residual_max']:.2g}; the impulses took {impacts['energy_lost']:.4g} J at the "
                      f"{impacts['count']:.0f} points that arrived and after, and gave {stepping['energy_given']:.3g} J "

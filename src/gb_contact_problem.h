@@ -31,6 +31,7 @@
 typedef struct gb_contact_problem_def {
     double tolerance;  /* Siconos's relative error of the solution (its natural-map residual over |q|) */
     size_t iterations; /* the most Gauss–Seidel sweeps */
+    size_t first;      /* the time-stepping's candidates posed first (0: all; gb_integrate_def.stepping_first) */
 } gb_contact_problem_def;
 
 /* What the solver did: its sweeps, the residual it reached, and whether it met the tolerance. */

@@ -404,6 +404,9 @@ typedef struct gb_dynamics_stepping_stats {
     size_t negative_dissipation;
     double energy_gained;
     size_t fallbacks;
+    size_t candidates_max; /* the most candidates one step had (of more than 64, the problem poses the 64 most urgent
+                            * first, docs/stepping.md) */
+    size_t grown;          /* solutions that let a candidate left out through the plane, posed again with it */
 } gb_dynamics_stepping_stats;
 /* NULL when time was not stepped. */
 GB_API const gb_dynamics_stepping_stats *gb_dynamics_stepping_stats_of(const gb_dynamics *dynamics);

@@ -30,14 +30,29 @@
 /* The candidates' threshold above the plane [body lengths]: far above the rounding of a height (1e-16 of the body),
  * far below any length of the problem; a gap the step closes to this is a contact. */
 #define GB_DYNAMICS_STEPPING_ACTIVATION 1e-12
+/* A step with more candidates than gb_integrate_def.stepping_first poses the most urgent that many first, and adds
+ * those the solution would let through the plane, GB_DYNAMICS_STEPPING_ADD at a time, the most violated first, until
+ * none would: a grid polyhedron's polar cap lands with hundreds of nodes in reach, of which a few carry it. Zero
+ * impulse at the points left out, which do not go through, completes the posed problem's solution to one of the whole
+ * problem (Moreau's law holds at each of them). */
+#define GB_DYNAMICS_STEPPING_ADD 16
+/* An excluded candidate whose normal velocity after the step, with Newton's e u_n⁻, is below −this times the step's
+ * speed scale (|v_z| + |ω| r_max + |g| h) goes through the plane: far above the solver's 1e-12, far below any
+ * velocity of the problem. */
+#define GB_DYNAMICS_STEPPING_THROUGH 1e-9
 
 /* The contacts one step solves, and what the last step left. */
 struct gb_dyn_stepper {
     double theta, h;
+    size_t first;                  /* the candidates a step poses first (0: all) */
     size_t nodes;                  /* the grid's nodes, the body's points [m] (body axes): the candidates */
     double (*points)[3];
     double radius;                 /* the farthest point's distance from the centroid [m] */
     double *gaps;                  /* every point's gap above the plane at the state `scanned` (scanned_valid) */
+    size_t *candidates;            /* this step's candidates (nodes), [nodes] */
+    double *keys;                  /* their urgency: the gap half a step ahead (−∞: a point that carried the body) */
+    unsigned char *posed;          /* a candidate is in the problem (by candidate) */
+    double *scratch;               /* the keys, sorted [nodes] */
     double scanned[GB_STATE_SIZE];
     int scanned_valid;
     gb_contact_problem *problem;
@@ -66,6 +81,7 @@ static void stepper_free(gb_dyn_stepper *s)
     if (!s) return;
     gb_contact_problem_free(s->problem);
     free(s->W), free(s->q), free(s->mu), free(s->r), free(s->u), free(s->node), free(s->B), free(s->C), free(s->touched), free(s->touching_now), free(s->last_node), free(s->last_r), free(s->points), free(s->gaps), free(s->starts);
+    free(s->candidates), free(s->keys), free(s->posed), free(s->scratch);
     free(s);
 }
 
@@ -240,7 +256,11 @@ int gb_dynamics_stepping_prepare(gb_dynamics *d)
     s->nodes = gb_contact_grid_size(d->grid);
     s->points = status ? NULL : malloc(s->nodes * sizeof *s->points);
     s->gaps = status ? NULL : malloc(s->nodes * sizeof *s->gaps);
-    if (!status && !(s->points && s->gaps)) status = gb_error_set(GB_ENOMEM, "out of memory for %zu points", s->nodes);
+    s->candidates = status ? NULL : malloc(s->nodes * sizeof *s->candidates);
+    s->keys = status ? NULL : malloc(s->nodes * sizeof *s->keys);
+    s->posed = status ? NULL : malloc(s->nodes * sizeof *s->posed);
+    s->scratch = status ? NULL : malloc(s->nodes * sizeof *s->scratch);
+    if (!status && !(s->points && s->gaps && s->candidates && s->keys && s->posed && s->scratch)) status = gb_error_set(GB_ENOMEM, "out of memory for %zu points", s->nodes);
     for (size_t i = 0; !status && i < s->nodes; i++) {
         double phi, theta, x[3];
         gb_contact_grid_node(d->grid, i, &phi, &theta, x);
@@ -269,7 +289,7 @@ int gb_dynamics_stepping_begin(gb_dynamics *d, double t0, double h, double theta
     if (status) return status;
     gb_contact_problem_free(s->problem);
     s->problem = problem;
-    s->theta = theta, s->h = h;
+    s->theta = theta, s->h = h, s->first = solver->first;
     s->stats = (gb_dynamics_stepping_stats){0};
     s->touched_count = s->last_count = 0, s->scanned_valid = 0;
     return GB_OK;
@@ -370,6 +390,31 @@ static int touches(gb_dynamics *d, double t, int from_flight, int count, int tou
     return GB_OK;
 }
 
+static int compare_keys(const void *a, const void *b)
+{
+    const double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* Problem point n is node i: its relation B = −[a]× R (a = R r_i) and C = M_ω⁻¹ Bᵀ. */
+static void pose(gb_dyn_stepper *s, int n, size_t i, const double R[9], const double Minv[3][3])
+{
+    const double *x = s->points[i];
+    const double a[3] = {R[0] * x[0] + R[1] * x[1] + R[2] * x[2], R[3] * x[0] + R[4] * x[1] + R[5] * x[2],
+                         R[6] * x[0] + R[7] * x[1] + R[8] * x[2]};
+    s->node[n] = i;
+    /* B = −[a]× R: column j is −a × R e_j = R e_j × a */
+    for (int j = 0; j < 3; j++) {
+        const double col[3] = {R[j], R[3 + j], R[6 + j]};
+        double bc[3];
+        gb_vec_cross(col, a, bc);
+        for (int k = 0; k < 3; k++) s->B[n][k][j] = bc[k];
+    }
+    for (int k = 0; k < 3; k++) /* C = M_ω⁻¹ Bᵀ */
+        for (int j = 0; j < 3; j++)
+            s->C[n][k][j] = Minv[k][0] * s->B[n][j][0] + Minv[k][1] * s->B[n][j][1] + Minv[k][2] * s->B[n][j][2];
+}
+
 int gb_dynamics_stepping_step(gb_dynamics *d, double t, double h, double y[GB_STATE_SIZE])
 {
     gb_dyn_stepper *s = d->stepper;
@@ -401,7 +446,7 @@ int gb_dynamics_stepping_step(gb_dynamics *d, double t, double h, double y[GB_ST
     const double reach = activation + h * (fabs(v[2]) + gb_vec_norm(wi) * s->radius);
     scan(s, y, zb);
     const size_t lowest_before = s->lowest;
-    int n = 0;
+    size_t count = 0;
     for (size_t i = 0; i < s->nodes; i++) {
         const double *x = s->points[i], gap = s->gaps[i];
         if (gap > reach) continue;
@@ -414,22 +459,32 @@ int gb_dynamics_stepping_step(gb_dynamics *d, double t, double h, double y[GB_ST
         int carried = 0;
         for (int k = 0; k < s->touched_count && !carried; k++) carried = s->touched[k] == i;
         if (gap + 0.5 * h * un > activation && !carried) continue;
+        s->candidates[count] = i;
+        s->keys[count] = carried ? -INFINITY : gap + 0.5 * h * un;
+        s->posed[count++] = 0;
+    }
+    /* the problem: every candidate, or the most urgent first (in the nodes' order either way) */
+    if (s->first && count > s->first) {
+        size_t first = 0;
+        for (size_t c = 0; c < count; c++) first += s->keys[c] == -INFINITY; /* every carrying point, at least */
+        if (first < s->first) first = s->first;
+        memcpy(s->scratch, s->keys, count * sizeof *s->scratch);
+        qsort(s->scratch, count, sizeof *s->scratch, compare_keys);
+        const double cut = s->scratch[first - 1];
+        size_t posed = 0;
+        for (size_t c = 0; c < count && posed < first; c++)
+            if (s->keys[c] <= cut) s->posed[c] = 1, posed++;
+    } else {
+        for (size_t c = 0; c < count; c++) s->posed[c] = 1;
+    }
+    int n = 0;
+    for (size_t c = 0; c < count; c++) {
+        if (!s->posed[c]) continue;
         if ((size_t)n == GB_CONTACT_PROBLEM_MAX)
-            return gb_error_set(GB_ENUMERIC, "t = %.9g: more than %d points of the body within a step of the plane",
-                                t, GB_CONTACT_PROBLEM_MAX);
+            return gb_error_set(GB_ENUMERIC, "t = %.9g: more than %d points of the body carry it in one step", t,
+                                GB_CONTACT_PROBLEM_MAX);
         if ((status = grow(s, (size_t)n + 1))) return status;
-        s->node[n] = i;
-        /* B = −[a]× R: column j is −a × R e_j = R e_j × a */
-        for (int j = 0; j < 3; j++) {
-            const double col[3] = {R[j], R[3 + j], R[6 + j]};
-            double bc[3];
-            gb_vec_cross(col, a, bc);
-            for (int k = 0; k < 3; k++) s->B[n][k][j] = bc[k];
-        }
-        for (int k = 0; k < 3; k++) /* C = M_ω⁻¹ Bᵀ */
-            for (int j = 0; j < 3; j++)
-                s->C[n][k][j] = Minv[k][0] * s->B[n][j][0] + Minv[k][1] * s->B[n][j][1] + Minv[k][2] * s->B[n][j][2];
-        n++;
+        pose(s, n++, s->candidates[c], R, Minv);
     }
 
     /* the problem and its solution */
@@ -437,7 +492,9 @@ int gb_dynamics_stepping_step(gb_dynamics *d, double t, double h, double y[GB_ST
     memcpy(vplus, vf, sizeof vplus);
     memcpy(wplus, wf, sizeof wplus);
     const double e = d->def.restitution, mu = d->def.friction;
-    if (n > 0) {
+    /* a candidate left out goes through the plane where its normal velocity after the step falls below this */
+    const double through = -GB_DYNAMICS_STEPPING_THROUGH * (fabs(v[2]) + gb_vec_norm(wi) * s->radius + fabs(gth) * h);
+    for (int solved = 0, round = 0; n > 0; round++) {
         const int N = 3 * n;
         for (int i = 0; i < n; i++) {
             double uf[3], uk[3];
@@ -456,11 +513,12 @@ int gb_dynamics_stepping_step(gb_dynamics *d, double t, double h, double y[GB_ST
                     for (int bb = 0; bb < 3; bb++) s->W[(size_t)(3 * j + bb) * (size_t)N + (size_t)(3 * i + a)] = BC[axis[a]][axis[bb]];
             }
         }
-        /* warm start: a point of the previous problem starts from its impulse there */
-        for (int i = 0; i < n; i++) {
+        /* warm start: a point of the previous step's problem from its impulse there; a point added after a solution,
+         * from 0 (the others keep the solution's) */
+        for (int i = solved; i < n; i++) {
             int k = 0;
-            while (k < s->last_count && s->last_node[k] != s->node[i]) k++;
-            for (int a = 0; a < 3; a++) s->r[3 * i + a] = k < s->last_count ? s->last_r[3 * k + a] : 0.0;
+            while (!round && k < s->last_count && s->last_node[k] != s->node[i]) k++;
+            for (int a = 0; a < 3; a++) s->r[3 * i + a] = !round && k < s->last_count ? s->last_r[3 * k + a] : 0.0;
         }
         gb_contact_problem_report report;
         status = gb_contact_problem_solve(s->problem, n, s->W, s->q, s->mu, s->r, s->u, &report);
@@ -472,9 +530,9 @@ int gb_dynamics_stepping_step(gb_dynamics *d, double t, double h, double y[GB_ST
         if (status)
             return gb_error_set(GB_ENOCONV, "time-stepping at t = %.9g (step %zu, %d contact points): %s", t,
                                 s->stats.steps + 1, n, gb_error_message());
-        memcpy(s->last_node, s->node, (size_t)n * sizeof *s->node);
-        s->last_count = n;
-        memcpy(s->last_r, s->r, (size_t)N * sizeof *s->r);
+        P[0] = P[1] = P[2] = 0.0;
+        memcpy(vplus, vf, sizeof vplus);
+        memcpy(wplus, wf, sizeof wplus);
         for (int i = 0; i < n; i++) {
             const double Pi[3] = {s->r[3 * i + 1], s->r[3 * i + 2], s->r[3 * i]}; /* inertial x, y, z */
             for (int k = 0; k < 3; k++) {
@@ -483,9 +541,40 @@ int gb_dynamics_stepping_step(gb_dynamics *d, double t, double h, double y[GB_ST
             }
         }
         for (int k = 0; k < 3; k++) vplus[k] += P[k] / m;
-    } else {
-        s->last_count = 0;
+        solved = n;
+        /* the candidates left out: zero impulse is their answer where they do not go through the plane (then the
+         * solution is the whole problem's); the most violated of those that would are added, and it is solved again */
+        const double wp[3] = {R[0] * wplus[0] + R[1] * wplus[1] + R[2] * wplus[2],
+                              R[3] * wplus[0] + R[4] * wplus[1] + R[5] * wplus[2],
+                              R[6] * wplus[0] + R[7] * wplus[1] + R[8] * wplus[2]};
+        int added = 0;
+        for (int pass = 0; pass < GB_DYNAMICS_STEPPING_ADD; pass++) {
+            size_t worst = count;
+            double worst_u = through;
+            for (size_t c = 0; c < count; c++) {
+                if (s->posed[c]) continue;
+                const double *x = s->points[s->candidates[c]];
+                const double a[3] = {R[0] * x[0] + R[1] * x[1] + R[2] * x[2], R[3] * x[0] + R[4] * x[1] + R[5] * x[2],
+                                     R[6] * x[0] + R[7] * x[1] + R[8] * x[2]};
+                const double u = vplus[2] + wp[0] * a[1] - wp[1] * a[0] + e * (v[2] + wi[0] * a[1] - wi[1] * a[0]);
+                if (u < worst_u) worst_u = u, worst = c;
+            }
+            if (worst == count) break;
+            if ((size_t)n == GB_CONTACT_PROBLEM_MAX)
+                return gb_error_set(GB_ENUMERIC, "t = %.9g: more than %d points of the body carry it in one step", t,
+                                    GB_CONTACT_PROBLEM_MAX);
+            if ((status = grow(s, (size_t)n + 1))) return status;
+            s->posed[worst] = 1;
+            pose(s, n++, s->candidates[worst], R, Minv);
+            added++;
+        }
+        if (!added) break;
+        s->stats.grown++;
     }
+    if (count > s->stats.candidates_max) s->stats.candidates_max = count;
+    memcpy(s->last_node, s->node, (size_t)n * sizeof *s->node);
+    s->last_count = n;
+    memcpy(s->last_r, s->r, (size_t)(3 * n) * sizeof *s->r);
 
     /* what the contacts did: who touches, who slips, the energy the impulses took */
     /* a slip is a slip above a millionth of the speed the weight gives in one step (1 m/s² standing in for a plane

@@ -51,7 +51,7 @@ gb_integrate_def gb_integrate_default_def(void)
     return (gb_integrate_def){.method = GB_INTEGRATOR_RK4, .steps_per_period = 160, .periods = 300.0,
                               .rtol = 1e-10, .atol = 1e-12, .sample_every = 1,
                               .strategy = GB_STRATEGY_EVENT_DRIVEN, .theta = 0.5, .solver_tolerance = 1e-12,
-                              .solver_iterations = 20000};
+                              .solver_iterations = 20000, .stepping_first = 64};
 }
 
 static int validate(const gb_integrate_def *def)
@@ -481,7 +481,7 @@ int gb_integrate_begin(gb_dynamics *d, const gb_integrate_def *def, double t0, g
     s->dt = s->h;
     gb_dynamics_use_step(d, s->h); /* the end to chatter, where the definition leaves it to the step */
     if (def->strategy == GB_STRATEGY_TIME_STEPPING) {
-        const gb_contact_problem_def solver = {def->solver_tolerance, def->solver_iterations};
+        const gb_contact_problem_def solver = {def->solver_tolerance, def->solver_iterations, def->stepping_first};
         status = gb_dynamics_stepping_begin(d, t0, s->h, def->theta, &solver);
         if (status) {
             gb_integrate_end(s);

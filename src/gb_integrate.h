@@ -72,6 +72,9 @@ typedef struct gb_integrate_def {
     double theta;            /* time-stepping: the θ of the θ-method, 1/2 <= θ <= 1 (default 1/2) */
     double solver_tolerance; /* time-stepping: the contact problem's relative residual (default 1e-12) */
     size_t solver_iterations; /* time-stepping: its most sweeps (default 20000) */
+    size_t stepping_first;    /* time-stepping: a step with more candidates poses the most urgent this many first and adds
+                               * those the solution would let through the plane (default 64; 0: every candidate at once,
+                               * the reduction's check; docs/stepping.md). No scene key: the answer does not depend on it */
 } gb_integrate_def;
 
 GB_API gb_integrate_def gb_integrate_default_def(void);

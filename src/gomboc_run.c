@@ -539,7 +539,8 @@ static cJSON *summary_json(const gb_case *scene, const char *path, const gb_run_
             {"contacts_max", (double)st->contacts_max},   {"sweeps", (double)st->sweeps},
             {"residual_max", st->residual_max},           {"fallbacks", (double)st->fallbacks},
             {"dissipation_min", st->dissipation_min},     {"steps_giving_energy", (double)st->negative_dissipation},
-            {"energy_given", st->energy_gained}};
+            {"energy_given", st->energy_gained},          {"candidates_max", (double)st->candidates_max},
+            {"grown", (double)st->grown}};
         add_values(ts, stepping, sizeof stepping / sizeof stepping[0]);
     }
     if (r->has_strobe) cJSON_AddItemToObject(root, "strobe", strobe_json(&r->strobe));
@@ -678,10 +679,10 @@ int command_run(int argc, char **argv)
                 scene.integrate.strategy == GB_STRATEGY_EVENT_DRIVEN && isfinite(scene.dynamics.friction)
                     ? ", or [integrator] strategy = time-stepping where impacts crowd (docs/stepping.md)" : "");
     if (r.has_stepping)
-        fprintf(stderr, "gomboc run: %s: time-stepping (theta %g): %zu contact problems, up to %zu points, %.1f sweeps each, "
-                "residual <= %.3g; the impulses gave %.3g J in %zu step%s (a body turning about a held point: O(h))\n",
-                case_path, scene.integrate.theta, r.stepping.problems, r.stepping.contacts_max,
-                r.stepping.problems ? (double)r.stepping.sweeps / (double)r.stepping.problems : 0.0, r.stepping.residual_max,
+        fprintf(stderr, "gomboc run: %s: time-stepping (theta %g): %zu contact problems, up to %zu points (of %zu candidates; "
+                "%zu posed again with a point that went through), %.1f sweeps each, residual <= %.3g; the impulses gave %.3g J in %zu step%s (a body turning about a held point: O(h))\n",
+                case_path, scene.integrate.theta, r.stepping.problems, r.stepping.contacts_max, r.stepping.candidates_max,
+                r.stepping.grown, r.stepping.problems ? (double)r.stepping.sweeps / (double)r.stepping.problems : 0.0, r.stepping.residual_max,
                 r.stepping.energy_gained, r.stepping.negative_dissipation, r.stepping.negative_dissipation == 1 ? "" : "s");
     if (r.has_sliding)
         fprintf(stderr, "gomboc run: %s: friction mu = %g: sliding %.1f %% of the time, %zu slips and %zu sticks, friction took "

@@ -621,7 +621,7 @@ static void test_siconos(void)
 static void test_one_step_problem(void)
 {
     enum { N = 3000 };
-    const gb_contact_problem_def def = {1e-12, 20000};
+    const gb_contact_problem_def def = {1e-12, 20000, 0};
     gb_contact_problem *solver = NULL;
     int status = gb_contact_problem_create(&def, &solver);
     unsigned long long s = 0x243f6a8885a308d3ull;
