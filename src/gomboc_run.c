@@ -553,6 +553,13 @@ static cJSON *summary_json(const gb_case *scene, const char *path, const gb_run_
     return root;
 }
 
+/* The scene's law poses the one-step problem time-stepping solves (its row's question, not the friction's value). */
+static int time_steps(const gb_case *scene)
+{
+    const gb_dynamics_law *law = gb_dynamics_law_of(scene->dynamics.contact_law, scene->dynamics.friction);
+    return law && law->time_steps;
+}
+
 int command_run(int argc, char **argv)
 {
     const char *case_path = NULL, *dir = ".", *atlas = NULL, *hull = NULL;
@@ -676,7 +683,7 @@ int command_run(int argc, char **argv)
                 "step turned the body by more than %g rad); more [integrator] steps_per_period resolve it%s\n", case_path,
                 r.residual_max, LEDGER_FRACTION, fabs(r.final.energy) + r.impact_energy_lost, r.residual_jump,
                 r.residual_jump_t, GB_INTEGRATE_ROTATION_MAX,
-                scene.integrate.strategy == GB_STRATEGY_EVENT_DRIVEN && isfinite(scene.dynamics.friction)
+                scene.integrate.strategy == GB_STRATEGY_EVENT_DRIVEN && time_steps(&scene)
                     ? ", or [integrator] strategy = time-stepping where impacts crowd (docs/stepping.md)" : "");
     if (r.has_stepping)
         fprintf(stderr, "gomboc run: %s: time-stepping (theta %g): %zu contact problems, up to %zu points (of %zu candidates; "
