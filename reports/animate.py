@@ -27,7 +27,7 @@ from matplotlib import animation  # noqa: E402
 import numpy  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from common import input_errors, load_json, load_radial_map, load_table, previous_files, write_atomically  # noqa: E402
+from common import help_requested, input_errors, load_json, load_radial_map, load_table, previous_files, write_atomically  # noqa: E402
 
 
 def rotation(q):
@@ -56,6 +56,7 @@ def options(argv):
 
 
 def main():
+    help_requested(__doc__)
     out, name, opts = options(sys.argv[1:])
     summary = load_json(os.path.join(out, f"{name}-summary.json"))
     files = {f["name"]: f for f in summary.get("files", [])}

@@ -16,6 +16,13 @@ class InputError(Exception):
     """A malformed input file: the message names the file, the row and the column."""
 
 
+def help_requested(doc):
+    """-h or --help among the arguments: the script's own text (its usage first) on standard output, exit 0."""
+    if any(a in ("-h", "--help") for a in sys.argv[1:]):
+        sys.stdout.write(doc.strip() + "\n")
+        sys.exit(0)
+
+
 def input_errors(main):
     """Run main(); an InputError (or a JSON file that is not JSON) is one line on stderr and exit 2."""
     try:

@@ -23,7 +23,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from common import InputError, finite_column, input_errors, load_table, save_figure  # noqa: E402
+from common import help_requested, InputError, finite_column, input_errors, load_table, save_figure  # noqa: E402
 
 
 def edges(centres):
@@ -77,6 +77,7 @@ def label(key, units):
 
 
 def main(argv):
+    help_requested(__doc__)
     args, out = [], None
     it = iter(argv)
     for a in it:

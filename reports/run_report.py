@@ -25,7 +25,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from common import input_errors, load_json, load_table, previous_files, save_figure, write_atomically  # noqa: E402
+from common import help_requested, input_errors, load_json, load_table, previous_files, save_figure, write_atomically  # noqa: E402
 
 
 def load_history(path):
@@ -432,6 +432,7 @@ def scene_figures(out, name, summary):
 
 
 def main():
+    help_requested(__doc__)
     args = sys.argv[1:]
     page = None
     if "--page" in args:

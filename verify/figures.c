@@ -233,6 +233,16 @@ static void test_writers_bad_input(void)
             if (f) fputs(history, f), fclose(f);
         }
     }
+    /* --help: the script's text, its usage with its name in it, on standard output, exit 0 (not a file named --help) */
+    static const char *const scripts[] = {"plot_scan.py", "run_report.py", "animate.py"};
+    for (size_t k = 0; k < sizeof scripts / sizeof scripts[0]; k++) {
+        char script_args[200], q[120];
+        snprintf(script_args, sizeof script_args, "reports/%s --help", scripts[k]);
+        const int code = gb_check_command("/usr/bin/python3", script_args, out, sizeof out);
+        snprintf(q, sizeof q, "%s --help", scripts[k]);
+        gb_check ch = {"-", "-", q, "exit 0 with the script's usage naming it, no traceback", "exact"};
+        gb_check_true(&ch, code == 0 && strstr(out, scripts[k]) && !strstr(out, "Traceback"), "exit %d: %.200s", code, out);
+    }
     /* a link at plot_scan's output name: replaced by the figure, the file it pointed at left as it was */
     snprintf(path, sizeof path, "%s/e-scan.csv", dir);
     FILE *f = fopen(path, "w");
@@ -388,7 +398,7 @@ static void test_animation(void)
 int verify_register_figures(void)
 {
     static const verify_test tests[] = {
-        {"report writers: malformed CSVs named in one line, links replaced", test_writers_bad_input, NULL},
+        {"report writers: malformed CSVs named in one line, links replaced, --help answered", test_writers_bad_input, NULL},
         {"figures quote the summary, stale figures never linked", test_figures,
          "every figure's title quotes the numbers the text states, Fig 9 draws what it quotes, and a page links only this run's figures"},
         {"the animation's frames against the history", test_animation,
