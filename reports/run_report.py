@@ -320,6 +320,18 @@ def summary_lines(name, summary, figures):
                      f"{impacts['settled']:.0f} impacts ended by the settle rule; {two_point['lifts']:.0f} lifts, "
                      f"{two_point['third_points']:.0f} third points"
                      + (f"; at rest on three points from t = {rest:.4f} s" if rest is not None else "") + ")")
+    sliding = summary.get("sliding")
+    if sliding:
+        # a plane of finite friction: the summary's sliding section (the time sliding, the slips and sticks, friction's
+        # work); under time-stepping a step "slides" where a point that carries the body slips after it
+        loss = sliding["friction_loss"]
+        lines.append(f"- friction μ = {sliding['friction']:g}: sliding {100 * sliding['time_fraction']:.1f} % of the run, "
+                     f"{sliding['slips']:.0f} slip{'' if sliding['slips'] == 1 else 's'} and {sliding['sticks']:.0f} "
+                     f"stick{'' if sliding['sticks'] == 1 else 's'}, "
+                     + ("still sliding at the end, " if sliding.get("sliding_at_end") else "")
+                     + f"friction took {loss:.4g} J"
+                     + (" (negative: friction gave energy here rather than taking it; its cause is not yet explained)"
+                        if loss < 0 else ""))
     flight = summary.get("flight")
     if flight and (flight["lift_offs"] or flight["landings"]):
         lines.append(f"- flight (restitution e = {flight['restitution']:g}): {100 * flight['flight_time_fraction']:.1f} % of the "

@@ -395,12 +395,49 @@ static void test_animation(void)
     clean(dir);
 }
 
+/* A run on a plane of finite friction: its page states the summary's sliding section (μ, the time sliding, the slips
+ * and sticks, friction's work) in the summary's own numbers. */
+static void test_friction_on_page(void)
+{
+    char dir[] = "/tmp/gomboc-friction-page-XXXXXX";
+    if (!mkdtemp(dir)) return;
+    char args[800], out[8192];
+    snprintf(args, sizeof args, "run cases/bodies/coin-friction.ini --out %s", dir);
+    const int code = gb_check_command(gomboc(), args, out, sizeof out);
+    snprintf(args, sizeof args, "reports/run_report.py %s coin-friction --page page.md", dir);
+    gb_check c = {"-", "-", "the run page of cases/bodies/coin-friction.ini (mu = 0.3): its friction line",
+                  "the summary's sliding section: mu, the time sliding [%], the slips and sticks, friction's work [J] to 4 digits",
+                  "exact: the same numbers as printed from the summary"};
+    if (code || script(args, "run_report.py on coin-friction", out, sizeof out)) {
+        gb_check_true(&c, 0, "exit %d: %.300s", code, out);
+        clean(dir);
+        return;
+    }
+    cJSON *summary = read_json(dir, "coin-friction-summary.json");
+    const cJSON *sliding = cJSON_GetObjectItem(summary, "sliding");
+    char *page = read_text(dir, "page.md"), expected[300] = "";
+    if (sliding) {
+        const double slips = cJSON_GetNumberValue(cJSON_GetObjectItem(sliding, "slips"));
+        const double sticks = cJSON_GetNumberValue(cJSON_GetObjectItem(sliding, "sticks"));
+        snprintf(expected, sizeof expected, "friction μ = %g: sliding %.1f %% of the run, %.0f slip%s and %.0f stick%s, ",
+                 cJSON_GetNumberValue(cJSON_GetObjectItem(sliding, "friction")),
+                 100.0 * cJSON_GetNumberValue(cJSON_GetObjectItem(sliding, "time_fraction")), slips, slips == 1 ? "" : "s",
+                 sticks, sticks == 1 ? "" : "s");
+    }
+    gb_check_true(&c, sliding && page && strstr(page, expected), "expected \"%s\" on the page: %s", expected,
+                  page && strstr(page, expected) ? "found" : "missing");
+    free(page);
+    cJSON_Delete(summary);
+    clean(dir);
+}
+
 int verify_register_figures(void)
 {
     static const verify_test tests[] = {
         {"report writers: malformed CSVs named in one line, links replaced, --help answered", test_writers_bad_input, NULL},
         {"figures quote the summary, stale figures never linked", test_figures,
          "every figure's title quotes the numbers the text states, Fig 9 draws what it quotes, and a page links only this run's figures"},
+        {"a run on a plane of finite friction states its sliding on its page", test_friction_on_page, NULL},
         {"the animation's frames against the history", test_animation,
          "the body in motion is drawn in the attitude the run computed, touching the plane at the contact point"},
         {NULL, NULL, NULL},
