@@ -160,7 +160,8 @@ verify-full: deps
 
 # --- the maps of Figs 10-13 (cases/scans: both bodies, both planes, the paper's and the rolling model under
 # the held law; the rolling model under the unilateral law in m/s2 and in units of g with flight, and the grid
-# polyhedron for Figs 10 and 12), 25 x 25 points of 100 periods each, lambda included; then their stability
+# polyhedron for Figs 10 and 12), 25 x 25 points of 100 periods each, lambda included, and a 5 x 5 preview of Fig 10
+# in units of g stepped in time on a plane of friction 0.5; then their stability
 # maps (cases/scans/stability: 200 periods a point, and a refined sub-window; no lambda); resumable (an interrupted `make scans` goes
 # on from each scan's journal). The report shows the last maps made, with their date and commit.
 SCANS := $(sort $(wildcard cases/scans/*.ini)) $(sort $(wildcard cases/scans/stability/*.ini))

@@ -49,7 +49,8 @@ GATES = (("fuzz", "make fuzz", "the scene reader, the option parser and the atla
          ("valgrind", "make valgrind", "one short scene of each model, shape and contact under memcheck"),
          ("verify-full", "make verify-full", "every check, the long studies (10000-period records) and the ensembles"),
          ("bench", "make bench", "speed ratios measured side by side in one run"),
-         ("scans", "make scans", "the maps of Figs 10-13 (cases/scans: held and unilateral), 25 x 25 points each, and their stability maps"),
+         ("scans", "make scans", "the maps of Figs 10-13 (cases/scans: held and unilateral), 25 x 25 points each, and their stability maps; "
+          "a 5 x 5 preview of Fig 10 in units of g stepped in time on a plane of friction 0.5"),
          ("study", "make study", "the ensembles of section 8.2 (cases/studies), 32 initial attitudes each (64 for Gömböc I; 16 in units of g and on planes of finite friction)"),
          ("mpi", "make mpi", "OpenMPI installed; gomboc-mpi's scans on 1, 2 and 3 ranks and after a kill -9, "
           "against one thread"))

@@ -74,7 +74,8 @@ typedef struct gb_integrate_def {
     size_t solver_iterations; /* time-stepping: its most sweeps (default 20000) */
     size_t stepping_first;    /* time-stepping: a step with more candidates poses the most urgent this many first and adds
                                * those the solution would let through the plane (default 64; 0: every candidate at once,
-                               * the reduction's check; docs/stepping.md). No scene key: the answer does not depend on it */
+                               * the reduction's check; docs/stepping.md). No scene key: either gives a solution of the whole
+                               * problem (the same state to 3e-14 on a polar cap landing, verify/s5_stepping.c) */
 } gb_integrate_def;
 
 GB_API gb_integrate_def gb_integrate_default_def(void);
