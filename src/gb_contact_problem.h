@@ -40,12 +40,22 @@ typedef struct gb_contact_problem_report {
     double residual;
     int converged;
     int fallback; /* the Gauss–Seidel stalled and another of Siconos's methods (the proximal point method, ADMM) finished */
+    int exact;    /* the Gauss–Seidel stalled and the caller's exact answer met the tolerance */
 } gb_contact_problem_report;
 
 typedef struct gb_contact_problem gb_contact_problem;
 
+/* An exact answer to a problem of at most GB_CONTACT_PROBLEM_EXACT_MAX contacts, from the caller who knows the body
+ * (the time-stepping's enumeration of Moreau's law, gb_impact_coulomb_targets): impulses into r (3 count); GB_OK, or
+ * an error when it has none. Tried after the Gauss–Seidel, before the proximal point method and ADMM, and taken
+ * where Siconos's own measure of it meets the tolerance. */
+typedef int (*gb_contact_problem_exact)(void *context, int count, double *r);
+#define GB_CONTACT_PROBLEM_EXACT_MAX 4
+
 int gb_contact_problem_create(const gb_contact_problem_def *def, gb_contact_problem **out);
 void gb_contact_problem_free(gb_contact_problem *problem);
+/* The exact answer the solver may ask for (NULL: none). */
+void gb_contact_problem_set_exact(gb_contact_problem *problem, gb_contact_problem_exact exact, void *context);
 
 /* Solve u = W r + q under Coulomb's law at `count` contacts (W column-major 3count × 3count, overwritten by nothing;
  * mu[count]); r and u out (3count each; r is also the start). GB_OK when it met the tolerance; GB_ENOCONV naming
@@ -53,14 +63,16 @@ void gb_contact_problem_free(gb_contact_problem *problem);
 int gb_contact_problem_solve(gb_contact_problem *problem, int count, double *W, double *q, double *mu, double *r,
                              double *u, gb_contact_problem_report *report);
 
-/* A plastic impact of `body` (velocities v, ω about its centroid) at `count` points (relative to the centroid, at most
- * GB_IMPACT_CONTACTS_MAX) on the plane of normal e_z, posed as the one-step problem (q: the points' velocities before;
- * W_ij = I/m + B_i I⁻¹ B_jᵀ, B_i = −[p_i]×) and solved: the answer as gb_impact_result has it (impulses, velocities
- * after; a point holds where its normal impulse is above 1e-10 of m times the speed |v| + |ω|, slides where its slip
- * after is above 1e-8 of the speed: the solver's residual below that is none). The check of the time-stepping
- * strategy's problem against the enumeration (gb_impact_coulomb) and make bench's timing of the two. */
+/* An impact of `body` (velocities v, ω about its centroid) at `count` points (relative to the centroid, at most
+ * GB_IMPACT_CONTACTS_MAX) on the plane of normal e_z, posed as the one-step problem (q: the points' velocities before,
+ * less their targets in the normal; W_ij = I/m + B_i I⁻¹ B_jᵀ, B_i = −[p_i]×) and solved: each held point leaves at
+ * its normal target (target NULL: 0, a plastic impact), the others not below it. The answer as gb_impact_result has it
+ * (impulses, velocities after; a point holds where its normal impulse is above 1e-10 of m times the speed |v| + |ω|
+ * (+ its target), slides where its slip after is above 1e-8 of the speed: the solver's residual below that is none).
+ * The check of the time-stepping strategy's problem against the enumeration (gb_impact_coulomb, and
+ * gb_impact_coulomb_targets where the step has targets) and make bench's timing of the two. */
 int gb_contact_problem_impact(gb_contact_problem *problem, const gb_impact_body *body, const double (*points)[3], int count,
-                              double mu, const double v[3], const double omega[3], gb_impact_result *out,
-                              gb_contact_problem_report *report);
+                              double mu, const double v[3], const double omega[3], const double *target,
+                              gb_impact_result *out, gb_contact_problem_report *report);
 
 #endif

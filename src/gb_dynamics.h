@@ -407,6 +407,8 @@ typedef struct gb_dynamics_stepping_stats {
     size_t candidates_max; /* the most candidates one step had (of more than 64, the problem poses the 64 most urgent
                             * first, docs/stepping.md) */
     size_t grown;          /* solutions that let a candidate left out through the plane, posed again with it */
+    size_t enumerated;     /* problems of at most 4 points Siconos's methods left above the tolerance, answered within
+                            * it by enumerating the law's contact sets (docs/stepping.md) */
 } gb_dynamics_stepping_stats;
 /* NULL when time was not stepped. */
 GB_API const gb_dynamics_stepping_stats *gb_dynamics_stepping_stats_of(const gb_dynamics *dynamics);

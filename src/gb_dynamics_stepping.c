@@ -21,6 +21,7 @@
 
 #include "gb_contact_problem.h"
 #include "gb_error.h"
+#include "gb_impact_internal.h"
 #include "gb_vec.h"
 
 #include <math.h>
@@ -56,6 +57,10 @@ struct gb_dyn_stepper {
     double scanned[GB_STATE_SIZE];
     int scanned_valid;
     gb_contact_problem *problem;
+    double tolerance;              /* the problem's (solver_tolerance) */
+    struct gb_dyn_stepped_step {   /* the step being taken, for the enumeration (enumerate) */
+        double m, A[3][3], R[9], vf[3], wf[3], v[3], w[3], e, mu;
+    } step;
     size_t capacity;               /* of the buffers below, in contacts */
     double *W, *q, *mu, *r, *u;    /* the problem (W: (3 capacity)², column-major) */
     size_t *node;                  /* the candidates' nodes */
@@ -276,6 +281,8 @@ int gb_dynamics_stepping_prepare(gb_dynamics *d)
     return GB_OK;
 }
 
+static int enumerate(void *context, int n, double *r);
+
 int gb_dynamics_stepping_begin(gb_dynamics *d, double t0, double h, double theta, const gb_contact_problem_def *solver)
 {
     (void)t0;
@@ -289,7 +296,8 @@ int gb_dynamics_stepping_begin(gb_dynamics *d, double t0, double h, double theta
     if (status) return status;
     gb_contact_problem_free(s->problem);
     s->problem = problem;
-    s->theta = theta, s->h = h, s->first = solver->first;
+    gb_contact_problem_set_exact(problem, enumerate, s);
+    s->theta = theta, s->h = h, s->first = solver->first, s->tolerance = solver->tolerance;
     s->stats = (gb_dynamics_stepping_stats){0};
     s->touched_count = s->last_count = 0, s->scanned_valid = 0;
     return GB_OK;
@@ -326,12 +334,9 @@ static int stepped_start(gb_dynamics *d, double t0, double y[GB_STATE_SIZE])
     return GB_OK;
 }
 
-/* (I + hθc)⁻¹ as a matrix, by columns. */
-static int rotational_mass_inverse(const gb_dynamics *d, double k, double out[3][3])
+/* A⁻¹ (A = I + hθc, the rotational mass of a step) as a matrix, by columns. */
+static int rotational_mass_inverse(double A[3][3], double out[3][3])
 {
-    double A[3][3];
-    memcpy(A, d->inertia, sizeof A);
-    for (int i = 0; i < 3; i++) A[i][i] += k;
     for (int j = 0; j < 3; j++) {
         const double e[3] = {j == 0, j == 1, j == 2};
         double x[3];
@@ -415,6 +420,47 @@ static void pose(gb_dyn_stepper *s, int n, size_t i, const double R[9], const do
             s->C[n][k][j] = Minv[k][0] * s->B[n][j][0] + Minv[k][1] * s->B[n][j][1] + Minv[k][2] * s->B[n][j][2];
 }
 
+/* The step's problem on a few points solved by enumerating Moreau's law with the cone (gb_impact_coulomb_targets): the
+ * body's mass, its rotational mass I + hθc turned to the inertial frame, the free velocities vf, wf (ω in the body's
+ * frame), each point leaving at −e times its normal velocity at the step's start (v, w): what Siconos's methods
+ * approach only slowly (a contact at the cone's edge whose slip, 1e-14 m/s, has a direction rounding sets) is the
+ * enumeration's exact case. The contact problem asks for it where the Gauss–Seidel stalls
+ * (gb_contact_problem_exact) and measures it. */
+static int enumerate(void *context, int n, double *r)
+{
+    gb_dyn_stepper *s = context;
+    const struct gb_dyn_stepped_step *st = &s->step;
+    if (n > GB_IMPACT_CONTACTS_MAX) return gb_error_set(GB_EDOM, "%d points (allowed: at most %d)", n, GB_IMPACT_CONTACTS_MAX);
+    const double *R = st->R;
+    gb_impact_body body = {.mass = st->m};
+    for (int i = 0; i < 3; i++) /* R (I + hθc) Rᵀ */
+        for (int j = 0; j < 3; j++) {
+            double x = 0.0;
+            for (int k = 0; k < 3; k++)
+                for (int l = 0; l < 3; l++) x += R[3 * i + k] * st->A[k][l] * R[3 * j + l];
+            body.inertia[i][j] = x;
+        }
+    double points[GB_IMPACT_CONTACTS_MAX][3] = {{0}}, target[GB_IMPACT_CONTACTS_MAX] = {0};
+    const double *wf = st->wf;
+    const double wi[3] = {R[0] * wf[0] + R[1] * wf[1] + R[2] * wf[2], R[3] * wf[0] + R[4] * wf[1] + R[5] * wf[2],
+                          R[6] * wf[0] + R[7] * wf[1] + R[8] * wf[2]};
+    for (int i = 0; i < n; i++) {
+        const double *x = s->points[s->node[i]];
+        for (int k = 0; k < 3; k++) points[i][k] = R[3 * k] * x[0] + R[3 * k + 1] * x[1] + R[3 * k + 2] * x[2];
+        double uk[3];
+        point_velocity(st->v, s->B[i], st->w, uk);
+        target[i] = -st->e * uk[2];
+    }
+    static const double normal[3] = {0.0, 0.0, 1.0};
+    gb_impact_result out;
+    const int status = gb_impact_coulomb_targets(&body, normal, st->mu, (const double(*)[3])points, n, st->vf, wi, target,
+                                                 s->tolerance, &out);
+    if (status) return status;
+    for (int i = 0; i < n; i++)
+        for (int k = 0; k < 3; k++) r[3 * i + k] = out.impulse[i][axis[k]];
+    return GB_OK;
+}
+
 int gb_dynamics_stepping_step(gb_dynamics *d, double t, double h, double y[GB_STATE_SIZE])
 {
     gb_dyn_stepper *s = d->stepper;
@@ -430,7 +476,10 @@ int gb_dynamics_stepping_step(gb_dynamics *d, double t, double h, double y[GB_ST
 
     /* free velocities */
     double Minv[3][3], Iw[3], gyro[3], b[3], wf[3], vf[3] = {v[0], v[1], v[2] - h * gth};
-    int status = rotational_mass_inverse(d, h * th * c, Minv);
+    double rotational_mass[3][3]; /* I + hθc */
+    memcpy(rotational_mass, d->inertia, sizeof rotational_mass);
+    for (int i = 0; i < 3; i++) rotational_mass[i][i] += h * th * c;
+    int status = rotational_mass_inverse(rotational_mass, Minv);
     if (status) return status;
     gb_dyn_mat_vec(d->inertia, w, Iw);
     gb_vec_cross(w, Iw, gyro);
@@ -492,6 +541,10 @@ int gb_dynamics_stepping_step(gb_dynamics *d, double t, double h, double y[GB_ST
     memcpy(vplus, vf, sizeof vplus);
     memcpy(wplus, wf, sizeof wplus);
     const double e = d->def.restitution, mu = d->def.friction;
+    s->step = (struct gb_dyn_stepped_step){.m = m, .e = e, .mu = mu};
+    memcpy(s->step.A, rotational_mass, sizeof s->step.A), memcpy(s->step.R, R, sizeof s->step.R);
+    memcpy(s->step.vf, vf, sizeof vf), memcpy(s->step.wf, wf, sizeof wf);
+    memcpy(s->step.v, v, sizeof v), memcpy(s->step.w, w, sizeof w);
     /* a candidate left out goes through the plane where its normal velocity after the step falls below this */
     const double through = -GB_DYNAMICS_STEPPING_THROUGH * (fabs(v[2]) + gb_vec_norm(wi) * s->radius + fabs(gth) * h);
     for (int solved = 0, round = 0; n > 0; round++) {
@@ -525,6 +578,7 @@ int gb_dynamics_stepping_step(gb_dynamics *d, double t, double h, double y[GB_ST
         s->stats.problems++;
         s->stats.sweeps += report.iterations;
         s->stats.fallbacks += (size_t)report.fallback;
+        s->stats.enumerated += (size_t)report.exact;
         s->stats.residual_max = fmax(s->stats.residual_max, report.residual);
         if ((size_t)n > s->stats.contacts_max) s->stats.contacts_max = (size_t)n;
         if (status)

@@ -286,6 +286,11 @@ typedef struct coulomb {
     double mu;
     double before[GB_IMPACT_CONTACTS_MAX][3]; /* each point's velocity before */
     double target[GB_IMPACT_CONTACTS_MAX];    /* each point's normal velocity after, if held: −e u_n⁻ */
+    double floor[GB_IMPACT_CONTACTS_MAX];     /* the least normal velocity after of a point that is not held: 0 (an
+                                               * impact), its target (a time step's velocity-level law) */
+    double exact; /* > 0: the held points' velocities after within this of their targets (normal, and tangential 0
+                   * where they stick): the Delassus system of a set may be solvable only in the least-squares sense,
+                   * and then another split is the law's answer */
 } coulomb;
 
 static void direction(const coulomb *c, double angle, double d[3])
@@ -345,8 +350,13 @@ static int coulomb_solve(const coulomb *c, unsigned mask, unsigned slide, const 
             a[r * unknowns + j] = sum;
         }
     }
-    /* the system (rows = unknowns) by SVD, minimum norm */
+    /* the system (rows = unknowns) by SVD, minimum norm; no held point: no impulse */
     const size_t n = (size_t)unknowns;
+    if (!n) {
+        memset(P, 0, sizeof P[0] * (size_t)c->count);
+        if (open) open->count = 0;
+        return 0;
+    }
     double v_data[MAX * MAX], s_data[MAX], x[MAX];
     if (gb_impact_min_norm(a, b, n, x, v_data, s_data)) return 1;
     const double cut = GB_IMPACT_SINGULAR_CUT * s_data[0];
@@ -484,10 +494,14 @@ static int feasible(const coulomb *c, unsigned mask, unsigned slide, const doubl
     for (int k = 0; k < c->count; k++) {
         const double pn = gb_vec_dot(P[k], c->normal), un = gb_vec_dot(u[k], c->normal);
         if (!(mask & (1u << k))) {
-            if (un < -velocity_tol) return 0;
+            if (un - c->floor[k] < -velocity_tol) return 0;
             continue;
         }
         if (pn < -impulse_tol) return 0;
+        if (c->exact > 0.0) {
+            const double miss_n = un - c->target[k], miss_t = hypot(gb_vec_dot(u[k], c->t1), gb_vec_dot(u[k], c->t2));
+            if (fabs(miss_n) > c->exact || (!(slide & (1u << k)) && miss_t > c->exact)) return 0;
+        }
         const double pt[3] = {P[k][0] - pn * c->normal[0], P[k][1] - pn * c->normal[1], P[k][2] - pn * c->normal[2]};
         const double bound = c->mu * (hold ? fabs(pn) : fmax(pn, 0.0)) * (1.0 + 1e-9);
         if (slide & (1u << k)) {
@@ -614,7 +628,7 @@ static int coulomb_setup(coulomb *c, double inv[3][3], double t1[3], double t2[3
     if (!status) status = gb_impact_friction_check(mu);
     if (status) return status;
     gb_impact_tangents(normal, t1, t2);
-    *c = (coulomb){body, (const double(*)[3])inv, normal, t1, t2, points, count, mu, {{0}}, {0}};
+    *c = (coulomb){body, (const double(*)[3])inv, normal, t1, t2, points, count, mu, {{0}}, {0}, {0}, 0};
     *speed = 0.0;
     for (int k = 0; k < count; k++) {
         gb_impact_point_velocity(v, omega, points[k], c->before[k]);
@@ -704,6 +718,36 @@ int gb_impact_coulomb(const gb_impact_body *body, const double normal[3], double
     if (!found)
         return gb_error_set(GB_ENUMERIC, "impact: no set of contacts satisfies Moreau's law with Coulomb's cone (%d points, "
                             "mu %g)", count, mu);
+    coulomb_finish(body, normal, points, count, out);
+    return GB_OK;
+}
+
+int gb_impact_coulomb_targets(const gb_impact_body *body, const double normal[3], double mu, const double (*points)[3],
+                              int count, const double v[3], const double omega[3], const double *target,
+                              double tolerance, gb_impact_result *out)
+{
+    double inv[3][3], t1[3], t2[3], speed;
+    coulomb c;
+    int status = coulomb_setup(&c, inv, t1, t2, body, normal, 0.0, mu, points, count, v, omega, out, &speed);
+    if (status) return status;
+    for (int k = 0; k < count; k++) {
+        if (!isfinite(target[k])) return gb_error_set(GB_EDOM, "impact: target %d is %g (allowed: finite)", k, target[k]);
+        c.target[k] = c.floor[k] = target[k];
+        speed = fmax(speed, fabs(target[k]));
+    }
+    if (!(tolerance > 0.0 && tolerance < 1.0))
+        return gb_error_set(GB_EDOM, "impact: tolerance %g (allowed: 0 < tolerance < 1)", tolerance);
+    c.exact = tolerance * (speed + 1e-300);
+    const double velocity_tol = GB_IMPACT_SIGN_TOL * (speed + 1e-300), impulse_tol = GB_IMPACT_SIGN_TOL * body->mass * (speed + 1e-300);
+    /* the sets by size, the smallest first (none: every point keeps its velocity), within a size by index */
+    int found = 0;
+    for (int wanted = 0; wanted <= count && !found; wanted++)
+        for (unsigned mask = 0; mask < (1u << count) && !found; mask++)
+            if (__builtin_popcount(mask) == wanted && moreau(&c, mask, v, omega, speed, velocity_tol, impulse_tol, out))
+                found = 1, out->feasible_sets++;
+    if (!found)
+        return gb_error_set(GB_ENUMERIC, "no set of contacts satisfies Moreau's law with Coulomb's cone at the velocity "
+                            "level (%d points, mu %g)", count, mu);
     coulomb_finish(body, normal, points, count, out);
     return GB_OK;
 }

@@ -54,5 +54,15 @@ void gb_impact_tangents(const double n[3], double t1[3], double t2[3]);
  * gb_impact_hold_all on the rough plane. GB_ENUMERIC when no split into sticking and sliding does it. */
 int gb_impact_coulomb_hold(const gb_impact_body *body, const double normal[3], double mu, const double (*points)[3],
                            int count, const double v[3], const double omega[3], gb_impact_result *out);
+/* Moreau's law with Coulomb's cone at the velocity level, as a time step of Moreau and Jean poses it: the held points
+ * leave at the normal velocities target[k] (−e u_n at the step's start), sticking or sliding against the slip after;
+ * the others do not fall below their target; the held points' velocities within `tolerance` of the speed of their
+ * targets (the speed: the largest velocity before or target). Every set of held points is enumerated, the smallest first, each split
+ * into sticking and sliding as gb_impact_coulomb does for several points; the first that satisfies the law's signs.
+ * The time-stepping strategy's answer on at most GB_IMPACT_CONTACTS_MAX points where Siconos's solvers stall
+ * (gb_dynamics_stepping.c). GB_ENUMERIC when no set does it. */
+int gb_impact_coulomb_targets(const gb_impact_body *body, const double normal[3], double mu, const double (*points)[3],
+                              int count, const double v[3], const double omega[3], const double *target,
+                              double tolerance, gb_impact_result *out);
 
 #endif

@@ -540,7 +540,7 @@ static cJSON *summary_json(const gb_case *scene, const char *path, const gb_run_
             {"residual_max", st->residual_max},           {"fallbacks", (double)st->fallbacks},
             {"dissipation_min", st->dissipation_min},     {"steps_giving_energy", (double)st->negative_dissipation},
             {"energy_given", st->energy_gained},          {"candidates_max", (double)st->candidates_max},
-            {"grown", (double)st->grown}};
+            {"grown", (double)st->grown},                 {"enumerated", (double)st->enumerated}};
         add_values(ts, stepping, sizeof stepping / sizeof stepping[0]);
     }
     if (r->has_strobe) cJSON_AddItemToObject(root, "strobe", strobe_json(&r->strobe));

@@ -66,7 +66,7 @@ static void one_step_problem(void)
             gb_impact_result r;
             gb_contact_problem_report report;
             double start = now();
-            unsolved += gb_contact_problem_impact(solver, &b, (const double(*)[3])p, count, mu, v, w, &r, &report) != GB_OK;
+            unsolved += gb_contact_problem_impact(solver, &b, (const double(*)[3])p, count, mu, v, w, NULL, &r, &report) != GB_OK;
             fc3d[it] = now() - start;
             start = now();
             unsolved += gb_impact_coulomb(&b, up, 0.0, mu, (const double(*)[3])p, count, v, w, &r) != GB_OK;
