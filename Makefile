@@ -21,8 +21,11 @@ OPENMP    := $(shell echo 'int main(void){return 0;}' | $(CC) -fopenmp -x c - -o
 # and its library by name.
 SICONOS_CFLAGS := -I/usr/include/siconos/numerics -I/usr/include/siconos
 SICONOS_LIBS   := -lsiconos_numerics
+# Arb (Debian libflint-arb-dev: the proofs' ball arithmetic, src/gb_proof.c) and FLINT under it: no pkg-config file
+# either; its headers sit in /usr/include, FLINT's in /usr/include/flint.
+ARB_LIBS       := -lflint-arb -lflint
 ALL_CFLAGS = $(WARN) $(CPPFLAGS) $(CFLAGS) $(shell pkg-config --cflags $(PKGS)) $(SICONOS_CFLAGS) -Isrc
-CORE_LIBS  = $(shell pkg-config --libs gsl libcjson inih qhull_r libsodium libmatheval) $(SICONOS_LIBS) -lpthread -lm
+CORE_LIBS  = $(shell pkg-config --libs gsl libcjson inih qhull_r libsodium libmatheval) $(SICONOS_LIBS) $(ARB_LIBS) -lpthread -lm
 TEST_LIBS  = $(shell pkg-config --libs cunit)
 
 CORE_SRC  := $(sort $(wildcard src/gb_*.c))
@@ -60,7 +63,7 @@ MPI_ENV    = $(if $(MPICC),GOMBOC_MPI_BIN=$(MPI_BIN) GOMBOC_MPIRUN="$(MPIRUN)")
 
 .PHONY: all deps run verify verify-full bench references report install clean distclean example \
         build run-only verify-only references-only bench-only fuzz fuzz-only sanitize sanitize-only \
-        valgrind valgrind-only install-only example-only scans scans-only study study-only mpi mpi-only \
+        valgrind valgrind-only install-only example-only scans scans-only study study-only prove prove-only mpi mpi-only \
         check help uninstall
 
 all: deps
@@ -189,6 +192,16 @@ study: deps
 
 study-only: $(BIN)
 	$(call scan_all,$(STUDIES),study,ensembles of cases/studies)
+
+# --- the statements proved on Arb's balls (docs/proofs.md): gomboc prove, its JSON in reports/out/proofs.json (make
+# verify runs it too, in its harness, and draws the report's section "Proved" from it); exit 1 when one is not proved.
+prove: deps
+	@$(MAKE) --no-print-directory prove-only
+
+prove-only: $(BIN)
+	@mkdir -p $(OUT)
+	$(BIN) prove --json > $(OUT)/proofs.json.tmp && mv $(OUT)/proofs.json.tmp $(OUT)/proofs.json
+	$(BIN) prove
 
 # --- scans on MPI ranks: OpenMPI installed, gomboc-mpi built, and its checks (1, 2 and 3 ranks, a kill -9
 # of every rank and --resume: the same bytes as one thread). make verify runs them too where mpicc is.
@@ -425,6 +438,7 @@ help:
 	@echo "make bench        speed ratios measured side by side in one run"
 	@echo "make scans        the parameter maps of Figs 10-13 (cases/scans)"
 	@echo "make study        the ensembles of cases/studies (random initial attitudes)"
+	@echo "make prove        the statements proved on Arb's ball arithmetic (docs/proofs.md)"
 	@echo "make mpi          scans on MPI ranks (installs OpenMPI)"
 	@echo "make fuzz | sanitize | valgrind   the robustness gates"
 	@echo "make references   regenerate references/*.json with scipy and sympy"

@@ -26,6 +26,7 @@ from contact_section import contact_section  # noqa: E402
 from dynamics_section import dynamics_section  # noqa: E402
 from chaos_section import chaos_section  # noqa: E402
 from melnikov_section import melnikov_section  # noqa: E402
+from proofs_section import proofs_section  # noqa: E402
 from scan_section import scan_section  # noqa: E402
 from unilateral_maps import summary_sentence, unilateral_section  # noqa: E402
 from siconos_section import SUITE as SICONOS_SUITE, siconos_section  # noqa: E402
@@ -460,6 +461,7 @@ def main():
     lines += dynamics_section(out, rows)
     lines += chaos_section(out, rows)
     lines += melnikov_section(out, rows)
+    lines += proofs_section(out)
     lines += study_section(out)
     lines += scan_section(out)
     lines += unilateral_section(out)

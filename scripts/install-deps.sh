@@ -8,7 +8,7 @@
 #   install-deps.sh siconos    and Siconos's Python modules (make references: the reference impacts)
 set -eu
 packages="build-essential pkg-config libgsl-dev libcunit1-dev libinih-dev libcjson-dev libqhull-dev libsodium-dev libmatheval-dev
-libsiconos-numerics-dev
+libsiconos-numerics-dev libflint-arb-dev
 python3 python3-numpy python3-scipy python3-sympy python3-matplotlib python3-pil groff-base"
 for extra in "$@"; do
     case "$extra" in

@@ -37,6 +37,7 @@ static const char *usage_main =
     "  scan      a map over two keys of a scene, parallel and resumable (section 8.3, Figs 10-13)\n"
     "  melnikov  the reduced separatrix-splitting criterion for a scene's body and forcing (section 7)\n"
     "  check     that every file a run's or a scan's manifest lists stands beside it, whole\n"
+    "  prove     statements proved on Arb's ball arithmetic: the Melnikov oracles (docs/proofs.md)\n"
     "\n"
     "'gomboc <command> --help' (or 'gomboc help <command>') describes each command's options; an option's\n"
     "value follows it as the next word or after '=' (--beta 0.12, --beta=0.12). 'gomboc --version' prints\n"
@@ -46,7 +47,8 @@ static const struct {
     const char *name;
     int (*run)(int argc, char **argv);
 } commands[] = {{"shape", command_shape}, {"contact", command_contact}, {"run", command_run}, {"lyapunov", command_lyapunov},
-                {"scan", command_scan}, {"melnikov", command_melnikov}, {"check", command_check}};
+                {"scan", command_scan}, {"melnikov", command_melnikov}, {"check", command_check},
+                {"prove", command_prove}};
 
 /* What was printed must have reached standard output (a full disk, a closed pipe). */
 static int stdout_written(const char *command, int status)

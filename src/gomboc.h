@@ -34,6 +34,7 @@
 #include "gb_scan.h"
 #include "gb_melnikov.h"
 #include "gb_melnikov_body.h"
+#include "gb_proof.h"
 
 #ifdef __cplusplus
 extern "C" {

@@ -113,5 +113,6 @@ int command_run(int argc, char **argv);
 int command_scan(int argc, char **argv);
 int command_melnikov(int argc, char **argv);
 int command_check(int argc, char **argv);
+int command_prove(int argc, char **argv);
 
 #endif

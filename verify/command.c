@@ -436,7 +436,7 @@ static void test_help_lists_commands(void)
 {
     static char list[1 << 13], usage[1 << 13];
     const int code = run("help", list, sizeof list);
-    static const char *const words[] = {"shape", "contact", "run", "lyapunov", "scan", "melnikov", "check"};
+    static const char *const words[] = {"shape", "contact", "run", "lyapunov", "scan", "melnikov", "check", "prove"};
     int listed = 0, runnable = 0;
     char missing[256] = "";
     for (size_t k = 0; k < sizeof words / sizeof words[0]; k++) {

@@ -187,14 +187,20 @@ int gb_check_write(const char *path)
     return failed;
 }
 
-int gb_check_write_data(const char *name, const cJSON *document)
+int gb_check_write_text(const char *name, const char *text)
 {
     char path[4096];
     snprintf(path, sizeof path, "%s/%s", gb_check_data_dir, name);
-    char *text = cJSON_Print(document);
     const int failed = write_text_atomically(path, text);
-    free(text);
     if (failed) fprintf(stderr, "verify: cannot write data to '%s'\n", path);
+    return failed;
+}
+
+int gb_check_write_data(const char *name, const cJSON *document)
+{
+    char *text = cJSON_Print(document);
+    const int failed = gb_check_write_text(name, text);
+    free(text);
     return failed;
 }
 

@@ -82,6 +82,8 @@ extern const char *gb_check_data_dir;
 /* Save `document` as gb_check_data_dir/name (atomically) for the report. Returns 0 on success. */
 struct cJSON;
 int gb_check_write_data(const char *name, const struct cJSON *document);
+/* The same for a text as it stands (a command's JSON, whose numbers cJSON's printing would round). */
+int gb_check_write_text(const char *name, const char *text);
 
 /* Parse references/<name> (or $GOMBOC_REFERENCE_DIR/<name>) and record the check that it is readable
  * and holds a non-empty "cases" array (paper section `section`). Returns that array, or NULL; *root

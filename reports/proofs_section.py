@@ -1,0 +1,41 @@
+"""Report section "Proved", from proofs.json (`gomboc prove --json`, saved by verify/s7_proofs.c): each statement
+with its result, the enclosures and its CPU time. Kept apart from the findings: a finding is decided by a rule on
+estimates with error bars; a statement here is a theorem about the stated system, or it is listed as open."""
+from common import section_start
+
+
+def interval(pair):
+    lo, hi = pair
+    return f"[{lo:.17g}, {hi:.17g}]"
+
+
+def proofs_section(out):
+    lines, data = section_start(out, "Proved", "proofs.json",
+                                "proofs.json missing: the harness's test 'proofs: gomboc prove' did not write it")
+    if data is None:
+        return lines
+    statements = data["statements"]
+    lines += [f"`gomboc prove` on Arb's balls ({data['precision_bits']:g} bits): **{data['proved']:g} of "
+              f"{data['attempted']:g} statements attempted proved**; "
+              f"{sum(1 for s in statements if s['result'].startswith('open'))} open. Nothing here is estimated: each "
+              "number is an interval rounded outwards from Arb's balls, and a statement is proved only when the intervals "
+              "decide it (docs/proofs.md). These are the method's oracles; the Gömböcs' own statements are open, and the "
+              "findings above stand on estimates.", "",
+              "| statement | result | detail |", "|---|---|---|"]
+    for s in statements:
+        lines.append(f"| {s['statement']} | {s['result']} | {s.get('summary', s.get('needs', ''))} |")
+    lines += [""]
+    for s in statements:
+        if "theorem" in s:
+            lines += [f"**{s['statement']}.** {s['function']}. Method: {s['method']}. Theorem: {s['theorem']}. "
+                      f"Hypotheses: {s['hypotheses']}. Reading: {s['reading']}. Zeros of M in t0: "
+                      + (", ".join(interval(w) for w in s["zero_t0"]) or "none") + ".", ""]
+            break
+    first = next((s for s in statements if "enclosures" in s), None)
+    if first:
+        lines += [f"Enclosures of {first['statement']} ({first['method']}; T = {first['T']:.4g}):", "",
+                  "| integral | quadrature | closed form |", "|---|---|---|"]
+        for name, e in first["enclosures"].items():
+            lines.append(f"| {name} | {interval(e['quadrature'])} | {interval(e['closed_form'])} |")
+        lines += ["", "The other statements' enclosures: `gomboc prove --json`.", ""]
+    return lines
