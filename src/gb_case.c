@@ -557,6 +557,9 @@ static int cross_check(const char *path, gb_case *c)
     const gb_dynamics_law *law = gb_dynamics_law_of(c->dynamics.contact_law, INFINITY);
     const int without_jumps = law->pushes_every_vertex && c->mesh[0]; /* a polyhedron pushed at every vertex */
     const int stepping = c->integrate.strategy == GB_STRATEGY_TIME_STEPPING; /* its own scheme: judged below */
+    /* locate_switches not given follows the law: yes where every event must be located inside its step (the
+     * unilateral and compliant laws, event-driven), no otherwise (the held law's paper reading; time-stepping) */
+    if (!given(c, "integrator", "locate_switches")) c->integrate.locate_switches = law->several_events_per_step && !stepping;
     if (c->integrate.method != GB_INTEGRATOR_RK4 && c->dynamics.contact != GB_CONTACT_MODEL_CONTINUOUS && !without_jumps &&
         !stepping)
         return cross_fail(path, c, "integrator", "method",

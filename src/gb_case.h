@@ -66,8 +66,9 @@ typedef struct gb_case {
 /* The defaults: Table 1 with the paper's model (m/s² reading of A1, A2; R0 = I; ω0 = 0). */
 GB_API gb_case gb_case_default(void);
 
-/* Read `path` over the defaults. GB_EIO when the file cannot be read; GB_EINVAL / GB_EDOM with
- * "FILE:LINE: [section] key = value: reason (allowed: ...)". */
+/* Read `path` over the defaults. GB_EINVAL when `path` is not a readable regular file (missing, a directory, no
+ * permission) or is too large, GB_EIO when reading it fails midway (gb_file_read); GB_EINVAL / GB_EDOM with
+ * "FILE:LINE: [section] key = value: reason (allowed: ...)" for its contents. */
 GB_API int gb_case_load(const char *path, gb_case *out);
 
 /* The same for `size` bytes of `text` (NUL bytes and all), named `name` in messages. */

@@ -174,7 +174,7 @@ static const bad_row rows[] = {
     {RUN, "[model]\ncontact_law = compliant\nfriction = 0.5\nexponent = 0.5\n[integrator]\nlocate_switches = yes\n", 0, 2, {"case.ini:4: [model] exponent = 0.5", "out of range", "1 <= exponent <= 3"}},
     {RUN, "[model]\ncontact_law = compliant\n[integrator]\nlocate_switches = yes\n", 0, 2, {"[model] friction (default)", "contact_law = compliant: its friction is Coulomb's, regularised, and needs a finite mu", "a finite mu with contact_law = unilateral or compliant"}},
     {RUN, "[model]\ncontact_law = compliant\nfriction = 0.5\nrestitution = 0.5\n[integrator]\nlocate_switches = yes\n", 0, 2, {"case.ini:4: [model] restitution", "contact_law = compliant", "allowed: the default, 0, with contact_law = compliant"}},
-    {RUN, "[model]\ncontact_law = compliant\nfriction = 0.5\n", 0, 2, {"[integrator] locate_switches (default) = no", "every change of the lowest point is located", "allowed: yes with contact_law = compliant"}},
+    {RUN, "[model]\ncontact_law = compliant\nfriction = 0.5\n[integrator]\nlocate_switches = no\n", 0, 2, {"case.ini:5: [integrator] locate_switches = no", "every change of the lowest point is located", "allowed: yes with contact_law = compliant"}},
     {RUN, "[model]\nrestitution = nan\n", 0, 2, {"case.ini:2: [model] restitution", "", "0 <= restitution <= 1"}},
     {RUN, "[model]\nrestitution = 0.5\n", 0, 2, {"case.ini:2: [model] restitution: with [model] contact_law = held", "never leaves the plane", "allowed: the default, 0, with contact_law = held"}},
     {RUN, "[initial]\nheight = 0.1\n", 0, 2, {"case.ini:2: [initial] height: with [model] contact_law = held", "never leaves the plane", "any value in range with unilateral"}},
@@ -356,7 +356,7 @@ static const bad_row rows[] = {
     /* smaller: options given twice, --curve-points alone */
     {RUN, "[model]\ncontact_law = bouncy\n", 0, 2, {"case.ini:2: [model] contact_law = bouncy", "unknown", "allowed: held, unilateral"}},
     {RUN, "[model]\ncontact = continuous\ncontact_law = unilateral\n", 0, 2, {"case.ini:3: [model] contact_law = unilateral with [model] contact = continuous, equation = paper", "eq 44 makes and takes energy", "allowed: held with any model; unilateral with equation = rolling, or with a grid model"}},
-    {RUN, "[model]\ncontact_law = unilateral\n", 0, 2, {"case.ini: [integrator] locate_switches (default) = no with [model] contact_law = unilateral", "every impact is located", "allowed: yes with contact_law = unilateral"}},
+    {RUN, "[model]\ncontact_law = unilateral\n[integrator]\nlocate_switches = no\n", 0, 2, {"case.ini:4: [integrator] locate_switches = no with [model] contact_law = unilateral", "every impact is located", "allowed: yes with contact_law = unilateral"}},
     {RUN, "[model]\ncontact = continuous\nequation = rolling\ncontact_law = unilateral\n[integrator]\nlocate_switches = no\n", 0, 2, {"case.ini:6: [integrator] locate_switches = no with [model] contact_law = unilateral", "allowed: yes with contact_law = unilateral", ""}},
     {RUN, "[output]\nimpacts = yes\n", 0, 2, {"case.ini:2: [output] impacts = yes with [model] contact_law = held", "a held contact has no impacts", "allowed: yes with contact_law = unilateral"}},
     /* a computation the rough plane cannot follow (exit 1): a lift-off where the body would slide first */

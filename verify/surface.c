@@ -31,7 +31,9 @@
 #include <dlfcn.h>
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 /* The BLAS on one thread: where OpenBLAS serves (found by name, as the library finds it), its own count reads 1. */
 static void test_blas_single_thread(void)
@@ -200,6 +202,34 @@ static void test_scene_and_files(void)
     gb_check co = {"-", "-", "gb_case_load_text_with: [forcing] omega = 20 over the file's 18, and an unknown key",
                    "the override's value; GB_EINVAL naming the unknown key", "exact"};
     gb_check_true(&co, took && refused, "override taken %d, unknown refused %d", took, refused);
+    /* locate_switches not given follows the law (cases/README.md) */
+    static const struct {
+        const char *text;
+        int expected;
+    } laws[] = {{"[model]\ncontact_law = held\n", 0}, {"[model]\ncontact_law = unilateral\n", 1},
+                {"[model]\ncontact_law = compliant\nfriction = 0.5\n", 1},
+                {"[model]\ncontact_law = unilateral\nfriction = 0.5\n[integrator]\nstrategy = time-stepping\n", 0}};
+    int followed = 0;
+    for (size_t k = 0; k < sizeof laws / sizeof laws[0]; k++)
+        followed += gb_case_load_text("law.ini", laws[k].text, strlen(laws[k].text), &scene) == GB_OK &&
+                    scene.integrate.locate_switches == laws[k].expected;
+    gb_error_clear();
+    gb_check cl = {"-", "-", "locate_switches not given: held, unilateral, compliant, unilateral time-stepped",
+                   "no, yes, yes, no: the default follows the law (cases/README.md)", "exact"};
+    gb_check_true(&cl, followed == 4, "%d of 4 as documented", followed);
+    /* the documented status of a file that is not one (gb_case.h): a missing path and a directory, made here */
+    char dir[] = "/tmp/gomboc-verify-XXXXXX", missing[64];
+    const int made = mkdtemp(dir) != NULL;
+    snprintf(missing, sizeof missing, "%s/none.ini", dir);
+    const int missing_status = made ? gb_case_load(missing, &scene) : -1;
+    const int named = strstr(gb_error_message(), "none.ini") != NULL;
+    const int dir_status = made ? gb_case_load(dir, &scene) : -1;
+    gb_error_clear();
+    if (made) rmdir(dir);
+    gb_check cf = {"-", "-", "gb_case_load of a missing file and of a directory (made under a temporary directory)",
+                   "GB_EINVAL both, the path named (gb_case.h)", "exact"};
+    gb_check_true(&cf, missing_status == GB_EINVAL && named && dir_status == GB_EINVAL, "missing: %d (path named %d), directory: %d",
+                  missing_status, named, dir_status);
     /* the certificate's counters after one check */
     gb_surface body;
     gb_certify *cert = NULL;
