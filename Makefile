@@ -3,6 +3,9 @@
 # then re-enter make so that pkg-config runs only once the packages are there.
 
 PYTHON    := /usr/bin/python3
+# The Python package's place under PREFIX: lib/python3.X/dist-packages, where Debian's python3 looks under
+# /usr/local (another PREFIX: PYTHONPATH names it, README).
+PYDIR      = $(PREFIX)/lib/$(shell $(PYTHON) -c 'import sys; print("python3.%d" % sys.version_info.minor)')/dist-packages
 BUILD     := build
 OUT       := reports/out
 PKGS      := gsl cunit inih libcjson qhull_r libsodium libmatheval
@@ -114,7 +117,7 @@ verify: deps
 FIG2_ZB := 0.6,0.6,-0.5
 FIG2     = $(BIN) contact --beta 0.12 --zb $(FIG2_ZB) --json
 
-verify-only: $(BIN) $(VERIFY_BIN) $(if $(MPICC),$(MPI_BIN))
+verify-only: $(BIN) $(VERIFY_BIN) $(SOLIB) $(if $(MPICC),$(MPI_BIN))
 	@$(MAKE) --no-print-directory run-only
 	@$(MAKE) --no-print-directory example-only
 	@mkdir -p $(OUT)
@@ -129,7 +132,7 @@ verify-only: $(BIN) $(VERIFY_BIN) $(if $(MPICC),$(MPI_BIN))
 	  $(FIG2) --morphology $$m --method grid > $(OUT)/fig2-grid-$$m.json.tmp && \
 	  mv $(OUT)/fig2-grid-$$m.json.tmp $(OUT)/fig2-grid-$$m.json || exit 1; \
 	done
-	GOMBOC_BIN=$(BIN) $(MPI_ENV) $(VERIFY_BIN) --results $(OUT)/checks.json --data $(OUT) $(VERIFY_FLAGS); \
+	GOMBOC_BIN=$(BIN) GOMBOC_LIB=$(SOLIB) $(MPI_ENV) $(VERIFY_BIN) --results $(OUT)/checks.json --data $(OUT) $(VERIFY_FLAGS); \
 	status=$$?; \
 	$(PYTHON) reports/make_report.py $(OUT) "$(CC)" "$(WARN) $(CFLAGS)" || status=1; \
 	echo "verify: report written to $(OUT)/verification.md"; \
@@ -380,6 +383,8 @@ install-only: $(BIN) $(LIB) $(SOLIB)
 	install -m 644 $(PUBLIC_HEADERS) $(DESTDIR)$(PREFIX)/include/gomboc/
 	install -m 644 docs/gomboc.1 $(DESTDIR)$(PREFIX)/share/man/man1/gomboc.1
 	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(VERSION)|' scripts/gomboc.pc.in > $(DESTDIR)$(PREFIX)/lib/pkgconfig/gomboc.pc
+	install -d $(DESTDIR)$(PYDIR)/gomboc
+	install -m 644 python/gomboc/__init__.py $(DESTDIR)$(PYDIR)/gomboc/__init__.py
 
 # The README's example and a C++ program, compiled against a staged install with pkg-config (the shared
 # library) and run from another directory; then the staged install is removed by make uninstall, which
@@ -404,7 +409,7 @@ example-only: $(BIN) $(LIB) $(SOLIB)
 	@readelf -d $(BUILD)/example | grep -q 'NEEDED.*\[$(SONAME)\]' && readelf -d $(SOLIB) | grep -q 'SONAME.*\[$(SONAME)\]' \
 	  || { echo "example: not linked against $(SONAME)"; exit 1; }
 	@$(PYTHON) scripts/check_exports.py $(SOLIB) $(PUBLIC_HEADERS) --callers $(CLI_SRC) $(VERIFY_SRC) \
-	  $(wildcard verify/fuzz/*.c verify/bench/*.c examples/*.c examples/*.cpp)
+	  $(wildcard verify/fuzz/*.c verify/bench/*.c examples/*.c examples/*.cpp python/gomboc/*.py examples/*.py)
 	$(CC) $(LDFLAGS) -o $(BUILD)/gomboc-shared $(CLI_OBJ) $$($(STAGED_PC) --libs gomboc) $(shell pkg-config --libs libcjson) -lm
 	@readelf -d $(BUILD)/gomboc-shared | grep -q 'NEEDED.*\[$(SONAME)\]' || { echo "example: gomboc-shared not linked against $(SONAME)"; exit 1; }
 	cd / && LD_LIBRARY_PATH=$(STAGE)/usr/local/lib $(abspath $(BUILD))/gomboc-shared contact --morphology I --beta 0.12 --method continuous --zb 0,0,-1 --json > /dev/null
@@ -414,9 +419,10 @@ example-only: $(BIN) $(LIB) $(SOLIB)
 	@test -z "$$(groff -man -ww -z $(STAGE)/usr/local/share/man/man1/gomboc.1 2>&1)" && \
 	  groff -man -Tutf8 -P-cbou $(STAGE)/usr/local/share/man/man1/gomboc.1 2>/dev/null | grep -q '^       run CASE' \
 	  || { echo "example: the man page does not render without warnings"; exit 1; }
+	cd / && PYTHONPATH=$(STAGE)$(subst $(PREFIX),/usr/local,$(PYDIR)) $(PYTHON) $(abspath examples/python_run.py) $(abspath cases/table1-gomboc-I.ini)
 	@$(MAKE) --no-print-directory uninstall DESTDIR=$(STAGE) PREFIX=/usr/local > /dev/null
 	@left=$$(find $(STAGE) -type f -o -type l); test -z "$$left" || { echo "uninstall left: $$left"; exit 1; }
-	@echo "example: built and run against the staged shared library (soname $(SONAME)) and, through pkg-config --static, the static one; the command linked against the shared library runs; man page renders; uninstall leaves no file"
+	@echo "example: built and run against the staged shared library (soname $(SONAME)) and, through pkg-config --static, the static one; the command linked against the shared library runs; the Python package runs from the install; man page renders; uninstall leaves no file"
 
 # `make check` is `make verify`, by the usual name.
 check: verify
@@ -429,7 +435,10 @@ uninstall:
 	rm -f $(addprefix $(DESTDIR)$(PREFIX)/include/gomboc/,$(notdir $(PUBLIC_HEADERS)))
 	rm -f $(DESTDIR)$(PREFIX)/share/gomboc/scene-keys.md $(DESTDIR)$(PREFIX)/share/gomboc/outputs.md $(DESTDIR)$(PREFIX)/share/gomboc/CHANGELOG.md
 	rm -f $(addprefix $(DESTDIR)$(PREFIX)/share/gomboc/reports/,$(notdir $(SHARE_REPORTS)))
-	-rmdir $(DESTDIR)$(PREFIX)/include/gomboc $(DESTDIR)$(PREFIX)/share/gomboc/reports $(DESTDIR)$(PREFIX)/share/gomboc 2>/dev/null
+	rm -f $(DESTDIR)$(PYDIR)/gomboc/__init__.py
+	rm -rf $(DESTDIR)$(PYDIR)/gomboc/__pycache__
+	-rmdir $(DESTDIR)$(PREFIX)/include/gomboc $(DESTDIR)$(PREFIX)/share/gomboc/reports $(DESTDIR)$(PREFIX)/share/gomboc \
+	  $(DESTDIR)$(PYDIR)/gomboc 2>/dev/null
 
 help:
 	@echo "make run          the default scenes (Table 1, both bodies) and their report: reports/out/runs.md"

@@ -5,7 +5,7 @@ header declares is an internal one leaking out; a marked declaration the library
 promise it does not keep. And every marked function is named by its module: gb_MODULE or gb_MODULE_...
 in src/gb_MODULE.h (the house guide's rule, which REBOUND also checks with nm). With --callers, every exported
 function must be named in one of the files that follow (the command, the harness, the fuzzers, the benchmarks,
-the examples): a function that only the library calls belongs inside it.
+the examples, the Python package): a function that only the library calls belongs inside it.
 
 usage: check_exports.py LIBRARY HEADER [HEADER ...] [--callers FILE ...]
 Prints one line of counts, or every difference and exits 1."""

@@ -9,7 +9,7 @@
 set -eu
 packages="build-essential pkg-config libgsl-dev libcunit1-dev libinih-dev libcjson-dev libqhull-dev libsodium-dev libmatheval-dev
 libsiconos-numerics-dev libflint-arb-dev
-python3 python3-numpy python3-scipy python3-sympy python3-matplotlib python3-pil groff-base"
+python3 python3-numpy python3-cffi python3-scipy python3-sympy python3-matplotlib python3-pil groff-base"
 for extra in "$@"; do
     case "$extra" in
         fuzz) packages="$packages clang libclang-rt-dev" ;;

@@ -35,6 +35,7 @@ int verify_register_s8_scan_atlas(void);
 int verify_register_s8_ensembles(void);
 int verify_register_siconos(void);
 int verify_register_command(void);
+int verify_register_python(void);
 int verify_register_surface(void);
 int verify_register_bad_input(void);
 int verify_register_bad_input_bodies(void);

@@ -1,0 +1,55 @@
+/* gb_handle — the library behind opaque pointers and flat arrays, for bindings (the Python package `gomboc`,
+ * python/gomboc, over cffi's ABI mode: it declares these functions and calls the shared library, with no compiler
+ * at import). The structs the rest of the library passes by value (gb_case, gb_run_result) stay on this side.
+ *
+ * A scene is loaded from a file or a text, with overrides (section, key, value) applied in order as a scan's axes
+ * are: every error names the file, the line, the key and the allowed range (gb_error_message). A run is gb_run of
+ * the scene (the same bits as `gomboc run`: its fingerprints are the command's), with every sample kept in memory
+ * as a row of the history's columns (gb_handle_columns: the history file's, unrounded) and every impact as a row of
+ * the impacts file's numeric columns, when asked. */
+#ifndef GB_HANDLE_H
+#define GB_HANDLE_H
+
+#include "gb_export.h"
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct gb_handle_scene gb_handle_scene;
+typedef struct gb_handle_run gb_handle_run;
+
+/* overrides: `count` triples section, key, value (3 count strings). GB_EINVAL / GB_EDOM as gb_case_load. */
+GB_API int gb_handle_scene_load(const char *path, const char *const *overrides, size_t count, gb_handle_scene **out);
+GB_API int gb_handle_scene_text(const char *name, const char *text, const char *const *overrides, size_t count,
+                                gb_handle_scene **out);
+GB_API void gb_handle_scene_free(gb_handle_scene *scene);
+
+/* Run `scene`; keep_history: every sample a row of gb_handle_columns(); keep_impacts: every impact a row of
+ * gb_handle_impact_columns(). */
+GB_API int gb_handle_run_scene(const gb_handle_scene *scene, int keep_history, int keep_impacts, gb_handle_run **out);
+GB_API void gb_handle_run_free(gb_handle_run *run);
+
+/* The history's columns (NULL-terminated names) and the rows kept: samples × columns, row-major. */
+GB_API const char *const *gb_handle_columns(void);
+GB_API const double *gb_handle_run_history(const gb_handle_run *run, size_t *rows);
+GB_API const char *const *gb_handle_impact_columns(void);
+GB_API const double *gb_handle_run_impacts(const gb_handle_run *run, size_t *rows);
+
+/* The fingerprints (FNV-1a 64 of the final state's bytes, and of the switches): `gomboc run`'s. */
+GB_API uint64_t gb_handle_run_fingerprint(const gb_handle_run *run, int which);
+
+/* The run's scalar results by name (NULL-terminated names; NAN for an unknown name): t_end, steps, samples,
+ * energy_residual, residual_max, impacts, impact_energy_lost, grid_switches, branch_switches, seconds, and the
+ * final state omega_x, omega_y, omega_z. */
+GB_API const char *const *gb_handle_values(void);
+GB_API double gb_handle_run_value(const gb_handle_run *run, const char *name);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

@@ -1,0 +1,135 @@
+/* The Python package (python/gomboc, cffi over the shared library's gb_handle interface): the same bits as the
+ * command. verify/python_check.py loads Table 1's Gömböc I scene from its file and from its text, runs it 60
+ * periods and raises three bad inputs; this suite runs `gomboc run` on the same scene and compares: the fingerprints
+ * bit for bit, the samples, the last row of the history file against the arrays (to the file's printed digits),
+ * the errors' attributes. The package is found through PYTHONPATH=python and the library through GOMBOC_LIB (the
+ * Makefile sets it to the build's shared library). */
+#include "gb_check.h"
+#include "verify_sections.h"
+
+#include <cjson/cJSON.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+static const char *binary(void) { return getenv("GOMBOC_BIN") ? getenv("GOMBOC_BIN") : "build/gomboc"; }
+
+/* The last line of a CSV file, its fields as doubles (at most `n`): the count read. */
+static int last_row(const char *path, double *out, int n)
+{
+    char *text = gb_check_read_file(path);
+    if (!text) return 0;
+    size_t len = strlen(text);
+    while (len && (text[len - 1] == '\n')) text[--len] = '\0';
+    const char *line = strrchr(text, '\n');
+    line = line ? line + 1 : text;
+    int k = 0;
+    for (char *p = (char *)line, *end; k < n && *p; k++) {
+        out[k] = strtod(p, &end);
+        if (end == p) break;
+        p = *end == ',' ? end + 1 : end;
+    }
+    free(text);
+    return k;
+}
+
+static void test_same_bits(void)
+{
+    const char *lib = getenv("GOMBOC_LIB");
+    char dir[] = "/tmp/gomboc-python-XXXXXX";
+    if (!mkdtemp(dir)) {
+        gb_check c = {"-", "-", "the Python package", "a temporary directory", "exact"};
+        gb_check_true(&c, 0, "mkdtemp failed");
+        return;
+    }
+    /* the scene at 60 periods, as a file for the command */
+    char scene[256], args[1024];
+    snprintf(scene, sizeof scene, "%s/table1.ini", dir);
+    char *text = gb_check_read_file("cases/table1-gomboc-I.ini");
+    char *at = text ? strstr(text, "\nperiods = ") : NULL; /* [integrator] periods, the file's only such line */
+    FILE *f = at ? fopen(scene, "w") : NULL;
+    if (f) {
+        fwrite(text, 1, (size_t)(at - text), f);
+        fputs("\nperiods = 60", f);
+        fputs(strchr(at + 1, '\n'), f);
+        fclose(f);
+    }
+    free(text);
+    static char out[1 << 16], py[1 << 16];
+    snprintf(args, sizeof args, "run %s --out %s --json", scene, dir);
+    const int code = gb_check_command(binary(), args, out, sizeof out);
+    cJSON *command = code == 0 && strchr(out, '{') ? cJSON_Parse(strchr(out, '{')) : NULL; /* after its stderr line */
+    const cJSON *fp = cJSON_GetObjectItem(command, "fingerprint");
+    const char *state = cJSON_GetStringValue(cJSON_GetObjectItem(fp, "final_state")),
+               *switches = cJSON_GetStringValue(cJSON_GetObjectItem(fp, "switches"));
+    /* the same scene through the package: its own file with the override */
+    char command_line[2048];
+    snprintf(command_line, sizeof command_line, "env GOMBOC_LIB=%s PYTHONPATH=python /usr/bin/python3 verify/python_check.py "
+             "cases/table1-gomboc-I.ini 60", lib ? lib : "");
+    const int pcode = gb_check_command("", command_line, py, sizeof py);
+    char *mark = strstr(py, "@@exit=");
+    if (mark) *mark = '\0';
+    cJSON *package = pcode == 0 ? cJSON_Parse(py) : NULL;
+    const cJSON *pfp = cJSON_GetObjectItem(package, "fingerprint"), *ptext = cJSON_GetObjectItem(package, "from_text");
+    const char *p0 = cJSON_GetStringValue(cJSON_GetArrayItem(pfp, 0)), *p1 = cJSON_GetStringValue(cJSON_GetArrayItem(pfp, 1));
+    const char *t0 = cJSON_GetStringValue(cJSON_GetArrayItem(ptext, 0)), *t1 = cJSON_GetStringValue(cJSON_GetArrayItem(ptext, 1));
+    const int same = state && switches && p0 && p1 && !strcmp(state, p0) && !strcmp(switches, p1) && t0 && t1 &&
+                     !strcmp(t0, p0) && !strcmp(t1, p1);
+    gb_check c = {"-", "-", "the Python package: Table 1's Gomboc I, 60 periods, loaded from the file and from its text, run",
+                  "gomboc run of the same scene: its fingerprints", "exact: bit for bit"};
+    gb_check_true(&c, same, "command %s/%s, package %s/%s, from text %s/%s (exit %d, %d)%s%.300s", state ? state : "-",
+                  switches ? switches : "-", p0 ? p0 : "-", p1 ? p1 : "-", t0 ? t0 : "-", t1 ? t1 : "-", code, pcode,
+                  package ? "" : "; python said: ", package ? "" : py);
+    /* the history's last row against the file's, to its printed digits (t %.10g, omega %.12g, E %.15g) */
+    char csv[300];
+    snprintf(csv, sizeof csv, "%s/table1-history.csv", dir);
+    double row[7];
+    const int got = last_row(csv, row, 7);
+    const cJSON *last = cJSON_GetObjectItem(package, "last");
+    const double samples = cJSON_GetNumberValue(cJSON_GetObjectItem(package, "samples")),
+                 csv_samples = cJSON_GetNumberValue(cJSON_GetObjectItem(command, "samples"));
+    static const char *const names[] = {"t", "omega_x", "omega_y", "omega_z"};
+    static const double digits[] = {5e-10, 5e-12, 5e-12, 5e-12}; /* half a unit of the last printed digit, relative */
+    int close = got >= 4;
+    double worst = 0.0;
+    for (int k = 0; k < 4 && close; k++) {
+        const double v = cJSON_GetNumberValue(cJSON_GetObjectItem(last, names[k])), err = fabs(v - row[k]) / fmax(fabs(row[k]), 1e-300);
+        worst = fmax(worst, err / digits[k]);
+        close = close && err <= digits[k];
+    }
+    gb_check ch = {"-", "-", "the Python package's history arrays against the command's history file (last row: t, omega)",
+                   "the file's numbers", "the file's rounding: half a unit of its last digit (t 10, omega 12 significant: 5e-10, 5e-12 "
+                   "relative)"};
+    gb_check_true(&ch, close && (isnan(csv_samples) || samples == csv_samples), "%d fields read, worst %.3g of the digits; %g samples "
+                  "(command %g)", got, worst, samples, csv_samples);
+    /* the errors: a value out of range (file, line, key, range), an unknown override key, a missing file */
+    const cJSON *errors = cJSON_GetObjectItem(package, "errors");
+    const cJSON *e0 = cJSON_GetArrayItem(errors, 0), *e1 = cJSON_GetArrayItem(errors, 1), *e2 = cJSON_GetArrayItem(errors, 2);
+    const char *k0 = cJSON_GetStringValue(cJSON_GetObjectItem(e0, "key")), *a0 = cJSON_GetStringValue(cJSON_GetObjectItem(e0, "allowed")),
+               *f0 = cJSON_GetStringValue(cJSON_GetObjectItem(e0, "file")), *k1 = cJSON_GetStringValue(cJSON_GetObjectItem(e1, "key"));
+    const double l0 = cJSON_GetNumberValue(cJSON_GetObjectItem(e0, "line")), s2 = cJSON_GetNumberValue(cJSON_GetObjectItem(e2, "status"));
+    const int errors_ok = k0 && !strcmp(k0, "omega") && f0 && !strcmp(f0, "bad.ini") && l0 == 2 && a0 && strstr(a0, "omega") &&
+                          k1 && !strcmp(k1, "omegas") && s2 == 2;
+    gb_check ce = {"-", "-", "the Python package's errors: omega = -3 in a dict, an unknown override key, a missing file",
+                   "GombocError with file, line, key and the allowed range; the key named; status 2 (bad input)", "exact"};
+    char *shown = errors ? cJSON_PrintUnformatted(errors) : NULL;
+    gb_check_true(&ce, errors_ok, "%.400s", shown ? shown : py);
+    free(shown);
+    cJSON_Delete(command), cJSON_Delete(package);
+    snprintf(args, sizeof args, "rm -rf %s", dir);
+    if (system(args)) { /* the directory is the test's own; a failure to remove it is no result */
+    }
+}
+
+int verify_register_python(void)
+{
+    static const verify_test tests[] = {
+        {"python: import gomboc gives the command's bits, its arrays and its errors", test_same_bits,
+         "the Python package runs a scene to the command's fingerprints and raises the command's errors with their file, "
+         "line, key and range"},
+        {NULL, NULL, NULL},
+    };
+    return verify_register_suite("The Python package", tests);
+}
