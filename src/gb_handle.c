@@ -1,7 +1,9 @@
 #include "gb_handle.h"
 
 #include "gb_case.h"
+#include "gb_contact.h"
 #include "gb_error.h"
+#include "gb_massprops.h"
 #include "gb_run.h"
 
 #include <math.h>
@@ -36,7 +38,7 @@ enum { IMPACT_COLUMNS = sizeof impact_columns / sizeof impact_columns[0] - 1 };
 
 static const char *const values[] = {"t_end", "steps", "samples", "energy_residual", "residual_max", "impacts",
                                      "impact_energy_lost", "grid_switches", "branch_switches", "seconds", "omega_x",
-                                     "omega_y", "omega_z", NULL};
+                                     "omega_y", "omega_z", "lambda_max", "lambda_error", "lambda_converged", NULL};
 
 const char *const *gb_handle_columns(void) { return columns; }
 const char *const *gb_handle_impact_columns(void) { return impact_columns; }
@@ -183,8 +185,45 @@ double gb_handle_run_value(const gb_handle_run *r, const char *name)
     const gb_run_result *x = &r->result;
     const double v[] = {x->t_end, (double)x->stats.steps, (double)x->samples, x->final.residual, x->residual_max,
                         (double)x->impacts, x->impact_energy_lost, (double)x->final.grid_switches,
-                        (double)x->final.branch_switches, x->seconds, x->final.omega[0], x->final.omega[1], x->final.omega[2]};
+                        (double)x->final.branch_switches, x->seconds, x->final.omega[0], x->final.omega[1], x->final.omega[2],
+                        x->has_lyapunov ? x->lyapunov.lambda_max : NAN, x->has_lyapunov ? x->lyapunov.error_bar : NAN,
+                        x->has_lyapunov ? (double)x->lyapunov.converged : NAN};
     for (size_t k = 0; values[k]; k++)
         if (!strcmp(name, values[k])) return v[k];
     return NAN;
+}
+
+int gb_handle_scene_massprops(const gb_handle_scene *scene, double out[13])
+{
+    if (!scene) return gb_error_set(GB_EINVAL, "no scene");
+    gb_massprops_def def = gb_massprops_default_def();
+    def.mass = scene->scene.dynamics.mass;
+    gb_massprops mp;
+    const int status = gb_massprops_compute(&scene->scene.body, &def, &mp);
+    if (status) return status;
+    out[0] = mp.volume;
+    for (int i = 0; i < 3; i++) {
+        out[1 + i] = mp.centroid[i];
+        for (int j = 0; j < 3; j++) out[4 + 3 * i + j] = mp.inertia[i][j];
+    }
+    return GB_OK;
+}
+
+int gb_handle_scene_contact(const gb_handle_scene *scene, const double zb[3], double out[6])
+{
+    if (!scene) return gb_error_set(GB_EINVAL, "no scene");
+    /* as `gomboc contact --method continuous`: every discrete local minimum of the 180 × 360 seed grid polished, the
+     * lowest first */
+    const gb_contact_grid_def seed_def = gb_contact_default_branch_grid();
+    const gb_contact_refine_def refine = gb_contact_refine_default_def();
+    gb_contact_grid *seeds = NULL;
+    gb_contact_branches branches;
+    int status = gb_contact_grid_create(&scene->scene.body, &seed_def, &seeds);
+    if (!status) status = gb_contact_branches_find(seeds, zb, &refine, &branches);
+    gb_contact_grid_free(seeds);
+    if (status) return status;
+    const gb_contact_point *p = &branches.branch[0];
+    const double v[6] = {p->phi, p->theta, p->height, p->rc[0], p->rc[1], p->rc[2]};
+    memcpy(out, v, sizeof v);
+    return GB_OK;
 }

@@ -43,10 +43,16 @@ GB_API const double *gb_handle_run_impacts(const gb_handle_run *run, size_t *row
 GB_API uint64_t gb_handle_run_fingerprint(const gb_handle_run *run, int which);
 
 /* The run's scalar results by name (NULL-terminated names; NAN for an unknown name): t_end, steps, samples,
- * energy_residual, residual_max, impacts, impact_energy_lost, grid_switches, branch_switches, seconds, and the
- * final state omega_x, omega_y, omega_z. */
+ * energy_residual, residual_max, impacts, impact_energy_lost, grid_switches, branch_switches, seconds, the final
+ * state omega_x, omega_y, omega_z, and λ where the scene asks for it: lambda_max, lambda_error, lambda_converged. */
 GB_API const char *const *gb_handle_values(void);
 GB_API double gb_handle_run_value(const gb_handle_run *run, const char *name);
+
+/* The scene's body: mass properties (volume, centroid x y z, inertia about the centroid row by row: 13 numbers, the
+ * scene's mass) and the contact for the body-frame vertical zb as `gomboc contact --method continuous` finds it (every
+ * local minimum of the 180 × 360 seed grid polished, the lowest: φ, θ, height, r_c x y z, 6 numbers). */
+GB_API int gb_handle_scene_massprops(const gb_handle_scene *scene, double out[13]);
+GB_API int gb_handle_scene_contact(const gb_handle_scene *scene, const double zb[3], double out[6]);
 
 #ifdef __cplusplus
 }

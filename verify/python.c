@@ -117,6 +117,36 @@ static void test_same_bits(void)
     char *shown = errors ? cJSON_PrintUnformatted(errors) : NULL;
     gb_check_true(&ce, errors_ok, "%.400s", shown ? shown : py);
     free(shown);
+    /* the body: `gomboc shape --scene` and `gomboc contact --method continuous` against the package's */
+    static char shape[1 << 16], contact[1 << 16];
+    snprintf(args, sizeof args, "shape --scene cases/table1-gomboc-I.ini --json");
+    const int scode = gb_check_command(binary(), args, shape, sizeof shape);
+    snprintf(args, sizeof args, "contact --morphology I --beta 0.12 --zb 0.6,0.6,-0.5 --method continuous --json");
+    const int ccode = gb_check_command(binary(), args, contact, sizeof contact);
+    cJSON *sj = scode == 0 && strchr(shape, '{') ? cJSON_Parse(strchr(shape, '{')) : NULL,
+          *cj = ccode == 0 && strchr(contact, '{') ? cJSON_Parse(strchr(contact, '{')) : NULL;
+    const cJSON *pm = cJSON_GetObjectItem(package, "massprops"), *pc = cJSON_GetObjectItem(package, "contact");
+    double expected[19];
+    expected[0] = cJSON_GetNumberValue(cJSON_GetObjectItem(sj, "volume"));
+    for (int i = 0; i < 3; i++) {
+        expected[1 + i] = cJSON_GetNumberValue(cJSON_GetArrayItem(cJSON_GetObjectItem(sj, "centroid"), i));
+        for (int j = 0; j < 3; j++)
+            expected[4 + 3 * i + j] = cJSON_GetNumberValue(cJSON_GetArrayItem(cJSON_GetArrayItem(cJSON_GetObjectItem(sj, "inertia"), i), j));
+    }
+    expected[13] = cJSON_GetNumberValue(cJSON_GetObjectItem(cj, "phi"));
+    expected[14] = cJSON_GetNumberValue(cJSON_GetObjectItem(cj, "theta"));
+    expected[15] = cJSON_GetNumberValue(cJSON_GetObjectItem(cj, "height"));
+    for (int i = 0; i < 3; i++) expected[16 + i] = cJSON_GetNumberValue(cJSON_GetArrayItem(cJSON_GetObjectItem(cj, "rc"), i));
+    int equal = 0;
+    for (int k = 0; k < 19; k++) {
+        const double got = cJSON_GetNumberValue(k < 13 ? cJSON_GetArrayItem(pm, k) : cJSON_GetArrayItem(pc, k - 13));
+        equal += got == expected[k];
+    }
+    gb_check cb = {"-", "-", "the Python package's body: massprops() and contact([0.6, 0.6, -0.5]) of Table 1's Gomboc I",
+                   "gomboc shape --scene and gomboc contact --method continuous: volume, centroid, inertia; phi, theta, height, r_c",
+                   "exact: bit for bit (both print doubles that read back to themselves)"};
+    gb_check_true(&cb, equal == 19, "%d of 19 numbers equal (exit %d, %d)", equal, scode, ccode);
+    cJSON_Delete(sj), cJSON_Delete(cj);
     cJSON_Delete(command), cJSON_Delete(package);
     snprintf(args, sizeof args, "rm -rf %s", dir);
     if (system(args)) { /* the directory is the test's own; a failure to remove it is no result */
@@ -127,8 +157,8 @@ int verify_register_python(void)
 {
     static const verify_test tests[] = {
         {"python: import gomboc gives the command's bits, its arrays and its errors", test_same_bits,
-         "the Python package runs a scene to the command's fingerprints and raises the command's errors with their file, "
-         "line, key and range"},
+         "the Python package runs a scene to the command's fingerprints, gives the command's mass properties and contact "
+         "bit for bit, and raises the command's errors with their file, line, key and range"},
         {NULL, NULL, NULL},
     };
     return verify_register_suite("The Python package", tests);

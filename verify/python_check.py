@@ -27,4 +27,9 @@ for make in (lambda: gomboc.loads({"forcing": {"omega": -3}}, name="bad.ini"),
                        "allowed": e.allowed, "message": e.message})
 out["errors"] = errors
 out["columns"] = gomboc.columns()
+scene = gomboc.load(scene_path)
+props = scene.massprops()
+out["massprops"] = [props["volume"]] + list(props["centroid"]) + list(props["inertia"].ravel())
+contact = scene.contact([0.6, 0.6, -0.5])
+out["contact"] = [contact["phi"], contact["theta"], contact["height"]] + list(contact["rc"])
 print(json.dumps(out))

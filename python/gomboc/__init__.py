@@ -6,7 +6,8 @@ impacts as numpy arrays, the fingerprints and the results by name.
     run = scene.run()
     run.fingerprint          # ('8d37...', '1f30...'): `gomboc run`'s, bit for bit
     run.history["omega_x"]   # every sample, unrounded (the history file's columns)
-    run.values["energy_residual"]
+    run.values["energy_residual"]   # and lambda_max, lambda_error where the scene asks for lambda
+    scene.massprops()["inertia"], scene.contact([0, 0, -1])["height"]
 
 The binding is cffi's ABI mode (Debian python3-cffi): it declares the library's opaque-handle interface
 (src/gb_handle.h) and opens the shared library, with no compiler at import. Why cffi and not ctypes: the
@@ -44,6 +45,8 @@ const double *gb_handle_run_impacts(const gb_handle_run *run, size_t *rows);
 uint64_t gb_handle_run_fingerprint(const gb_handle_run *run, int which);
 const char *const *gb_handle_values(void);
 double gb_handle_run_value(const gb_handle_run *run, const char *name);
+int gb_handle_scene_massprops(const gb_handle_scene *scene, double out[13]);
+int gb_handle_scene_contact(const gb_handle_scene *scene, const double zb[3], double out[6]);
 const char *gb_error_message(void);
 void gb_error_init_gsl(void);
 int gb_integrate_blas_single_thread(void);
@@ -142,6 +145,21 @@ class Scene:
 
     def __init__(self, handle):
         self._handle = _ffi.gc(handle, _lib.gb_handle_scene_free)
+
+    def massprops(self):
+        """The body's volume, centroid (3) and inertia about the centroid (3 × 3, numpy) at the scene's mass."""
+        out = _ffi.new("double[13]")
+        _check(_lib.gb_handle_scene_massprops(self._handle, out))
+        return {"volume": out[0], "centroid": np.array([out[1], out[2], out[3]]),
+                "inertia": np.array([out[4 + k] for k in range(9)]).reshape(3, 3)}
+
+    def contact(self, zb):
+        """The contact for the body-frame upward vertical zb (any non-zero length): phi, theta, height and r_c, as
+        `gomboc contact --method continuous` finds it (every local minimum of the 180 x 360 seed grid polished, the
+        lowest)."""
+        out = _ffi.new("double[6]")
+        _check(_lib.gb_handle_scene_contact(self._handle, _ffi.new("double[3]", [float(x) for x in zb]), out))
+        return {"phi": out[0], "theta": out[1], "height": out[2], "rc": np.array([out[3], out[4], out[5]])}
 
     def run(self, history=True, impacts=False):
         """Run the scene (the same bits as `gomboc run`); history: keep every sample; impacts: every impact."""
