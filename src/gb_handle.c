@@ -5,8 +5,10 @@
 #include "gb_error.h"
 #include "gb_massprops.h"
 #include "gb_run.h"
+#include "gb_scan.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -227,3 +229,59 @@ int gb_handle_scene_contact(const gb_handle_scene *scene, const double zb[3], do
     memcpy(out, v, sizeof v);
     return GB_OK;
 }
+
+typedef struct scan_rows {
+    char **rows; /* by index */
+    gb_handle_progress progress;
+    void *user;
+} scan_rows;
+
+static int keep_row(void *user, size_t index, const gb_scan_metrics *metrics, const char *row)
+{
+    (void)metrics;
+    scan_rows *r = user;
+    const size_t n = strlen(row) + 1;
+    if (!(r->rows[index] = malloc(n))) return gb_error_set(GB_ENOMEM, "out of memory for the scan's row %zu", index);
+    memcpy(r->rows[index], row, n);
+    return GB_OK;
+}
+
+static void report_progress(void *user, const gb_scan_progress *p)
+{
+    const scan_rows *r = user;
+    if (r->progress) r->progress(r->user, (int)p->phase, p->done, p->total, p->seconds);
+}
+
+int gb_handle_scan(const char *path, unsigned threads, gb_handle_progress progress, void *user, char **csv)
+{
+    *csv = NULL;
+    gb_scan scan;
+    int status = gb_scan_load(path, &scan);
+    if (status) return status;
+    const size_t points = gb_scan_points(&scan);
+    scan_rows rows = {calloc(points ? points : 1, sizeof *rows.rows), progress, user};
+    char header[8192];
+    if (!rows.rows) status = gb_error_set(GB_ENOMEM, "out of memory for %zu rows", points);
+    if (!status) status = gb_scan_csv_header(&scan, header, sizeof header);
+    const gb_scan_runner runner = {.threads = threads, .finished = keep_row, .progress = report_progress, .user = &rows};
+    if (!status) status = gb_scan_run(&scan, &runner, NULL);
+    size_t length = strlen(header) + 1;
+    for (size_t k = 0; !status && k < points; k++) {
+        if (!rows.rows[k]) status = gb_error_set(GB_ENUMERIC, "the scan's point %zu has no row", k);
+        else length += strlen(rows.rows[k]);
+    }
+    char *text = status ? NULL : malloc(length);
+    if (!status && !text) status = gb_error_set(GB_ENOMEM, "out of memory for the scan's CSV (%zu bytes)", length);
+    if (!status) {
+        char *at = text;
+        at += sprintf(at, "%s", header);
+        for (size_t k = 0; k < points; k++) at += sprintf(at, "%s", rows.rows[k]);
+        *csv = text;
+    }
+    for (size_t k = 0; rows.rows && k < points; k++) free(rows.rows[k]);
+    free(rows.rows);
+    gb_scan_free(&scan);
+    return status;
+}
+
+void gb_handle_text_free(char *text) { free(text); }

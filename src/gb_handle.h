@@ -54,6 +54,16 @@ GB_API double gb_handle_run_value(const gb_handle_run *run, const char *name);
 GB_API int gb_handle_scene_massprops(const gb_handle_scene *scene, double out[13]);
 GB_API int gb_handle_scene_contact(const gb_handle_scene *scene, const double zb[3], double out[6]);
 
+/* A scan file run as `gomboc scan` runs it, on `threads` threads (0: one per online processor), its CSV (header, then
+ * every point's row in index order: the bytes of the command's NAME-scan.csv) into *csv (malloc'd; free it with
+ * gb_handle_text_free). `progress` (may be NULL), one call at a time from the scan's threads: the phase (0 the
+ * Melnikov margins' models and integrals, 1 the points), the tasks done and their number, the phase's wall
+ * seconds; nonzero from it is ignored. Its scene keys' errors as gb_scan_load's; a failed point as the command's
+ * (recorded with NaN metrics under failed_points = record). */
+typedef void (*gb_handle_progress)(void *user, int phase, size_t done, size_t total, double seconds);
+GB_API int gb_handle_scan(const char *path, unsigned threads, gb_handle_progress progress, void *user, char **csv);
+GB_API void gb_handle_text_free(char *text);
+
 #ifdef __cplusplus
 }
 #endif

@@ -67,7 +67,7 @@ static void test_same_bits(void)
     /* the same scene through the package: its own file with the override */
     char command_line[2048];
     snprintf(command_line, sizeof command_line, "env GOMBOC_LIB=%s PYTHONPATH=python /usr/bin/python3 verify/python_check.py "
-             "cases/table1-gomboc-I.ini 60", lib ? lib : "");
+             "cases/table1-gomboc-I.ini 60 %s", lib ? lib : "", dir);
     const int pcode = gb_check_command("", command_line, py, sizeof py);
     char *mark = strstr(py, "@@exit=");
     if (mark) *mark = '\0';
@@ -147,6 +147,23 @@ static void test_same_bits(void)
                    "exact: bit for bit (both print doubles that read back to themselves)"};
     gb_check_true(&cb, equal == 19, "%d of 19 numbers equal (exit %d, %d)", equal, scode, ccode);
     cJSON_Delete(sj), cJSON_Delete(cj);
+    /* a 2 x 2 scan: the package's CSV against the command's, byte for byte */
+    static char scanned[1 << 12];
+    snprintf(args, sizeof args, "scan %s/tiny.ini --out %s --threads 2", dir, dir);
+    const int xcode = gb_check_command(binary(), args, scanned, sizeof scanned);
+    char path_a[300], path_b[300];
+    snprintf(path_a, sizeof path_a, "%s/tiny-scan.csv", dir), snprintf(path_b, sizeof path_b, "%s/python-scan.csv", dir);
+    char *a = gb_check_read_file(path_a), *b = gb_check_read_file(path_b);
+    const cJSON *ps = cJSON_GetObjectItem(package, "scan");
+    const double points = cJSON_GetNumberValue(cJSON_GetObjectItem(ps, "points")),
+                 calls = cJSON_GetNumberValue(cJSON_GetObjectItem(ps, "progress_calls"));
+    const int phases = cJSON_GetArraySize(cJSON_GetObjectItem(ps, "phases"));
+    gb_check cs = {"-", "-", "the Python package's scan: a 2 x 2 map of Table 1's Gomboc I (30 periods), on 2 threads, with a "
+                   "progress callback", "gomboc scan of the same file: its CSV", "exact: byte for byte; the callback heard both phases"};
+    gb_check_true(&cs, xcode == 0 && a && b && !strcmp(a, b) && points == 4 && calls >= 4 && phases == 2,
+                  "command exit %d, CSVs %s (%zu and %zu bytes), %g points, %g progress calls over %d phases", xcode,
+                  a && b && !strcmp(a, b) ? "equal" : "differ", a ? strlen(a) : 0, b ? strlen(b) : 0, points, calls, phases);
+    free(a), free(b);
     cJSON_Delete(command), cJSON_Delete(package);
     snprintf(args, sizeof args, "rm -rf %s", dir);
     if (system(args)) { /* the directory is the test's own; a failure to remove it is no result */
@@ -157,8 +174,8 @@ int verify_register_python(void)
 {
     static const verify_test tests[] = {
         {"python: import gomboc gives the command's bits, its arrays and its errors", test_same_bits,
-         "the Python package runs a scene to the command's fingerprints, gives the command's mass properties and contact "
-         "bit for bit, and raises the command's errors with their file, line, key and range"},
+         "the Python package runs a scene to the command's fingerprints, gives the command's mass properties, contact and "
+         "scan CSV bit for bit, and raises the command's errors with their file, line, key and range"},
         {NULL, NULL, NULL},
     };
     return verify_register_suite("The Python package", tests);

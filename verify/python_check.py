@@ -1,11 +1,13 @@
 """The Python package's check (verify/python.c runs it): loads a scene three ways, runs it, prints what the C side
-compares with `gomboc run` as JSON on standard output. Arguments: the scene file, a periods override."""
+compares with `gomboc run` as JSON on standard output, and runs a 2 x 2 scan of it in DIR (its CSV there as
+python-scan.csv, beside the scan file tiny.ini for the command). Arguments: the scene file, a periods override, DIR."""
 import json
+import os
 import sys
 
 import gomboc
 
-scene_path, periods = sys.argv[1], int(sys.argv[2])
+scene_path, periods, folder = sys.argv[1], int(sys.argv[2]), sys.argv[3]
 out = {}
 run = gomboc.load(scene_path, {"integrator.periods": periods}).run(impacts=True)
 out["fingerprint"] = list(run.fingerprint)
@@ -32,4 +34,15 @@ props = scene.massprops()
 out["massprops"] = [props["volume"]] + list(props["centroid"]) + list(props["inertia"].ravel())
 contact = scene.contact([0.6, 0.6, -0.5])
 out["contact"] = [contact["phi"], contact["theta"], contact["height"]] + list(contact["rc"])
+tiny = os.path.join(folder, "tiny.ini")
+with open(tiny, "w", encoding="utf-8") as handle:
+    handle.write(f"[scan]\ndescription = the Python package's 2 x 2 check\nbase = {os.path.abspath(scene_path)}\n"
+                 "periods = 30\ntransient_periods = 5\nmetrics = all\n[x]\nkey = forcing.omega\nfrom = 12\nto = 24\n"
+                 "count = 2\nscale = linear\n[y]\nkey = forcing.A1\nfrom = 0\nto = 4\ncount = 2\nscale = linear\n")
+heard = []
+csv, table = gomboc.scan(tiny, threads=2, progress=lambda *args: heard.append(args))
+with open(os.path.join(folder, "python-scan.csv"), "w", encoding="utf-8") as handle:
+    handle.write(csv)
+out["scan"] = {"points": len(table["index"]), "progress_calls": len(heard),
+               "phases": sorted({phase for phase, *_ in heard}), "lambda_max": list(table["lambda_max"])}
 print(json.dumps(out))

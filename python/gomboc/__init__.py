@@ -27,7 +27,7 @@ import re
 import numpy as np
 from cffi import FFI
 
-__all__ = ["GombocError", "Scene", "Run", "load", "loads", "columns", "impact_columns", "blas_single_thread"]
+__all__ = ["GombocError", "Scene", "Run", "load", "loads", "scan", "columns", "impact_columns", "blas_single_thread"]
 
 _CDEF = """
 typedef struct gb_handle_scene gb_handle_scene;
@@ -47,6 +47,9 @@ const char *const *gb_handle_values(void);
 double gb_handle_run_value(const gb_handle_run *run, const char *name);
 int gb_handle_scene_massprops(const gb_handle_scene *scene, double out[13]);
 int gb_handle_scene_contact(const gb_handle_scene *scene, const double zb[3], double out[6]);
+typedef void (*gb_handle_progress)(void *user, int phase, size_t done, size_t total, double seconds);
+int gb_handle_scan(const char *path, unsigned threads, gb_handle_progress progress, void *user, char **csv);
+void gb_handle_text_free(char *text);
 const char *gb_error_message(void);
 void gb_error_init_gsl(void);
 int gb_integrate_blas_single_thread(void);
@@ -207,3 +210,34 @@ def loads(text, overrides=None, name="scene"):
     out = _ffi.new("gb_handle_scene **")
     _check(_lib.gb_handle_scene_text(name.encode(), text.encode(), array, count, out))
     return Scene(out[0])
+
+
+def scan(path, threads=0, progress=None):
+    """Run the scan file `path` as `gomboc scan` does (threads 0: one per processor) and return (csv, table): the CSV
+    text, byte for byte the command's NAME-scan.csv, and its columns as a dict of numpy arrays (the fingerprints as
+    strings). progress(phase, done, total, seconds), if given, hears the Melnikov margins' phase ("melnikov") and the
+    points' ("points") from the scan's threads."""
+    def hear(user, phase, done, total, seconds):
+        try:
+            progress("melnikov" if phase == 0 else "points", done, total, seconds)
+        except Exception:  # a callback's error must not cross into C
+            pass
+
+    callback = _ffi.callback("gb_handle_progress", hear) if progress else _ffi.NULL
+    out = _ffi.new("char **")
+    _check(_lib.gb_handle_scan(os.fsencode(path), threads, callback, _ffi.NULL, out))
+    try:
+        text = _ffi.string(out[0]).decode()
+    finally:
+        _lib.gb_handle_text_free(out[0])
+    lines = text.splitlines()
+    names = lines[0].split(",")
+    cells = [line.split(",") for line in lines[1:]]
+    table = {}
+    for k, name in enumerate(names):
+        column = [row[k] for row in cells]
+        try:
+            table[name] = np.array([float(x) for x in column])
+        except ValueError:
+            table[name] = np.array(column)
+    return text, table
