@@ -384,7 +384,7 @@ install-only: $(BIN) $(LIB) $(SOLIB)
 	install -m 644 docs/gomboc.1 $(DESTDIR)$(PREFIX)/share/man/man1/gomboc.1
 	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(VERSION)|' scripts/gomboc.pc.in > $(DESTDIR)$(PREFIX)/lib/pkgconfig/gomboc.pc
 	install -d $(DESTDIR)$(PYDIR)/gomboc
-	install -m 644 python/gomboc/__init__.py $(DESTDIR)$(PYDIR)/gomboc/__init__.py
+	install -m 644 python/gomboc/__init__.py python/gomboc/plot.py $(DESTDIR)$(PYDIR)/gomboc/
 
 # The README's example and a C++ program, compiled against a staged install with pkg-config (the shared
 # library) and run from another directory; then the staged install is removed by make uninstall, which
@@ -435,7 +435,7 @@ uninstall:
 	rm -f $(addprefix $(DESTDIR)$(PREFIX)/include/gomboc/,$(notdir $(PUBLIC_HEADERS)))
 	rm -f $(DESTDIR)$(PREFIX)/share/gomboc/scene-keys.md $(DESTDIR)$(PREFIX)/share/gomboc/outputs.md $(DESTDIR)$(PREFIX)/share/gomboc/CHANGELOG.md
 	rm -f $(addprefix $(DESTDIR)$(PREFIX)/share/gomboc/reports/,$(notdir $(SHARE_REPORTS)))
-	rm -f $(DESTDIR)$(PYDIR)/gomboc/__init__.py
+	rm -f $(DESTDIR)$(PYDIR)/gomboc/__init__.py $(DESTDIR)$(PYDIR)/gomboc/plot.py
 	rm -rf $(DESTDIR)$(PYDIR)/gomboc/__pycache__
 	-rmdir $(DESTDIR)$(PREFIX)/include/gomboc $(DESTDIR)$(PREFIX)/share/gomboc/reports $(DESTDIR)$(PREFIX)/share/gomboc \
 	  $(DESTDIR)$(PYDIR)/gomboc 2>/dev/null

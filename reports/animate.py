@@ -55,9 +55,11 @@ def options(argv):
     return args[0], args[1], opts
 
 
-def main():
-    help_requested(__doc__)
-    out, name, opts = options(sys.argv[1:])
+def main(argv=None):
+    """The command line's work on argv (else sys.argv[1:]); gomboc.plot.animate calls it in-process."""
+    argv = list(sys.argv[1:] if argv is None else argv)
+    help_requested(__doc__, argv)
+    out, name, opts = options(argv)
     summary = load_json(os.path.join(out, f"{name}-summary.json"))
     files = {f["name"]: f for f in summary.get("files", [])}
     if f"{name}-history.csv" not in files:

@@ -16,9 +16,10 @@ class InputError(Exception):
     """A malformed input file: the message names the file, the row and the column."""
 
 
-def help_requested(doc):
-    """-h or --help among the arguments: the script's own text (its usage first) on standard output, exit 0."""
-    if any(a in ("-h", "--help") for a in sys.argv[1:]):
+def help_requested(doc, argv=None):
+    """-h or --help among the arguments (argv, else the command line's): the script's own text (its usage first) on
+    standard output, exit 0."""
+    if any(a in ("-h", "--help") for a in (sys.argv[1:] if argv is None else argv)):
         sys.stdout.write(doc.strip() + "\n")
         sys.exit(0)
 

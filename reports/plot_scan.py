@@ -77,7 +77,7 @@ def label(key, units):
 
 
 def main(argv):
-    help_requested(__doc__)
+    help_requested(__doc__, argv)
     args, out = [], None
     it = iter(argv)
     for a in it:

@@ -443,9 +443,10 @@ def scene_figures(out, name, summary):
     return drawn
 
 
-def main():
-    help_requested(__doc__)
-    args = sys.argv[1:]
+def main(argv=None):
+    """The command line's work on argv (else sys.argv[1:]); gomboc.plot.run calls it in-process."""
+    args = list(sys.argv[1:] if argv is None else argv)
+    help_requested(__doc__, args)
     page = None
     if "--page" in args:
         k = args.index("--page")

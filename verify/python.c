@@ -164,6 +164,15 @@ static void test_same_bits(void)
                   "command exit %d, CSVs %s (%zu and %zu bytes), %g points, %g progress calls over %d phases", xcode,
                   a && b && !strcmp(a, b) ? "equal" : "differ", a ? strlen(a) : 0, b ? strlen(b) : 0, points, calls, phases);
     free(a), free(b);
+    /* the plotters as functions: a scan's figure, a run's page, an unknown metric refused */
+    const cJSON *pp = cJSON_GetObjectItem(package, "plot");
+    const double figure_bytes = cJSON_GetNumberValue(cJSON_GetObjectItem(pp, "figure_bytes")),
+                 page_bytes = cJSON_GetNumberValue(cJSON_GetObjectItem(pp, "page_bytes"));
+    const char *refused = cJSON_GetStringValue(cJSON_GetObjectItem(pp, "refused"));
+    gb_check cp = {"-", "-", "gomboc.plot: scan() of the 2 x 2 map, run() of the 60-period run, scan() of an unknown metric",
+                   "the scripts' outputs: a PNG, the run's page; GombocError naming the metric and the allowed ones", "exact"};
+    gb_check_true(&cp, figure_bytes > 1000 && page_bytes > 100 && refused && strstr(refused, "nonesuch") && strstr(refused, "allowed"),
+                  "figure %g bytes, page %g bytes, refused: %.150s", figure_bytes, page_bytes, refused ? refused : "no");
     cJSON_Delete(command), cJSON_Delete(package);
     snprintf(args, sizeof args, "rm -rf %s", dir);
     if (system(args)) { /* the directory is the test's own; a failure to remove it is no result */

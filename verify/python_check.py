@@ -45,4 +45,15 @@ with open(os.path.join(folder, "python-scan.csv"), "w", encoding="utf-8") as han
     handle.write(csv)
 out["scan"] = {"points": len(table["index"]), "progress_calls": len(heard),
                "phases": sorted({phase for phase, *_ in heard}), "lambda_max": list(table["lambda_max"])}
+import gomboc.plot  # noqa: E402
+
+figure = gomboc.plot.scan(os.path.join(folder, "python-scan.csv"), ["lambda_max"], out=os.path.join(folder, "scan.png"))
+page = gomboc.plot.run(folder, ["table1"])  # the command's run of the scene, written there before this script
+try:
+    gomboc.plot.scan(os.path.join(folder, "python-scan.csv"), ["nonesuch"])
+    refused = None
+except gomboc.GombocError as e:
+    refused = e.message
+out["plot"] = {"figure": figure, "figure_bytes": os.path.getsize(figure) if os.path.exists(figure) else 0, "page": page,
+               "page_bytes": os.path.getsize(page) if os.path.exists(page) else 0, "refused": refused}
 print(json.dumps(out))
