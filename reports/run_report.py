@@ -70,7 +70,7 @@ def time_series_title(summary):
     """The title's numbers are the summary's, as the text states them."""
     scene, impacts, flight = summary["scene"], summary.get("impacts"), summary.get("flight")
     if scene.get("contact_law") == "unilateral" and impacts:
-        text = f"{impacts['count']:.0f} impacts"
+        text = f"{impacts['count']:.0f} impact{'' if impacts['count'] == 1 else 's'}"
         if flight and (flight["landings"] or flight["lift_offs"]):
             text += (f", {flight['lift_offs']:.0f} lift-offs, {flight['landings']:.0f} landings, "
                      f"{100 * flight['flight_time_fraction']:.1f} % of the time in flight")
@@ -314,7 +314,7 @@ def summary_lines(name, summary, figures):
                      f"(a body turning about a held point: O(h))")
     if impacts and two_point and not stepping:
         rest = two_point.get("rest_since")
-        lines.append(f"- unilateral contact: {impacts['count']:.0f} impacts took {impacts['energy_lost']:.4g} J (the largest "
+        lines.append(f"- unilateral contact: {impacts['count']:.0f} impact{'' if impacts['count'] == 1 else 's'} took {impacts['energy_lost']:.4g} J (the largest "
                      f"friction one needed: {impacts['friction_needed_max'] if impacts['friction_needed_max'] is not None else 'unbounded'}); "
                      f"on two points for {100 * two_point['time_fraction']:.1f} % of the run ({two_point['entries']:.0f} {'entry' if two_point['entries'] == 1 else 'entries'}; "
                      f"{impacts['settled']:.0f} impacts ended by the settle rule; {two_point['lifts']:.0f} lifts, "

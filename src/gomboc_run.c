@@ -668,8 +668,9 @@ int command_run(int argc, char **argv)
     if (status) return cli_failure("run", status);
     fprintf(stderr, "gomboc run: %s: contact law %s", case_path, gb_dynamics_contact_law_name(scene.dynamics.contact_law));
     if (scene_law(&scene)->impacts)
-        fprintf(stderr, " (restitution %g; %zu impacts, %zu landings, %.1f %% of the time in flight)",
-                scene.dynamics.restitution, r.impacts, r.flight.landings, 100.0 * r.flight.time / r.t_end);
+        fprintf(stderr, " (restitution %g; %zu impact%s, %zu landing%s, %.1f %% of the time in flight)",
+                scene.dynamics.restitution, r.impacts, r.impacts == 1 ? "" : "s", r.flight.landings,
+                r.flight.landings == 1 ? "" : "s", 100.0 * r.flight.time / r.t_end);
     fprintf(stderr, "; %zu steps in %.2f s CPU; fingerprint %s/%s\n", r.stats.steps, r.seconds, state_print, switch_print);
     if (r.stats.coarse_steps)
         fprintf(stderr, "gomboc run: %s: warning: %zu of %zu steps turned the body by more than %g rad (at most %.3g rad): "

@@ -171,8 +171,14 @@ static cJSON *shape_json(const shape_study *st)
 
 static void print_shape(const shape_study *st)
 {
-    printf("body             morphology %s (chi = %s), beta = %.17g, mass = %g\n",
-           st->surface.morphology->name, st->surface.morphology->chi_formula, st->beta, st->mass);
+    /* beta is the body's only where it enters it: the paper's morphologies, and a body of one's own that names it */
+    const int beta_used = !gb_body_is_own(&st->surface) || gb_body_names_beta(&st->surface);
+    if (beta_used)
+        printf("body             morphology %s (chi = %s), beta = %.17g, mass = %g\n", st->surface.morphology->name,
+               st->surface.morphology->chi_formula, st->beta, st->mass);
+    else
+        printf("body             %s (chi = %s; beta not used), mass = %g\n", st->surface.morphology->name,
+               st->surface.morphology->chi_formula, st->mass);
     printf("volume           %.15g  (+- %.1e)\n", st->props.volume, st->props.volume_err);
     printf("centroid         %.3e %.3e %.3e  (+- %.1e)\n", st->props.centroid[0], st->props.centroid[1],
            st->props.centroid[2], st->props.centroid_err[0]);
