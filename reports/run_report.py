@@ -299,6 +299,10 @@ def summary_lines(name, summary, figures):
                     f"t = {summary['energy_residual_largest_jump_t']:.6g} s" if summary.get("energy_residual_largest_jump_t") is not None else "")
                  + (" — **the ledger drifted beyond 1 % of the run's energy: the step is too coarse here**"
                     if summary.get("ledger_too_coarse") else ""))
+    grid_model = summary.get("grid_model_of_smooth_body")
+    if grid_model:
+        lines.append(f"- **a smooth body run as its {grid_model['grid'][0]:.0f} × {grid_model['grid'][1]:.0f} grid polyhedron**: "
+                     "its contact, switches and λ are the polyhedron's and depend on the grid (docs/bodies.md)")
     stepping = summary.get("stepping")
     if stepping:
         # time-stepping: impulses at every step, no impact events; its "impacts" are the points that arrived

@@ -1,6 +1,8 @@
 /* gomboc run — integrate one scene (a case file) and write what it asks for. */
 #include "gomboc_cli.h"
 
+#include "gb_body.h"
+
 #include "gb_case.h"
 #include "gb_error.h"
 #include "gb_integrate.h"
@@ -421,6 +423,13 @@ static void add_values(cJSON *object, const named_value *values, size_t count)
 
 /* The run's summary (NAME-summary.json) but for its list of files: the scene as read, the final state,
  * counts, residuals, fingerprints, and what the scene's model and diagnostics computed. */
+/* A smooth body of one's own (given by an expression) run on a grid model: its grid polyhedron stands for it. */
+static int smooth_on_grid(const gb_case *scene)
+{
+    return gb_body_is_own(&scene->body) && !gb_surface_is_polyhedron(&scene->body) &&
+           scene->dynamics.contact != GB_CONTACT_MODEL_CONTINUOUS;
+}
+
 static cJSON *summary_json(const gb_case *scene, const char *path, const gb_run_result *r, const windows *w,
                            const char *state_print, const char *switch_print)
 {
@@ -446,6 +455,16 @@ static cJSON *summary_json(const gb_case *scene, const char *path, const gb_run_
     cli_json_add(root, "energy_residual_largest_jump_t", r->residual_jump_t);
     cli_json_add(root, "rhs_evaluations", (double)r->stats.rhs_evaluations);
     cli_json_add(root, "samples", (double)r->samples);
+    if (smooth_on_grid(scene)) {
+        /* a smooth body of one's own (an expression) has no certified continuous contact: it runs as the polyhedron of
+         * its grid's nodes, and what the run computes (λ above all) is that polyhedron's, at that grid */
+        cJSON *g = cJSON_AddObjectToObject(root, "grid_model_of_smooth_body");
+        cJSON_AddItemToObject(g, "grid", cli_json_vector((double[]){(double)scene->dynamics.grid.n_phi,
+                                                                     (double)scene->dynamics.grid.n_theta}, 2));
+        cJSON_AddStringToObject(g, "note", "a smooth body run as its grid polyhedron: the contact, the switches and lambda are "
+                                           "the polyhedron's and depend on the grid (docs/bodies.md); run a second [model] grid "
+                                           "to see how much");
+    }
     cJSON *fp = cJSON_AddObjectToObject(root, "fingerprint");
     cJSON_AddStringToObject(fp, "final_state", state_print);
     cJSON_AddStringToObject(fp, "switches", switch_print);
@@ -672,6 +691,10 @@ int command_run(int argc, char **argv)
                 scene.dynamics.restitution, r.impacts, r.impacts == 1 ? "" : "s", r.flight.landings,
                 r.flight.landings == 1 ? "" : "s", 100.0 * r.flight.time / r.t_end);
     fprintf(stderr, "; %zu steps in %.2f s CPU; fingerprint %s/%s\n", r.stats.steps, r.seconds, state_print, switch_print);
+    if (smooth_on_grid(&scene))
+        fprintf(stderr, "gomboc run: %s: note: a smooth body of one's own runs as its %zu x %zu grid polyhedron: its contact, "
+                "switches and lambda are the polyhedron's and depend on the grid (docs/bodies.md)\n", case_path,
+                scene.dynamics.grid.n_phi, scene.dynamics.grid.n_theta);
     if (r.stats.coarse_steps)
         fprintf(stderr, "gomboc run: %s: warning: %zu of %zu steps turned the body by more than %g rad (at most %.3g rad): "
                 "the step is too coarse for the body's spin (RK4's error grows as the fifth power of the turn); the "
