@@ -13,10 +13,10 @@ The binding is cffi's ABI mode (Debian python3-cffi): it declares the library's 
 (src/gb_handle.h) and opens the shared library, with no compiler at import. Why cffi and not ctypes: the
 declarations are the C header's own text, checked by cffi's parser, and callbacks need no hand-written types.
 
-The shared library is found, in order: $GOMBOC_LIB (a path to libgomboc.so.0 or its build's file), the library
-installed beside this package (PREFIX/lib, when `make install` put the package under PREFIX/lib/python3.X), the
+The shared library is $GOMBOC_LIB when it is set (a path to libgomboc.so.0 or its build's file; that one only), else
+found in order: the library installed beside this package (PREFIX/lib, when `make install` put the package under PREFIX/lib/python3.X), the
 build tree's (build/libgomboc.so.0.*, when the package is used from the source tree), then the system's
-libgomboc.so.0.
+libgomboc.so.0. A library that cannot be loaded is an ImportError that says so.
 
 Errors are GombocError, with the library's message and, where the message names them, the file, line, section,
 key and the allowed range as attributes."""
@@ -61,9 +61,9 @@ _ffi.cdef(_CDEF)
 
 def _library_path():
     here = os.path.dirname(os.path.abspath(__file__))
+    if os.environ.get("GOMBOC_LIB"):  # named: that library or none, never another found elsewhere
+        return os.environ["GOMBOC_LIB"]
     candidates = []
-    if os.environ.get("GOMBOC_LIB"):
-        candidates.append(os.environ["GOMBOC_LIB"])
     # installed: PREFIX/lib/python3.X/dist-packages/gomboc -> PREFIX/lib
     candidates.append(os.path.normpath(os.path.join(here, "..", "..", "..", "libgomboc.so.0")))
     # the source tree: python/gomboc -> build/
@@ -74,7 +74,12 @@ def _library_path():
     return "libgomboc.so.0"
 
 
-_lib = _ffi.dlopen(_library_path())
+try:
+    _lib = _ffi.dlopen(_library_path())
+except OSError as error:
+    raise ImportError(f"gomboc: the shared library libgomboc.so.0 was not found or not loaded ({error}); set GOMBOC_LIB to "
+                      "its path (the build tree's build/libgomboc.so.0.*, made by make verify or make install), or install "
+                      "it with make install") from None
 _lib.gb_error_init_gsl()
 
 # "FILE:LINE: [section] key = value: reason (allowed: ...)" (gb_case.h)
