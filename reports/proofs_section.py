@@ -22,8 +22,11 @@ def proofs_section(out):
               "decide it (docs/proofs.md). These are the method's oracles; the Gömböcs' own statements are open, and the "
               "findings above stand on estimates.", "",
               "| statement | result | detail |", "|---|---|---|"]
+    def cell(text):
+        return str(text).replace("|", "\\|")  # |dM/dt0| inside a table cell
+
     for s in statements:
-        lines.append(f"| {s['statement']} | {s['result']} | {s.get('summary', s.get('needs', ''))} |")
+        lines.append(f"| {cell(s['statement'])} | {cell(s['result'])} | {cell(s.get('summary', s.get('needs', '')))} |")
     lines += [""]
     for s in statements:
         if "theorem" in s:
