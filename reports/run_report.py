@@ -72,8 +72,9 @@ def time_series_title(summary):
     if scene.get("contact_law") == "unilateral" and impacts:
         text = f"{impacts['count']:.0f} impact{'' if impacts['count'] == 1 else 's'}"
         if flight and (flight["landings"] or flight["lift_offs"]):
-            text += (f", {flight['lift_offs']:.0f} lift-offs, {flight['landings']:.0f} landings, "
-                     f"{100 * flight['flight_time_fraction']:.1f} % of the time in flight")
+            on = flight.get("landings_flying_on", 0)
+            text += (f", {flight['lift_offs']:.0f} lift-offs, {flight['landings']:.0f} landings"
+                     + (f" ({on:.0f} flying on)" if on else "") + f", {100 * flight['flight_time_fraction']:.1f} % of the time in flight")
         return text
     if scene.get("contact") in ("grid", "fast-grid"):
         return f"{summary['grid_switches']:.0f} grid-node changes"
@@ -340,7 +341,10 @@ def summary_lines(name, summary, figures):
     if flight and (flight["lift_offs"] or flight["landings"]):
         lines.append(f"- flight (restitution e = {flight['restitution']:g}): {100 * flight['flight_time_fraction']:.1f} % of the "
                      f"run in flight; {flight['lift_offs']:.0f} lift-offs, {flight['landings']:.0f} landings "
-                     f"({flight['bounces']:.0f} bounced); highest gap between the lowest point and the plane "
+                     f"({flight['bounces']:.0f} bounced"
+                     + (f"; {flight['landings_flying_on']:.0f} flew on, a point struck and the body turned off the plane"
+                        if flight.get("landings_flying_on") else "")
+                     + f"); highest gap between the lowest point and the plane "
                      f"{flight['max_hop_height']:.4g} m")
     lines.append(f"- attitude: max |RᵀR − I| = {summary['orthonormality_max']:.2g}; largest quaternion-norm "
                  f"correction {summary['quaternion_drift_max']:.2g}")

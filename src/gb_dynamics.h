@@ -385,6 +385,8 @@ GB_API void gb_dynamics_two_point_stats(const gb_dynamics *dynamics, double t, g
 typedef struct gb_dynamics_flight_summary {
     double time;
     size_t lift_offs, landings, bounces;
+    size_t flying_on;        /* landings after which the body flew on without a rebound (a point struck, the body
+                              * turned off the plane): a flight begun neither by a lift-off nor by a bounce */
     double hop_max;
     int flying;
 } gb_dynamics_flight_summary;

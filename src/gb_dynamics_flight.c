@@ -122,6 +122,7 @@ void gb_dynamics_flight_stats(const gb_dynamics *d, double t, gb_dynamics_flight
     out->lift_offs = d->flight.lift_offs;
     out->landings = d->flight.landings;
     out->bounces = d->flight.bounces;
+    out->flying_on = d->flight.flying_on;
     out->hop_max = d->flight.hop_max;
     out->flying = flying;
 }

@@ -200,7 +200,7 @@ int gb_dynamics_init_state(gb_dynamics *d, double t0, const double R0[9], const 
     d->gap_allow = GB_DYN_GAP_TOL;
     d->lift_allow = 0.0;
     d->flight.hop_max = 0.0;
-    d->flight.lift_offs = d->flight.landings = d->flight.bounces = 0;
+    d->flight.lift_offs = d->flight.landings = d->flight.bounces = d->flight.flying_on = 0;
     d->slide.count = 0, d->slide.slides[0] = d->slide.slides[1] = 0;
     d->slide.slips = d->slide.sticks = 0;
     for (int k = GB_STATE_POSITION; k < GB_STATE_SIZE; k++) y[k] = 0.0;

@@ -141,6 +141,8 @@ typedef struct gb_dyn_flight {
     double t0, zeta0, v0[3];
     double hop_max;
     size_t lift_offs, landings, bounces;
+    size_t flying_on; /* landings after which no point stayed on the plane, with no rebound: a point struck, the body
+                       * turned off the plane */
 } gb_dyn_flight;
 
 /* The two-point mode's (gb_dynamics_two_point.c): how often it was entered from one point, the impacts the settle

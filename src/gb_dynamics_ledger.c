@@ -17,6 +17,7 @@ int gb_dyn_book(gb_dynamics *d, const gb_dynamics_impact *e)
     d->flight.lift_offs += e->kind == GB_DYNAMICS_IMPACT_LIFT_OFF;
     d->flight.landings += e->kind == GB_DYNAMICS_IMPACT_LANDING;
     d->flight.bounces += e->kind == GB_DYNAMICS_IMPACT_BOUNCE || (e->kind == GB_DYNAMICS_IMPACT_LANDING && e->rebound);
+    d->flight.flying_on += e->kind == GB_DYNAMICS_IMPACT_LANDING && !e->rebound && e->contacts_after == 0;
     if (e->kind != GB_DYNAMICS_IMPACT_LIFT && e->kind != GB_DYNAMICS_IMPACT_LIFT_OFF && e->kind != GB_DYNAMICS_IMPACT_CREASE_END) {
         d->impacts++;
         d->impact_loss += e->kinetic_before - e->kinetic_after - e->potential_jump;

@@ -533,6 +533,8 @@ static cJSON *summary_json(const gb_case *scene, const char *path, const gb_run_
         cli_json_add(fl, "lift_offs", (double)r->flight.lift_offs);
         cli_json_add(fl, "landings", (double)r->flight.landings);
         cli_json_add(fl, "bounces", (double)r->flight.bounces);
+        /* landings after which the body flew on with no rebound: a point struck, the body turned off the plane */
+        cli_json_add(fl, "landings_flying_on", (double)r->flight.flying_on);
         /* the highest gap between the lowest point and the plane at the accepted steps of a flight [m] */
         cli_json_add(fl, "max_hop_height", r->flight.hop_max);
         cJSON_AddBoolToObject(fl, "flying_at_end", r->flight.flying);
@@ -687,9 +689,10 @@ int command_run(int argc, char **argv)
     if (status) return cli_failure("run", status);
     fprintf(stderr, "gomboc run: %s: contact law %s", case_path, gb_dynamics_contact_law_name(scene.dynamics.contact_law));
     if (scene_law(&scene)->impacts)
-        fprintf(stderr, " (restitution %g; %zu impact%s, %zu landing%s, %.1f %% of the time in flight)",
-                scene.dynamics.restitution, r.impacts, r.impacts == 1 ? "" : "s", r.flight.landings,
-                r.flight.landings == 1 ? "" : "s", 100.0 * r.flight.time / r.t_end);
+        fprintf(stderr, " (restitution %g; %zu impact%s, %zu landing%s", scene.dynamics.restitution, r.impacts,
+                r.impacts == 1 ? "" : "s", r.flight.landings, r.flight.landings == 1 ? "" : "s");
+    if (scene_law(&scene)->impacts && r.flight.flying_on) fprintf(stderr, " (%zu flying on)", r.flight.flying_on);
+    if (scene_law(&scene)->impacts) fprintf(stderr, ", %.1f %% of the time in flight)", 100.0 * r.flight.time / r.t_end);
     fprintf(stderr, "; %zu steps in %.2f s CPU; fingerprint %s/%s\n", r.stats.steps, r.seconds, state_print, switch_print);
     if (smooth_on_grid(&scene))
         fprintf(stderr, "gomboc run: %s: note: a smooth body of one's own runs as its %zu x %zu grid polyhedron: its contact, "

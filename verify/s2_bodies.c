@@ -31,6 +31,7 @@
 
 #include "gb_shape.h"
 
+#include <cjson/cJSON.h>
 #include <dirent.h>
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_integration.h>
@@ -514,6 +515,55 @@ static void test_grid_model_said(void)
     gb_check_true(&c, right == 2, "%d of 2 as stated", right);
 }
 
+/* Every flight begins at the release (a body dropped from height), a lift-off, a bounce or a landing the body flew on
+ * from; every one that ended is a landing: landings + (flying at the end) = released + lift-offs + bounces + flown on */
+static void test_flights_counted(void)
+{
+    char dir[] = "/tmp/gomboc-flights-XXXXXX";
+    const char *bin = getenv("GOMBOC_BIN") ? getenv("GOMBOC_BIN") : "build/gomboc";
+    static const char *const scenes[] = {"cases/bodies/die-drop.ini", "cases/table1-gomboc-II-g-units-unilateral.ini",
+                                         "cases/table1-gomboc-I-g-units-bouncing.ini"};
+    int closed = 0, flying_on = 0;
+    char detail[600] = "";
+    if (mkdtemp(dir))
+        for (size_t k = 0; k < 3; k++) {
+            char args[300];
+            static char out[1 << 12];
+            snprintf(args, sizeof args, "run %s --out %s", scenes[k], dir);
+            const int code = gb_check_command(bin, args, out, sizeof out);
+            /* the summary file (the --json copy on standard output would interleave with standard error's line) */
+            const char *base = strrchr(scenes[k], '/') + 1;
+            char summary[300];
+            snprintf(summary, sizeof summary, "%s/%.*s-summary.json", dir, (int)(strlen(base) - 4), base);
+            char *text = code == 0 ? gb_check_read_file(summary) : NULL;
+            cJSON *root = text ? cJSON_Parse(text) : NULL;
+            free(text);
+            const cJSON *f = cJSON_GetObjectItem(root, "flight");
+            const double landings = cJSON_GetNumberValue(cJSON_GetObjectItem(f, "landings")),
+                         lift_offs = cJSON_GetNumberValue(cJSON_GetObjectItem(f, "lift_offs")),
+                         bounces = cJSON_GetNumberValue(cJSON_GetObjectItem(f, "bounces")),
+                         on = cJSON_GetNumberValue(cJSON_GetObjectItem(f, "landings_flying_on")),
+                         height0 = cJSON_GetNumberValue(cJSON_GetObjectItem(cJSON_GetObjectItem(root, "scene"), "height0"));
+            const int flying = cJSON_IsTrue(cJSON_GetObjectItem(f, "flying_at_end")), released = height0 > 0.0;
+            closed += f && landings + flying == released + lift_offs + bounces + on;
+            flying_on += on > 0;
+            if (!f) snprintf(detail + strlen(detail), sizeof detail - strlen(detail), "%s%s: exit %d, %.120s", k ? "; " : "",
+                             scenes[k], code, out);
+            else snprintf(detail + strlen(detail), sizeof detail - strlen(detail), "%s%s: %g landings + %d flying at the end = %d "
+                     "released + %g lift-offs + %g bounces + %g flown on", k ? "; " : "", scenes[k], landings, flying, released,
+                     lift_offs, bounces, on);
+            cJSON_Delete(root);
+        }
+    char rm[128];
+    snprintf(rm, sizeof rm, "rm -rf %s", dir);
+    if (system(rm)) { /* the test's own directory: a failure to remove it is no result */
+    }
+    gb_check c = {"-", "-", "the flights counted: the die dropped, Table 1's Gomboc II in units of g, Gomboc I bouncing",
+                  "landings + flying at the end = released + lift-offs + bounces + landings flown on, in each; some flown on",
+                  "exact: counts"};
+    gb_check_true(&c, closed == 3 && flying_on >= 2, "%s", detail);
+}
+
 int verify_register_s2_bodies(void)
 {
     static const verify_test tests[] = {
@@ -531,6 +581,7 @@ int verify_register_s2_bodies(void)
          "the bodies the scenes name, whatever they are, are closed surfaces: Euler's formula, Poincare-Hopf"},
         {"beta stated only where it enters the body", test_beta_stated, NULL},
         {"a smooth body on its grid says so", test_grid_model_said, NULL},
+        {"every flight counted where it began", test_flights_counted, NULL},
         {"bad bodies in a scene", test_bad_bodies,
          "a mesh or an expression that is not a body is refused, naming the scene's line and the fault"},
         {NULL, NULL, NULL},
