@@ -347,7 +347,7 @@ references-only: $(BIN)
 	$(PYTHON) references/grid_model.py > references/grid_model.json.tmp && mv references/grid_model.json.tmp references/grid_model.json
 	$(PYTHON) references/switching.py > references/switching.json.tmp && mv references/switching.json.tmp references/switching.json
 	@if $(PYTHON) -c "import siconos.numerics" 2>/dev/null; then \
-	  for r in impacts bouncing_ball polyhedron; do \
+	  for r in impacts bouncing_ball polyhedron one_step; do \
 	    echo "$(PYTHON) references/siconos/$$r.py > references/siconos/$$r.json"; \
 	    GOMBOC=$(BIN) $(PYTHON) references/siconos/$$r.py > references/siconos/$$r.json.tmp && \
 	    mv references/siconos/$$r.json.tmp references/siconos/$$r.json || exit 1; \

@@ -35,6 +35,11 @@ def failed_members(rows):
     return sum(1 for r in rows if math.isnan(float(r["lambda_max"])))
 
 
+def handed_over(rows):
+    """Members whose run was handed to time-stepping somewhere (hand_over: the event-driven law could not follow)."""
+    return sum(1 for r in rows if float(r.get("stepped_fraction", "0") or "0") > 0.0)
+
+
 def classify(rows):
     all_rows = rows
     rows = [r for r in rows if not math.isnan(float(r["lambda_max"]))]
@@ -116,8 +121,10 @@ def study_section(out):
               "has ended when the last of 12 windows of its record with a mean exponent above 0.05 1/s is not the last "
               "window; its lifetime is that window's end (members still chaotic at the end are not counted: censored). "
               "A member whose run failed (failed_points = record: the model could not follow it) is left out and "
-              f"counted; with more than {FAILED:.0%} of the members failed the ensemble is undecided.", "",
-              "| ensemble | members (failed) | λ median [quartiles] | λ − 2σ > 0.01 | first half, median | second half, median | "
+              f"counted; with more than {FAILED:.0%} of the members failed the ensemble is undecided. The friction "
+              "ensembles hand a member over to time-stepping where the event-driven law cannot follow it (Painlevé's "
+              "paradox; `hand_over`, docs/stepping.md) and back where it flies: such members count, and are counted.", "",
+              "| ensemble | members (failed; handed over) | λ median [quartiles] | λ − 2σ > 0.01 | first half, median | second half, median | "
               "chaotic in the second half | chaos ended (lifetime, periods: median [range]) | reading | the paper's claim |",
               "|---|---|---|---|---|---|---|---|---|---|"]
     ensembles = [e for name in files for e in ensembles_of(folder, name)]
@@ -133,7 +140,7 @@ def study_section(out):
                       if len(ended) else f"0 of {len(rows)}")
         if not numpy.any(~numpy.isnan(lifetimes)):
             ended_text = "—"
-        lines.append(f"| {label} | {len(rows)} ({failed_members(rows)}) | {med:.3f} [{q1:.3f}, {q3:.3f}] | {chaotic:.0%} | {numpy.median(early):.3f} | "
+        lines.append(f"| {label} | {len(rows)} ({failed_members(rows)}; {handed_over(rows)}) | {med:.3f} [{q1:.3f}, {q3:.3f}] | {chaotic:.0%} | {numpy.median(early):.3f} | "
                      f"{numpy.median(late):.3f} | {chaotic_late:.0%} | {ended_text} | {kind} | {verdict} |")
         ax.plot(early, [k + 0.12] * len(early), "o", ms=3, color="C0", label="first half" if k == 0 else None)
         ax.plot(late, [k - 0.12] * len(late), "o", ms=3, color="C3", label="second half" if k == 0 else None)

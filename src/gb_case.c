@@ -104,6 +104,11 @@ static int parse_contact_law(const char *value, gb_case *c)
 static int parse_nodes(const char *value, gb_case *c) { return gb_contact_nodes_parse(value, &c->dynamics.grid.nodes); }
 static int parse_method(const char *value, gb_case *c) { return gb_integrate_parse(value, &c->integrate.method); }
 static int parse_strategy(const char *value, gb_case *c) { return gb_integrate_strategy_parse(value, &c->integrate.strategy); }
+static int parse_hand_over(const char *value, gb_case *c)
+{
+    static const char *const names[] = {"none", "time-stepping"};
+    return gb_error_parse_name(value, names, 2, "hand_over", &c->integrate.hand_over);
+}
 static int parse_window(const char *value, gb_case *c) { return gb_spectrum_window_parse(value, &c->spectrum_window); }
 
 #define AT(field) offsetof(gb_case, field)
@@ -147,9 +152,10 @@ static const key_def keys[] = {
     REAL("integrator", "atol", 1e-15, 0.1, 0, "", integrate.atol),
     FLAG("integrator", "locate_switches", integrate.locate_switches),
     NAME("integrator", "strategy", parse_strategy),
-    REAL("integrator", "theta", 0.5, 1.0, 0, "(the theta-method's weight of the step's end; needs strategy = time-stepping)",
+    NAME("integrator", "hand_over", parse_hand_over),
+    REAL("integrator", "theta", 0.5, 1.0, 0, "(the theta-method's weight of the step's end; needs strategy or hand_over = time-stepping)",
          integrate.theta),
-    REAL("integrator", "solver_tolerance", 1e-16, 1e-3, 0, "(the contact problem's relative residual; needs strategy = "
+    REAL("integrator", "solver_tolerance", 1e-16, 1e-3, 0, "(the contact problem's relative residual; needs strategy or hand_over = "
          "time-stepping)", integrate.solver_tolerance),
     COUNT("integrator", "solver_iterations", 1, 100000000, integrate.solver_iterations),
     {"initial", "attitude", KEY_ATTITUDE, 0, 0, 0, NULL, 0, NULL},
@@ -589,10 +595,6 @@ static int cross_check(const char *path, gb_case *c)
                               "contact problem (allowed: contact_law = unilateral with a finite friction; a rough plane's "
                               "unbounded tangential impulse is no cone Siconos's fc3d takes)",
                               law_name, c->dynamics.friction);
-        if (c->dynamics.contact == GB_CONTACT_MODEL_CONTINUOUS)
-            return cross_fail(path, c, "model", "contact",
-                              "= continuous with [integrator] strategy = time-stepping: its points are the grid's nodes "
-                              "(allowed: grid or fast-grid, the nodes a mesh's vertices or a smooth body's grid polyhedron)");
         if (c->integrate.locate_switches)
             return cross_fail(path, c, "integrator", "locate_switches",
                               "= yes with strategy = time-stepping, which locates no event (allowed: no)");
@@ -600,12 +602,27 @@ static int cross_check(const char *path, gb_case *c)
             return cross_fail(path, c, "integrator", "method",
                               "= %s with strategy = time-stepping, which steps by its own theta-method (allowed: rk4, "
                               "the default, which it ignores)", gb_integrate_name(c->integrate.method));
+        if (c->integrate.hand_over)
+            return cross_fail(path, c, "integrator", "hand_over",
+                              "= time-stepping with strategy = time-stepping, which steps every step already (allowed: "
+                              "none)");
+    } else if (c->integrate.hand_over) {
+        const gb_dynamics_law *posed = gb_dynamics_law_of(c->dynamics.contact_law, c->dynamics.friction);
+        if (!posed || !posed->time_steps)
+            return cross_fail(path, c, "integrator", "hand_over",
+                              "= time-stepping with [model] contact_law = %s, friction = %g: that law poses no one-step "
+                              "contact problem to hand over to (allowed: none; time-stepping with contact_law = "
+                              "unilateral and a finite friction)", law_name, c->dynamics.friction);
+        if (c->integrate.method != GB_INTEGRATOR_RK4)
+            return cross_fail(path, c, "integrator", "hand_over",
+                              "= time-stepping with [integrator] method = %s (allowed: with rk4, whose steps time-stepping "
+                              "takes again on the same grid)", gb_integrate_name(c->integrate.method));
     } else {
         static const char *const own[] = {"theta", "solver_tolerance", "solver_iterations"};
         for (size_t k = 0; k < sizeof own / sizeof own[0]; k++)
             if (given(c, "integrator", own[k]))
-                return cross_fail(path, c, "integrator", own[k], "needs [integrator] strategy = time-stepping (allowed: "
-                                  "with that strategy only)");
+                return cross_fail(path, c, "integrator", own[k], "needs [integrator] strategy = time-stepping or "
+                                  "hand_over = time-stepping (allowed: with either only)");
     }
     if (law->several_events_per_step && !c->integrate.locate_switches && !stepping)
         return cross_fail(path, c, "integrator", "locate_switches",

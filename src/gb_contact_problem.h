@@ -25,13 +25,16 @@
 /* The most contacts one step takes (the candidates within the gap threshold of a step): a mesh's face or a grid
  * polyhedron's few lowest nodes are far fewer. */
 #define GB_CONTACT_PROBLEM_MAX 256
-/* the Gauss–Seidel sweeps a problem is given before the proximal point method takes it from there (gb_contact_problem.c) */
+/* the Gauss–Seidel sweeps a problem is given before the proximal point method takes it from there, and the proximal
+ * point method's iterations before ADMM does (gb_contact_problem.c) */
 #define GB_CONTACT_PROBLEM_NSGS_SWEEPS 200
+#define GB_CONTACT_PROBLEM_PROX_ITERATIONS 2000
 
 typedef struct gb_contact_problem_def {
     double tolerance;  /* Siconos's relative error of the solution (its natural-map residual over |q|) */
     size_t iterations; /* the most Gauss–Seidel sweeps */
     size_t first;      /* the time-stepping's candidates posed first (0: all; gb_integrate_def.stepping_first) */
+    int siconos;       /* the time-stepping's step linearised where Siconos's MoreauJeanOSI does (gb_integrate_def) */
 } gb_contact_problem_def;
 
 /* What the solver did: its sweeps, the residual it reached, and whether it met the tolerance. */

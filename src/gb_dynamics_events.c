@@ -183,8 +183,8 @@ int gb_dyn_two_point_gap(gb_dynamics *d, double t, const double y[GB_STATE_SIZE]
         gb_dyn_two_point tp;
         int status = gb_dyn_two_point_eval(d, t, y, &tp, 1);
         if (!status && tp.merged)
-            status = gb_error_set(GB_ENUMERIC, "two-point contact at t = %.9g: the crease ends while a lift or a slip is "
-                                  "located", t);
+            status = gb_error_set_limit(GB_ENUMERIC, "two-point contact at t = %.9g: the crease ends while a lift or a slip is "
+                                        "located", t);
         if (status) return status;
         int alone;
         *gap = d->event == GB_DYN_EVENT_LIFT ? -fmin(tp.normal[0], tp.normal[1])

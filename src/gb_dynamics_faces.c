@@ -173,9 +173,9 @@ int gb_dyn_face_landing(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const
         }
     }
     if (!far_edge && !on_face)
-        return gb_error_set(GB_ENUMERIC, "a face of %zu vertices lands at t = %.9g and the impact holds neither the whole face "
-                            "nor its far edge, which is not followed (the body would pivot on one vertex of a flat face)",
-                            ties + 3, t);
+        return gb_error_set_limit(GB_ENUMERIC, "a face of %zu vertices lands at t = %.9g and the impact holds neither the whole face "
+                                  "nor its far edge, which is not followed (the body would pivot on one vertex of a flat face)",
+                                  ties + 3, t);
     /* every tied vertex leaves the plane or stays on it after the impact */
     for (size_t i = 0; i < n; i++) {
         double x[3], u[3];
@@ -183,9 +183,9 @@ int gb_dyn_face_landing(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const
         gb_vec_cross(r.omega, x, u);
         const double un = gb_vec_dot(zb, r.v) + gb_vec_dot(zb, u);
         if (un < -vscale)
-            return gb_error_set(GB_ENUMERIC, "a face of %zu vertices lands at t = %.9g: after the impact at its extreme "
-                                "vertices, vertex (%.6g, %.6g, %.6g) m moves into the plane at %.3g m/s (not followed)",
-                                ties + 3, t, x[0], x[1], x[2], un);
+            return gb_error_set_limit(GB_ENUMERIC, "a face of %zu vertices lands at t = %.9g: after the impact at its extreme "
+                                      "vertices, vertex (%.6g, %.6g, %.6g) m moves into the plane at %.3g m/s (not followed)",
+                                      ties + 3, t, x[0], x[1], x[2], un);
     }
     if (!settled) status = gb_dyn_plane_pushes(d, t, &r, (const double(*)[3])pts, FACE_MAX, 2, 0, v, y + GB_STATE_OMEGA);
     if (status) return status;
@@ -194,8 +194,8 @@ int gb_dyn_face_landing(gb_dynamics *d, double t, double y[GB_STATE_SIZE], const
     gb_dyn_record(&e, y, pts[0], pts[2], v, &r, 2, 0);
     if (on_face) {
         if (!foot_inside(zb, (const double(*)[3])pts, FACE_MAX, 1e-9 * L))
-            return gb_error_set(GB_ENUMERIC, "a face lands at t = %.9g and stops the body with its centroid's foot outside "
-                                "it: the tip over the face's edge from rest is not followed", t);
+            return gb_error_set_limit(GB_ENUMERIC, "a face lands at t = %.9g and stops the body with its centroid's foot outside "
+                                      "it: the tip over the face's edge from rest is not followed", t);
         gb_dyn_set_mode(d, GB_DYN_REST, t);
         gb_dyn_set_contact(d, &r_pt);
         d->contact2 = s_pt;

@@ -85,7 +85,25 @@ void gb_dynamics_free(gb_dynamics *d)
     if (!d) return;
     gb_dyn_stepping_free(d);
     gb_dyn_body_free(d);
+    free(d->held);
     free(d);
+}
+
+size_t gb_dynamics_snapshot_size(void) { return sizeof(gb_dynamics); }
+
+void gb_dynamics_snapshot(const gb_dynamics *d, void *out)
+{
+    memcpy(out, d, sizeof *d);
+}
+
+void gb_dynamics_restore(gb_dynamics *d, const void *snapshot)
+{
+    /* what the step may have allocated is the dynamics' own now: kept */
+    struct gb_dyn_stepper *stepper = d->stepper;
+    gb_dynamics_impact *held = d->held;
+    const size_t capacity = d->held_capacity, count = d->held_count;
+    memcpy(d, snapshot, sizeof *d);
+    d->stepper = stepper, d->held = held, d->held_capacity = capacity, d->held_count = count;
 }
 
 /* z_b = Rᵀ e_z: the third row of R (eq 21). */

@@ -239,12 +239,21 @@ struct gb_dynamics {
     double memo_key[8];
     gb_contact_point memo_continued, memo_other;
     struct gb_dyn_stepper *stepper; /* the time-stepping strategy's (gb_dynamics_stepping.c; NULL: events) */
+    const gb_dyn_mode *event_modes;       /* a run handed to time-stepping: the event-driven modes it returns to */
+    char start_limit[512];                /* handed over at its start: the limit the start met ("" otherwise) */
+    /* Impacts held back from the sink (gb_dynamics_hold_impacts): a step that may be taken again (a hand-over) sends
+     * its records only once it is kept. */
+    int holding;
+    gb_dynamics_impact *held;
+    size_t held_count, held_capacity;
 };
 
 typedef struct gb_dyn_stepper gb_dyn_stepper;
 /* The time-stepping strategy's state, released (gb_dynamics_stepping.c); and copied from another dynamics of the same
  * body (the points that carried the body, the impulses the solver starts from: gb_dynamics_adopt_contact). */
 void gb_dyn_stepping_free(gb_dynamics *d);
+/* A change of contact's record to the caller's sink, or held back while impacts are held (gb_dynamics_ledger.c). */
+int gb_dyn_emit(gb_dynamics *d, const gb_dynamics_impact *e);
 void gb_dyn_stepping_adopt(gb_dynamics *to, const gb_dynamics *from);
 
 /* ---- the state (gb_dynamics.c) --------------------------------------------------------------------- */

@@ -194,7 +194,7 @@ static int impact_outcome(gb_dynamics *d, double t, const double y[GB_STATE_SIZE
         return GB_OK;
     }
     if (!r->holds[1])
-        return gb_error_set(GB_ENUMERIC, "unilateral contact at t = %.9g: after the impact the new contact does not hold", t);
+        return gb_error_set_limit(GB_ENUMERIC, "unilateral contact at t = %.9g: after the impact the new contact does not hold", t);
     *both = r->holds[0];
     *back = INFINITY;
     if (!*both) {
@@ -387,8 +387,8 @@ static int third_point_outcome(gb_dynamics *d, double t, const double y[GB_STATE
     *back = INFINITY;
     *settled = 0;
     if (!r->holds[2])
-        return gb_error_set(GB_ENUMERIC, "unilateral contact at t = %.9g: a third point reaches the plane and does not "
-                            "hold after the impact", t);
+        return gb_error_set_limit(GB_ENUMERIC, "unilateral contact at t = %.9g: a third point reaches the plane and does not "
+                                  "hold after the impact", t);
     if (*held == 1) {
         /* The settle rule, as at a switch: P or Q lifts and would fall back within the settle time, so the
          * body is held on the third point and that one (the lumped chatter, hold_both). */
@@ -441,7 +441,7 @@ static int two_point_located(gb_dynamics *d, double t, double y[GB_STATE_SIZE], 
     gb_dyn_two_point tp;
     int status = gb_dyn_two_point_eval(d, t, y, &tp, 1);
     if (!status && tp.merged)
-        status = gb_error_set(GB_ENUMERIC, "two-point contact at t = %.9g: the crease ends at a located event", t);
+        status = gb_error_set_limit(GB_ENUMERIC, "two-point contact at t = %.9g: the crease ends at a located event", t);
     if (status) return status;
     if (d->event == GB_DYN_EVENT_LIFT) {
         const int lifts = tp.normal[0] < tp.normal[1] ? 0 : 1; /* the point whose force reached 0 */
@@ -496,9 +496,9 @@ static int two_point_located(gb_dynamics *d, double t, double y[GB_STATE_SIZE], 
             if (w[i] < 0.0) negative++, tip = i;
         }
         if (negative > 1 || !isfinite(w[0] + w[1] + w[2]))
-            return gb_error_set(GB_ENUMERIC, "unilateral contact at t = %.9g: the body stops on three points whose "
-                                "triangle holds neither its weight nor an edge to tip about (weights %.3g, %.3g, %.3g)",
-                                t, w[0], w[1], w[2]);
+            return gb_error_set_limit(GB_ENUMERIC, "unilateral contact at t = %.9g: the body stops on three points whose "
+                                      "triangle holds neither its weight nor an edge to tip about (weights %.3g, %.3g, %.3g)",
+                                      t, w[0], w[1], w[2]);
         if (!negative) {
             gb_dyn_set_mode(d, GB_DYN_REST, t);
             gb_dyn_set_contact(d, third);
@@ -670,9 +670,9 @@ static int coulomb_third(gb_dynamics *d, double t, double y[GB_STATE_SIZE], cons
     pts[2] = *branch;
     const int ties = status ? 0 : gb_dyn_face_ties(d, zb, &pts[0], &pts[1], branch);
     if (ties)
-        return gb_error_set(GB_ENUMERIC, "a face of %d vertices lands flat at t = %.9g on a plane of friction mu = %g, which "
-                            "is not followed (Coulomb's impact here takes three points; the rough plane, [model] friction "
-                            "= rough, follows a face landing)", ties + 3, t, d->def.friction);
+        return gb_error_set_limit(GB_ENUMERIC, "a face of %d vertices lands flat at t = %.9g on a plane of friction mu = %g, which "
+                                  "is not followed (Coulomb's impact here takes three points; the rough plane, [model] friction "
+                                  "= rough, follows a face landing)", ties + 3, t, d->def.friction);
     if (!status) status = gb_dyn_friction_impact(d, t, y, pts, 3, 2, GB_DYNAMICS_IMPACT_THIRD, 1);
     return status ? status : after_switch(d, t);
 }

@@ -2,11 +2,13 @@
  * (gb_dynamics_impact: points, ω and v before and after, impulses, energies), the ledger's counters and
  * the energy the impacts took (L), and the caller's sink (gb_dynamics_internal.h). */
 #include "gb_dynamics_internal.h"
+#include "gb_dynamics_protocol_internal.h"
 
 #include "gb_error.h"
 #include "gb_vec.h"
 
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 int gb_dyn_book(gb_dynamics *d, const gb_dynamics_impact *e)
@@ -24,7 +26,34 @@ int gb_dyn_book(gb_dynamics *d, const gb_dynamics_impact *e)
         d->impact_friction_max = fmax(d->impact_friction_max, e->friction_needed);
     }
     d->memo_valid = 0; /* ω may have changed */
-    return d->impact_sink ? d->impact_sink(d->impact_context, e) : GB_OK;
+    return gb_dyn_emit(d, e);
+}
+
+int gb_dyn_emit(gb_dynamics *d, const gb_dynamics_impact *e)
+{
+    if (!d->impact_sink) return GB_OK;
+    if (!d->holding) return d->impact_sink(d->impact_context, e);
+    if (d->held_count == d->held_capacity) {
+        const size_t capacity = d->held_capacity ? 2 * d->held_capacity : 8;
+        gb_dynamics_impact *held = realloc(d->held, capacity * sizeof *held);
+        if (!held) return gb_error_set(GB_ENOMEM, "out of memory for %zu impact records", capacity);
+        d->held = held, d->held_capacity = capacity;
+    }
+    d->held[d->held_count++] = *e;
+    return GB_OK;
+}
+
+void gb_dynamics_hold_impacts(gb_dynamics *d, int hold)
+{
+    d->holding = hold;
+}
+
+int gb_dynamics_release_impacts(gb_dynamics *d, int keep)
+{
+    int status = GB_OK;
+    for (size_t k = 0; keep && k < d->held_count && !status; k++) status = d->impact_sink(d->impact_context, &d->held[k]);
+    d->held_count = 0;
+    return status;
 }
 
 /* An impact record from its points and the solver's answer at the new point `k` and the old one `k_old`

@@ -23,6 +23,33 @@ int gb_dynamics_stepping_begin(gb_dynamics *dynamics, double t0, double h, doubl
 int gb_dynamics_stepping_prepare(gb_dynamics *dynamics);
 int gb_dynamics_stepping_step(gb_dynamics *dynamics, double t, double h, double y[GB_STATE_SIZE]);
 
+/* A run handed from the event-driven strategy to time-stepping where the former cannot follow (gb_integrate, [integrator]
+ * hand_over; docs/stepping.md): gb_dynamics_hand_over puts the dynamics in the stepped mode (the points it stood on
+ * become the first step's carrying points) with step h, θ and the solver, keeping the stepping's counters of an earlier
+ * hand-over; gb_dynamics_hand_back returns it to the event-driven modes in flight at (t, y) after a step in which no
+ * point carried it and its lowest point is above the plane (*back = 1), else leaves it (*back = 0);
+ * gb_dynamics_hand_back_now returns it to them as it is (a trajectory whose contact is then adopted from another's). */
+int gb_dynamics_hand_over(gb_dynamics *dynamics, double h, double theta, const gb_contact_problem_def *solver);
+int gb_dynamics_hand_back(gb_dynamics *dynamics, double t, double y[GB_STATE_SIZE], int *back);
+void gb_dynamics_hand_back_now(gb_dynamics *dynamics);
+/* gb_dynamics_init_state, and where its start meets a limit of the law (hand_over, a law that time-steps: Painlevé's
+ * paradox in a slide launched on the plane) the dynamics handed over before its start, which then only places the body
+ * (as a time-stepped run's); gb_dynamics_start_limit is then that limit's message (NULL: the start was the law's). */
+int gb_dynamics_init_or_hand_over(gb_dynamics *dynamics, double t0, const double R0[9], const double omega0[3],
+                                  double y[GB_STATE_SIZE], int hand_over);
+const char *gb_dynamics_start_limit(const gb_dynamics *dynamics);
+/* 1 while the dynamics is handed to time-stepping (or was begun stepped), else 0. */
+int gb_dynamics_stepped(const gb_dynamics *dynamics);
+
+/* A step that may be taken again: the dynamics' scalars (modes, contacts, counters, the ledger) copied into a buffer of
+ * gb_dynamics_snapshot_size() bytes and put back; the impacts of the step held back from the sink meanwhile, and sent
+ * (keep = 1) or dropped (keep = 0). */
+size_t gb_dynamics_snapshot_size(void);
+void gb_dynamics_snapshot(const gb_dynamics *dynamics, void *out);
+void gb_dynamics_restore(gb_dynamics *dynamics, const void *snapshot);
+void gb_dynamics_hold_impacts(gb_dynamics *dynamics, int hold);
+int gb_dynamics_release_impacts(gb_dynamics *dynamics, int keep);
+
 /* GB_ENUMERIC, with a message that names t and says the integration diverged, when a component of y is
  * not finite (the steppers check each step's result, gb_dynamics_rhs its argument); GB_OK otherwise. */
 int gb_dynamics_state_finite(double t, const double y[GB_STATE_SIZE]);

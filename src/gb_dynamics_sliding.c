@@ -152,16 +152,16 @@ int gb_dyn_friction_solve(const gb_dynamics *d, double t, double geff, const dou
     double N[2] = {0, 0};
     if (slipping == 1) {
         if (!(K[0][0] > 0.0))
-            return gb_error_set(GB_ENUMERIC, "friction at t = %.9g: Painleve's paradox: the slipping point's normal "
-                                "acceleration falls as its normal force grows (dA/dN = %.3g; mu %g): no consistent or "
-                                "no unique contact force; the rigid model stops here", t, K[0][0], mu);
+            return gb_error_set_limit(GB_ENUMERIC, "friction at t = %.9g: Painleve's paradox: the slipping point's normal "
+                                      "acceleration falls as its normal force grows (dA/dN = %.3g; mu %g): no consistent or "
+                                      "no unique contact force; the rigid model stops here", t, K[0][0], mu);
         N[0] = -alpha[0] / K[0][0];
     } else if (slipping == 2) {
         const double det = K[0][0] * K[1][1] - K[0][1] * K[1][0];
         if (!(K[0][0] > 0.0 && K[1][1] > 0.0 && det > 0.0))
-            return gb_error_set(GB_ENUMERIC, "friction at t = %.9g: Painleve's paradox: the slipping points' compliance "
-                                "is not a P-matrix (%.3g, %.3g; det %.3g; mu %g): no consistent or no unique contact "
-                                "forces; the rigid model stops here", t, K[0][0], K[1][1], det, mu);
+            return gb_error_set_limit(GB_ENUMERIC, "friction at t = %.9g: Painleve's paradox: the slipping points' compliance "
+                                      "is not a P-matrix (%.3g, %.3g; det %.3g; mu %g): no consistent or no unique contact "
+                                      "forces; the rigid model stops here", t, K[0][0], K[1][1], det, mu);
         N[0] = (-alpha[0] * K[1][1] + alpha[1] * K[0][1]) / det;
         N[1] = (-alpha[1] * K[0][0] + alpha[0] * K[1][0]) / det;
     }
@@ -313,8 +313,8 @@ int gb_dyn_sliding_accept(gb_dynamics *d, double t, double y[GB_STATE_SIZE])
     if (d->slide.count == 1) {
         status = gb_dyn_competitor(d, t, y, &continued, &other, &found);
         if (!status && found)
-            status = gb_error_set(GB_ENUMERIC, "sliding at t = %.9g: a change of contact at the step's end that the "
-                                  "step's event location did not find", t);
+            status = gb_error_set_limit(GB_ENUMERIC, "sliding at t = %.9g: a change of contact at the step's end that the "
+                                        "step's event location did not find", t);
     } else {
         status = gb_dyn_point_at(d, zb, &d->contact, &continued); /* a third point is an event of its own */
     }

@@ -339,8 +339,8 @@ int gb_dyn_friction_impact(gb_dynamics *d, double t, double y[GB_STATE_SIZE], co
     }
     if (n == 3) {
         if (sliding)
-            return gb_error_set(GB_ENUMERIC, "impact at t = %.9g: the body slides on three points after it, which this "
-                                "model does not follow", t);
+            return gb_error_set_limit(GB_ENUMERIC, "impact at t = %.9g: the body slides on three points after it, which this "
+                                      "model does not follow", t);
         gb_dyn_set_mode(d, GB_DYN_REST, t);
         gb_dyn_set_contact(d, &points[arriving]);
         memset(y + GB_STATE_OMEGA, 0, 3 * sizeof *y);

@@ -7,7 +7,10 @@
  * plane; ω body axes) and the θ-method for the smooth forces:
  *   free velocities   v_f = v − h g_θ e_z,  (I + hθc) ω_f = I ω − h ω × I ω − h (1 − θ) c ω    (g_θ = θ g₁ + (1−θ) g₀)
  *   candidates        the grid's nodes r_i (a mesh's vertices, a grid polyhedron's nodes) whose gap after half a
- *                     step at today's speed, g_i + h u_n,i / 2, is ≤ 0 (Siconos's MoreauJeanOSI's index set, γ = 1/2)
+ *                     step at today's speed, g_i + h u_n,i / 2, is ≤ 0 (Siconos's MoreauJeanOSI's index set, γ = 1/2);
+ *                     a smooth body's (continuous contact): the local minima of its height function it tracks, each
+ *                     continued by Newton to the step's vertical, the global one certified (gb_certify, the atlas),
+ *                     taken where it stands at the step's start (fixed in the body over the step)
  *   relation          u_i = v + R(ω × r_i) = v + B_i ω, B_i = −[R r_i]× R, in the frame (e_z, e_x, e_y)
  *   problem           u = W P + q, W_ij = 1/m + B_i M_ω⁻¹ B_jᵀ (3 × 3 blocks) (M_ω = I + hθc), q_i = u_i(V_f) + e u_n,i(V) e_z
  *   impulses          V⁺ = V_f + M̂⁻¹ Σ H_iᵀ P_i
@@ -25,6 +28,7 @@
 #include "gb_vec.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -41,13 +45,24 @@
  * speed scale (|v_z| + |ω| r_max + |g| h) goes through the plane: far above the solver's 1e-12, far below any
  * velocity of the problem. */
 #define GB_DYNAMICS_STEPPING_THROUGH 1e-9
+/* A smooth body's candidates: the local minima of its height tracked at once (the global one and those that came down
+ * to the plane near it: two on a crease, a third where three tie), and how far above the plane [body lengths] a minimum
+ * other than the global one is still followed (one farther returns, when it matters, as the certificate's lower
+ * minimum). */
+#define GB_DYNAMICS_STEPPING_SLOTS 8
+#define GB_DYNAMICS_STEPPING_KEEP 0.05
 
 /* The contacts one step solves, and what the last step left. */
 struct gb_dyn_stepper {
     double theta, h;
     size_t first;                  /* the candidates a step poses first (0: all) */
+    int siconos;                   /* linearised as Siconos's MoreauJeanOSI (gb_integrate_def.stepping_siconos) */
     size_t nodes;                  /* the grid's nodes, the body's points [m] (body axes): the candidates */
     double (*points)[3];
+    int smooth;                    /* continuous contact: the nodes are slots of tracked minima (below) */
+    gb_contact_point slot[GB_DYNAMICS_STEPPING_SLOTS]; /* a smooth body's minima (unit body), by slot */
+    unsigned char active[GB_DYNAMICS_STEPPING_SLOTS];
+    size_t next_slot;              /* where the search for a free slot starts: a slot just freed is taken last */
     double radius;                 /* the farthest point's distance from the centroid [m] */
     double *gaps;                  /* every point's gap above the plane at the state `scanned` (scanned_valid) */
     size_t *candidates;            /* this step's candidates (nodes), [nodes] */
@@ -59,7 +74,7 @@ struct gb_dyn_stepper {
     gb_contact_problem *problem;
     double tolerance;              /* the problem's (solver_tolerance) */
     struct gb_dyn_stepped_step {   /* the step being taken, for the enumeration (enumerate) */
-        double m, A[3][3], R[9], vf[3], wf[3], v[3], w[3], e, mu;
+        double m, A[3][3], R[9], R0[9], vf[3], wf[3], v[3], w[3], e, mu; /* R: the relations'; R0: the start's */
     } step;
     size_t capacity;               /* of the buffers below, in contacts */
     double *W, *q, *mu, *r, *u;    /* the problem (W: (3 capacity)², column-major) */
@@ -177,21 +192,122 @@ static int stepped_jump(gb_dynamics *d, double t, const double y[GB_STATE_SIZE],
     return stepped_event(d, t, (double *)y, branch);
 }
 
-/* Every point's gap above the plane at state y (vertical zb), the lowest point and its clearance: one pass over the
- * points, kept for the same state (the step that follows it, and the observer of the step that made it). */
-static void scan(gb_dyn_stepper *s, const double y[GB_STATE_SIZE], const double zb[3])
+/* A smooth body's minimum p takes a slot: a free one (the search starting after the last taken, so that a slot just
+ * freed, whose node the last step may name, is taken last), else the highest of the minima other than `keep`. */
+static int take_slot(gb_dyn_stepper *s, const gb_contact_point *p, int keep)
 {
-    if (s->scanned_valid && !memcmp(s->scanned, y, sizeof s->scanned)) return;
-    double best = INFINITY;
-    for (size_t i = 0; i < s->nodes; i++) {
-        const double *x = s->points[i];
-        const double gap = y[GB_STATE_ZETA] + zb[0] * x[0] + zb[1] * x[1] + zb[2] * x[2];
-        s->gaps[i] = gap;
-        if (gap < best) best = gap, s->lowest = i;
+    int k = -1;
+    for (size_t j = 0; j < GB_DYNAMICS_STEPPING_SLOTS && k < 0; j++) {
+        const size_t i = (s->next_slot + j) % GB_DYNAMICS_STEPPING_SLOTS;
+        if (!s->active[i]) k = (int)i;
     }
-    s->clearance = best;
+    for (int i = 0; k < 0 && i < GB_DYNAMICS_STEPPING_SLOTS; i++) /* all taken: the highest but `keep` gives way */
+        if (i != keep && (k < 0 || s->slot[i].height > s->slot[k].height)) k = i;
+    s->slot[k] = *p;
+    s->active[k] = 1;
+    s->next_slot = (size_t)(k + 1) % GB_DYNAMICS_STEPPING_SLOTS;
+    return k;
+}
+
+/* A smooth body's minima at vertical zb: each tracked one continued by Newton (dropped where it is no longer a
+ * minimum, or meets another), the lowest proved global or replaced by the lower one the certificate finds (as the
+ * event-driven contact is, gb_dyn_competitor), those other than the global one dropped when they are far above the
+ * plane; none tracked (the start): the global minimum from scratch. The lowest's slot in *global. */
+static int track_minima(gb_dynamics *d, gb_dyn_stepper *s, const double y[GB_STATE_SIZE], const double zb[3], int *global)
+{
+    int status = GB_OK, low = -1;
+    for (int k = 0; k < GB_DYNAMICS_STEPPING_SLOTS && !status; k++) {
+        if (!s->active[k]) continue;
+        gb_contact_point p;
+        status = gb_contact_refine(&d->surface, zb, s->slot[k].phi, s->slot[k].theta, &d->refine, &p);
+        if (status == GB_ENOCONV || (!status && !p.is_minimum)) { /* the branch ended in a fold */
+            s->active[k] = 0;
+            status = GB_OK;
+            continue;
+        }
+        if (status) break;
+        s->slot[k] = p;
+        for (int j = 0; j < k && s->active[k]; j++)
+            if (s->active[j] && gb_dyn_same_point(&s->slot[j], &p)) s->active[k] = 0; /* two branches met */
+        if (s->active[k] && (low < 0 || p.height < s->slot[low].height)) low = k;
+    }
+    if (status) return status;
+    if (low < 0) {
+        gb_contact_point p;
+        status = gb_certify_global_minimum(d->certify, zb, &d->refine, &p);
+        if (status) return status;
+        low = take_slot(s, &p, -1);
+    }
+    for (int round = 0; round < 16; round++) {
+        gb_certify_result r;
+        status = gb_dyn_check_global(d, zb, &s->slot[low], &r);
+        if (status) return status;
+        if (r.verdict != GB_CERTIFY_LOWER_FOUND) break;
+        int same = -1;
+        for (int j = 0; j < GB_DYNAMICS_STEPPING_SLOTS && same < 0; j++)
+            if (s->active[j] && gb_dyn_same_point(&s->slot[j], &r.lower)) same = j;
+        if (same >= 0 && s->slot[same].height < s->slot[low].height) s->slot[same] = r.lower, low = same;
+        else if (same < 0) low = take_slot(s, &r.lower, low);
+        else break;
+    }
+    /* a step ahead (the vertical turned by ω h, ż_b = z_b × ω in body axes): the minimum that will be the lowest then is
+     * followed from now, so that it enters the step that brings it to the plane at its gap, not a step's approach below */
+    const double *w = y + GB_STATE_OMEGA;
+    double ahead[3], turn[3];
+    gb_vec_cross(zb, w, turn);
+    for (int k = 0; k < 3; k++) ahead[k] = zb[k] + s->h * turn[k];
+    const double size = gb_vec_norm(ahead);
+    for (int k = 0; k < 3; k++) ahead[k] /= size;
+    gb_certify_result r;
+    status = s->h > 0.0 && gb_vec_norm(turn) > 0.0 ? gb_dyn_check_global(d, ahead, &s->slot[low], &r) : GB_OK;
+    if (status) return status;
+    if (s->h > 0.0 && gb_vec_norm(turn) > 0.0 && r.verdict == GB_CERTIFY_LOWER_FOUND) {
+        gb_contact_point p;
+        status = gb_contact_refine(&d->surface, zb, r.lower.phi, r.lower.theta, &d->refine, &p);
+        int known = status != GB_OK || !p.is_minimum; /* born within the step: the next step meets it */
+        for (int j = 0; j < GB_DYNAMICS_STEPPING_SLOTS && !known; j++) known = s->active[j] && gb_dyn_same_point(&s->slot[j], &p);
+        if (!known) take_slot(s, &p, low);
+        if (status == GB_ENOCONV) gb_error_clear();
+        else if (status) return status;
+    }
+    const double far = GB_DYNAMICS_STEPPING_KEEP * d->mean_radius, l = d->def.length, zeta = y[GB_STATE_ZETA];
+    for (int k = 0; k < GB_DYNAMICS_STEPPING_SLOTS; k++)
+        if (s->active[k] && k != low && zeta + l * s->slot[k].height > far) s->active[k] = 0;
+    *global = low;
+    return GB_OK;
+}
+
+/* Every point's gap above the plane at state y (vertical zb), the lowest point and its clearance: one pass over the
+ * points (a smooth body's tracked minima first brought to y), kept for the same state (the step that follows it, and
+ * the observer of the step that made it). */
+static int scan(gb_dynamics *d, const double y[GB_STATE_SIZE], const double zb[3])
+{
+    gb_dyn_stepper *s = d->stepper;
+    if (s->scanned_valid && !memcmp(s->scanned, y, sizeof s->scanned)) return GB_OK;
+    if (s->smooth) {
+        int global = 0;
+        const int status = track_minima(d, s, y, zb, &global);
+        if (status) return status;
+        for (size_t i = 0; i < s->nodes; i++) {
+            for (int k = 0; k < 3; k++) s->points[i][k] = s->active[i] ? d->def.length * s->slot[i].rc[k] : 0.0;
+            const double *x = s->points[i];
+            s->gaps[i] = s->active[i] ? y[GB_STATE_ZETA] + zb[0] * x[0] + zb[1] * x[1] + zb[2] * x[2] : INFINITY;
+        }
+        s->lowest = (size_t)global;
+        s->clearance = s->gaps[global];
+    } else {
+        double best = INFINITY;
+        for (size_t i = 0; i < s->nodes; i++) {
+            const double *x = s->points[i];
+            const double gap = y[GB_STATE_ZETA] + zb[0] * x[0] + zb[1] * x[1] + zb[2] * x[2];
+            s->gaps[i] = gap;
+            if (gap < best) best = gap, s->lowest = i;
+        }
+        s->clearance = best;
+    }
     memcpy(s->scanned, y, sizeof s->scanned);
     s->scanned_valid = 1;
+    return GB_OK;
 }
 
 /* The vertical of state y. */
@@ -206,10 +322,11 @@ static int stepped_observe(gb_dynamics *d, double t, const double y[GB_STATE_SIZ
 {
     (void)t;
     gb_dyn_stepper *s = d->stepper;
-    scan(s, y, o->zb);
+    int status = scan(d, y, o->zb);
+    if (status) return status;
     o->index = s->lowest;
     memcpy(o->rc, s->points[s->lowest], sizeof o->rc);
-    const int status = gb_dyn_free_acceleration(d, o->omega, o->omega_dot);
+    status = gb_dyn_free_acceleration(d, o->omega, o->omega_dot);
     o->zeta = y[GB_STATE_ZETA];
     memcpy(o->velocity, y + GB_STATE_VELOCITY, sizeof o->velocity);
     o->height = gb_vec_dot(o->zb, o->rc);
@@ -250,28 +367,38 @@ int gb_dynamics_stepping_prepare(gb_dynamics *d)
     if (!d->law->time_steps)
         return gb_error_set(GB_EINVAL, "the %s law poses no one-step contact problem (allowed with time-stepping: "
                             "contact_law = unilateral on a plane of finite friction)", d->law->name);
-    if (!d->grid)
+    const int smooth = d->def.contact == GB_CONTACT_MODEL_CONTINUOUS;
+    if (!d->grid && !(smooth && d->certify))
         return gb_error_set(GB_EINVAL, "contact = %s gives time-stepping no points to test (allowed: grid or fast-grid, "
-                            "whose nodes are a mesh's vertices or a smooth body's grid polyhedron)",
-                            gb_contact_model_name(d->def.contact));
+                            "whose nodes are a mesh's vertices or a smooth body's grid polyhedron; continuous, the "
+                            "smooth body's minima)", gb_contact_model_name(d->def.contact));
     if (d->stepper) return GB_OK;
     gb_dyn_stepper *s = calloc(1, sizeof *s);
     if (!s) return gb_error_set(GB_ENOMEM, "out of memory for the time-stepping strategy");
     int status = grow(s, 8);
-    s->nodes = gb_contact_grid_size(d->grid);
-    s->points = status ? NULL : malloc(s->nodes * sizeof *s->points);
+    s->smooth = smooth;
+    s->nodes = smooth ? GB_DYNAMICS_STEPPING_SLOTS : gb_contact_grid_size(d->grid);
+    s->points = status ? NULL : calloc(s->nodes, sizeof *s->points);
     s->gaps = status ? NULL : malloc(s->nodes * sizeof *s->gaps);
     s->candidates = status ? NULL : malloc(s->nodes * sizeof *s->candidates);
     s->keys = status ? NULL : malloc(s->nodes * sizeof *s->keys);
     s->posed = status ? NULL : malloc(s->nodes * sizeof *s->posed);
     s->scratch = status ? NULL : malloc(s->nodes * sizeof *s->scratch);
     if (!status && !(s->points && s->gaps && s->candidates && s->keys && s->posed && s->scratch)) status = gb_error_set(GB_ENOMEM, "out of memory for %zu points", s->nodes);
-    for (size_t i = 0; !status && i < s->nodes; i++) {
+    for (size_t i = 0; !status && !smooth && i < s->nodes; i++) {
         double phi, theta, x[3];
         gb_contact_grid_node(d->grid, i, &phi, &theta, x);
         for (int k = 0; k < 3; k++) s->points[i][k] = d->def.length * x[k];
         s->radius = fmax(s->radius, gb_vec_norm(s->points[i]));
     }
+    /* a smooth body's farthest point, for the reach of a step (how fast a point can near the plane): the farthest on
+     * a 1° net of directions, 1 % over it (the distance varies by far less than 1 % between the net's nodes) */
+    for (int i = 0; !status && smooth && i <= 180; i++)
+        for (int j = 0; j < 360; j++) {
+            double x[3];
+            gb_surface_position(&d->surface, M_PI * i / 180.0, M_PI * j / 180.0, x);
+            s->radius = fmax(s->radius, 1.01 * d->def.length * gb_vec_norm(x));
+        }
     if (status) {
         stepper_free(s);
         return status;
@@ -283,24 +410,109 @@ int gb_dynamics_stepping_prepare(gb_dynamics *d)
 
 static int enumerate(void *context, int n, double *r);
 
-int gb_dynamics_stepping_begin(gb_dynamics *d, double t0, double h, double theta, const gb_contact_problem_def *solver)
+/* The step, θ and solver of a stepping that begins or resumes (a hand-over), from no carrying point (`fresh`) or from
+ * those its start marked. */
+static int stepping_set(gb_dyn_stepper *s, double h, double theta, const gb_contact_problem_def *solver, int fresh)
 {
-    (void)t0;
     if (!(theta >= 0.5 && theta <= 1.0))
         return gb_error_set(GB_EDOM, "theta = %g is out of range (allowed: 0.5 <= theta <= 1)", theta);
-    int status = gb_dynamics_stepping_prepare(d);
-    if (status) return status;
-    gb_dyn_stepper *s = d->stepper;
     gb_contact_problem *problem = NULL;
-    status = gb_contact_problem_create(solver, &problem);
+    const int status = gb_contact_problem_create(solver, &problem);
     if (status) return status;
     gb_contact_problem_free(s->problem);
     s->problem = problem;
     gb_contact_problem_set_exact(problem, enumerate, s);
-    s->theta = theta, s->h = h, s->first = solver->first, s->tolerance = solver->tolerance;
-    s->stats = (gb_dynamics_stepping_stats){0};
-    s->touched_count = s->last_count = 0, s->scanned_valid = 0;
+    s->theta = theta, s->h = h, s->first = solver->first, s->tolerance = solver->tolerance, s->siconos = solver->siconos;
+    if (fresh) s->touched_count = s->last_count = 0;
+    s->scanned_valid = 0;
     return GB_OK;
+}
+
+int gb_dynamics_stepping_begin(gb_dynamics *d, double t0, double h, double theta, const gb_contact_problem_def *solver)
+{
+    (void)t0;
+    int status = gb_dynamics_stepping_prepare(d);
+    if (!status) status = stepping_set(d->stepper, h, theta, solver, 1);
+    if (!status) d->stepper->stats = (gb_dynamics_stepping_stats){0};
+    return status;
+}
+
+int gb_dynamics_stepped(const gb_dynamics *d) { return d->modes == stepped_modes; }
+
+int gb_dynamics_hand_over(gb_dynamics *d, double h, double theta, const gb_contact_problem_def *solver)
+{
+    if (gb_dynamics_stepped(d)) /* stepped already; handed over at its start: its solver now */
+        return d->stepper->problem ? GB_OK : stepping_set(d->stepper, h, theta, solver, 0);
+    const gb_dyn_mode *modes = d->modes;
+    int status = gb_dynamics_stepping_prepare(d);
+    if (!status) status = stepping_set(d->stepper, h, theta, solver, 1);
+    if (status) return status;
+    gb_dyn_stepper *s = d->stepper;
+    d->event_modes = modes, d->modes = stepped_modes;
+    /* the points the body stood on carry it into the first step (and stay in its problem within a step's reach) */
+    const gb_dyn_mode_id mode = d->mode;
+    const int on = mode != GB_DYN_FLIGHT;
+    const int two = mode == GB_DYN_TWO_POINT || mode == GB_DYN_REST || (mode == GB_DYN_SLIDING && d->slide.count == 2);
+    const gb_contact_point *stood[2] = {&d->contact, &d->contact2};
+    if (s->smooth) memset(s->active, 0, sizeof s->active);
+    for (int k = 0; k < on + (on && two); k++) {
+        const size_t node = s->smooth ? (size_t)take_slot(s, stood[k], -1) : stood[k]->node;
+        s->touched[s->touched_count++] = node;
+    }
+    s->touching = s->touched_count, s->sliding = mode == GB_DYN_SLIDING;
+    return GB_OK;
+}
+
+int gb_dynamics_init_or_hand_over(gb_dynamics *d, double t0, const double R0[9], const double omega0[3],
+                                  double y[GB_STATE_SIZE], int hand_over)
+{
+    int status = gb_dynamics_init_state(d, t0, R0, omega0, y);
+    if (!status || !hand_over || !gb_error_at_limit() || !d->law->time_steps || gb_dynamics_stepped(d)) return status;
+    snprintf(d->start_limit, sizeof d->start_limit, "%s", gb_error_message());
+    gb_error_clear();
+    const gb_dyn_mode *modes = d->modes;
+    status = gb_dynamics_stepping_prepare(d);
+    if (status) return status;
+    d->modes = stepped_modes, d->event_modes = modes;
+    status = gb_dynamics_init_state(d, t0, R0, omega0, y);
+    /* a body started on the plane stands on its lowest point, as the law's start had it: that point carries it into the
+     * first step (a trajectory placed beside it a hair above the plane then is not in flight for a step) */
+    gb_dyn_stepper *s = d->stepper;
+    if (!status && d->def.height0 == 0.0) s->touched[0] = s->lowest, s->touched_count = 1, s->touching = 1;
+    return status;
+}
+
+const char *gb_dynamics_start_limit(const gb_dynamics *d) { return d->start_limit[0] ? d->start_limit : NULL; }
+
+void gb_dynamics_hand_back_now(gb_dynamics *d)
+{
+    if (!d->event_modes) return;
+    d->modes = d->event_modes, d->event_modes = NULL;
+    d->last_valid = d->memo_valid = 0, d->event = GB_DYN_EVENT_NONE;
+}
+
+int gb_dynamics_hand_back(gb_dynamics *d, double t, double y[GB_STATE_SIZE], int *back)
+{
+    *back = 0;
+    gb_dyn_stepper *s = d->stepper;
+    if (!d->event_modes || !s || s->touching || !(s->clearance > 0.0)) return GB_OK;
+    double R[9], zb[3], vb[3];
+    gb_dynamics_rotation(y + GB_STATE_Q, R);
+    zb[0] = R[6], zb[1] = R[7], zb[2] = R[8];
+    int status = scan(d, y, zb);
+    if (status) return status;
+    gb_contact_point lowest;
+    if (s->smooth) lowest = s->slot[s->lowest];
+    else gb_dyn_grid_point(d, s->lowest, zb, &lowest);
+    d->modes = d->event_modes, d->event_modes = NULL;
+    gb_dyn_set_contact(d, &lowest);
+    d->last_valid = d->memo_valid = 0, d->event = GB_DYN_EVENT_NONE, d->lift_allow = 0.0;
+    const double *v = y + GB_STATE_VELOCITY; /* into body axes: Rᵀ v */
+    for (int i = 0; i < 3; i++) vb[i] = R[i] * v[0] + R[3 + i] * v[1] + R[6 + i] * v[2];
+    gb_dyn_start_flight(d, t, y, vb, y[GB_STATE_ZETA]);
+    status = gb_dyn_remember_rate(d, t, y);
+    *back = !status;
+    return status;
 }
 
 /* The stepped mode's start, from the definition's height0 and velocity0 (gb_dynamics_init_state, the attitude and ω
@@ -312,7 +524,8 @@ static int stepped_start(gb_dynamics *d, double t0, double y[GB_STATE_SIZE])
     vertical_of(y, zb);
     y[GB_STATE_ZETA] = 0.0;
     d->stepper->scanned_valid = 0;
-    scan(d->stepper, y, zb);
+    const int status = scan(d, y, zb);
+    if (status) return status;
     y[GB_STATE_ZETA] = d->def.height0 - d->stepper->clearance;
     const double *v0 = d->def.velocity0;
     memcpy(y + GB_STATE_VELOCITY, v0, 3 * sizeof *y);
@@ -389,7 +602,7 @@ static int touches(gb_dynamics *d, double t, int from_flight, int count, int tou
         memcpy(e.new_point, s->points[s->node[i]], sizeof e.new_point);
         memcpy(e.omega_before, w, sizeof e.omega_before), memcpy(e.omega_after, wplus, sizeof e.omega_after);
         memcpy(e.v_before, v, sizeof e.v_before), memcpy(e.v_after, vplus, sizeof e.v_after);
-        const int status = d->impact_sink(d->impact_context, &e);
+        const int status = gb_dyn_emit(d, &e);
         if (status) return status;
     }
     return GB_OK;
@@ -399,6 +612,72 @@ static int compare_keys(const void *a, const void *b)
 {
     const double x = *(const double *)a, y = *(const double *)b;
     return (x > y) - (x < y);
+}
+
+/* The rotation's free velocity ω_f of a step (no contact), its rotational mass A and A⁻¹. Ours: the damping torque −cω
+ * θ-implicit, the gyroscopic term explicit, (I + hθc) ω_f = Iω − h ω × Iω − h(1 − θ) c ω. Siconos's (`siconos`): the
+ * forces f(ω) = ω × Iω + cω θ-implicit linearised at the step's start, (I + hθJ)(ω_f − ω) = −h f(ω), J = ∂f/∂ω =
+ * [ω]× I − [Iω]× + c 1 (its MoreauJeanOSI on a NewtonEulerDS; A is not symmetric then). */
+static int free_rotation(double I[3][3], double c, const double w[3], double h, double th, int siconos, double A[3][3],
+                         double Ainv[3][3], double wf[3])
+{
+    double Iw[3], f[3], b[3];
+    gb_dyn_mat_vec(I, w, Iw);
+    gb_vec_cross(w, Iw, f);
+    const double W[3][3] = {{0.0, -w[2], w[1]}, {w[2], 0.0, -w[0]}, {-w[1], w[0], 0.0}};
+    const double L[3][3] = {{0.0, -Iw[2], Iw[1]}, {Iw[2], 0.0, -Iw[0]}, {-Iw[1], Iw[0], 0.0}};
+    memcpy(A, I, 9 * sizeof **A);
+    for (int i = 0; i < 3; i++) A[i][i] += h * th * c;
+    for (int i = 0; i < 3 && siconos; i++)
+        for (int j = 0; j < 3; j++) {
+            double J = -L[i][j];
+            for (int k = 0; k < 3; k++) J += W[i][k] * I[k][j];
+            A[i][j] += h * th * J;
+        }
+    const int status = rotational_mass_inverse(A, Ainv);
+    if (status) return status;
+    if (siconos) {
+        for (int i = 0; i < 3; i++) b[i] = -h * (f[i] + c * w[i]);
+        gb_dyn_mat_vec(Ainv, b, wf);
+        for (int i = 0; i < 3; i++) wf[i] += w[i];
+    } else {
+        for (int i = 0; i < 3; i++) b[i] = Iw[i] - h * f[i] - h * (1.0 - th) * c * w[i];
+        gb_dyn_mat_vec(Ainv, b, wf);
+    }
+    return GB_OK;
+}
+
+/* q ⊗ exp(h ω / 2): the attitude after a step of h turning at ω (body axes), normalised. */
+static void attitude_after(const double q[4], const double w[3], double h, double out[4])
+{
+    const double angle = gb_vec_norm(w) * h;
+    double dq[4] = {1.0, 0.0, 0.0, 0.0};
+    if (angle > 0.0) {
+        const double sn = sin(angle / 2.0) / (angle / h);
+        dq[0] = cos(angle / 2.0), dq[1] = sn * w[0], dq[2] = sn * w[1], dq[3] = sn * w[2];
+    }
+    out[0] = q[0] * dq[0] - q[1] * dq[1] - q[2] * dq[2] - q[3] * dq[3];
+    out[1] = q[0] * dq[1] + q[1] * dq[0] + q[2] * dq[3] - q[3] * dq[2];
+    out[2] = q[0] * dq[2] - q[1] * dq[3] + q[2] * dq[0] + q[3] * dq[1];
+    out[3] = q[0] * dq[3] + q[1] * dq[2] - q[2] * dq[1] + q[3] * dq[0];
+    const double norm = sqrt(out[0] * out[0] + out[1] * out[1] + out[2] * out[2] + out[3] * out[3]);
+    for (int k = 0; k < 4; k++) out[k] /= norm;
+}
+
+/* The normal velocity at the step's start of problem point i (attitude R, the centroid's velocity v, ω body w and
+ * inertial wi), the velocity Newton's impact law reverses: through its relation B_i where the relations are taken at the
+ * step's start (the same bits as the problem's), else (v + ω × R x)_z. */
+static double start_normal_velocity(const gb_dyn_stepper *s, int i, const double R[9], const double v[3], const double w[3],
+                                    const double wi[3])
+{
+    if (!s->siconos) {
+        double u[3];
+        point_velocity(v, s->B[i], w, u);
+        return u[2];
+    }
+    const double *x = s->points[s->node[i]];
+    const double a[2] = {R[0] * x[0] + R[1] * x[1] + R[2] * x[2], R[3] * x[0] + R[4] * x[1] + R[5] * x[2]};
+    return v[2] + wi[0] * a[1] - wi[1] * a[0];
 }
 
 /* Problem point n is node i: its relation B = −[a]× R (a = R r_i) and C = M_ω⁻¹ Bᵀ. */
@@ -447,9 +726,10 @@ static int enumerate(void *context, int n, double *r)
     for (int i = 0; i < n; i++) {
         const double *x = s->points[s->node[i]];
         for (int k = 0; k < 3; k++) points[i][k] = R[3 * k] * x[0] + R[3 * k + 1] * x[1] + R[3 * k + 2] * x[2];
-        double uk[3];
-        point_velocity(st->v, s->B[i], st->w, uk);
-        target[i] = -st->e * uk[2];
+        const double *R0 = st->R0, wi0[3] = {R0[0] * st->w[0] + R0[1] * st->w[1] + R0[2] * st->w[2],
+                                             R0[3] * st->w[0] + R0[4] * st->w[1] + R0[5] * st->w[2],
+                                             R0[6] * st->w[0] + R0[7] * st->w[1] + R0[8] * st->w[2]};
+        target[i] = -st->e * start_normal_velocity(s, i, R0, st->v, st->w, wi0);
     }
     static const double normal[3] = {0.0, 0.0, 1.0};
     gb_impact_result out;
@@ -475,25 +755,30 @@ int gb_dynamics_stepping_step(gb_dynamics *d, double t, double h, double y[GB_ST
     memcpy(v, y + GB_STATE_VELOCITY, sizeof v), memcpy(w, y + GB_STATE_OMEGA, sizeof w);
 
     /* free velocities */
-    double Minv[3][3], Iw[3], gyro[3], b[3], wf[3], vf[3] = {v[0], v[1], v[2] - h * gth};
-    double rotational_mass[3][3]; /* I + hθc */
-    memcpy(rotational_mass, d->inertia, sizeof rotational_mass);
-    for (int i = 0; i < 3; i++) rotational_mass[i][i] += h * th * c;
-    int status = rotational_mass_inverse(rotational_mass, Minv);
+    double Minv[3][3], wf[3], vf[3] = {v[0], v[1], v[2] - h * gth};
+    double rotational_mass[3][3]; /* I + hθc (Siconos's linearisation: I + hθ J) */
+    int status = free_rotation(d->inertia, c, w, h, th, s->siconos, rotational_mass, Minv, wf);
     if (status) return status;
-    gb_dyn_mat_vec(d->inertia, w, Iw);
-    gb_vec_cross(w, Iw, gyro);
-    for (int i = 0; i < 3; i++) b[i] = Iw[i] - h * gyro[i] - h * (1.0 - th) * c * w[i];
-    gb_dyn_mat_vec(Minv, b, wf);
+    /* the relations are taken at the step's start, or (Siconos's linearisation) at the attitude the step predicts from
+     * it, q ⊗ exp(h ω / 2) (its Newton loop evaluates the relation at q_k + h v_k); the gaps and the restitution's
+     * velocities at the step's start either way */
+    double Rp[9];
+    memcpy(Rp, R, sizeof Rp);
+    if (s->siconos) {
+        double qp[4];
+        attitude_after(y + GB_STATE_Q, w, h, qp);
+        gb_dynamics_rotation(qp, Rp);
+    }
 
     /* the candidates: nodes whose gap, half a step ahead at today's speed, is closed */
     const double wi[3] = {R[0] * w[0] + R[1] * w[1] + R[2] * w[2], R[3] * w[0] + R[4] * w[1] + R[5] * w[2],
                           R[6] * w[0] + R[7] * w[1] + R[8] * w[2]};
     /* a point on the plane to rounding is on it: its gap is the rounding of ζ and of the attitude */
     const double activation = GB_DYNAMICS_STEPPING_ACTIVATION * d->mean_radius;
-    /* no point moves faster than |v_z| + |ω| r_max towards the plane: one farther than a step of that is far above */
-    const double reach = activation + h * (fabs(v[2]) + gb_vec_norm(wi) * s->radius);
-    scan(s, y, zb);
+    /* no point moves faster than |v_z| + |ω| r_max + h |g| towards the plane in a step (the weight's kick in it too): one
+     * farther than a step of that is far above */
+    const double reach = activation + h * (fabs(v[2]) + gb_vec_norm(wi) * s->radius + h * fabs(gth));
+    if ((status = scan(d, y, zb))) return status;
     const size_t lowest_before = s->lowest;
     size_t count = 0;
     for (size_t i = 0; i < s->nodes; i++) {
@@ -533,7 +818,7 @@ int gb_dynamics_stepping_step(gb_dynamics *d, double t, double h, double y[GB_ST
             return gb_error_set(GB_ENUMERIC, "t = %.9g: more than %d points of the body carry it in one step", t,
                                 GB_CONTACT_PROBLEM_MAX);
         if ((status = grow(s, (size_t)n + 1))) return status;
-        pose(s, n++, s->candidates[c], R, Minv);
+        pose(s, n++, s->candidates[c], Rp, Minv);
     }
 
     /* the problem and its solution */
@@ -542,7 +827,8 @@ int gb_dynamics_stepping_step(gb_dynamics *d, double t, double h, double y[GB_ST
     memcpy(wplus, wf, sizeof wplus);
     const double e = d->def.restitution, mu = d->def.friction;
     s->step = (struct gb_dyn_stepped_step){.m = m, .e = e, .mu = mu};
-    memcpy(s->step.A, rotational_mass, sizeof s->step.A), memcpy(s->step.R, R, sizeof s->step.R);
+    memcpy(s->step.A, rotational_mass, sizeof s->step.A), memcpy(s->step.R, Rp, sizeof s->step.R);
+    memcpy(s->step.R0, R, sizeof s->step.R0);
     memcpy(s->step.vf, vf, sizeof vf), memcpy(s->step.wf, wf, sizeof wf);
     memcpy(s->step.v, v, sizeof v), memcpy(s->step.w, w, sizeof w);
     /* a candidate left out goes through the plane where its normal velocity after the step falls below this */
@@ -550,11 +836,10 @@ int gb_dynamics_stepping_step(gb_dynamics *d, double t, double h, double y[GB_ST
     for (int solved = 0, round = 0; n > 0; round++) {
         const int N = 3 * n;
         for (int i = 0; i < n; i++) {
-            double uf[3], uk[3];
+            double uf[3];
             point_velocity(vf, s->B[i], wf, uf);
-            point_velocity(v, s->B[i], w, uk);
             for (int k = 0; k < 3; k++) s->q[3 * i + k] = uf[axis[k]];
-            s->q[3 * i] += e * uk[2];
+            s->q[3 * i] += e * start_normal_velocity(s, i, R, v, w, wi);
             s->mu[i] = mu;
             for (int j = 0; j < n; j++) {
                 double BC[3][3];
@@ -598,9 +883,9 @@ int gb_dynamics_stepping_step(gb_dynamics *d, double t, double h, double y[GB_ST
         solved = n;
         /* the candidates left out: zero impulse is their answer where they do not go through the plane (then the
          * solution is the whole problem's); the most violated of those that would are added, and it is solved again */
-        const double wp[3] = {R[0] * wplus[0] + R[1] * wplus[1] + R[2] * wplus[2],
-                              R[3] * wplus[0] + R[4] * wplus[1] + R[5] * wplus[2],
-                              R[6] * wplus[0] + R[7] * wplus[1] + R[8] * wplus[2]};
+        const double wp[3] = {Rp[0] * wplus[0] + Rp[1] * wplus[1] + Rp[2] * wplus[2],
+                              Rp[3] * wplus[0] + Rp[4] * wplus[1] + Rp[5] * wplus[2],
+                              Rp[6] * wplus[0] + Rp[7] * wplus[1] + Rp[8] * wplus[2]};
         int added = 0;
         for (int pass = 0; pass < GB_DYNAMICS_STEPPING_ADD; pass++) {
             size_t worst = count;
@@ -608,9 +893,10 @@ int gb_dynamics_stepping_step(gb_dynamics *d, double t, double h, double y[GB_ST
             for (size_t c = 0; c < count; c++) {
                 if (s->posed[c]) continue;
                 const double *x = s->points[s->candidates[c]];
-                const double a[3] = {R[0] * x[0] + R[1] * x[1] + R[2] * x[2], R[3] * x[0] + R[4] * x[1] + R[5] * x[2],
-                                     R[6] * x[0] + R[7] * x[1] + R[8] * x[2]};
-                const double u = vplus[2] + wp[0] * a[1] - wp[1] * a[0] + e * (v[2] + wi[0] * a[1] - wi[1] * a[0]);
+                const double a[3] = {Rp[0] * x[0] + Rp[1] * x[1] + Rp[2] * x[2], Rp[3] * x[0] + Rp[4] * x[1] + Rp[5] * x[2],
+                                     Rp[6] * x[0] + Rp[7] * x[1] + Rp[8] * x[2]};
+                const double u = vplus[2] + wp[0] * a[1] - wp[1] * a[0] + e * (v[2] + wi[0] * (R[3] * x[0] + R[4] * x[1] + R[5] * x[2]) -
+                                                                               wi[1] * (R[0] * x[0] + R[1] * x[1] + R[2] * x[2]));
                 if (u < worst_u) worst_u = u, worst = c;
             }
             if (worst == count) break;
@@ -677,19 +963,9 @@ int gb_dynamics_stepping_step(gb_dynamics *d, double t, double h, double y[GB_ST
     y[GB_STATE_POSITION + 1] += h * vt[1];
     y[GB_STATE_FRICTION] += friction;
     memcpy(y + GB_STATE_VELOCITY, vplus, sizeof vplus);
-    const double angle = gb_vec_norm(wt) * h;
-    double dq[4] = {1.0, 0.0, 0.0, 0.0}, qn[4];
-    if (angle > 0.0) {
-        const double sn = sin(angle / 2.0) / (angle / h);
-        dq[0] = cos(angle / 2.0), dq[1] = sn * wt[0], dq[2] = sn * wt[1], dq[3] = sn * wt[2];
-    }
-    const double *q = y + GB_STATE_Q; /* q ⊗ dq */
-    qn[0] = q[0] * dq[0] - q[1] * dq[1] - q[2] * dq[2] - q[3] * dq[3];
-    qn[1] = q[0] * dq[1] + q[1] * dq[0] + q[2] * dq[3] - q[3] * dq[2];
-    qn[2] = q[0] * dq[2] - q[1] * dq[3] + q[2] * dq[0] + q[3] * dq[1];
-    qn[3] = q[0] * dq[3] + q[1] * dq[2] - q[2] * dq[1] + q[3] * dq[0];
-    const double norm = sqrt(qn[0] * qn[0] + qn[1] * qn[1] + qn[2] * qn[2] + qn[3] * qn[3]);
-    for (int k = 0; k < 4; k++) y[GB_STATE_Q + k] = qn[k] / norm;
+    double qn[4];
+    attitude_after(y + GB_STATE_Q, wt, h, qn);
+    memcpy(y + GB_STATE_Q, qn, sizeof qn);
     memcpy(y + GB_STATE_OMEGA, wplus, sizeof wplus);
     status = gb_dyn_state_finite(t + h, y);
     if (status) return status;
@@ -703,7 +979,7 @@ int gb_dynamics_stepping_step(gb_dynamics *d, double t, double h, double y[GB_ST
     gb_dyn_set_mode(d, after, t + h);
     double zb1[3];
     vertical_of(y, zb1);
-    scan(s, y, zb1); /* the next step's and the observer's */
+    if ((status = scan(d, y, zb1))) return status; /* the next step's and the observer's */
     if (s->lowest != lowest_before) d->grid_switches++, d->last_switch_time = t + h;
     if (after == GB_DYN_FLIGHT) d->flight.hop_max = fmax(d->flight.hop_max, s->clearance);
     s->touching = touching, s->sliding = sliding, s->slip_max = slip_max;
@@ -733,4 +1009,8 @@ void gb_dyn_stepping_adopt(gb_dynamics *to, const gb_dynamics *from)
     memcpy(t->tangential, f->tangential, sizeof t->tangential);
     t->lowest = f->lowest;
     t->scanned_valid = 0;
+    if (t->smooth) { /* the minima the nodes name */
+        memcpy(t->slot, f->slot, sizeof t->slot), memcpy(t->active, f->active, sizeof t->active);
+        t->next_slot = f->next_slot;
+    }
 }

@@ -44,7 +44,7 @@ int gb_dyn_two_point_eval(gb_dynamics *d, double t, const double y[GB_STATE_SIZE
     const size_t lost = d->branches_lost;
     int status = gb_dyn_contact_at(d, t, zb, omega, &tp->p);
     if (!status && d->branches_lost != lost)
-        status = gb_error_set(GB_ENUMERIC, "two-point contact at t = %.9g: P has no minimum of height left (a fold)", t);
+        status = gb_error_set_limit(GB_ENUMERIC, "two-point contact at t = %.9g: P has no minimum of height left (a fold)", t);
     if (!status) status = gb_dyn_second_point(d, zb, &tp->q);
     if (status) return status;
     double dvec[3];
@@ -145,9 +145,9 @@ int gb_dyn_two_point_accept(gb_dynamics *d, double t, double y[GB_STATE_SIZE])
     int found;
     int status = gb_dyn_current(d)->pending(d, t, y, &other, &found); /* this mode's, through the table */
     if (!status && found)
-        status = gb_error_set(GB_ENUMERIC, "unilateral contact at t = %.9g: a second change of contact inside one "
-                              "step of the two-point mode (%s)", t, d->event == GB_DYN_EVENT_LIFT ? "a normal force below 0"
-                              : "a third point lower than both");
+        status = gb_error_set_limit(GB_ENUMERIC, "unilateral contact at t = %.9g: a second change of contact inside one "
+                                    "step of the two-point mode (%s)", t, d->event == GB_DYN_EVENT_LIFT ? "a normal force below 0"
+                                    : "a third point lower than both");
     gb_dyn_two_point tp;
     if (!status) status = gb_dyn_two_point_eval(d, t, y, &tp, 0);
     if (status) return status;

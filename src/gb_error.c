@@ -6,22 +6,41 @@
 #include <string.h>
 
 static _Thread_local char error_message[GB_ERROR_MAX];
+static _Thread_local int error_at_limit; /* the message is a model's limit (gb_error_set_limit), or wraps one */
+
+/* The message formatted apart first: the arguments may hold the last message itself (a message wrapped in context),
+ * which keeps its limit. */
+static void record(int limit, const char *fmt, va_list args)
+{
+    char text[GB_ERROR_MAX];
+    vsnprintf(text, sizeof text, fmt, args);
+    error_at_limit = limit || (error_at_limit && error_message[0] && strstr(text, error_message));
+    memcpy(error_message, text, strlen(text) + 1);
+}
 
 int gb_error_set(int code, const char *fmt, ...)
 {
-    /* Formatted apart first: the arguments may hold the last message itself (a message wrapped in context). */
-    char text[GB_ERROR_MAX];
     va_list args;
     va_start(args, fmt);
-    vsnprintf(text, sizeof text, fmt, args);
+    record(0, fmt, args);
     va_end(args);
-    memcpy(error_message, text, strlen(text) + 1);
     return code;
 }
 
+int gb_error_set_limit(int code, const char *fmt, ...)
+{
+    va_list args;
+    va_start(args, fmt);
+    record(1, fmt, args);
+    va_end(args);
+    return code;
+}
+
+int gb_error_at_limit(void) { return error_at_limit && error_message[0]; }
+
 const char *gb_error_message(void) { return error_message; }
 
-void gb_error_clear(void) { error_message[0] = '\0'; }
+void gb_error_clear(void) { error_message[0] = '\0', error_at_limit = 0; }
 
 void gb_error_init_gsl(void)
 {

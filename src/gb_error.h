@@ -30,6 +30,14 @@ enum gb_status {
  * wrap the last message in its context. */
 GB_API int gb_error_set(int code, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 
+/* As gb_error_set, for a configuration the model does not follow: a limit of the model, not a failure of a
+ * computation (Painlevé's paradox under the event-driven law, a face that lands flat on a rough plane...). A message
+ * that wraps it (holds its text) is at the limit too; any other message is not. */
+GB_API int gb_error_set_limit(int code, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+
+/* 1 when the most recent failure in this thread is a model's limit (gb_error_set_limit), 0 otherwise. */
+GB_API int gb_error_at_limit(void);
+
 /* The message of the most recent failure in this thread ("" if none). */
 GB_API const char *gb_error_message(void);
 

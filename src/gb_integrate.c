@@ -7,6 +7,7 @@
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_odeiv2.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -69,6 +70,10 @@ static int validate(const gb_integrate_def *def)
     if (def->strategy == GB_STRATEGY_TIME_STEPPING && def->method != GB_INTEGRATOR_RK4)
         return gb_error_set(GB_EINVAL, "integrator %s with the time-stepping strategy, which steps by its own θ-method "
                             "(allowed: rk4, the default, which it ignores)", names[def->method]);
+    if (def->hand_over && (def->strategy != GB_STRATEGY_EVENT_DRIVEN || def->method != GB_INTEGRATOR_RK4))
+        return gb_error_set(GB_EINVAL, "hand_over with the %s strategy and integrator %s (allowed: the event-driven "
+                            "strategy with rk4, whose steps time-stepping can take again)",
+                            strategy_names[def->strategy], names[def->method]);
     return GB_OK;
 }
 
@@ -259,32 +264,153 @@ struct gb_integrate_session {
     gsl_odeiv2_system system;
     gsl_odeiv2_driver *driver;
     double dt;
+    /* def.hand_over: the dynamics before the step being taken (put back when the step is taken again stepped); the
+     * steps at which the run was handed over and back, alternately (the first a hand-over); the session whose hand-overs
+     * this one follows (gb_integrate_lead) */
+    void *snapshot;
+    size_t *switches, switch_count, switch_capacity;
+    const gb_integrate_session *leader;
 };
+
+/* The strategy changes at step n (a hand-over or a return), in the session's log. */
+static int log_switch(gb_integrate_session *s, size_t n)
+{
+    if (s->switch_count == s->switch_capacity) {
+        const size_t capacity = s->switch_capacity ? 2 * s->switch_capacity : 16;
+        size_t *switches = realloc(s->switches, capacity * sizeof *switches);
+        if (!switches) return gb_error_set(GB_ENOMEM, "out of memory for %zu hand-overs", capacity);
+        s->switches = switches, s->switch_capacity = capacity;
+    }
+    s->switches[s->switch_count++] = n;
+    return GB_OK;
+}
+
+/* Did the session take step n stepped? (Its log: an odd number of changes at or before n.) */
+static int stepped_at(const gb_integrate_session *s, size_t n)
+{
+    size_t changes = 0;
+    while (changes < s->switch_count && s->switches[changes] <= n) changes++;
+    return (int)(changes & 1u);
+}
+
+static const gb_contact_problem_def *solver_of(const gb_integrate_def *def, gb_contact_problem_def *out)
+{
+    *out = (gb_contact_problem_def){def->solver_tolerance, def->solver_iterations, def->stepping_first, def->stepping_siconos};
+    return out;
+}
+
+/* Hand the run over to time-stepping before step n (reason: the limit's message, or NULL when following a leader). */
+static int hand_over(gb_integrate_session *s, double t, const char *reason)
+{
+    gb_contact_problem_def solver;
+    int status = gb_dynamics_hand_over(s->dynamics, s->h, s->def.theta, solver_of(&s->def, &solver));
+    if (!status) status = log_switch(s, s->n);
+    if (status) return status;
+    if (!s->stats.hand_overs++) {
+        s->stats.hand_over_first = t;
+        snprintf(s->stats.hand_over_reason, sizeof s->stats.hand_over_reason, "%s",
+                 reason ? reason : "the reference trajectory was handed over at this step");
+    }
+    return GB_OK;
+}
+
+/* One time-stepping step of a handed-over run from (t, y), and its return to the events where the body flies (a
+ * session that follows a leader returns where the leader did, gb_integrate_advance). */
+static int stepped_step(gb_integrate_session *s, double t, double y[])
+{
+    int status = gb_dynamics_stepping_step(s->dynamics, t, s->h, y);
+    if (status) return status;
+    s->stats.stepped_steps++;
+    note_rotation(&s->stats, y, s->h, 0);
+    int back = 0;
+    if (!s->leader) status = gb_dynamics_hand_back(s->dynamics, t + s->h, y, &back);
+    if (!status && back) {
+        s->stats.hand_backs++;
+        status = log_switch(s, s->n + 1);
+    }
+    return status;
+}
+
+/* A follower takes step n as its leader did: handed over where the leader was, back where the leader came back (in
+ * flight; else it goes on stepped, a step unmatched). */
+static int follow_leader(gb_integrate_session *s, double t, double y[])
+{
+    const int want = stepped_at(s->leader, s->n), have = gb_dynamics_stepped(s->dynamics);
+    if (want == have) return GB_OK;
+    if (want) return hand_over(s, t, NULL);
+    int back = 0;
+    const int status = gb_dynamics_hand_back(s->dynamics, t, y, &back);
+    if (status) return status;
+    if (back) {
+        s->stats.hand_backs++;
+        return log_switch(s, s->n);
+    }
+    s->stats.unmatched++;
+    return GB_OK;
+}
+
+/* One event-driven RK4 step from (t, y) into y: the switch located inside it, accepted at t_next (the grid's next time,
+ * t0 + (n + 1) h, not t + h: the bits of a run in pieces are those of one run). */
+static int event_step(gb_integrate_session *s, double t, double t_next, double y[])
+{
+    gb_dynamics *d = s->dynamics;
+    const double h = s->h;
+    double next[GB_STATE_SIZE];
+    int status = rk4_step(d, t, h, y, next, &s->stats);
+    if (status) return status;
+    if (s->def.locate_switches) {
+        gb_contact_point other;
+        int found = 0;
+        status = gb_dynamics_switch_pending(d, t + h, next, &other, &found);
+        if (!status && found) status = located_step(d, t, h, y, &other, rk4_substep, NULL, next, &s->stats);
+        if (status) return status;
+    }
+    memcpy(y, next, sizeof next);
+    double drift;
+    status = gb_dynamics_accept(d, t_next, y, &drift);
+    if (status) return status;
+    note_drift(&s->stats, drift);
+    note_rotation(&s->stats, y, h, 1);
+    return GB_OK;
+}
+
+/* The same step where the run may be handed over: the dynamics kept before it and its impacts held back; where the
+ * law meets a configuration it does not follow (gb_error_at_limit), all of it is put back and the step taken stepped. */
+static int event_step_or_hand_over(gb_integrate_session *s, double t, double t_next, double y[])
+{
+    gb_dynamics *d = s->dynamics;
+    double y0[GB_STATE_SIZE];
+    memcpy(y0, y, sizeof y0);
+    gb_dynamics_snapshot(d, s->snapshot);
+    gb_dynamics_hold_impacts(d, 1);
+    int status = event_step(s, t, t_next, y);
+    gb_dynamics_hold_impacts(d, 0);
+    if (!status) return gb_dynamics_release_impacts(d, 1);
+    if (!gb_error_at_limit()) return status;
+    char reason[sizeof s->stats.hand_over_reason];
+    snprintf(reason, sizeof reason, "%s", gb_error_message());
+    gb_error_clear();
+    gb_dynamics_release_impacts(d, 0);
+    gb_dynamics_restore(d, s->snapshot);
+    memcpy(y, y0, sizeof y0);
+    s->stats.unmatched += s->leader != NULL; /* a follower handed over where its leader was not */
+    status = hand_over(s, t, reason);
+    return status ? status : stepped_step(s, t, y);
+}
 
 static int advance_rk4(gb_integrate_session *s, size_t steps, double y[], gb_integrate_sample sample, void *context)
 {
     gb_dynamics *d = s->dynamics;
     const double h = s->h;
-    double next[GB_STATE_SIZE];
     for (size_t end = s->n + steps; s->n < end; s->n++) {
         const double t = s->t0 + (double)s->n * h, t_next = s->t0 + (double)(s->n + 1) * h;
-        int status = rk4_step(d, t, h, y, next, &s->stats);
+        int status = s->leader ? follow_leader(s, t, y) : GB_OK;
         if (status) return status;
-        if (s->def.locate_switches) {
-            gb_contact_point other;
-            int found = 0;
-            status = gb_dynamics_switch_pending(d, t + h, next, &other, &found);
-            if (!status && found) status = located_step(d, t, h, y, &other, rk4_substep, NULL, next, &s->stats);
-            if (status) return status;
-        }
-        memcpy(y, next, sizeof next);
+        if (gb_dynamics_stepped(d)) status = stepped_step(s, t, y);
+        else status = s->def.hand_over ? event_step_or_hand_over(s, t, t_next, y) : event_step(s, t, t_next, y);
+        if (status) return status;
         s->stats.steps++;
         s->t = t_next;
-        double drift;
-        status = gb_dynamics_accept(d, t_next, y, &drift);
-        if (status) return status;
-        note_drift(&s->stats, drift);
-        note_rotation(&s->stats, y, h, 1);
         if ((s->n + 1) % s->def.sample_every == 0 && sample && sample(context, t_next, y)) {
             s->n++;
             s->stopped = 1;
@@ -480,9 +606,27 @@ int gb_integrate_begin(gb_dynamics *d, const gb_integrate_def *def, double t0, g
     s->h = gb_forcing_step(&gb_dynamics_get_def(d)->forcing, def->steps_per_period);
     s->dt = s->h;
     gb_dynamics_use_step(d, s->h); /* the end to chatter, where the definition leaves it to the step */
+    if (def->hand_over) {
+        const gb_dynamics_law *law = gb_dynamics_get_law(d);
+        s->snapshot = law->time_steps ? malloc(gb_dynamics_snapshot_size()) : NULL;
+        if (!s->snapshot) {
+            gb_integrate_end(s);
+            return law->time_steps ? gb_error_set(GB_ENOMEM, "out of memory for a hand-over")
+                                   : gb_error_set(GB_EINVAL, "hand_over under the %s law, which poses no one-step "
+                                                  "problem (allowed: the unilateral law on a plane of finite friction)",
+                                                  law->name);
+        }
+    }
+    if (def->hand_over && gb_dynamics_stepped(d)) { /* handed over at its start (gb_dynamics_init_or_hand_over) */
+        status = hand_over(s, t0, gb_dynamics_start_limit(d));
+        if (status) {
+            gb_integrate_end(s);
+            return status;
+        }
+    }
     if (def->strategy == GB_STRATEGY_TIME_STEPPING) {
-        const gb_contact_problem_def solver = {def->solver_tolerance, def->solver_iterations, def->stepping_first};
-        status = gb_dynamics_stepping_begin(d, t0, s->h, def->theta, &solver);
+        gb_contact_problem_def solver;
+        status = gb_dynamics_stepping_begin(d, t0, s->h, def->theta, solver_of(def, &solver));
         if (status) {
             gb_integrate_end(s);
             return status;
@@ -520,8 +664,19 @@ double gb_integrate_time(const gb_integrate_session *s) { return s->t; }
 int gb_integrate_stopped(const gb_integrate_session *s) { return s->stopped; }
 const gb_integrate_stats *gb_integrate_session_stats(const gb_integrate_session *s) { return &s->stats; }
 
-void gb_integrate_follow(gb_integrate_session *to, const gb_integrate_session *from)
+int gb_integrate_follow(gb_integrate_session *to, const gb_integrate_session *from)
 {
+    /* the strategy the other trajectory is in at this step (a hand-over of one is a hand-over of both) */
+    const int stepped = gb_dynamics_stepped(from->dynamics);
+    if (to->def.hand_over && stepped != gb_dynamics_stepped(to->dynamics)) {
+        if (stepped) {
+            gb_contact_problem_def solver;
+            const int status = gb_dynamics_hand_over(to->dynamics, to->h, to->def.theta, solver_of(&to->def, &solver));
+            if (status) return status;
+        } else {
+            gb_dynamics_hand_back_now(to->dynamics);
+        }
+    }
     to->n = from->n;
     to->t = from->t;
     to->dt = from->dt;
@@ -530,6 +685,12 @@ void gb_integrate_follow(gb_integrate_session *to, const gb_integrate_session *f
         gsl_odeiv2_evolve_reset(to->driver->e);
         gsl_odeiv2_step_reset(to->driver->s);
     }
+    return GB_OK;
+}
+
+void gb_integrate_lead(gb_integrate_session *follower, const gb_integrate_session *leader)
+{
+    follower->leader = leader;
 }
 
 void gb_integrate_end(gb_integrate_session *s)
@@ -537,6 +698,8 @@ void gb_integrate_end(gb_integrate_session *s)
     if (!s) return;
     if (s->driver) gsl_odeiv2_driver_free(s->driver);
     free(s->gsl);
+    free(s->snapshot);
+    free(s->switches);
     free(s);
 }
 

@@ -76,6 +76,16 @@ typedef struct gb_integrate_def {
                                * those the solution would let through the plane (default 64; 0: every candidate at once,
                                * the reduction's check; docs/stepping.md). No scene key: either gives a solution of the whole
                                * problem (the same state to 3e-14 on a polar cap landing, verify/s5_stepping.c) */
+    int stepping_siconos;     /* time-stepping: 1 linearises the step where Siconos's MoreauJeanOSI on a NewtonEulerDS does
+                               * (the relations at the attitude the step predicts, q ⊗ exp(h ω / 2), and the rotation's
+                               * forces ω × Iω + c ω θ-implicit linearised at the step's start) instead of at the step's
+                               * start with the gyroscopic term explicit (0, the default): the harness's step-for-step
+                               * comparison with Siconos's kernel (verify/siconos.c). No scene key; docs/stepping.md */
+    int hand_over;            /* event-driven with RK4: where the law meets a configuration it does not follow (a model's
+                               * limit, gb_error_at_limit: Painlevé's paradox, three points sliding, a face landing on a
+                               * plane of finite friction...), the step is taken again by time-stepping (θ, the solver
+                               * above) and the run goes on so until the body flies, where the events take it back
+                               * (default 0: the run stops there, exit 1); docs/stepping.md */
 } gb_integrate_def;
 
 GB_API gb_integrate_def gb_integrate_default_def(void);
@@ -85,6 +95,12 @@ typedef struct gb_integrate_stats {
     double max_norm_drift;    /* largest |q| − 1 removed by renormalisation */
     double max_step_rotation; /* largest |ω| h at the end of an accepted step [rad] */
     size_t coarse_steps;      /* fixed-step RK4: accepted steps with |ω| h > GB_INTEGRATE_ROTATION_MAX */
+    /* def.hand_over: the run's hand-overs to time-stepping and its returns to the events, the steps stepped, the
+     * first hand-over's time and reason (the limit's message); a trajectory that follows another (a Lyapunov pair's
+     * copy) hands over and back at the other's steps, and counts the steps where it could not (unmatched) */
+    size_t hand_overs, hand_backs, stepped_steps, unmatched;
+    double hand_over_first;
+    char hand_over_reason[512];
 } gb_integrate_stats;
 
 /* The turn a fixed RK4 step may make and still resolve the spin: at |ω| h = 0.25 rad the scheme's error

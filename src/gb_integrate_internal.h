@@ -45,7 +45,12 @@ int gb_integrate_locate_switch(gb_dynamics *dynamics, double t, double h, const 
 int gb_integrate_locate_next(gb_dynamics *dynamics, double t, double h, const double y[GB_STATE_SIZE],
                              const gb_contact_point *other, gb_integrate_switch *out, gb_integrate_stats *stats);
 /* Put `to` (a session of a second copy of the same scene) at the time, step count and step size of
- * `from`: for a trajectory placed next to another one. */
-void gb_integrate_follow(gb_integrate_session *to, const gb_integrate_session *from);
+ * `from`, in the strategy `from` is in (a run handed over to time-stepping: def.hand_over): for a trajectory placed
+ * next to another one. Call it before gb_dynamics_adopt_contact, which then copies the stepping's state. */
+int gb_integrate_follow(gb_integrate_session *to, const gb_integrate_session *from);
+/* `follower` (a Lyapunov pair's copy) hands over to time-stepping and back at the steps where `leader` did, rather than
+ * where its own law meets a limit or it flies (def.hand_over; a step it cannot match is counted, stats.unmatched); the
+ * leader advances first over each stretch. */
+void gb_integrate_lead(gb_integrate_session *follower, const gb_integrate_session *leader);
 
 #endif

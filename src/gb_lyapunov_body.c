@@ -25,7 +25,7 @@ struct gb_lyapunov_body {
     double y[2][GB_STATE_SIZE];
     double period, omega_scale;
     int translation; /* the unilateral law: the separation has the centroid's height and velocity too */
-    int stepped;     /* time-stepping: the centroid's height and velocity are always the state's own */
+    int stepped;     /* begun time-stepping (a run handed over is stepped while it is: gb_dynamics_stepped) */
     gb_integrate_sample sample; /* the reference's samples (gb_lyapunov_body_observe) */
     void *sample_context;
     /* the variational estimator's own RK4 stepping of the reference */
@@ -58,13 +58,14 @@ int gb_lyapunov_body_create_in(const gb_surface *surface, const gb_dynamics_def 
         status = gb_dynamics_create_in(surface, dynamics, context, &b->dynamics[k]);
         /* time-stepping: placed as the first step's problem finds it, no mode's start (as gb_run) */
         if (!status && b->stepped) status = gb_dynamics_stepping_prepare(b->dynamics[k]);
-        if (!status) status = gb_dynamics_init_state(b->dynamics[k], 0.0, R0, omega0, b->y[k]);
+        if (!status) status = gb_dynamics_init_or_hand_over(b->dynamics[k], 0.0, R0, omega0, b->y[k], integrate->hand_over);
         if (!status) status = gb_integrate_begin(b->dynamics[k], integrate, 0.0, &b->session[k]);
     }
     if (status) {
         gb_lyapunov_body_free(b);
         return status;
     }
+    if (integrate->hand_over) gb_integrate_lead(b->session[1], b->session[0]);
     *out = b;
     return GB_OK;
 }
@@ -147,7 +148,8 @@ static int body_separation(void *context, double *e)
     }
     memset(e + PAIR_ROTATION, 0, PAIR_TRANSLATION * sizeof *e);
     /* the translation is the body's own in flight and, horizontally, while it slides; stepped in time, always */
-    if (!b->stepped && !f[0].flying && !f[1].flying && !sl[0].sliding && !sl[1].sliding) return GB_OK;
+    const int stepped = gb_dynamics_stepped(b->dynamics[0]) || gb_dynamics_stepped(b->dynamics[1]);
+    if (!stepped && !f[0].flying && !f[1].flying && !sl[0].sliding && !sl[1].sliding) return GB_OK;
     /* the centroid's height and velocity, as the state holds them at its accepted steps */
     const double L = gb_dynamics_mean_radius(b->dynamics[0]), *ya = b->y[0], *yb = b->y[1];
     e[PAIR_ROTATION] = (yb[GB_STATE_ZETA] - ya[GB_STATE_ZETA]) / L;
@@ -164,10 +166,11 @@ static int body_place(void *context, const double *given)
     gb_dynamics_flight_summary f;
     gb_dynamics_sliding_summary sl = {0};
     const double t = gb_integrate_time(b->session[0]);
+    const int stepped = gb_dynamics_stepped(b->dynamics[0]); /* the copy is put in the reference's strategy below */
     if (b->translation) {
         gb_dynamics_flight_stats(b->dynamics[0], t, &f);
         gb_dynamics_sliding_stats(b->dynamics[0], t, NULL, &sl);
-        if (!f.flying && !b->stepped) {
+        if (!f.flying && !stepped) {
             /* on the plane the height and velocity follow from the attitude and ω (but for the horizontal
              * velocity of a sliding body): the rotational part takes the rest of the length */
             double all = 0.0, kept = 0.0;
@@ -186,9 +189,10 @@ static int body_place(void *context, const double *given)
     memcpy(b->y[1], b->y[0], sizeof b->y[1]);
     quaternion_product(b->y[0] + GB_STATE_Q, dq, b->y[1] + GB_STATE_Q);
     for (int k = 0; k < 3; k++) b->y[1][GB_STATE_OMEGA + k] = b->y[0][GB_STATE_OMEGA + k] + b->omega_scale * e[3 + k];
+    const int status = gb_integrate_follow(b->session[1], b->session[0]);
+    if (status) return status;
     gb_dynamics_adopt_contact(b->dynamics[1], b->dynamics[0]);
-    gb_integrate_follow(b->session[1], b->session[0]);
-    if (b->stepped) { /* the height and velocity are the state's own: displaced as they are */
+    if (stepped) { /* the height and velocity are the state's own: displaced as they are */
         const double L = gb_dynamics_mean_radius(b->dynamics[0]), scale = b->omega_scale * L;
         b->y[1][GB_STATE_ZETA] += L * e[PAIR_ROTATION];
         for (int k = 0; k < 3; k++) b->y[1][GB_STATE_VELOCITY + k] += scale * e[PAIR_ROTATION + 1 + k];

@@ -138,6 +138,7 @@ static int run_with_lyapunov(const gb_case *scene, gb_dynamics_context *context,
     r->has_lyapunov = 1;
     memcpy(r->y, gb_lyapunov_body_state(*body), sizeof r->y);
     r->stats = *gb_lyapunov_body_stats(*body, 0);
+    r->pair_stats = *gb_lyapunov_body_stats(*body, 1);
     return GB_OK;
 }
 
@@ -177,7 +178,8 @@ int gb_run_in(const gb_case *scene, gb_dynamics_context *context, const gb_run_s
         status = gb_dynamics_create_in(&scene->body, &scene->dynamics, context, &dynamics);
         /* time-stepping: the body placed as the first step's problem will find it, no mode's start */
         if (!status && scene->integrate.strategy == GB_STRATEGY_TIME_STEPPING) status = gb_dynamics_stepping_prepare(dynamics);
-        if (!status) status = gb_dynamics_init_state(dynamics, 0.0, scene->attitude, scene->omega0, out->y);
+        if (!status) status = gb_dynamics_init_or_hand_over(dynamics, 0.0, scene->attitude, scene->omega0, out->y,
+                                                           scene->integrate.hand_over);
         s.dynamics = dynamics;
         if (!status && sinks && sinks->impact) gb_dynamics_set_impact_sink(dynamics, sinks->impact, sinks->context);
         if (!status) status = gb_integrate_run(dynamics, &scene->integrate, 0.0, out->y, observe, &s, &out->stats);

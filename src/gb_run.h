@@ -58,6 +58,7 @@ typedef struct gb_run_result {
     double t_end;
     gb_dynamics_observables final;       /* at t_end: switch counts, energy residual, … */
     gb_integrate_stats stats;            /* of the (reference) trajectory */
+    gb_integrate_stats pair_stats;       /* of the Lyapunov pair's copy (has_lyapunov) */
     size_t samples;
     double residual_max, orthonormality_max;
     double residual_jump, residual_jump_t; /* the ledger's largest change between two samples [J], and the sample's

@@ -45,7 +45,7 @@ size_t gb_scan_metric_names(unsigned metrics, const char **names, size_t max)
 
 typedef struct scan_reader {
     gb_scan *scan;
-    int seen[3][8]; /* the line of each key, per section, for "given twice" */
+    int seen[3][9]; /* the line of each key, per section, for "given twice" */
 } scan_reader;
 
 static int once(gb_ini_reader *ini, scan_reader *r, int section, int key, const char *sname, const char *kname,
@@ -146,8 +146,8 @@ static int scan_handler(gb_ini_reader *ini, void *user, const char *section, con
     gb_scan *scan = r->scan;
     if (!strcmp(section, "scan")) {
         static const char *const names[] = {"description", "base",          "periods", "transient_periods",
-                                            "metrics",     "failed_points", "atlas",   "atlas_file"};
-        for (int k = 0; k < 8; k++) {
+                                            "metrics",     "failed_points", "atlas",   "atlas_file", "hand_over"};
+        for (int k = 0; k < 9; k++) {
             if (strcmp(key, names[k])) continue;
             if (!once(ini, r, 0, k, section, key, value)) return 0;
             switch (k) {
@@ -174,6 +174,11 @@ static int scan_handler(gb_ini_reader *ini, void *user, const char *section, con
                                        "temporaries '.gomboc-...')", value, GB_SCAN_ATLAS_NAME_MAX);
                 snprintf(scan->atlas_name, sizeof scan->atlas_name, "%s", value), scan->atlas_name_line = gb_ini_line(ini);
                 return 1;
+            case 8:
+                if (strcmp(value, "none") && strcmp(value, "time-stepping"))
+                    return gb_ini_fail(ini, "[scan] hand_over = %s: unknown (allowed: none, time-stepping)", value);
+                scan->hand_over = !strcmp(value, "time-stepping"), scan->hand_over_line = gb_ini_line(ini);
+                return 1;
             default:
                 if (strcmp(value, "stop") && strcmp(value, "record"))
                     return gb_ini_fail(ini, "[scan] failed_points = %s: unknown (allowed: stop, record)", value);
@@ -182,7 +187,7 @@ static int scan_handler(gb_ini_reader *ini, void *user, const char *section, con
             }
         }
         return gb_ini_fail(ini, "[scan] %s = %s: unknown key (allowed in [scan]: description, base, periods, "
-                           "transient_periods, metrics, failed_points, atlas, atlas_file)", key, value);
+                           "transient_periods, metrics, failed_points, atlas, atlas_file, hand_over)", key, value);
     }
     const int s = !strcmp(section, "x") ? 1 : 2;
     gb_scan_axis *a = &scan->axis[s - 1];
@@ -233,7 +238,7 @@ int gb_scan_point_case(const gb_scan *scan, size_t index, gb_case *out)
     double x, y;
     gb_scan_coordinates(scan, index, &x, &y);
     char xv[160], yv[160], periods[40], transient[24], origin_x[GB_SCAN_PATH_MAX + 48], origin_y[GB_SCAN_PATH_MAX + 48],
-        origin[GB_SCAN_PATH_MAX + 16], origin_atlas[GB_SCAN_PATH_MAX + 48];
+        origin[GB_SCAN_PATH_MAX + 16], origin_atlas[GB_SCAN_PATH_MAX + 48], origin_hand[GB_SCAN_PATH_MAX + 64];
     if (scan->axis[0].scale == GB_SCAN_RANDOM) gb_scan_random_attitude(scan->axis[0].seed, (size_t)x, xv, sizeof xv);
     else snprintf(xv, sizeof xv, "%.17g", x);
     if (scan->axis[1].scale == GB_SCAN_RANDOM) gb_scan_random_attitude(scan->axis[1].seed, (size_t)y, yv, sizeof yv);
@@ -244,8 +249,9 @@ int gb_scan_point_case(const gb_scan *scan, size_t index, gb_case *out)
     snprintf(origin_y, sizeof origin_y, "%s:%d (point %zu)", scan->path, scan->axis[1].line, index);
     snprintf(origin, sizeof origin, "%s [scan]", scan->path);
     snprintf(origin_atlas, sizeof origin_atlas, "%s:%d [scan] atlas = shared", scan->path, scan->atlas_line);
+    snprintf(origin_hand, sizeof origin_hand, "%s:%d [scan] hand_over = time-stepping", scan->path, scan->hand_over_line);
     const int strobe = (scan->metrics & GB_SCAN_STROBE_SD) != 0, lambda = (scan->metrics & GB_SCAN_LAMBDA) != 0;
-    const gb_case_override o[] = {
+    gb_case_override o[] = {
         {scan->axis[0].section, scan->axis[0].key, xv, origin_x},
         {scan->axis[1].section, scan->axis[1].key, yv, origin_y},
         {"integrator", "periods", periods, origin},
@@ -259,9 +265,12 @@ int gb_scan_point_case(const gb_scan *scan, size_t index, gb_case *out)
         {"lyapunov", "transient_periods", transient, origin},
         {"lyapunov", "interval_periods", "1", origin},
         {"lyapunov", "window_periods", "0", origin}, /* a file of gomboc run; the scan has its own windows */
-        {"model", "certificate", "atlas", origin_atlas}, /* the last: only with atlas = shared */
+        {"model", "certificate", "atlas", origin_atlas}, /* only with atlas = shared */
+        {"integrator", "hand_over", "time-stepping", origin_hand}, /* only with hand_over = time-stepping */
     };
-    const size_t n = sizeof o / sizeof o[0] - !scan->atlas_shared;
+    size_t n = sizeof o / sizeof o[0] - 2;
+    if (scan->atlas_shared) o[n++] = o[sizeof o / sizeof o[0] - 2];
+    if (scan->hand_over) o[n++] = o[sizeof o / sizeof o[0] - 1];
     return gb_case_load_text_with(scan->base, scan->base_text, scan->base_size, o, n, out);
 }
 

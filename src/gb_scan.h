@@ -80,6 +80,9 @@ typedef struct gb_scan {
                                         * those of the per-vertical certificate, bit for bit. none (0): the
                                         * base scene's certificate */
     int atlas_line;                    /* its line, for messages */
+    int hand_over, hand_over_line;     /* [scan] hand_over = time-stepping (1): every point's scene hands its run to
+                                        * time-stepping where the event-driven law cannot follow ([integrator]
+                                        * hand_over); none (0): the base scene's own */
     char atlas_name[GB_SCAN_ATLAS_NAME_MAX + 1];              /* [scan] atlas_file (with atlas = shared): the shared atlas's file name in
                                         * the output directory, so that scans of one body share it ("": the
                                         * scan's own NAME-scan.atlas) */
@@ -132,6 +135,7 @@ typedef struct gb_scan_metrics {
      * landings and the energy impacts and friction took, per forcing period from the transient on; the
      * points on the plane at the end (0 in flight … 3 at rest). */
     double one_point, two_point, at_rest, in_flight, sliding;
+    double stepped;                    /* the share of the run's steps time-stepped after a hand-over (0: none) */
     double impacts_per_period, landings_per_period, energy_lost_per_period;
     double end_contacts;
     size_t certificate_undecided;      /* continuous contact: certificate checks left undecided */

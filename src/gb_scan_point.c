@@ -93,7 +93,7 @@ int gb_scan_point_run_in(const gb_scan *scan, const gb_scan_melnikov *melnikov, 
                          .lambda_late = NAN, .chaos_lifetime = NAN, .melnikov_margin = NAN, .melnikov_margin_eq93 = NAN,
                          .one_point = NAN, .two_point = NAN, .at_rest = NAN, .in_flight = NAN, .sliding = NAN,
                          .impacts_per_period = NAN, .landings_per_period = NAN, .energy_lost_per_period = NAN,
-                         .end_contacts = NAN};
+                         .end_contacts = NAN, .stepped = NAN};
     gb_scan_coordinates(scan, index, &m.x, &m.y);
     if (scan->metrics & GB_SCAN_MELNIKOV) {
         status = melnikov ? gb_scan_melnikov_planned(melnikov, &scene, &m.melnikov_margin, &m.melnikov_margin_eq93)
@@ -142,6 +142,7 @@ int gb_scan_point_run_in(const gb_scan *scan, const gb_scan_melnikov *melnikov, 
                                                   l->interval * scene.dynamics.forcing.omega / (2.0 * M_PI));
     }
     if (modes) mode_metrics(&acc, scene.integrate.periods - (double)scan->transient_periods, r.final.contacts, &m);
+    m.stepped = r.stats.steps ? (double)r.stats.stepped_steps / (double)r.stats.steps : 0.0;
     m.certificate_undecided = r.has_certificate ? r.certificate.undecided : 0;
     m.state_fingerprint = r.state_fingerprint;
     m.switch_fingerprint = r.switch_fingerprint;

@@ -45,7 +45,8 @@ int gb_scan_csv_header(const gb_scan *scan, char *out, size_t size)
     X(impacts_per_period, impacts_per_period)                                                                          \
     X(landings_per_period, landings_per_period)                                                                        \
     X(energy_lost_per_period, energy_lost_per_period)                                                                  \
-    X(end_contacts, end_contacts)
+    X(end_contacts, end_contacts)                                                                                      \
+    X(stepped_fraction, stepped)
 #define COLUMN_OFFSET(name, field) offsetof(gb_scan_metrics, field),
 #define COLUMN_NAME(name, field) #name ","
 static const size_t column_offsets[] = {SCAN_COLUMNS(COLUMN_OFFSET)};

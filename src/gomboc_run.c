@@ -564,6 +564,19 @@ static cJSON *summary_json(const gb_case *scene, const char *path, const gb_run_
             {"grown", (double)st->grown},                 {"enumerated", (double)st->enumerated}};
         add_values(ts, stepping, sizeof stepping / sizeof stepping[0]);
     }
+    if (scene->integrate.hand_over) {
+        /* where the event-driven law met a limit, the steps time-stepping took, and its returns in flight */
+        cJSON *ho = cJSON_AddObjectToObject(root, "hand_over");
+        const gb_integrate_stats *st = &r->stats;
+        const named_value hand[] = {{"hand_overs", (double)st->hand_overs},
+                                    {"returns", (double)st->hand_backs},
+                                    {"stepped_steps", (double)st->stepped_steps},
+                                    {"stepped_fraction", st->steps ? (double)st->stepped_steps / (double)st->steps : 0.0},
+                                    {"first_time", st->hand_overs ? st->hand_over_first : NAN},
+                                    {"pair_unmatched_steps", r->has_lyapunov ? (double)r->pair_stats.unmatched : 0.0}};
+        add_values(ho, hand, sizeof hand / sizeof hand[0]);
+        cJSON_AddStringToObject(ho, "first_reason", st->hand_over_reason);
+    }
     if (r->has_strobe) cJSON_AddItemToObject(root, "strobe", strobe_json(&r->strobe));
     if (r->has_spectrum) cJSON_AddItemToObject(root, "spectrum", spectrum_json(scene, &r->spectrum, r->spectrum_samples));
     if (r->has_lyapunov) {
@@ -712,6 +725,14 @@ int command_run(int argc, char **argv)
                 r.residual_jump_t, GB_INTEGRATE_ROTATION_MAX,
                 scene.integrate.strategy == GB_STRATEGY_EVENT_DRIVEN && time_steps(&scene)
                     ? ", or [integrator] strategy = time-stepping where impacts crowd (docs/stepping.md)" : "");
+    if (r.stats.hand_overs)
+        fprintf(stderr, "gomboc run: %s: handed over to time-stepping %zu time%s where the event-driven law could not follow "
+                "(first at t = %.9g s: %s), back in flight %zu time%s: %zu of %zu steps stepped (%.1f %%)%s\n", case_path,
+                r.stats.hand_overs, r.stats.hand_overs == 1 ? "" : "s", r.stats.hand_over_first, r.stats.hand_over_reason,
+                r.stats.hand_backs, r.stats.hand_backs == 1 ? "" : "s", r.stats.stepped_steps, r.stats.steps,
+                r.stats.steps ? 100.0 * (double)r.stats.stepped_steps / (double)r.stats.steps : 0.0,
+                r.has_lyapunov && r.pair_stats.unmatched ? "; the Lyapunov pair's copy could not match the reference's "
+                                                           "strategy at some steps (pair_unmatched_steps)" : "");
     if (r.has_stepping)
         fprintf(stderr, "gomboc run: %s: time-stepping (theta %g): %zu contact problems, up to %zu points (of %zu candidates; "
                 "%zu posed again with a point that went through), %.1f sweeps each, residual <= %.3g; the impulses gave %.3g J in %zu step%s (a body turning about a held point: O(h))\n",

@@ -234,7 +234,7 @@ static const bad_row rows[] = {
     {RUN, "[integrator]\nperiods = 5\n[diagnostics]\nstrobe = yes\n[strobe]\ntransient_periods = 5\n", 0, 2, {"case.ini:6: [strobe] transient_periods = 5 leaves no strobe samples", "< [integrator] periods = 5", ""}},
     {"lyapunov @CASE@", "[integrator]\nperiods = 10\n[lyapunov]\nbatches = 20\n", 0, 2, {"case.ini:4: [lyapunov] batches = 20 exceeds", "2 <= batches <= intervals - warmup_intervals", ""}},
     /* Scan files (gomboc scan): the same strict reader, their own keys. */
-    {"scan @CASE@ --out @D@", "[scan]\nbase = x.ini\nperiod = 10\n", 0, 2, {"case.ini:3: [scan] period = 10: unknown key", "allowed in [scan]: description, base, periods, transient_periods, metrics, failed_points, atlas", ""}},
+    {"scan @CASE@ --out @D@", "[scan]\nbase = x.ini\nperiod = 10\n", 0, 2, {"case.ini:3: [scan] period = 10: unknown key", "allowed in [scan]: description, base, periods, transient_periods, metrics, failed_points, atlas, atlas_file, hand_over", ""}},
     {"scan @CASE@ --out @D@", "[scan]\nbase = x.ini\n[x]\nkey = forcing.omega\nfrom = 20\nto = 10\ncount = 5\n[y]\nkey = forcing.A1\nfrom = 1\nto = 2\ncount = 2\n", 0, 2, {"case.ini:6: [x] to = 10: an empty range", "to > from = 20", ""}},
     {"scan @CASE@ --out @D@", "[scan]\nbase = x.ini\nmetrics = omega_rms, bogus\n", 0, 2, {"case.ini:3: [scan] metrics = omega_rms, bogus: unknown metric 'bogus'", "omega_rms, switch_rate, strobe_sd, mean_height, monitors, lambda", ""}},
     {"scan @CASE@ --out @D@", "[scan]\nbase = x.ini\n[x]\nkey = integrator.periods\n", 0, 2, {"case.ini:4: [x] key = integrator.periods: set by the scan on every point", "allowed: a key of [body]", ""}},
@@ -244,6 +244,10 @@ static const bad_row rows[] = {
     {"scan @CASE@ --out @D@", "[scan]\nbase = nothing.ini\n[x]\nkey = forcing.omega\nfrom = 10\nto = 20\ncount = 3\n[y]\nkey = forcing.A1\nfrom = 1\nto = 2\ncount = 2\n", 0, 2, {"case.ini:2: [scan] base = ", "nothing.ini: cannot open the case file", "a relative base is read from the scan file's directory"}},
     {"scan @CASE@ --out @D@", "[scan]\nbase = x.ini\n[z]\n", 0, 2, {"case.ini:3: unknown section [z]", "allowed: scan, x, y", ""}},
     {"scan @CASE@ --out @D@", "[scan]\nbase = x.ini\natlas = always\n", 0, 2, {"case.ini:3: [scan] atlas = always: unknown", "allowed: none, shared", ""}},
+    {"scan @CASE@ --out @D@", "[scan]\nbase = x.ini\nhand_over = always\n", 0, 2, {"case.ini:3: [scan] hand_over = always: unknown", "allowed: none, time-stepping", ""}},
+    {"scan @CASE@ --out @D@", "[scan]\nbase = x.ini\nhand_over = none\nhand_over = none\n", 0, 2, {"case.ini:4: [scan] hand_over = none: given twice", "first at line 3", ""}},
+    /* the ninth [scan] key has its own place among the keys seen: the [x] axis after it is read, and judged on its range */
+    {"scan @CASE@ --out @D@", "[scan]\nbase = x.ini\nhand_over = none\n[x]\nkey = forcing.omega\nfrom = 20\nto = 10\ncount = 5\n[y]\nkey = forcing.A1\nfrom = 1\nto = 2\ncount = 2\n", 0, 2, {"case.ini:7: [x] to = 10: an empty range", "to > from = 20", ""}},
     {"scan @CASE@ --out @D@", "[scan]\nbase = x.ini\n[x]\nkey = omega\n", 0, 2, {"case.ini:4: [x] key = omega: not a scene key", "SECTION.KEY", ""}},
     {"scan @CASE@ --out @D@", "[scan]\nbase = x.ini\ntransient_periods = 100\n[x]\nkey = forcing.omega\nfrom = 10\nto = 20\ncount = 3\n[y]\nkey = forcing.A1\nfrom = 1\nto = 2\ncount = 2\n", 0, 2, {"case.ini:3: [scan] transient_periods = 100 leaves less than one period", "periods - 1 = 99", ""}},
     {"scan @CASE@ --out @D@", "[scan]\nbase = x.ini\n[x]\nkey = forcing.omega\nscale = random\nseed = 1\ncount = 4\n[y]\nkey = forcing.A1\nfrom = 1\nto = 2\ncount = 2\n", 0, 2, {"[x] key = forcing.omega with scale = random", "initial.attitude with scale = random and a seed", ""}},

@@ -625,7 +625,7 @@ static void test_siconos(void)
 static void test_one_step_problem(void)
 {
     enum { N = 3000 };
-    const gb_contact_problem_def def = {1e-12, 20000, 0};
+    const gb_contact_problem_def def = {1e-12, 20000, 0, 0};
     gb_contact_problem *solver = NULL;
     int status = gb_contact_problem_create(&def, &solver);
     unsigned long long s = 0x243f6a8885a308d3ull;
@@ -715,7 +715,7 @@ static int stepped_exact(void *context, int count, double *r)
 static void test_stepped_enumeration(void)
 {
     enum { N = 1500 };
-    const gb_contact_problem_def full = {1e-12, 20000, 0}, one_sweep = {1e-12, 1, 0}; /* one iteration of each method */
+    const gb_contact_problem_def full = {1e-12, 20000, 0, 0}, one_sweep = {1e-12, 1, 0, 0}; /* one iteration of each method */
     gb_contact_problem *siconos = NULL, *hooked = NULL;
     int status = gb_contact_problem_create(&full, &siconos);
     if (!status) status = gb_contact_problem_create(&one_sweep, &hooked);

@@ -704,6 +704,85 @@ static void test_ensemble(void)
     cJSON_Delete(doc);
 }
 
+/* ---- one step, state for state (references/siconos/one_step.json) ----------------------------------------- */
+
+static double number_at(const cJSON *c, const char *key) { return cJSON_GetObjectItemCaseSensitive(c, key)->valuedouble; }
+
+static void vector_at(const cJSON *c, const char *key, double out[3])
+{
+    const cJSON *a = cJSON_GetObjectItemCaseSensitive(c, key);
+    for (int k = 0; k < 3; k++) out[k] = cJSON_GetArrayItem(a, k)->valuedouble;
+}
+
+/* One time-stepping step of the case's state (the same body, plane and step as Siconos's), linearised at the step's
+ * start (siconos 0) or as Siconos's MoreauJeanOSI (1): the largest |ω⁺ − Siconos's| and |v⁺ − Siconos's|. */
+static int one_step(const cJSON *c, int siconos, double *dw, double *dv)
+{
+    double axis[3], v[3], w[3], v_after[3], w_after[3];
+    vector_at(c, "axis", axis), vector_at(c, "velocity", v), vector_at(c, "omega", w);
+    vector_at(c, "velocity_after", v_after), vector_at(c, "omega_after", w_after);
+    const double h = number_at(c, "h");
+    const size_t spp = (size_t)llround(1.0 / h);
+    char text[1600];
+    snprintf(text, sizeof text,
+             "[body]\nmorphology = %s\nbeta = 0.12\nmass = 1\n[forcing]\ng = 9.81\nA1 = 0\nA2 = 0\nomega = 6.283185307179586\n"
+             "[model]\ncontact = fast-grid\ncontact_law = unilateral\ndamping = 0\nfriction = %.17g\nrestitution = %.17g\n"
+             "[integrator]\nstrategy = time-stepping\nsolver_tolerance = 1e-14\nsteps_per_period = %zu\nperiods = %.17g\n"
+             "[initial]\nattitude = axis-angle %.17g,%.17g,%.17g,%.17g\nomega = %.17g,%.17g,%.17g\nheight = %.17g\n"
+             "velocity = %.17g,%.17g,%.17g\n",
+             cJSON_GetObjectItemCaseSensitive(c, "body")->valuestring, number_at(c, "mu"), number_at(c, "restitution"), spp,
+             1.0 / (double)spp, axis[0], axis[1], axis[2], number_at(c, "angle"), w[0], w[1], w[2], number_at(c, "gap"), v[0],
+             v[1], v[2]);
+    gb_case scene;
+    gb_run_result r;
+    int status = gb_case_load_text("one-step.ini", text, strlen(text), &scene);
+    scene.integrate.stepping_siconos = siconos;
+    if (!status) status = gb_run(&scene, NULL, &r);
+    if (status) return status;
+    *dw = *dv = 0.0;
+    for (int k = 0; k < 3; k++) {
+        *dw = fmax(*dw, fabs(r.y[GB_STATE_OMEGA + k] - w_after[k]));
+        *dv = fmax(*dv, fabs(r.y[GB_STATE_VELOCITY + k] - v_after[k]));
+    }
+    const int steps = (int)r.stats.steps;
+    gb_run_result_free(&r);
+    return steps == 1 ? GB_OK : gb_error_set(GB_EINVAL, "%d steps where one was asked", steps);
+}
+
+static void test_one_step(void)
+{
+    cJSON *root;
+    const cJSON *cases = gb_check_reference_cases("siconos/one_step.json", "5", &root);
+    if (!cases) return;
+    int status = GB_OK, n = 0, turning = 0;
+    double worst_siconos = 0.0, worst_still = 0.0, default_turning = 0.0, default_turning_min = INFINITY;
+    const cJSON *c;
+    cJSON_ArrayForEach(c, cases) {
+        double w[3], dw, dv, dw0, dv0;
+        vector_at(c, "omega", w);
+        if ((status = one_step(c, 1, &dw, &dv)) || (status = one_step(c, 0, &dw0, &dv0))) break;
+        n++;
+        worst_siconos = fmax(worst_siconos, fmax(dw, dv));
+        if (w[0] == 0.0 && w[1] == 0.0 && w[2] == 0.0) worst_still = fmax(worst_still, fmax(dw0, dv0));
+        else turning++, default_turning = fmax(default_turning, fmax(dw0, dv0)), default_turning_min = fmin(default_turning_min, fmax(dw0, dv0));
+    }
+    cJSON_Delete(root);
+    gb_check c1 = {"5", "-", "one time-stepping step of Gomboc I's and II's grid polyhedra on a still plane (h = 1e-4 s), from 24 "
+                   "seeded states (landing, sliding, turning; mu 0.1 ... 2, e 0 and 0.5): omega and the centroid's velocity after "
+                   "it, gomboc linearised as Siconos's MoreauJeanOSI (stepping_siconos) and, where omega is 0, by default",
+                   "Siconos's kernel, the same step from the same state (references/siconos/one_step.json: TimeStepping, "
+                   "MoreauJeanOSI(1/2), NSGS to 1e-14): the same method",
+                   "where omega is 0 at the start (the two linearisations coincide), 1e-12 rad/s and m/s: both solvers' "
+                   "tolerance 1e-14 of speeds under 1 m/s, with a hundredfold margin for rounding; as Siconos, 1e-9: the "
+                   "turning states differ by up to 1e-10 at h = 1e-4 (1e-14 at h = 1e-5, measured when the reference was "
+                   "made), a difference not explained yet, six orders below the O(h omega) of the two linearisations"};
+    gb_check_true(&c1, !status && n == 24 && worst_siconos <= 1e-9 && worst_still <= 1e-12,
+                  "%s; %d cases; as Siconos: worst %.3g; by default where omega = 0: worst %.3g; by default where the body "
+                  "turns (%d cases; the relations at the step's start and the gyroscopic term explicit): %.3g ... %.3g, "
+                  "the two linearisations' O(h omega) difference", status ? gb_error_message() : "ran", n, worst_siconos,
+                  worst_still, turning, default_turning_min, default_turning);
+}
+
 int verify_register_siconos(void)
 {
     static const verify_test tests[] = {
@@ -717,6 +796,9 @@ int verify_register_siconos(void)
         {"Table 1's plane, until the runs part", test_table1,
          "on the vibrated plane the two engines agree event by event until Siconos's own steps part"},
         {"an ensemble on Table 1's plane", test_ensemble, NULL},
+        {"one time-stepping step from the same state, as Siconos linearises it", test_one_step,
+         "gomboc's one-step frictional contact problem is Siconos's: the same step from the same state agrees to the solvers' "
+         "tolerance"},
         {NULL, NULL, NULL},
     };
     return verify_register_suite("Against Siconos: the same scenes in another engine", tests);

@@ -113,6 +113,17 @@ class VertexPlane(sk.NewtonEuler3DR):
         y[0] = position[2]
 
 
+def moreau_jean(ds, t_end, h, tolerance, iterations):
+    """The body ds alone in a system up to t_end, stepped by Moreau-Jean (theta = 1/2) at h with a three-dimensional
+    friction-contact problem solved by NSGS to `tolerance` in at most `iterations`: (system, problem, simulation)."""
+    nsds = sk.NonSmoothDynamicalSystem(0.0, t_end)
+    nsds.insertDynamicalSystem(ds)
+    problem = sk.FrictionContact(3, sn.SICONOS_FRICTION_3D_NSGS)
+    problem.numericsSolverOptions().dparam[sn.SICONOS_DPARAM_TOL] = tolerance
+    problem.numericsSolverOptions().iparam[sn.SICONOS_IPARAM_MAX_ITER] = iterations
+    return nsds, problem, sk.TimeStepping(nsds, sk.TimeDiscretisation(0.0, h), sk.MoreauJeanOSI(0.5), problem)
+
+
 def geff(scene, t):
     return scene["g"] + scene["a1"] * math.cos(scene["omega"] * t) + scene["a2"] * math.cos(2.0 * scene["omega"] * t + scene["psi"])
 
@@ -131,13 +142,7 @@ def simulate(scene, body, h, t_end, attitude=None, stop_at_rest=True, ledger=Fal
     ds.setFExtPtr(numpy.array([0.0, 0.0, -mass * geff(scene, 0.5 * h)]))
     ds.setMExtPtr(numpy.zeros(3))
     mu = 10.0 if scene["friction"] == "rough" else float(scene["friction"])
-    nsds = sk.NonSmoothDynamicalSystem(0.0, t_end + 2.0 * h)
-    nsds.insertDynamicalSystem(ds)
-    osi = sk.MoreauJeanOSI(0.5)
-    problem = sk.FrictionContact(3, sn.SICONOS_FRICTION_3D_NSGS)
-    problem.numericsSolverOptions().dparam[sn.SICONOS_DPARAM_TOL] = SOLVER_TOL
-    problem.numericsSolverOptions().iparam[sn.SICONOS_IPARAM_MAX_ITER] = 10000
-    sim = sk.TimeStepping(nsds, sk.TimeDiscretisation(0.0, h), osi, problem)
+    nsds, problem, sim = moreau_jean(ds, t_end + 2.0 * h, h, SOLVER_TOL, 10000)
     law = sk.NewtonImpactFrictionNSL(scene["restitution"], 0.0, mu, 3)
     active = {}
 

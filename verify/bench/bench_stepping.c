@@ -48,7 +48,7 @@ static void one_step_problem(void)
     printf("\nbench: the one-step problem, Siconos's fc3d (NSGS; gb_contact_problem) against the enumeration (gb_impact_coulomb), "
            "%d random plastic impacts a row, median wall time\n\n", N);
     printf("%-7s %14s %18s %8s %10s\n", "points", "fc3d [us]", "enumeration [us]", "ratio", "unsolved");
-    const gb_contact_problem_def def = {1e-12, 20000, 0};
+    const gb_contact_problem_def def = {1e-12, 20000, 0, 0};
     gb_contact_problem *solver = NULL;
     if (gb_contact_problem_create(&def, &solver)) {
         printf("bench: %s\n", gb_error_message());
