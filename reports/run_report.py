@@ -319,8 +319,10 @@ def summary_lines(name, summary, figures):
                      f"(a body turning about a held point: O(h))")
     if impacts and two_point and not stepping:
         rest = two_point.get("rest_since")
+        needed = impacts["friction_needed_max"]
         lines.append(f"- unilateral contact: {impacts['count']:.0f} impact{'' if impacts['count'] == 1 else 's'} took {impacts['energy_lost']:.4g} J (the largest "
-                     f"friction one needed: {impacts['friction_needed_max'] if impacts['friction_needed_max'] is not None else 'unbounded'}); "
+                     f"tangential over normal impulse of an impact, the μ it would stick at: "
+                     f"{format(needed, '.4g') if needed is not None else 'unbounded'}); "
                      f"on two points for {100 * two_point['time_fraction']:.1f} % of the run ({two_point['entries']:.0f} {'entry' if two_point['entries'] == 1 else 'entries'}; "
                      f"{impacts['settled']:.0f} impacts ended by the settle rule; {two_point['lifts']:.0f} lifts, "
                      f"{two_point['third_points']:.0f} third points"
@@ -353,7 +355,7 @@ def summary_lines(name, summary, figures):
         lines.append(f"- validity: g_eff ≤ 0 in {100 * monitors['geff_nonpositive_fraction']:.2f} % of samples "
                      f"(min {monitors['geff_min']:.3f} m/s²); normal force ≤ 0 (lift-off) in "
                      f"{100 * monitors['lift_off_fraction']:.2f} % (min {monitors['normal_force_min']:.3f} N); "
-                     f"friction needed up to μ = {monitors['friction_needed_max']:.3f}")
+                     f"the contact forces' |F_t|/N in the samples (between impacts) up to {monitors['friction_needed_max']:.3f}")
     strobe, spectrum, lyap = summary.get("strobe"), summary.get("spectrum"), summary.get("lyapunov")
     if strobe:
         period = (f"period {strobe['period_detected']:.0f}" if strobe["period_detected"]

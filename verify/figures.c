@@ -14,6 +14,7 @@
 #include "verify_sections.h"
 
 #include <cjson/cJSON.h>
+#include <ctype.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -178,6 +179,20 @@ static void test_figures(void)
                   "earlier figure %s; user's file %s", access(stale, F_OK) == 0 ? "still there" : "removed",
                   kept ? "kept" : "REMOVED");
     free(kept);
+    /* a number of 15 significant digits or more on the page is a double printed whole (17 digits), unrounded */
+    int long_numbers = 0;
+    char first_long[64] = "";
+    for (const char *p = page; p && *p; p++) {
+        if (!isdigit((unsigned char)*p) || (p > page && (isdigit((unsigned char)p[-1]) || p[-1] == '.'))) continue;
+        int digits = 0, dots = 0;
+        const char *q = p;
+        for (; isdigit((unsigned char)*q) || (*q == '.' && !dots++ && isdigit((unsigned char)q[1])); q++) digits += *q != '.';
+        if (digits >= 15 && !long_numbers++) snprintf(first_long, sizeof first_long, "%.*s", (int)(q - p < 40 ? q - p : 40), p);
+    }
+    gb_check cd = {"-", "-", "the run pages of table1-gomboc-I and housner-block: numbers of 15 significant digits or more",
+                   "none: every number is rounded to what it means (a double printed whole has 17 digits)", "exact"};
+    gb_check_true(&cd, page && long_numbers == 0, "%d such numbers%s%s", long_numbers, long_numbers ? ", the first " : "",
+                  first_long);
     cJSON_Delete(s1), cJSON_Delete(s2), cJSON_Delete(m1), cJSON_Delete(m2);
     free(page);
     clean(dir);
