@@ -26,15 +26,24 @@ struct gb_ini_reader {
     int line;                  /* the line last handed to libinih */
     int error_line;            /* the first error found by the reader or the handler (0: none) */
     char message[768];         /* its text, without the file and line */
+    int errors;                /* the errors found: a handler's (a key's value) leave the file read on, so that every
+                                * key's fault is said at once; the reader's (a line it cannot read) end it */
+    char more[GB_INI_MORE_MAX]; /* the second and later ones, each "\nFILE:LINE: reason", the first GB_INI_ERRORS_MAX */
     gb_ini_handler handler;
     void *user;
 };
 
 static int vfail(gb_ini_reader *r, const char *fmt, va_list ap)
 {
-    if (r->error_line) return 0;
-    vsnprintf(r->message, sizeof r->message, fmt, ap);
-    r->error_line = r->line;
+    if (r->errors++ == 0) {
+        vsnprintf(r->message, sizeof r->message, fmt, ap);
+        r->error_line = r->line;
+    } else if (r->errors <= GB_INI_ERRORS_MAX) {
+        char text[768];
+        vsnprintf(text, sizeof text, fmt, ap);
+        const size_t used = strlen(r->more);
+        snprintf(r->more + used, sizeof r->more - used, "\n%s:%d: %s", r->name, r->line, text);
+    }
     return 0;
 }
 
@@ -114,11 +123,12 @@ static int check_section(gb_ini_reader *r, const char *p, size_t n)
     return 1;
 }
 
-/* libinih's reader: hands over one line at a time, each checked first. An error ends the file. */
+/* libinih's reader: hands over one line at a time, each checked first. A line it cannot read ends the file; a key's
+ * fault (its handler's) does not. */
 static char *next_line(char *out, int capacity, void *stream)
 {
     gb_ini_reader *r = stream;
-    if (r->error_line || r->pos >= r->size) return NULL;
+    if (r->pos >= r->size) return NULL;
     const char *start = r->text + r->pos;
     const char *newline = memchr(start, '\n', r->size - r->pos);
     size_t n = newline ? (size_t)(newline - start) : r->size - r->pos;
@@ -157,7 +167,6 @@ static char *next_line(char *out, int capacity, void *stream)
 static int on_key(void *user, const char *section, const char *name, const char *value)
 {
     gb_ini_reader *r = user;
-    if (r->error_line) return 0;
     if (!section[0]) return gb_ini_fail(r, "%s = %s: a key before any [section] (allowed: [section] first)", name, value);
     return r->handler(r, r->user, section, name, value);
 }
@@ -189,7 +198,10 @@ int gb_ini_read(const char *name, const char *text, size_t size, const char *con
         line_text(text, size, ret, bad, sizeof bad);
         return gb_error_set(GB_EINVAL, "%s:%d: malformed line '%s' (allowed: [section], key = value, ; comment)", name, ret, bad);
     }
-    if (r.error_line) return gb_error_set(GB_EINVAL, "%s:%d: %s", name, r.error_line, r.message);
+    if (r.errors > GB_INI_ERRORS_MAX)
+        return gb_error_set(GB_EINVAL, "%s:%d: %s%s\n%s: %d faults in all, the first %d said", name, r.error_line, r.message,
+                            r.more, name, r.errors, GB_INI_ERRORS_MAX);
+    if (r.errors) return gb_error_set(GB_EINVAL, "%s:%d: %s%s", name, r.error_line, r.message, r.more);
     /* A file with no section says nothing: an empty file (a copy that failed, a truncated write) is not
      * read as "all defaults". */
     if (!r.sections_seen)

@@ -6,7 +6,8 @@
  * no NUL and no control character but TAB, no indented (continuation) line, a section header alone on
  * its line, only the format's sections, each once, no key before the first section, "key = value" (not
  * libinih's "key : value"), and at least one section (an empty file is refused). Every error
- * names the file and the line: "FILE:LINE: reason (allowed: ...)", status GB_EINVAL. What a key means,
+ * names the file and the line: "FILE:LINE: reason (allowed: ...)", status GB_EINVAL; the faults of several keys are
+ * said together, one a line. What a key means,
  * its range and whether it was given twice is the format's handler's to say (gb_ini_fail). */
 #ifndef GB_INI_H
 #define GB_INI_H
@@ -30,7 +31,11 @@ int gb_ini_read(const char *name, const char *text, size_t size, const char *con
                 gb_ini_handler handler, void *user);
 
 /* From a handler: record the error of the current line (printf-formatted, without file and line);
- * returns 0, what the handler returns. Only the first error of a file is kept. */
+ * returns 0, what the handler returns. The file is read on: every key's fault is said at once, one a line
+ * ("FILE:LINE: reason", the first GB_INI_ERRORS_MAX of them, then how many in all), the first first; a line the reader
+ * cannot read (its bytes, its form) ends the file there. */
+#define GB_INI_ERRORS_MAX 8
+#define GB_INI_MORE_MAX (GB_INI_ERRORS_MAX * 1024)
 int gb_ini_fail(gb_ini_reader *reader, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 
 /* The line of the key being handled (1-based). */

@@ -281,6 +281,12 @@ static const bad_row rows[] = {
     {"run @CASE@ --atlas @D@/a.atlas", "[body]\nbeta = 0.1\n", 0, 2, {"--atlas", "has no atlas", "allowed: a scene with [model] certificate = atlas"}},
     {"run @CASE@ --hull @D@/a.hull", "[model]\ncontact = grid\n", 0, 2, {"--hull", "has no hull", "allowed: a scene with [model] contact = fast-grid"}},
     {"run @CASE@ --out @D@/missing", "[body]\nbeta = 0.1\n", 0, 2, {"--out", "missing' does not exist", "allowed: an existing, writable directory"}},
+    /* the faults of several keys said at once, in the file's order; more than 8 counted */
+    {"run @CASE@ --out @D@", "[body]\nbeta = 0.9\nmass = -1\n[forcing]\nomega = abc\nfoo = 1\n", 0, 2,
+     {"case.ini:2: [body] beta = 0.9: out of range", "case.ini:3: [body] mass = -1: out of range",
+      "case.ini:6: [forcing] foo = 1: unknown key"}},
+    {"run @CASE@ --out @D@", "[forcing]\na = 1\nb = 1\nc = 1\nd = 1\ne = 1\nf = 1\ng = x\nh = 1\ni = 1\nj = 1\n", 0, 2,
+     {"case.ini:2: [forcing] a = 1: unknown key", "case.ini:9: [forcing] h = 1: unknown key", "10 faults in all, the first 8 said"}},
     {"run @CASE@ --out @D@/keep.txt", "[body]\nbeta = 0.1\n", 0, 2, {"--out", "is not a directory", "allowed: an existing, writable directory"}},
     {"run @CASE@ --out", "[body]\nbeta = 0.1\n", 0, 2, {"option '--out' needs a value", "", ""}},
     {"run @CASE@ @CASE@", "[body]\nbeta = 0.1\n", 0, 2, {"a second case file", "allowed: one CASE", ""}},
