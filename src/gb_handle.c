@@ -6,6 +6,7 @@
 #include "gb_massprops.h"
 #include "gb_run.h"
 #include "gb_scan.h"
+#include "gb_shape.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -209,6 +210,33 @@ int gb_handle_scene_massprops(const gb_handle_scene *scene, double out[13])
         for (int j = 0; j < 3; j++) out[4 + 3 * i + j] = mp.inertia[i][j];
     }
     return GB_OK;
+}
+
+int gb_handle_scene_equilibria(const gb_handle_scene *scene, double *out, size_t capacity, size_t *count)
+{
+    if (!scene) return gb_error_set(GB_EINVAL, "no scene");
+    if (gb_surface_is_polyhedron(&scene->scene.body))
+        return gb_error_set(GB_EINVAL, "the scene's body is a mesh, whose equilibria are its hull's (allowed: a body r(phi, "
+                            "theta); a mesh's: gomboc shape --mesh)");
+    const gb_shape_def def = gb_shape_default_def();
+    gb_equilibria *eq = malloc(sizeof *eq);
+    if (!eq) return gb_error_set(GB_ENOMEM, "out of memory for the equilibria");
+    const int status = gb_shape_equilibria(&scene->scene.body, &def, eq);
+    if (!status) {
+        *count = eq->count;
+        for (size_t k = 0; k < eq->count && k < capacity; k++) {
+            const gb_equilibrium *e = &eq->points[k];
+            out[4 * k] = e->type, out[4 * k + 1] = e->phi, out[4 * k + 2] = e->theta, out[4 * k + 3] = e->r;
+        }
+    }
+    free(eq);
+    return status;
+}
+
+int gb_handle_scene_melnikov(const gb_handle_scene *scene, double out[2])
+{
+    if (!scene) return gb_error_set(GB_EINVAL, "no scene");
+    return gb_scan_melnikov_margins(&scene->scene, &out[0], &out[1]);
 }
 
 int gb_handle_scene_contact(const gb_handle_scene *scene, const double zb[3], double out[6])

@@ -53,6 +53,14 @@ GB_API double gb_handle_run_value(const gb_handle_run *run, const char *name);
  * local minimum of the 180 × 360 seed grid polished, the lowest: φ, θ, height, r_c x y z, 6 numbers). */
 GB_API int gb_handle_scene_massprops(const gb_handle_scene *scene, double out[13]);
 GB_API int gb_handle_scene_contact(const gb_handle_scene *scene, const double zb[3], double out[6]);
+/* The body's equilibria as `gomboc shape` finds them (gb_shape_equilibria with its default def): every critical point
+ * of r(φ, θ), a row each (type: 0 stable, 1 saddle, 2 unstable; φ; θ; r), the first `capacity` rows into out (4
+ * numbers a row), the number found in *count. GB_EINVAL for a mesh body (its equilibria: `gomboc shape --mesh`). */
+GB_API int gb_handle_scene_equilibria(const gb_handle_scene *scene, double *out, size_t capacity, size_t *count);
+/* The scene's Melnikov margins (§7) as `gomboc scan`'s metric `melnikov` computes them for a point of this scene:
+ * out[0] the largest oscillatory part of eq 91 over μD, out[1] eq 93's (A1 A1* + A2 A2*)/μD (> 1: the reduced
+ * model's manifolds cross). */
+GB_API int gb_handle_scene_melnikov(const gb_handle_scene *scene, double out[2]);
 
 /* A scan file run as `gomboc scan` runs it, on `threads` threads (0: one per online processor), its CSV (header, then
  * every point's row in index order: the bytes of the command's NAME-scan.csv) into *csv (malloc'd; free it with

@@ -5,6 +5,7 @@
  * the errors' attributes. The package is found through PYTHONPATH=python and the library through GOMBOC_LIB (the
  * Makefile sets it to the build's shared library). */
 #include "gb_check.h"
+#include "gb_scan_internal.h"
 #include "verify_sections.h"
 
 #include <cjson/cJSON.h>
@@ -151,6 +152,21 @@ static void test_same_bits(void)
                    "gomboc shape --scene and gomboc contact --method continuous: volume, centroid, inertia; phi, theta, height, r_c",
                    "exact: bit for bit (both print doubles that read back to themselves)"};
     gb_check_true(&cb, equal == 19, "%d of 19 numbers equal (exit %d, %d)", equal, scode, ccode);
+    /* the equilibria: the package's rows against `gomboc shape`'s, type and phi, theta, r bit for bit */
+    const cJSON *se = cJSON_GetObjectItem(sj, "equilibria"), *pe = cJSON_GetObjectItem(package, "equilibria");
+    int rows = cJSON_GetArraySize(se), same_rows = 0;
+    for (int k = 0; k < rows && rows == cJSON_GetArraySize(pe); k++) {
+        const cJSON *c = cJSON_GetArrayItem(se, k), *q = cJSON_GetArrayItem(pe, k);
+        const char *type = cJSON_GetStringValue(cJSON_GetObjectItem(c, "type")), *ptype = cJSON_GetStringValue(cJSON_GetArrayItem(q, 0));
+        same_rows += type && ptype && !strcmp(type, ptype) &&
+                     cJSON_GetNumberValue(cJSON_GetObjectItem(c, "phi")) == cJSON_GetNumberValue(cJSON_GetArrayItem(q, 1)) &&
+                     cJSON_GetNumberValue(cJSON_GetObjectItem(c, "theta")) == cJSON_GetNumberValue(cJSON_GetArrayItem(q, 2)) &&
+                     cJSON_GetNumberValue(cJSON_GetObjectItem(c, "r")) == cJSON_GetNumberValue(cJSON_GetArrayItem(q, 3));
+    }
+    gb_check cq = {"-", "-", "the Python package's equilibria() of Table 1's Gomboc I", "gomboc shape --scene: every critical "
+                   "point of r, its type, phi, theta and r", "exact: bit for bit, the same rows in the same order"};
+    gb_check_true(&cq, rows > 0 && same_rows == rows && cJSON_GetArraySize(pe) == rows, "%d of %d rows equal (the package %d)",
+                  same_rows, rows, cJSON_GetArraySize(pe));
     cJSON_Delete(sj), cJSON_Delete(cj);
     /* a 2 x 2 scan: the package's CSV against the command's, byte for byte */
     static char scanned[1 << 12];
@@ -168,6 +184,21 @@ static void test_same_bits(void)
     gb_check_true(&cs, xcode == 0 && a && b && !strcmp(a, b) && points == 4 && calls >= 4 && phases == 2,
                   "command exit %d, CSVs %s (%zu and %zu bytes), %g points, %g progress calls over %d phases", xcode,
                   a && b && !strcmp(a, b) ? "equal" : "differ", a ? strlen(a) : 0, b ? strlen(b) : 0, points, calls, phases);
+    /* the Melnikov margins: melnikov() of each point's scene against the command's columns for it */
+    int margins = 0, margins_equal = 0;
+    const cJSON *pmel = cJSON_GetObjectItem(package, "melnikov");
+    for (const char *line = a ? strchr(a, '\n') : NULL; line && line[1]; line = strchr(line + 1, '\n')) {
+        size_t index;
+        gb_scan_metrics m;
+        if (gb_scan_csv_parse(line + 1, &index, &m)) break;
+        const cJSON *row = cJSON_GetArrayItem(pmel, (int)index);
+        margins++;
+        margins_equal += row && cJSON_GetNumberValue(cJSON_GetArrayItem(row, 0)) == m.melnikov_margin &&
+                         cJSON_GetNumberValue(cJSON_GetArrayItem(row, 1)) == m.melnikov_margin_eq93;
+    }
+    gb_check cm = {"7", "91, 93", "the Python package's melnikov() of the 2 x 2 map's scenes (the base with each point's omega and A1)",
+                   "gomboc scan's columns melnikov_margin and melnikov_margin_eq93 for the point", "exact: bit for bit"};
+    gb_check_true(&cm, margins == 4 && margins_equal == 4, "%d of %d points equal", margins_equal, margins);
     free(a), free(b);
     /* the plotters as functions: a scan's figure, a run's page, an unknown metric refused */
     const cJSON *pp = cJSON_GetObjectItem(package, "plot");

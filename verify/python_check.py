@@ -34,6 +34,10 @@ props = scene.massprops()
 out["massprops"] = [props["volume"]] + list(props["centroid"]) + list(props["inertia"].ravel())
 contact = scene.contact([0.6, 0.6, -0.5])
 out["contact"] = [contact["phi"], contact["theta"], contact["height"]] + list(contact["rc"])
+equilibria = scene.equilibria()
+out["equilibria"] = [[str(t), float(p), float(q), float(r)] for t, p, q, r in
+                     zip(equilibria["type"], equilibria["phi"], equilibria["theta"], equilibria["r"])]
+out["equilibria_counts"] = equilibria["counts"]
 tiny = os.path.join(folder, "tiny.ini")
 with open(tiny, "w", encoding="utf-8") as handle:
     handle.write(f"[scan]\ndescription = the Python package's 2 x 2 check\nbase = {os.path.abspath(scene_path)}\n"
@@ -43,6 +47,9 @@ heard = []
 csv, table = gomboc.scan(tiny, threads=2, progress=lambda *args: heard.append(args))
 with open(os.path.join(folder, "python-scan.csv"), "w", encoding="utf-8") as handle:
     handle.write(csv)
+# the margins of each point of the scan, from its scene (the base with the point's omega and A1)
+out["melnikov"] = [list(gomboc.load(scene_path, {"forcing.omega": float(w), "forcing.A1": float(a)}).melnikov().values())
+                   for w, a in zip(table["forcing.omega"], table["forcing.A1"])]
 out["scan"] = {"points": len(table["index"]), "progress_calls": len(heard),
                "phases": sorted({phase for phase, *_ in heard}), "lambda_max": list(table["lambda_max"])}
 import gomboc.plot  # noqa: E402

@@ -47,6 +47,8 @@ const char *const *gb_handle_values(void);
 double gb_handle_run_value(const gb_handle_run *run, const char *name);
 int gb_handle_scene_massprops(const gb_handle_scene *scene, double out[13]);
 int gb_handle_scene_contact(const gb_handle_scene *scene, const double zb[3], double out[6]);
+int gb_handle_scene_equilibria(const gb_handle_scene *scene, double *out, size_t capacity, size_t *count);
+int gb_handle_scene_melnikov(const gb_handle_scene *scene, double out[2]);
 typedef void (*gb_handle_progress)(void *user, int phase, size_t done, size_t total, double seconds);
 int gb_handle_scan(const char *path, unsigned threads, gb_handle_progress progress, void *user, char **csv);
 void gb_handle_text_free(char *text);
@@ -168,6 +170,25 @@ class Scene:
         out = _ffi.new("double[6]")
         _check(_lib.gb_handle_scene_contact(self._handle, _ffi.new("double[3]", [float(x) for x in zb]), out))
         return {"phi": out[0], "theta": out[1], "height": out[2], "rc": np.array([out[3], out[4], out[5]])}
+
+    def equilibria(self):
+        """The body's equilibria as `gomboc shape` finds them: every critical point of r(phi, theta), as a dict of
+        numpy arrays "type" ("stable", "saddle", "unstable"), "phi", "theta", "r", and the counts by type."""
+        count = _ffi.new("size_t *")
+        rows = _ffi.new("double[256]")
+        _check(_lib.gb_handle_scene_equilibria(self._handle, rows, 64, count))
+        n = min(count[0], 64)
+        data = np.array([rows[k] for k in range(4 * n)]).reshape(n, 4)
+        names = np.array(["stable", "saddle", "unstable"])[data[:, 0].astype(int)] if n else np.empty(0, dtype=str)
+        return {"type": names, "phi": data[:, 1], "theta": data[:, 2], "r": data[:, 3],
+                "counts": {name: int(np.sum(names == name)) for name in ("stable", "saddle", "unstable")}}
+
+    def melnikov(self):
+        """The scene's Melnikov margins as `gomboc scan`'s metric melnikov: "margin" (eq 91's largest oscillatory part
+        over mu D) and "margin_eq93"; above 1 the reduced model's manifolds cross."""
+        out = _ffi.new("double[2]")
+        _check(_lib.gb_handle_scene_melnikov(self._handle, out))
+        return {"margin": out[0], "margin_eq93": out[1]}
 
     def run(self, history=True, impacts=False):
         """Run the scene (the same bits as `gomboc run`); history: keep every sample; impacts: every impact."""
