@@ -184,6 +184,18 @@ void gb_dynamics_adopt_contact(gb_dynamics *to, const gb_dynamics *from)
     gb_dyn_stepping_adopt(to, from);
 }
 
+int gb_dynamics_init_or_hand_over(gb_dynamics *d, double t0, const double R0[9], const double omega0[3],
+                                  double y[GB_STATE_SIZE], int hand_over)
+{
+    int status = gb_dynamics_init_state(d, t0, R0, omega0, y);
+    if (!status || !hand_over || !gb_error_at_limit() || !d->law->time_steps || gb_dynamics_stepped(d)) return status;
+    status = gb_dyn_stepping_take_start(d, gb_error_message());
+    gb_error_clear();
+    if (!status) status = gb_dynamics_init_state(d, t0, R0, omega0, y);
+    if (!status) gb_dyn_stepping_stand(d);
+    return status;
+}
+
 int gb_dynamics_init_state(gb_dynamics *d, double t0, const double R0[9], const double omega0[3],
                            double y[GB_STATE_SIZE])
 {

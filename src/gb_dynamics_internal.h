@@ -255,6 +255,10 @@ void gb_dyn_stepping_free(gb_dynamics *d);
 /* A change of contact's record to the caller's sink, or held back while impacts are held (gb_dynamics_ledger.c). */
 int gb_dyn_emit(gb_dynamics *d, const gb_dynamics_impact *e);
 void gb_dyn_stepping_adopt(gb_dynamics *to, const gb_dynamics *from);
+/* A start the law refuses at one of its limits (gb_dynamics_init_or_hand_over): the dynamics in the stepped mode before
+ * its start, the limit's message kept; after the stepped start, the lowest point marked as carrying the body. */
+int gb_dyn_stepping_take_start(gb_dynamics *d, const char *limit);
+void gb_dyn_stepping_stand(gb_dynamics *d);
 
 /* ---- the state (gb_dynamics.c) --------------------------------------------------------------------- */
 

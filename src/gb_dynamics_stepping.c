@@ -463,23 +463,21 @@ int gb_dynamics_hand_over(gb_dynamics *d, double h, double theta, const gb_conta
     return GB_OK;
 }
 
-int gb_dynamics_init_or_hand_over(gb_dynamics *d, double t0, const double R0[9], const double omega0[3],
-                                  double y[GB_STATE_SIZE], int hand_over)
+int gb_dyn_stepping_take_start(gb_dynamics *d, const char *limit)
 {
-    int status = gb_dynamics_init_state(d, t0, R0, omega0, y);
-    if (!status || !hand_over || !gb_error_at_limit() || !d->law->time_steps || gb_dynamics_stepped(d)) return status;
-    snprintf(d->start_limit, sizeof d->start_limit, "%s", gb_error_message());
-    gb_error_clear();
+    snprintf(d->start_limit, sizeof d->start_limit, "%s", limit);
     const gb_dyn_mode *modes = d->modes;
-    status = gb_dynamics_stepping_prepare(d);
-    if (status) return status;
-    d->modes = stepped_modes, d->event_modes = modes;
-    status = gb_dynamics_init_state(d, t0, R0, omega0, y);
+    const int status = gb_dynamics_stepping_prepare(d);
+    if (!status) d->modes = stepped_modes, d->event_modes = modes;
+    return status;
+}
+
+void gb_dyn_stepping_stand(gb_dynamics *d)
+{
     /* a body started on the plane stands on its lowest point, as the law's start had it: that point carries it into the
      * first step (a trajectory placed beside it a hair above the plane then is not in flight for a step) */
     gb_dyn_stepper *s = d->stepper;
-    if (!status && d->def.height0 == 0.0) s->touched[0] = s->lowest, s->touched_count = 1, s->touching = 1;
-    return status;
+    if (s && d->def.height0 == 0.0) s->touched[0] = s->lowest, s->touched_count = 1, s->touching = 1;
 }
 
 const char *gb_dynamics_start_limit(const gb_dynamics *d) { return d->start_limit[0] ? d->start_limit : NULL; }
