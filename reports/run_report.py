@@ -367,14 +367,23 @@ def summary_lines(name, summary, figures):
                      f"Δf = {spectrum['df_hz']:.4f} Hz; highest peak at {spectrum['peak_hz']:.4f} Hz "
                      f"(forcing {spectrum['forcing_hz']:.4f} Hz)")
     if lyap:
+        # why a record is not converged, in the rule's own terms (gb_lyapunov.h): a warm-up found, batches independent,
+        # the last quarter's drift within twice the error bar
+        why = [reason for failed, reason in (
+            (not lyap.get("warmup_found", True), "no warm-up found"),
+            (not lyap.get("batches_independent", True), "its batch means are not independent (lag-1 correlation "
+                                                        f"{lyap.get('batch_correlation', float('nan')):.2g})"),
+            (lyap["late_drift"] > 2.0 * lyap["error_bar"], f"it moved {lyap['late_drift']:.3g} over the last quarter, "
+                                                           f"more than twice its error bar {lyap['error_bar']:.3g}")) if failed]
         lines.append(f"- λ_max (Fig 9) = {lyap['lambda_max']:.4f} ± {lyap['error_bar']:.4f} 1/s over "
                      f"{lyap['periods']:.0f} periods (δ0 = {lyap['delta0']:g}, {lyap['batches']:.0f} batches); running "
                      f"value moved {lyap['late_drift']:.3g} over the last quarter: "
-                     f"{'converged' if lyap['converged'] else 'not converged'}")
+                     + ("converged" if lyap["converged"] else "not converged (" + "; ".join(why or ["the rule's"]) + ")"))
         windows = lyap.get("windows")
         if windows:
             life = windows["chaos_lifetime_periods"]
-            life = (f"the chaos lasts to period {life:.0f} of the record" if not isinstance(life, str)
+            life = ("no window chaotic: no chaos in the record" if not windows["chaotic_windows"]
+                    else f"the chaos lasts to period {life:.0f} of the record" if not isinstance(life, str)
                     else "chaotic to the end of the record")
             lines.append(f"- windowed λ per {windows['window_periods']:.0f} periods: "
                          + ", ".join(f"{v:.3f}" for v in windows["lambda_window"])

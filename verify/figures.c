@@ -446,6 +446,47 @@ static void test_friction_on_page(void)
     clean(dir);
 }
 
+/* A body at rest with λ and its windows (Housner's block standing on its face, 24 periods, windows of 2): the page's λ
+ * lines say what the record says, not a chaos that "lasts to period 0". */
+static void test_rest_on_page(void)
+{
+    char dir[] = "/tmp/gomboc-rest-page-XXXXXX";
+    if (!mkdtemp(dir)) return;
+    char path[300], args[800], out[8192];
+    snprintf(path, sizeof path, "%s/rest.ini", dir);
+    FILE *f = fopen(path, "w");
+    if (f) {
+        fprintf(f, "[body]\nmesh = %s/cases/bodies/housner-block.off\nmass = 1\n[forcing]\nA1 = 0\nA2 = 0\nomega = 6.283185307179586\n"
+                "[model]\ncontact = fast-grid\ncontact_law = unilateral\n[integrator]\nsteps_per_period = 400\nperiods = 24\n"
+                "[diagnostics]\nlyapunov = yes\n[lyapunov]\ndelta0 = 1e-7\ntransient_periods = 0\ninterval_periods = 1\n"
+                "window_periods = 2\n", getcwd(args, sizeof args) ? args : ".");
+        fclose(f);
+    }
+    snprintf(args, sizeof args, "run %s --out %s", path, dir);
+    const int code = gb_check_command(gomboc(), args, out, sizeof out);
+    snprintf(args, sizeof args, "reports/run_report.py %s rest --page page.md", dir);
+    gb_check c = {"-", "-", "the run page of a block standing at rest on a still plane, with lambda and its 12 windows",
+                  "the summary's windows: none above the threshold; the page says no window is chaotic (not that chaos "
+                  "lasts to period 0) and, where the record is not converged, why", "exact"};
+    if (code || script(args, "run_report.py on a body at rest", out, sizeof out)) {
+        gb_check_true(&c, 0, "exit %d: %.300s", code, out);
+        clean(dir);
+        return;
+    }
+    cJSON *summary = read_json(dir, "rest-summary.json");
+    const cJSON *windows = cJSON_GetObjectItem(cJSON_GetObjectItem(summary, "lyapunov"), "windows");
+    const double chaotic = cJSON_GetNumberValue(cJSON_GetObjectItem(windows, "chaotic_windows"));
+    const int converged = cJSON_IsTrue(cJSON_GetObjectItem(cJSON_GetObjectItem(summary, "lyapunov"), "converged"));
+    char *page = read_text(dir, "page.md");
+    const int none = page && strstr(page, "no window chaotic: no chaos in the record") && !strstr(page, "lasts to period 0");
+    const int why = converged || (page && strstr(page, "not converged (") && !strstr(page, "not converged ("")"));
+    gb_check_true(&c, windows && chaotic == 0 && none && why, "%g chaotic windows; page: %s; converged %d%s", chaotic,
+                  none ? "no window chaotic" : "WRONG", converged, why ? "" : ", no reason given");
+    free(page);
+    cJSON_Delete(summary);
+    clean(dir);
+}
+
 int verify_register_figures(void)
 {
     static const verify_test tests[] = {
@@ -453,6 +494,7 @@ int verify_register_figures(void)
         {"figures quote the summary, stale figures never linked", test_figures,
          "every figure's title quotes the numbers the text states, Fig 9 draws what it quotes, and a page links only this run's figures"},
         {"a run on a plane of finite friction states its sliding on its page", test_friction_on_page, NULL},
+        {"a body at rest: its page says no window is chaotic", test_rest_on_page, NULL},
         {"the animation's frames against the history", test_animation,
          "the body in motion is drawn in the attitude the run computed, touching the plane at the contact point"},
         {NULL, NULL, NULL},
