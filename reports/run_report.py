@@ -302,8 +302,13 @@ def summary_lines(name, summary, figures):
                     if summary.get("ledger_too_coarse") else ""))
     grid_model = summary.get("grid_model_of_smooth_body")
     if grid_model:
+        second = grid_model.get("second_grid")
+        lam = (summary.get("lyapunov") or {}).get("lambda_max")
         lines.append(f"- **a smooth body run as its {grid_model['grid'][0]:.0f} × {grid_model['grid'][1]:.0f} grid polyhedron**: "
-                     "its contact, switches and λ are the polyhedron's and depend on the grid (docs/bodies.md)")
+                     "its contact, switches and λ are the polyhedron's and depend on the grid (docs/bodies.md)"
+                     + (f"; λ_max = {lam:.4f} 1/s here, {grid_model['lambda_max_second_grid']:.4f} ± "
+                        f"{grid_model['lambda_error_second_grid']:.2g} on the {second[0]:.0f} × {second[1]:.0f} grid"
+                        if second and lam is not None else ""))
     stepping = summary.get("stepping")
     if stepping:
         # time-stepping: impulses at every step, no impact events; its "impacts" are the points that arrived

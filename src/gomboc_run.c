@@ -430,8 +430,31 @@ static int smooth_on_grid(const gb_case *scene)
            scene->dynamics.contact != GB_CONTACT_MODEL_CONTINUOUS;
 }
 
+/* A smooth body of one's own run as its grid polyhedron with λ: λ again on the grid twice as fine each way (the same scene,
+ * no output), so that the page and the summary show how much λ depends on the grid. *lambda NAN where it is not asked. */
+typedef struct second_grid {
+    size_t n_phi, n_theta;
+    double lambda, error;
+} second_grid;
+
+static int lambda_second_grid(const gb_case *scene, second_grid *out)
+{
+    *out = (second_grid){0, 0, NAN, NAN};
+    if (!smooth_on_grid(scene) || !scene->lyapunov) return GB_OK;
+    gb_case second = *scene;
+    second.dynamics.grid.n_phi *= 2, second.dynamics.grid.n_theta *= 2;
+    if (second.dynamics.grid.n_phi > GB_CONTACT_GRID_MAX_NODES / second.dynamics.grid.n_theta) return GB_OK; /* no finer */
+    second.strobe = second.spectrum = 0;
+    gb_run_result r;
+    const int status = gb_run(&second, NULL, &r);
+    if (status) return status;
+    *out = (second_grid){second.dynamics.grid.n_phi, second.dynamics.grid.n_theta, r.lyapunov.lambda_max, r.lyapunov.error_bar};
+    gb_run_result_free(&r);
+    return GB_OK;
+}
+
 static cJSON *summary_json(const gb_case *scene, const char *path, const gb_run_result *r, const windows *w,
-                           const char *state_print, const char *switch_print)
+                           const char *state_print, const char *switch_print, const second_grid *finer)
 {
     const gb_dynamics_observables *o = &r->final;
     cJSON *root = cJSON_CreateObject();
@@ -462,8 +485,13 @@ static cJSON *summary_json(const gb_case *scene, const char *path, const gb_run_
         cJSON_AddItemToObject(g, "grid", cli_json_vector((double[]){(double)scene->dynamics.grid.n_phi,
                                                                      (double)scene->dynamics.grid.n_theta}, 2));
         cJSON_AddStringToObject(g, "note", "a smooth body run as its grid polyhedron: the contact, the switches and lambda are "
-                                           "the polyhedron's and depend on the grid (docs/bodies.md); run a second [model] grid "
-                                           "to see how much");
+                                           "the polyhedron's and depend on the grid (docs/bodies.md); with lambda, the run is "
+                                           "repeated on the grid twice as fine each way for lambda alone");
+        if (finer->n_phi) {
+            cJSON_AddItemToObject(g, "second_grid", cli_json_vector((double[]){(double)finer->n_phi, (double)finer->n_theta}, 2));
+            cli_json_add(g, "lambda_max_second_grid", finer->lambda);
+            cli_json_add(g, "lambda_error_second_grid", finer->error);
+        }
     }
     cJSON *fp = cJSON_AddObjectToObject(root, "fingerprint");
     cJSON_AddStringToObject(fp, "final_state", state_print);
@@ -673,12 +701,14 @@ int command_run(int argc, char **argv)
         if (!status) status = write_windows(&files, &scene, &w);
     }
 
+    second_grid finer = {0, 0, NAN, NAN};
+    if (!status) status = lambda_second_grid(&scene, &finer);
     cJSON *root = NULL;
     char state_print[17] = "", switch_print[17] = "";
     snprintf(state_print, sizeof state_print, "%016llx", (unsigned long long)r.state_fingerprint);
     snprintf(switch_print, sizeof switch_print, "%016llx", (unsigned long long)r.switch_fingerprint);
     if (!status) {
-        root = summary_json(&scene, case_path, &r, &w, state_print, switch_print);
+        root = summary_json(&scene, case_path, &r, &w, state_print, switch_print, &finer);
         /* Exactly the files of this run (any other NAME-* output of an earlier run is removed), each
          * with its size and checksum: the summary is the set's manifest. */
         cJSON *list = cJSON_AddArrayToObject(root, "files");
@@ -711,6 +741,10 @@ int command_run(int argc, char **argv)
         fprintf(stderr, "gomboc run: %s: note: a smooth body of one's own runs as its %zu x %zu grid polyhedron: its contact, "
                 "switches and lambda are the polyhedron's and depend on the grid (docs/bodies.md)\n", case_path,
                 scene.dynamics.grid.n_phi, scene.dynamics.grid.n_theta);
+    if (finer.n_phi)
+        fprintf(stderr, "gomboc run: %s: lambda_max %.4f +- %.2g 1/s on the %zu x %zu grid, %.4f +- %.2g on the %zu x %zu one\n",
+                case_path, r.lyapunov.lambda_max, r.lyapunov.error_bar, scene.dynamics.grid.n_phi, scene.dynamics.grid.n_theta,
+                finer.lambda, finer.error, finer.n_phi, finer.n_theta);
     if (r.stats.coarse_steps)
         fprintf(stderr, "gomboc run: %s: warning: %zu of %zu steps turned the body by more than %g rad (at most %.3g rad): "
                 "the step is too coarse for the body's spin (RK4's error grows as the fifth power of the turn); the "

@@ -515,6 +515,46 @@ static void test_grid_model_said(void)
     gb_check_true(&c, right == 2, "%d of 2 as stated", right);
 }
 
+/* λ of a smooth body of one's own on a grid, and on the grid twice as fine: `gomboc run`'s summary gives both, the second
+ * the λ of the same scene run on that grid */
+static void test_second_grid(void)
+{
+    char dir[] = "/tmp/gomboc-second-grid-XXXXXX";
+    const char *bin = getenv("GOMBOC_BIN") ? getenv("GOMBOC_BIN") : "build/gomboc";
+    double lambda[2] = {NAN, NAN}, second = NAN;
+    int code[2] = {-1, -1};
+    if (mkdtemp(dir))
+        for (int k = 0; k < 2; k++) {
+            char path[128], summary[160], args[300];
+            static char out[1 << 14];
+            snprintf(path, sizeof path, "%s/egg%d.ini", dir, k);
+            snprintf(summary, sizeof summary, "%s/egg%d-summary.json", dir, k);
+            FILE *f = fopen(path, "w");
+            if (!f) continue;
+            fprintf(f, "[body]\nr = 1 + 0.1*cos(theta)*sin(phi)\n[model]\ncontact = fast-grid\ngrid = %s\n[integrator]\n"
+                    "periods = 20\n[diagnostics]\nlyapunov = yes\n[lyapunov]\ndelta0 = 1e-7\ntransient_periods = 0\n"
+                    "interval_periods = 1\n[output]\nsummary = yes\nhistory = no\n", k ? "60x120" : "30x60");
+            fclose(f);
+            snprintf(args, sizeof args, "run %s --out %s", path, dir);
+            code[k] = gb_check_command(bin, args, out, sizeof out);
+            char *json = gb_check_read_file(summary);
+            cJSON *root = json ? cJSON_Parse(json) : NULL;
+            lambda[k] = cJSON_GetNumberValue(cJSON_GetObjectItem(cJSON_GetObjectItem(root, "lyapunov"), "lambda_max"));
+            const cJSON *g = cJSON_GetObjectItem(root, "grid_model_of_smooth_body");
+            if (k == 0 && cJSON_GetNumberValue(cJSON_GetArrayItem(cJSON_GetObjectItem(g, "second_grid"), 0)) == 60.0 &&
+                cJSON_GetNumberValue(cJSON_GetArrayItem(cJSON_GetObjectItem(g, "second_grid"), 1)) == 120.0)
+                second = cJSON_GetNumberValue(cJSON_GetObjectItem(g, "lambda_max_second_grid"));
+            cJSON_Delete(root), free(json);
+            remove(path), remove(summary);
+        }
+    rmdir(dir);
+    gb_check c = {"2", "77", "an r expression on a 30 x 60 fast grid with lambda (20 periods): the summary's lambda on the grid "
+                  "twice as fine", "the same scene run on the 60 x 120 grid: its lambda_max", "exact: the same run, bit for bit"};
+    gb_check_true(&c, code[0] == 0 && code[1] == 0 && isfinite(second) && second == lambda[1],
+                  "exit %d, %d; lambda %.6g on 30 x 60, %.6g on 60 x 120 in the first run's summary, %.6g run apart", code[0],
+                  code[1], lambda[0], second, lambda[1]);
+}
+
 /* Every flight begins at the release (a body dropped from height), a lift-off, a bounce or a landing the body flew on
  * from; every one that ended is a landing: landings + (flying at the end) = released + lift-offs + bounces + flown on */
 static void test_flights_counted(void)
@@ -581,6 +621,7 @@ int verify_register_s2_bodies(void)
          "the bodies the scenes name, whatever they are, are closed surfaces: Euler's formula, Poincare-Hopf"},
         {"beta stated only where it enters the body", test_beta_stated, NULL},
         {"a smooth body on its grid says so", test_grid_model_said, NULL},
+        {"a smooth body on its grid with lambda: lambda on the grid twice as fine too", test_second_grid, NULL},
         {"every flight counted where it began", test_flights_counted, NULL},
         {"bad bodies in a scene", test_bad_bodies,
          "a mesh or an expression that is not a body is refused, naming the scene's line and the fault"},
