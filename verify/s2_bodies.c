@@ -477,12 +477,33 @@ static void test_beta_stated(void)
     gb_check_true(&c, right == 3, "%d of 3 as stated%s", right, first);
 }
 
+/* `gomboc run` of the scene `text` written as DIR/NAME.ini: its exit status, its standard error (and output) in out, its
+ * summary parsed (NULL where there is none); the files removed. */
+static cJSON *run_scene_text(const char *dir, const char *name, const char *text, int *code, char *out, size_t size)
+{
+    const char *bin = getenv("GOMBOC_BIN") ? getenv("GOMBOC_BIN") : "build/gomboc";
+    char path[200], summary[240], args[500];
+    snprintf(path, sizeof path, "%s/%s.ini", dir, name);
+    snprintf(summary, sizeof summary, "%s/%s-summary.json", dir, name);
+    *code = -1;
+    FILE *f = fopen(path, "w");
+    if (!f) return NULL;
+    fputs(text, f);
+    fclose(f);
+    snprintf(args, sizeof args, "run %s --out %s", path, dir);
+    *code = gb_check_command(bin, args, out, size);
+    char *json = gb_check_read_file(summary);
+    cJSON *root = json ? cJSON_Parse(json) : NULL;
+    free(json);
+    remove(path), remove(summary);
+    return root;
+}
+
 /* A smooth body of one's own on a grid model says so (summary, standard error); the paper's body on its grid does not
  * (the paper's own model) */
 static void test_grid_model_said(void)
 {
     char dir[] = "/tmp/gomboc-grid-XXXXXX";
-    const char *bin = getenv("GOMBOC_BIN") ? getenv("GOMBOC_BIN") : "build/gomboc";
     static const struct {
         const char *body;
         int said;
@@ -490,23 +511,17 @@ static void test_grid_model_said(void)
     int right = 0;
     if (mkdtemp(dir))
         for (size_t k = 0; k < 2; k++) {
-            char path[128], summary[160], args[300];
+            char text[300], name[16];
             static char out[1 << 14];
-            snprintf(path, sizeof path, "%s/body%zu.ini", dir, k);
-            snprintf(summary, sizeof summary, "%s/body%zu-summary.json", dir, k);
-            FILE *f = fopen(path, "w");
-            if (!f) continue;
-            fprintf(f, "[body]\n%s\n[model]\ncontact = fast-grid\n[integrator]\nperiods = 2\n[output]\nsummary = yes\n"
-                    "history = no\n", cases[k].body);
-            fclose(f);
-            snprintf(args, sizeof args, "run %s --out %s", path, dir);
-            const int code = gb_check_command(bin, args, out, sizeof out);
-            char *json = gb_check_read_file(summary);
-            const int in_summary = json && strstr(json, "\"grid_model_of_smooth_body\"") != NULL,
+            snprintf(text, sizeof text, "[body]\n%s\n[model]\ncontact = fast-grid\n[integrator]\nperiods = 2\n[output]\n"
+                     "summary = yes\nhistory = no\n", cases[k].body);
+            snprintf(name, sizeof name, "body%zu", k);
+            int code;
+            cJSON *root = run_scene_text(dir, name, text, &code, out, sizeof out);
+            const int in_summary = cJSON_GetObjectItem(root, "grid_model_of_smooth_body") != NULL,
                       in_note = strstr(out, "runs as its 90 x 180 grid polyhedron") != NULL;
             right += code == 0 && in_summary == cases[k].said && in_note == cases[k].said;
-            free(json);
-            remove(path), remove(summary);
+            cJSON_Delete(root);
         }
     rmdir(dir);
     gb_check c = {"2", "-", "a run of an r expression on the fast grid, and of the paper's Gomboc I on it",
@@ -520,32 +535,25 @@ static void test_grid_model_said(void)
 static void test_second_grid(void)
 {
     char dir[] = "/tmp/gomboc-second-grid-XXXXXX";
-    const char *bin = getenv("GOMBOC_BIN") ? getenv("GOMBOC_BIN") : "build/gomboc";
     double lambda[2] = {NAN, NAN}, second = NAN;
     int code[2] = {-1, -1};
     if (mkdtemp(dir))
         for (int k = 0; k < 2; k++) {
-            char path[128], summary[160], args[300];
+            char text[500], name[16];
             static char out[1 << 14];
-            snprintf(path, sizeof path, "%s/egg%d.ini", dir, k);
-            snprintf(summary, sizeof summary, "%s/egg%d-summary.json", dir, k);
-            FILE *f = fopen(path, "w");
-            if (!f) continue;
-            fprintf(f, "[body]\nr = 1 + 0.1*cos(theta)*sin(phi)\n[model]\ncontact = fast-grid\ngrid = %s\n[integrator]\n"
-                    "periods = 20\n[diagnostics]\nlyapunov = yes\n[lyapunov]\ndelta0 = 1e-7\ntransient_periods = 0\n"
-                    "interval_periods = 1\n[output]\nsummary = yes\nhistory = no\n", k ? "60x120" : "30x60");
-            fclose(f);
-            snprintf(args, sizeof args, "run %s --out %s", path, dir);
-            code[k] = gb_check_command(bin, args, out, sizeof out);
-            char *json = gb_check_read_file(summary);
-            cJSON *root = json ? cJSON_Parse(json) : NULL;
+            snprintf(text, sizeof text, "[body]\nr = 1 + 0.1*cos(theta)*sin(phi)\n[model]\ncontact = fast-grid\ngrid = %s\n"
+                     "[integrator]\nperiods = 20\n[diagnostics]\nlyapunov = yes\n[lyapunov]\ndelta0 = 1e-7\n"
+                     "transient_periods = 0\ninterval_periods = 1\n[output]\nsummary = yes\nhistory = no\n",
+                     k ? "60x120" : "30x60");
+            snprintf(name, sizeof name, "egg%d", k);
+            cJSON *root = run_scene_text(dir, name, text, &code[k], out, sizeof out);
             lambda[k] = cJSON_GetNumberValue(cJSON_GetObjectItem(cJSON_GetObjectItem(root, "lyapunov"), "lambda_max"));
-            const cJSON *g = cJSON_GetObjectItem(root, "grid_model_of_smooth_body");
-            if (k == 0 && cJSON_GetNumberValue(cJSON_GetArrayItem(cJSON_GetObjectItem(g, "second_grid"), 0)) == 60.0 &&
-                cJSON_GetNumberValue(cJSON_GetArrayItem(cJSON_GetObjectItem(g, "second_grid"), 1)) == 120.0)
+            const cJSON *g = cJSON_GetObjectItem(root, "grid_model_of_smooth_body"),
+                        *grid = cJSON_GetObjectItem(g, "second_grid");
+            if (k == 0 && cJSON_GetNumberValue(cJSON_GetArrayItem(grid, 0)) == 60.0 &&
+                cJSON_GetNumberValue(cJSON_GetArrayItem(grid, 1)) == 120.0)
                 second = cJSON_GetNumberValue(cJSON_GetObjectItem(g, "lambda_max_second_grid"));
-            cJSON_Delete(root), free(json);
-            remove(path), remove(summary);
+            cJSON_Delete(root);
         }
     rmdir(dir);
     gb_check c = {"2", "77", "an r expression on a 30 x 60 fast grid with lambda (20 periods): the summary's lambda on the grid "
