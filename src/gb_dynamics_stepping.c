@@ -21,6 +21,7 @@
  * m (g₁ − g₀)(ζ₀ + ζ₁)/2 and damping's −c h ω_θ·ω̄ enter W. What the ledger leaves is the scheme's first-order error. */
 #include "gb_dynamics_internal.h"
 #include "gb_dynamics_protocol_internal.h"
+#include "gb_dynamics_stepping_internal.h"
 
 #include "gb_contact_problem.h"
 #include "gb_error.h"
@@ -31,70 +32,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-/* The candidates' threshold above the plane [body lengths]: far above the rounding of a height (1e-16 of the body),
- * far below any length of the problem; a gap the step closes to this is a contact. */
-#define GB_DYNAMICS_STEPPING_ACTIVATION 1e-12
-/* A step with more candidates than gb_integrate_def.stepping_first poses the most urgent that many first, and adds
- * those the solution would let through the plane, GB_DYNAMICS_STEPPING_ADD at a time, the most violated first, until
- * none would: a grid polyhedron's polar cap lands with hundreds of nodes in reach, of which a few carry it. Zero
- * impulse at the points left out, which do not go through, completes the posed problem's solution to one of the whole
- * problem (Moreau's law holds at each of them). */
-#define GB_DYNAMICS_STEPPING_ADD 16
-/* An excluded candidate whose normal velocity after the step, with Newton's e u_n⁻, is below −this times the step's
- * speed scale (|v_z| + |ω| r_max + |g| h) goes through the plane: far above the solver's 1e-12, far below any
- * velocity of the problem. */
-#define GB_DYNAMICS_STEPPING_THROUGH 1e-9
-/* A smooth body's candidates: the local minima of its height tracked at once (the global one and those that came down
- * to the plane near it: two on a crease, a third where three tie), and how far above the plane [body lengths] a minimum
- * other than the global one is still followed (one farther returns, when it matters, as the certificate's lower
- * minimum). */
-#define GB_DYNAMICS_STEPPING_SLOTS 8
-#define GB_DYNAMICS_STEPPING_KEEP 0.05
-
-/* The contacts one step solves, and what the last step left. */
-struct gb_dyn_stepper {
-    double theta, h;
-    size_t first;                  /* the candidates a step poses first (0: all) */
-    int siconos;                   /* linearised as Siconos's MoreauJeanOSI (gb_integrate_def.stepping_siconos) */
-    size_t nodes;                  /* the grid's nodes, the body's points [m] (body axes): the candidates */
-    double (*points)[3];
-    int smooth;                    /* continuous contact: the nodes are slots of tracked minima (below) */
-    gb_contact_point slot[GB_DYNAMICS_STEPPING_SLOTS]; /* a smooth body's minima (unit body), by slot */
-    unsigned char active[GB_DYNAMICS_STEPPING_SLOTS];
-    size_t next_slot;              /* where the search for a free slot starts: a slot just freed is taken last */
-    double radius;                 /* the farthest point's distance from the centroid [m] */
-    double *gaps;                  /* every point's gap above the plane at the state `scanned` (scanned_valid) */
-    size_t *candidates;            /* this step's candidates (nodes), [nodes] */
-    double *keys;                  /* their urgency: the gap half a step ahead (−∞: a point that carried the body) */
-    unsigned char *posed;          /* a candidate is in the problem (by candidate) */
-    double *scratch;               /* the keys, sorted [nodes] */
-    double scanned[GB_STATE_SIZE];
-    int scanned_valid;
-    gb_contact_problem *problem;
-    double tolerance;              /* the problem's (solver_tolerance) */
-    struct gb_dyn_stepped_step {   /* the step being taken, for the enumeration (enumerate) */
-        double m, A[3][3], R[9], R0[9], vf[3], wf[3], v[3], w[3], e, mu; /* R: the relations'; R0: the start's */
-    } step;
-    size_t capacity;               /* of the buffers below, in contacts */
-    double *W, *q, *mu, *r, *u;    /* the problem (W: (3 capacity)², column-major) */
-    size_t *node;                  /* the candidates' nodes */
-    double (*B)[3][3];             /* their relations' rotational parts */
-    double (*C)[3][3];             /* M_ω⁻¹ B_iᵀ */
-    /* the last step */
-    int touching, sliding;         /* points with a normal impulse; of them, points slipping after the step */
-    double normal_impulse, tangential[3], slip_max; /* Σ P_n, Σ P_t (inertial), the largest slip after [m/s] */
-    size_t lowest;                 /* the lowest node after the step */
-    double clearance;              /* its height above the plane [m] */
-    size_t *touched, *touching_now; /* the nodes touching after the previous step (to count new touches), and this one's */
-    int touched_count;
-    int *starts;                    /* this step's points (problem indices) that begin to carry the body */
-    size_t *last_node;              /* the previous problem's points and impulses: the solver starts from them (a body
-                                     * at rest needs a sweep or two, not hundreds) */
-    double *last_r;
-    int last_count;
-    gb_dynamics_stepping_stats stats;
-};
 
 static void stepper_free(gb_dyn_stepper *s)
 {
@@ -192,101 +129,16 @@ static int stepped_jump(gb_dynamics *d, double t, const double y[GB_STATE_SIZE],
     return stepped_event(d, t, (double *)y, branch);
 }
 
-/* A smooth body's minimum p takes a slot: a free one (the search starting after the last taken, so that a slot just
- * freed, whose node the last step may name, is taken last), else the highest of the minima other than `keep`. */
-static int take_slot(gb_dyn_stepper *s, const gb_contact_point *p, int keep)
-{
-    int k = -1;
-    for (size_t j = 0; j < GB_DYNAMICS_STEPPING_SLOTS && k < 0; j++) {
-        const size_t i = (s->next_slot + j) % GB_DYNAMICS_STEPPING_SLOTS;
-        if (!s->active[i]) k = (int)i;
-    }
-    for (int i = 0; k < 0 && i < GB_DYNAMICS_STEPPING_SLOTS; i++) /* all taken: the highest but `keep` gives way */
-        if (i != keep && (k < 0 || s->slot[i].height > s->slot[k].height)) k = i;
-    s->slot[k] = *p;
-    s->active[k] = 1;
-    s->next_slot = (size_t)(k + 1) % GB_DYNAMICS_STEPPING_SLOTS;
-    return k;
-}
-
-/* A smooth body's minima at vertical zb: each tracked one continued by Newton (dropped where it is no longer a
- * minimum, or meets another), the lowest proved global or replaced by the lower one the certificate finds (as the
- * event-driven contact is, gb_dyn_competitor), those other than the global one dropped when they are far above the
- * plane; none tracked (the start): the global minimum from scratch. The lowest's slot in *global. */
-static int track_minima(gb_dynamics *d, gb_dyn_stepper *s, const double y[GB_STATE_SIZE], const double zb[3], int *global)
-{
-    int status = GB_OK, low = -1;
-    for (int k = 0; k < GB_DYNAMICS_STEPPING_SLOTS && !status; k++) {
-        if (!s->active[k]) continue;
-        gb_contact_point p;
-        status = gb_contact_refine(&d->surface, zb, s->slot[k].phi, s->slot[k].theta, &d->refine, &p);
-        if (status == GB_ENOCONV || (!status && !p.is_minimum)) { /* the branch ended in a fold */
-            s->active[k] = 0;
-            status = GB_OK;
-            continue;
-        }
-        if (status) break;
-        s->slot[k] = p;
-        for (int j = 0; j < k && s->active[k]; j++)
-            if (s->active[j] && gb_dyn_same_point(&s->slot[j], &p)) s->active[k] = 0; /* two branches met */
-        if (s->active[k] && (low < 0 || p.height < s->slot[low].height)) low = k;
-    }
-    if (status) return status;
-    if (low < 0) {
-        gb_contact_point p;
-        status = gb_certify_global_minimum(d->certify, zb, &d->refine, &p);
-        if (status) return status;
-        low = take_slot(s, &p, -1);
-    }
-    for (int round = 0; round < 16; round++) {
-        gb_certify_result r;
-        status = gb_dyn_check_global(d, zb, &s->slot[low], &r);
-        if (status) return status;
-        if (r.verdict != GB_CERTIFY_LOWER_FOUND) break;
-        int same = -1;
-        for (int j = 0; j < GB_DYNAMICS_STEPPING_SLOTS && same < 0; j++)
-            if (s->active[j] && gb_dyn_same_point(&s->slot[j], &r.lower)) same = j;
-        if (same >= 0 && s->slot[same].height < s->slot[low].height) s->slot[same] = r.lower, low = same;
-        else if (same < 0) low = take_slot(s, &r.lower, low);
-        else break;
-    }
-    /* a step ahead (the vertical turned by ω h, ż_b = z_b × ω in body axes): the minimum that will be the lowest then is
-     * followed from now, so that it enters the step that brings it to the plane at its gap, not a step's approach below */
-    const double *w = y + GB_STATE_OMEGA;
-    double ahead[3], turn[3];
-    gb_vec_cross(zb, w, turn);
-    for (int k = 0; k < 3; k++) ahead[k] = zb[k] + s->h * turn[k];
-    const double size = gb_vec_norm(ahead);
-    for (int k = 0; k < 3; k++) ahead[k] /= size;
-    gb_certify_result r;
-    status = s->h > 0.0 && gb_vec_norm(turn) > 0.0 ? gb_dyn_check_global(d, ahead, &s->slot[low], &r) : GB_OK;
-    if (status) return status;
-    if (s->h > 0.0 && gb_vec_norm(turn) > 0.0 && r.verdict == GB_CERTIFY_LOWER_FOUND) {
-        gb_contact_point p;
-        status = gb_contact_refine(&d->surface, zb, r.lower.phi, r.lower.theta, &d->refine, &p);
-        int known = status != GB_OK || !p.is_minimum; /* born within the step: the next step meets it */
-        for (int j = 0; j < GB_DYNAMICS_STEPPING_SLOTS && !known; j++) known = s->active[j] && gb_dyn_same_point(&s->slot[j], &p);
-        if (!known) take_slot(s, &p, low);
-        if (status == GB_ENOCONV) gb_error_clear();
-        else if (status) return status;
-    }
-    const double far = GB_DYNAMICS_STEPPING_KEEP * d->mean_radius, l = d->def.length, zeta = y[GB_STATE_ZETA];
-    for (int k = 0; k < GB_DYNAMICS_STEPPING_SLOTS; k++)
-        if (s->active[k] && k != low && zeta + l * s->slot[k].height > far) s->active[k] = 0;
-    *global = low;
-    return GB_OK;
-}
-
 /* Every point's gap above the plane at state y (vertical zb), the lowest point and its clearance: one pass over the
  * points (a smooth body's tracked minima first brought to y), kept for the same state (the step that follows it, and
  * the observer of the step that made it). */
-static int scan(gb_dynamics *d, const double y[GB_STATE_SIZE], const double zb[3])
+int gb_dyn_stepping_scan(gb_dynamics *d, const double y[GB_STATE_SIZE], const double zb[3])
 {
     gb_dyn_stepper *s = d->stepper;
     if (s->scanned_valid && !memcmp(s->scanned, y, sizeof s->scanned)) return GB_OK;
     if (s->smooth) {
         int global = 0;
-        const int status = track_minima(d, s, y, zb, &global);
+        const int status = gb_dyn_stepping_track_minima(d, s, y, zb, &global);
         if (status) return status;
         for (size_t i = 0; i < s->nodes; i++) {
             for (int k = 0; k < 3; k++) s->points[i][k] = s->active[i] ? d->def.length * s->slot[i].rc[k] : 0.0;
@@ -322,7 +174,7 @@ static int stepped_observe(gb_dynamics *d, double t, const double y[GB_STATE_SIZ
 {
     (void)t;
     gb_dyn_stepper *s = d->stepper;
-    int status = scan(d, y, o->zb);
+    int status = gb_dyn_stepping_scan(d, y, o->zb);
     if (status) return status;
     o->index = s->lowest;
     memcpy(o->rc, s->points[s->lowest], sizeof o->rc);
@@ -358,7 +210,7 @@ static int stepped_start(gb_dynamics *d, double t0, double y[GB_STATE_SIZE]);
                  stepped_jump, stepped_observe, stepped_translate, stepped_start}
 /* Every mode index is the stepped mode: the modes' time accounting (flight, sliding, on one, two, three points) follows
  * the steps, and every call goes to the one mode. */
-static const gb_dyn_mode stepped_modes[GB_DYN_MODES] = {STEPPED, STEPPED, STEPPED, STEPPED, STEPPED};
+const gb_dyn_mode gb_dyn_stepped_modes[GB_DYN_MODES] = {STEPPED, STEPPED, STEPPED, STEPPED, STEPPED};
 
 /* ---- the step ----------------------------------------------------------------------------------------------- */
 
@@ -404,7 +256,7 @@ int gb_dynamics_stepping_prepare(gb_dynamics *d)
         return status;
     }
     d->stepper = s;
-    d->modes = stepped_modes;
+    d->modes = gb_dyn_stepped_modes;
     return GB_OK;
 }
 
@@ -412,7 +264,7 @@ static int enumerate(void *context, int n, double *r);
 
 /* The step, θ and solver of a stepping that begins or resumes (a hand-over), from no carrying point (`fresh`) or from
  * those its start marked. */
-static int stepping_set(gb_dyn_stepper *s, double h, double theta, const gb_contact_problem_def *solver, int fresh)
+int gb_dyn_stepping_set(gb_dyn_stepper *s, double h, double theta, const gb_contact_problem_def *solver, int fresh)
 {
     if (!(theta >= 0.5 && theta <= 1.0))
         return gb_error_set(GB_EDOM, "theta = %g is out of range (allowed: 0.5 <= theta <= 1)", theta);
@@ -432,84 +284,8 @@ int gb_dynamics_stepping_begin(gb_dynamics *d, double t0, double h, double theta
 {
     (void)t0;
     int status = gb_dynamics_stepping_prepare(d);
-    if (!status) status = stepping_set(d->stepper, h, theta, solver, 1);
+    if (!status) status = gb_dyn_stepping_set(d->stepper, h, theta, solver, 1);
     if (!status) d->stepper->stats = (gb_dynamics_stepping_stats){0};
-    return status;
-}
-
-int gb_dynamics_stepped(const gb_dynamics *d) { return d->modes == stepped_modes; }
-
-int gb_dynamics_hand_over(gb_dynamics *d, double h, double theta, const gb_contact_problem_def *solver)
-{
-    if (gb_dynamics_stepped(d)) /* stepped already; handed over at its start: its solver now */
-        return d->stepper->problem ? GB_OK : stepping_set(d->stepper, h, theta, solver, 0);
-    const gb_dyn_mode *modes = d->modes;
-    int status = gb_dynamics_stepping_prepare(d);
-    if (!status) status = stepping_set(d->stepper, h, theta, solver, 1);
-    if (status) return status;
-    gb_dyn_stepper *s = d->stepper;
-    d->event_modes = modes, d->modes = stepped_modes;
-    /* the points the body stood on carry it into the first step (and stay in its problem within a step's reach) */
-    const gb_dyn_mode_id mode = d->mode;
-    const int on = mode != GB_DYN_FLIGHT;
-    const int two = mode == GB_DYN_TWO_POINT || mode == GB_DYN_REST || (mode == GB_DYN_SLIDING && d->slide.count == 2);
-    const gb_contact_point *stood[2] = {&d->contact, &d->contact2};
-    if (s->smooth) memset(s->active, 0, sizeof s->active);
-    for (int k = 0; k < on + (on && two); k++) {
-        const size_t node = s->smooth ? (size_t)take_slot(s, stood[k], -1) : stood[k]->node;
-        s->touched[s->touched_count++] = node;
-    }
-    s->touching = s->touched_count, s->sliding = mode == GB_DYN_SLIDING;
-    return GB_OK;
-}
-
-int gb_dyn_stepping_take_start(gb_dynamics *d, const char *limit)
-{
-    snprintf(d->start_limit, sizeof d->start_limit, "%s", limit);
-    const gb_dyn_mode *modes = d->modes;
-    const int status = gb_dynamics_stepping_prepare(d);
-    if (!status) d->modes = stepped_modes, d->event_modes = modes;
-    return status;
-}
-
-void gb_dyn_stepping_stand(gb_dynamics *d)
-{
-    /* a body started on the plane stands on its lowest point, as the law's start had it: that point carries it into the
-     * first step (a trajectory placed beside it a hair above the plane then is not in flight for a step) */
-    gb_dyn_stepper *s = d->stepper;
-    if (s && d->def.height0 == 0.0) s->touched[0] = s->lowest, s->touched_count = 1, s->touching = 1;
-}
-
-const char *gb_dynamics_start_limit(const gb_dynamics *d) { return d->start_limit[0] ? d->start_limit : NULL; }
-
-void gb_dynamics_hand_back_now(gb_dynamics *d)
-{
-    if (!d->event_modes) return;
-    d->modes = d->event_modes, d->event_modes = NULL;
-    d->last_valid = d->memo_valid = 0, d->event = GB_DYN_EVENT_NONE;
-}
-
-int gb_dynamics_hand_back(gb_dynamics *d, double t, double y[GB_STATE_SIZE], int *back)
-{
-    *back = 0;
-    gb_dyn_stepper *s = d->stepper;
-    if (!d->event_modes || !s || s->touching || !(s->clearance > 0.0)) return GB_OK;
-    double R[9], zb[3], vb[3];
-    gb_dynamics_rotation(y + GB_STATE_Q, R);
-    zb[0] = R[6], zb[1] = R[7], zb[2] = R[8];
-    int status = scan(d, y, zb);
-    if (status) return status;
-    gb_contact_point lowest;
-    if (s->smooth) lowest = s->slot[s->lowest];
-    else gb_dyn_grid_point(d, s->lowest, zb, &lowest);
-    d->modes = d->event_modes, d->event_modes = NULL;
-    gb_dyn_set_contact(d, &lowest);
-    d->last_valid = d->memo_valid = 0, d->event = GB_DYN_EVENT_NONE, d->lift_allow = 0.0;
-    const double *v = y + GB_STATE_VELOCITY; /* into body axes: Rᵀ v */
-    for (int i = 0; i < 3; i++) vb[i] = R[i] * v[0] + R[3 + i] * v[1] + R[6 + i] * v[2];
-    gb_dyn_start_flight(d, t, y, vb, y[GB_STATE_ZETA]);
-    status = gb_dyn_remember_rate(d, t, y);
-    *back = !status;
     return status;
 }
 
@@ -522,7 +298,7 @@ static int stepped_start(gb_dynamics *d, double t0, double y[GB_STATE_SIZE])
     vertical_of(y, zb);
     y[GB_STATE_ZETA] = 0.0;
     d->stepper->scanned_valid = 0;
-    const int status = scan(d, y, zb);
+    const int status = gb_dyn_stepping_scan(d, y, zb);
     if (status) return status;
     y[GB_STATE_ZETA] = d->def.height0 - d->stepper->clearance;
     const double *v0 = d->def.velocity0;
@@ -776,7 +552,7 @@ int gb_dynamics_stepping_step(gb_dynamics *d, double t, double h, double y[GB_ST
     /* no point moves faster than |v_z| + |ω| r_max + h |g| towards the plane in a step (the weight's kick in it too): one
      * farther than a step of that is far above */
     const double reach = activation + h * (fabs(v[2]) + gb_vec_norm(wi) * s->radius + h * fabs(gth));
-    if ((status = scan(d, y, zb))) return status;
+    if ((status = gb_dyn_stepping_scan(d, y, zb))) return status;
     const size_t lowest_before = s->lowest;
     size_t count = 0;
     for (size_t i = 0; i < s->nodes; i++) {
@@ -977,7 +753,7 @@ int gb_dynamics_stepping_step(gb_dynamics *d, double t, double h, double y[GB_ST
     gb_dyn_set_mode(d, after, t + h);
     double zb1[3];
     vertical_of(y, zb1);
-    if ((status = scan(d, y, zb1))) return status; /* the next step's and the observer's */
+    if ((status = gb_dyn_stepping_scan(d, y, zb1))) return status; /* the next step's and the observer's */
     if (s->lowest != lowest_before) d->grid_switches++, d->last_switch_time = t + h;
     if (after == GB_DYN_FLIGHT) d->flight.hop_max = fmax(d->flight.hop_max, s->clearance);
     s->touching = touching, s->sliding = sliding, s->slip_max = slip_max;
