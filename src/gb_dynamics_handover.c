@@ -1,6 +1,6 @@
 /* gb_dynamics_handover — a run handed between the strategies (docs/stepping.md, "The hand-over"): from the
  * event-driven modes to the stepped one where the law meets a limit (or before a start it refuses), and back in flight. */
-#include "gb_dynamics_stepping_internal.h"
+#include "gb_dynamics_stepper_internal.h"
 
 #include "gb_dynamics_protocol_internal.h"
 #include "gb_error.h"

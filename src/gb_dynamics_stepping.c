@@ -21,7 +21,7 @@
  * m (g₁ − g₀)(ζ₀ + ζ₁)/2 and damping's −c h ω_θ·ω̄ enter W. What the ledger leaves is the scheme's first-order error. */
 #include "gb_dynamics_internal.h"
 #include "gb_dynamics_protocol_internal.h"
-#include "gb_dynamics_stepping_internal.h"
+#include "gb_dynamics_stepper_internal.h"
 
 #include "gb_contact_problem.h"
 #include "gb_error.h"

@@ -1,7 +1,7 @@
 /* gb_dynamics_stepping_minima — a smooth body's points under time-stepping (docs/stepping.md): the local minima of its
  * height function, tracked from step to step by Newton, the lowest certified global (gb_certify, the atlas), the one a
  * step ahead followed from now. */
-#include "gb_dynamics_stepping_internal.h"
+#include "gb_dynamics_stepper_internal.h"
 
 #include "gb_error.h"
 #include "gb_vec.h"

@@ -1,8 +1,8 @@
-/* gb_dynamics_stepping_internal — the time-stepping strategy's state, shared by its files (internal): the step
+/* gb_dynamics_stepper_internal — the time-stepping strategy's state, shared by its files (internal): the step
  * (gb_dynamics_stepping.c), a smooth body's tracked minima (gb_dynamics_stepping_minima.c) and the hand-over between the
  * strategies (gb_dynamics_handover.c). docs/stepping.md. */
-#ifndef GB_DYNAMICS_STEPPING_INTERNAL_H
-#define GB_DYNAMICS_STEPPING_INTERNAL_H
+#ifndef GB_DYNAMICS_STEPPER_INTERNAL_H
+#define GB_DYNAMICS_STEPPER_INTERNAL_H
 
 #include "gb_contact_problem.h"
 #include "gb_dynamics_internal.h"
