@@ -1,6 +1,7 @@
 #include "gb_proof.h"
 
 #include "gb_error.h"
+#include "gb_proof_internal.h"
 
 #include <math.h>
 #include <string.h>
@@ -16,8 +17,7 @@
  * on subintervals, the error bounded through the integrand's analytic continuation on ellipses) is the published
  * rigorous method (Johansson 2018). gb_interval.h, the certificate's fast arithmetic, has none of these. */
 
-/* CPU seconds of the process. */
-static double cpu_seconds(void)
+double gb_proof_cpu_seconds(void)
 {
     struct timespec t;
     clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
@@ -45,8 +45,7 @@ static void mul_d(arb_t out, const arb_t x, double d, slong prec)
     arb_clear(t);
 }
 
-/* The ball x as an interval of doubles rounded outwards. */
-static gb_proof_interval interval_of(const arb_t x)
+gb_proof_interval gb_proof_interval_of(const arb_t x)
 {
     arf_t lo, hi;
     arf_init(lo), arf_init(hi);
@@ -57,8 +56,7 @@ static gb_proof_interval interval_of(const arb_t x)
     return out;
 }
 
-/* The interval [lo, hi] of doubles as a ball (exact endpoints). */
-static void ball_of(arb_t out, gb_proof_interval x, slong prec)
+void gb_proof_ball_of(arb_t out, gb_proof_interval x, slong prec)
 {
     arf_t lo, hi;
     arf_init(lo), arf_init(hi);
@@ -67,7 +65,7 @@ static void ball_of(arb_t out, gb_proof_interval x, slong prec)
     arf_clear(lo), arf_clear(hi);
 }
 
-static int check_precision(long precision)
+int gb_proof_check_precision(long precision)
 {
     if (precision < GB_PROOF_PRECISION_MIN || precision > GB_PROOF_PRECISION_MAX)
         return gb_error_set(GB_EDOM, "precision = %ld bits is out of range (allowed: %d to %d)", precision,
@@ -192,9 +190,9 @@ int gb_proof_oracle_integrals(gb_proof_system system, double omega, long precisi
     memset(out, 0, sizeof *out);
     if (!gb_proof_system_name(system)) return gb_error_set(GB_EDOM, "system %d is unknown (allowed: pendulum, Duffing)", (int)system);
     if (!(omega > 0.0 && omega <= 64.0)) return gb_error_set(GB_EDOM, "omega = %g is out of range (allowed: 0 < omega <= 64)", omega);
-    int status = check_precision(precision);
+    int status = gb_proof_check_precision(precision);
     if (status) return status;
-    const double start = cpu_seconds();
+    const double start = gb_proof_cpu_seconds();
     out->system = system, out->omega = omega, out->precision = precision;
     /* e^{−T} = 2^{−precision−8}: the tails below the quadrature's own target */
     const double T = ((double)precision + 8.0) * M_LN2;
@@ -209,12 +207,12 @@ int gb_proof_oracle_integrals(gb_proof_system system, double omega, long precisi
         arb_mul_ui(frequency, frequency, (ulong)harmonic, precision);
         status = integral(value, system, which, frequency, T, precision);
         closed_form(closed, system, which, frequency, precision);
-        *slots[k] = interval_of(value);
-        out->closed[k] = interval_of(closed);
+        *slots[k] = gb_proof_interval_of(value);
+        out->closed[k] = gb_proof_interval_of(closed);
         out->consistent = out->consistent && arb_overlaps(value, closed);
     }
     arb_clear(frequency), arb_clear(value), arb_clear(closed);
-    out->seconds = cpu_seconds() - start;
+    out->seconds = gb_proof_cpu_seconds() - start;
     return status;
 }
 
@@ -318,7 +316,7 @@ static void decide(search *S, const arb_t lo, const arb_t hi, int level)
                 span(c, a, b, prec);
                 arb_set_d(w, S->omega);
                 arb_div(t, c, w, prec);
-                S->out->where[S->out->zeros] = interval_of(t);
+                S->out->where[S->out->zeros] = gb_proof_interval_of(t);
                 arb_clear(a), arb_clear(b), arb_clear(c), arb_clear(Mc), arb_clear(t);
             } else {
                 S->overflow = 1;
@@ -339,7 +337,7 @@ static void decide(search *S, const arb_t lo, const arb_t hi, int level)
 int gb_proof_melnikov_zeros(const gb_proof_melnikov *def, gb_proof_zeros *out)
 {
     memset(out, 0, sizeof *out);
-    int status = check_precision(def->precision);
+    int status = gb_proof_check_precision(def->precision);
     if (status) return status;
     if (def->depth < 1 || def->depth > 40) return gb_error_set(GB_EDOM, "depth = %d is out of range (allowed: 1 to 40)", def->depth);
     if (!(def->omega > 0.0 && isfinite(def->omega))) return gb_error_set(GB_EDOM, "omega = %g is out of range (allowed: > 0)", def->omega);
@@ -350,7 +348,7 @@ int gb_proof_melnikov_zeros(const gb_proof_melnikov *def, gb_proof_zeros *out)
         if (!(in[k].lo <= in[k].hi) || !isfinite(in[k].lo) || !isfinite(in[k].hi))
             return gb_error_set(GB_EDOM, "interval %d of the integrals and the phase is [%g, %g] (allowed: finite, lo <= hi)", k,
                                 in[k].lo, in[k].hi);
-    const double start = cpu_seconds();
+    const double start = gb_proof_cpu_seconds();
     const slong prec = def->precision;
     trig m;
     arb_init(m.a0), arb_init(m.a1), arb_init(m.b1), arb_init(m.a2), arb_init(m.b2);
@@ -358,10 +356,10 @@ int gb_proof_melnikov_zeros(const gb_proof_melnikov *def, gb_proof_zeros *out)
     arb_init(x), arb_init(c), arb_init(sn), arb_init(psi), arb_init(C2), arb_init(S2), arb_init(lo), arb_init(hi), arb_init(two_pi);
     /* a0 = −μD; a1 = ν₁C₁; b1 = −ν₁S₁; cos(2s + ψ) and sin(2s + ψ) expanded: a2 = ν₂(C₂ cos ψ − S₂ sin ψ),
      * b2 = −ν₂(C₂ sin ψ + S₂ cos ψ) */
-    ball_of(x, def->D, prec), mul_d(m.a0, x, -def->mu, prec);
-    ball_of(x, def->C1, prec), mul_d(m.a1, x, def->nu1, prec);
-    ball_of(x, def->S1, prec), mul_d(m.b1, x, -def->nu1, prec);
-    ball_of(psi, def->psi, prec), ball_of(C2, def->C2, prec), ball_of(S2, def->S2, prec);
+    gb_proof_ball_of(x, def->D, prec), mul_d(m.a0, x, -def->mu, prec);
+    gb_proof_ball_of(x, def->C1, prec), mul_d(m.a1, x, def->nu1, prec);
+    gb_proof_ball_of(x, def->S1, prec), mul_d(m.b1, x, -def->nu1, prec);
+    gb_proof_ball_of(psi, def->psi, prec), gb_proof_ball_of(C2, def->C2, prec), gb_proof_ball_of(S2, def->S2, prec);
     arb_sin_cos(sn, c, psi, prec);
     arb_mul(m.a2, C2, c, prec), arb_submul(m.a2, S2, sn, prec), mul_d(m.a2, m.a2, def->nu2, prec);
     arb_mul(m.b2, C2, sn, prec), arb_addmul(m.b2, S2, c, prec), mul_d(m.b2, m.b2, -def->nu2, prec);
@@ -385,7 +383,7 @@ int gb_proof_melnikov_zeros(const gb_proof_melnikov *def, gb_proof_zeros *out)
     arb_clear(m.a0), arb_clear(m.a1), arb_clear(m.b1), arb_clear(m.a2), arb_clear(m.b2);
     arb_clear(x), arb_clear(c), arb_clear(sn), arb_clear(psi), arb_clear(C2), arb_clear(S2), arb_clear(lo), arb_clear(hi);
     arb_clear(two_pi);
-    out->seconds = cpu_seconds() - start;
+    out->seconds = gb_proof_cpu_seconds() - start;
     return GB_OK;
 }
 
@@ -398,7 +396,7 @@ int gb_proof_pi_fraction(long num, long den, gb_proof_interval *out)
     arb_const_pi(x, 128);
     arb_mul_si(x, x, num, 128);
     arb_div_si(x, x, den, 128);
-    *out = interval_of(x);
+    *out = gb_proof_interval_of(x);
     arb_clear(x);
     return GB_OK;
 }
@@ -420,7 +418,7 @@ int gb_proof_encloses(const char *operation, double x, double y, double lo, doub
         return gb_error_set(GB_EDOM, "%s of %g is outside its domain", operation, x);
     arb_t a, b, range;
     arb_init(a), arb_init(b), arb_init(range);
-    ball_of(range, (gb_proof_interval){lo, hi}, 64);
+    gb_proof_ball_of(range, (gb_proof_interval){lo, hi}, 64);
     for (slong prec = 256; prec <= 4096 && *holds < 0; prec *= 2) {
         arb_set_d(a, x), arb_set_d(b, y);
         switch (op) {

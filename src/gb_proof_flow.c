@@ -1,0 +1,772 @@
+#include "gb_proof_flow.h"
+
+#include "gb_error.h"
+#include "gb_proof_internal.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <arb.h>
+#include <arb_mat.h>
+
+/* Why our own integrator on Arb: Arb has balls, power series and matrices with proven bounds but no ODE solver;
+ * CAPD, which has one (C++), is not packaged in Debian. The method is the published C⁰ Lohner algorithm (see the
+ * header); every bound is Arb's. */
+
+enum { NMAX = GB_PROOF_FIELD_DIMENSION_MAX };
+
+/* The field's coefficients as balls, and which quadratic terms are present. */
+typedef struct field_balls {
+    int n, order;
+    slong prec;
+    arb_struct c[NMAX], L[NMAX][NMAX], Q[NMAX][NMAX][NMAX];
+    int has_Q[NMAX][NMAX][NMAX], pair_used[NMAX][NMAX];
+} field_balls;
+
+static void rational_ball(arb_t out, gb_proof_rational q, slong prec)
+{
+    if (!q.den || !q.num) {
+        arb_zero(out);
+        return;
+    }
+    arb_set_si(out, q.num);
+    arb_div_si(out, out, q.den, prec);
+}
+
+static void field_init(field_balls *F, const gb_proof_field *f, int order, slong prec)
+{
+    memset(F, 0, sizeof *F);
+    F->n = f->dimension, F->order = order, F->prec = prec;
+    for (int i = 0; i < NMAX; i++) {
+        arb_init(&F->c[i]);
+        for (int j = 0; j < NMAX; j++) {
+            arb_init(&F->L[i][j]);
+            for (int k = 0; k < NMAX; k++) arb_init(&F->Q[i][j][k]);
+        }
+    }
+    for (int i = 0; i < F->n; i++) {
+        rational_ball(&F->c[i], f->c[i], prec);
+        for (int j = 0; j < F->n; j++) {
+            rational_ball(&F->L[i][j], f->L[i][j], prec);
+            for (int k = j; k < F->n; k++) {
+                rational_ball(&F->Q[i][j][k], f->Q[i][j][k], prec);
+                F->has_Q[i][j][k] = !arb_is_zero(&F->Q[i][j][k]);
+                F->pair_used[j][k] |= F->has_Q[i][j][k];
+            }
+        }
+    }
+}
+
+static void field_clear(field_balls *F)
+{
+    for (int i = 0; i < NMAX; i++) {
+        arb_clear(&F->c[i]);
+        for (int j = 0; j < NMAX; j++) {
+            arb_clear(&F->L[i][j]);
+            for (int k = 0; k < NMAX; k++) arb_clear(&F->Q[i][j][k]);
+        }
+    }
+}
+
+/* f(x) over the box x. */
+static void field_eval(const field_balls *F, arb_srcptr x, arb_ptr out)
+{
+    arb_t t;
+    arb_init(t);
+    for (int i = 0; i < F->n; i++) {
+        arb_set(out + i, &F->c[i]);
+        for (int j = 0; j < F->n; j++) {
+            arb_addmul(out + i, &F->L[i][j], x + j, F->prec);
+            for (int k = j; k < F->n; k++)
+                if (F->has_Q[i][j][k]) {
+                    arb_mul(t, x + j, x + k, F->prec);
+                    arb_addmul(out + i, &F->Q[i][j][k], t, F->prec);
+                }
+        }
+    }
+    arb_clear(t);
+}
+
+/* The Taylor coefficients x_0 … x_order of the solution through every point of the box x0: xs[i (order + 1) + k].
+ * The recursion of a quadratic field: (k + 1) x_{k+1} = [k = 0] c + L x_k + Σ Q (x ⋆ x)_k, ⋆ the Cauchy product. */
+static void taylor(const field_balls *F, arb_srcptr x0, int order, arb_ptr xs)
+{
+    const int n = F->n, w = order + 1;
+    arb_t acc, conv;
+    arb_init(acc), arb_init(conv);
+    for (int i = 0; i < n; i++) arb_set(xs + i * w, x0 + i);
+    arb_struct products[NMAX][NMAX];
+    for (int j = 0; j < n; j++)
+        for (int k = 0; k < n; k++) arb_init(&products[j][k]);
+    for (int k = 0; k < order; k++) {
+        for (int j = 0; j < n; j++)
+            for (int l = j; l < n; l++) {
+                if (!F->pair_used[j][l]) continue;
+                arb_zero(&products[j][l]);
+                for (int m = 0; m <= k; m++) arb_addmul(&products[j][l], xs + j * w + m, xs + l * w + k - m, F->prec);
+            }
+        for (int i = 0; i < n; i++) {
+            if (k == 0)
+                arb_set(acc, &F->c[i]);
+            else
+                arb_zero(acc);
+            for (int j = 0; j < n; j++) {
+                if (!arb_is_zero(&F->L[i][j])) arb_addmul(acc, &F->L[i][j], xs + j * w + k, F->prec);
+                for (int l = j; l < n; l++)
+                    if (F->has_Q[i][j][l]) arb_addmul(acc, &F->Q[i][j][l], &products[j][l], F->prec);
+            }
+            arb_div_ui(xs + i * w + k + 1, acc, (ulong)(k + 1), F->prec);
+        }
+    }
+    for (int j = 0; j < n; j++)
+        for (int k = 0; k < n; k++) arb_clear(&products[j][k]);
+    arb_clear(acc), arb_clear(conv);
+}
+
+/* The variational coefficients V_0 = I, …, V_order (n × n each, V[(k n + a) n + b]) along the series xs: the
+ * derivatives of x_k with respect to the initial point, (k + 1) V_{k+1} = Σ_m J_m V_{k−m}, J_m the m-th coefficient
+ * of Df along the solution. */
+static void variational(const field_balls *F, arb_srcptr xs, int order, arb_ptr V)
+{
+    const int n = F->n, w = order + 1, nn = n * n;
+    arb_ptr J = _arb_vec_init(order * nn);
+    for (int m = 0; m < order; m++)
+        for (int a = 0; a < n; a++)
+            for (int q = 0; q < n; q++) {
+                arb_ptr e = J + m * nn + a * n + q;
+                if (m == 0) arb_set(e, &F->L[a][q]);
+                for (int l = q; l < n; l++)
+                    if (F->has_Q[a][q][l]) arb_addmul(e, &F->Q[a][q][l], xs + l * w + m, F->prec);
+                for (int j = 0; j <= q; j++)
+                    if (F->has_Q[a][j][q]) arb_addmul(e, &F->Q[a][j][q], xs + j * w + m, F->prec);
+            }
+    _arb_vec_zero(V, w * nn);
+    for (int a = 0; a < n; a++) arb_one(V + a * n + a);
+    arb_t acc;
+    arb_init(acc);
+    for (int k = 0; k < order; k++)
+        for (int a = 0; a < n; a++)
+            for (int b = 0; b < n; b++) {
+                arb_zero(acc);
+                for (int m = 0; m <= k; m++)
+                    for (int q = 0; q < n; q++) {
+                        arb_srcptr j = J + m * nn + a * n + q;
+                        if (!arb_is_zero(j)) arb_addmul(acc, j, V + (k - m) * nn + q * n + b, F->prec);
+                    }
+                arb_div_ui(V + (k + 1) * nn + a * n + b, acc, (ulong)(k + 1), F->prec);
+            }
+    arb_clear(acc);
+    _arb_vec_clear(J, order * nn);
+}
+
+/* Σ_k a[k·stride] t^k by Horner, for a ball t. */
+static void horner(arb_t out, arb_srcptr a, int stride, int degree, const arb_t t, slong prec)
+{
+    arb_set(out, a + degree * stride);
+    for (int k = degree - 1; k >= 0; k--) {
+        arb_mul(out, out, t, prec);
+        arb_add(out, out, a + k * stride, prec);
+    }
+}
+
+/* The set x̂ + A r. */
+typedef struct lohner_set {
+    arb_struct x[NMAX], r[NMAX];
+    arb_mat_t A;
+} lohner_set;
+
+static void set_init(lohner_set *S, int n)
+{
+    for (int i = 0; i < NMAX; i++) arb_init(&S->x[i]), arb_init(&S->r[i]);
+    arb_mat_init(S->A, n, n);
+    arb_mat_one(S->A);
+}
+
+static void set_clear(lohner_set *S)
+{
+    for (int i = 0; i < NMAX; i++) arb_clear(&S->x[i]), arb_clear(&S->r[i]);
+    arb_mat_clear(S->A);
+}
+
+/* The box x̂ + A r. */
+static void set_hull(const field_balls *F, const lohner_set *S, arb_ptr out)
+{
+    for (int i = 0; i < F->n; i++) {
+        arb_set(out + i, &S->x[i]);
+        for (int j = 0; j < F->n; j++) arb_addmul(out + i, arb_mat_entry(S->A, i, j), &S->r[j], F->prec);
+    }
+}
+
+/* The box of doubles [lo − 0.1 w − tiny, hi + 0.1 w + tiny] around a ball: a candidate a-priori enclosure. */
+static void widen(arb_t x, slong prec)
+{
+    gb_proof_interval v = gb_proof_interval_of(x);
+    const double w = v.hi - v.lo, tiny = 1e-12 * (1.0 + fmax(fabs(v.lo), fabs(v.hi)));
+    v.lo -= 0.1 * w + tiny, v.hi += 0.1 * w + tiny;
+    gb_proof_ball_of(x, v, prec);
+}
+
+/* Picard's test: a box B with X + [0, h] f(B) ⊆ B holds every solution from X over [0, h]. 1 when found. */
+static int a_priori(const field_balls *F, arb_srcptr X, const arb_t span, arb_ptr B)
+{
+    const int n = F->n;
+    arb_struct fx[NMAX], Y[NMAX];
+    for (int i = 0; i < n; i++) arb_init(&fx[i]), arb_init(&Y[i]);
+    field_eval(F, X, fx);
+    for (int i = 0; i < n; i++) {
+        arb_mul(B + i, &fx[i], span, F->prec);
+        arb_add(B + i, B + i, X + i, F->prec);
+        arb_union(B + i, B + i, X + i, F->prec);
+        widen(B + i, F->prec);
+    }
+    int found = 0;
+    for (int attempt = 0; attempt < 6 && !found; attempt++) {
+        field_eval(F, B, fx);
+        found = 1;
+        for (int i = 0; i < n; i++) {
+            arb_mul(&Y[i], &fx[i], span, F->prec);
+            arb_add(&Y[i], &Y[i], X + i, F->prec);
+            found &= arb_contains(B + i, &Y[i]);
+        }
+        if (found)
+            for (int i = 0; i < n; i++) arb_set(B + i, &Y[i]); /* Y ⊆ B gives X + [0, h] f(Y) ⊆ Y as well */
+        else
+            for (int i = 0; i < n; i++) {
+                arb_union(B + i, B + i, &Y[i], F->prec);
+                widen(B + i, F->prec);
+            }
+    }
+    for (int i = 0; i < n; i++) arb_clear(&fx[i]), arb_clear(&Y[i]);
+    return found;
+}
+
+/* One step's data: the Taylor coefficients at x̂ (with the remainder's coefficient over B in place p + 1), the
+ * variational coefficients over the hull, the hull, B and A r. */
+typedef struct step_data {
+    int order;
+    arb_ptr centre; /* n (order + 2): x_0 … x_p at x̂, then x_{p+1} over B */
+    arb_ptr V;      /* (order + 1) n² over the hull */
+    arb_struct B[NMAX], Ar[NMAX], hull[NMAX];
+} step_data;
+
+static void step_init(step_data *D, int order)
+{
+    D->order = order;
+    D->centre = _arb_vec_init(NMAX * (order + 2));
+    D->V = _arb_vec_init((order + 1) * NMAX * NMAX);
+    for (int i = 0; i < NMAX; i++) arb_init(&D->B[i]), arb_init(&D->Ar[i]), arb_init(&D->hull[i]);
+}
+
+static void step_clear(step_data *D)
+{
+    _arb_vec_clear(D->centre, NMAX * (D->order + 2));
+    _arb_vec_clear(D->V, (D->order + 1) * NMAX * NMAX);
+    for (int i = 0; i < NMAX; i++) arb_clear(&D->B[i]), arb_clear(&D->Ar[i]), arb_clear(&D->hull[i]);
+}
+
+/* A step length from the coefficients at x̂: a quarter of the radius the last two suggest, at most step_max. */
+static double step_length(const field_balls *F, const lohner_set *S, double step_max, arb_ptr scratch)
+{
+    const int p = F->order, w = p + 1;
+    taylor(F, S->x, p, scratch);
+    double h = step_max;
+    for (int k = p - 1; k <= p; k++) {
+        double size = 0.0;
+        for (int i = 0; i < F->n; i++) size = fmax(size, fabs(arf_get_d(arb_midref(scratch + i * w + k), ARF_RND_NEAR)));
+        if (size > 0.0) h = fmin(h, 0.25 * pow(size, -1.0 / k));
+    }
+    return h;
+}
+
+/* Prepares a step of length h (exact double) from S: 1 with D filled, 0 when no a-priori enclosure is found. */
+static int step_prepare(const field_balls *F, const lohner_set *S, double h, step_data *D)
+{
+    const int n = F->n, p = F->order;
+    arb_t span;
+    arb_init(span);
+    arf_t zero, end;
+    arf_init(zero), arf_init(end);
+    arf_set_d(end, h);
+    arb_set_interval_arf(span, zero, end, F->prec);
+    set_hull(F, S, D->hull);
+    const int found = a_priori(F, D->hull, span, D->B);
+    arb_clear(span), arf_clear(zero), arf_clear(end);
+    if (!found) return 0;
+    /* x_{p+1} over B, into the centre's place p + 1 after the centre's own coefficients */
+    arb_ptr over_B = _arb_vec_init(n * (p + 2));
+    taylor(F, D->B, p + 1, over_B);
+    arb_ptr at_centre = _arb_vec_init(n * (p + 1));
+    taylor(F, S->x, p, at_centre);
+    for (int i = 0; i < n; i++) {
+        for (int k = 0; k <= p; k++) arb_set(D->centre + i * (p + 2) + k, at_centre + i * (p + 1) + k);
+        arb_set(D->centre + i * (p + 2) + p + 1, over_B + i * (p + 2) + p + 1);
+    }
+    _arb_vec_clear(at_centre, n * (p + 1));
+    _arb_vec_clear(over_B, n * (p + 2));
+    arb_ptr over_hull = _arb_vec_init(n * (p + 1));
+    taylor(F, D->hull, p, over_hull);
+    variational(F, over_hull, p, D->V);
+    _arb_vec_clear(over_hull, n * (p + 1));
+    for (int i = 0; i < n; i++) {
+        arb_zero(&D->Ar[i]);
+        for (int j = 0; j < n; j++) arb_addmul(&D->Ar[i], arb_mat_entry(S->A, i, j), &S->r[j], F->prec);
+    }
+    return 1;
+}
+
+/* The derivative of the Taylor polynomial at time t (a ball) over the hull. */
+static void derivative_at(const field_balls *F, const step_data *D, const arb_t t, arb_mat_t out)
+{
+    const int n = F->n, nn = n * n;
+    for (int a = 0; a < n; a++)
+        for (int b = 0; b < n; b++) horner(arb_mat_entry(out, a, b), D->V + a * n + b, nn, F->order, t, F->prec);
+}
+
+/* Every solution from the set at every time of the ball t ⊆ [0, h]: a box. */
+static void enclose_at(const field_balls *F, const step_data *D, const arb_t t, arb_ptr out)
+{
+    const int n = F->n, p = F->order;
+    arb_mat_t DP;
+    arb_mat_init(DP, n, n);
+    derivative_at(F, D, t, DP);
+    for (int i = 0; i < n; i++) {
+        horner(out + i, D->centre + i * (p + 2), 1, p + 1, t, F->prec);
+        for (int j = 0; j < n; j++) arb_addmul(out + i, arb_mat_entry(DP, i, j), &D->Ar[j], F->prec);
+    }
+    arb_mat_clear(DP);
+}
+
+/* The new frame: Q of the QR factorisation (Gram–Schmidt in doubles, taken exact) of mid(M) with the columns ordered
+ * by |column| times the width of r along it, the widest first. */
+static void new_frame(int n, const arb_mat_t M, arb_srcptr r, arb_mat_t Q)
+{
+    double m[NMAX][NMAX], weight[NMAX];
+    int order[NMAX];
+    for (int b = 0; b < n; b++) {
+        double norm = 0.0;
+        for (int a = 0; a < n; a++) {
+            m[a][b] = arf_get_d(arb_midref(arb_mat_entry(M, a, b)), ARF_RND_NEAR);
+            norm += m[a][b] * m[a][b];
+        }
+        weight[b] = sqrt(norm) * mag_get_d(arb_radref(r + b));
+        order[b] = b;
+    }
+    for (int i = 1; i < n; i++)
+        for (int j = i; j > 0 && weight[order[j]] > weight[order[j - 1]]; j--) {
+            const int t = order[j];
+            order[j] = order[j - 1], order[j - 1] = t;
+        }
+    double q[NMAX][NMAX];
+    for (int c = 0; c < n; c++) {
+        double v[NMAX];
+        for (int a = 0; a < n; a++) v[a] = m[a][order[c]];
+        for (int pass = 0; pass < 2; pass++)
+            for (int d = 0; d < c; d++) {
+                double dot = 0.0;
+                for (int a = 0; a < n; a++) dot += q[a][d] * v[a];
+                for (int a = 0; a < n; a++) v[a] -= dot * q[a][d];
+            }
+        double norm = 0.0;
+        for (int a = 0; a < n; a++) norm += v[a] * v[a];
+        norm = sqrt(norm);
+        if (!(norm > 1e-300)) { /* a degenerate column: any unit vector orthogonal to the others */
+            for (int e = 0; e < n && !(norm > 0.5); e++) {
+                for (int a = 0; a < n; a++) v[a] = a == e;
+                for (int d = 0; d < c; d++) {
+                    double dot = q[e][d];
+                    for (int a = 0; a < n; a++) v[a] -= dot * q[a][d];
+                }
+                norm = 0.0;
+                for (int a = 0; a < n; a++) norm += v[a] * v[a];
+                norm = sqrt(norm);
+            }
+        }
+        for (int a = 0; a < n; a++) q[a][c] = v[a] / norm;
+    }
+    for (int a = 0; a < n; a++)
+        for (int c = 0; c < n; c++) arb_set_d(arb_mat_entry(Q, a, c), q[a][c]);
+}
+
+/* Ends the step: S becomes the set at time h, x̂' = mid(Φ_p(x̂) + R), A' the new frame, r' = A'⁻¹(DΦ_p A) r +
+ * A'⁻¹ e. 0 when A' cannot be inverted. */
+static int step_finish(const field_balls *F, lohner_set *S, const step_data *D, double h)
+{
+    const int n = F->n, p = F->order;
+    arb_t t;
+    arb_init(t);
+    arb_set_d(t, h);
+    arb_mat_t DP, M, Anew, Ainv, C;
+    arb_mat_init(DP, n, n), arb_mat_init(M, n, n), arb_mat_init(Anew, n, n), arb_mat_init(Ainv, n, n), arb_mat_init(C, n, n);
+    derivative_at(F, D, t, DP);
+    arb_mat_mul(M, DP, S->A, F->prec);
+    arb_struct image[NMAX], e[NMAX], rn[NMAX];
+    for (int i = 0; i < n; i++) arb_init(&image[i]), arb_init(&e[i]), arb_init(&rn[i]);
+    for (int i = 0; i < n; i++) {
+        horner(&image[i], D->centre + i * (p + 2), 1, p + 1, t, F->prec);
+        arb_get_mid_arb(&S->x[i], &image[i]);
+        arb_sub(&e[i], &image[i], &S->x[i], F->prec);
+    }
+    new_frame(n, M, S->r, Anew);
+    const int invertible = arb_mat_inv(Ainv, Anew, F->prec);
+    if (invertible) {
+        arb_mat_mul(C, Ainv, M, F->prec);
+        for (int i = 0; i < n; i++) {
+            arb_zero(&rn[i]);
+            for (int j = 0; j < n; j++) {
+                arb_addmul(&rn[i], arb_mat_entry(C, i, j), &S->r[j], F->prec);
+                arb_addmul(&rn[i], arb_mat_entry(Ainv, i, j), &e[j], F->prec);
+            }
+        }
+        for (int i = 0; i < n; i++) arb_set(&S->r[i], &rn[i]);
+        arb_mat_set(S->A, Anew);
+    }
+    for (int i = 0; i < n; i++) arb_clear(&image[i]), arb_clear(&e[i]), arb_clear(&rn[i]);
+    arb_mat_clear(DP), arb_mat_clear(M), arb_mat_clear(Anew), arb_mat_clear(Ainv), arb_mat_clear(C);
+    arb_clear(t);
+    return invertible;
+}
+
+void gb_proof_field_image(const gb_proof_field *field, arb_srcptr x, arb_ptr out, slong prec)
+{
+    field_balls F;
+    field_init(&F, field, GB_PROOF_ORDER_MIN, prec);
+    field_eval(&F, x, out);
+    field_clear(&F);
+}
+
+gb_proof_field gb_proof_flow_rossler(long a_num, long a_den, long b_num, long b_den, long c_num, long c_den)
+{
+    gb_proof_field f;
+    memset(&f, 0, sizeof f);
+    f.dimension = 3;
+    f.L[0][1] = f.L[0][2] = (gb_proof_rational){-1, 1};
+    f.L[1][0] = (gb_proof_rational){1, 1};
+    f.L[1][1] = (gb_proof_rational){a_num, a_den};
+    f.c[2] = (gb_proof_rational){b_num, b_den};
+    f.L[2][2] = (gb_proof_rational){-c_num, c_den};
+    f.Q[2][0][2] = (gb_proof_rational){1, 1};
+    return f;
+}
+
+gb_proof_flow_def gb_proof_flow_def_default(const gb_proof_field *field)
+{
+    return (gb_proof_flow_def){field, 0, +1, 1, GB_PROOF_ORDER_DEFAULT, GB_PROOF_PRECISION_DEFAULT, 100.0, 0.5, 64};
+}
+
+int gb_proof_flow_def_check(const gb_proof_flow_def *def)
+{
+    if (!def || !def->field) return gb_error_set(GB_EINVAL, "a section map needs a definition and a field");
+    const gb_proof_field *f = def->field;
+    if (f->dimension < 1 || f->dimension > NMAX)
+        return gb_error_set(GB_EDOM, "field dimension = %d is out of range (allowed: 1 to %d)", f->dimension, NMAX);
+    int status = gb_proof_check_precision(def->precision);
+    if (status) return status;
+    if (def->order < GB_PROOF_ORDER_MIN || def->order > GB_PROOF_ORDER_MAX)
+        return gb_error_set(GB_EDOM, "order = %d is out of range (allowed: %d to %d)", def->order, GB_PROOF_ORDER_MIN,
+                            GB_PROOF_ORDER_MAX);
+    if (def->coordinate < 0 || def->coordinate >= f->dimension)
+        return gb_error_set(GB_EDOM, "section coordinate = %d is out of range (allowed: 0 to %d)", def->coordinate, f->dimension - 1);
+    if (def->direction != 1 && def->direction != -1)
+        return gb_error_set(GB_EDOM, "section direction = %d is out of range (allowed: +1 or -1)", def->direction);
+    if (def->returns < 1 || def->returns > 16)
+        return gb_error_set(GB_EDOM, "returns = %d is out of range (allowed: 1 to 16)", def->returns);
+    if (!(def->time_max > 0.0 && def->time_max <= 1e4))
+        return gb_error_set(GB_EDOM, "time_max = %g is out of range (allowed: above 0, at most 1e4)", def->time_max);
+    if (!(def->step_max > 0.0 && def->step_max <= 1e3))
+        return gb_error_set(GB_EDOM, "step_max = %g is out of range (allowed: above 0, at most 1e3)", def->step_max);
+    if (def->time_pieces < 2 || def->time_pieces > 4096)
+        return gb_error_set(GB_EDOM, "time_pieces = %d is out of range (allowed: 2 to 4096)", def->time_pieces);
+    for (int i = 0; i < f->dimension; i++)
+        for (int j = 0; j < f->dimension; j++) {
+            if (f->L[i][j].den < 0 || f->c[i].den < 0)
+                return gb_error_set(GB_EDOM, "a coefficient's denominator is negative (allowed: 0 for none, or positive)");
+            for (int k = 0; k < f->dimension; k++)
+                if (f->Q[i][j][k].den < 0)
+                    return gb_error_set(GB_EDOM, "a coefficient's denominator is negative (allowed: 0 for none, or positive)");
+        }
+    return GB_OK;
+}
+
+static int check_def(const gb_proof_flow_def *def, const gb_proof_interval *box)
+{
+    const int status = gb_proof_flow_def_check(def);
+    if (status) return status;
+    if (!box) return gb_error_set(GB_EINVAL, "a section map needs a box");
+    for (int i = 0; i < def->field->dimension; i++)
+        if (!(isfinite(box[i].lo) && isfinite(box[i].hi) && box[i].lo <= box[i].hi))
+            return gb_error_set(GB_EDOM, "box component %d = [%g, %g] is not a finite interval with lo <= hi", i, box[i].lo, box[i].hi);
+    return GB_OK;
+}
+
+/* The set of the box: x̂ its middle (exact), A = I, r the box minus x̂. */
+static void set_of_box(const field_balls *F, lohner_set *S, const gb_proof_interval *box)
+{
+    arb_t b;
+    arb_init(b);
+    for (int i = 0; i < F->n; i++) {
+        gb_proof_ball_of(b, box[i], F->prec);
+        arb_get_mid_arb(&S->x[i], b);
+        arb_sub(&S->r[i], b, &S->x[i], F->prec);
+    }
+    arb_clear(b);
+}
+
+/* The state of one integration: the field's balls, the set, a step's data and scratch for the step length. */
+typedef struct integration {
+    field_balls F;
+    lohner_set S;
+    step_data D;
+    arb_ptr scratch;
+} integration;
+
+static void integration_init(integration *I, const gb_proof_flow_def *def, const gb_proof_interval *box)
+{
+    field_init(&I->F, def->field, def->order, def->precision);
+    set_init(&I->S, I->F.n);
+    set_of_box(&I->F, &I->S, box);
+    step_init(&I->D, def->order);
+    I->scratch = _arb_vec_init(I->F.n * (def->order + 1));
+}
+
+static void integration_clear(integration *I)
+{
+    _arb_vec_clear(I->scratch, I->F.n * (I->F.order + 1));
+    step_clear(&I->D);
+    set_clear(&I->S);
+    field_clear(&I->F);
+}
+
+/* Takes one step from S at time *t (advanced): a step length chosen and halved until Picard's test holds. */
+static int step_take(const field_balls *F, lohner_set *S, step_data *D, const gb_proof_flow_def *def, double h_cap,
+                     arb_ptr scratch, double *h_taken, const arb_t t_now)
+{
+    /* steps are multiples of 2^-30, so that their sums (the times) are exact doubles */
+    double h = floor(ldexp(fmin(step_length(F, S, def->step_max, scratch), h_cap), 30));
+    h = ldexp(fmax(h, 1.0), -30);
+    while (!step_prepare(F, S, h, D)) {
+        h = ldexp(floor(ldexp(h, 29)), -30);
+        if (h < 1e-9) {
+            return gb_error_set(GB_ENUMERIC, "no a-priori enclosure of the set's solutions at t = %.6g even for a step of 1e-9 "
+                                "(the set has grown too wide to follow)", arf_get_d(arb_midref(t_now), ARF_RND_NEAR));
+        }
+    }
+    *h_taken = h;
+    return GB_OK;
+}
+
+/* Is every point of the ball x strictly on the side sign (+1: above 0, −1: below)? */
+static int strictly_on(const arb_t x, int sign)
+{
+    return sign > 0 ? arb_is_positive(x) : arb_is_negative(x);
+}
+
+/* The crossing of a window: the hull of the set over the sub-intervals of time whose enclosure meets the plane. */
+typedef struct crossing {
+    arb_struct image[NMAX];
+    arb_t time;
+    int collected;
+} crossing;
+
+static void crossing_init(crossing *C)
+{
+    for (int i = 0; i < NMAX; i++) arb_init(&C->image[i]);
+    arb_init(C->time);
+    C->collected = 0;
+}
+
+static void crossing_clear(crossing *C)
+{
+    for (int i = 0; i < NMAX; i++) arb_clear(&C->image[i]);
+    arb_clear(C->time);
+}
+
+/* The most halvings of a sub-interval of a crossing step: to 2^-20 of it. */
+enum { CROSSING_HALVINGS = 20 };
+
+/* Adds to C the set over the times [lo, hi] of the step (after t0) if its enclosure meets the plane x[s] = 0,
+ * halving [lo, hi] while the time's spread, not the set's own width, makes the enclosure wide (its width along s
+ * above 1.25 times the set's at the time lo). Every solution crossing within [lo, hi] crosses in one of the
+ * pieces kept, so their hull holds its crossing. */
+static void collect(const field_balls *F, const step_data *D, int s, const arb_t t0, const arf_t lo, const arf_t hi, int halvings,
+                    crossing *C)
+{
+    const int n = F->n;
+    arb_struct piece[NMAX];
+    for (int i = 0; i < n; i++) arb_init(&piece[i]);
+    arb_t sub;
+    arb_init(sub);
+    arb_set_interval_arf(sub, lo, hi, F->prec);
+    enclose_at(F, D, sub, piece);
+    int keep = arb_contains_zero(&piece[s]);
+    if (keep && halvings > 0) {
+        arb_struct thin[NMAX];
+        for (int i = 0; i < n; i++) arb_init(&thin[i]);
+        arb_set_arf(sub, lo);
+        enclose_at(F, D, sub, thin);
+        const double wide = mag_get_d(arb_radref(&piece[s])), own = mag_get_d(arb_radref(&thin[s]));
+        for (int i = 0; i < n; i++) arb_clear(&thin[i]);
+        if (wide > 1.25 * own) {
+            arb_set_interval_arf(sub, lo, hi, F->prec); /* its midpoint: a point of [lo, hi] */
+            arf_t middle;
+            arf_init(middle);
+            arf_set(middle, arb_midref(sub));
+            collect(F, D, s, t0, lo, middle, halvings - 1, C);
+            collect(F, D, s, t0, middle, hi, halvings - 1, C);
+            arf_clear(middle);
+            keep = 0;
+        }
+        arb_set_interval_arf(sub, lo, hi, F->prec);
+    }
+    if (keep) {
+        arb_add(sub, sub, t0, F->prec);
+        if (!C->collected++) {
+            for (int i = 0; i < n; i++) arb_set(&C->image[i], &piece[i]);
+            arb_set(C->time, sub);
+        } else {
+            for (int i = 0; i < n; i++) arb_union(&C->image[i], &C->image[i], &piece[i], F->prec);
+            arb_union(C->time, C->time, sub, F->prec);
+        }
+    }
+    for (int i = 0; i < n; i++) arb_clear(&piece[i]);
+    arb_clear(sub);
+}
+
+int gb_proof_flow_section_map(const gb_proof_flow_def *def, const gb_proof_interval *box, gb_proof_flow_crossing *out)
+{
+    int status = check_def(def, box);
+    if (status) return status;
+    if (!out) return gb_error_set(GB_EINVAL, "a section map needs a result");
+    const int s = def->coordinate, dir = def->direction;
+    if (box[s].lo != 0.0 || box[s].hi != 0.0)
+        return gb_error_set(GB_EDOM, "box component %d = [%g, %g] is not on the section (allowed: [0, 0])", s, box[s].lo, box[s].hi);
+    memset(out, 0, sizeof *out);
+    const double start = gb_proof_cpu_seconds();
+    integration I;
+    integration_init(&I, def, box);
+    field_balls *const F = &I.F;
+    lohner_set *const S = &I.S;
+    step_data *const D = &I.D;
+    const int n = F->n;
+    arb_struct fB[NMAX], piece[NMAX];
+    for (int i = 0; i < NMAX; i++) arb_init(&fB[i]), arb_init(&piece[i]);
+    crossing C;
+    crossing_init(&C);
+    arb_t t;
+    arb_init(t);
+    int window = 0, in_window = 1, done = 0;
+    out->step_min = INFINITY;
+    while (!status && !done) {
+        if (arf_cmp_d(arb_midref(t), def->time_max) > 0) {
+            status = gb_error_set(GB_ENUMERIC, "crossing %d of %d not reached by t = %g (time_max)", window, def->returns, def->time_max);
+            break;
+        }
+        double h;
+        status = step_take(F, S, D, def, INFINITY, I.scratch, &h, t);
+        if (status) break;
+        const int touches = arb_contains_zero(&D->B[s]);
+        int sign = 0;
+        if (touches) {
+            field_eval(F, D->B, fB);
+            sign = arb_is_positive(&fB[s]) ? 1 : arb_is_negative(&fB[s]) ? -1 : 0;
+            if (!sign) {
+                status = gb_error_set(GB_ENUMERIC, "at t = %.6g the set meets the section where x'[%d] has no sign (a tangency, or "
+                                      "the set too wide): the crossing's direction is undecided", arf_get_d(arb_midref(t), ARF_RND_NEAR), s);
+                break;
+            }
+        }
+        set_hull(F, S, piece);
+        if (touches && sign == dir) {
+            if (!in_window) {
+                if (!strictly_on(&piece[s], -dir)) {
+                    status = gb_error_set(GB_ENUMERIC, "at t = %.6g a crossing begins while the set is not wholly on the side it leaves",
+                                          arf_get_d(arb_midref(t), ARF_RND_NEAR));
+                    break;
+                }
+                window++, in_window = 1;
+            }
+            if (window == def->returns) {
+                arf_t lo, hi;
+                arf_init(lo), arf_init(hi);
+                for (int j = 0; j < def->time_pieces; j++) {
+                    arf_set_d(lo, h * j), arf_div_ui(lo, lo, (ulong)def->time_pieces, F->prec, ARF_RND_FLOOR);
+                    arf_set_d(hi, h * (j + 1)), arf_div_ui(hi, hi, (ulong)def->time_pieces, F->prec, ARF_RND_CEIL);
+                    if (j == 0) arf_zero(lo);
+                    if (j == def->time_pieces - 1) arf_set_d(hi, h);
+                    collect(F, D, s, t, lo, hi, CROSSING_HALVINGS, &C);
+                }
+                arf_clear(lo), arf_clear(hi);
+            }
+        } else if (in_window) {
+            if (!strictly_on(&piece[s], dir)) {
+                status = gb_error_set(GB_ENUMERIC, "at t = %.6g a crossing ends while the set is not wholly on the side it enters",
+                                      arf_get_d(arb_midref(t), ARF_RND_NEAR));
+                break;
+            }
+            in_window = 0;
+            if (window == def->returns) {
+                done = 1;
+                break;
+            }
+        }
+        if (!step_finish(F, S, D, h)) {
+            status = gb_error_set(GB_ENUMERIC, "at t = %.6g the Lohner frame is singular", arf_get_d(arb_midref(t), ARF_RND_NEAR));
+            break;
+        }
+        arb_t hb;
+        arb_init(hb);
+        arb_set_d(hb, h);
+        arb_add(t, t, hb, F->prec);
+        arb_clear(hb);
+        out->steps++;
+        out->step_min = fmin(out->step_min, h);
+    }
+    if (!status && !C.collected) status = gb_error_set(GB_ENUMERIC, "the crossing was not enclosed");
+    if (!status) {
+        for (int i = 0; i < n; i++) out->image[i] = gb_proof_interval_of(&C.image[i]);
+        out->image[s] = (gb_proof_interval){0.0, 0.0};
+        out->time = gb_proof_interval_of(C.time);
+    }
+    for (int i = 0; i < NMAX; i++) arb_clear(&fB[i]), arb_clear(&piece[i]);
+    crossing_clear(&C);
+    arb_clear(t);
+    integration_clear(&I);
+    out->seconds = gb_proof_cpu_seconds() - start;
+    return status;
+}
+
+int gb_proof_flow_time(const gb_proof_flow_def *def, const gb_proof_interval *box, double t_end, gb_proof_interval *image)
+{
+    int status = check_def(def, box);
+    if (status) return status;
+    if (!(t_end >= 0.0 && t_end <= def->time_max) || ldexp(t_end, 30) != floor(ldexp(t_end, 30)))
+        return gb_error_set(GB_EDOM, "t = %g is out of range (allowed: 0 to time_max = %g, a multiple of 2^-30)", t_end,
+                            def->time_max);
+    if (!image) return gb_error_set(GB_EINVAL, "a flow needs an image");
+    integration I;
+    integration_init(&I, def, box);
+    field_balls *const F = &I.F;
+    lohner_set *const S = &I.S;
+    step_data *const D = &I.D;
+    const int n = F->n;
+    arb_t t;
+    arb_init(t);
+    arb_struct hull[NMAX];
+    for (int i = 0; i < NMAX; i++) arb_init(&hull[i]);
+    double done = 0.0; /* the time reached: multiples of 2^-30, exact */
+    while (!status && done < t_end) {
+        double h;
+        arb_set_d(t, done);
+        status = step_take(F, S, D, def, t_end - done, I.scratch, &h, t);
+        if (!status && !step_finish(F, S, D, h)) status = gb_error_set(GB_ENUMERIC, "at t = %g the Lohner frame is singular", done);
+        done += h;
+    }
+    if (!status) {
+        set_hull(F, S, hull);
+        for (int i = 0; i < n; i++) image[i] = gb_proof_interval_of(&hull[i]);
+    }
+    for (int i = 0; i < NMAX; i++) arb_clear(&hull[i]);
+    arb_clear(t);
+    integration_clear(&I);
+    return status;
+}

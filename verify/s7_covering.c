@@ -1,0 +1,315 @@
+/* Proved on Arb's balls, stage 2: the rigorous integrator (gb_proof_flow) and covering relations (gb_proof_cover).
+ *
+ * Oracles, none sharing code with what they check:
+ * - a linear field that turns and contracts (x' = −3x/10 − 2y, y' = 2x − 3y/10, z' = 1 − z) in closed form: the
+ *   enclosure of a point holds the exact solution and not the solution 1e-9 later (teeth); a box's enclosure after
+ *   three turns is the exact image's bounding box to Arb's radii's rounding (Lohner's frame: boxes re-wrapped at every
+ *   step would grow by |cos| + |sin| a step);
+ * - Rössler's flow by GSL's rk8pd at 1e-13 with its crossings located by bisection: the enclosures of the first
+ *   return and of the second return of points of the horseshoe's edges hold GSL's points and times;
+ * - negative controls with teeth: CAPD's set M moved right by 0.2 must lose M ⇒ M, and its left edge's second
+ *   return is proved on the wrong side (a refutation of that relation, not a failure to prove it); a strip narrowed
+ *   to [0.030, 0.034] must not be proved trapping, the returns of a piece of it proved below it; Hénon's map at the classical a = 1.4 with the sets that prove the
+ *   horseshoe at a = 6 must prove no relation, its edges proved on one side;
+ * - Collatz–Wielandt's bound against matrices of known spectral radius (the full 2-shift: 2; the golden mean shift:
+ *   (1 + √5)/2; a nilpotent matrix: 0);
+ * - the definitions' ranges: each bad field, set, plane or iterate refused with GB_EDOM naming it. */
+#include "gb_check.h"
+#include "gb_error.h"
+#include "gb_proof_cover.h"
+#include "gb_proof_flow.h"
+#include "verify_sections.h"
+
+#include <float.h>
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_odeiv2.h>
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+static int holds(gb_proof_interval a, double x) { return a.lo <= x && x <= a.hi; }
+
+/* x' = −3x/10 − 2y, y' = 2x − 3y/10, z' = 1 − z. */
+static gb_proof_field turning_field(void)
+{
+    gb_proof_field f;
+    memset(&f, 0, sizeof f);
+    f.dimension = 3;
+    f.L[0][0] = f.L[1][1] = (gb_proof_rational){-3, 10};
+    f.L[0][1] = (gb_proof_rational){-2, 1};
+    f.L[1][0] = (gb_proof_rational){2, 1};
+    f.c[2] = (gb_proof_rational){1, 1};
+    f.L[2][2] = (gb_proof_rational){-1, 1};
+    return f;
+}
+
+static void turning_exact(const double x0[3], double t, double out[3])
+{
+    const double d = exp(-0.3 * t), c = cos(2 * t), s = sin(2 * t);
+    out[0] = d * (c * x0[0] - s * x0[1]);
+    out[1] = d * (s * x0[0] + c * x0[1]);
+    out[2] = 1.0 + (x0[2] - 1.0) * exp(-t);
+}
+
+static void test_linear_flow(void)
+{
+    const gb_proof_field f = turning_field();
+    gb_proof_flow_def d = gb_proof_flow_def_default(&f);
+    const double x0[3] = {0.9137, 0.2385, 0.5172}, t = 9.5; /* 9.5 s: three turns */
+    gb_proof_interval point[3], image[3];
+    for (int i = 0; i < 3; i++) point[i] = (gb_proof_interval){x0[i], x0[i]};
+    int status = gb_proof_flow_time(&d, point, t, image);
+    double exact[3], later[3], widest = 0.0;
+    turning_exact(x0, t, exact);
+    turning_exact(x0, t + 1e-9, later);
+    int held = 0, teeth = 0;
+    for (int i = 0; i < 3 && !status; i++) {
+        /* the closed form in doubles: a few ulps of the values (4 ulps of 1 as the margin) */
+        const gb_proof_interval wide = {image[i].lo - 4 * DBL_EPSILON, image[i].hi + 4 * DBL_EPSILON};
+        held += holds(wide, exact[i]);
+        teeth += !holds(wide, later[i]) || i == 2; /* z moves by 1e-9 (1 − z0) e^-t ~ 4e-14 in 1e-9 s: not a tooth */
+        widest = fmax(widest, image[i].hi - image[i].lo);
+    }
+    gb_check c = {"-", "-", "the rigorous integrator on a linear field that turns and contracts: the solution from a point at t = 9.5",
+                  "the closed form e^(-0.3 t) R(2t) x0, 1 + (z0 - 1) e^-t, in doubles",
+                  "proof: the enclosure (widened by 4 ulps of 1, the closed form's own rounding) holds it; the same 1e-9 s later "
+                  "lies outside in x and y (teeth); width at most 1e-13 (128 bits, order 20, 1e-15 a step and rounding)"};
+    gb_check_true(&c, !status && held == 3 && teeth == 3 && widest <= 1e-13, "%d of 3 held, %d of 3 with teeth, width %.3g%s%s", held,
+                  teeth, widest, status ? ": " : "", status ? gb_error_message() : "");
+    /* a box 0.01 wide in x and y after three turns: its exact image is the box turned by 2t and shrunk by e^-0.3t */
+    const double w = 0.01;
+    gb_proof_interval box[3] = {{x0[0] - w / 2, x0[0] + w / 2}, {x0[1] - w / 2, x0[1] + w / 2}, {x0[2], x0[2]}};
+    status = gb_proof_flow_time(&d, box, t, image);
+    const double span = exp(-0.3 * t) * w * (fabs(cos(2 * t)) + fabs(sin(2 * t)));
+    double worst = 0.0;
+    for (int i = 0; i < 2 && !status; i++) worst = fmax(worst, fabs((image[i].hi - image[i].lo) / span - 1.0));
+    gb_check cw = {"-", "-", "the rigorous integrator's wrapping: a box 0.01 wide turned three times (t = 9.5)",
+                   "the exact image's bounding box: e^(-0.3 t) w (|cos 2t| + |sin 2t|) across",
+                   "proof of Lohner's frame: the hull within 1e-5 relative of the exact bounding box, the budget of Arb's "
+                   "radii (kept to 30 bits: each operation rounds a radius up by up to 2^-30, some 30 operations a step over "
+                   "20 steps, 6e-7); a box re-wrapped every step would grow by up to sqrt 2 a step"};
+    gb_check_true(&cw, !status && worst <= 1e-5, "widths off the exact bounding box by %.3g relative%s%s", worst, status ? ": " : "",
+                  status ? gb_error_message() : "");
+}
+
+/* ---- Rössler by GSL ------------------------------------------------------------------------------------------ */
+
+static int rossler_rhs(double t, const double y[], double f[], void *params)
+{
+    (void)t, (void)params;
+    f[0] = -y[1] - y[2];
+    f[1] = y[0] + 0.2 * y[1];
+    f[2] = 0.2 + y[2] * (y[0] - 5.7);
+    return GSL_SUCCESS;
+}
+
+/* The k-th crossing of x = 0 with x increasing from (0, y0, z0), by rk8pd at 1e-13 and bisection in time. */
+static int rossler_return(double y0, double z0, int k, double out[3], double *time)
+{
+    gsl_odeiv2_system sys = {rossler_rhs, NULL, 3, NULL};
+    gsl_odeiv2_driver *drv = gsl_odeiv2_driver_alloc_y_new(&sys, gsl_odeiv2_step_rk8pd, 1e-3, 1e-13, 1e-13);
+    double y[3] = {0.0, y0, z0}, t = 0.0;
+    const double dt = 0.01;
+    int crossings = 0, status = GSL_SUCCESS;
+    while (crossings < k && t < 100.0 && status == GSL_SUCCESS) {
+        double prev[3] = {y[0], y[1], y[2]}, tp = t;
+        status = gsl_odeiv2_driver_apply(drv, &t, tp + dt, y);
+        if (status || !(prev[0] < 0.0 && y[0] >= 0.0)) continue;
+        if (++crossings < k) continue;
+        double lo = tp, hi = t, at[3];
+        for (int it = 0; it < 60; it++) { /* bisection: re-integrate from the step's start to the middle */
+            const double mid = 0.5 * (lo + hi);
+            double tt = tp;
+            memcpy(at, prev, sizeof at);
+            gsl_odeiv2_driver_reset(drv);
+            status |= gsl_odeiv2_driver_apply(drv, &tt, mid, at);
+            if (at[0] < 0.0) lo = mid;
+            else hi = mid;
+        }
+        double tt = tp;
+        memcpy(out, prev, sizeof prev);
+        gsl_odeiv2_driver_reset(drv);
+        status |= gsl_odeiv2_driver_apply(drv, &tt, hi, out);
+        *time = hi;
+    }
+    gsl_odeiv2_driver_free(drv);
+    return status == GSL_SUCCESS && crossings == k ? 0 : -1;
+}
+
+static void test_rossler_against_gsl(void)
+{
+    const gb_proof_field f = gb_proof_flow_rossler(1, 5, 1, 5, 57, 10);
+    gb_proof_flow_def d = gb_proof_flow_def_default(&f);
+    /* CAPD's sets' four edges at z = 0.028, 0.031, 0.034: their first and second returns */
+    const double edges[4] = {-8.4, -7.6, -5.7, -4.6}, heights[3] = {0.028, 0.031, 0.034};
+    int tried = 0, held = 0, status = GB_OK;
+    double widest = 0.0, far = 0.0;
+    char first[200] = "";
+    for (int e = 0; e < 4 && !status; e++)
+        for (int h = 0; h < 3 && !status; h++)
+            for (int k = 1; k <= 2 && !status; k++) {
+                d.returns = k;
+                gb_proof_interval box[3] = {{0, 0}, {edges[e], edges[e]}, {heights[h], heights[h]}};
+                gb_proof_flow_crossing r;
+                status = gb_proof_flow_section_map(&d, box, &r);
+                double p[3] = {0, 0, 0}, time = 0.0;
+                if (status || rossler_return(edges[e], heights[h], k, p, &time)) break;
+                /* GSL's own error: 1e-13 a unit time over about 12 time units, amplified by the flow's expansion
+                 * (|P'| ~ 10 over two returns): 1e-10 absolute, on both sides */
+                const double bar = 1e-10;
+                const int ok = p[1] >= r.image[1].lo - bar && p[1] <= r.image[1].hi + bar && p[2] >= r.image[2].lo - bar &&
+                               p[2] <= r.image[2].hi + bar && time >= r.time.lo - bar && time <= r.time.hi + bar;
+                tried++, held += ok;
+                widest = fmax(widest, fmax(r.image[1].hi - r.image[1].lo, r.time.hi - r.time.lo));
+                far = fmax(far, fmax(fabs(p[1] - 0.5 * (r.image[1].lo + r.image[1].hi)), fabs(p[2] - 0.5 * (r.image[2].lo + r.image[2].hi))));
+                if (!ok && !first[0])
+                    snprintf(first, sizeof first, "; first miss: y0 %g z0 %g k %d: GSL (%.12g, %.12g) at %.12g, enclosure y [%.12g, %.12g]", edges[e],
+                             heights[h], k, p[1], p[2], time, r.image[1].lo, r.image[1].hi);
+            }
+    gb_check c = {"-", "-", "the rigorous return map of Roessler's flow (a = b = 0.2, c = 5.7) to x = 0: the first and second returns "
+                  "of 12 points on the edges of CAPD's sets, and their times",
+                  "GSL rk8pd at 1e-13, crossings located by bisection in time to 1e-15 s",
+                  "proof: every GSL point and time within the enclosure, give or take GSL's own error of 1e-10 (1e-13 a unit "
+                  "time over 12 units, times the flow's expansion ~10)"};
+    gb_check_true(&c, !status && tried == 24 && held == tried, "%d of %d held (GSL's points at most %.3g from the enclosures' middles, "
+                  "enclosures at most %.3g wide)%s%s%s", held, tried, far, widest, first, status ? ": " : "", status ? gb_error_message() : "");
+}
+
+static void test_covering_controls(void)
+{
+    const gb_proof_field f = gb_proof_flow_rossler(1, 5, 1, 5, 57, 10);
+    gb_proof_flow_def d = gb_proof_flow_def_default(&f);
+    d.returns = 2;
+    /* M moved right by 0.2: [-8.2, -7.4]; its left edge must come back left of -8.2 for M => M */
+    gb_proof_interval box[3] = {{0, 0}, {-8.2, -8.2}, {0.028, 0.034}};
+    gb_proof_flow_crossing r;
+    int status = gb_proof_flow_section_map(&d, box, &r);
+    const int refuted = !status && r.image[1].lo > -8.2;
+    gb_check c = {"-", "-", "a negative control: CAPD's set M moved right by 0.2 ([-8.2, -7.4])",
+                  "the covering relation M => M, which needs P^2(left edge) left of -8.2",
+                  "proof of the opposite: P^2 of the left edge lies wholly right of -8.2, so the relation fails (and "
+                  "would be refused)"};
+    gb_check_true(&c, refuted, "P^2(left edge) across [%.9g, %.9g]%s%s", r.image[1].lo, r.image[1].hi, status ? ": " : "",
+                  status ? gb_error_message() : "");
+
+    gb_proof_cover_def t = gb_proof_cover_def_default();
+    t.section = gb_proof_flow_def_default(&f);
+    t.u = 1, t.s = 2, t.iterates = 2, t.trap = 1;
+    t.region_u = (gb_proof_interval){-10.7, -2.3}, t.strip = (gb_proof_interval){0.030, 0.034};
+    t.sets = 1, t.set_u[0] = (gb_proof_interval){-8.4, -7.6};
+    t.pieces = 200, t.depth = 2;
+    gb_proof_cover_result tr;
+    status = gb_proof_cover(&t, &tr);
+    /* the opposite, proved apart: the returns of a piece of R lie wholly below the narrowed strip */
+    d.returns = 1;
+    gb_proof_interval low[3] = {{0, 0}, {-8.5, -8.49}, {0.030, 0.034}};
+    gb_proof_flow_crossing lr;
+    const int below = !gb_proof_flow_section_map(&d, low, &lr) && lr.image[2].hi < t.strip.lo;
+    gb_check ct = {"-", "-", "a negative control: Roessler's trapping rectangle with its strip narrowed to [0.030, 0.034]",
+                   "P(R) in int R, which needs every return of R inside the strip",
+                   "proof of the opposite: not proved (the first piece that fails named), and the returns of the piece "
+                   "[-8.5, -8.49] x [0.030, 0.034] enclosed wholly below z = 0.030"};
+    gb_check_true(&ct, !status && !tr.trapped && !tr.covers[0][0] && below, "trapped %d, M => M %d, first failing piece u in "
+                  "[%.9g, %.9g] (returns to z in [%.9g, %.9g]); u in [-8.5, -8.49] returns to z in [%.9g, %.9g]%s%s", tr.trapped,
+                  tr.covers[0][0], tr.failed_u.lo, tr.failed_u.hi, tr.failed_image_s.lo, tr.failed_image_s.hi, lr.image[2].lo,
+                  lr.image[2].hi, status ? ": " : "", status ? gb_error_message() : "");
+
+    const gb_proof_field classical = gb_proof_cover_henon(7, 5, 3, 10), wide = gb_proof_cover_henon(6, 1, 3, 10);
+    gb_proof_cover_def h = gb_proof_cover_def_default();
+    h.kind = GB_PROOF_MAP_QUADRATIC, h.u = 0, h.s = 1, h.strip = (gb_proof_interval){-0.22, 0.22};
+    h.sets = 2, h.set_u[0] = (gb_proof_interval){-0.7, -0.1}, h.set_u[1] = (gb_proof_interval){0.1, 0.7}, h.pieces = 16;
+    gb_proof_cover_result at6, at14;
+    h.map = &wide;
+    status = gb_proof_cover(&h, &at6);
+    h.map = &classical;
+    if (!status) status = gb_proof_cover(&h, &at14);
+    int none = 1;
+    for (int i = 0; i < 2; i++)
+        for (int j = 0; j < 2; j++) none &= !at14.covers[i][j];
+    /* at a = 1.4 the edges' images, rigorously, lie on one side: x = 1 - 1.4 x0^2 + y > 0 for |x0| <= 0.7, |y| <= 0.22 */
+    const int one_side = at14.edge[0][0].lo > 0.0 && at14.edge[0][1].lo > 0.0 && at14.edge[1][0].lo > 0.0 && at14.edge[1][1].lo > 0.0;
+    gb_check ch = {"-", "-", "Henon's map (x, y) -> (1 - a x^2 + y, 0.3 x): the sets [-0.7, -0.1] and [0.1, 0.7] x [-0.22, 0.22]",
+                   "a = 6: a full horseshoe (Devaney & Nitecki 1979: a > (5 + 2 sqrt 5)(1.3)^2 / 4 = 4.0), h_top = ln 2 (Friedland & "
+                   "Milnor's upper bound); a = 1.4: no horseshoe on these sets",
+                   "proof: at a = 6 all 4 relations, h_top >= ln 2 to the last ulp; at a = 1.4 none, every edge's image proved on "
+                   "the side x > 0 (a negative control with teeth)"};
+    gb_check_true(&ch, !status && at6.entropy >= log(2.0) * (1 - 4 * DBL_EPSILON) && at6.entropy <= log(2.0) && none && one_side &&
+                           at14.entropy == 0.0,
+                  "a = 6: h_top >= %.17g; a = 1.4: %s relation, edges' images from %.6g up, bound %g%s%s", at6.entropy, none ? "no" : "some",
+                  fmin(fmin(at14.edge[0][0].lo, at14.edge[0][1].lo), fmin(at14.edge[1][0].lo, at14.edge[1][1].lo)), at14.entropy,
+                  status ? ": " : "", status ? gb_error_message() : "");
+
+    /* Collatz–Wielandt against known spectral radii */
+    const int full[4] = {1, 1, 1, 1}, golden[4] = {1, 1, 1, 0}, nilpotent[4] = {0, 1, 0, 0};
+    double l_full, r_full, l_golden, r_golden, l_nil, r_nil;
+    status = gb_proof_cover_entropy_bound(full, 2, &l_full, &r_full) || gb_proof_cover_entropy_bound(golden, 2, &l_golden, &r_golden) ||
+             gb_proof_cover_entropy_bound(nilpotent, 2, &l_nil, &r_nil);
+    const double phi = 0.5 * (1.0 + sqrt(5.0));
+    gb_check ce = {"-", "-", "the entropy bound ln rho(A) from a transition matrix (Collatz-Wielandt on Arb)",
+                   "the full 2-shift rho = 2, the golden mean shift rho = (1 + sqrt 5)/2, a nilpotent matrix rho = 0",
+                   "a lower bound never above the exact value (4 ulps for the doubles' rounding) and within 1e-12 of it"};
+    gb_check_true(&ce, !status && r_full <= 2.0 && r_full >= 2.0 - 1e-12 && l_full <= log(2.0) * (1 + 4 * DBL_EPSILON) &&
+                           r_golden <= phi * (1 + 4 * DBL_EPSILON) && r_golden >= phi - 1e-12 && l_golden >= log(phi) - 1e-12 &&
+                           l_golden <= log(phi) * (1 + 4 * DBL_EPSILON) && l_nil == 0.0,
+                  "full %.17g (ln %.17g), golden %.17g (ln %.17g), nilpotent %.3g (ln %.3g)", r_full, l_full, r_golden, l_golden, r_nil,
+                  l_nil);
+}
+
+static void test_definitions_refused(void)
+{
+    const gb_proof_field f = gb_proof_flow_rossler(1, 5, 1, 5, 57, 10), henon = gb_proof_cover_henon(7, 5, 3, 10);
+    gb_proof_cover_def good = gb_proof_cover_def_default();
+    good.section = gb_proof_flow_def_default(&f);
+    good.u = 1, good.s = 2, good.strip = (gb_proof_interval){0.028, 0.034};
+    good.sets = 2, good.set_u[0] = (gb_proof_interval){-8.4, -7.6}, good.set_u[1] = (gb_proof_interval){-5.7, -4.6};
+    struct {
+        const char *what, *must;
+        gb_proof_cover_def def;
+    } bad[8];
+    for (int k = 0; k < 8; k++) bad[k].def = good;
+    bad[0].what = "overlapping sets", bad[0].must = "overlap", bad[0].def.set_u[1] = (gb_proof_interval){-7.8, -4.6};
+    bad[1].what = "iterates 0", bad[1].must = "iterates", bad[1].def.iterates = 0;
+    bad[2].what = "the plane's u on the section's coordinate", bad[2].must = "plane coordinates", bad[2].def.u = 0;
+    bad[3].what = "a map of the plane given a flow in R^3", bad[3].must = "dimension", bad[3].def.kind = GB_PROOF_MAP_QUADRATIC,
+    bad[3].def.map = &f;
+    bad[4].what = "a trap for a map of the plane", bad[4].must = "trap", bad[4].def.kind = GB_PROOF_MAP_QUADRATIC,
+    bad[4].def.map = &henon, bad[4].def.u = 0, bad[4].def.s = 1, bad[4].def.trap = 1;
+    bad[5].what = "a strip with lo > hi", bad[5].must = "strip", bad[5].def.strip = (gb_proof_interval){0.034, 0.028};
+    bad[6].what = "order 3", bad[6].must = "order", bad[6].def.section.order = 3;
+    bad[7].what = "9 sets", bad[7].must = "sets", bad[7].def.sets = 9;
+    int refused = 0;
+    char first[300] = "";
+    for (int k = 0; k < 8; k++) {
+        gb_proof_cover_result r;
+        const int status = gb_proof_cover(&bad[k].def, &r);
+        const int ok = status == GB_EDOM && strstr(gb_error_message(), bad[k].must) && strstr(gb_error_message(), "allowed");
+        refused += ok;
+        if (!ok && !first[0]) snprintf(first, sizeof first, "; %s gave %d: %s", bad[k].what, status, gb_error_message());
+    }
+    /* a box off the section, and a flow time that is not a multiple of 2^-30 */
+    gb_proof_flow_def d = gb_proof_flow_def_default(&f);
+    gb_proof_interval box[3] = {{0.1, 0.1}, {-8.0, -8.0}, {0.03, 0.03}}, image[3];
+    gb_proof_flow_crossing r;
+    const int off = gb_proof_flow_section_map(&d, box, &r) == GB_EDOM && strstr(gb_error_message(), "not on the section");
+    box[0] = (gb_proof_interval){0, 0};
+    const int time = gb_proof_flow_time(&d, box, 0.1, image) == GB_EDOM && strstr(gb_error_message(), "2^-30");
+    gb_check c = {"-", "-", "covering relations and the rigorous integrator: definitions out of range",
+                  "GB_EDOM naming the field and its allowed range", "exact"};
+    gb_check_true(&c, refused == 8 && off && time, "%d of 8 definitions refused, a box off the plane %s, t = 0.1 %s%s", refused,
+                  off ? "refused" : "accepted", time ? "refused" : "accepted", first);
+}
+
+int verify_register_s7_covering(void)
+{
+    static const verify_test tests[] = {
+        {"covering: the rigorous integrator against a linear field's closed form", test_linear_flow,
+         "the Taylor-Lohner integrator on Arb encloses exact solutions and does not wrap a turning box"},
+        {"covering: Roessler's return map against GSL", test_rossler_against_gsl,
+         "the rigorous return map of Roessler's flow holds an independent high-accuracy integration"},
+        {"covering: negative controls and the entropy bound", test_covering_controls,
+         "covering relations that are false are refuted or refused, and the entropy bound meets known spectral radii"},
+        {"covering: definitions out of range", test_definitions_refused, NULL},
+        {NULL, NULL, NULL},
+    };
+    return verify_register_suite("Proved on Arb's balls: a rigorous integrator and covering relations", tests);
+}
