@@ -90,6 +90,8 @@ BODY_SCENES   := bodies/housner-block bodies/die-drop bodies/coin bodies/housner
 # Each Table 1 body under the unilateral law, seen in motion: `make run` runs these and draws a short
 # animation of each (reports/animate.py; an MP4 through ffmpeg where it is installed, else a GIF).
 ANIMATED      := table1-gomboc-I-unilateral table1-gomboc-II-unilateral
+# and a mesh body's (its hull's faces, from gomboc shape --faces): the die landing on a vertex and tumbling to a face
+ANIMATED_BODIES := die-drop
 VERIFY_SCENES := $(RUN_SCENES) table1-gomboc-I-g-units table1-gomboc-II-g-units harmonic-gomboc-I harmonic-gomboc-II \
                  table1-gomboc-I-rolling table1-gomboc-II-rolling table1-gomboc-I-unilateral table1-gomboc-II-unilateral \
                  table1-gomboc-I-grid-unilateral table1-gomboc-II-grid-unilateral \
@@ -99,15 +101,16 @@ VERIFY_SCENES := $(RUN_SCENES) table1-gomboc-I-g-units table1-gomboc-II-g-units 
 run-only: $(BIN)
 	@mkdir -p $(OUT)
 	for s in $(RUN_SCENES) $(BODY_SCENES); do n=$$(basename $$s); \
-	  map=$$(grep -q '^mesh *=' cases/$$s.ini || echo "--radial-map $(OUT)/radial-map-$$n.csv"); \
+	  map=$$(grep -q '^mesh *=' cases/$$s.ini && echo "--faces $(OUT)/faces-$$n.csv" || echo "--radial-map $(OUT)/radial-map-$$n.csv"); \
 	  $(BIN) shape --scene cases/$$s.ini --json $$map > $(OUT)/shape-$$n.json.tmp && mv $(OUT)/shape-$$n.json.tmp $(OUT)/shape-$$n.json \
 	  || exit 1; done
 	$(PYTHON) reports/shape_report.py $(OUT) $(notdir $(RUN_SCENES) $(BODY_SCENES))
 	for s in $(RUN_SCENES) $(BODY_SCENES) $(ANIMATED); do $(BIN) run cases/$$s.ini --out $(OUT) || exit 1; done
 	for s in $(ANIMATED); do $(PYTHON) reports/animate.py $(OUT) $$s --seconds 4 --fps 15 \
 	  --surface $(OUT)/radial-map-$$(echo $$s | sed 's/-unilateral$$//').csv || exit 1; done
+	for s in $(ANIMATED_BODIES); do $(PYTHON) reports/animate.py $(OUT) $$s --seconds 1 --fps 15 || exit 1; done
 	$(PYTHON) reports/run_report.py $(OUT) $(notdir $(RUN_SCENES) $(BODY_SCENES)) $(ANIMATED) --page runs.md
-	@echo "run: reports written to $(OUT)/shape.md and $(OUT)/runs.md (with the animations of $(ANIMATED))"
+	@echo "run: reports written to $(OUT)/shape.md and $(OUT)/runs.md (with the animations of $(ANIMATED) $(ANIMATED_BODIES))"
 
 # --- every check, then the reproducibility report
 verify: deps

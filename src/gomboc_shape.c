@@ -20,8 +20,8 @@
 static const char *usage_shape =
     "usage: gomboc shape --morphology I|II --beta B [--mass M] [--json] [--radial-map FILE]\n"
     "                    [--grid-nodes FILE]\n"
-    "       gomboc shape --mesh FILE [--mass M] [--json]\n"
-    "       gomboc shape --scene FILE [--json] [--radial-map FILE] [--grid-nodes FILE]\n"
+    "       gomboc shape --mesh FILE [--mass M] [--json] [--faces FILE]\n"
+    "       gomboc shape --scene FILE [--json] [--radial-map FILE] [--grid-nodes FILE] [--faces FILE]\n"
     "\n"
     "  --morphology I|II  phase function chi: I is theta - 5 phi (eq 8), II is\n"
     "                     theta - (3 pi/2)(cos phi - cos^3 phi/3) (eq 9)\n"
@@ -39,6 +39,9 @@ static const char *usage_shape =
     "                     nodes = centred) to the last bit, as CSV (columns index, phi, theta,\n"
     "                     x, y, z; body axes about the origin): the vertices of the grid\n"
     "                     polyhedron, for another engine to run the same body\n"
+    "  --faces FILE       a mesh body: write its hull's triangles in body axes about the centroid\n"
+    "                     (the axes the dynamics use), as CSV (columns triangle, x0, y0, z0, x1,\n"
+    "                     y1, z1, x2, y2, z2; counter-clockwise seen from outside), for animate.py\n"
     "\n"
     "Prints: volume, centroid, inertia about the centroid (3x3), L (eq 53), the minimum Gaussian\n"
     "curvature and where, the area fraction of negative curvature, the largest beta at which the\n"
@@ -211,8 +214,27 @@ static void print_shape(const shape_study *st)
     printf("mono-monostatic  %s\n", st->mono ? "yes" : "no");
 }
 
+/* The hull's triangles about the centroid, %.17g. */
+static int write_faces(const gb_polyhedron *p, const double centroid[3], const char *path)
+{
+    size_t cap = 128 + p->triangle_count * 260, used = 0;
+    char *text = malloc(cap);
+    if (!text) return gb_error_set(GB_ENOMEM, "out of memory for the faces");
+    used += (size_t)snprintf(text, cap, "# gomboc hull triangles: body axes about the centroid [m]\ntriangle,x0,y0,z0,x1,y1,z1,x2,y2,z2\n");
+    for (size_t k = 0; k < p->triangle_count; k++) {
+        used += (size_t)snprintf(text + used, cap - used, "%zu", k);
+        for (int c = 0; c < 3; c++)
+            for (int i = 0; i < 3; i++)
+                used += (size_t)snprintf(text + used, cap - used, ",%.17g", p->vertices[3 * p->triangles[3 * k + c] + i] - centroid[i]);
+        used += (size_t)snprintf(text + used, cap - used, "\n");
+    }
+    const int status = cli_write_atomically(path, text);
+    free(text);
+    return status;
+}
+
 /* gomboc shape --mesh: the polyhedron of a mesh file. */
-static int shape_mesh(const char *path, double mass, int json)
+static int shape_mesh(const char *path, double mass, int json, const char *faces_path)
 {
     gb_mesh mesh;
     gb_polyhedron p;
@@ -228,6 +250,10 @@ static int shape_mesh(const char *path, double mass, int json)
     if (!status) {
         status = gb_polyhedron_massprops(&p, mass, &props);
         if (!status) status = gb_polyhedron_rest_faces(&p, props.centroid, normals, 64, &rests);
+        if (status) gb_polyhedron_free(&p);
+    }
+    if (!status && faces_path) {
+        status = write_faces(&p, props.centroid, faces_path);
         if (status) gb_polyhedron_free(&p);
     }
     if (status) {
@@ -270,15 +296,16 @@ static int shape_mesh(const char *path, double mass, int json)
 
 int command_shape(int argc, char **argv)
 {
-    const char *radial_map = NULL, *grid_nodes = NULL, *mesh = NULL, *scene_path = NULL;
+    const char *radial_map = NULL, *grid_nodes = NULL, *mesh = NULL, *scene_path = NULL, *faces = NULL;
     double mass = 1.0;
     int json = 0, mass_given = 0;
     cli_body body = {NULL, NAN, 0};
-    static const char *const valued[] = {"--morphology", "--beta", "--mass", "--radial-map", "--grid-nodes", "--mesh", "--scene", NULL};
+    static const char *const valued[] = {"--morphology", "--beta", "--mass", "--radial-map", "--grid-nodes", "--mesh", "--scene",
+                                         "--faces", NULL};
     for (int i = 0; i < argc; i++) {
         const char *opt = argv[i], *value = NULL;
         const int kind = cli_next_option("shape", argc, argv, &i, usage_shape, valued,
-                                         " (allowed: --morphology, --beta, --mass, --json, --radial-map, --grid-nodes, --mesh, --scene, --help)", &body, &json, &value);
+                                         " (allowed: --morphology, --beta, --mass, --json, --radial-map, --grid-nodes, --mesh, --scene, --faces, --help)", &body, &json, &value);
         if (kind != CLI_VALUE) {
             if (kind == CLI_NEXT) continue;
             return kind == CLI_HELP ? 0 : kind;
@@ -293,6 +320,8 @@ int command_shape(int argc, char **argv)
             grid_nodes = value;
         } else if (!strcmp(opt, "--scene")) {
             scene_path = value;
+        } else if (!strcmp(opt, "--faces")) {
+            faces = value;
         } else {
             mesh = value;
         }
@@ -300,20 +329,20 @@ int command_shape(int argc, char **argv)
     if (mesh) {
         if (body.morphology || body.have_beta || radial_map || grid_nodes || scene_path)
             return cli_input_error("shape", "--mesh names the body: not with --morphology, --beta, --radial-map or --grid-nodes "
-                                   "(allowed: --mesh FILE [--mass M] [--json])");
-        const gb_file_use in[] = {GB_FILE_USE(mesh, "--mesh", GB_FILE_INPUT)};
-        if (cli_files_check("shape", in, 1)) return EXIT_INPUT;
+                                   "(allowed: --mesh FILE [--mass M] [--json] [--faces FILE])");
+        const gb_file_use in[] = {GB_FILE_USE(mesh, "--mesh", GB_FILE_INPUT), GB_FILE_USE(faces, "--faces", GB_FILE_OUTPUT)};
+        if (cli_files_check("shape", in, 2)) return EXIT_INPUT;
         if (cli_parse_only) return 0;
-        return shape_mesh(mesh, mass, json);
+        return shape_mesh(mesh, mass, json, faces);
     }
     gb_surface surface;
     gb_case scene;
     if (scene_path) {
         if (body.morphology || body.have_beta || mass_given)
             return cli_input_error("shape", "--scene names the body and its mass: not with --morphology, --beta, --mass or --mesh "
-                                   "(allowed: --scene FILE [--json] [--radial-map FILE] [--grid-nodes FILE])");
-        const gb_file_use in[] = {GB_FILE_USE(scene_path, "--scene", GB_FILE_INPUT)};
-        if (cli_files_check("shape", in, 1)) return EXIT_INPUT;
+                                   "(allowed: --scene FILE [--json] [--radial-map FILE] [--grid-nodes FILE] [--faces FILE])");
+        const gb_file_use in[] = {GB_FILE_USE(scene_path, "--scene", GB_FILE_INPUT), GB_FILE_USE(faces, "--faces", GB_FILE_OUTPUT)};
+        if (cli_files_check("shape", in, 2)) return EXIT_INPUT;
         if (gb_case_load(scene_path, &scene)) return cli_input_error("shape", "--scene %s", gb_error_message());
         mass = scene.dynamics.mass;
         if (gb_surface_is_polyhedron(&scene.body)) {
@@ -323,9 +352,14 @@ int command_shape(int argc, char **argv)
             if (cli_parse_only) return 0;
             char file[PATH_MAX];
             if (gb_case_mesh_path(scene_path, &scene, file, sizeof file)) return cli_input_error("shape", "--scene %s", gb_error_message());
-            return shape_mesh(file, mass, json);
+            return shape_mesh(file, mass, json, faces);
         }
+        if (faces)
+            return cli_input_error("shape", "--scene %s has a smooth body: --faces is for a mesh body (allowed: --radial-map FILE "
+                                   "for a smooth one)", scene_path);
         surface = scene.body;
+    } else if (faces) {
+        return cli_input_error("shape", "--faces is for a mesh body (allowed: --mesh FILE or --scene FILE with a mesh)");
     } else if (cli_body_required("shape", &body)) {
         return EXIT_INPUT;
     }

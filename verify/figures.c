@@ -7,7 +7,10 @@
  *   and a figure of an earlier run (a Fig 9 the block never asked for, planted) is removed and not linked;
  * - reports/animate.py on Table 1's Gömböc I under the unilateral law: every frame's attitude is R(q) of its
  *   history row, its contact point is R r_c lifted by ζ and lies on the plane, and the lowest point of the
- *   drawn surface touches the plane beside it (to the radial map's sampling).
+ *   drawn surface touches the plane beside it (to the radial map's sampling); the contact marker's colour is on the
+ *   image where the point lands (drawn over the body, never hidden by it);
+ * - the same for a mesh body (the die, from its hull's faces) and an expression body (an egg), and a GIF's frame
+ *   times against the rate asked (its delays in hundredths of a second, rounded so as not to drift).
  * The commands run in a directory of their own under /tmp. */
 #include "gb_check.h"
 #include "gb_dynamics.h"
@@ -324,6 +327,41 @@ static double history_value(const history *h, size_t row, const char *column)
     return p ? strtod(p, NULL) : NAN;
 }
 
+/* Of the frames of an animation's manifest that draw a contact point, how many show the marker's colour where the
+ * point lands on the image (within 40 of 255 a channel: antialiasing at the marker's rim), and the worst distance. */
+static void contact_shown(const cJSON *a, int *with, int *shown, double *worst)
+{
+    *with = *shown = 0, *worst = 0.0;
+    const cJSON *marker = cJSON_GetObjectItem(a, "marker_colour"), *fr;
+    cJSON_ArrayForEach(fr, cJSON_GetObjectItem(a, "frames")) {
+        if (!cJSON_IsArray(cJSON_GetObjectItem(fr, "contact_drawn"))) continue;
+        const cJSON *colour = cJSON_GetObjectItem(fr, "contact_colour");
+        double d = INFINITY;
+        if (cJSON_GetArraySize(colour) == 3 && cJSON_GetArraySize(marker) == 3) {
+            d = 0.0;
+            for (int i = 0; i < 3; i++)
+                d = fmax(d, fabs(cJSON_GetArrayItem(colour, i)->valuedouble - cJSON_GetArrayItem(marker, i)->valuedouble));
+        }
+        (*with)++, *shown += d <= 40.0, *worst = fmax(*worst, d);
+    }
+}
+
+/* A GIF's frame delays read back: the largest |Σ_{j<k} delay_j − 1000 k / fps| [ms] (0 for an MP4, whose rate is
+ * exact; -1 when the manifest has neither). */
+static double delay_drift(const cJSON *a, int *frames)
+{
+    const cJSON *delays = cJSON_GetObjectItem(a, "delays_ms");
+    const double fps = number(a, "fps", NULL);
+    *frames = cJSON_GetArraySize(delays);
+    if (cJSON_IsNull(delays)) return 0.0;
+    if (!cJSON_IsArray(delays) || !(fps > 0)) return -1.0;
+    double sum = 0.0, drift = 0.0;
+    int k = 0;
+    const cJSON *d;
+    cJSON_ArrayForEach(d, delays) sum += d->valuedouble, k++, drift = fmax(drift, fabs(sum - 1000.0 * k / fps));
+    return drift;
+}
+
 static void test_animation(void)
 {
     char dir[] = "/tmp/gomboc-animation-XXXXXX";
@@ -405,8 +443,99 @@ static void test_animation(void)
     gb_check ca = {"5", "-", "the drawn lowest point beside the contact point (horizontal distance) [m]", "0",
                    "0.06 m: a cell of the 90 x 180 sample at r <= 1.1 spans 1.1 pi/90 = 0.038 m"};
     gb_check_close(&ca, apart, 0.0, 0.0, 0.06);
+    int with, shown;
+    double worst;
+    contact_shown(a, &with, &shown, &worst);
+    gb_check cv = {"5", "-", "the contact point visible: the marker's colour where the point lands in each frame that draws it",
+                   "tab:red (214, 39, 40)", "40 of 255 a channel (the marker's antialiased rim); drawn after the body, not hidden by it"};
+    gb_check_true(&cv, with > 0 && shown == with, "%d of %d frames show it (worst channel distance %.0f)", shown, with, worst);
     cJSON_Delete(a);
     free(h.text), free(h.rows);
+    clean(dir);
+}
+
+/* The body in motion for bodies of one's own: the die (a mesh: its hull's faces from gomboc shape --faces) and an egg
+ * (an expression: its radial map), each animated from its run; the frames' contact points on the plane and
+ * visible, the lowest drawn point where the body touches, and a GIF's frame times as the rate asked. */
+static void test_animation_bodies(void)
+{
+    char dir[] = "/tmp/gomboc-animation-bodies-XXXXXX";
+    if (!mkdtemp(dir)) return;
+    char args[1024], out[8192];
+    snprintf(args, sizeof args, "run cases/bodies/die-drop.ini --out %s 2>&1 > /dev/null && %s shape --scene cases/bodies/die-drop.ini "
+             "--faces %s/faces-die-drop.csv > /dev/null", dir, gomboc(), dir);
+    int code = gb_check_command(gomboc(), args, out, sizeof out);
+    char *scene = gb_check_read_file("cases/table1-gomboc-I-unilateral.ini");
+    char *body = scene ? strstr(scene, "morphology = I\nbeta = 0.12\n") : NULL, *contact = scene ? strstr(scene, "contact = continuous\n") : NULL;
+    if (!code && body && contact) { /* the same scene with an egg of one's own on the fast grid */
+        char egg[600];
+        snprintf(egg, sizeof egg, "%s/egg.ini", dir);
+        FILE *f = fopen(egg, "w");
+        if (f) {
+            fprintf(f, "%.*sr = 1 + 0.1*cos(theta)*sin(phi)\n%.*scontact = fast-grid\n%s", (int)(body - scene), scene,
+                    (int)(contact - body - strlen("morphology = I\nbeta = 0.12\n")), body + strlen("morphology = I\nbeta = 0.12\n"),
+                    contact + strlen("contact = continuous\n"));
+            fclose(f);
+        }
+        snprintf(args, sizeof args, "run %s/egg.ini --out %s 2>&1 > /dev/null && %s shape --scene %s/egg.ini --json --radial-map "
+                 "%s/radial-map-egg.csv > /dev/null", dir, dir, gomboc(), dir, dir);
+        code = gb_check_command(gomboc(), args, out, sizeof out);
+    }
+    free(scene);
+    gb_check runs = {"-", "-", "gomboc run and shape on the die (--faces) and an egg r = 1 + 0.1 cos(theta) sin(phi) (--radial-map)",
+                     "exit 0", "exact"};
+    gb_check_true(&runs, code == 0 && body && contact, "exit %d: %.300s", code, out);
+    if (code || !body || !contact) {
+        clean(dir);
+        return;
+    }
+    static const char *const names[2] = {"die-drop", "egg"};
+    for (int b = 0; b < 2; b++) {
+        snprintf(args, sizeof args, "reports/animate.py %s %s --seconds %s --fps 15", dir, names[b], b ? "2" : "1");
+        char what[200];
+        snprintf(what, sizeof what, "animate.py on %s (its surface found by its name; 15 frames a second)", names[b]);
+        if (script(args, what, out, sizeof out)) continue;
+        char file[300];
+        snprintf(file, sizeof file, "%s-animation.json", names[b]);
+        cJSON *a = read_json(dir, file);
+        history h;
+        const int read = history_read(dir, names[b], &h);
+        double plane = 0.0, lowest_max = -INFINITY, lowest_min = INFINITY;
+        int frames = 0;
+        const cJSON *fr;
+        cJSON_ArrayForEach(fr, cJSON_GetObjectItem(a, "frames")) {
+            const size_t row = (size_t)number(fr, "row", NULL);
+            const double clearance = history_value(&h, row, "clearance");
+            const cJSON *drawn = cJSON_GetObjectItem(fr, "contact_drawn"), *low = cJSON_GetObjectItem(fr, "lowest_drawn");
+            if (cJSON_IsArray(drawn)) plane = fmax(plane, fabs(cJSON_GetArrayItem(drawn, 2)->valuedouble - clearance));
+            const double lz = cJSON_GetArrayItem(low, 2)->valuedouble - clearance;
+            lowest_max = fmax(lowest_max, lz), lowest_min = fmin(lowest_min, lz);
+            frames++;
+        }
+        int with, shown, delays;
+        double worst;
+        contact_shown(a, &with, &shown, &worst);
+        const double drift = delay_drift(a, &delays);
+        const char *kind = cJSON_GetStringValue(cJSON_GetObjectItem(a, "surface_kind"));
+        char q[300];
+        snprintf(q, sizeof q, "%s in motion (%s): contact points on the plane and visible, the drawn surface touching the plane, "
+                 "frame times", names[b], kind ? kind : "?");
+        /* the die's drawn vertices are the body's (written to 17 digits): its lowest is the contact, to the history's
+         * printed digits; the egg's 90 x 180 sample misses its minimum by up to r (pi/90)^2 / 2 ~ 1.7e-3 m */
+        const double touch = b ? 2e-3 : 1e-9;
+        gb_check c = {"5", "-", q, "the history's rows: contact at the clearance, the lowest drawn point at it; the marker's colour "
+                      "at the point; a GIF's k-th frame starting at k/15 s",
+                      "1e-9 m (printed digits); the lowest point within 1e-9 m (the die's exact vertices) or 2e-3 m (the egg's "
+                      "sampled surface) above and never 1e-9 m below; 40 of 255 a channel; 10 ms (a GIF counts hundredths)"};
+        gb_check_true(&c, a && !read && frames > 0 && with > 0 && shown == with && plane <= 1e-9 && lowest_max <= touch &&
+                              lowest_min >= -1e-9 && drift >= 0.0 && drift <= 10.0 + 1e-9 && kind &&
+                              !strcmp(kind, b ? "radial map" : "faces"),
+                      "%d frames, %d of %d show the contact (worst %.0f), contact off the plane by %.3g m, lowest drawn point "
+                      "%.3g .. %.3g m above the plane, %d delays drifting at most %.3g ms", frames, shown, with, worst, plane,
+                      lowest_min, lowest_max, delays, drift);
+        cJSON_Delete(a);
+        free(h.text), free(h.rows);
+    }
     clean(dir);
 }
 
@@ -494,6 +623,8 @@ int verify_register_figures(void)
         {"figures quote the summary, stale figures never linked", test_figures,
          "every figure's title quotes the numbers the text states, Fig 9 draws what it quotes, and a page links only this run's figures"},
         {"a run on a plane of finite friction states its sliding on its page", test_friction_on_page, NULL},
+        {"bodies of one's own in motion: a mesh's faces and an expression's surface", test_animation_bodies,
+         "a mesh body and an expression body are animated with their contact points on the plane and in view"},
         {"a body at rest: its page says no window is chaotic", test_rest_on_page, NULL},
         {"the animation's frames against the history", test_animation,
          "the body in motion is drawn in the attitude the run computed, touching the plane at the contact point"},
