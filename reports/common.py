@@ -100,10 +100,108 @@ def write_atomically(path, text):
     os.replace(tmp, path)
 
 
-def save_figure(fig, path, bbox="tight"):
+def _display_points(ax, artist):
+    """The data points of a line or a scatter of ax in display pixels (finite ones only)."""
+    if hasattr(artist, "get_xydata"):
+        xy = numpy.asarray(artist.get_xydata(), dtype=float)
+        transform = artist.get_transform()
+    else:
+        xy = numpy.asarray(artist.get_offsets(), dtype=float)
+        transform = artist.get_offset_transform()
+    if xy.ndim != 2 or not xy.size:
+        return numpy.empty((0, 2))
+    xy = xy[numpy.all(numpy.isfinite(xy), axis=1)]
+    return transform.transform(xy) if xy.size else numpy.empty((0, 2))
+
+
+def _boxes_overlap(a, b, gap=3.0):
+    """Do two display boxes come closer than `gap` pixels (touching text reads as one)?"""
+    width = min(a.x1, b.x1) - max(a.x0, b.x0) + gap
+    height = min(a.y1, b.y1) - max(a.y0, b.y0) + gap
+    return width > 0 and height > 0
+
+
+def layout_facts(fig, index_axes=()):
+    """What a reader sees of a drawn figure, measured on its renderer (the suite "Reports" checks it):
+    legend_points_covered: data points of an axes, or of its twin, under that axes' legend;
+    markers_outside_axes: marker points drawn within half a marker of an axes' edge or beyond it (clipped);
+    overlapping: pairs among the axes (with their labels and ticks), colour bars and legends that overlap or come
+    within 3 pixels of each other, twins apart; fractional_index_ticks: tick labels that are not integers on an axis of indices (index_axes);
+    unlabelled_axes: 2-D axes without a y label, and 3-D axes without a z label."""
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    facts = {"legend_points_covered": 0, "markers_outside_axes": 0, "overlapping": 0, "fractional_index_ticks": 0,
+             "unlabelled_axes": 0, "where": []}
+    axes = list(fig.axes)
+    def twins(a, b):
+        return a is b or numpy.allclose(a.get_position().bounds, b.get_position().bounds)
+    boxes = []
+    for ax in axes:
+        box = ax.get_tightbbox(renderer)
+        if hasattr(ax, "zaxis"):  # a 3-D axes' tight box leaves out its axes' labels: add them
+            from matplotlib.transforms import Bbox
+            box = Bbox.union([box] + [a.get_tightbbox(renderer) for a in (ax.xaxis, ax.yaxis, ax.zaxis)
+                                      if a.get_tightbbox(renderer) is not None])
+        boxes.append((ax, box, "axes"))
+        legend = ax.get_legend()
+        if legend is not None and legend.get_visible():
+            box = legend.get_window_extent(renderer)
+            boxes.append((ax, box, "legend"))
+            for other in axes:
+                if not twins(ax, other):
+                    continue
+                for artist in list(other.get_lines()) + list(other.collections):
+                    points = _display_points(other, artist)
+                    inside = ((points[:, 0] > box.x0) & (points[:, 0] < box.x1) & (points[:, 1] > box.y0) &
+                              (points[:, 1] < box.y1)).sum() if points.size else 0
+                    if inside:
+                        facts["legend_points_covered"] += int(inside)
+                        facts["where"].append(f"{inside} points of {artist.get_label()!r} under the legend of "
+                                              f"{ax.get_ylabel()!r}")
+        frame = ax.bbox
+        for line in ax.get_lines():
+            marker = line.get_marker()
+            if marker in (None, "None", "", " ") or line.get_linestyle() not in ("None", "", " ", "none"):
+                continue
+            half = 0.5 * line.get_markersize() * fig.dpi / 72.0
+            points = _display_points(ax, line)
+            outside = ((points[:, 0] < frame.x0 + half) | (points[:, 0] > frame.x1 - half) | (points[:, 1] < frame.y0 + half) |
+                       (points[:, 1] > frame.y1 - half)).sum() if points.size else 0
+            if outside:
+                facts["markers_outside_axes"] += int(outside)
+                facts["where"].append(f"{outside} markers of {line.get_label()!r} at the edge of {ax.get_ylabel()!r}")
+        if ax in index_axes:
+            low, high = ax.get_ylim()
+            ticks = [v for v in ax.get_yticks() if min(low, high) <= v <= max(low, high)]
+            fractional = sum(1 for v in ticks if abs(v - round(v)) > 1e-9)
+            if fractional:
+                facts["fractional_index_ticks"] += fractional
+                facts["where"].append(f"{fractional} fractional ticks on {ax.get_ylabel()!r}")
+        label = ax.get_zlabel() if hasattr(ax, "get_zlabel") else ax.get_ylabel()
+        if not label:
+            facts["unlabelled_axes"] += 1
+            facts["where"].append(f"an axes without a label ({ax.get_title()!r})")
+    for i in range(len(boxes)):
+        for j in range(i + 1, len(boxes)):
+            (a, box_a, kind_a), (b, box_b, kind_b) = boxes[i], boxes[j]
+            if twins(a, b) and "legend" not in (kind_a, kind_b):
+                continue
+            if a is b or (twins(a, b) and kind_a != kind_b and "axes" in (kind_a, kind_b)):
+                continue  # an axes' own legend lies inside it (its points are counted above)
+            if _boxes_overlap(box_a, box_b):
+                facts["overlapping"] += 1
+                facts["where"].append(f"the {kind_a} of {a.get_ylabel() or a.get_title()!r} over the {kind_b} of "
+                                      f"{b.get_ylabel() or b.get_title()!r}")
+    return facts
+
+
+def save_figure(fig, path, bbox="tight", index_axes=()):
+    """Saves fig atomically; returns its layout_facts, measured as drawn."""
+    facts = layout_facts(fig, index_axes)
     tmp = f"{path}.tmp{os.getpid()}.png"
     fig.savefig(tmp, dpi=110, bbox_inches=bbox)
     os.replace(tmp, path)
+    return facts
 
 
 def load_json(path):

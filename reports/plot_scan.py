@@ -6,7 +6,9 @@ with their units, on the computed grid without interpolation; NaN points (failed
 blank, and a metric with no number at all says so on its panel. The units come from the one table of each
 (docs/outputs.md for the metrics, cases/README.md for the scene keys; installed beside the plotters as
 outputs.md and scene-keys.md). The title is the scan's description (NAME-scan.json beside the CSV). An
-exponent (lambda_*) is drawn on a diverging map centred on 0, so that chaos and order read apart. The default
+exponent (lambda_*) is drawn on a diverging map centred on 0, so that chaos and order read apart; on the
+lambda_max panel a dot marks each point whose |λ| is within twice its lambda_error of 0 (its sign not known); an
+error bar (lambda_error) is drawn on a sequential map from 0. The default
 metric is lambda_max where the scan computed it, else omega_rms. Without --out the figure goes to
 NAME-scan-METRIC.png beside the CSV."""
 import csv
@@ -133,14 +135,32 @@ def main(argv):
     except (OSError, ValueError):
         pass
     fig, axes = plt.subplots(1, len(metrics), figsize=(5.6 * len(metrics), 4.6), squeeze=False)
+    notes = []
     for ax, metric in zip(axes[0], metrics):
         grid = numpy.full((len(ys), len(xs)), numpy.nan)
         for r in rows:
             grid[ys.index(float(r[y_key])), xs.index(float(r[x_key]))] = float(r[metric])
         finite = numpy.isfinite(grid)
-        if metric.startswith("lambda") and finite.any():
+        exponent = metric.startswith("lambda") and not metric.endswith("_error")
+        title = metric
+        if exponent and finite.any():
             reach = float(numpy.nanmax(numpy.abs(grid))) or 1.0
             image = ax.pcolormesh(edges(xs), edges(ys), grid, shading="flat", cmap="RdBu_r", vmin=-reach, vmax=reach)
+            fig.colorbar(image, ax=ax, label=label(metric, units) + " (0 white)")
+            if metric == "lambda_max" and "lambda_error" in names:  # where the sign is not known: a dot
+                error = numpy.full_like(grid, numpy.nan)
+                for r in rows:
+                    error[ys.index(float(r[y_key])), xs.index(float(r[x_key]))] = float(r["lambda_error"])
+                unsure = finite & ~(numpy.abs(grid) > 2.0 * error)
+                if unsure.any():
+                    row, column = numpy.nonzero(unsure)
+                    ax.plot(numpy.array(xs)[column], numpy.array(ys)[row], "o", ms=3, color="0.25", ls="none")
+                title = (f"{metric}; dots: |λ| within 2 error bars of 0 ({int(unsure.sum())} of {int(finite.sum())} "
+                         "points: sign not known)")
+                notes.append(f"plot_scan: {metric}: {int(unsure.sum())} of {int(finite.sum())} points within 2 error bars of "
+                             "0, dotted")
+        elif metric.endswith("_error") and finite.any():  # an error bar: sequential, from 0
+            image = ax.pcolormesh(edges(xs), edges(ys), grid, shading="flat", cmap="Greys", vmin=0.0)
             fig.colorbar(image, ax=ax, label=label(metric, units) + " (0 white)")
         else:
             image = ax.pcolormesh(edges(xs), edges(ys), grid, shading="flat")
@@ -151,12 +171,14 @@ def main(argv):
                     "point failed)", ha="center", va="center", transform=ax.transAxes, fontsize=9)
         ax.set_xlabel(label(x_key, units))
         ax.set_ylabel(label(y_key, units))
-        ax.set_title(metric, fontsize=9)
+        ax.set_title(title, fontsize=9)
     fig.suptitle(description, fontsize=10)
     fig.tight_layout()
     target = out or os.path.splitext(path)[0] + "-" + "-".join(metrics) + ".png"
     save_figure(fig, target, bbox=None)  # atomically: a link or a file at the name is replaced, never written through
     print(target)
+    for note in notes:
+        print(note)
     return 0
 
 

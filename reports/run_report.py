@@ -22,6 +22,7 @@ import sys
 import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+import matplotlib.ticker  # noqa: E402
 import numpy  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -81,11 +82,28 @@ def time_series_title(summary):
     return f"{summary['branch_switches']:.0f} branch switches"
 
 
+def outside(ax, **options):
+    """The axes' legend beside it, to the right, where it covers no data (the suite "Reports" measures that)."""
+    if ax.get_legend_handles_labels()[0]:
+        ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0, **options)
+
+
+def paper_number(scene, kind):
+    """The paper's number for a scene's time series or contact figure: Figs 3 and 4 under the biharmonic forcing
+    (A2 != 0), Figs 5 and 6 under the harmonic benchmark (A1 != 0, A2 = 0); none on a still plane."""
+    a1, a2 = scene.get("a1", 0.0), scene.get("a2", 0.0)
+    if a2:
+        return "Fig 3" if kind == "timeseries" else "Fig 4"
+    if a1:
+        return "Fig 5" if kind == "timeseries" else "Fig 6"
+    return None
+
+
 def time_series_figure(out, name, h, summary, impacts):
     scene = summary["scene"]
     hybrid = scene.get("contact_law") == "unilateral"
     period = 2 * numpy.pi / scene["omega"]
-    panels = ["omega", "height", "energy"] + ([] if hybrid else ["rate"])
+    panels = ["omega", "height", "energy", "residual"] + ([] if hybrid else ["rate"])
     fig, axes = plt.subplots(len(panels), 1, figsize=(11, 2.6 * len(panels)), sharex=True)
     for key, label in (("omega_x", "ω_x"), ("omega_y", "ω_y"), ("omega_z", "ω_z")):
         axes[0].plot(h["t"], h[key], lw=0.6, label=label)
@@ -101,7 +119,8 @@ def time_series_figure(out, name, h, summary, impacts):
         if impacts is not None and impacts.size:
             kinds = numpy.atleast_1d(impacts["kind"])
             times = numpy.atleast_1d(impacts["t"])
-            top = ax.get_ylim()[1]
+            bottom, top = ax.get_ylim()
+            ax.set_ylim(bottom, top + 0.12 * (top - bottom))  # the event markers drawn at `top`, wholly inside the axes
             for kind, (marker, colour, label) in EVENT_MARKS.items():
                 at = times[kinds == kind]
                 if at.size:
@@ -115,8 +134,8 @@ def time_series_figure(out, name, h, summary, impacts):
         ax.set_ylabel("h* [m]")
         switches = (h["grid_switch"] > 0) | (h["branch_switch"] > 0)
         ax.plot(h["t"][switches], h["h"][switches], ".", ms=2, color="tab:red", label="contact switch")
-    ax.legend(fontsize=7, loc="upper right", ncol=2)
-    axes[0].legend(fontsize=7, loc="upper right", ncol=3)
+    outside(ax)
+    outside(axes[0])
     # the energy: its mean over each forcing period (the forcing's own swing of m g_eff ζ would hide it), and
     # the ledger's residual E − E0 − W (+ L) beside it
     ax = axes[2]
@@ -127,22 +146,22 @@ def time_series_figure(out, name, h, summary, impacts):
     else:
         ax.plot(h["t"], h["E"], lw=0.6, color="tab:purple", label="E" if not forced else "E (shorter than one period)")
     ax.set_ylabel("E [J]")
-    twin = ax.twinx()
-    twin.plot(h["t"], h["residual"], lw=0.6, color="tab:gray", label="ledger residual")
-    twin.set_ylabel("residual [J]", color="tab:gray")
-    ax.legend(fontsize=7, loc="upper left")
-    twin.legend(fontsize=7, loc="upper right")
+    outside(ax)
+    axes[3].plot(h["t"], h["residual"], lw=0.6, color="tab:gray", label="ledger residual E − E0 − W (+ L)")
+    axes[3].set_ylabel("residual [J]")
+    outside(axes[3])
     if not hybrid:
-        axes[3].plot(h["t"], h["switch_rate"], lw=0.6, color="tab:green")
-        axes[3].set_ylabel("switches / s\n(trailing period)")
+        axes[4].plot(h["t"], h["switch_rate"], lw=0.6, color="tab:green")
+        axes[4].set_ylabel("switches / s\n(trailing period)")
     axes[-1].set_xlabel("t [s]")
-    title = f"{scene['description']}: {time_series_title(summary)}"
+    number = paper_number(scene, "timeseries")
+    title = f"{number + ': ' if number else ''}{scene['description']}: {time_series_title(summary)}"
     fig.suptitle(title, fontsize=10)
     fig.tight_layout()
     path = f"fig-timeseries-{name}.png"
-    save_figure(fig, os.path.join(out, path))
+    facts = save_figure(fig, os.path.join(out, path))
     plt.close(fig)
-    return path, title
+    return path, title, facts
 
 
 def contact_figure(out, name, h, summary):
@@ -153,6 +172,7 @@ def contact_figure(out, name, h, summary):
     if grid:  # the grid node carries the contact; continuous contact has no node to draw
         axes[0].plot(h["t"], h["index"], lw=0.5)
         axes[0].set_ylabel("contact node (grid index)")
+        axes[0].yaxis.set_major_locator(matplotlib.ticker.MaxNLocator(integer=True))  # an index: whole ticks only
     ax = axes[-1]
     for key in ("rc_x", "rc_y", "rc_z"):
         ax.plot(h["t"], h[key], lw=0.6, label=key.replace("rc_", "r_c,"))
@@ -162,14 +182,15 @@ def contact_figure(out, name, h, summary):
             ax.plot(h["t"][two], h[key][two], ".", ms=1, label=key.replace("rq_", "r_Q,") + " (on two points)")
     ax.set_ylabel("contact point, body axes [m]")
     ax.set_xlabel("t [s]")
-    ax.legend(fontsize=7, loc="upper right", ncol=2)
-    title = scene["description"]
+    outside(ax, markerscale=6)  # the r_Q dots (1 point) told apart in the legend
+    number = paper_number(scene, "contact")
+    title = f"{number + ': ' if number else ''}{scene['description']}"
     fig.suptitle(title, fontsize=10)
     fig.tight_layout()
     path = f"fig-contact-{name}.png"
-    save_figure(fig, os.path.join(out, path))
+    facts = save_figure(fig, os.path.join(out, path), index_axes=axes[:1] if grid else ())
     plt.close(fig)
-    return path, title
+    return path, title, facts
 
 
 def strobe_figure(out, name, summary):
@@ -194,9 +215,9 @@ def strobe_figure(out, name, summary):
     fig.suptitle(title, fontsize=10)
     fig.tight_layout()
     path = f"fig7-strobe-{name}.png"
-    save_figure(fig, os.path.join(out, path))
+    facts = save_figure(fig, os.path.join(out, path))
     plt.close(fig)
-    return path, title
+    return path, title, facts
 
 
 def spectrum_figure(out, name, summary, history):
@@ -228,9 +249,9 @@ def spectrum_figure(out, name, summary, history):
     fig.suptitle(title, fontsize=10)
     fig.tight_layout()
     path = f"fig8-spectrum-{name}.png"
-    save_figure(fig, os.path.join(out, path))
+    facts = save_figure(fig, os.path.join(out, path))
     plt.close(fig)
-    return path, title
+    return path, title, facts
 
 
 def lyapunov_figure(out, name, summary):
@@ -262,14 +283,14 @@ def lyapunov_figure(out, name, summary):
     ax.set_xlabel("forcing period")
     ax.set_ylabel("λ [1/s]")
     ax.set_ylim(min(-0.5, numpy.percentile(inst, 1), lam - 2 * err), max(1.0, numpy.percentile(inst, 99), lam + 2 * err) * 1.2)
-    ax.legend(fontsize=7)
+    outside(ax)
     title = f"Fig 9: {summary['scene']['description']}: λ_max = {lam:.3f} ± {err:.3f} 1/s"
     ax.set_title(title, fontsize=10)
     fig.tight_layout()
     path = f"fig9-lyapunov-{name}.png"
-    save_figure(fig, os.path.join(out, path))
+    facts = save_figure(fig, os.path.join(out, path))
     plt.close(fig)
-    return path, title, float(after[-1]) if after.size else float("nan")
+    return path, title, float(after[-1]) if after.size else float("nan"), facts
 
 
 def as_read(value):
@@ -436,29 +457,30 @@ def scene_figures(out, name, summary):
     if f"{name}-history.csv" in written:
         h = load_history(os.path.join(out, f"{name}-history.csv"))
         impacts = load_impacts(out, name, written)
-        path, title = time_series_figure(out, name, h, summary, impacts)
-        drawn.append(("time histories", path))
+        path, title, facts = time_series_figure(out, name, h, summary, impacts)
+        drawn.append((paper_number(summary["scene"], "timeseries") or "time histories", path))
         quoted = {"grid_switches": summary["grid_switches"], "branch_switches": summary["branch_switches"]}
         if summary.get("impacts"):
             quoted["impacts"] = summary["impacts"]["count"]
-        manifest.append({"kind": "fig-timeseries", "file": path, "title": title, "quotes": quoted})
-        path, title = contact_figure(out, name, h, summary)
-        drawn.append(("contact", path))
-        manifest.append({"kind": "fig-contact", "file": path, "title": title, "quotes": {}})
+        manifest.append({"kind": "fig-timeseries", "file": path, "title": title, "quotes": quoted, "layout": facts})
+        path, title, facts = contact_figure(out, name, h, summary)
+        drawn.append((paper_number(summary["scene"], "contact") or "contact", path))
+        manifest.append({"kind": "fig-contact", "file": path, "title": title, "quotes": {}, "layout": facts})
     if f"{name}-strobe.csv" in written:
-        path, title = strobe_figure(out, name, summary)
+        path, title, facts = strobe_figure(out, name, summary)
         drawn.append(("Fig 7", path))
-        manifest.append({"kind": "fig7-strobe", "file": path, "title": title, "quotes": {"samples": summary["strobe"]["samples"]}})
+        manifest.append({"kind": "fig7-strobe", "file": path, "title": title, "quotes": {"samples": summary["strobe"]["samples"]},
+                         "layout": facts})
     if f"{name}-spectrum.csv" in written:
-        path, title = spectrum_figure(out, name, summary, h)
+        path, title, facts = spectrum_figure(out, name, summary, h)
         drawn.append(("Fig 8", path))
-        manifest.append({"kind": "fig8-spectrum", "file": path, "title": title, "quotes": {}})
+        manifest.append({"kind": "fig8-spectrum", "file": path, "title": title, "quotes": {}, "layout": facts})
     if f"{name}-lyapunov.csv" in written:
-        path, title, end = lyapunov_figure(out, name, summary)
+        path, title, end, facts = lyapunov_figure(out, name, summary)
         drawn.append(("Fig 9", path))
         manifest.append({"kind": "fig9-lyapunov", "file": path, "title": title,
                          "quotes": {"lambda_max": summary["lyapunov"]["lambda_max"], "error_bar": summary["lyapunov"]["error_bar"]},
-                         "curve_end": end})
+                         "curve_end": end, "layout": facts})
     files = {path for _, path in drawn}
     for stale in earlier - files:  # only what this script drew before, as its own manifest says
         if os.path.exists(os.path.join(out, stale)):

@@ -98,6 +98,11 @@ def draw_mechanism(out, png, title, xlabel, ylabel, xs, ys, grid):
             bound = float(numpy.nanmax(numpy.abs(a))) if numpy.isfinite(a).any() else 1.0
             im = ax.imshow(a, origin="lower", extent=extent, aspect="auto", interpolation="nearest", cmap="RdBu_r",
                            vmin=-bound, vmax=bound)
+            unsure = numpy.isfinite(a) & ~(numpy.abs(a) > 2.0 * grid["lambda_error"])  # its sign not known: a dot
+            if unsure.any():
+                row, column = numpy.nonzero(unsure)
+                ax.plot(numpy.asarray(xs)[column], numpy.asarray(ys)[row], "o", ms=2.5, color="0.25", ls="none")
+                label = f"{label} (dots: within 2 error bars of 0)"
         else:
             im = ax.imshow(a, origin="lower", extent=extent, aspect="auto", interpolation="nearest")
         fig.colorbar(im, ax=ax)

@@ -11,6 +11,10 @@
  *   image where the point lands (drawn over the body, never hidden by it);
  * - the same for a mesh body (the die, from its hull's faces) and an expression body (an egg), and a GIF's frame
  *   times against the rate asked (its delays in hundredths of a second, rounded so as not to drift).
+ * - every figure of those runs and Fig 1 measured on matplotlib's renderer as a reader sees it (no data under a
+ *   legend, no marker cut by an axes' edge, nothing within 3 pixels of anything else, whole ticks on an index,
+ *   every axes labelled), and the paper's figure numbers in the titles; a λ map's points whose sign is not known
+ *   dotted, counted against the CSV;
  * The commands run in a directory of their own under /tmp. */
 #include "gb_check.h"
 #include "gb_dynamics.h"
@@ -85,6 +89,31 @@ static int script(const char *args, const char *what, char *out, size_t cap)
     return code;
 }
 
+/* The layout facts a figure's manifest entry carries (reports/common.py layout_facts): each fault counted, the
+ * first named. */
+typedef struct layout_count {
+    int figures, faults;
+    char first[300];
+} layout_count;
+
+static void layout_tally(const cJSON *fig, const char *file, layout_count *count)
+{
+    const cJSON *layout = cJSON_GetObjectItem(fig, "layout");
+    if (!cJSON_IsObject(layout)) return;
+    count->figures++;
+    static const char *const keys[] = {"legend_points_covered", "markers_outside_axes", "overlapping", "fractional_index_ticks",
+                                       "unlabelled_axes"};
+    int faults = 0;
+    for (size_t k = 0; k < sizeof keys / sizeof keys[0]; k++) {
+        const double v = number(layout, keys[k], NULL);
+        faults += isnan(v) ? 1 : (int)v;
+    }
+    count->faults += faults;
+    if (faults && !count->first[0])
+        snprintf(count->first, sizeof count->first, "%s: %s", file,
+                 cJSON_GetStringValue(cJSON_GetArrayItem(cJSON_GetObjectItem(layout, "where"), 0)) ?: "a fact missing");
+}
+
 static void test_figures(void)
 {
     char dir[] = "/tmp/gomboc-figures-XXXXXX";
@@ -119,7 +148,8 @@ static void test_figures(void)
     cJSON *s1 = read_json(dir, "table1-gomboc-I-summary.json"), *s2 = read_json(dir, "housner-block-summary.json");
     cJSON *m1 = read_json(dir, "table1-gomboc-I-figures.json"), *m2 = read_json(dir, "housner-block-figures.json");
     char *page = read_text(dir, "page.md");
-    int kinds = 0, listed = 0, linked = 0, present = 0;
+    int kinds = 0, listed = 0, linked = 0, present = 0, numbered = 0;
+    layout_count layout = {0};
     double lam_title = NAN, err_title = NAN, curve_end = NAN, samples_title = NAN, switches_title = NAN, impacts_title = NAN;
     const cJSON *manifests[2] = {m1, m2};
     for (int k = 0; k < 2; k++) {
@@ -130,6 +160,9 @@ static void test_figures(void)
             const char *title = cJSON_GetStringValue(cJSON_GetObjectItem(fig, "title"));
             if (!kind || !file) continue;
             listed++;
+            layout_tally(fig, file, &layout);
+            if (title && !strcmp(kind, "fig-timeseries")) numbered += k == 0 ? !strncmp(title, "Fig 3: ", 7) : !strstr(title, "Fig ");
+            if (title && !strcmp(kind, "fig-contact")) numbered += k == 0 ? !strncmp(title, "Fig 4: ", 7) : !strstr(title, "Fig ");
             char path[700], link[700];
             snprintf(path, sizeof path, "%s/%s", dir, file);
             present += access(path, R_OK) == 0;
@@ -173,6 +206,15 @@ static void test_figures(void)
     for (const char *p = page; p && (p = strstr(p, "](")); p += 2) page_links++;
     gb_check_true(&cf, kinds == 63 && listed == present && listed == linked && page_links == listed,
                   "kinds %#x, %d listed, %d present, %d linked, %d links on the page", kinds, listed, present, linked, page_links);
+    gb_check cl = {"-", "-", "what a reader sees of every figure of table1-gomboc-I and housner-block, measured on matplotlib's "
+                   "renderer: data under a legend, markers at or beyond an axes' edge, axes, colour bars or legends within 3 "
+                   "pixels of each other, fractional ticks on a grid index, unlabelled axes",
+                   "none of each", "exact"};
+    gb_check_true(&cl, layout.figures == listed && listed > 0 && layout.faults == 0, "%d of %d figures measured, %d faults%s%s",
+                  layout.figures, listed, layout.faults, layout.first[0] ? ": " : "", layout.first);
+    gb_check cn = {"-", "-", "the paper's figure numbers in the titles: Table 1's time series and contact figures, and a still "
+                   "plane's", "Fig 3 and Fig 4 (biharmonic forcing, as the paper numbers them); no number for the block", "exact"};
+    gb_check_true(&cn, numbered == 4, "%d of 4 titles numbered so", numbered);
     gb_check cs = {"-", "-", "a figure of an earlier run (a Fig 9 the block's run did not draw, listed in its previous "
                    "NAME-figures.json), and a user's file named like a Fig 7 of the block, which no manifest lists",
                    "the earlier figure removed and not linked; the user's file left as it was", "exact"};
@@ -454,6 +496,56 @@ static void test_animation(void)
     clean(dir);
 }
 
+/* Fig 1 (reports/shape_report.py) measured as a reader sees it; and a scan's λ map saying where its sign is not
+ * known (reports/plot_scan.py: a dot where |λ| ≤ 2 lambda_error), counted against the CSV it was drawn from. */
+static void test_figure_one_and_maps(void)
+{
+    char dir[] = "/tmp/gomboc-figure-one-XXXXXX";
+    if (!mkdtemp(dir)) return;
+    char args[1024], out[8192];
+    snprintf(args, sizeof args, "shape --scene cases/table1-gomboc-I.ini --json --radial-map %s/radial-map-table1-gomboc-I.csv "
+             "> %s/shape-table1-gomboc-I.json", dir, dir);
+    int code = gb_check_command(gomboc(), args, out, sizeof out);
+    gb_check ran = {"-", "-", "gomboc shape --scene table1-gomboc-I with its radial map", "exit 0", "exact"};
+    gb_check_true(&ran, code == 0, "exit %d: %.300s", code, out);
+    snprintf(args, sizeof args, "reports/shape_report.py %s table1-gomboc-I", dir);
+    if (!code && !script(args, "shape_report.py on table1-gomboc-I (Fig 1)", out, sizeof out)) {
+        cJSON *m = read_json(dir, "shape-figures.json");
+        layout_count layout = {0};
+        const cJSON *fig;
+        cJSON_ArrayForEach(fig, cJSON_GetObjectItem(m, "figures")) layout_tally(fig, "fig1-morphologies.png", &layout);
+        gb_check c = {"2", "1-9", "Fig 1 as a reader sees it: its 3-D surface's axis labels, its colour bars and its radial map",
+                      "nothing within 3 pixels of anything else, every axes labelled", "exact"};
+        gb_check_true(&c, layout.figures == 1 && layout.faults == 0, "%d figure measured, %d faults%s%s", layout.figures, layout.faults,
+                      layout.first[0] ? ": " : "", layout.first);
+        cJSON_Delete(m);
+    }
+    /* a 4 x 3 map whose λ and error bars are known here: |λ| <= 2 err at the points so marked */
+    static const double lam[12] = {0.4137, 0.0213, -0.2385, 0.1812, -0.0461, 0.7329, 0.0987, -0.5126, 0.2764, 0.0049, -0.1953, 0.3318};
+    static const double err[12] = {0.0521, 0.0344, 0.0917, 0.0948, 0.0386, 0.1102, 0.0391, 0.0645, 0.1873, 0.0122, 0.0911, 0.0407};
+    char text[2048];
+    size_t used = (size_t)snprintf(text, sizeof text, "index,forcing.omega,forcing.A1,lambda_max,lambda_error\n");
+    int unsure = 0;
+    for (int k = 0; k < 12; k++) {
+        used += (size_t)snprintf(text + used, sizeof text - used, "%d,%g,%g,%.4f,%.4f\n", k, 2.0 + k % 4, 1.0 + k / 4, lam[k], err[k]);
+        unsure += !(fabs(lam[k]) > 2.0 * err[k]);
+    }
+    char csv[300];
+    snprintf(csv, sizeof csv, "%s/map-scan.csv", dir);
+    FILE *f = fopen(csv, "w");
+    if (f) fputs(text, f), fclose(f);
+    snprintf(args, sizeof args, "reports/plot_scan.py %s lambda_max lambda_error", csv);
+    if (!script(args, "plot_scan.py on a 4 x 3 map of lambda_max and lambda_error", out, sizeof out)) {
+        const char *said = strstr(out, "lambda_max: ");
+        int dotted = -1, of = -1;
+        if (said) sscanf(said, "lambda_max: %d of %d", &dotted, &of);
+        gb_check c = {"8.3", "-", "the lambda_max map: points whose sign is not known (|lambda| <= 2 lambda_error) marked with a dot",
+                      "the count from the CSV it was drawn from", "exact"};
+        gb_check_true(&c, dotted == unsure && of == 12, "%d of %d dotted, %d expected", dotted, of, unsure);
+    }
+    clean(dir);
+}
+
 /* The body in motion for bodies of one's own: the die (a mesh: its hull's faces from gomboc shape --faces) and an egg
  * (an expression: its radial map), each animated from its run; the frames' contact points on the plane and
  * visible, the lowest drawn point where the body touches, and a GIF's frame times as the rate asked. */
@@ -623,6 +715,8 @@ int verify_register_figures(void)
         {"figures quote the summary, stale figures never linked", test_figures,
          "every figure's title quotes the numbers the text states, Fig 9 draws what it quotes, and a page links only this run's figures"},
         {"a run on a plane of finite friction states its sliding on its page", test_friction_on_page, NULL},
+        {"Fig 1 measured as drawn, and a lambda map's unknown signs marked", test_figure_one_and_maps,
+         "Fig 1's labels and colour bars do not collide, and a lambda map marks every point whose sign is not known"},
         {"bodies of one's own in motion: a mesh's faces and an expression's surface", test_animation_bodies,
          "a mesh body and an expression body are animated with their contact points on the plane and in view"},
         {"a body at rest: its page says no window is chaotic", test_rest_on_page, NULL},
