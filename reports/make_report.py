@@ -283,12 +283,23 @@ def readme_state(out):
                  "`reports/out/findings.md` into it.")
 
 
+def undecided_reason(detail):
+    """Why a central-claim cell is undecided, and which evidence decides it, in the row's own words."""
+    if "model not valid here" in detail:
+        return "no verdict: g_eff <= 0 for part of every period, where the model loses its contact; the rows with flight decide it"
+    if "make verify-full runs 3000" in detail:
+        return "300 periods leave lambda +- 4 sigma across 0.01 .. 0.05 1/s; make verify-full's 3000-period record decides it"
+    if "even over 3000 periods" in detail:
+        return "even 3000 periods leave lambda +- 4 sigma across 0.01 .. 0.05 1/s"
+    return "its evidence did not decide it"
+
+
 def findings_block(findings, ensembles):
     """The findings in the report's own words: the central claim under each model (with the ensembles' word where
     they read otherwise) and every claim with how its rows came out. The summary prints it, and make_report
     writes it to OUT/findings.md, the text the README's findings quote (scripts/readme_findings.py)."""
-    lines = ["| measured on (300 periods, R0 = I) | Gömböc I | Gömböc II |", "|---|---|---|"]
-    central = {}
+    lines = ["| measured on (R0 = I; 300 periods unless the row says) | Gömböc I | Gömböc II |", "|---|---|---|"]
+    central, lengths = {}, {}
     for r in findings:
         if not r["claim"].startswith(CENTRAL):
             continue
@@ -297,9 +308,15 @@ def findings_block(findings, ensembles):
         model = model.replace(": lambda_max - 4 sigma", "")
         note = ensemble_note(where, r["verdict"], ensembles)
         cell = r["verdict"] + (" (" + note[0].replace("**", "") + ")" if note and note[1] else "")
+        if r["verdict"] == "undecided" and not (note and note[1]):
+            cell += " (" + undecided_reason(r.get("detail", "")) + ")"
+        periods = re.search(r"over (\d+) periods", r.get("detail", ""))
+        if periods and periods.group(1) != "300":
+            lengths[model] = periods.group(1)
         central.setdefault(model, {})[body.replace("Gomboc ", "")] = cell
     for model, by_body in central.items():
-        lines.append(f"| {spell(model)} | {by_body.get('I', '—')} | {by_body.get('II', '—')} |")
+        length = f" ({lengths[model]} periods)" if model in lengths else ""
+        lines.append(f"| {spell(model)}{length} | {by_body.get('I', '—')} | {by_body.get('II', '—')} |")
     lines += ["", "Every claim of the paper the suite tests, with how its rows came out:", ""]
     claims = {}
     for r in findings:

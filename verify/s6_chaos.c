@@ -191,6 +191,10 @@ typedef struct estimate {
     int ok;
 } estimate;
 
+/* The central claim's physical reading, decided on a record of DECISIVE_PERIODS (test_chaos_real). */
+#define PHYSICAL_READING "continuous rolling, unilateral contact"
+enum { DECISIVE_PERIODS = 3000 };
+
 static estimate find(const estimate table[][VARIATION_COUNT], int body, const char *name)
 {
     for (int k = 0; k < VARIATION_COUNT; k++)
@@ -384,11 +388,33 @@ static void test_chaos_real(void)
     static gb_lyapunov_result results[2][VARIATION_COUNT];
     static int statuses[2][VARIATION_COUNT];
     static char messages[2][VARIATION_COUNT][512];
+    /* The physical reading of the central claim (a plane that only pushes, A in m/s^2) needs a longer record than
+     * 300 periods: its regular rows carry 4 sigma of about 0.14 1/s there, above the resolution 0.05 1/s the rule
+     * needs, and about 0.005 1/s at 3000 periods (9 to 10 s CPU a body, measured). Those two records run first,
+     * beside the others, and decide that row of the first table. */
+    static gb_lyapunov_result decisive[2];
+    static int decisive_status[2];
+    static char decisive_message[2][512];
+    const variation *physical = NULL;
+    for (int k = 0; k < VARIATION_COUNT; k++)
+        if (!strcmp(VARIATIONS[k].name, PHYSICAL_READING)) physical = &VARIATIONS[k];
 #pragma omp parallel for schedule(dynamic, 1)
-    for (int n = 0; n < 2 * VARIATION_COUNT; n++) {
-        const int b = n / VARIATION_COUNT, k = n % VARIATION_COUNT;
+    for (int n = 0; n < 2 * VARIATION_COUNT + 2; n++) {
+        if (n < 2) { /* the long records first: the other runs fill the threads around them */
+            decisive_status[n] = physical ? lyapunov_run(bodies[n], physical, DECISIVE_PERIODS, 0, &decisive[n])
+                                          : gb_error_set(GB_EINVAL, "no variation named %s", PHYSICAL_READING);
+            if (decisive_status[n]) snprintf(decisive_message[n], sizeof decisive_message[n], "%s", gb_error_message());
+            continue;
+        }
+        const int b = (n - 2) / VARIATION_COUNT, k = (n - 2) % VARIATION_COUNT;
         statuses[b][k] = lyapunov_of(bodies[b], &VARIATIONS[k], &results[b][k]);
         if (statuses[b][k]) snprintf(messages[b][k], sizeof messages[b][k], "%s", gb_error_message());
+    }
+    estimate long_record[2];
+    for (int b = 0; b < 2; b++) {
+        long_record[b] = (estimate){decisive_status[b] ? NAN : decisive[b].lambda_max, decisive_status[b] ? NAN : decisive[b].error_bar,
+                                    !decisive_status[b]};
+        if (!decisive_status[b]) gb_lyapunov_result_free(&decisive[b]);
     }
     const char *first_error = "";
     for (int b = 0; b < 2; b++)
@@ -458,7 +484,8 @@ static void test_chaos_real(void)
         /* which readings are in units of g, and which models follow the body off the plane */
         static const int in_g[11] = {0, 1, 0, 0, 0, 1, 1, 0, 0, 1, 1}, flies[11] = {0, 0, 0, 0, 0, 1, 1, 1, 1, 1, 1};
         for (int k = 0; k < 11; k++) {
-            const estimate e = find(table, b, readings[k][0]);
+            const int decided_long = !strcmp(readings[k][0], PHYSICAL_READING);
+            const estimate e = decided_long ? long_record[b] : find(table, b, readings[k][0]);
             char q[160];
             snprintf(q, sizeof q, "Gomboc %s, %s: lambda_max - 4 sigma", bodies[b], readings[k][1]);
             gb_check c = {"8.2", "77", q, "the no-chaos margin 0.01 1/s", "4 batch-means errors (10 or more batches, chosen from the record)"};
@@ -473,11 +500,13 @@ static void test_chaos_real(void)
             const gb_verdict v = valid ? lambda_verdict(e) : GB_VERDICT_UNDECIDED;
             gb_check_verdict(&c, claim_positive, e.ok && monitor == GB_OK, v,
                              valid ? RULE_POSITIVE : "validity first: no verdict where g_eff <= 0 for part of the period",
-                             "lambda_max = %.3f +- %.3f 1/s; g_eff <= 0 for %.1f %% of every period (min %.2f m/s^2)%s%s",
-                             e.lambda, e.error, 100.0 * nonpositive, geff_min,
+                             "lambda_max = %.4f +- %.4f 1/s over %d periods; g_eff <= 0 for %.1f %% of every period (min %.2f m/s^2)%s%s",
+                             e.lambda, e.error, decided_long ? DECISIVE_PERIODS : 300, 100.0 * nonpositive, geff_min,
                              !valid ? ": model not valid here" : flies[k] && in_g[k] ? ": the body flies there (lift-off, flight, landing)" : "",
-                             valid && v == GB_VERDICT_UNDECIDED ? "; undecided: lambda +- 4 sigma reaches below 0.01 and above 0.05 1/s "
-                                                                  "(300 periods; a longer record narrows it)" : "");
+                             valid && v == GB_VERDICT_UNDECIDED ? (decided_long ? "; undecided: lambda +- 4 sigma reaches below 0.01 and "
+                                                                                  "above 0.05 1/s even over 3000 periods"
+                                                                                : "; undecided: lambda +- 4 sigma reaches below 0.01 and above "
+                                                                                  "0.05 1/s (300 periods; make verify-full runs 3000)") : "");
         }
     }
     /* Similar long-time rates for the two shapes. */
