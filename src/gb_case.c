@@ -528,11 +528,18 @@ static int resolve_body(const char *path, gb_case *c)
         return cross_fail(path, c, "model", given(c, "model", "grid") ? "grid" : "nodes",
                           "with [body] mesh: a polyhedron's nodes are its hull's vertices (allowed: no grid or nodes key "
                           "with a mesh)");
-    if (c->dynamics.contact == GB_CONTACT_MODEL_CONTINUOUS)
+    if (c->dynamics.contact == GB_CONTACT_MODEL_CONTINUOUS && mesh)
         return cross_fail(path, c, "model", "contact",
-                          "= continuous with [body] %s: %s (allowed: grid or fast-grid with a body of one's own)", own,
-                          mesh ? "a polyhedron's contact is always a vertex, found exactly on its nodes"
-                               : "continuous contact is certified by interval enclosures, which no expression has here");
+                          "= continuous with [body] mesh: a polyhedron's contact is always a vertex, found exactly on its nodes "
+                          "(allowed: grid or fast-grid with a mesh)");
+    if (c->dynamics.contact == GB_CONTACT_MODEL_CONTINUOUS) { /* an expression: no enclosure certifies its contact */
+        if (!given(c, "model", "certificate")) c->dynamics.certificate = GB_CERTIFICATE_MULTISTART;
+        else if (c->dynamics.certificate != GB_CERTIFICATE_MULTISTART)
+            return cross_fail(path, c, "model", "certificate",
+                              "= %s with [body] %s: the certificates prove the contact global by interval enclosures of the "
+                              "surface, which an expression has not here (allowed: multi-start, uncertified, the default for "
+                              "continuous contact with a body of one's own)", gb_dynamics_certificate_name(c->dynamics.certificate), own);
+    }
     const int line = c->key_line[key_index("body", own)];
     int status;
     if (mesh) {
@@ -576,7 +583,7 @@ static int cross_check(const char *path, gb_case *c)
     if (c->dynamics.certificate != GB_CERTIFICATE_PER_VERTICAL && c->dynamics.contact != GB_CONTACT_MODEL_CONTINUOUS)
         return cross_fail(path, c, "model", "certificate",
                           "= %s with [model] contact = %s: only continuous contact is certified (allowed: "
-                          "per-vertical with any contact; atlas with contact = continuous)",
+                          "per-vertical with any contact; atlas or multi-start with contact = continuous)",
                           gb_dynamics_certificate_name(c->dynamics.certificate), gb_contact_model_name(c->dynamics.contact));
     /* the contact law's traits (whatever the plane's friction; a friction the law cannot take is judged below, naming
      * its own key) */

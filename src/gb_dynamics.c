@@ -25,14 +25,14 @@ int gb_dynamics_variant_parse(const char *name, gb_dynamics_variant *variant)
     return status;
 }
 
-static const char *const certificate_names[] = {"per-vertical", "atlas"};
+static const char *const certificate_names[] = {"per-vertical", "atlas", "multi-start"};
 
-const char *gb_dynamics_certificate_name(gb_dynamics_certificate c) { return (unsigned)c < 2 ? certificate_names[c] : NULL; }
+const char *gb_dynamics_certificate_name(gb_dynamics_certificate c) { return (unsigned)c < 3 ? certificate_names[c] : NULL; }
 
 int gb_dynamics_certificate_parse(const char *name, gb_dynamics_certificate *certificate)
 {
     int k = 0;
-    const int status = gb_error_parse_name(name, certificate_names, 2, "contact certificate", &k);
+    const int status = gb_error_parse_name(name, certificate_names, 3, "contact certificate", &k);
     if (!status) *certificate = (gb_dynamics_certificate)k;
     return status;
 }

@@ -68,10 +68,14 @@ typedef size_t (*gb_dynamics_lowest_node)(void *context, const double d[3]);
 /* How continuous contact proves the contact global at every accepted step: by gb_certify at each
  * vertical, or by a lookup in an atlas of verticals (gb_atlas), with gb_certify where the atlas cannot
  * decide. Both make the same switches (the switch target is polished the same way, see
- * gb_dynamics_accept); the atlas is faster once its cells are built. */
+ * gb_dynamics_accept); the atlas is faster once its cells are built. MULTISTART proves nothing: the
+ * contact is taken global when no lower minimum is found among the local minima of the 180 × 360 branch
+ * grid polished by Newton (gb_contact_branches_find), for a body without interval enclosures (one given by
+ * an expression), which the others cannot certify; a minimum whose basin holds no node can be missed. */
 typedef enum gb_dynamics_certificate {
     GB_CERTIFICATE_PER_VERTICAL = 0,
-    GB_CERTIFICATE_ATLAS = 1
+    GB_CERTIFICATE_ATLAS = 1,
+    GB_CERTIFICATE_MULTISTART = 2
 } gb_dynamics_certificate;
 
 GB_API const char *gb_dynamics_certificate_name(gb_dynamics_certificate certificate);

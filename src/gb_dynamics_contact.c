@@ -124,11 +124,11 @@ int gb_dyn_contact_at(gb_dynamics *d, double t, const double zb[3], const double
         gb_contact_chart_offset(&d->contact, d->contact_rate[0] * dt, d->contact_rate[1] * dt, &start[0], &start[1]);
     }
     if (!same) status = gb_contact_refine(&d->surface, unit, start[0], start[1], &d->refine, &c->point);
-    if ((status == GB_ENOCONV || (!status && !c->point.is_minimum)) && d->certify) {
+    if ((status == GB_ENOCONV || (!status && !c->point.is_minimum)) && (d->certify || d->starts)) {
         /* The continued branch has no minimum here (a fold of h inside the step): the contact is the
          * global minimum at this state, found and certified from scratch. */
         d->branches_lost++;
-        status = gb_certify_global_minimum(d->certify, zb, &d->refine, &c->point);
+        status = gb_dyn_global_minimum(d, zb, &c->point);
     }
     if (!status && !c->point.is_minimum)
         status = gb_error_set(GB_ENOCONV, "continuous contact lost: Newton from the previous contact ended on a "
@@ -156,8 +156,27 @@ int gb_dyn_contact_global(gb_dynamics *d, const double zb[3])
         if (!status) d->index = node.index, gb_dyn_grid_point(d, node.index, zb, &d->contact);
         return status;
     }
-    gb_certify_forget(d->certify);
-    return gb_certify_global_minimum(d->certify, zb, &d->refine, &d->contact);
+    if (d->certify) gb_certify_forget(d->certify);
+    return gb_dyn_global_minimum(d, zb, &d->contact);
+}
+
+/* certificate = multi-start: the lowest of the branch grid's local minima polished by Newton (uncertified). */
+static int multistart_lowest(gb_dynamics *d, const double zb[3], gb_contact_point *out)
+{
+    gb_contact_branches b;
+    const int status = gb_contact_branches_find(d->starts, zb, &d->refine, &b);
+    if (status) return status;
+    d->multistart_seeds += b.seeds;
+    if (!b.count)
+        return gb_error_set(GB_ENOCONV, "multi-start: no local minimum of h found at z_b = (%g, %g, %g)", zb[0], zb[1], zb[2]);
+    *out = b.branch[0];
+    return GB_OK;
+}
+
+/* The global minimum at zb from scratch: certified (gb_certify), or the multi-start's lowest. */
+int gb_dyn_global_minimum(gb_dynamics *d, const double zb[3], gb_contact_point *out)
+{
+    return d->starts ? multistart_lowest(d, zb, out) : gb_certify_global_minimum(d->certify, zb, &d->refine, out);
 }
 
 /* The accepted contact (P) becomes p; a grid body's node index with it. */
@@ -182,6 +201,22 @@ int gb_dyn_remember_rate(gb_dynamics *d, double t, const double y[GB_STATE_SIZE]
 /* Is `candidate` the global minimum at zb? The atlas answers where it can, gb_certify elsewhere. */
 int gb_dyn_check_global(gb_dynamics *d, const double zb[3], const gb_contact_point *candidate, gb_certify_result *r)
 {
+    if (d->starts) { /* uncertified: GLOBAL when no polished minimum lies lower by more than η */
+        gb_contact_point lowest;
+        const size_t seeds = d->multistart_seeds;
+        const int status = multistart_lowest(d, zb, &lowest);
+        if (status) return status;
+        memset(r, 0, sizeof *r);
+        r->newton_runs = d->multistart_seeds - seeds;
+        d->multistart_checks++;
+        if (lowest.height < candidate->height - d->def.certify.height_tol && !gb_dyn_same_point(&lowest, candidate)) {
+            r->verdict = GB_CERTIFY_LOWER_FOUND, r->lower = lowest;
+            d->multistart_lower++;
+        } else {
+            r->verdict = GB_CERTIFY_GLOBAL;
+        }
+        return GB_OK;
+    }
     if (d->atlas) {
         const int status = gb_atlas_check(d->atlas, zb, candidate, &d->refine, r);
         if (status || r->verdict != GB_CERTIFY_UNDECIDED) return status;

@@ -207,6 +207,10 @@ int gb_dyn_body_create(gb_dynamics *d)
         for (int j = 0; j < 3; j++) d->inertia[i][j] = props.inertia[i][j] * l2;
     d->mean_radius = props.L * def->length;
     if (def->contact != GB_CONTACT_MODEL_CONTINUOUS) return body_grid(d, c, surface, def);
+    if (def->certificate == GB_CERTIFICATE_MULTISTART) { /* no certificate: the branch grid's minima, polished */
+        const gb_contact_grid_def starts = gb_contact_default_branch_grid();
+        return gb_contact_grid_create(surface, &starts, &d->starts);
+    }
     status = gb_certify_create(surface, &def->certify, &d->certify);
     if (!status && def->certificate == GB_CERTIFICATE_ATLAS) status = body_atlas(d, c, surface, def);
     return status;
@@ -219,6 +223,7 @@ void gb_dyn_body_free(gb_dynamics *d)
         gb_contact_grid_free(d->grid);
     }
     gb_certify_free(d->certify);
+    gb_contact_grid_free(d->starts);
     if (!d->atlas_borrowed) gb_atlas_free(d->atlas);
     if (d->own_context) gb_dynamics_context_free(d->context);
 }
@@ -244,6 +249,12 @@ void gb_dynamics_contact_work(const gb_dynamics *d, size_t *queries, size_t *nod
 
 int gb_dynamics_certify_stats(const gb_dynamics *d, gb_certify_stats *out)
 {
+    if (d->starts) { /* multi-start: its checks (none undecided, none proved) and its Newton polishes */
+        memset(out, 0, sizeof *out);
+        out->checks = d->multistart_checks, out->lower_found = d->multistart_lower;
+        out->global = d->multistart_checks - d->multistart_lower, out->newton_runs = d->multistart_seeds;
+        return GB_OK;
+    }
     if (!d->certify) return gb_error_set(GB_EINVAL, "the certificate belongs to continuous contact only");
     gb_certify_get_stats(d->certify, out);
     return GB_OK;

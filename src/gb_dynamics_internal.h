@@ -188,6 +188,8 @@ struct gb_dynamics {
     int grid_borrowed;           /* grid (and tracker) belong to the context */
     gb_certify *certify;         /* the global-minimum certificate (continuous) */
     gb_atlas *atlas;             /* certificate = atlas */
+    gb_contact_grid *starts;     /* certificate = multi-start: the grid whose local minima seed Newton */
+    size_t multistart_checks, multistart_lower, multistart_seeds;
     int atlas_borrowed;          /* the atlas belongs to the context */
     size_t atlas_fallbacks;      /* checks the atlas left to gb_certify */
     gb_contact_refine_def refine;
@@ -322,6 +324,9 @@ int gb_dyn_point_rate(const gb_dynamics *d, const double zb[3], const gb_contact
 int gb_dyn_contact_at(gb_dynamics *d, double t, const double zb[3], const double omega[3], gb_dyn_contact *c);
 int gb_dyn_contact_global(gb_dynamics *d, const double zb[3]);
 int gb_dyn_remember_rate(gb_dynamics *d, double t, const double y[GB_STATE_SIZE]);
+/* The global minimum at zb from scratch: gb_certify's, or with certificate = multi-start the lowest polished local
+ * minimum of the branch grid (gb_dynamics_contact.c). */
+int gb_dyn_global_minimum(gb_dynamics *d, const double zb[3], gb_contact_point *out);
 int gb_dyn_check_global(gb_dynamics *d, const double zb[3], const gb_contact_point *candidate, gb_certify_result *r);
 int gb_dyn_canonical_minimum(gb_dynamics *d, const double zb[3], gb_contact_point *p);
 int gb_dyn_same_point(const gb_contact_point *a, const gb_contact_point *b);

@@ -220,7 +220,7 @@ int gb_dynamics_stepping_prepare(gb_dynamics *d)
         return gb_error_set(GB_EINVAL, "the %s law poses no one-step contact problem (allowed with time-stepping: "
                             "contact_law = unilateral on a plane of finite friction)", d->law->name);
     const int smooth = d->def.contact == GB_CONTACT_MODEL_CONTINUOUS;
-    if (!d->grid && !(smooth && d->certify))
+    if (!d->grid && !(smooth && (d->certify || d->starts)))
         return gb_error_set(GB_EINVAL, "contact = %s gives time-stepping no points to test (allowed: grid or fast-grid, "
                             "whose nodes are a mesh's vertices or a smooth body's grid polyhedron; continuous, the "
                             "smooth body's minima)", gb_contact_model_name(d->def.contact));

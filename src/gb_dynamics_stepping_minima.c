@@ -49,7 +49,7 @@ int gb_dyn_stepping_track_minima(gb_dynamics *d, gb_dyn_stepper *s, const double
     if (status) return status;
     if (low < 0) {
         gb_contact_point p;
-        status = gb_certify_global_minimum(d->certify, zb, &d->refine, &p);
+        status = gb_dyn_global_minimum(d, zb, &p);
         if (status) return status;
         low = gb_dyn_stepping_take_slot(s, &p, -1);
     }

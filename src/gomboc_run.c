@@ -146,6 +146,7 @@ static cJSON *scene_json(const gb_case *c, const char *path)
     cJSON_AddStringToObject(o, "contact", gb_contact_model_name(d->contact));
     cJSON_AddStringToObject(o, "contact_law", gb_dynamics_contact_law_name(d->contact_law));
     if (d->contact == GB_CONTACT_MODEL_CONTINUOUS) {
+        cJSON_AddStringToObject(o, "certificate", gb_dynamics_certificate_name(d->certificate));
         cli_json_add(o, "certificate_height_tol", d->certify.height_tol);
         cli_json_add(o, "certificate_max_depth", d->certify.max_depth);
     } else {
