@@ -255,6 +255,10 @@ GB_API int gb_dynamics_context_create(gb_dynamics_context **out);
 GB_API void gb_dynamics_context_free(gb_dynamics_context *context);
 /* The caches' files (NULL: none): the atlas of verticals and the fast grid's hull. */
 GB_API int gb_dynamics_context_files(gb_dynamics_context *context, const char *atlas_file, const char *hull_file);
+/* A directory the fast grid's hull is kept in by the grid's content when no hull file is named: read from
+ * DIR/hull-KEY.gbh (KEY: FNV-1a of the grid's nodes) when it holds these very nodes' hull, else built by Qhull
+ * and written there by gb_dynamics_context_save, whose failure to write it is not an error (a cache). NULL: none. */
+GB_API int gb_dynamics_context_cache(gb_dynamics_context *context, const char *dir);
 /* contact = grid: this search instead of brute force (make bench's plain loop). */
 GB_API void gb_dynamics_context_lowest(gb_dynamics_context *context, gb_dynamics_lowest_node lowest, void *user);
 /* Write the caches back to their files: the atlas, merged with the cells the file gained since it was read

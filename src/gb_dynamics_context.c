@@ -8,7 +8,9 @@
 #include "gb_contact.h"
 #include "gb_dynamics_protocol_internal.h"
 #include "gb_error.h"
+#include "gb_hash.h"
 
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -30,6 +32,8 @@ struct gb_dynamics_context {
     int atlas_written;        /* atlas_file holds this atlas as of atlas_saved_build (loaded or saved) */
     double atlas_saved_build; /* the atlas's build seconds at its load or last save */
     char *atlas_file, *hull_file;
+    char *cache_dir;          /* the hull kept by the grid's content (hull_file then names it: hull_cached) */
+    int hull_cached;
     gb_dynamics_lowest_node lowest;
     void *lowest_user;
 };
@@ -48,6 +52,7 @@ void gb_dynamics_context_free(gb_dynamics_context *c)
     gb_atlas_free(c->atlas);
     free(c->atlas_file);
     free(c->hull_file);
+    free(c->cache_dir);
     free(c);
 }
 
@@ -62,6 +67,29 @@ int gb_dynamics_context_files(gb_dynamics_context *c, const char *atlas_file, co
 {
     const int status = set_path(&c->atlas_file, atlas_file);
     return status ? status : set_path(&c->hull_file, hull_file);
+}
+
+int gb_dynamics_context_cache(gb_dynamics_context *c, const char *dir)
+{
+    return set_path(&c->cache_dir, dir);
+}
+
+/* With a cache directory and no hull file named: the file the grid's nodes key there. */
+static int cached_hull_file(gb_dynamics_context *c, const gb_contact_grid *grid)
+{
+    if (c->hull_file || !c->cache_dir) return GB_OK;
+    uint64_t key = GB_HASH_OFFSET;
+    const size_t count = gb_contact_grid_size(grid);
+    for (size_t k = 0; k < count; k++) {
+        double node[5];
+        gb_contact_grid_node(grid, k, &node[0], &node[1], node + 2);
+        key = gb_hash_add(key, node, sizeof node);
+    }
+    char path[4096];
+    if (snprintf(path, sizeof path, "%s/hull-%016llx.gbh", c->cache_dir, (unsigned long long)key) >= (int)sizeof path)
+        return GB_OK; /* a cache too deep to name: none */
+    c->hull_cached = 1;
+    return set_path(&c->hull_file, path);
 }
 
 void gb_dynamics_context_lowest(gb_dynamics_context *c, gb_dynamics_lowest_node lowest, void *user)
@@ -101,6 +129,10 @@ int gb_dynamics_context_save(gb_dynamics_context *c)
     if (!status && c->tracker && c->hull_file && !c->hull_loaded && !c->hull_written && gb_contact_tracker_vertices(c->tracker)) {
         status = gb_contact_tracker_save(c->tracker, c->hull_file);
         c->hull_written = !status;
+        if (status && c->hull_cached) { /* a cache that cannot be written (read-only, full, no key): the run stands */
+            gb_error_clear();
+            status = GB_OK;
+        }
     }
     return status;
 }
@@ -152,6 +184,8 @@ static int body_grid(gb_dynamics *d, gb_dynamics_context *c, const gb_surface *s
         if (!fast) return GB_OK;
     }
     /* a hull file that is missing, stale or damaged is built anew by Qhull (and replaced when saved) */
+    if (d->grid_borrowed) status = cached_hull_file(c, d->grid);
+    if (status) return status;
     const int loaded = d->grid_borrowed && c->hull_file && gb_contact_tracker_load(d->grid, c->hull_file, &d->tracker) == GB_OK;
     if (!loaded) {
         gb_error_clear();

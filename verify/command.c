@@ -169,6 +169,18 @@ static const char *SHORT_SCENE =
     "[body]\nmorphology = II\nbeta = 0.12\n[integrator]\nsteps_per_period = 40\nperiods = 2\n"
     "[model]\ncontact = fast-grid\n";
 
+/* From a run's --json output: its state fingerprint and hull.loaded (-1 when missing); returns code. */
+static int summary_hull(int code, const char *out, char *fingerprint, size_t size, int *loaded)
+{
+    cJSON *root = cJSON_Parse(strchr(out, '{') ? strchr(out, '{') : out);
+    const cJSON *print = cJSON_GetObjectItem(cJSON_GetObjectItem(root, "fingerprint"), "final_state");
+    snprintf(fingerprint, size, "%s", cJSON_IsString(print) ? print->valuestring : "none");
+    const cJSON *h = cJSON_GetObjectItem(cJSON_GetObjectItem(root, "hull"), "loaded");
+    *loaded = cJSON_IsNumber(h) ? h->valueint : -1;
+    cJSON_Delete(root);
+    return code;
+}
+
 /* `gomboc run CASE --out DIR --hull HULL --json`: its exit status, the summary's state fingerprint and
  * hull.loaded (-1 when missing). */
 static int run_with_hull(const char *scene, const char *dir, const char *hull, char *fingerprint, size_t size, int *loaded)
@@ -177,13 +189,58 @@ static int run_with_hull(const char *scene, const char *dir, const char *hull, c
     char args[800];
     snprintf(args, sizeof args, "run %s --out %s --hull %s --json", scene, dir, hull);
     const int code = run(args, out, sizeof out);
-    cJSON *root = cJSON_Parse(strchr(out, '{') ? strchr(out, '{') : out);
-    const cJSON *print = cJSON_GetObjectItem(cJSON_GetObjectItem(root, "fingerprint"), "final_state");
-    snprintf(fingerprint, size, "%s", cJSON_IsString(print) ? print->valuestring : "none");
-    const cJSON *h = cJSON_GetObjectItem(cJSON_GetObjectItem(root, "hull"), "loaded");
-    *loaded = cJSON_IsNumber(h) ? h->valueint : -1;
-    cJSON_Delete(root);
-    return code;
+    return summary_hull(code, out, fingerprint, size, loaded);
+}
+
+/* `gomboc run CASE --out DIR --json` with the user's cache at XDG_CACHE_HOME = cache (the harness runs with
+ * GOMBOC_CACHE=off otherwise): as run_with_hull. */
+static int run_with_cache(const char *scene, const char *dir, const char *cache, char *fingerprint, size_t size, int *loaded)
+{
+    static char out[1 << 16];
+    char args[800];
+    snprintf(args, sizeof args, "run %s --out %s --json", scene, dir);
+    setenv("GOMBOC_CACHE", "on", 1), setenv("XDG_CACHE_HOME", cache, 1);
+    const int code = run(args, out, sizeof out);
+    setenv("GOMBOC_CACHE", "off", 1), unsetenv("XDG_CACHE_HOME");
+    return summary_hull(code, out, fingerprint, size, loaded);
+}
+
+/* The user's cache: without --hull the hull is kept in $XDG_CACHE_HOME/gomboc by the grid's content, built and written
+ * by the first run of a body, read by every run after it in any process; a cache that cannot be made (its parent a
+ * file) leaves the run as it was. */
+static void test_run_cache(void)
+{
+    char dir[] = "/tmp/gomboc-cache-XXXXXX";
+    if (!mkdtemp(dir)) return;
+    char scene[256], cache[300], blocked[300], prints[3][32];
+    write_case(dir, "short", SHORT_SCENE, scene, sizeof scene);
+    snprintf(cache, sizeof cache, "%s/cache", dir);
+    snprintf(blocked, sizeof blocked, "%s/a-file", dir);
+    FILE *f = fopen(blocked, "w");
+    if (f) fputs("not a directory\n", f), fclose(f);
+    int loaded[3], code[3];
+    code[0] = run_with_cache(scene, dir, cache, prints[0], sizeof prints[0], &loaded[0]);
+    code[1] = run_with_cache(scene, dir, cache, prints[1], sizeof prints[1], &loaded[1]);
+    code[2] = run_with_cache(scene, dir, blocked, prints[2], sizeof prints[2], &loaded[2]);
+    char listing[600];
+    snprintf(listing, sizeof listing, "ls %s/gomboc | grep -c '^hull-[0-9a-f]*\\.gbh$'", cache);
+    FILE *ls = popen(listing, "r");
+    int files = -1;
+    if (ls) {
+        if (fscanf(ls, "%d", &files) != 1) files = -1;
+        pclose(ls);
+    }
+    gb_check c = {"8", "29", "gomboc run without --hull, the user's cache at XDG_CACHE_HOME: first run, second run, a cache "
+                  "whose parent is a file", "the first builds and writes one hull file, the second reads it, the third runs "
+                  "without a cache; the same state bits", "exact: the state fingerprint"};
+    int same = 1;
+    for (int k = 0; k < 3; k++) same &= code[k] == 0 && !strcmp(prints[k], prints[0]) && strcmp(prints[k], "none");
+    gb_check_true(&c, same && files == 1 && loaded[0] == 0 && loaded[1] == 1 && loaded[2] == 0,
+                  "exit %d %d %d; loaded %d %d %d; %d hull file(s) in the cache; fingerprints %s %s %s", code[0], code[1], code[2],
+                  loaded[0], loaded[1], loaded[2], files, prints[0], prints[1], prints[2]);
+    char clean_up[400];
+    snprintf(clean_up, sizeof clean_up, "rm -rf '%s'", dir);
+    if (system(clean_up)) return;
 }
 
 /* --hull FILE: the first run builds the hull and writes it, the next reads it, a damaged file is built anew
@@ -460,6 +517,8 @@ int verify_register_command(void)
         {"command: atomic output", test_failed_write_leaves_nothing, NULL},
         {"command: gomboc contact, its methods and keys", test_contact_command, NULL},
         {"command: gomboc run, case files and outputs", test_run_command, NULL},
+        {"command: gomboc run without --hull: the hull in the user's cache", test_run_cache,
+         "the fast grid's hull is built once per body and read from the user's cache by every later run, with the same bits"},
         {"command: gomboc run --hull, the fast grid's hull from its file", test_run_hull,
          "a fast-grid run gives the same state bits with the hull Qhull builds and with the hull read from "
          "its file, and a damaged file is built anew"},
