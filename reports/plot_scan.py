@@ -176,9 +176,9 @@ def main(argv):
     fig.tight_layout()
     target = out or os.path.splitext(path)[0] + "-" + "-".join(metrics) + ".png"
     save_figure(fig, target, bbox=None)  # atomically: a link or a file at the name is replaced, never written through
-    print(target)
+    print(target)  # the one line of standard output: the figure's path (gomboc.plot.scan returns it)
     for note in notes:
-        print(note)
+        sys.stderr.write(note + "\n")
     return 0
 
 

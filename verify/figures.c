@@ -534,7 +534,7 @@ static void test_figure_one_and_maps(void)
     snprintf(csv, sizeof csv, "%s/map-scan.csv", dir);
     FILE *f = fopen(csv, "w");
     if (f) fputs(text, f), fclose(f);
-    snprintf(args, sizeof args, "reports/plot_scan.py %s lambda_max lambda_error", csv);
+    snprintf(args, sizeof args, "reports/plot_scan.py %s lambda_max lambda_error 2>&1", csv); /* its note on standard error */
     if (!script(args, "plot_scan.py on a 4 x 3 map of lambda_max and lambda_error", out, sizeof out)) {
         const char *said = strstr(out, "lambda_max: ");
         int dotted = -1, of = -1;
