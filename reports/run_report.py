@@ -15,6 +15,7 @@ bar as a band); OUT/NAME-figures.json (each figure's file, title and the numbers
 page OUT/NAME-run.md for one scene, OUT/runs.md for several (or --page FILE.md). A figure of the scene
 that this run did not draw (an earlier run's) is removed, never linked. Recomputes no physics.
 """
+import hashlib
 import json
 import os
 import sys
@@ -452,6 +453,10 @@ def scene_figures(out, name, summary):
     numbers its title quotes. Returns [(label, file)]."""
     written = {f["name"] for f in summary.get("files", [])}
     earlier = previous_files(out, f"{name}-figures.json")
+    inputs = drawn_from(summary)
+    reused = reusable(out, name, inputs)
+    if reused is not None:  # drawn already from these very files by this very plotter (make verify's second page)
+        return reused
     drawn, manifest = [], []
     h = None
     if f"{name}-history.csv" in written:
@@ -485,8 +490,34 @@ def scene_figures(out, name, summary):
     for stale in earlier - files:  # only what this script drew before, as its own manifest says
         if os.path.exists(os.path.join(out, stale)):
             os.remove(os.path.join(out, stale))
-    write_atomically(os.path.join(out, f"{name}-figures.json"), json.dumps({"scene": name, "figures": manifest}, indent=1))
+    write_atomically(os.path.join(out, f"{name}-figures.json"), json.dumps(
+        {"scene": name, "drawn_from": inputs, "figures": manifest, "labels": [label for label, _ in drawn]}, indent=1))
     return drawn
+
+
+def drawn_from(summary):
+    """What a scene's figures depend on: the checksums of the run's files and of this plotter's own source."""
+    here = os.path.dirname(os.path.abspath(__file__))
+    plotter = hashlib.sha256()
+    for source in ("run_report.py", "common.py"):
+        with open(os.path.join(here, source), "rb") as handle:
+            plotter.update(handle.read())
+    files = sorted((f["name"], f.get("fnv1a64", "")) for f in summary.get("files", []))
+    return {"plotter_sha256": plotter.hexdigest(), "files": [list(f) for f in files], "scene": summary.get("scene", {})}
+
+
+def reusable(out, name, inputs):
+    """The [(label, file)] of a manifest of this scene drawn from the same inputs whose files are all there, else None."""
+    try:
+        data = load_json(os.path.join(out, f"{name}-figures.json"))
+    except (OSError, ValueError):
+        return None
+    if not isinstance(data, dict) or data.get("drawn_from") != inputs or "labels" not in data:
+        return None
+    files = [f.get("file") for f in data.get("figures", [])]
+    if len(files) != len(data["labels"]) or not all(isinstance(f, str) and os.path.exists(os.path.join(out, f)) for f in files):
+        return None
+    return list(zip(data["labels"], files))
 
 
 def main(argv=None):
