@@ -3,6 +3,8 @@
 # then re-enter make so that pkg-config runs only once the packages are there.
 
 PYTHON    := /usr/bin/python3
+# the independent scene runs and animations of make run and make verify, so many at a time (the machine's processors)
+JOBS      ?= $(shell nproc 2>/dev/null || echo 1)
 # The Python package's place under PREFIX: lib/python3.X/dist-packages, where Debian's python3 looks under
 # /usr/local (another PREFIX: PYTHONPATH names it, README).
 PYDIR      = $(PREFIX)/lib/$(shell $(PYTHON) -c 'import sys; print("python3.%d" % sys.version_info.minor)')/dist-packages
@@ -100,14 +102,14 @@ VERIFY_SCENES := $(RUN_SCENES) table1-gomboc-I-g-units table1-gomboc-II-g-units 
 
 run-only: $(BIN)
 	@mkdir -p $(OUT)
-	for s in $(RUN_SCENES) $(BODY_SCENES); do n=$$(basename $$s); \
-	  map=$$(grep -q '^mesh *=' cases/$$s.ini && echo "--faces $(OUT)/faces-$$n.csv" || echo "--radial-map $(OUT)/radial-map-$$n.csv"); \
-	  $(BIN) shape --scene cases/$$s.ini --json $$map > $(OUT)/shape-$$n.json.tmp && mv $(OUT)/shape-$$n.json.tmp $(OUT)/shape-$$n.json \
-	  || exit 1; done
+	printf '%s\n' $(RUN_SCENES) $(BODY_SCENES) | xargs -P $(JOBS) -I@ sh -c 'n=$$(basename @); \
+	  map=$$(grep -q "^mesh *=" cases/@.ini && echo "--faces $(OUT)/faces-$$n.csv" || echo "--radial-map $(OUT)/radial-map-$$n.csv"); \
+	  $(BIN) shape --scene cases/@.ini --json $$map > $(OUT)/shape-$$n.json.tmp && mv $(OUT)/shape-$$n.json.tmp $(OUT)/shape-$$n.json' \
+	  || exit 1
 	$(PYTHON) reports/shape_report.py $(OUT) $(notdir $(RUN_SCENES) $(BODY_SCENES))
-	for s in $(RUN_SCENES) $(BODY_SCENES) $(ANIMATED); do $(BIN) run cases/$$s.ini --out $(OUT) || exit 1; done
-	for s in $(ANIMATED); do $(PYTHON) reports/animate.py $(OUT) $$s --seconds 4 --fps 15 \
-	  --surface $(OUT)/radial-map-$$(echo $$s | sed 's/-unilateral$$//').csv || exit 1; done
+	printf '%s\n' $(RUN_SCENES) $(BODY_SCENES) $(ANIMATED) | xargs -P $(JOBS) -I@ $(BIN) run cases/@.ini --out $(OUT) || exit 1
+	printf '%s\n' $(ANIMATED) | xargs -P $(JOBS) -I@ sh -c '$(PYTHON) reports/animate.py $(OUT) @ --seconds 4 --fps 15 \
+	  --surface $(OUT)/radial-map-$$(echo @ | sed "s/-unilateral$$//").csv' || exit 1
 	for s in $(ANIMATED_BODIES); do $(PYTHON) reports/animate.py $(OUT) $$s --seconds 1 --fps 15 || exit 1; done
 	$(PYTHON) reports/run_report.py $(OUT) $(notdir $(RUN_SCENES) $(BODY_SCENES)) $(ANIMATED) --page runs.md
 	@echo "run: reports written to $(OUT)/shape.md and $(OUT)/runs.md (with the animations of $(ANIMATED) $(ANIMATED_BODIES))"
@@ -124,7 +126,8 @@ verify-only: $(BIN) $(VERIFY_BIN) $(SOLIB) $(if $(MPICC),$(MPI_BIN))
 	@$(MAKE) --no-print-directory run-only
 	@$(MAKE) --no-print-directory example-only
 	@mkdir -p $(OUT)
-	for s in $(filter-out $(RUN_SCENES) $(ANIMATED),$(VERIFY_SCENES)); do $(BIN) run cases/$$s.ini --out $(OUT) || exit 1; done
+	printf '%s\n' $(filter-out $(RUN_SCENES) $(ANIMATED),$(VERIFY_SCENES)) | xargs -P $(JOBS) -I@ $(BIN) run cases/@.ini --out $(OUT) \
+	  || exit 1
 	$(PYTHON) reports/run_report.py $(OUT) $(VERIFY_SCENES) $(notdir $(BODY_SCENES)) --page runs.md
 	for m in I II; do \
 	  $(FIG2) --morphology $$m --method continuous --grid 180x360 --landscape $(OUT)/fig2-landscape-$$m.csv \
