@@ -1,6 +1,7 @@
 #include "gb_proof_cover.h"
 
 #include "gb_error.h"
+#include "gb_proof_flow_internal.h"
 #include "gb_proof_internal.h"
 
 #include <math.h>

@@ -1,6 +1,7 @@
 #include "gb_proof_flow.h"
 
 #include "gb_error.h"
+#include "gb_proof_flow_internal.h"
 #include "gb_proof_internal.h"
 
 #include <math.h>
@@ -14,15 +15,7 @@
  * CAPD, which has one (C++), is not packaged in Debian. The method is the published C⁰ Lohner algorithm (see the
  * header); every bound is Arb's. */
 
-enum { NMAX = GB_PROOF_FIELD_DIMENSION_MAX };
 
-/* The field's coefficients as balls, and which quadratic terms are present. */
-typedef struct field_balls {
-    int n, order;
-    slong prec;
-    arb_struct c[NMAX], L[NMAX][NMAX], Q[NMAX][NMAX][NMAX];
-    int has_Q[NMAX][NMAX][NMAX], pair_used[NMAX][NMAX];
-} field_balls;
 
 static void rational_ball(arb_t out, gb_proof_rational q, slong prec)
 {
@@ -70,7 +63,7 @@ static void field_clear(field_balls *F)
 }
 
 /* f(x) over the box x. */
-static void field_eval(const field_balls *F, arb_srcptr x, arb_ptr out)
+void gb_proof_flow_field_eval(const field_balls *F, arb_srcptr x, arb_ptr out)
 {
     arb_t t;
     arb_init(t);
@@ -170,11 +163,6 @@ static void horner(arb_t out, arb_srcptr a, int stride, int degree, const arb_t 
     }
 }
 
-/* The set x̂ + A r. */
-typedef struct lohner_set {
-    arb_struct x[NMAX], r[NMAX];
-    arb_mat_t A;
-} lohner_set;
 
 static void set_init(lohner_set *S, int n)
 {
@@ -190,7 +178,7 @@ static void set_clear(lohner_set *S)
 }
 
 /* The box x̂ + A r. */
-static void set_hull(const field_balls *F, const lohner_set *S, arb_ptr out)
+void gb_proof_flow_set_hull(const field_balls *F, const lohner_set *S, arb_ptr out)
 {
     for (int i = 0; i < F->n; i++) {
         arb_set(out + i, &S->x[i]);
@@ -213,7 +201,7 @@ static int a_priori(const field_balls *F, arb_srcptr X, const arb_t span, arb_pt
     const int n = F->n;
     arb_struct fx[NMAX], Y[NMAX];
     for (int i = 0; i < n; i++) arb_init(&fx[i]), arb_init(&Y[i]);
-    field_eval(F, X, fx);
+    gb_proof_flow_field_eval(F, X, fx);
     for (int i = 0; i < n; i++) {
         arb_mul(B + i, &fx[i], span, F->prec);
         arb_add(B + i, B + i, X + i, F->prec);
@@ -222,7 +210,7 @@ static int a_priori(const field_balls *F, arb_srcptr X, const arb_t span, arb_pt
     }
     int found = 0;
     for (int attempt = 0; attempt < 6 && !found; attempt++) {
-        field_eval(F, B, fx);
+        gb_proof_flow_field_eval(F, B, fx);
         found = 1;
         for (int i = 0; i < n; i++) {
             arb_mul(&Y[i], &fx[i], span, F->prec);
@@ -241,14 +229,6 @@ static int a_priori(const field_balls *F, arb_srcptr X, const arb_t span, arb_pt
     return found;
 }
 
-/* One step's data: the Taylor coefficients at x̂ (with the remainder's coefficient over B in place p + 1), the
- * variational coefficients over the hull, the hull, B and A r. */
-typedef struct step_data {
-    int order;
-    arb_ptr centre; /* n (order + 2): x_0 … x_p at x̂, then x_{p+1} over B */
-    arb_ptr V;      /* (order + 1) n² over the hull */
-    arb_struct B[NMAX], Ar[NMAX], hull[NMAX];
-} step_data;
 
 static void step_init(step_data *D, int order)
 {
@@ -289,7 +269,7 @@ static int step_prepare(const field_balls *F, const lohner_set *S, double h, ste
     arf_init(zero), arf_init(end);
     arf_set_d(end, h);
     arb_set_interval_arf(span, zero, end, F->prec);
-    set_hull(F, S, D->hull);
+    gb_proof_flow_set_hull(F, S, D->hull);
     const int found = a_priori(F, D->hull, span, D->B);
     arb_clear(span), arf_clear(zero), arf_clear(end);
     if (!found) return 0;
@@ -324,7 +304,7 @@ static void derivative_at(const field_balls *F, const step_data *D, const arb_t 
 }
 
 /* Every solution from the set at every time of the ball t ⊆ [0, h]: a box. */
-static void enclose_at(const field_balls *F, const step_data *D, const arb_t t, arb_ptr out)
+void gb_proof_flow_enclose_at(const field_balls *F, const step_data *D, const arb_t t, arb_ptr out)
 {
     const int n = F->n, p = F->order;
     arb_mat_t DP;
@@ -390,7 +370,7 @@ static void new_frame(int n, const arb_mat_t M, arb_srcptr r, arb_mat_t Q)
 
 /* Ends the step: S becomes the set at time h, x̂' = mid(Φ_p(x̂) + R), A' the new frame, r' = A'⁻¹(DΦ_p A) r +
  * A'⁻¹ e. 0 when A' cannot be inverted. */
-static int step_finish(const field_balls *F, lohner_set *S, const step_data *D, double h)
+int gb_proof_flow_step_finish(const field_balls *F, lohner_set *S, const step_data *D, double h)
 {
     const int n = F->n, p = F->order;
     arb_t t;
@@ -431,7 +411,7 @@ void gb_proof_field_image(const gb_proof_field *field, arb_srcptr x, arb_ptr out
 {
     field_balls F;
     field_init(&F, field, GB_PROOF_ORDER_MIN, prec);
-    field_eval(&F, x, out);
+    gb_proof_flow_field_eval(&F, x, out);
     field_clear(&F);
 }
 
@@ -488,7 +468,7 @@ int gb_proof_flow_def_check(const gb_proof_flow_def *def)
     return GB_OK;
 }
 
-static int check_def(const gb_proof_flow_def *def, const gb_proof_interval *box)
+int gb_proof_flow_check(const gb_proof_flow_def *def, const gb_proof_interval *box)
 {
     const int status = gb_proof_flow_def_check(def);
     if (status) return status;
@@ -512,15 +492,8 @@ static void set_of_box(const field_balls *F, lohner_set *S, const gb_proof_inter
     arb_clear(b);
 }
 
-/* The state of one integration: the field's balls, the set, a step's data and scratch for the step length. */
-typedef struct integration {
-    field_balls F;
-    lohner_set S;
-    step_data D;
-    arb_ptr scratch;
-} integration;
 
-static void integration_init(integration *I, const gb_proof_flow_def *def, const gb_proof_interval *box)
+void gb_proof_flow_integration_init(integration *I, const gb_proof_flow_def *def, const gb_proof_interval *box)
 {
     field_init(&I->F, def->field, def->order, def->precision);
     set_init(&I->S, I->F.n);
@@ -529,7 +502,7 @@ static void integration_init(integration *I, const gb_proof_flow_def *def, const
     I->scratch = _arb_vec_init(I->F.n * (def->order + 1));
 }
 
-static void integration_clear(integration *I)
+void gb_proof_flow_integration_clear(integration *I)
 {
     _arb_vec_clear(I->scratch, I->F.n * (I->F.order + 1));
     step_clear(&I->D);
@@ -538,7 +511,7 @@ static void integration_clear(integration *I)
 }
 
 /* Takes one step from S at time *t (advanced): a step length chosen and halved until Picard's test holds. */
-static int step_take(const field_balls *F, lohner_set *S, step_data *D, const gb_proof_flow_def *def, double h_cap,
+int gb_proof_flow_step_take(const field_balls *F, lohner_set *S, step_data *D, const gb_proof_flow_def *def, double h_cap,
                      arb_ptr scratch, double *h_taken, const arb_t t_now)
 {
     /* steps are multiples of 2^-30, so that their sums (the times) are exact doubles */
@@ -555,200 +528,16 @@ static int step_take(const field_balls *F, lohner_set *S, step_data *D, const gb
     return GB_OK;
 }
 
-/* Is every point of the ball x strictly on the side sign (+1: above 0, −1: below)? */
-static int strictly_on(const arb_t x, int sign)
-{
-    return sign > 0 ? arb_is_positive(x) : arb_is_negative(x);
-}
-
-/* The crossing of a window: the hull of the set over the sub-intervals of time whose enclosure meets the plane. */
-typedef struct crossing {
-    arb_struct image[NMAX];
-    arb_t time;
-    int collected;
-} crossing;
-
-static void crossing_init(crossing *C)
-{
-    for (int i = 0; i < NMAX; i++) arb_init(&C->image[i]);
-    arb_init(C->time);
-    C->collected = 0;
-}
-
-static void crossing_clear(crossing *C)
-{
-    for (int i = 0; i < NMAX; i++) arb_clear(&C->image[i]);
-    arb_clear(C->time);
-}
-
-/* The most halvings of a sub-interval of a crossing step: to 2^-20 of it. */
-enum { CROSSING_HALVINGS = 20 };
-
-/* Adds to C the set over the times [lo, hi] of the step (after t0) if its enclosure meets the plane x[s] = 0,
- * halving [lo, hi] while the time's spread, not the set's own width, makes the enclosure wide (its width along s
- * above 1.25 times the set's at the time lo). Every solution crossing within [lo, hi] crosses in one of the
- * pieces kept, so their hull holds its crossing. */
-static void collect(const field_balls *F, const step_data *D, int s, const arb_t t0, const arf_t lo, const arf_t hi, int halvings,
-                    crossing *C)
-{
-    const int n = F->n;
-    arb_struct piece[NMAX];
-    for (int i = 0; i < n; i++) arb_init(&piece[i]);
-    arb_t sub;
-    arb_init(sub);
-    arb_set_interval_arf(sub, lo, hi, F->prec);
-    enclose_at(F, D, sub, piece);
-    int keep = arb_contains_zero(&piece[s]);
-    if (keep && halvings > 0) {
-        arb_struct thin[NMAX];
-        for (int i = 0; i < n; i++) arb_init(&thin[i]);
-        arb_set_arf(sub, lo);
-        enclose_at(F, D, sub, thin);
-        const double wide = mag_get_d(arb_radref(&piece[s])), own = mag_get_d(arb_radref(&thin[s]));
-        for (int i = 0; i < n; i++) arb_clear(&thin[i]);
-        if (wide > 1.25 * own) {
-            arb_set_interval_arf(sub, lo, hi, F->prec); /* its midpoint: a point of [lo, hi] */
-            arf_t middle;
-            arf_init(middle);
-            arf_set(middle, arb_midref(sub));
-            collect(F, D, s, t0, lo, middle, halvings - 1, C);
-            collect(F, D, s, t0, middle, hi, halvings - 1, C);
-            arf_clear(middle);
-            keep = 0;
-        }
-        arb_set_interval_arf(sub, lo, hi, F->prec);
-    }
-    if (keep) {
-        arb_add(sub, sub, t0, F->prec);
-        if (!C->collected++) {
-            for (int i = 0; i < n; i++) arb_set(&C->image[i], &piece[i]);
-            arb_set(C->time, sub);
-        } else {
-            for (int i = 0; i < n; i++) arb_union(&C->image[i], &C->image[i], &piece[i], F->prec);
-            arb_union(C->time, C->time, sub, F->prec);
-        }
-    }
-    for (int i = 0; i < n; i++) arb_clear(&piece[i]);
-    arb_clear(sub);
-}
-
-int gb_proof_flow_section_map(const gb_proof_flow_def *def, const gb_proof_interval *box, gb_proof_flow_crossing *out)
-{
-    int status = check_def(def, box);
-    if (status) return status;
-    if (!out) return gb_error_set(GB_EINVAL, "a section map needs a result");
-    const int s = def->coordinate, dir = def->direction;
-    if (box[s].lo != 0.0 || box[s].hi != 0.0)
-        return gb_error_set(GB_EDOM, "box component %d = [%g, %g] is not on the section (allowed: [0, 0])", s, box[s].lo, box[s].hi);
-    memset(out, 0, sizeof *out);
-    const double start = gb_proof_cpu_seconds();
-    integration I;
-    integration_init(&I, def, box);
-    field_balls *const F = &I.F;
-    lohner_set *const S = &I.S;
-    step_data *const D = &I.D;
-    const int n = F->n;
-    arb_struct fB[NMAX], piece[NMAX];
-    for (int i = 0; i < NMAX; i++) arb_init(&fB[i]), arb_init(&piece[i]);
-    crossing C;
-    crossing_init(&C);
-    arb_t t;
-    arb_init(t);
-    int window = 0, in_window = 1, done = 0;
-    out->step_min = INFINITY;
-    while (!status && !done) {
-        if (arf_cmp_d(arb_midref(t), def->time_max) > 0) {
-            status = gb_error_set(GB_ENUMERIC, "crossing %d of %d not reached by t = %g (time_max)", window, def->returns, def->time_max);
-            break;
-        }
-        double h;
-        status = step_take(F, S, D, def, INFINITY, I.scratch, &h, t);
-        if (status) break;
-        const int touches = arb_contains_zero(&D->B[s]);
-        int sign = 0;
-        if (touches) {
-            field_eval(F, D->B, fB);
-            sign = arb_is_positive(&fB[s]) ? 1 : arb_is_negative(&fB[s]) ? -1 : 0;
-            if (!sign) {
-                status = gb_error_set(GB_ENUMERIC, "at t = %.6g the set meets the section where x'[%d] has no sign (a tangency, or "
-                                      "the set too wide): the crossing's direction is undecided", arf_get_d(arb_midref(t), ARF_RND_NEAR), s);
-                break;
-            }
-        }
-        set_hull(F, S, piece);
-        if (touches && sign == dir) {
-            if (!in_window) {
-                if (!strictly_on(&piece[s], -dir)) {
-                    status = gb_error_set(GB_ENUMERIC, "at t = %.6g a crossing begins while the set is not wholly on the side it leaves",
-                                          arf_get_d(arb_midref(t), ARF_RND_NEAR));
-                    break;
-                }
-                window++, in_window = 1;
-            }
-            if (window == def->returns) {
-                arf_t lo, hi;
-                arf_init(lo), arf_init(hi);
-                for (int j = 0; j < def->time_pieces; j++) {
-                    arf_set_d(lo, h * j), arf_div_ui(lo, lo, (ulong)def->time_pieces, F->prec, ARF_RND_FLOOR);
-                    arf_set_d(hi, h * (j + 1)), arf_div_ui(hi, hi, (ulong)def->time_pieces, F->prec, ARF_RND_CEIL);
-                    if (j == 0) arf_zero(lo);
-                    if (j == def->time_pieces - 1) arf_set_d(hi, h);
-                    collect(F, D, s, t, lo, hi, CROSSING_HALVINGS, &C);
-                }
-                arf_clear(lo), arf_clear(hi);
-            }
-        } else if (in_window) {
-            if (!strictly_on(&piece[s], dir)) {
-                status = gb_error_set(GB_ENUMERIC, "at t = %.6g a crossing ends while the set is not wholly on the side it enters",
-                                      arf_get_d(arb_midref(t), ARF_RND_NEAR));
-                break;
-            }
-            in_window = 0;
-            if (window == def->returns) {
-                done = 1;
-                break;
-            }
-        }
-        if (!step_finish(F, S, D, h)) {
-            status = gb_error_set(GB_ENUMERIC, "at t = %.6g the Lohner frame is singular", arf_get_d(arb_midref(t), ARF_RND_NEAR));
-            break;
-        }
-        arb_t hb;
-        arb_init(hb);
-        arb_set_d(hb, h);
-        arb_add(t, t, hb, F->prec);
-        arb_clear(hb);
-        out->steps++;
-        out->step_min = fmin(out->step_min, h);
-    }
-    if (!status && !C.collected) status = gb_error_set(GB_ENUMERIC, "the crossing was not enclosed");
-    if (!status) {
-        for (int i = 0; i < n; i++) out->image[i] = gb_proof_interval_of(&C.image[i]);
-        out->image[s] = (gb_proof_interval){0.0, 0.0};
-        out->time = gb_proof_interval_of(C.time);
-    }
-    for (int i = 0; i < NMAX; i++) arb_clear(&fB[i]), arb_clear(&piece[i]);
-    crossing_clear(&C);
-    arb_clear(t);
-    integration_clear(&I);
-    out->seconds = gb_proof_cpu_seconds() - start;
-    return status;
-}
-
 int gb_proof_flow_time(const gb_proof_flow_def *def, const gb_proof_interval *box, double t_end, gb_proof_interval *image)
 {
-    int status = check_def(def, box);
+    int status = gb_proof_flow_check(def, box);
     if (status) return status;
     if (!(t_end >= 0.0 && t_end <= def->time_max) || ldexp(t_end, 30) != floor(ldexp(t_end, 30)))
         return gb_error_set(GB_EDOM, "t = %g is out of range (allowed: 0 to time_max = %g, a multiple of 2^-30)", t_end,
                             def->time_max);
     if (!image) return gb_error_set(GB_EINVAL, "a flow needs an image");
     integration I;
-    integration_init(&I, def, box);
-    field_balls *const F = &I.F;
-    lohner_set *const S = &I.S;
-    step_data *const D = &I.D;
-    const int n = F->n;
+    gb_proof_flow_integration_init(&I, def, box);
     arb_t t;
     arb_init(t);
     arb_struct hull[NMAX];
@@ -757,16 +546,17 @@ int gb_proof_flow_time(const gb_proof_flow_def *def, const gb_proof_interval *bo
     while (!status && done < t_end) {
         double h;
         arb_set_d(t, done);
-        status = step_take(F, S, D, def, t_end - done, I.scratch, &h, t);
-        if (!status && !step_finish(F, S, D, h)) status = gb_error_set(GB_ENUMERIC, "at t = %g the Lohner frame is singular", done);
+        status = gb_proof_flow_step_take(&I.F, &I.S, &I.D, def, t_end - done, I.scratch, &h, t);
+        if (!status && !gb_proof_flow_step_finish(&I.F, &I.S, &I.D, h))
+            status = gb_error_set(GB_ENUMERIC, "at t = %g the Lohner frame is singular", done);
         done += h;
     }
     if (!status) {
-        set_hull(F, S, hull);
-        for (int i = 0; i < n; i++) image[i] = gb_proof_interval_of(&hull[i]);
+        gb_proof_flow_set_hull(&I.F, &I.S, hull);
+        for (int i = 0; i < I.F.n; i++) image[i] = gb_proof_interval_of(&hull[i]);
     }
     for (int i = 0; i < NMAX; i++) arb_clear(&hull[i]);
     arb_clear(t);
-    integration_clear(&I);
+    gb_proof_flow_integration_clear(&I);
     return status;
 }

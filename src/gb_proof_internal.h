@@ -4,7 +4,6 @@
 #define GB_PROOF_INTERNAL_H
 
 #include "gb_proof.h"
-#include "gb_proof_flow.h"
 
 #include <arb.h>
 
@@ -19,11 +18,5 @@ int gb_proof_check_precision(long precision);
 
 /* CPU seconds of the process. */
 double gb_proof_cpu_seconds(void);
-
-/* f(x) over the box of balls x, the field's formula read as a map (gb_proof_flow.c). */
-void gb_proof_field_image(const gb_proof_field *field, arb_srcptr x, arb_ptr out, slong prec);
-
-/* The section definition's ranges (GB_EDOM naming the one out of range). */
-int gb_proof_flow_def_check(const gb_proof_flow_def *def);
 
 #endif

@@ -1,0 +1,66 @@
+/* gb_proof_flow_internal — what the rigorous integrator's two files share (gb_proof_flow.c: the field, the Taylor step
+ * and the C⁰ Lohner update; gb_proof_section.c: the crossings of a plane), and what gb_proof_cover.c takes from them.
+ * Not installed, not exported. */
+#ifndef GB_PROOF_FLOW_INTERNAL_H
+#define GB_PROOF_FLOW_INTERNAL_H
+
+#include "gb_proof_flow.h"
+
+#include <arb.h>
+#include <arb_mat.h>
+
+enum { NMAX = GB_PROOF_FIELD_DIMENSION_MAX };
+
+/* The field's coefficients as balls, and which quadratic terms are present. */
+typedef struct field_balls {
+    int n, order;
+    slong prec;
+    arb_struct c[NMAX], L[NMAX][NMAX], Q[NMAX][NMAX][NMAX];
+    int has_Q[NMAX][NMAX][NMAX], pair_used[NMAX][NMAX];
+} field_balls;
+
+/* The set x̂ + A r. */
+typedef struct lohner_set {
+    arb_struct x[NMAX], r[NMAX];
+    arb_mat_t A;
+} lohner_set;
+
+/* One step's data: the Taylor coefficients at x̂ (with the remainder's coefficient over B in place p + 1), the
+ * variational coefficients over the hull, the hull, B and A r. */
+typedef struct step_data {
+    int order;
+    arb_ptr centre; /* n (order + 2): x_0 … x_p at x̂, then x_{p+1} over B */
+    arb_ptr V;      /* (order + 1) n² over the hull */
+    arb_struct B[NMAX], Ar[NMAX], hull[NMAX];
+} step_data;
+
+/* The state of one integration: the field's balls, the set, a step's data and scratch for the step length. */
+typedef struct integration {
+    field_balls F;
+    lohner_set S;
+    step_data D;
+    arb_ptr scratch;
+} integration;
+
+/* f(x) over the box x. */
+void gb_proof_flow_field_eval(const field_balls *F, arb_srcptr x, arb_ptr out);
+/* The box x̂ + A r. */
+void gb_proof_flow_set_hull(const field_balls *F, const lohner_set *S, arb_ptr out);
+/* Every solution from the set at every time of the ball t ⊆ [0, h] of the prepared step: a box. */
+void gb_proof_flow_enclose_at(const field_balls *F, const step_data *D, const arb_t t, arb_ptr out);
+/* Ends the prepared step of length h: S becomes the set at time h. 0 when the new frame cannot be inverted. */
+int gb_proof_flow_step_finish(const field_balls *F, lohner_set *S, const step_data *D, double h);
+/* Prepares one step from S at time t_now, at most h_cap long (multiples of 2^-30), halved until Picard's test holds. */
+int gb_proof_flow_step_take(const field_balls *F, lohner_set *S, step_data *D, const gb_proof_flow_def *def, double h_cap,
+                            arb_ptr scratch, double *h_taken, const arb_t t_now);
+/* The integration of the box's set under def's field (A = I, x̂ the box's middle). */
+void gb_proof_flow_integration_init(integration *I, const gb_proof_flow_def *def, const gb_proof_interval *box);
+void gb_proof_flow_integration_clear(integration *I);
+/* The definition's and the box's ranges (GB_EDOM naming the one out of range). */
+int gb_proof_flow_check(const gb_proof_flow_def *def, const gb_proof_interval *box);
+/* The definition's ranges alone. */
+int gb_proof_flow_def_check(const gb_proof_flow_def *def);
+/* f(x) over the box of balls x, the field's formula read as a map (gb_proof_cover.c: Hénon's). */
+void gb_proof_field_image(const gb_proof_field *field, arb_srcptr x, arb_ptr out, slong prec);
+
+#endif
