@@ -3,7 +3,8 @@
 # then re-enter make so that pkg-config runs only once the packages are there.
 
 PYTHON    := /usr/bin/python3
-# the independent scene runs and animations of make run and make verify, so many at a time (the machine's processors)
+# the compilations, and the independent scene runs and animations, of make run and make verify: so many at a time (the
+# machine's processors)
 JOBS      ?= $(shell nproc 2>/dev/null || echo 1)
 # The Python package's place under PREFIX: lib/python3.X/dist-packages, where Debian's python3 looks under
 # /usr/local (another PREFIX: PYTHONPATH names it, README).
@@ -81,6 +82,7 @@ build: $(BIN) $(VERIFY_BIN)
 
 # --- the main job on its default scene: the shape study of both Table 1 bodies (β = 0.12)
 run: deps
+	@$(MAKE) --no-print-directory -j$(JOBS) $(BIN)
 	@$(MAKE) --no-print-directory run-only
 
 # The Table 1 scenes `make run` integrates, and the ones `make verify` adds (both readings of A1, A2,
@@ -116,6 +118,7 @@ run-only: $(BIN)
 
 # --- every check, then the reproducibility report
 verify: deps
+	@$(MAKE) --no-print-directory -j$(JOBS) $(BIN) $(VERIFY_BIN) $(SOLIB) $(if $(MPICC),$(MPI_BIN)) WERROR=-Werror
 	@$(MAKE) --no-print-directory verify-only WERROR=-Werror
 
 # Figure 2 of the paper: the height landscape for one documented vertical (see reports/contact_section.py).
