@@ -301,6 +301,8 @@ int main(int argc, char **argv)
         return bench_whole_process(argv[2], argv[3], NULL) ? 1 : 0;
     if (argc > 2 && !strcmp(argv[1], "--unilateral-maps")) /* that section alone, for development */
         return bench_unilateral_maps(argv[2], NULL) ? 1 : 0;
+    if (argc > 2 && !strcmp(argv[1], "--shared-atlas")) /* that section alone, for development */
+        return bench_shared_atlas_cpu(argv[2], NULL) ? 1 : 0;
     if (argc > 1 && !strcmp(argv[1], "--unilateral")) { /* that section alone, for development */
         bench_unilateral();
         return 0;
@@ -405,6 +407,7 @@ int main(int argc, char **argv)
     if (argc > 3) failures += bench_whole_process(argv[2], argv[3], record);
     if (argc > 3) failures += bench_scans(argv[3], record);
     if (argc > 3) failures += bench_unilateral_maps(argv[3], record);
+    if (argc > 3) failures += bench_shared_atlas_cpu(argv[3], record);
     if (record) {
         fputs("\n]\n", record);
         if (fclose(record) == 0 && !failures) rename(tmp, argv[1]);

@@ -45,6 +45,7 @@ int bench_scans(const char *gomboc, FILE *out);
 void bench_stepping(void);
 void bench_unilateral(void);
 int bench_unilateral_maps(const char *gomboc, FILE *out);
+int bench_shared_atlas_cpu(const char *gomboc, FILE *out);
 int bench_whole_process(const char *native, const char *gomboc, FILE *out);
 int bench_work_precision(const char *python);
 double now(void);

@@ -15,10 +15,11 @@
 #include <gsl/gsl_randist.h>
 #include <gsl/gsl_rng.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
-#include <stdint.h>
 #include <string.h>
+#include <sys/resource.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -209,6 +210,57 @@ int bench_scans(const char *gomboc, FILE *out)
         fprintf(out, ",\n  {\"scan_model\": \"%s\", \"points_per_second_1\": %.4f, \"points_per_second_2\": %.4f, "
                      "\"parallel_efficiency\": %.4f}", map, 625.0 / seconds[0], 625.0 / seconds[1], seconds[0] / (2.0 * seconds[1]));
     printf("\n(target, issue 19: parallel efficiency >= 90 %% on 2 threads)\n");
+    char cleanup[128];
+    snprintf(cleanup, sizeof cleanup, "rm -rf '%s'", dir);
+    if (system(cleanup) != 0) fprintf(stderr, "bench: cannot remove %s\n", dir);
+    return failures;
+}
+
+/* CPU seconds of the finished children so far (user + system). */
+static double children_cpu(void)
+{
+    struct rusage u;
+    getrusage(RUSAGE_CHILDREN, &u);
+    return (double)u.ru_utime.tv_sec + 1e-6 * (double)u.ru_utime.tv_usec + (double)u.ru_stime.tv_sec + 1e-6 * (double)u.ru_stime.tv_usec;
+}
+
+/* A map whose points share an atlas of verticals (Fig 10 under the unilateral law, 6 x 6 points of 100 periods,
+ * lambda included), each run cold in a new folder, on 1, 2 and 16 threads: its points per CPU-second and their
+ * ratio to one thread's (issue 57: >= 0.9, no more than 10 % duplicated or waiting work). Each thread keeps its own
+ * atlas and merges it with the file every 8 points, so more threads than cores build the same cells again: CPU
+ * time, unlike wall time, shows it. */
+int bench_shared_atlas_cpu(const char *gomboc, FILE *out)
+{
+    char dir[] = "/tmp/gomboc-bench-XXXXXX";
+    if (!mkdtemp(dir)) return 1;
+    char base[4096], scan[300];
+    if (!realpath("cases/table1-gomboc-I-unilateral.ini", base)) return 1;
+    snprintf(scan, sizeof scan, "%s/atlas-map.ini", dir);
+    FILE *f = fopen(scan, "w");
+    if (!f) return 1;
+    fprintf(f, "[scan]\nbase = %s\nperiods = 100\ntransient_periods = 20\nmetrics = all\natlas = shared\nfailed_points = record\n"
+               "[x]\nkey = forcing.omega\nfrom = 12\nto = 24\ncount = 6\n[y]\nkey = forcing.A1\nfrom = 0\nto = 4\ncount = 6\n", base);
+    fclose(f);
+    printf("\nbench: a map sharing an atlas (Fig 10 unilateral, 6 x 6 points of 100 periods, lambda), cold, CPU of the whole process\n\n");
+    printf("%8s %12s %12s %18s %14s\n", "threads", "CPU [s]", "wall [s]", "points / CPU-s", "ratio to 1");
+    static const int threads[3] = {1, 2, 16};
+    double rate1 = NAN;
+    int failures = 0;
+    for (int k = 0; k < 3; k++) {
+        char out_dir[400], command[8192];
+        snprintf(out_dir, sizeof out_dir, "%s/t%d", dir, threads[k]);
+        snprintf(command, sizeof command, "mkdir -p '%s' && GOMBOC_CACHE=off '%s' scan '%s' --out '%s' --threads %d 2>/dev/null", out_dir,
+                 gomboc, scan, out_dir, threads[k]);
+        const double cpu0 = children_cpu(), start = now();
+        failures += system(command) != 0;
+        const double wall = now() - start, cpu = children_cpu() - cpu0, rate = 36.0 / cpu;
+        if (k == 0) rate1 = rate;
+        printf("%8d %12.2f %12.2f %18.2f %14.2f\n", threads[k], cpu, wall, rate, rate / rate1);
+        if (out)
+            fprintf(out, ",\n  {\"shared_atlas_map_threads\": %d, \"cpu_seconds\": %.3f, \"wall_seconds\": %.3f, \"points_per_cpu_second\": %.4f, "
+                         "\"ratio_to_one_thread\": %.4f}", threads[k], cpu, wall, rate, rate / rate1);
+    }
+    printf("\n(target, issue 57: points per CPU-second at N threads >= 0.9 of one thread's)\n");
     char cleanup[128];
     snprintf(cleanup, sizeof cleanup, "rm -rf '%s'", dir);
     if (system(cleanup) != 0) fprintf(stderr, "bench: cannot remove %s\n", dir);
