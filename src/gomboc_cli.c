@@ -12,6 +12,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <limits.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -262,4 +263,25 @@ int cli_positional(const char *command, const char *opt, const char **slot, cons
     if (*slot) return cli_input_error(command, "a second %s '%s' (allowed: one %s)", what, opt, name);
     *slot = opt;
     return 1;
+}
+
+/* The user's cache of hulls (the fast grid's, by the grid's content): $XDG_CACHE_HOME/gomboc, else
+ * $HOME/.cache/gomboc, made when missing (0700); none when GOMBOC_CACHE=off, when neither variable is set,
+ * or when the directory cannot be made. A cache never fails a run. */
+int cli_user_cache(gb_dynamics_context *context)
+{
+    const char *off = getenv("GOMBOC_CACHE"), *xdg = getenv("XDG_CACHE_HOME"), *home = getenv("HOME");
+    if (off && !strcmp(off, "off")) return GB_OK;
+    char dir[PATH_MAX];
+    int n;
+    if (xdg && xdg[0] == '/') n = snprintf(dir, sizeof dir, "%s/gomboc", xdg);
+    else if (home && home[0] == '/') n = snprintf(dir, sizeof dir, "%s/.cache/gomboc", home);
+    else return GB_OK;
+    if (n < 0 || n >= (int)sizeof dir) return GB_OK;
+    char *slash = strrchr(dir, '/');
+    *slash = '\0';
+    if (mkdir(dir, 0700) && errno != EEXIST) return GB_OK; /* $XDG_CACHE_HOME or ~/.cache itself */
+    *slash = '/';
+    if (mkdir(dir, 0700) && errno != EEXIST) return GB_OK;
+    return gb_dynamics_context_cache(context, dir);
 }

@@ -115,4 +115,8 @@ int command_melnikov(int argc, char **argv);
 int command_check(int argc, char **argv);
 int command_prove(int argc, char **argv);
 
+/* The user's cache of hulls for context: $XDG_CACHE_HOME/gomboc, else $HOME/.cache/gomboc (made, 0700); none when
+ * GOMBOC_CACHE=off or it cannot be made. gb_ status (a cache never fails a run: GB_OK but for memory). */
+int cli_user_cache(gb_dynamics_context *context);
+
 #endif

@@ -625,27 +625,6 @@ static int time_steps(const gb_case *scene)
     return law && law->time_steps;
 }
 
-/* The user's cache of hulls (the fast grid's, by the grid's content): $XDG_CACHE_HOME/gomboc, else
- * $HOME/.cache/gomboc, made when missing (0700); none when GOMBOC_CACHE=off, when neither variable is set,
- * or when the directory cannot be made. A cache never fails a run. */
-static int user_cache(gb_dynamics_context *context)
-{
-    const char *off = getenv("GOMBOC_CACHE"), *xdg = getenv("XDG_CACHE_HOME"), *home = getenv("HOME");
-    if (off && !strcmp(off, "off")) return GB_OK;
-    char dir[PATH_MAX];
-    int n;
-    if (xdg && xdg[0] == '/') n = snprintf(dir, sizeof dir, "%s/gomboc", xdg);
-    else if (home && home[0] == '/') n = snprintf(dir, sizeof dir, "%s/.cache/gomboc", home);
-    else return GB_OK;
-    if (n < 0 || n >= (int)sizeof dir) return GB_OK;
-    char *slash = strrchr(dir, '/');
-    *slash = '\0';
-    if (mkdir(dir, 0700) && errno != EEXIST) return GB_OK; /* $XDG_CACHE_HOME or ~/.cache itself */
-    *slash = '/';
-    if (mkdir(dir, 0700) && errno != EEXIST) return GB_OK;
-    return gb_dynamics_context_cache(context, dir);
-}
-
 int command_run(int argc, char **argv)
 {
     const char *case_path = NULL, *dir = ".", *atlas = NULL, *hull = NULL;
@@ -709,7 +688,7 @@ int command_run(int argc, char **argv)
     gb_dynamics_context *context = NULL;
     if (!status) status = gb_dynamics_context_create(&context);
     if (!status) status = gb_dynamics_context_files(context, atlas, hull);
-    if (!status && !hull) status = user_cache(context);
+    if (!status && !hull) status = cli_user_cache(context);
     if (!status) status = gb_run_in(&scene, context, out.history || out.impacts ? &sinks : NULL, &r);
     if (!status) status = gb_dynamics_context_save(context);
     gb_dynamics_context_free(context);
