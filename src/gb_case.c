@@ -479,41 +479,15 @@ static int apply_override(gb_case *scene, const gb_case_override *o)
     return GB_OK;
 }
 
-int gb_case_load_text_with(const char *name, const char *text, size_t size, const gb_case_override *overrides,
-                           size_t count, gb_case *out)
+int gb_case_read_keys(const char *name, const char *text, size_t size, const gb_case_override *overrides, size_t count,
+                      gb_case *scene)
 {
     /* a key with no slot of its own would read as unknown: the table and the laws' keys must fit */
     if (KEY_TOTAL + gb_dynamics_law_key_count() > GB_CASE_KEY_MAX)
         return gb_error_set(GB_EINVAL, "the scene table holds %zu keys, more than GB_CASE_KEY_MAX = %d (gb_case.h)",
                             KEY_TOTAL + gb_dynamics_law_key_count(), GB_CASE_KEY_MAX);
-    gb_case scene = gb_case_default();
-    int status = gb_ini_read(name, text, size, sections, SECTION_TOTAL, handler, &scene);
-    for (size_t k = 0; k < count && !status; k++) status = apply_override(&scene, &overrides[k]);
-    if (!status) status = gb_case_cross_check(name, &scene);
-    memset(scene.key_origin, 0, sizeof scene.key_origin); /* the overrides' texts are the caller's */
-    if (status) return status;
-    /* Amplitudes in m/s² for the dynamics. */
-    const double unit = scene.amplitudes_in_g ? scene.dynamics.forcing.g : 1.0;
-    scene.dynamics.forcing.a1 = scene.A1 * unit;
-    scene.dynamics.forcing.a2 = scene.A2 * unit;
-    *out = scene;
-    return GB_OK;
-}
-
-int gb_case_load_text(const char *name, const char *text, size_t size, gb_case *out)
-{
-    return gb_case_load_text_with(name, text, size, NULL, 0, out);
-}
-
-int gb_case_load_with(const char *path, const gb_case_override *overrides, size_t count, gb_case *out)
-{
-    char *text;
-    size_t size;
-    int status = gb_file_read(path, GB_CASE_FILE_MAX, "case file", "a scene file, see cases/README.md", &text, &size);
-    if (status) return status;
-    status = gb_case_load_text_with(path, text, size, overrides, count, out);
-    free(text);
+    *scene = gb_case_default();
+    int status = gb_ini_read(name, text, size, sections, SECTION_TOTAL, handler, scene);
+    for (size_t k = 0; k < count && !status; k++) status = apply_override(scene, &overrides[k]);
     return status;
 }
-
-int gb_case_load(const char *path, gb_case *out) { return gb_case_load_with(path, NULL, 0, out); }

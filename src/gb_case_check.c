@@ -1,6 +1,7 @@
 /* gb_case_check — what no single key of a scene can say, judged once every key is read: the body its keys make, the
  * combinations of keys, the memory its records would take and λ's record (see gb_case.h). Every refusal names the
- * key, its line (or the file that set it over the scene) and what is allowed. */
+ * key, its line (or the file that set it over the scene) and what is allowed. The loaders are here: they read the
+ * keys (gb_case.c), then judge them together. */
 #include "gb_case.h"
 #include "gb_case_internal.h"
 
@@ -325,3 +326,38 @@ int gb_case_lyapunov_check(const char *path, gb_case *c)
     return GB_OK;
 }
 
+/* ---- the loaders: the keys read (gb_case.c), then judged together ------------------------------ */
+
+int gb_case_load_text_with(const char *name, const char *text, size_t size, const gb_case_override *overrides,
+                           size_t count, gb_case *out)
+{
+    gb_case scene;
+    int status = gb_case_read_keys(name, text, size, overrides, count, &scene);
+    if (!status) status = gb_case_cross_check(name, &scene);
+    memset(scene.key_origin, 0, sizeof scene.key_origin); /* the overrides' texts are the caller's */
+    if (status) return status;
+    /* Amplitudes in m/s² for the dynamics. */
+    const double unit = scene.amplitudes_in_g ? scene.dynamics.forcing.g : 1.0;
+    scene.dynamics.forcing.a1 = scene.A1 * unit;
+    scene.dynamics.forcing.a2 = scene.A2 * unit;
+    *out = scene;
+    return GB_OK;
+}
+
+int gb_case_load_text(const char *name, const char *text, size_t size, gb_case *out)
+{
+    return gb_case_load_text_with(name, text, size, NULL, 0, out);
+}
+
+int gb_case_load_with(const char *path, const gb_case_override *overrides, size_t count, gb_case *out)
+{
+    char *text;
+    size_t size;
+    int status = gb_file_read(path, GB_CASE_FILE_MAX, "case file", "a scene file, see cases/README.md", &text, &size);
+    if (status) return status;
+    status = gb_case_load_text_with(path, text, size, overrides, count, out);
+    free(text);
+    return status;
+}
+
+int gb_case_load(const char *path, gb_case *out) { return gb_case_load_with(path, NULL, 0, out); }

@@ -214,7 +214,8 @@ static estimate find(const estimate table[][VARIATION_COUNT], int body, const ch
  * periods, twenty times slower than the rates the paper reports (order 1 1/s, Fig 9); it is the rate by which
  * the ensembles of section 8.2 call a half record chaotic (reports/study_section.py, LATE). A record must be
  * long enough for 4 errors to fall below it: at 300 periods the unilateral law's regular rows carry 4 sigma of
- * about 0.14 1/s, and `make verify-full` runs them over 3000. */
+ * about 0.14 1/s; the physical reading's row runs over 3000 periods in every run (DECISIVE_PERIODS), the others in
+ * `make verify-full`. */
 #define RESOLUTION 0.05
 #define RULE_POSITIVE "above at a resolution: holds when lambda - 4 sigma > 0.01 1/s; fails when lambda + 4 sigma < 0.05 1/s " \
                       "(no exponent left at the resolution 0.05 1/s, 40 periods a doubling); undecided otherwise (sigma: batch-means error)"
