@@ -343,7 +343,11 @@ def summary_lines(name, summary, figures):
                      f"≤ {stepping['residual_max']:.2g}; the impulses took {impacts['energy_lost']:.4g} J at the "
                      f"{impacts['count']:.0f} points that arrived and after, and gave {stepping['energy_given']:.3g} J "
                      f"in {stepping['steps_giving_energy']:.0f} step{'' if stepping['steps_giving_energy'] == 1 else 's'} "
-                     f"(a body turning about a held point: O(h))")
+                     f"(a body turning about a held point: O(h))"
+                     + (f"; against the free motion the contact problems took ≥ {stepping['contact_dissipation_min']:.3g} J "
+                        f"a step, giving in {stepping['steps_contacts_giving_energy']:.0f} step"
+                        f"{'' if stepping['steps_contacts_giving_energy'] == 1 else 's'}"
+                        if 'contact_dissipation_min' in stepping else ""))
     if impacts and two_point and not stepping:
         rest = two_point.get("rest_since")
         needed = impacts["friction_needed_max"]

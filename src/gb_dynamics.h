@@ -419,6 +419,12 @@ typedef struct gb_dynamics_stepping_stats {
     size_t grown;          /* solutions that let a candidate left out through the plane, posed again with it */
     size_t enumerated;     /* problems of at most 4 points Siconos's methods left above the tolerance, answered within
                             * it by enumerating the law's contact sets (docs/stepping.md) */
+    /* What the contact problem took from the step's free motion: D_c = T(v_f) − T(v⁺) = −Σ P·(u⁺ + u_f)/2 over its
+     * points, u_f the free velocity with gravity's kick, T in the step's mass (m, I + hθc). Coulomb's law and Signorini's
+     * make it ≥ ½ PᵀWP ≥ 0 at e = 0 on any number of points (P_n u_n⁺ = 0, P_t·u_t⁺ ≤ 0); Newton's e > 0 at two or
+     * more points may give energy back. Its least value [J], and the steps below −(rounding) */
+    double contact_dissipation_min;
+    size_t contact_negative;
 } gb_dynamics_stepping_stats;
 /* NULL when time was not stepped. */
 GB_API const gb_dynamics_stepping_stats *gb_dynamics_stepping_stats_of(const gb_dynamics *dynamics);

@@ -1,6 +1,6 @@
 /* gb_dynamics_stepper_internal — the time-stepping strategy's state, shared by its files (internal): the step
- * (gb_dynamics_stepping.c), a smooth body's tracked minima (gb_dynamics_stepping_minima.c) and the hand-over between the
- * strategies (gb_dynamics_handover.c). docs/stepping.md. */
+ * (gb_dynamics_stepping.c), its rotation (gb_dynamics_stepping_rotation.c), a smooth body's tracked minima
+ * (gb_dynamics_stepping_minima.c) and the hand-over between the strategies (gb_dynamics_handover.c). docs/stepping.md. */
 #ifndef GB_DYNAMICS_STEPPER_INTERNAL_H
 #define GB_DYNAMICS_STEPPER_INTERNAL_H
 
@@ -48,6 +48,7 @@ struct gb_dyn_stepper {
     int scanned_valid;
     gb_contact_problem *problem;
     double tolerance;              /* the problem's (solver_tolerance) */
+    size_t contact_steps;          /* steps with a point that carried the body (the statistics' minimum over them) */
     struct gb_dyn_stepped_step {   /* the step being taken, for the enumeration (enumerate) */
         double m, A[3][3], R[9], R0[9], vf[3], wf[3], v[3], w[3], e, mu; /* R: the relations'; R0: the start's */
     } step;
@@ -83,5 +84,13 @@ int gb_dyn_stepping_take_slot(gb_dyn_stepper *s, const gb_contact_point *p, int 
 /* A smooth body's tracked minima brought to state y (vertical zb), the lowest certified global: its slot in *global. */
 int gb_dyn_stepping_track_minima(gb_dynamics *d, gb_dyn_stepper *s, const double y[GB_STATE_SIZE], const double zb[3],
                                  int *global);
+
+/* The step's rotation (gb_dynamics_stepping_rotation.c): the free angular velocity ω_f of a step of h at θ with damping c,
+ * its rotational mass A and A⁻¹ (gomboc's linearisation, or Siconos's where `siconos`); the attitude after turning at ω
+ * for h, by the exact exponential or by Siconos's (its small-angle series, docs/siconos.md). */
+int gb_dyn_stepping_free_rotation(double I[3][3], double c, const double w[3], double h, double th, int siconos,
+                                  double A[3][3], double Ainv[3][3], double wf[3]);
+void gb_dyn_stepping_attitude(const double q[4], const double w[3], double h, double out[4]);
+void gb_dyn_stepping_siconos_attitude(const double q[4], const double w[3], double h, double out[4]);
 
 #endif

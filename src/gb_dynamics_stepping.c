@@ -285,7 +285,7 @@ int gb_dynamics_stepping_begin(gb_dynamics *d, double t0, double h, double theta
     (void)t0;
     int status = gb_dynamics_stepping_prepare(d);
     if (!status) status = gb_dyn_stepping_set(d->stepper, h, theta, solver, 1);
-    if (!status) d->stepper->stats = (gb_dynamics_stepping_stats){0};
+    if (!status) d->stepper->stats = (gb_dynamics_stepping_stats){0}, d->stepper->contact_steps = 0;
     return status;
 }
 
@@ -318,19 +318,6 @@ static int stepped_start(gb_dynamics *d, double t0, double y[GB_STATE_SIZE])
     }
     d->stepper->scanned_valid = 0;
     if (d->def.height0 > 0.0) gb_dyn_set_mode(d, GB_DYN_FLIGHT, t0), d->flight.hop_max = d->def.height0;
-    return GB_OK;
-}
-
-/* A⁻¹ (A = I + hθc, the rotational mass of a step) as a matrix, by columns. */
-static int rotational_mass_inverse(double A[3][3], double out[3][3])
-{
-    for (int j = 0; j < 3; j++) {
-        const double e[3] = {j == 0, j == 1, j == 2};
-        double x[3];
-        const int status = gb_dyn_solve3(A, e, x);
-        if (status) return status;
-        for (int i = 0; i < 3; i++) out[i][j] = x[i];
-    }
     return GB_OK;
 }
 
@@ -386,56 +373,6 @@ static int compare_keys(const void *a, const void *b)
 {
     const double x = *(const double *)a, y = *(const double *)b;
     return (x > y) - (x < y);
-}
-
-/* The rotation's free velocity ω_f of a step (no contact), its rotational mass A and A⁻¹. Ours: the damping torque −cω
- * θ-implicit, the gyroscopic term explicit, (I + hθc) ω_f = Iω − h ω × Iω − h(1 − θ) c ω. Siconos's (`siconos`): the
- * forces f(ω) = ω × Iω + cω θ-implicit linearised at the step's start, (I + hθJ)(ω_f − ω) = −h f(ω), J = ∂f/∂ω =
- * [ω]× I − [Iω]× + c 1 (its MoreauJeanOSI on a NewtonEulerDS; A is not symmetric then). */
-static int free_rotation(double I[3][3], double c, const double w[3], double h, double th, int siconos, double A[3][3],
-                         double Ainv[3][3], double wf[3])
-{
-    double Iw[3], f[3], b[3];
-    gb_dyn_mat_vec(I, w, Iw);
-    gb_vec_cross(w, Iw, f);
-    const double W[3][3] = {{0.0, -w[2], w[1]}, {w[2], 0.0, -w[0]}, {-w[1], w[0], 0.0}};
-    const double L[3][3] = {{0.0, -Iw[2], Iw[1]}, {Iw[2], 0.0, -Iw[0]}, {-Iw[1], Iw[0], 0.0}};
-    memcpy(A, I, 9 * sizeof **A);
-    for (int i = 0; i < 3; i++) A[i][i] += h * th * c;
-    for (int i = 0; i < 3 && siconos; i++)
-        for (int j = 0; j < 3; j++) {
-            double J = -L[i][j];
-            for (int k = 0; k < 3; k++) J += W[i][k] * I[k][j];
-            A[i][j] += h * th * J;
-        }
-    const int status = rotational_mass_inverse(A, Ainv);
-    if (status) return status;
-    if (siconos) {
-        for (int i = 0; i < 3; i++) b[i] = -h * (f[i] + c * w[i]);
-        gb_dyn_mat_vec(Ainv, b, wf);
-        for (int i = 0; i < 3; i++) wf[i] += w[i];
-    } else {
-        for (int i = 0; i < 3; i++) b[i] = Iw[i] - h * f[i] - h * (1.0 - th) * c * w[i];
-        gb_dyn_mat_vec(Ainv, b, wf);
-    }
-    return GB_OK;
-}
-
-/* q ⊗ exp(h ω / 2): the attitude after a step of h turning at ω (body axes), normalised. */
-static void attitude_after(const double q[4], const double w[3], double h, double out[4])
-{
-    const double angle = gb_vec_norm(w) * h;
-    double dq[4] = {1.0, 0.0, 0.0, 0.0};
-    if (angle > 0.0) {
-        const double sn = sin(angle / 2.0) / (angle / h);
-        dq[0] = cos(angle / 2.0), dq[1] = sn * w[0], dq[2] = sn * w[1], dq[3] = sn * w[2];
-    }
-    out[0] = q[0] * dq[0] - q[1] * dq[1] - q[2] * dq[2] - q[3] * dq[3];
-    out[1] = q[0] * dq[1] + q[1] * dq[0] + q[2] * dq[3] - q[3] * dq[2];
-    out[2] = q[0] * dq[2] - q[1] * dq[3] + q[2] * dq[0] + q[3] * dq[1];
-    out[3] = q[0] * dq[3] + q[1] * dq[2] - q[2] * dq[1] + q[3] * dq[0];
-    const double norm = sqrt(out[0] * out[0] + out[1] * out[1] + out[2] * out[2] + out[3] * out[3]);
-    for (int k = 0; k < 4; k++) out[k] /= norm;
 }
 
 /* The normal velocity at the step's start of problem point i (attitude R, the centroid's velocity v, ω body w and
@@ -531,16 +468,17 @@ int gb_dynamics_stepping_step(gb_dynamics *d, double t, double h, double y[GB_ST
     /* free velocities */
     double Minv[3][3], wf[3], vf[3] = {v[0], v[1], v[2] - h * gth};
     double rotational_mass[3][3]; /* I + hθc (Siconos's linearisation: I + hθ J) */
-    int status = free_rotation(d->inertia, c, w, h, th, s->siconos, rotational_mass, Minv, wf);
+    int status = gb_dyn_stepping_free_rotation(d->inertia, c, w, h, th, s->siconos, rotational_mass, Minv, wf);
     if (status) return status;
     /* the relations are taken at the step's start, or (Siconos's linearisation) at the attitude the step predicts from
-     * it, q ⊗ exp(h ω / 2) (its Newton loop evaluates the relation at q_k + h v_k); the gaps and the restitution's
-     * velocities at the step's start either way */
+     * it, q ⊗ exp(h ω / 2) (its Newton loop evaluates the relation at q_k + h v_k), by Siconos's own exponential (1) or
+     * the exact one (2); the gaps and the restitution's velocities at the step's start either way */
     double Rp[9];
     memcpy(Rp, R, sizeof Rp);
     if (s->siconos) {
         double qp[4];
-        attitude_after(y + GB_STATE_Q, w, h, qp);
+        if (s->siconos == 1) gb_dyn_stepping_siconos_attitude(y + GB_STATE_Q, w, h, qp);
+        else gb_dyn_stepping_attitude(y + GB_STATE_Q, w, h, qp);
         gb_dynamics_rotation(qp, Rp);
     }
 
@@ -695,13 +633,17 @@ int gb_dynamics_stepping_step(gb_dynamics *d, double t, double h, double y[GB_ST
      * without weight): far above the solver's residual (1e-12 of the problem's velocities), far below any slide */
     const double slip_tol = 1e-6 * (fabs(gth) + 1.0) * h;
     int touching = 0, sliding = 0, new_touches = 0;
-    double loss = 0.0, friction = 0.0, slip_max = 0.0;
+    double loss = 0.0, friction = 0.0, slip_max = 0.0, taken = 0.0, taken_scale = 0.0;
     for (int i = 0; i < n; i++) {
         const double Pi[3] = {s->r[3 * i + 1], s->r[3 * i + 2], s->r[3 * i]};
         if (!(Pi[2] > 0.0)) continue;
         double up[3], uf[3];
         point_velocity(vplus, s->B[i], wplus, up);
         point_velocity(vf, s->B[i], wf, uf);
+        for (int k = 0; k < 3; k++) {
+            taken -= Pi[k] * (up[k] + uf[k]) / 2.0;
+            taken_scale += fabs(Pi[k]) * (fabs(up[k]) + fabs(uf[k]));
+        }
         uf[2] += h * gth; /* without gravity's kick: a body at rest takes nothing */
         const double dn = -Pi[2] * (up[2] + uf[2]) / 2.0, dt = -(Pi[0] * (up[0] + uf[0]) + Pi[1] * (up[1] + uf[1])) / 2.0;
         loss += dn, friction -= dt;
@@ -721,6 +663,12 @@ int gb_dynamics_stepping_step(gb_dynamics *d, double t, double h, double y[GB_ST
     s->stats.dissipation_min = fmin(s->stats.dissipation_min, dissipation);
     s->stats.energy_gained += fmax(0.0, -dissipation);
     s->stats.negative_dissipation += dissipation < -1e-12 * (m * fabs(gth) * fabs(gth) * h * h + fabs(loss) + fabs(friction));
+    /* what the problem took from the free motion: below zero only by the solver's residual (its tolerance of the
+     * problem's velocities, times the impulses) and rounding */
+    if (touching) {
+        s->stats.contact_dissipation_min = s->contact_steps++ ? fmin(s->stats.contact_dissipation_min, taken) : taken;
+        s->stats.contact_negative += taken < -fmax(s->tolerance, 1e-13) * taken_scale;
+    }
     d->impacts += (size_t)new_touches;
     d->impact_loss += loss;
     if (touching) d->impact_friction_max = fmax(d->impact_friction_max, hypot(P[0], P[1]) / P[2]);
@@ -738,7 +686,7 @@ int gb_dynamics_stepping_step(gb_dynamics *d, double t, double h, double y[GB_ST
     y[GB_STATE_FRICTION] += friction;
     memcpy(y + GB_STATE_VELOCITY, vplus, sizeof vplus);
     double qn[4];
-    attitude_after(y + GB_STATE_Q, wt, h, qn);
+    gb_dyn_stepping_attitude(y + GB_STATE_Q, wt, h, qn);
     memcpy(y + GB_STATE_Q, qn, sizeof qn);
     memcpy(y + GB_STATE_OMEGA, wplus, sizeof wplus);
     status = gb_dyn_state_finite(t + h, y);

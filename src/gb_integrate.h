@@ -77,10 +77,12 @@ typedef struct gb_integrate_def {
                                * the reduction's check; docs/stepping.md). No scene key: either gives a solution of the whole
                                * problem (the same state to 3e-14 on a polar cap landing, verify/s5_stepping.c) */
     int stepping_siconos;     /* time-stepping: 1 linearises the step where Siconos's MoreauJeanOSI on a NewtonEulerDS does
-                               * (the relations at the attitude the step predicts, q ⊗ exp(h ω / 2), and the rotation's
-                               * forces ω × Iω + c ω θ-implicit linearised at the step's start) instead of at the step's
-                               * start with the gyroscopic term explicit (0, the default): the harness's step-for-step
-                               * comparison with Siconos's kernel (verify/siconos.c). No scene key; docs/stepping.md */
+                               * (the relations at the attitude the step predicts, q ⊗ exp(h ω / 2) by Siconos's quaternion
+                               * exponential, whose small-angle series is tan(x)/x's, and the rotation's forces ω × Iω + c ω
+                               * θ-implicit linearised at the step's start) instead of at the step's start with the
+                               * gyroscopic term explicit (0, the default); 2 as 1 with the exact exponential: the harness's
+                               * step-for-step comparison with Siconos's kernel (verify/siconos.c). No scene key;
+                               * docs/stepping.md */
     int hand_over;            /* event-driven with RK4: where the law meets a configuration it does not follow (a model's
                                * limit, gb_error_at_limit: Painlevé's paradox, three points sliding, a face landing on a
                                * plane of finite friction...), the step is taken again by time-stepping (θ, the solver

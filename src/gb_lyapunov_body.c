@@ -4,6 +4,7 @@
 #include "gb_dynamics_protocol_internal.h"
 #include "gb_error.h"
 #include "gb_integrate_internal.h"
+#include "gb_vec.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -100,15 +101,6 @@ void gb_lyapunov_body_observe(gb_lyapunov_body *body, gb_integrate_sample sample
     body->sample_context = context;
 }
 
-/* Hamilton product a ⊗ b of quaternions (w, x, y, z). */
-static void quaternion_product(const double a[4], const double b[4], double out[4])
-{
-    out[0] = a[0] * b[0] - a[1] * b[1] - a[2] * b[2] - a[3] * b[3];
-    out[1] = a[0] * b[1] + a[1] * b[0] + a[2] * b[3] - a[3] * b[2];
-    out[2] = a[0] * b[2] - a[1] * b[3] + a[2] * b[0] + a[3] * b[1];
-    out[3] = a[0] * b[3] + a[1] * b[2] - a[2] * b[1] + a[3] * b[0];
-}
-
 static int body_advance(void *context, int which, double t, double interval)
 {
     gb_lyapunov_body *b = context;
@@ -132,7 +124,7 @@ static int body_separation(void *context, double *e)
     const double na = sqrt(qa[0] * qa[0] + qa[1] * qa[1] + qa[2] * qa[2] + qa[3] * qa[3]);
     const double conj[4] = {qa[0] / na, -qa[1] / na, -qa[2] / na, -qa[3] / na};
     double dq[4];
-    quaternion_product(conj, qb, dq);
+    gb_vec_quaternion_product(conj, qb, dq);
     const double sign = dq[0] < 0.0 ? -1.0 : 1.0; /* q and −q are the same attitude */
     const double v = sqrt(dq[1] * dq[1] + dq[2] * dq[2] + dq[3] * dq[3]);
     const double angle = 2.0 * atan2(v, sign * dq[0]);
@@ -187,7 +179,7 @@ static int body_place(void *context, const double *given)
     const double s = angle > 0.0 ? sin(0.5 * angle) / angle : 0.5;
     const double dq[4] = {cos(0.5 * angle), s * e[0], s * e[1], s * e[2]};
     memcpy(b->y[1], b->y[0], sizeof b->y[1]);
-    quaternion_product(b->y[0] + GB_STATE_Q, dq, b->y[1] + GB_STATE_Q);
+    gb_vec_quaternion_product(b->y[0] + GB_STATE_Q, dq, b->y[1] + GB_STATE_Q);
     for (int k = 0; k < 3; k++) b->y[1][GB_STATE_OMEGA + k] = b->y[0][GB_STATE_OMEGA + k] + b->omega_scale * e[3 + k];
     const int status = gb_integrate_follow(b->session[1], b->session[0]);
     if (status) return status;
@@ -225,7 +217,7 @@ gb_lyapunov_pair_system gb_lyapunov_body_pair(const gb_lyapunov_body *body)
 static void tangent_to_state(const double q[4], double scale, const double *e, double dy[GB_STATE_SIZE])
 {
     const double v[4] = {0.0, e[0], e[1], e[2]};
-    quaternion_product(q, v, dy);
+    gb_vec_quaternion_product(q, v, dy);
     for (int k = 0; k < 4; k++) dy[k] *= 0.5;
     for (int k = 0; k < 3; k++) dy[GB_STATE_OMEGA + k] = scale * e[3 + k];
     for (int k = GB_STATE_WORK; k < GB_STATE_SIZE; k++) dy[k] = 0.0; /* W and the translation: not in the tangent */
@@ -236,7 +228,7 @@ static void state_to_tangent(const double q[4], double scale, const double dy[GB
     const double n2 = q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3];
     const double conj[4] = {q[0], -q[1], -q[2], -q[3]};
     double p[4];
-    quaternion_product(conj, dy, p);
+    gb_vec_quaternion_product(conj, dy, p);
     for (int k = 0; k < 3; k++) e[k] = 2.0 * p[k + 1] / n2;
     for (int k = 0; k < 3; k++) e[3 + k] = dy[GB_STATE_OMEGA + k] / scale;
 }

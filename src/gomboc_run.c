@@ -592,7 +592,9 @@ static cJSON *summary_json(const gb_case *scene, const char *path, const gb_run_
             {"residual_max", st->residual_max},           {"fallbacks", (double)st->fallbacks},
             {"dissipation_min", st->dissipation_min},     {"steps_giving_energy", (double)st->negative_dissipation},
             {"energy_given", st->energy_gained},          {"candidates_max", (double)st->candidates_max},
-            {"grown", (double)st->grown},                 {"enumerated", (double)st->enumerated}};
+            {"grown", (double)st->grown},                 {"enumerated", (double)st->enumerated},
+            {"contact_dissipation_min", st->contact_dissipation_min},
+            {"steps_contacts_giving_energy", (double)st->contact_negative}};
         add_values(ts, stepping, sizeof stepping / sizeof stepping[0]);
     }
     if (scene->integrate.hand_over) {
@@ -773,10 +775,12 @@ int command_run(int argc, char **argv)
                                                            "strategy at some steps (pair_unmatched_steps)" : "");
     if (r.has_stepping)
         fprintf(stderr, "gomboc run: %s: time-stepping (theta %g): %zu contact problems, up to %zu points (of %zu candidates; "
-                "%zu posed again with a point that went through), %.1f sweeps each, residual <= %.3g; the impulses gave %.3g J in %zu step%s (a body turning about a held point: O(h))\n",
+                "%zu posed again with a point that went through), %.1f sweeps each, residual <= %.3g; the impulses gave %.3g J in %zu step%s (a body turning about a held point: O(h)); "
+                "the contact problems took >= %.3g J a step from the free motion (%zu step%s gave)\n",
                 case_path, scene.integrate.theta, r.stepping.problems, r.stepping.contacts_max, r.stepping.candidates_max,
                 r.stepping.grown, r.stepping.problems ? (double)r.stepping.sweeps / (double)r.stepping.problems : 0.0, r.stepping.residual_max,
-                r.stepping.energy_gained, r.stepping.negative_dissipation, r.stepping.negative_dissipation == 1 ? "" : "s");
+                r.stepping.energy_gained, r.stepping.negative_dissipation, r.stepping.negative_dissipation == 1 ? "" : "s",
+                r.stepping.contact_dissipation_min, r.stepping.contact_negative, r.stepping.contact_negative == 1 ? "" : "s");
     if (r.has_sliding)
         fprintf(stderr, "gomboc run: %s: friction mu = %g: sliding %.1f %% of the time, %zu slips and %zu sticks, friction took "
                 "%.4g J\n", case_path, scene.dynamics.friction, 100.0 * r.sliding.time / r.t_end, r.sliding.slips,

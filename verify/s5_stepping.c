@@ -173,7 +173,8 @@ static void test_housner(void)
 static void test_energy(void)
 {
     static const size_t spp[4] = {500, 1000, 2000, 4000};
-    double gained[4] = {NAN, NAN, NAN, NAN}, worst[4] = {NAN, NAN, NAN, NAN}, ledger = 0.0;
+    double gained[4] = {NAN, NAN, NAN, NAN}, worst[4] = {NAN, NAN, NAN, NAN}, ledger = 0.0, taken_min = INFINITY;
+    size_t contact_gave = 0, gave = 0;
     int status = GB_OK;
     for (int k = 0; k < 4 && !status; k++) {
         motion m;
@@ -181,6 +182,8 @@ static void test_energy(void)
         status = block(0.255, 1.0, 0.0, spp[k], 1.0, &m, &r);
         if (status) break;
         gained[k] = r.stepping.energy_gained, worst[k] = -r.stepping.dissipation_min;
+        taken_min = fmin(taken_min, r.stepping.contact_dissipation_min);
+        contact_gave += r.stepping.contact_negative, gave += r.stepping.negative_dissipation;
         ledger = fmax(ledger, r.residual_max / 0.5);
         gb_run_result_free(&r);
     }
@@ -195,6 +198,14 @@ static void test_energy(void)
                   "%s; gained %.3g, %.3g, %.3g, %.3g J (order %.3f); worst step %.3g, %.3g, %.3g, %.3g J (order %.3f)",
                   status ? gb_error_message() : "ran", gained[0], gained[1], gained[2], gained[3], order, worst[0], worst[1],
                   worst[2], worst[3], step_order);
+    gb_check cd = {"-", "-", "the same runs: what each step's contact problem took from the step's free motion, "
+                   "D_c = T(v_f) - T(v+) = -sum P.(u+ + u_f)/2 (u_f with gravity's kick), at every step with a point carrying the body",
+                   "D_c >= P'WP/2 >= 0: Signorini's law gives P_n u_n+ = 0 and Coulomb's P_t.u_t+ <= 0 at every point (e = 0); "
+                   "the energy above is given where the impulses work against the weight's kick, not the free motion",
+                   "no step below -(solver tolerance) x sum |P||u|, the residual the solver leaves"};
+    gb_check_true(&cd, !status && contact_gave == 0 && taken_min >= 0.0,
+                  "%s; %zu steps below it (the ledger's impulse work was negative at %zu); least D_c %.3g J",
+                  status ? gb_error_message() : "ran", contact_gave, gave, taken_min);
     gb_check cl = {"-", "-", "the same runs: the ledger's worst |E - E0 - W + L| over the launch's kinetic energy",
                    "0: L books each step's impulses' work exactly, W the forcing's and damping's", "1e-12: rounding over 4000 steps"};
     gb_check_close(&cl, status ? NAN : ledger, 0.0, 0.0, 1e-12);
