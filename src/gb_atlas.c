@@ -1,6 +1,23 @@
 /* gb_atlas — §4 eq 29: an atlas of verticals (gb_atlas.h): the cube's faces cut into cells of verticals,
  * each proved, over the surface's boxes, to hold its global minimum in one or two named sites, so that a
- * step's certificate is a lookup and a Newton solve. Its file (save, load, merge) is gb_atlas_file.c. */
+ * step's certificate is a lookup and a Newton solve. Its file (save, load, merge) is gb_atlas_file.c.
+ *
+ * Sharing. The cells and the surface boxes are a core that several views (one a thread) share
+ * (gb_atlas_share): a cell is built once, by the first view that needs it, and read by all without a lock.
+ *  - A cell's state is read with acquire and written with release: a view writes a cell's sites, or its
+ *    children, before the state that publishes them, so a view that reads the state sees them whole.
+ *  - A view claims an unbuilt cell by compare-and-swap (UNBUILT → BUILDING) and proves it alone; a view that
+ *    needs a cell another is proving waits for it (a condition variable, no spinning): building it again
+ *    would take at least as long as waiting for the build already under way.
+ *  - Different cells are proved at once. Their proofs share the surface boxes, whose splits are the only
+ *    writes into them: a split's four boxes are enclosed outside any lock, then published under the core's
+ *    lock (taken from the arena there, the child pointer stored with release); a view that lost the race
+ *    drops its copy. Counters of the core change under that lock, a view's own without one.
+ *  - A published cell never changes while views share the core: a view's Newton hints live in the view (the
+ *    results do not depend on them: gb_dyn_canonical_minimum), and the file is merged into a copy
+ *    (gb_atlas_merge_save), not into the shared cells.
+ *  - Memory: gb_atlas_set_max_bytes bounds the cells built; beyond it a check in an unbuilt cell is undecided
+ *    (the caller then asks gb_certify), and the cells already built stay. */
 #include "gb_atlas_internal.h"
 #include "gb_clock.h"
 
@@ -8,6 +25,7 @@
 #include "gb_vec.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -19,7 +37,13 @@ gb_atlas_def gb_atlas_default_def(void)
 
 /* ---------------------------------------------------------------- the surface boxes */
 
-static void box_fill(const gb_atlas *A, box *n, gb_surface_enclosure *e, int region, int depth, double a_lo, double a_hi,
+/* A cell's state and a box's children as views share them (above, "sharing"). */
+static unsigned char state_of(const cell *c) { return __atomic_load_n(&c->state, __ATOMIC_ACQUIRE); }
+static void publish(cell *c, unsigned char state) { __atomic_store_n(&c->state, state, __ATOMIC_RELEASE); }
+static box *children_of(const box *n) { return __atomic_load_n(&n->child, __ATOMIC_ACQUIRE); }
+
+
+static void box_fill(const gb_atlas_core *K, box *n, gb_surface_enclosure *e, int region, int depth, double a_lo, double a_hi,
                      double b_lo, double b_hi)
 {
     memset(n, 0, sizeof *n);
@@ -28,23 +52,35 @@ static void box_fill(const gb_atlas *A, box *n, gb_surface_enclosure *e, int reg
     n->region = (unsigned char)region;
     n->depth = (unsigned char)depth;
     double mags[5];
-    gb_certify_enclose_box(&A->surface, region, a_lo, a_hi, b_lo, b_hi, e, mags);
+    gb_certify_enclose_box(&K->surface, region, a_lo, a_hi, b_lo, b_hi, e, mags);
     n->xa_mag = mags[0], n->xb_mag = mags[1], n->xaa_mag = mags[2], n->xab_mag = mags[3], n->xbb_mag = mags[4];
 }
 
 static int box_split(gb_atlas *A, box *n)
 {
-    if (n->child) return GB_OK;
-    box_quad *q = gb_arena_take(&A->box_quads);
-    if (!q) return gb_error_set(GB_ENOMEM, "out of memory for the atlas's surface boxes");
+    if (children_of(n)) return GB_OK;
+    gb_atlas_core *K = A->core;
+    box_quad fresh; /* enclosed outside the lock; published, or dropped when another view split n first */
     const double am = 0.5 * (n->a_lo + n->a_hi), bm = 0.5 * (n->b_lo + n->b_hi);
-    box_fill(A, &q->n[0], &q->e[0], n->region, n->depth + 1, n->a_lo, am, n->b_lo, bm);
-    box_fill(A, &q->n[1], &q->e[1], n->region, n->depth + 1, am, n->a_hi, n->b_lo, bm);
-    box_fill(A, &q->n[2], &q->e[2], n->region, n->depth + 1, n->a_lo, am, bm, n->b_hi);
-    box_fill(A, &q->n[3], &q->e[3], n->region, n->depth + 1, am, n->a_hi, bm, n->b_hi);
-    n->child = q->n;
-    A->stats.boxes += 4;
-    return GB_OK;
+    box_fill(K, &fresh.n[0], &fresh.e[0], n->region, n->depth + 1, n->a_lo, am, n->b_lo, bm);
+    box_fill(K, &fresh.n[1], &fresh.e[1], n->region, n->depth + 1, am, n->a_hi, n->b_lo, bm);
+    box_fill(K, &fresh.n[2], &fresh.e[2], n->region, n->depth + 1, n->a_lo, am, bm, n->b_hi);
+    box_fill(K, &fresh.n[3], &fresh.e[3], n->region, n->depth + 1, am, n->a_hi, bm, n->b_hi);
+    int status = GB_OK;
+    pthread_mutex_lock(&K->lock);
+    if (!n->child) {
+        box_quad *q = gb_arena_take(&K->box_quads);
+        if (q) {
+            *q = fresh;
+            for (int k = 0; k < 4; k++) q->n[k].e = &q->e[k];
+            __atomic_store_n(&n->child, q->n, __ATOMIC_RELEASE);
+            K->stats.boxes += 4;
+        } else {
+            status = GB_ENOMEM;
+        }
+    }
+    pthread_mutex_unlock(&K->lock);
+    return status ? gb_error_set(status, "out of memory for the atlas's surface boxes") : GB_OK;
 }
 
 /* An interval widened by r on both sides: d·v over the cell from d₀·v (|d − d₀| ≤ ρ, r = ρ|v|). */
@@ -94,7 +130,11 @@ static void cell_geometry(const cell *c, double d0[3], double *rho)
 
 int gb_atlas_cell_split(gb_atlas *A, cell *c)
 {
-    cell_quad *q = gb_arena_take(&A->cell_quads);
+    gb_atlas_core *K = A->core;
+    pthread_mutex_lock(&K->lock);
+    cell_quad *q = gb_arena_take(&K->cell_quads);
+    if (q && c->level + 1 > K->stats.deepest_level) K->stats.deepest_level = c->level + 1;
+    pthread_mutex_unlock(&K->lock);
     if (!q) return gb_error_set(GB_ENOMEM, "out of memory for the atlas's cells");
     const double um = 0.5 * (c->u_lo + c->u_hi), vm = 0.5 * (c->v_lo + c->v_hi);
     for (int k = 0; k < 4; k++) {
@@ -106,8 +146,7 @@ int gb_atlas_cell_split(gb_atlas *A, cell *c)
         child->v_lo = k & 2 ? vm : c->v_lo, child->v_hi = k & 2 ? c->v_hi : vm;
     }
     c->child = q->c;
-    c->state = CELL_SPLIT;
-    if (c->level + 1 > A->stats.deepest_level) A->stats.deepest_level = c->level + 1;
+    publish(c, CELL_SPLIT);
     return GB_OK;
 }
 
@@ -152,7 +191,7 @@ static int definite_over_cell(const gb_atlas *A, gb_surface_chart chart, double 
                               double b_hi, const double d0[3], double rho, int splits)
 {
     gb_surface_enclosure e;
-    gb_surface_enclose(&A->surface, chart, a_lo, a_hi, b_lo, b_hi, &e);
+    gb_surface_enclose(&A->core->surface, chart, a_lo, a_hi, b_lo, b_hi, &e);
     const gb_interval Haa = widen(gb_certify_dot(d0, e.x_aa), rho * gb_certify_norm_of_mags(e.x_aa));
     const gb_interval Hab = widen(gb_certify_dot(d0, e.x_ab), rho * gb_certify_norm_of_mags(e.x_ab));
     const gb_interval Hbb = widen(gb_certify_dot(d0, e.x_bb), rho * gb_certify_norm_of_mags(e.x_bb));
@@ -256,32 +295,62 @@ static int settle(gb_atlas *A, box *n, proof *p, int *status)
                                                 gb_interval_max(Haa.hi * Hbb.lo, Haa.hi * Hbb.hi));
         if (prod_max + GB_CERTIFY_HESSIAN_ROUNDING < hab_min * hab_min) return SETTLED;
     }
-    if (n->depth >= A->def.max_depth) {
+    if (n->depth >= A->core->def.max_depth) {
         p->unsettled = n;
         return UNSETTLED;
     }
     *status = box_split(A, n);
     if (*status) return UNSETTLED;
+    box *child = children_of(n);
     for (int k = 0; k < 4; k++)
-        if (settle(A, &n->child[k], p, status) != SETTLED) return UNSETTLED;
+        if (settle(A, &child[k], p, status) != SETTLED) return UNSETTLED;
     return SETTLED;
 }
 
 static int settle_all(gb_atlas *A, proof *p, int *status)
 {
     for (int k = 0; k < GB_ROOT_COUNT; k++)
-        if (settle(A, &A->roots[k], p, status) != SETTLED) return UNSETTLED;
+        if (settle(A, &A->core->roots[k], p, status) != SETTLED) return UNSETTLED;
     return SETTLED;
 }
 
-/* Prove cell c: CERTIFIED, split (its children unbuilt), or FAILED at max_level. */
+/* A certifier for a cell's centre from the core's pool (made when none is free), and given back. */
+static int certifier_take(gb_atlas_core *K, gb_certify **out)
+{
+    pthread_mutex_lock(&K->lock);
+    *out = K->certifiers_free ? K->certifiers[--K->certifiers_free] : NULL;
+    pthread_mutex_unlock(&K->lock);
+    if (*out) return GB_OK;
+    gb_certify_def cdef = gb_certify_default_def();
+    cdef.height_tol = K->def.height_tol;
+    return gb_certify_create(&K->surface, &cdef, out);
+}
+
+static void certifier_give(gb_atlas_core *K, gb_certify *c)
+{
+    pthread_mutex_lock(&K->lock);
+    if (K->certifiers_free == K->certifiers_cap) {
+        const size_t cap = K->certifiers_cap ? 2 * K->certifiers_cap : 4;
+        gb_certify **grown = realloc(K->certifiers, cap * sizeof *grown);
+        if (grown) K->certifiers = grown, K->certifiers_cap = cap;
+    }
+    if (K->certifiers_free < K->certifiers_cap) K->certifiers[K->certifiers_free++] = c, c = NULL;
+    pthread_mutex_unlock(&K->lock);
+    gb_certify_free(c); /* no room to keep it */
+}
+
+/* Prove cell c, claimed by this view: CERTIFIED, split (its children unbuilt), or FAILED at max_level, published. */
 static int cell_prove(gb_atlas *A, cell *c, const gb_contact_refine_def *refine)
 {
     const double start = gb_wall_seconds();
     proof p = {.sites = 0};
     cell_geometry(c, p.d0, &p.rho);
     gb_contact_point p0;
-    int status = gb_certify_global_minimum(A->certify, p.d0, refine, &p0);
+    gb_certify *certify;
+    int status = certifier_take(A->core, &certify);
+    if (status) return status;
+    status = gb_certify_global_minimum(certify, p.d0, refine, &p0);
+    certifier_give(A->core, certify);
     int certified = 0;
     if (status == GB_ENOCONV) {
         gb_error_clear();
@@ -299,7 +368,7 @@ static int cell_prove(gb_atlas *A, cell *c, const gb_contact_refine_def *refine)
             gb_surface_chart_angles(gb_region_chart(n->region), 0.5 * (n->a_lo + n->a_hi), 0.5 * (n->b_lo + n->b_hi), &phi,
                                     &theta);
             gb_contact_point q;
-            if (gb_contact_refine(&A->surface, p.d0, phi, theta, refine, &q) || !q.is_minimum) {
+            if (gb_contact_refine(&A->core->surface, p.d0, phi, theta, refine, &q) || !q.is_minimum) {
                 gb_error_clear();
                 break;
             }
@@ -308,25 +377,56 @@ static int cell_prove(gb_atlas *A, cell *c, const gb_contact_refine_def *refine)
             p.sites = 2;
         }
     }
-    if (!status) {
-        if (certified) {
-            c->state = CELL_CERTIFIED;
-            c->sites = (unsigned char)p.sites;
-            A->stats.cells++;
-            A->stats.two_site_cells += p.sites == 2;
-        } else if (c->level < A->def.max_level) {
-            status = gb_atlas_cell_split(A, c);
-            A->stats.cells_split++;
-        } else {
-            c->state = CELL_FAILED;
-            A->stats.cells_failed++;
-        }
-    }
-    A->stats.build_seconds += gb_wall_seconds() - start;
+    gb_atlas_core *K = A->core;
+    const int split = !status && !certified && c->level < K->def.max_level;
+    if (split) status = gb_atlas_cell_split(A, c);
+    pthread_mutex_lock(&K->lock);
+    if (!status && certified) K->stats.cells++, K->stats.two_site_cells += p.sites == 2;
+    else if (!status && split) K->stats.cells_split++;
+    else if (!status) K->stats.cells_failed++;
+    K->stats.build_seconds += gb_wall_seconds() - start;
+    pthread_mutex_unlock(&K->lock);
+    if (!status && certified) c->sites = (unsigned char)p.sites, publish(c, CELL_CERTIFIED);
+    else if (!status && !split) publish(c, CELL_FAILED);
     return status;
 }
 
-/* The cell holding unit vertical d, built (or split) as needed. */
+/* Memory the core's cells and boxes hold. */
+static size_t core_bytes(gb_atlas_core *K);
+
+/* The list of views waiting for cell c. */
+static pthread_cond_t *wake_list(gb_atlas_core *K, const cell *c)
+{
+    return &K->built[((uintptr_t)c / sizeof *c) % GB_ATLAS_WAKE_LISTS];
+}
+
+/* Build unbuilt cell c (claimed here), or wait for the view that claimed it first. A cell that is not built because
+ * the atlas is full, or whose proof failed, is left unbuilt. */
+static int build_or_wait(gb_atlas *A, cell *c, const gb_contact_refine_def *refine)
+{
+    gb_atlas_core *K = A->core;
+    unsigned char expected = CELL_UNBUILT;
+    if (__atomic_compare_exchange_n(&c->state, &expected, CELL_BUILDING, 0, __ATOMIC_ACQ_REL, __ATOMIC_ACQUIRE)) {
+        int status = GB_OK;
+        if (K->max_bytes && core_bytes(K) > K->max_bytes) publish(c, CELL_UNBUILT); /* full: undecided here */
+        else if ((status = c->level < K->def.first_level ? gb_atlas_cell_split(A, c) : cell_prove(A, c, refine)))
+            publish(c, CELL_UNBUILT);
+        pthread_mutex_lock(&K->lock);
+        pthread_cond_broadcast(wake_list(K, c));
+        pthread_mutex_unlock(&K->lock);
+        return status;
+    }
+    if (expected != CELL_BUILDING) return GB_OK;
+    const double start = gb_wall_seconds();
+    pthread_mutex_lock(&K->lock);
+    while (state_of(c) == CELL_BUILDING) pthread_cond_wait(wake_list(K, c), &K->lock);
+    K->stats.waits++, K->stats.wait_seconds += gb_wall_seconds() - start;
+    pthread_mutex_unlock(&K->lock);
+    return GB_OK;
+}
+
+/* The cell holding unit vertical d, built (or split) as needed; unbuilt when the atlas is full. A settled cell
+ * becomes the view's last, its sites' Newton hints the view's. */
 static int find_cell(gb_atlas *A, const double d[3], const gb_contact_refine_def *refine, cell **out)
 {
     int face;
@@ -337,17 +437,23 @@ static int find_cell(gb_atlas *A, const double d[3], const gb_contact_refine_def
         *out = c;
         return GB_OK;
     }
-    c = &A->faces[face];
+    c = &A->core->faces[face];
+    unsigned char state;
     for (;;) {
-        if (c->state == CELL_UNBUILT) {
-            const int status = c->level < A->def.first_level ? gb_atlas_cell_split(A, c) : cell_prove(A, c, refine);
+        state = state_of(c);
+        if (state == CELL_UNBUILT || state == CELL_BUILDING) {
+            const int status = build_or_wait(A, c, refine);
             if (status) return status;
+            state = state_of(c);
         }
-        if (c->state != CELL_SPLIT) break;
+        if (state != CELL_SPLIT) break;
         const double um = 0.5 * (c->u_lo + c->u_hi), vm = 0.5 * (c->v_lo + c->v_hi);
         c = &c->child[(u >= um) + 2 * (v >= vm)];
     }
-    A->last = c;
+    if (state == CELL_CERTIFIED || state == CELL_FAILED) {
+        for (int s = 0; s < 2; s++) A->hint[s][0] = c->site[s].hint_phi, A->hint[s][1] = c->site[s].hint_theta;
+        A->last = c;
+    }
     *out = c;
     return GB_OK;
 }
@@ -356,12 +462,13 @@ static int find_cell(gb_atlas *A, const double d[3], const gb_contact_refine_def
 
 void gb_atlas_faces_reset(gb_atlas *A)
 {
-    gb_arena_release(&A->cell_quads);
+    gb_atlas_core *K = A->core;
+    gb_arena_release(&K->cell_quads);
     for (int f = 0; f < 6; f++) {
-        memset(&A->faces[f], 0, sizeof A->faces[f]);
-        A->faces[f].face = (unsigned char)f;
-        A->faces[f].u_lo = A->faces[f].v_lo = -1.0;
-        A->faces[f].u_hi = A->faces[f].v_hi = 1.0;
+        memset(&K->faces[f], 0, sizeof K->faces[f]);
+        K->faces[f].face = (unsigned char)f;
+        K->faces[f].u_lo = K->faces[f].v_lo = -1.0;
+        K->faces[f].u_hi = K->faces[f].v_hi = 1.0;
     }
     A->last = NULL;
 }
@@ -380,53 +487,100 @@ int gb_atlas_create(const gb_surface *surface, const gb_atlas_def *def, gb_atlas
     if (def->max_depth < 0 || def->max_depth > 40)
         return gb_error_set(GB_EDOM, "atlas max_depth %d is out of range (allowed: 0..40)", def->max_depth);
     gb_atlas *A = calloc(1, sizeof *A);
-    if (!A) return gb_error_set(GB_ENOMEM, "out of memory for the atlas");
-    A->surface = *surface;
-    A->def = *def;
-    gb_certify_def cdef = gb_certify_default_def();
-    cdef.height_tol = def->height_tol;
-    const int status = gb_certify_create(surface, &cdef, &A->certify);
-    if (status) {
-        free(A);
-        return status;
+    gb_atlas_core *K = calloc(1, sizeof *K);
+    if (!A || !K) {
+        free(A), free(K);
+        return gb_error_set(GB_ENOMEM, "out of memory for the atlas");
     }
-    gb_arena_init(&A->box_quads, sizeof(box_quad));
-    gb_arena_init(&A->cell_quads, sizeof(cell_quad));
+    if (pthread_mutex_init(&K->lock, NULL)) {
+        free(A), free(K);
+        return gb_error_set(GB_ENOMEM, "the atlas: no mutex");
+    }
+    int lists = 0;
+    while (lists < GB_ATLAS_WAKE_LISTS && !pthread_cond_init(&K->built[lists], NULL)) lists++;
+    if (lists < GB_ATLAS_WAKE_LISTS) {
+        while (lists--) pthread_cond_destroy(&K->built[lists]);
+        pthread_mutex_destroy(&K->lock);
+        free(A), free(K);
+        return gb_error_set(GB_ENOMEM, "the atlas: no condition variable");
+    }
+    A->core = K;
+    K->views = 1;
+    K->surface = *surface;
+    K->def = *def;
+    gb_arena_init(&K->box_quads, sizeof(box_quad));
+    gb_arena_init(&K->cell_quads, sizeof(cell_quad));
     for (int k = 0; k < GB_ROOT_COUNT; k++) {
         int region;
         double g[4];
         gb_root_box(k, &region, g);
-        box_fill(A, &A->roots[k], &A->root_enclosures[k], region, 0, g[0], g[1], g[2], g[3]);
+        box_fill(K, &K->roots[k], &K->root_enclosures[k], region, 0, g[0], g[1], g[2], g[3]);
     }
-    A->stats.boxes = GB_ROOT_COUNT;
+    K->stats.boxes = GB_ROOT_COUNT;
     A->last_half_width = SITE_MAX_HALF_WIDTH;
     gb_atlas_faces_reset(A);
     *out = A;
     return GB_OK;
 }
 
+int gb_atlas_share(gb_atlas *atlas, gb_atlas **view)
+{
+    *view = NULL;
+    gb_atlas *A = calloc(1, sizeof *A);
+    if (!A) return gb_error_set(GB_ENOMEM, "out of memory for a view of the atlas");
+    gb_atlas_core *K = atlas->core;
+    A->core = K;
+    A->last_half_width = SITE_MAX_HALF_WIDTH;
+    pthread_mutex_lock(&K->lock);
+    K->views++;
+    pthread_mutex_unlock(&K->lock);
+    *view = A;
+    return GB_OK;
+}
+
+void gb_atlas_set_max_bytes(gb_atlas *A, size_t bytes) { A->core->max_bytes = bytes; }
+
+size_t gb_atlas_views(const gb_atlas *A)
+{
+    gb_atlas_core *K = A->core;
+    pthread_mutex_lock(&K->lock);
+    const size_t views = K->views;
+    pthread_mutex_unlock(&K->lock);
+    return views;
+}
+
 void gb_atlas_free(gb_atlas *A)
 {
     if (!A) return;
-    gb_arena_release(&A->box_quads);
-    gb_arena_release(&A->cell_quads);
-    gb_certify_free(A->certify);
+    gb_atlas_core *K = A->core;
+    pthread_mutex_lock(&K->lock);
+    const size_t left = --K->views;
+    pthread_mutex_unlock(&K->lock);
+    if (!left) {
+        gb_arena_release(&K->box_quads);
+        gb_arena_release(&K->cell_quads);
+        for (int k = 0; k < GB_ATLAS_WAKE_LISTS; k++) pthread_cond_destroy(&K->built[k]);
+        pthread_mutex_destroy(&K->lock);
+        while (K->certifiers_free) gb_certify_free(K->certifiers[--K->certifiers_free]);
+        free(K->certifiers);
+        free(K);
+    }
     free(A);
 }
 
-/* The minimum of site s at d by Newton from its hint: 1 when it is a minimum inside every box of the
- * site (then the site's only critical point), 0 when that could not be shown. */
-static int site_minimum(gb_atlas *A, site *s, const double d[3], const gb_contact_refine_def *refine,
+/* The minimum of site s of the view's last cell at d, by Newton from the view's hint: 1 when it is a minimum inside
+ * every box of the site (then the site's only critical point), 0 when that could not be shown. */
+static int site_minimum(gb_atlas *A, const site *st, int s, const double d[3], const gb_contact_refine_def *refine,
                         gb_contact_point *q, gb_certify_result *out)
 {
     out->newton_runs++;
     A->stats.newton_runs++;
-    if (gb_contact_refine(&A->surface, d, s->hint_phi, s->hint_theta, refine, q)) {
+    if (gb_contact_refine(&A->core->surface, d, A->hint[s][0], A->hint[s][1], refine, q)) {
         gb_error_clear();
         return 0;
     }
-    if (!q->is_minimum || !site_holds(s, q->phi, q->theta, NULL)) return 0;
-    s->hint_phi = q->phi, s->hint_theta = q->theta;
+    if (!q->is_minimum || !site_holds(st, q->phi, q->theta, NULL)) return 0;
+    A->hint[s][0] = q->phi, A->hint[s][1] = q->theta;
     return 1;
 }
 
@@ -441,8 +595,8 @@ int gb_atlas_check(gb_atlas *A, const double zb[3], const gb_contact_point *mini
     A->stats.checks++;
     cell *c;
     status = find_cell(A, d, refine, &c);
-    if (status || c->state != CELL_CERTIFIED) return status;
-    const double H = gb_vec_dot(d, minimum->rc), eta = A->def.height_tol;
+    if (status || state_of(c) != CELL_CERTIFIED) return status;
+    const double H = gb_vec_dot(d, minimum->rc), eta = A->core->def.height_tol;
     int home = -1;
     for (int s = 0; s < c->sites && home < 0; s++) {
         int inside;
@@ -454,7 +608,7 @@ int gb_atlas_check(gb_atlas *A, const double zb[3], const gb_contact_point *mini
     for (int s = 0; s < c->sites; s++) {
         if (s == home) continue;
         gb_contact_point q;
-        if (!site_minimum(A, &c->site[s], d, refine, &q, out)) return GB_OK;
+        if (!site_minimum(A, &c->site[s], s, d, refine, &q, out)) return GB_OK;
         if (q.height < best_height) best = q, best_height = q.height;
     }
     if (home < 0 && !isfinite(best_height)) return GB_OK;
@@ -475,7 +629,7 @@ static void cell_info(const cell *c, gb_atlas_cell_info *out)
     cell_geometry(c, out->d0, &out->rho);
     for (int k = 0; k < 4; k++) face_point(c->face, k & 1 ? c->u_hi : c->u_lo, k & 2 ? c->v_hi : c->v_lo, out->corner[k]);
     out->level = c->level;
-    out->sites = c->state == CELL_CERTIFIED ? c->sites : 0;
+    out->sites = state_of(c) == CELL_CERTIFIED ? c->sites : 0;
     for (int s = 0; s < out->sites; s++) {
         out->boxes[s] = c->site[s].boxes;
         memcpy(out->box[s], c->site[s].box, sizeof out->box[s]);
@@ -497,9 +651,9 @@ int gb_atlas_cell(gb_atlas *A, const double zb[3], gb_atlas_cell_info *out)
 
 static void list_cells(const cell *c, gb_atlas_cell_info *out, size_t max, size_t *count)
 {
-    if (c->state == CELL_SPLIT)
+    if (state_of(c) == CELL_SPLIT)
         for (int k = 0; k < 4; k++) list_cells(&c->child[k], out, max, count);
-    if (c->state != CELL_CERTIFIED) return;
+    if (state_of(c) != CELL_CERTIFIED) return;
     if (*count < max) cell_info(c, &out[*count]);
     ++*count;
 }
@@ -507,21 +661,34 @@ static void list_cells(const cell *c, gb_atlas_cell_info *out, size_t max, size_
 void gb_atlas_cells(const gb_atlas *A, gb_atlas_cell_info *out, size_t max, size_t *count)
 {
     *count = 0;
-    for (int f = 0; f < 6; f++) list_cells(&A->faces[f], out, max, count);
+    for (int f = 0; f < 6; f++) list_cells(&A->core->faces[f], out, max, count);
 }
 
 static size_t count_cells(const cell *c)
 {
     size_t n = 1;
-    if (c->state == CELL_SPLIT)
+    if (state_of(c) == CELL_SPLIT)
         for (int k = 0; k < 4; k++) n += count_cells(&c->child[k]);
     return n;
 }
 
+static size_t core_bytes(gb_atlas_core *K)
+{
+    size_t cells = 0;
+    for (int f = 0; f < 6; f++) cells += count_cells(&K->faces[f]);
+    pthread_mutex_lock(&K->lock);
+    const size_t boxes = K->stats.boxes;
+    pthread_mutex_unlock(&K->lock);
+    return cells * sizeof(cell) + (boxes / 4) * sizeof(box_quad);
+}
+
 void gb_atlas_get_stats(const gb_atlas *A, gb_atlas_stats *out)
 {
-    *out = A->stats;
-    size_t cells = 0;
-    for (int f = 0; f < 6; f++) cells += count_cells(&A->faces[f]);
-    out->bytes = cells * sizeof(cell) + (A->stats.boxes / 4) * sizeof(box_quad);
+    gb_atlas_core *K = A->core;
+    pthread_mutex_lock(&K->lock);
+    *out = K->stats;
+    pthread_mutex_unlock(&K->lock);
+    out->checks = A->stats.checks, out->answered = A->stats.answered, out->lower_found = A->stats.lower_found;
+    out->newton_runs = A->stats.newton_runs, out->boxes_tested = A->stats.boxes_tested;
+    out->bytes = core_bytes(K);
 }

@@ -69,6 +69,8 @@ typedef struct gb_atlas_stats {
     int deepest_level;
     double build_seconds;  /* wall time spent building cells */
     size_t bytes;          /* memory held by cells and boxes */
+    size_t waits;          /* checks that waited for a cell another view (thread) was proving */
+    double wait_seconds;   /* wall time they waited */
 } gb_atlas_stats;
 
 typedef struct gb_atlas gb_atlas;

@@ -32,10 +32,10 @@ static void header_of(const gb_atlas *A, header *h)
     memset(h, 0, sizeof *h);
     memcpy(h->magic, ATLAS_MAGIC, sizeof ATLAS_MAGIC);
     h->format = ATLAS_FORMAT;
-    h->first_level = (uint32_t)A->def.first_level, h->max_level = (uint32_t)A->def.max_level;
-    h->max_depth = (uint32_t)A->def.max_depth;
-    snprintf(h->morphology, sizeof h->morphology, "%s", A->surface.morphology->name);
-    h->beta = A->surface.beta, h->height_tol = A->def.height_tol;
+    h->first_level = (uint32_t)A->core->def.first_level, h->max_level = (uint32_t)A->core->def.max_level;
+    h->max_depth = (uint32_t)A->core->def.max_depth;
+    snprintf(h->morphology, sizeof h->morphology, "%s", A->core->surface.morphology->name);
+    h->beta = A->core->surface.beta, h->height_tol = A->core->def.height_tol;
     h->site_reach = SITE_REACH, h->site_max = SITE_MAX_HALF_WIDTH, h->site_min = SITE_MIN_HALF_WIDTH;
     h->site_step = SITE_WIDTH_STEP, h->site_splits = SITE_SPLITS;
     h->cell_bytes = (uint32_t)sizeof(site);
@@ -53,9 +53,11 @@ static void put(writer *w, const void *bytes, size_t size)
     if (fwrite(bytes, 1, size, w->f) != size) w->failed = 1;
 }
 
+/* A cell as the file holds it: one a view is proving now is written unbuilt (gb_atlas.c, "sharing"). */
 static void put_cell(writer *w, const cell *c)
 {
-    const unsigned char state = c->state;
+    unsigned char state = __atomic_load_n(&c->state, __ATOMIC_ACQUIRE);
+    if (state == CELL_BUILDING) state = CELL_UNBUILT;
     put(w, &state, 1);
     if (state == CELL_SPLIT)
         for (int k = 0; k < 4; k++) put_cell(w, &c->child[k]);
@@ -65,23 +67,31 @@ static void put_cell(writer *w, const cell *c)
     }
 }
 
+int gb_atlas_write(const gb_atlas *A, FILE *f)
+{
+    writer w = {.f = f};
+    if (gb_seal_begin(&w.seal)) return 1;
+    header h;
+    header_of(A, &h);
+    put(&w, &h, sizeof h);
+    for (int face = 0; face < 6; face++) put_cell(&w, &A->core->faces[face]);
+    unsigned char seal[GB_SEAL_BYTES];
+    gb_seal_end(&w.seal, seal);
+    if (fwrite(seal, sizeof seal, 1, w.f) != 1) w.failed = 1;
+    return w.failed;
+}
+
 /* Write the atlas to `path` as a set of one; `locked`: the caller holds the lock of its directory. */
 static int atlas_save(const gb_atlas *A, const char *path, int locked)
 {
     gb_file_set set = {.directory_locked = locked};
-    writer w = {0};
-    int status = gb_seal_begin(&w.seal);
+    gb_seal_state probe;
+    int status = gb_seal_begin(&probe);
     if (status) return gb_error_set(status, "cannot seal the atlas file %s: %s", path, gb_error_message());
-    w.f = gb_file_set_open(&set, path, &status);
-    if (!w.f) return gb_error_set(status, "cannot write the atlas file: %s", gb_error_message());
-    header h;
-    header_of(A, &h);
-    put(&w, &h, sizeof h);
-    for (int f = 0; f < 6; f++) put_cell(&w, &A->faces[f]);
-    unsigned char seal[GB_SEAL_BYTES];
-    gb_seal_end(&w.seal, seal);
-    if (fwrite(seal, sizeof seal, 1, w.f) != 1) w.failed = 1;
-    if (w.failed) status = gb_error_set(GB_EIO, "cannot write the atlas file %s: %s", path, strerror(errno ? errno : EIO));
+    FILE *f = gb_file_set_open(&set, path, &status);
+    if (!f) return gb_error_set(status, "cannot write the atlas file: %s", gb_error_message());
+    errno = 0;
+    if (gb_atlas_write(A, f)) status = gb_error_set(GB_EIO, "cannot write the atlas file %s: %s", path, strerror(errno ? errno : EIO));
     return gb_file_set_commit(&set, status);
 }
 
@@ -104,14 +114,14 @@ static int take_cell(gb_atlas *A, reader *r, cell *c)
     unsigned char state;
     if (!take(r, &state, 1)) return 0;
     if (state == CELL_SPLIT) {
-        if (c->level >= A->def.max_level || gb_atlas_cell_split(A, c)) return 0;
+        if (c->level >= A->core->def.max_level || gb_atlas_cell_split(A, c)) return 0;
         for (int k = 0; k < 4; k++)
             if (!take_cell(A, r, &c->child[k])) return 0;
         return 1;
     }
     if (state == CELL_CERTIFIED) {
         unsigned char sites;
-        if (c->level < A->def.first_level || !take(r, &sites, 1) || sites < 1 || sites > 2 ||
+        if (c->level < A->core->def.first_level || !take(r, &sites, 1) || sites < 1 || sites > 2 ||
             !take(r, c->site, sites * sizeof(site)))
             return 0;
         for (int s = 0; s < sites; s++) {
@@ -130,15 +140,15 @@ static int take_cell(gb_atlas *A, reader *r, cell *c)
         }
         c->state = CELL_CERTIFIED;
         c->sites = sites;
-        A->stats.cells++;
-        A->stats.two_site_cells += sites == 2;
+        A->core->stats.cells++;
+        A->core->stats.two_site_cells += sites == 2;
         return 1;
     }
     if (state == CELL_FAILED) {
         /* a cell whose proof failed at max_level stays without a certificate (its checks go to gb_certify) */
-        if (c->level != A->def.max_level) return 0;
+        if (c->level != A->core->def.max_level) return 0;
         c->state = CELL_FAILED;
-        A->stats.cells_failed++;
+        A->core->stats.cells_failed++;
         return 1;
     }
     return state == CELL_UNBUILT;
@@ -151,8 +161,8 @@ static size_t file_limit(const gb_atlas *A)
     /* Every cell of every face split down to max_level, each leaf certified with two sites: no file of
      * these levels is larger; and none beyond GB_ATLAS_FILE_MAX, whatever its levels declare. */
     double bytes = (double)sizeof(header) + GB_SEAL_BYTES;
-    for (int level = 0; level <= A->def.max_level && bytes <= (double)GB_ATLAS_FILE_MAX; level++)
-        bytes += 6.0 * pow(4.0, level) * (level < A->def.max_level ? 1.0 : 2.0 + 2.0 * sizeof(site));
+    for (int level = 0; level <= A->core->def.max_level && bytes <= (double)GB_ATLAS_FILE_MAX; level++)
+        bytes += 6.0 * pow(4.0, level) * (level < A->core->def.max_level ? 1.0 : 2.0 + 2.0 * sizeof(site));
     return bytes < (double)GB_ATLAS_FILE_MAX ? (size_t)bytes : (size_t)GB_ATLAS_FILE_MAX;
 }
 
@@ -172,10 +182,10 @@ static void count_subtree(gb_atlas *A, const cell *c)
 {
     if (c->state == CELL_SPLIT)
         for (int k = 0; k < 4; k++) count_subtree(A, &c->child[k]);
-    A->stats.cells += c->state == CELL_CERTIFIED;
-    A->stats.two_site_cells += c->state == CELL_CERTIFIED && c->sites == 2;
-    A->stats.cells_failed += c->state == CELL_FAILED;
-    if (c->level > A->stats.deepest_level) A->stats.deepest_level = c->level;
+    A->core->stats.cells += c->state == CELL_CERTIFIED;
+    A->core->stats.two_site_cells += c->state == CELL_CERTIFIED && c->sites == 2;
+    A->core->stats.cells_failed += c->state == CELL_FAILED;
+    if (c->level > A->core->stats.deepest_level) A->core->stats.deepest_level = c->level;
 }
 
 /* A certificate holds for every vertical of its cell (gb_atlas.h), so for every vertical of a cell inside
@@ -187,12 +197,12 @@ static void inherit(gb_atlas *A, cell *c, const cell *from)
         return;
     }
     if (c->state == CELL_CERTIFIED) return;
-    if (c->state == CELL_FAILED) A->stats.cells_failed--;
+    if (c->state == CELL_FAILED) A->core->stats.cells_failed--;
     c->state = CELL_CERTIFIED;
     c->sites = from->sites;
     memcpy(c->site, from->site, sizeof c->site);
-    A->stats.cells++;
-    A->stats.two_site_cells += from->sites == 2;
+    A->core->stats.cells++;
+    A->core->stats.two_site_cells += from->sites == 2;
 }
 
 /* The file's cells merged into c, so that nothing either side proved is lost:
@@ -215,9 +225,9 @@ static int merge_cell(gb_atlas *A, reader *r, cell *c)
         return 1;
     }
     cell scratch = {.u_lo = c->u_lo, .u_hi = c->u_hi, .v_lo = c->v_lo, .v_hi = c->v_hi, .face = c->face, .level = c->level};
-    const gb_atlas_stats kept = A->stats;
+    const gb_atlas_stats kept = A->core->stats;
     const int ok = take_cell(A, r, &scratch);
-    A->stats = kept;
+    A->core->stats = kept;
     if (!ok) return 0;
     if (c->state == CELL_SPLIT && scratch.state == CELL_CERTIFIED) {
         inherit(A, c, &scratch);
@@ -225,13 +235,13 @@ static int merge_cell(gb_atlas *A, reader *r, cell *c)
         const cell coarse = *c;
         c->state = CELL_SPLIT;
         c->child = scratch.child; /* the file's subtree, from this atlas's arena */
-        A->stats.cells--, A->stats.two_site_cells -= coarse.sites == 2;
+        A->core->stats.cells--, A->core->stats.two_site_cells -= coarse.sites == 2;
         for (int k = 0; k < 4; k++) count_subtree(A, &c->child[k]);
         inherit(A, c, &coarse);
     } else if (c->state == CELL_FAILED && scratch.state == CELL_CERTIFIED) {
-        A->stats.cells_failed--;
+        A->core->stats.cells_failed--;
         *c = scratch;
-        A->stats.cells++, A->stats.two_site_cells += scratch.sites == 2;
+        A->core->stats.cells++, A->core->stats.two_site_cells += scratch.sites == 2;
     }
     return 1;
 }
@@ -261,7 +271,7 @@ int gb_atlas_merge(gb_atlas *A, const char *path)
     if (!why) {
         reader r = {(const unsigned char *)data + sizeof(header), (const unsigned char *)data + size - GB_SEAL_BYTES};
         int ok = 1;
-        for (int face = 0; face < 6 && ok; face++) ok = merge_cell(A, &r, &A->faces[face]);
+        for (int face = 0; face < 6 && ok; face++) ok = merge_cell(A, &r, &A->core->faces[face]);
         if (!ok || r.p != r.end) why = "its cells do not parse (the cells read before the fault are kept)";
     }
     free(data);
@@ -269,8 +279,38 @@ int gb_atlas_merge(gb_atlas *A, const char *path)
     return GB_OK;
 }
 
+/* The cells of `A` as they are now in a new atlas of their own (a copy that no other view reads). */
+static int atlas_copy(const gb_atlas *A, gb_atlas **out)
+{
+    *out = NULL;
+    char *bytes = NULL;
+    size_t size = 0;
+    FILE *f = open_memstream(&bytes, &size);
+    if (!f) return gb_error_set(GB_ENOMEM, "out of memory for a copy of the atlas");
+    const int failed = gb_atlas_write(A, f);
+    if (fclose(f) || failed) {
+        free(bytes);
+        return gb_error_set(GB_ENOMEM, "out of memory for a copy of the atlas");
+    }
+    int status = gb_atlas_create(&A->core->surface, &A->core->def, out);
+    if (!status) status = gb_atlas_load_buffer(*out, (const unsigned char *)bytes, size, "the atlas's copy");
+    free(bytes);
+    if (status) gb_atlas_free(*out), *out = NULL;
+    return status;
+}
+
 int gb_atlas_merge_save(gb_atlas *A, const char *path)
 {
+    /* Shared by other views: the file's cells are merged into a copy, and the copy written, so that no cell the
+     * views read changes under them (gb_atlas.c, "sharing"); the cells other runs proved then enter the file,
+     * not this atlas. */
+    if (gb_atlas_views(A) > 1) {
+        gb_atlas *copy;
+        int status = atlas_copy(A, &copy);
+        if (!status) status = gb_atlas_merge_save(copy, path);
+        gb_atlas_free(copy);
+        return status;
+    }
     /* The lock: gb_file_lock's, on the file's directory (the file itself is replaced by a rename, so a
      * lock on it would not be held by the next writer), waited for a bounded time. Without one (a
      * directory that cannot be locked) the writers are still safe, and a cell can only be lost, to be
@@ -290,15 +330,15 @@ int gb_atlas_load_buffer(gb_atlas *A, const unsigned char *data, size_t size, co
     const char *why = refused(A, data, size);
     int ok = !why;
     if (ok) {
-        const gb_atlas_stats kept = A->stats;
+        const gb_atlas_stats kept = A->core->stats;
         gb_atlas_faces_reset(A);
-        A->stats.cells = A->stats.two_site_cells = A->stats.cells_failed = 0;
+        A->core->stats.cells = A->core->stats.two_site_cells = A->core->stats.cells_failed = 0;
         reader r = {data + sizeof(header), data + size - GB_SEAL_BYTES};
-        for (int face = 0; face < 6 && ok; face++) ok = take_cell(A, &r, &A->faces[face]);
+        for (int face = 0; face < 6 && ok; face++) ok = take_cell(A, &r, &A->core->faces[face]);
         ok = ok && r.p == r.end;
         if (!ok) {
             gb_atlas_faces_reset(A);
-            A->stats = kept;
+            A->core->stats = kept;
             why = "its cells do not parse";
         }
     }

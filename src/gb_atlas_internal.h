@@ -8,6 +8,9 @@
 #include "gb_arena.h"
 #include "gb_certify_internal.h"
 
+#include <pthread.h>
+#include <stdio.h>
+
 /* Site boxes are built where the minimum lies within this distance of a chart's root boxes [rad]
  * (as gb_certify's basins). */
 #define SITE_REACH 0.1
@@ -19,10 +22,12 @@
 /* Two minima closer than this are the same site [body length]. */
 #define SAME_POINT 1e-7
 
-enum { CELL_UNBUILT = 0, CELL_SPLIT = 1, CELL_CERTIFIED = 2, CELL_FAILED = 3 };
+/* A cell's state. CELL_BUILDING: claimed by the view that proves it (never in a file: written as unbuilt). A view
+ * reads a cell's state with acquire and publishes it with release (gb_atlas.c, "sharing"): what a cell holds is
+ * written before its state says so, and a published cell never changes while views share the atlas. */
+enum { CELL_UNBUILT = 0, CELL_SPLIT = 1, CELL_CERTIFIED = 2, CELL_FAILED = 3, CELL_BUILDING = 4 };
 enum { SETTLED = 0, UNSETTLED = 1 };
 
-/* A box of the surface cover, kept with its enclosure for every cell's proof. */
 typedef struct box {
     struct box *child; /* four, or NULL */
     gb_surface_enclosure *e;
@@ -55,17 +60,36 @@ typedef struct cell_quad {
     cell c[4];
 } cell_quad;
 
-struct gb_atlas {
+/* The views waiting for cells are woken by lists, a cell's by its address: a cell's completion wakes the views
+ * that wait for it (and the few that share its list), not all of them. */
+#define GB_ATLAS_WAKE_LISTS 64
+
+/* What the views of one atlas share: the body, the surface cover and the cells (gb_atlas.c, "sharing"). */
+typedef struct gb_atlas_core {
     gb_surface surface;
     gb_atlas_def def;
-    gb_certify *certify; /* the global minimum at a cell's centre */
     box roots[GB_ROOT_COUNT];
     gb_surface_enclosure root_enclosures[GB_ROOT_COUNT];
     gb_arena box_quads, cell_quads;
     cell faces[6];
-    cell *last; /* the cell of the last check */
+    pthread_mutex_t lock;  /* the arenas, the counters below, the views' count and the wake-ups */
+    pthread_cond_t built[GB_ATLAS_WAKE_LISTS]; /* a claimed cell was published: the list of its address's waiters */
+    size_t views;          /* the views that hold it (the last one frees it) */
+    gb_certify **certifiers; /* the global minimum at a cell's centre: one is taken by a view while it proves a
+                              * cell, and given back, so that their refined boxes serve every view */
+    size_t certifiers_free, certifiers_cap;
+    size_t max_bytes;      /* no cell is built beyond this memory (0: no bound); its checks are undecided then */
+    gb_atlas_stats stats;  /* the cells and boxes: cells, cells_failed, two_site_cells, cells_split, boxes,
+                            * deepest_level, build_seconds, and the waits (wait_seconds, waits) */
+} gb_atlas_core;
+
+/* An atlas as one thread sees it: the shared core, and what only this view's checks touch. */
+struct gb_atlas {
+    gb_atlas_core *core;
+    cell *last;          /* the cell of the last check */
+    double hint[2][2];   /* where Newton starts in each site of `last`: the last minimum found there */
     double last_half_width;
-    gb_atlas_stats stats;
+    gb_atlas_stats stats; /* this view's checks: checks, answered, lower_found, newton_runs, boxes_tested */
 };
 
 /* A fresh cover: the six faces unbuilt, every cell below them released. */
@@ -80,5 +104,16 @@ int gb_atlas_site_in_band(const gb_atlas_site_box *b);
  * it. A file that is missing, of another atlas or damaged is replaced. GB_EIO when the lock stays held
  * beyond GB_FILE_LOCK_SECONDS or $GOMBOC_LOCK_SECONDS (nothing is written then). */
 int gb_atlas_merge_save(gb_atlas *atlas, const char *path);
+/* Another view of `atlas`'s cells, for another thread: its cells are built once, by the first view that needs
+ * them, and read by every view without a lock (gb_atlas.c, "sharing"). Free it with gb_atlas_free; the cells
+ * go with the last view. GB_ENOMEM. */
+int gb_atlas_share(gb_atlas *atlas, gb_atlas **view);
+/* No cell is built once the atlas holds this many bytes (0: no bound): checks in cells not built say undecided. */
+void gb_atlas_set_max_bytes(gb_atlas *atlas, size_t bytes);
+/* How many views hold the atlas's cells. */
+size_t gb_atlas_views(const gb_atlas *atlas);
+/* The atlas written to f as its file is (header, cells, seal): what gb_atlas_save writes and gb_atlas_load_buffer
+ * reads. 0, or 1 when a write failed. */
+int gb_atlas_write(const gb_atlas *atlas, FILE *f);
 
 #endif

@@ -10,6 +10,7 @@
 #include "gb_error.h"
 #include "gb_hash.h"
 
+#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -36,12 +37,21 @@ struct gb_dynamics_context {
     int hull_cached;
     gb_dynamics_lowest_node lowest;
     void *lowest_user;
+    gb_dynamics_context *lead; /* the context whose atlas this one's runs view (gb_dynamics_context_share) */
+    size_t atlas_max_bytes;    /* a lead's: the bound of the atlas it makes */
+    size_t atlas_cells_read;   /* a lead's: the cells its atlas read from the file */
+    pthread_mutex_t share;     /* a lead's: its atlas made, viewed and saved by one thread at a time */
 };
 
 int gb_dynamics_context_create(gb_dynamics_context **out)
 {
     *out = calloc(1, sizeof **out);
-    return *out ? GB_OK : gb_error_set(GB_ENOMEM, "out of memory for the dynamics context");
+    if (!*out) return gb_error_set(GB_ENOMEM, "out of memory for the dynamics context");
+    if (pthread_mutex_init(&(*out)->share, NULL)) {
+        free(*out), *out = NULL;
+        return gb_error_set(GB_ENOMEM, "the dynamics context: no mutex");
+    }
+    return GB_OK;
 }
 
 void gb_dynamics_context_free(gb_dynamics_context *c)
@@ -53,6 +63,7 @@ void gb_dynamics_context_free(gb_dynamics_context *c)
     free(c->atlas_file);
     free(c->hull_file);
     free(c->cache_dir);
+    pthread_mutex_destroy(&c->share);
     free(c);
 }
 
@@ -97,26 +108,33 @@ void gb_dynamics_context_lowest(gb_dynamics_context *c, gb_dynamics_lowest_node 
     c->lowest = lowest, c->lowest_user = user;
 }
 
-size_t gb_dynamics_context_atlas_bytes(const gb_dynamics_context *c)
+void gb_dynamics_context_share(gb_dynamics_context *c, gb_dynamics_context *lead) { c->lead = lead; }
+
+void gb_dynamics_context_atlas_bound(gb_dynamics_context *lead, size_t max_bytes) { lead->atlas_max_bytes = max_bytes; }
+
+int gb_dynamics_context_save_shared(gb_dynamics_context *lead)
 {
-    if (!c->atlas) return 0;
-    gb_atlas_stats stats;
-    gb_atlas_get_stats(c->atlas, &stats);
-    return stats.bytes;
+    pthread_mutex_lock(&lead->share);
+    const int status = gb_dynamics_context_save(lead);
+    pthread_mutex_unlock(&lead->share);
+    return status;
 }
 
-void gb_dynamics_context_forget_atlas(gb_dynamics_context *c)
+int gb_dynamics_context_shared_stats(gb_dynamics_context *lead, gb_atlas_stats *out, size_t *cells_read)
 {
-    gb_atlas_free(c->atlas);
-    c->atlas = NULL;
-    c->atlas_loaded = c->atlas_written = 0;
-    c->atlas_saved_build = 0.0;
+    memset(out, 0, sizeof *out);
+    pthread_mutex_lock(&lead->share);
+    const int held = lead->atlas != NULL;
+    *cells_read = lead->atlas_cells_read;
+    if (held) gb_atlas_get_stats(lead->atlas, out);
+    pthread_mutex_unlock(&lead->share);
+    return held;
 }
 
 int gb_dynamics_context_save(gb_dynamics_context *c)
 {
     int status = GB_OK;
-    if (c->atlas && c->atlas_file) {
+    if (c->atlas && c->atlas_file && !c->lead) {
         /* the file holds this atlas already when it was loaded or saved and no cell was proved since */
         gb_atlas_stats st;
         gb_atlas_get_stats(c->atlas, &st);
@@ -203,8 +221,33 @@ static int same_atlas_def(const gb_atlas_def *a, const gb_atlas_def *b)
            a->max_level == b->max_level && a->max_depth == b->max_depth;
 }
 
+/* Lead's atlas for this body and definition, made there (and read from lead's atlas file) when lead has none:
+ * NULL when lead holds another body's. Under lead's lock. */
+static int made_atlas(gb_dynamics_context *lead, const gb_surface *surface, const gb_atlas_def *adef, gb_atlas **out)
+{
+    *out = NULL;
+    if (lead->atlas) {
+        if (same_body(&lead->atlas_surface, surface) && same_atlas_def(&lead->atlas_def, adef)) *out = lead->atlas;
+        return GB_OK;
+    }
+    const int status = gb_atlas_create(surface, adef, &lead->atlas);
+    if (status) return status;
+    lead->atlas_surface = *surface, lead->atlas_def = *adef;
+    if (lead->atlas_max_bytes) gb_atlas_set_max_bytes(lead->atlas, lead->atlas_max_bytes);
+    /* a file that is missing, stale or damaged is built anew (and replaced when saved) */
+    lead->atlas_loaded = lead->atlas_file && gb_atlas_load(lead->atlas, lead->atlas_file) == GB_OK;
+    if (!lead->atlas_loaded) gb_error_clear();
+    lead->atlas_written = lead->atlas_loaded, lead->atlas_saved_build = 0.0;
+    gb_atlas_stats read;
+    gb_atlas_get_stats(lead->atlas, &read);
+    lead->atlas_cells_read = read.cells + read.cells_failed;
+    *out = lead->atlas;
+    return GB_OK;
+}
+
 /* The atlas of verticals: the context's when it was made for this body and definition, made there (and read
- * from the atlas file, when it holds this atlas) when the context has none, else the run's own. */
+ * from the atlas file, when it holds this atlas) when the context has none, else the run's own. A context that
+ * shares a lead's (gb_dynamics_context_share) holds a view of the lead's atlas instead. */
 static int body_atlas(gb_dynamics *d, gb_dynamics_context *c, const gb_surface *surface, const gb_dynamics_def *def)
 {
     gb_atlas_def adef = def->atlas;
@@ -212,6 +255,20 @@ static int body_atlas(gb_dynamics *d, gb_dynamics_context *c, const gb_surface *
     if (c->atlas && same_body(&c->atlas_surface, surface) && same_atlas_def(&c->atlas_def, &adef)) {
         d->atlas = c->atlas, d->atlas_borrowed = 1;
         return GB_OK;
+    }
+    if (c->lead && !c->atlas) {
+        gb_dynamics_context *lead = c->lead;
+        pthread_mutex_lock(&lead->share);
+        gb_atlas *shared;
+        int status = made_atlas(lead, surface, &adef, &shared);
+        if (!status && shared) status = gb_atlas_share(shared, &c->atlas);
+        if (!status && shared) c->atlas_surface = *surface, c->atlas_def = adef, c->atlas_loaded = lead->atlas_loaded;
+        pthread_mutex_unlock(&lead->share);
+        if (status) return status;
+        if (shared) {
+            d->atlas = c->atlas, d->atlas_borrowed = 1;
+            return GB_OK;
+        }
     }
     const int status = gb_atlas_create(surface, &adef, &d->atlas);
     if (status || c->atlas) return status;

@@ -89,10 +89,16 @@ int gb_dynamics_flight_displace(gb_dynamics *dynamics, double t, double dzeta, c
  * another one (a Lyapunov perturbation), whose contact is then continued from there. The next accepted
  * step re-checks it as every step does. Switch counters are left alone. */
 void gb_dynamics_adopt_contact(gb_dynamics *to, const gb_dynamics *from);
-/* The atlas's memory [bytes], and letting it go (a run then reads the file anew): a scan's thread bounds
- * its memory so. */
-size_t gb_dynamics_context_atlas_bytes(const gb_dynamics_context *context);
-void gb_dynamics_context_forget_atlas(gb_dynamics_context *context);
+/* The threads of a process share one atlas (gb_atlas_share): `context`'s runs take a view of `lead`'s atlas,
+ * which the first of them that needs it makes there (from lead's atlas file, bounded to the bytes set on lead
+ * before any run: gb_dynamics_context_atlas_bound, 0: none); a run of another body or atlas definition keeps its
+ * own. `lead` outlives `context`; contexts sharing it may run on threads at once. gb_dynamics_context_save on
+ * `context` leaves the atlas to gb_dynamics_context_save_shared on `lead` (any thread, at any time: the file takes
+ * the cells built so far). The lead's atlas's counters and the cells it read from the file: 0 when it has none. */
+void gb_dynamics_context_share(gb_dynamics_context *context, gb_dynamics_context *lead);
+void gb_dynamics_context_atlas_bound(gb_dynamics_context *lead, size_t max_bytes);
+int gb_dynamics_context_save_shared(gb_dynamics_context *lead);
+int gb_dynamics_context_shared_stats(gb_dynamics_context *lead, gb_atlas_stats *out, size_t *cells_read);
 /* contact = fast-grid: the tracker's hull vertices (0: no hull, the patch-tree search) and whether the hull
  * came from the context's hull file (1) or Qhull (0); GB_EINVAL for another model. */
 int gb_dynamics_hull_stats(const gb_dynamics *dynamics, size_t *vertices, int *loaded);

@@ -169,10 +169,12 @@ GB_API int gb_scan_csv_row(const gb_scan_metrics *m, size_t index, char *out, si
  * of its scene, bit for bit. Before the points, the reduced models and Melnikov integrals the points'
  * margins need are computed once each, on the same threads (bodies, then frequencies).
  *
- * Each thread keeps a gb_dynamics_context from point to point (the body's mass properties, grid and hull;
- * and the atlas of verticals of scan->atlas_file, merged with its file and written back every
- * GB_SCAN_ATLAS_SAVE_POINTS points it ran and at its end, and let go beyond GB_SCAN_ATLAS_MEMORY bytes), so
- * that a point costs its integration, not its set-up. */
+ * Each thread keeps a gb_dynamics_context from point to point (the body's mass properties, grid and hull), so
+ * that a point costs its integration, not its set-up. The threads of a process share one atlas of verticals
+ * (scan->atlas_file): read from its file by the first point that needs it, each cell proved once, by the first
+ * thread that needs it (gb_atlas.c, "sharing"), no cell built beyond GB_SCAN_ATLAS_MEMORY bytes (checks there go
+ * to the per-vertical certificate), merged with its file and written back every GB_SCAN_ATLAS_SAVE_POINTS points
+ * the process ran and at its end. */
 #define GB_SCAN_ATLAS_SAVE_POINTS 8
 #define GB_SCAN_ATLAS_MEMORY ((size_t)256 << 20)
 

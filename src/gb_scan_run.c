@@ -32,6 +32,7 @@ typedef struct runner_state {
     atomic_size_t next;             /* the next task to hand out */
     atomic_int stop;                /* 1 after a failure: no task starts */
     pthread_mutex_t lock;           /* the callbacks, the counters and the failure below */
+    gb_dynamics_context *atlas;     /* the points' phase with a shared atlas: the one atlas its threads view */
     gb_scan_phase phase;
     size_t done, points_run;
     double start, last_report;
@@ -104,12 +105,12 @@ static void notice(runner_state *st, const char *message)
     if (st->runner->notice) st->runner->notice(st->runner->user, message);
 }
 
-/* The thread's context's atlas merged with its file and written back (gb_dynamics_context_save): a file
- * that cannot be written costs the sharing, not the scan (the points' results do not depend on the
- * atlas). The writers take turns under the directory's lock, threads and processes alike. */
-static void save_atlas(runner_state *st, gb_dynamics_context *context)
+/* The process's shared atlas merged with its file and written back (gb_dynamics_context_save_shared): a file
+ * that cannot be written costs the sharing, not the scan (the points' results do not depend on the atlas). The
+ * writers take turns under the directory's lock, the processes of an MPI run alike. */
+static void save_atlas(runner_state *st)
 {
-    if (!gb_dynamics_context_save(context)) return;
+    if (!gb_dynamics_context_save_shared(st->atlas)) return;
     char message[GB_ERROR_MAX + 64];
     snprintf(message, sizeof message, "the shared atlas was not written: %s", gb_error_message());
     gb_error_clear();
@@ -127,18 +128,14 @@ static void point_message(const gb_scan *scan, size_t k, const char *how, char *
              scan->axis[1].section, scan->axis[1].key, y, how, gb_error_message());
 }
 
-/* A thread of the points' phase, with its own context from point to point. */
+/* A thread of the points' phase, with its own context from point to point, viewing the process's one atlas. */
 static void *point_worker(void *arg)
 {
     runner_state *st = arg;
     const gb_scan *scan = st->scan;
     gb_dynamics_context *context = NULL;
-    if (gb_dynamics_context_create(&context) || gb_dynamics_context_files(context, scan->atlas_file, NULL)) {
-        gb_error_clear(); /* none: each point builds its own set-up and atlas */
-        gb_dynamics_context_free(context);
-        context = NULL;
-    }
-    size_t since_save = 0;
+    if (gb_dynamics_context_create(&context)) gb_error_clear(); /* none: each point builds its own set-up */
+    if (context && st->atlas) gb_dynamics_context_share(context, st->atlas);
     for (;;) {
         const size_t i = atomic_fetch_add(&st->next, 1);
         if (i >= st->tasks || atomic_load(&st->stop)) break;
@@ -157,6 +154,7 @@ static void *point_worker(void *arg)
         }
         char row[1024];
         if (!s) s = gb_scan_csv_row(&m, k, row, sizeof row);
+        int checkpoint = 0;
         pthread_mutex_lock(&st->lock);
         if (s) {
             fail(st, s, message[0] ? message : gb_error_message());
@@ -164,18 +162,30 @@ static void *point_worker(void *arg)
             if (message[0]) notice(st, message);
             const int refused = st->runner->finished ? st->runner->finished(st->runner->user, k, &m, row) : GB_OK;
             if (refused) fail(st, refused, gb_error_message());
-            else st->done++, st->points_run++;
+            else st->done++, st->points_run++, checkpoint = st->done % GB_SCAN_ATLAS_SAVE_POINTS == 0;
             report(st, 0);
         }
         pthread_mutex_unlock(&st->lock);
-        if (context && ++since_save == GB_SCAN_ATLAS_SAVE_POINTS) {
-            save_atlas(st, context), since_save = 0;
-            if (gb_dynamics_context_atlas_bytes(context) > GB_SCAN_ATLAS_MEMORY) gb_dynamics_context_forget_atlas(context);
-        }
+        if (st->atlas && checkpoint) save_atlas(st); /* every GB_SCAN_ATLAS_SAVE_POINTS points of the process */
     }
-    if (context) save_atlas(st, context);
     gb_dynamics_context_free(context);
     return NULL;
+}
+
+/* The shared atlas's cells, what proving them cost and the views' waits, for the caller (issue 57's measure). */
+static void atlas_notice(runner_state *st)
+{
+    gb_atlas_stats a;
+    size_t read;
+    if (!gb_dynamics_context_shared_stats(st->atlas, &a, &read)) return;
+    char message[512];
+    const size_t held = a.cells + a.cells_failed, proved = held + a.cells_split - read;
+    snprintf(message, sizeof message, "the shared atlas: %zu cells proved in this process (%.2f a point run; %zu read from "
+             "its file), %.2f s proving them; %zu waits for a cell another thread was proving, %.3f s in all", proved,
+             st->points_run ? (double)proved / (double)st->points_run : 0.0, read, a.build_seconds, a.waits, a.wait_seconds);
+    pthread_mutex_lock(&st->lock);
+    notice(st, message);
+    pthread_mutex_unlock(&st->lock);
 }
 
 /* `worker` on `threads` threads (the calling one among them), until the tasks [next, tasks) are handed out. */
@@ -227,11 +237,26 @@ int gb_scan_run(const gb_scan *scan, const gb_scan_runner *runner, size_t *point
         }
         if (status) gb_error_set(status, "%s", st.failure);
     }
+    if (!status && scan->atlas_file) { /* one atlas for the process, read from its file by the first point */
+        if (gb_dynamics_context_create(&st.atlas) || gb_dynamics_context_files(st.atlas, scan->atlas_file, NULL)) {
+            gb_error_clear(); /* none: each point builds its own */
+            gb_dynamics_context_free(st.atlas), st.atlas = NULL;
+        }
+        if (st.atlas) gb_dynamics_context_atlas_bound(st.atlas, GB_SCAN_ATLAS_MEMORY);
+    }
     if (!status) {
         phase_begin(&st, GB_SCAN_PHASE_POINTS, mine);
         status = run_threads(&st, threads, point_worker);
         if (status) gb_error_set(status, "%s", st.failure);
+        if (st.atlas) {
+            const int kept = status;
+            char failure[GB_ERROR_MAX];
+            snprintf(failure, sizeof failure, "%s", gb_error_message());
+            save_atlas(&st), atlas_notice(&st);
+            if (kept) gb_error_set(kept, "%s", failure);
+        }
     }
+    gb_dynamics_context_free(st.atlas);
     if (points_run) *points_run = st.points_run;
     gb_scan_melnikov_free(st.plan);
     pthread_mutex_destroy(&st.lock);

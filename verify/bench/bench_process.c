@@ -226,9 +226,9 @@ static double children_cpu(void)
 
 /* A map whose points share an atlas of verticals (Fig 10 under the unilateral law, 6 x 6 points of 100 periods,
  * lambda included), each run cold in a new folder, on 1, 2 and 16 threads: its points per CPU-second and their
- * ratio to one thread's (issue 57: >= 0.9, no more than 10 % duplicated or waiting work). Each thread keeps its own
- * atlas and merges it with the file every 8 points, so more threads than cores build the same cells again: CPU
- * time, unlike wall time, shows it. */
+ * ratio to one thread's (issue 57: >= 0.9, no more than 10 % duplicated or waiting work). The threads share one
+ * atlas, each cell proved once (gb_atlas.c, "sharing"): CPU time, unlike wall time, shows what more threads than
+ * cores would cost in cells built again or in waiting. */
 int bench_shared_atlas_cpu(const char *gomboc, FILE *out)
 {
     char dir[] = "/tmp/gomboc-bench-XXXXXX";
