@@ -328,6 +328,54 @@ static void test_table1_agrees(void)
                   error[2], error[3], order);
 }
 
+/* A ball (morphology I at beta = 0, the unit sphere, m = 1) launched at 3 m/s with backspin 2 rad/s on a plane of mu =
+ * 0.3, time-stepped on its lowest point (continuous contact), one second at `spp` steps a second. */
+static int stepped_ball(size_t spp, gb_run_result *r)
+{
+    char text[900];
+    snprintf(text, sizeof text,
+             "[body]\nmorphology = I\nbeta = 0\nmass = 1\n[forcing]\ng = 9.81\nA1 = 0\nA2 = 0\nomega = 6.283185307179586\n"
+             "[model]\nequation = rolling\ncontact = continuous\ncontact_law = unilateral\ndamping = 0\nfriction = 0.3\n"
+             "[integrator]\nstrategy = time-stepping\nsteps_per_period = %zu\nperiods = 1\n[initial]\nvelocity = 3,0,0\n"
+             "omega = 0,-2,0\n", spp);
+    gb_case scene;
+    int status = gb_case_load_text("ball-stepping.ini", text, strlen(text), &scene);
+    return status ? status : gb_run(&scene, NULL, r);
+}
+
+static void test_ball_stepped(void)
+{
+    const double mu = 0.3, g = 9.81, v0 = 3.0, w0 = 2.0, R = 1.0;
+    const double t_star = 2.0 * (v0 + R * w0) / (7.0 * mu * g), v_end = (5.0 * v0 - 2.0 * R * w0) / 7.0;
+    const double lost = 0.5 * (v0 * v0 + 0.4 * w0 * w0) - 0.5 * 1.4 * v_end * v_end;
+    static const size_t spp[3] = {1000, 4000, 16000};
+    double slide_error[3] = {NAN, NAN, NAN}, roll_error = 0.0, loss_error = 0.0;
+    size_t changes_wrong = 0;
+    int status = GB_OK;
+    for (int k = 0; k < 3 && !status; k++) {
+        gb_run_result r;
+        if ((status = stepped_ball(spp[k], &r))) break;
+        slide_error[k] = r.has_sliding ? fabs(r.sliding.time - t_star) * (double)spp[k] : NAN; /* in steps */
+        roll_error = fmax(roll_error, fmax(fabs(r.y[GB_STATE_VELOCITY] - v_end), fabs(R * r.y[GB_STATE_OMEGA + 1] - v_end)) / v_end);
+        loss_error = fmax(loss_error, fabs(r.sliding.friction_loss - lost));
+        changes_wrong += !r.has_sliding || r.sliding.slips != 1 || r.sliding.sticks != 1 || r.sliding.sliding;
+        gb_run_result_free(&r);
+    }
+    gb_check c = {"-", "-", "a ball (the unit sphere, continuous contact) launched at 3 m/s with backspin 2 rad/s on a plane of "
+                  "mu = 0.3, time-stepped on its lowest point at 1000, 4000, 16000 steps a second: the time it slides, in steps; "
+                  "its velocity and R omega_y after; the work friction did",
+                  "closed forms, which the event-driven strategy meets (verify/s5_friction.c): 2 (v0 + R w0) / (7 mu g), "
+                  "(5 v0 - 2 R w0) / 7 rolling, the kinetic energy lost",
+                  "the slide's end within one step (the step that first sees the slip stopped: first order); the rolling "
+                  "velocity to 1e-12 relative and the loss to 1e-12 J (the stick is exact once reached); one slip's end, "
+                  "one stick, no slip after"};
+    gb_check_true(&c, !status && slide_error[0] <= 1.0 && slide_error[1] <= 1.0 && slide_error[2] <= 1.0 && roll_error <= 1e-12 &&
+                      loss_error <= 1e-12 && changes_wrong == 0,
+                  "%s; slide's end %.3g, %.3g, %.3g steps off; rolling %.3g relative; loss %.3g J; %zu runs with other changes",
+                  status ? gb_error_message() : "ran", slide_error[0], slide_error[1], slide_error[2], roll_error, loss_error,
+                  changes_wrong);
+}
+
 /* The same runs at 8 steps a period within a factor 15/8 of each of 2560, 10240, 40960 and 163840 (make verify-full): the
  * largest |ω − ω_event-driven| of each group, over the node switches' positions within their steps. */
 static void test_table1_envelope(void)
@@ -736,6 +784,8 @@ int verify_register_s5_stepping(void)
         {"time-stepping: Table 1's grid polyhedron at mu = 0.5 tends to the event-driven strategy's", test_table1_agrees,
          "where both strategies run they agree: the time-stepping at order 1 or better, the error after a node switch "
          "scattered by the switch's position within its step"},
+        {"time-stepping: a ball slides, then rolls, as the closed form says", test_ball_stepped,
+         "the smooth body's lowest point under time-stepping: the slide ends within a step of the closed form's time"},
         {"time-stepping: the same, its envelope over the switches' positions in their steps (make verify-full)",
          test_table1_envelope, "no floor: first order over a step 64 times smaller"},
         {"time-stepping: Painleve's launch beyond mu* runs through an impact without collision", test_painleve,
