@@ -23,10 +23,13 @@ WARN      := -std=c11 -D_GNU_SOURCE -ffp-contract=off -Wall -Wextra $(WERROR)
 # OpenMP for the harness's independent long computations (s6_chaos) where the compiler has it; the
 # library's scan runner uses POSIX threads (src/gb_scan_run.c says why).
 OPENMP    := $(shell echo 'int main(void){return 0;}' | $(CC) -fopenmp -x c - -o /dev/null 2>/dev/null && echo -fopenmp)
-# Siconos's numerics (the time-stepping strategy's contact problems) ships no pkg-config file: its headers' folders
-# and its library by name.
+# Siconos's numerics (the time-stepping strategy's contact problems) ships no pkg-config file: its headers' folders.
+# The library is opened when a run first needs it (gb_contact_problem.c: dlopen), by the soname found here, so that
+# the processes that never time-step do not load it and the twenty libraries under it.
 SICONOS_CFLAGS := -I/usr/include/siconos/numerics -I/usr/include/siconos
-SICONOS_LIBS   := -lsiconos_numerics
+SICONOS_SONAME := $(shell objdump -p $$($(CC) -print-file-name=libsiconos_numerics.so) 2>/dev/null | awk '/SONAME/ {print $$2}')
+SICONOS_LIBS   := -ldl
+SICONOS_CFLAGS += $(if $(SICONOS_SONAME),-DGB_SICONOS_NUMERICS='"$(SICONOS_SONAME)"')
 # Arb (Debian libflint-arb-dev: the proofs' ball arithmetic, src/gb_proof.c) and FLINT under it: no pkg-config file
 # either; its headers sit in /usr/include, FLINT's in /usr/include/flint.
 ARB_LIBS       := -lflint-arb -lflint

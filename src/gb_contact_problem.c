@@ -2,7 +2,9 @@
 
 #include "gb_error.h"
 
+#include <dlfcn.h>
 #include <math.h>
+#include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -36,6 +38,61 @@ void gb_contact_problem_set_exact(gb_contact_problem *p, gb_contact_problem_exac
     p->exact = exact, p->exact_context = context;
 }
 
+/* Siconos's numerics, opened when the first problem is made (dlopen), not when the process starts: the library
+ * and what it needs (LAPACK, MUMPS, SCOTCH, gfortran, ...) cost every process about 10 ms of loading, and only a
+ * time-stepped run uses them. GB_SICONOS_NUMERICS is the library's soname, found when gomboc is built. */
+#ifndef GB_SICONOS_NUMERICS
+#define GB_SICONOS_NUMERICS "libsiconos_numerics.so"
+#endif
+static struct {
+    __typeof__(solver_options_create) *options_create;
+    __typeof__(solver_options_delete) *options_delete;
+    __typeof__(NM_create_from_data) *matrix_create;
+    __typeof__(NM_free) *matrix_free;
+    __typeof__(fc3d_driver) *driver;
+    __typeof__(fc3d_compute_error) *compute_error;
+    char error[256];
+} siconos;
+static pthread_once_t siconos_once = PTHREAD_ONCE_INIT;
+
+static void siconos_open(void)
+{
+    void *lib = dlopen(GB_SICONOS_NUMERICS, RTLD_NOW | RTLD_LOCAL);
+    const char *missing = NULL;
+    if (lib) {
+        /* through a union: ISO C has no cast from an object pointer (dlsym's) to a function pointer */
+        union { void *object; void (*function)(void); } f;
+#define SICONOS_SYMBOL(field, name) \
+    if (!missing && !(f.object = dlsym(lib, #name))) missing = #name; \
+    else if (!missing) memcpy(&siconos.field, &f.function, sizeof siconos.field);
+        SICONOS_SYMBOL(options_create, solver_options_create)
+        SICONOS_SYMBOL(options_delete, solver_options_delete)
+        SICONOS_SYMBOL(matrix_create, NM_create_from_data)
+        SICONOS_SYMBOL(matrix_free, NM_free)
+        SICONOS_SYMBOL(driver, fc3d_driver)
+        SICONOS_SYMBOL(compute_error, fc3d_compute_error)
+#undef SICONOS_SYMBOL
+    }
+    if (!lib || missing)
+        snprintf(siconos.error, sizeof siconos.error, "%s", lib ? missing : dlerror());
+    if (missing) siconos.driver = NULL;
+    /* Its BLAS on one thread, where the BLAS under it is OpenBLAS: a problem has at most a few hundred unknowns, and
+     * OpenBLAS's threads would split its sums by the machine's cores, so that a run's last bits (and, through the
+     * chaos, its trajectory) would depend on the machine (measured: the shipped time-stepped scene's fingerprint
+     * moved with OPENBLAS_NUM_THREADS). */
+    union { void *object; void (*function)(int); } one_thread = {.object = lib ? dlsym(lib, "openblas_set_num_threads") : NULL};
+    if (one_thread.object) one_thread.function(1);
+}
+
+/* GB_OK once Siconos's numerics are open; else GB_EIO naming the library and why. */
+static int siconos_ready(void)
+{
+    pthread_once(&siconos_once, siconos_open);
+    if (siconos.driver) return GB_OK;
+    return gb_error_set(GB_EIO, "time-stepping needs Siconos's numerics library (%s, Debian package "
+                        "libsiconos-numerics7): it cannot be opened (%s)", GB_SICONOS_NUMERICS, siconos.error);
+}
+
 int gb_contact_problem_create(const gb_contact_problem_def *def, gb_contact_problem **out)
 {
     *out = NULL;
@@ -43,6 +100,8 @@ int gb_contact_problem_create(const gb_contact_problem_def *def, gb_contact_prob
         return gb_error_set(GB_EDOM, "solver_tolerance = %g is out of range (allowed: 0 < tolerance < 1)", def->tolerance);
     if (def->iterations < 1 || def->iterations > 100000000)
         return gb_error_set(GB_EDOM, "solver_iterations = %zu is out of range (allowed: 1 to 1e8)", def->iterations);
+    const int opened = siconos_ready();
+    if (opened) return opened;
     gb_contact_problem *p = calloc(1, sizeof *p);
     if (!p) return gb_error_set(GB_ENOMEM, "out of memory for a contact problem");
     p->def = *def;
@@ -54,7 +113,7 @@ int gb_contact_problem_create(const gb_contact_problem_def *def, gb_contact_prob
      * on the singular Delassus operator of a face (four coplanar points) its LU factorisation fails and prints so on
      * standard output, which a library of ours never writes to. */
     for (int k = 0; k < CHAIN; k++) {
-        p->options[k] = solver_options_create(chain[k].id);
+        p->options[k] = siconos.options_create(chain[k].id);
         if (!p->options[k]) break;
         p->options[k]->dparam[SICONOS_DPARAM_TOL] = def->tolerance;
         p->options[k]->iparam[SICONOS_IPARAM_MAX_ITER] = (int)def->iterations;
@@ -87,7 +146,7 @@ void gb_contact_problem_free(gb_contact_problem *p)
 {
     if (!p) return;
     for (int k = 0; k < CHAIN; k++)
-        if (p->options[k]) solver_options_delete(p->options[k]);
+        if (p->options[k]) siconos.options_delete(p->options[k]);
     free(p->best_r), free(p->best_u);
     free(p);
 }
@@ -100,14 +159,14 @@ int gb_contact_problem_solve(gb_contact_problem *p, int count, double *W, double
     if (count > GB_CONTACT_PROBLEM_MAX)
         return gb_error_set(GB_EDOM, "%d contacts in one step (allowed: at most %d)", count, GB_CONTACT_PROBLEM_MAX);
     /* Siconos's dense matrix over our buffer: detached before it is freed, so that the buffer stays ours. */
-    NumericsMatrix *M = NM_create_from_data(NM_DENSE, 3 * count, 3 * count, W);
+    NumericsMatrix *M = siconos.matrix_create(NM_DENSE, 3 * count, 3 * count, W);
     if (!M) return gb_error_set(GB_ENOMEM, "out of memory for Siconos's matrix");
     FrictionContactProblem problem = {.dimension = 3, .numberOfContacts = count, .M = M, .q = q, .mu = mu};
     const size_t n = (size_t)(3 * count);
     int used = 0;
     for (int k = 0; k < CHAIN && !(report->residual <= p->def.tolerance); k++) {
         if (k) memcpy(r, p->best_r, n * sizeof *r); /* from the best so far */
-        const int info = fc3d_driver(&problem, r, u, p->options[k]);
+        const int info = siconos.driver(&problem, r, u, p->options[k]);
         report->iterations += (size_t)p->options[k]->iparam[SICONOS_IPARAM_ITER_DONE];
         const double residual = p->options[k]->dparam[SICONOS_DPARAM_RESIDU];
         int finite = 1;
@@ -124,7 +183,7 @@ int gb_contact_problem_solve(gb_contact_problem *p, int count, double *W, double
          * map's residual over the largest of |q|, |r|, |u|, as its solvers call it) */
         double norm_q = 0.0, error = INFINITY;
         for (size_t i = 0; i < n; i++) norm_q += q[i] * q[i];
-        fc3d_compute_error(&problem, r, u, p->def.tolerance, p->options[0], sqrt(norm_q), &error);
+        siconos.compute_error(&problem, r, u, p->def.tolerance, p->options[0], sqrt(norm_q), &error);
         if (error <= p->def.tolerance) {
             report->residual = error, report->exact = 1;
             memcpy(p->best_r, r, n * sizeof *r), memcpy(p->best_u, u, n * sizeof *u);
@@ -133,7 +192,7 @@ int gb_contact_problem_solve(gb_contact_problem *p, int count, double *W, double
     }
     memcpy(r, p->best_r, n * sizeof *r), memcpy(u, p->best_u, n * sizeof *u);
     M->matrix0 = NULL;
-    NM_free(M); /* frees the matrix's struct too */
+    siconos.matrix_free(M); /* frees the matrix's struct too */
     report->fallback = used > 0;
     report->converged = report->residual <= p->def.tolerance;
     if (!report->converged)
