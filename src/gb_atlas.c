@@ -134,6 +134,7 @@ int gb_atlas_cell_split(gb_atlas *A, cell *c)
     pthread_mutex_lock(&K->lock);
     cell_quad *q = gb_arena_take(&K->cell_quads);
     if (q && c->level + 1 > K->stats.deepest_level) K->stats.deepest_level = c->level + 1;
+    if (q) K->cells_held += 4;
     pthread_mutex_unlock(&K->lock);
     if (!q) return gb_error_set(GB_ENOMEM, "out of memory for the atlas's cells");
     const double um = 0.5 * (c->u_lo + c->u_hi), vm = 0.5 * (c->v_lo + c->v_hi);
@@ -464,6 +465,7 @@ void gb_atlas_faces_reset(gb_atlas *A)
 {
     gb_atlas_core *K = A->core;
     gb_arena_release(&K->cell_quads);
+    K->cells_held = 6;
     for (int f = 0; f < 6; f++) {
         memset(&K->faces[f], 0, sizeof K->faces[f]);
         K->faces[f].face = (unsigned char)f;
@@ -664,20 +666,12 @@ void gb_atlas_cells(const gb_atlas *A, gb_atlas_cell_info *out, size_t max, size
     for (int f = 0; f < 6; f++) list_cells(&A->core->faces[f], out, max, count);
 }
 
-static size_t count_cells(const cell *c)
-{
-    size_t n = 1;
-    if (state_of(c) == CELL_SPLIT)
-        for (int k = 0; k < 4; k++) n += count_cells(&c->child[k]);
-    return n;
-}
-
+/* Counted as they are taken, not by walking the cells: every claim of a cell asks (a walk would make a run's
+ * claims quadratic in its cells). A subtree a merge read and dropped still holds its memory, and counts. */
 static size_t core_bytes(gb_atlas_core *K)
 {
-    size_t cells = 0;
-    for (int f = 0; f < 6; f++) cells += count_cells(&K->faces[f]);
     pthread_mutex_lock(&K->lock);
-    const size_t boxes = K->stats.boxes;
+    const size_t cells = K->cells_held, boxes = K->stats.boxes;
     pthread_mutex_unlock(&K->lock);
     return cells * sizeof(cell) + (boxes / 4) * sizeof(box_quad);
 }

@@ -84,14 +84,15 @@ int gb_atlas_write(const gb_atlas *A, FILE *f)
 /* Write the atlas to `path` as a set of one; `locked`: the caller holds the lock of its directory. */
 static int atlas_save(const gb_atlas *A, const char *path, int locked)
 {
+    const int keyed = gb_seal_key_ready();
+    if (keyed) return gb_error_set(keyed, "cannot seal the atlas file %s: %s", path, gb_error_message());
     gb_file_set set = {.directory_locked = locked};
-    gb_seal_state probe;
-    int status = gb_seal_begin(&probe);
-    if (status) return gb_error_set(status, "cannot seal the atlas file %s: %s", path, gb_error_message());
+    int status = GB_OK;
     FILE *f = gb_file_set_open(&set, path, &status);
     if (!f) return gb_error_set(status, "cannot write the atlas file: %s", gb_error_message());
     errno = 0;
-    if (gb_atlas_write(A, f)) status = gb_error_set(GB_EIO, "cannot write the atlas file %s: %s", path, strerror(errno ? errno : EIO));
+    if (gb_atlas_write(A, f))
+        status = gb_error_set(GB_EIO, "cannot write the atlas file %s: %s", path, strerror(errno ? errno : EIO));
     return gb_file_set_commit(&set, status);
 }
 

@@ -79,6 +79,7 @@ typedef struct gb_atlas_core {
                               * cell, and given back, so that their refined boxes serve every view */
     size_t certifiers_free, certifiers_cap;
     size_t max_bytes;      /* no cell is built beyond this memory (0: no bound); its checks are undecided then */
+    size_t cells_held;     /* the cells taken from the arena: the six faces and four a split */
     gb_atlas_stats stats;  /* the cells and boxes: cells, cells_failed, two_site_cells, cells_split, boxes,
                             * deepest_level, build_seconds, and the waits (wait_seconds, waits) */
 } gb_atlas_core;

@@ -402,6 +402,19 @@ static void test_shared_views(void)
             contradictions += a != GB_CERTIFY_UNDECIDED && b != GB_CERTIFY_UNDECIDED && a != b;
         }
     }
+    /* an atlas already past its memory bound builds no cell: each check is left to gb_certify (undecided) */
+    gb_atlas *full = NULL;
+    size_t full_undecided = 0;
+    gb_atlas_stats full_stats = {0};
+    if (!status) status = gb_atlas_create(s, &ad, &full);
+    if (!status) gb_atlas_set_max_bytes(full, 1);
+    for (int k = 0; k < 20 && !status; k++) {
+        gb_certify_result out;
+        status = gb_atlas_check(full, zb[k], &minimum[k], &rd, &out);
+        full_undecided += out.verdict == GB_CERTIFY_UNDECIDED;
+    }
+    if (full) gb_atlas_get_stats(full, &full_stats);
+    gb_atlas_free(full);
     gb_atlas_stats st = {0}, solo = {0};
     if (shared) gb_atlas_get_stats(shared, &st), gb_atlas_cells(shared, NULL, 0, &listed);
     if (alone) gb_atlas_get_stats(alone, &solo);
@@ -418,6 +431,11 @@ static void test_shared_views(void)
                   "lone atlas's, %zu against it; %zu waits for a cell another thread was proving (%.3f s)",
                   status ? gb_error_message() : "ran", started, st.cells, listed, solo.cells, decided,
                   SHARED_THREADS * SHARED_VERTICALS, agreed, contradictions, st.waits, st.wait_seconds);
+    gb_check cf = {"4", "29", "an atlas whose memory bound (1 byte) is already passed, 20 of those verticals",
+                   "no cell built, every check undecided (left to the per-vertical certificate)", "exact"};
+    gb_check_true(&cf, !status && full_undecided == 20 && full_stats.cells + full_stats.cells_failed + full_stats.cells_split == 0,
+                  "%s; %zu of 20 undecided, %zu cells proved", status ? gb_error_message() : "ran", full_undecided,
+                  full_stats.cells + full_stats.cells_failed + full_stats.cells_split);
 }
 
 /* A bad atlas definition is refused with its allowed range. */
