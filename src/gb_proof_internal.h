@@ -13,6 +13,15 @@ gb_proof_interval gb_proof_interval_of(const arb_t x);
 /* The interval [lo, hi] of doubles as a ball (exact endpoints). */
 void gb_proof_ball_of(arb_t out, gb_proof_interval x, slong prec);
 
+/* out = x d for a double d (exact as a ball). */
+void gb_proof_mul_d(arb_t out, const arb_t x, double d, slong prec);
+
+/* The top of the paper's bodies: sinφ cos χ = 1 only at φ = π/2, χ = 0, which is θ = π/2 for I (χ = θ − 5φ) and θ = 0
+ * for II; there χ_θ = 1 and χ_φ = −5 (I), 3π/2 (II). s₀ (a coordinate axis), u_θ there, χ_φ as a number times π when
+ * *pi_multiple. GB_EDOM for another body or β outside (0, 1/4) (gb_proof_body.c). */
+struct gb_surface;
+int gb_proof_body_top(const struct gb_surface *s, double s0[3], double tangent_theta[3], double *chi_phi_num, int *pi_multiple);
+
 /* GB_EDOM naming the allowed range when precision is outside it. */
 int gb_proof_check_precision(long precision);
 
