@@ -35,6 +35,7 @@
 #include "gb_melnikov.h"
 #include "gb_melnikov_body.h"
 #include "gb_proof.h"
+#include "gb_proof_body.h"
 #include "gb_handle.h"
 
 #ifdef __cplusplus

@@ -29,6 +29,7 @@ int verify_register_s6_chaos(void);
 int verify_register_s6_diagnostics(void);
 int verify_register_s7_melnikov(void);
 int verify_register_s7_proofs(void);
+int verify_register_s7_proofs_body(void);
 int verify_register_s7_covering(void);
 int verify_register_s8_scan(void);
 int verify_register_s8_scan_runs(void);

@@ -1,0 +1,121 @@
+/* gb_proof_body — the Melnikov integrals of a Gömböc's reduced model (paper §7, eqs 78–93) enclosed from the body.
+ *
+ * The model is gb_melnikov_body's under the `top` mass reading: the body rocks about the axis a = z₀ × e through its
+ * top, U(q) = m g (H(q) − r_max) with H(q) = max_x x·v(q) the support function in the direction v(q) = cos q s₀ −
+ * sin q e (s₀ the top's direction, −z₀), M frozen at the top, S(q) = −m H′(q) (docs/melnikov.md). Its separatrix is
+ * the rotation over the top from q = 0 to 2π, on which p = √(2 M m g (r_max − H(q))) and dt = M dq / p.
+ *
+ * What is enclosed, and how (docs/proofs.md, "The Gömböcs' reduced models"):
+ * - the top: for the paper's bodies (S = 1 + 4β sinφ cos χ with χ_θ = 1) sinφ cos χ ≤ 1 with equality at one point
+ *   only (φ = π/2 and χ = 0 there), so r_max = (1 + 4β)^{1/4} and s₀ is a coordinate axis, exactly; H(q) < r_max for
+ *   0 < q < 2π (the only point at distance r_max is the top, reached only in the direction s₀); H″(0) from the
+ *   Hessian of r at the top in closed form (negative: a hyperbolic saddle);
+ * - H and H′ on cells of q: a branch-and-bound over boxes of the surface's charts (gb_surface_enclose, the
+ *   certificate's interval arithmetic, checked against Arb in verify/s7_proofs.c). For an arc Q of q and a surface
+ *   point x* a box is dropped when (x − x*)·v(q) < 0 over the box and Q (the maximiser for every q in Q is elsewhere),
+ *   or when a chart derivative of x·v excludes 0 (no critical point). Then H(q) ∈ x*·v(q) + [0, E] on the cell, E the
+ *   largest bound of (x − x*)·v over the boxes kept, and H′ (= x_c·v′ where the contact is unique, and between the
+ *   one-sided values at a tie) lies in the hull of x·v′ over them. Arcs are halved, each keeping its parent's boxes,
+ *   down to cells of width `resolution` × their distance to the saddle (at least `cut`);
+ * - on Arb's balls: p on each cell, t(q) at the cells' ends summed from t(origin) = 0, and D = ∫ p dq,
+ *   C_k = ∫ S cos(kωt) dq, S_k = ∫ S sin(kωt) dq as sums of cell enclosures; within `cut` of the saddle only bounds:
+ *   0 ≤ ∫ p dq ≤ cut · max p and |∫ S (…) dq| ≤ cut · max |S| there;
+ * - the piecewise structure of H on each cell from its kept boxes (gb_proof_body_ties.c): C², or at most one tie.
+ * M enters as an interval (gb_proof_body_inertia encloses it): the statement holds for every M in it. */
+#ifndef GB_PROOF_BODY_H
+#define GB_PROOF_BODY_H
+
+#include "gb_export.h"
+
+#include "gb_proof.h"
+#include "gb_surface.h"
+
+#include <stddef.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Ranges of the definition. */
+#define GB_PROOF_BODY_CUT_MIN 1e-4
+#define GB_PROOF_BODY_CUT_MAX 0.2
+#define GB_PROOF_BODY_RESOLUTION_MIN 1e-5
+#define GB_PROOF_BODY_RESOLUTION_MAX 0.1
+
+typedef struct gb_proof_body_def {
+    const gb_surface *surface;  /* the paper's Gömböc I or II, 0 < β < 1/4 */
+    double mass, g;             /* m [kg] > 0, g [m/s²] > 0 */
+    double rocking[3];          /* e (gb_melnikov_body_info.rocking): projected on the plane ⊥ s₀ and normalised on balls */
+    gb_proof_interval inertia;  /* M, the moment of inertia about the contact line at the top [kg m²], lo > 0 */
+    double origin;              /* where t = 0, in (cut, 2π − cut) */
+    double cut;                 /* the saddle's neighbourhoods [0, cut] and [2π − cut, 2π] (GB_PROOF_BODY_CUT_MIN … MAX) */
+    double resolution;          /* a cell's width over its distance to the saddle (GB_PROOF_BODY_RESOLUTION_MIN … MAX) */
+    long precision;             /* Arb's bits */
+} gb_proof_body_def;
+
+typedef struct gb_proof_body_model {
+    double top[3];              /* s₀ (exact) */
+    gb_proof_interval r_max;    /* (1 + 4β)^{1/4} */
+    gb_proof_interval curvature;/* H″(0) (closed form at the top): < 0 is the saddle's hyperbolicity */
+    gb_proof_interval rate;     /* λ = √(−m g H″(0) / M) [1/s] */
+    size_t cells;               /* cells of q enclosed */
+    size_t boxes;               /* surface boxes enclosed in all */
+    size_t kept_max;            /* the most boxes a cell kept */
+    size_t smooth_cells;        /* cells (the two neighbourhoods of the saddle among them) on which H is proved C² */
+    size_t tie_cells;           /* cells proved to hold at most one tie (two contacts, their heights' difference monotone) */
+    size_t open_cells;          /* cells on which neither is proved (gb_proof_body_ties.c) */
+    double tie_q[8][2];         /* the first 8 tie cells' ranges of q */
+    double gap_min;             /* the least lower bound of r_max − H over the cells (> 0: the orbit is a rotation) */
+    double height_spread_max;   /* the widest E over the cells (H's excess over x*·v) */
+    gb_proof_interval D;        /* ∫ p dq over [0, 2π] */
+    double seconds;             /* CPU */
+    struct gb_proof_body_cells *cells_data; /* for gb_proof_body_integrals; freed by gb_proof_body_free */
+} gb_proof_body_model;
+
+/* Encloses H, H′ and p over the separatrix and D. GB_EDOM for a definition out of range (named with its range) or a
+ * body that is not the paper's I or II; GB_ENUMERIC when a cell cannot be enclosed (the gap not proved positive). */
+GB_API int gb_proof_body_enclose(const gb_proof_body_def *def, gb_proof_body_model *out);
+
+/* C₁, S₁ at ω and C₂, S₂ at 2ω (eqs 89–90 with the exact weight and S = −m H′), from an enclosed model. ω in
+ * (0, 1000]. */
+typedef struct gb_proof_body_integrals {
+    double omega;
+    gb_proof_interval C1, S1, C2, S2;
+    gb_proof_interval time_span;  /* t(2π − cut) − t(cut): the separatrix's time between the neighbourhoods */
+    double seconds;
+} gb_proof_body_integrals;
+
+GB_API int gb_proof_body_integrals_compute(const gb_proof_body_def *def, const gb_proof_body_model *model, double omega,
+                                           gb_proof_body_integrals *out);
+
+/* The Melnikov function of eq 91 for a forcing: μ = c / M (the paper's damping −μp), μD enclosed, C and S at ω and 2ω,
+ * and its zeros decided by gb_proof_melnikov_zeros (with μ = 1 and D replaced by the interval μD). */
+typedef struct gb_proof_body_forcing {
+    double damping;             /* c [N m s] ≥ 0 */
+    double A1, A2, omega;       /* ν₁ = A₁, ν₂ = A₂ [m/s²], ω [rad/s] in (0, 1000] */
+    gb_proof_interval psi;      /* the second harmonic's phase */
+    int depth;                  /* gb_proof_melnikov's depth */
+} gb_proof_body_forcing;
+
+typedef struct gb_proof_body_result {
+    gb_proof_body_integrals integrals;
+    gb_proof_interval mu, mu_D;
+    gb_proof_zeros zeros;
+} gb_proof_body_result;
+
+GB_API int gb_proof_body_melnikov(const gb_proof_body_def *def, const gb_proof_body_model *model,
+                                  const gb_proof_body_forcing *forcing, gb_proof_body_result *out);
+
+GB_API void gb_proof_body_free(gb_proof_body_model *model);
+
+/* M = aᵀ I_c a + m r_max² of the paper's body I or II (homogeneous, mass m; a = e × s₀ with e projected ⊥ s₀ and
+ * normalised) and its volume, by Arb's quadrature nested over the sphere (src/gb_proof_mass.c). GB_EDOM for another body
+ * or the precision out of range; GB_ENUMERIC when the quadrature does not enclose them. */
+GB_API int gb_proof_body_inertia(const gb_surface *surface, double mass, const double rocking[3], long precision,
+                                 gb_proof_interval *M, gb_proof_interval *volume);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif
