@@ -9,17 +9,20 @@
 #include "gb_dynamics_protocol_internal.h"
 #include "gb_error.h"
 #include "gb_hash.h"
+#include "gb_seal.h"
 
 #include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 struct gb_dynamics_context {
     gb_surface props_surface; /* the body and mass of `props` (has_props) */
     double props_mass;
     gb_massprops props;
     int has_props;
+    int props_loaded;         /* `props` came from the cache's file */
     gb_surface grid_surface;  /* the body and definition of `grid` (and `tracker`) */
     gb_contact_grid_def grid_def;
     gb_contact_grid *grid;
@@ -33,7 +36,8 @@ struct gb_dynamics_context {
     int atlas_written;        /* atlas_file holds this atlas as of atlas_saved_build (loaded or saved) */
     double atlas_saved_build; /* the atlas's build seconds at its load or last save */
     char *atlas_file, *hull_file;
-    char *cache_dir;          /* the hull kept by the grid's content (hull_file then names it: hull_cached) */
+    char *cache_dir;          /* the user's cache: the hull by the grid's content (hull_file then names it: hull_cached), the
+                               * paper's bodies' mass properties */
     int hull_cached;
     gb_dynamics_lowest_node lowest;
     void *lowest_user;
@@ -165,8 +169,70 @@ static int same_grid(const gb_contact_grid_def *a, const gb_contact_grid_def *b)
     return a->n_phi == b->n_phi && a->n_theta == b->n_theta && a->nodes == b->nodes && a->leaf_size == b->leaf_size;
 }
 
-/* The body's mass properties: the context's when it holds this body's and mass's, else computed (and kept
- * there: they follow the last body). */
+/* The mass properties in the user's cache (the context's cache directory), keyed by the body's content: the paper's
+ * bodies only — a body of one's own is named by a file or an expression whose content the key would not see, and a
+ * polyhedron's are in closed form (cheap). The key holds the morphology's name, β, the quadrature's definition (with
+ * the mass) and MASSPROPS_REVISION, raised whenever gb_massprops' results change; the file is sealed like the hull
+ * (gb_seal: a file another hand wrote, or this program under another key, is not read) and written whole (a
+ * temporary file renamed). 8 ms of a run's start-up for Table 1's bodies. */
+#define MASSPROPS_REVISION 1u
+static const char massprops_magic[8] = "gbmp01\n";
+
+static int massprops_cache_path(const gb_dynamics_context *c, const gb_surface *s, const gb_massprops_def *def, char *path,
+                                size_t size)
+{
+    const gb_morphology *m = s->morphology;
+    if (!c->cache_dir || !m->phase || m->user || m->polyhedron || m->kernel || !m->name) return 0;
+    const unsigned revision = MASSPROPS_REVISION, bytes = (unsigned)sizeof(gb_massprops);
+    uint64_t key = gb_hash_add(GB_HASH_OFFSET, m->name, strlen(m->name));
+    key = gb_hash_add(key, &s->beta, sizeof s->beta);
+    const double numbers[3] = {def->mass, def->epsabs, def->epsrel};
+    key = gb_hash_add(key, numbers, sizeof numbers);
+    key = gb_hash_add(key, &def->limit, sizeof def->limit);
+    key = gb_hash_add(key, &revision, sizeof revision);
+    key = gb_hash_add(key, &bytes, sizeof bytes);
+    const int n = snprintf(path, size, "%s/massprops-%016llx.gbm", c->cache_dir, (unsigned long long)key);
+    return n > 0 && (size_t)n < size;
+}
+
+static int massprops_load(const char *path, double mass, gb_massprops *out)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f) return 0;
+    char magic[sizeof massprops_magic];
+    gb_massprops props;
+    unsigned char seal[GB_SEAL_BYTES], extra;
+    const int whole = fread(magic, sizeof magic, 1, f) == 1 && fread(&props, sizeof props, 1, f) == 1 &&
+                      fread(seal, sizeof seal, 1, f) == 1 && fread(&extra, 1, 1, f) == 0;
+    fclose(f);
+    const gb_seal_piece pieces[2] = {{magic, sizeof magic}, {&props, sizeof props}};
+    if (!whole || memcmp(magic, massprops_magic, sizeof magic) || !gb_seal_verify(pieces, 2, seal) ||
+        memcmp(&props.mass, &mass, sizeof mass))
+        return 0;
+    *out = props;
+    return 1;
+}
+
+/* Best effort: a cache that cannot be written is no error (the next run computes them again). */
+static void massprops_save(const char *path, const gb_massprops *props)
+{
+    const gb_seal_piece pieces[2] = {{massprops_magic, sizeof massprops_magic}, {props, sizeof *props}};
+    unsigned char seal[GB_SEAL_BYTES];
+    if (gb_seal_compute(pieces, 2, seal)) {
+        gb_error_clear();
+        return;
+    }
+    char tmp[4200];
+    if (snprintf(tmp, sizeof tmp, "%s.%ld.tmp", path, (long)getpid()) >= (int)sizeof tmp) return;
+    FILE *f = fopen(tmp, "wb");
+    if (!f) return;
+    const int ok = fwrite(massprops_magic, sizeof massprops_magic, 1, f) == 1 && fwrite(props, sizeof *props, 1, f) == 1 &&
+                   fwrite(seal, sizeof seal, 1, f) == 1;
+    if (fclose(f) || !ok || rename(tmp, path)) remove(tmp);
+}
+
+/* The body's mass properties: the context's when it holds this body's and mass's, else read from the user's cache,
+ * else computed (and kept there and in the cache: they follow the last body). */
 static int body_massprops(gb_dynamics_context *c, const gb_surface *surface, const gb_dynamics_def *def, gb_massprops *props)
 {
     if (c->has_props && same_body(&c->props_surface, surface) && !memcmp(&c->props_mass, &def->mass, sizeof def->mass)) {
@@ -175,8 +241,15 @@ static int body_massprops(gb_dynamics_context *c, const gb_surface *surface, con
     }
     gb_massprops_def mdef = gb_massprops_default_def();
     mdef.mass = def->mass;
-    const int status = gb_massprops_compute(surface, &mdef, props);
-    if (!status) c->props_surface = *surface, c->props_mass = def->mass, c->props = *props, c->has_props = 1;
+    char path[4096];
+    const int cached = massprops_cache_path(c, surface, &mdef, path, sizeof path);
+    int status = GB_OK;
+    const int loaded = cached && massprops_load(path, def->mass, props);
+    if (!loaded) {
+        status = gb_massprops_compute(surface, &mdef, props);
+        if (!status && cached) massprops_save(path, props);
+    }
+    if (!status) c->props_surface = *surface, c->props_mass = def->mass, c->props = *props, c->has_props = 1, c->props_loaded = loaded;
     return status;
 }
 
@@ -359,6 +432,8 @@ int gb_dynamics_atlas_stats(const gb_dynamics *d, gb_atlas_stats *out, size_t *f
     *loaded = d->atlas == d->context->atlas && d->context->atlas_loaded;
     return GB_OK;
 }
+
+int gb_dynamics_massprops_loaded(const gb_dynamics *d) { return d->context && d->context->props_loaded; }
 
 int gb_dynamics_hull_stats(const gb_dynamics *d, size_t *vertices, int *loaded)
 {

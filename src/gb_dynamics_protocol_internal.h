@@ -102,5 +102,7 @@ int gb_dynamics_context_shared_stats(gb_dynamics_context *lead, gb_atlas_stats *
 /* contact = fast-grid: the tracker's hull vertices (0: no hull, the patch-tree search) and whether the hull
  * came from the context's hull file (1) or Qhull (0); GB_EINVAL for another model. */
 int gb_dynamics_hull_stats(const gb_dynamics *dynamics, size_t *vertices, int *loaded);
+/* 1 when the run's mass properties came from its context's cache file (the user's cache). */
+int gb_dynamics_massprops_loaded(const gb_dynamics *dynamics);
 
 #endif

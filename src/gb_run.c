@@ -215,6 +215,7 @@ int gb_run_in(const gb_case *scene, gb_dynamics_context *context, const gb_run_s
         gb_error_clear();
         out->has_hull = gb_dynamics_hull_stats(dynamics, &out->hull_vertices, &out->hull_loaded) == GB_OK;
         gb_error_clear();
+        out->massprops_loaded = gb_dynamics_massprops_loaded(dynamics);
     }
     if (body) gb_lyapunov_body_free(body);
     else gb_dynamics_free(dynamics);

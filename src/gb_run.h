@@ -74,6 +74,7 @@ typedef struct gb_run_result {
     int has_hull;                        /* contact = fast-grid */
     size_t hull_vertices;                /* the tracker's hull (0: the patch-tree search) */
     int hull_loaded;                     /* 1: the hull came from the context's hull file */
+    int massprops_loaded;                /* 1: the mass properties came from the context's cache (the user's) */
     size_t impacts;                      /* the unilateral law: impacts, the kinetic energy they took (L of */
     double impact_energy_lost;           /* the ledger; energy_residual is E − E0 − W + L) and the largest */
     double impact_friction_max;          /* friction coefficient an impact needed */

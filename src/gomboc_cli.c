@@ -265,7 +265,8 @@ int cli_positional(const char *command, const char *opt, const char **slot, cons
     return 1;
 }
 
-/* The user's cache of hulls (the fast grid's, by the grid's content): $XDG_CACHE_HOME/gomboc, else
+/* The user's cache of hulls (the fast grid's, by the grid's content) and of the paper's bodies' mass properties (by
+ * the body, β, mass and quadrature): $XDG_CACHE_HOME/gomboc, else
  * $HOME/.cache/gomboc, made when missing (0700); none when GOMBOC_CACHE=off, when neither variable is set,
  * or when the directory cannot be made. A cache never fails a run. */
 int cli_user_cache(gb_dynamics_context *context)

@@ -118,8 +118,8 @@ int command_prove(int argc, char **argv);
  * the coarsest that decides. NULL with *status set when a computation fails. */
 cJSON *prove_body_statement(size_t which, double resolution, long precision, int depth, int *proved, int *status);
 
-/* The user's cache of hulls for context: $XDG_CACHE_HOME/gomboc, else $HOME/.cache/gomboc (made, 0700); none when
- * GOMBOC_CACHE=off or it cannot be made. gb_ status (a cache never fails a run: GB_OK but for memory). */
+/* The user's cache of hulls and mass properties for context: $XDG_CACHE_HOME/gomboc, else $HOME/.cache/gomboc (made,
+ * 0700); none when GOMBOC_CACHE=off or it cannot be made. gb_ status (a cache never fails a run: GB_OK but for memory). */
 int cli_user_cache(gb_dynamics_context *context);
 
 #endif

@@ -538,6 +538,7 @@ static cJSON *summary_json(const gb_case *scene, const char *path, const gb_run_
             {"build_seconds", as->build_seconds},        {"bytes", (double)as->bytes}};
         add_values(cJSON_AddObjectToObject(root, "atlas"), atlas, sizeof atlas / sizeof atlas[0]);
     }
+    cli_json_add(cJSON_AddObjectToObject(root, "massprops"), "loaded", r->massprops_loaded);
     if (r->has_hull) {
         cJSON *h = cJSON_AddObjectToObject(root, "hull");
         cli_json_add(h, "vertices", (double)r->hull_vertices);
@@ -690,7 +691,7 @@ int command_run(int argc, char **argv)
     gb_dynamics_context *context = NULL;
     if (!status) status = gb_dynamics_context_create(&context);
     if (!status) status = gb_dynamics_context_files(context, atlas, hull);
-    if (!status && !hull) status = cli_user_cache(context);
+    if (!status) status = cli_user_cache(context); /* a hull file named with --hull is used, not the cache's */
     if (!status) status = gb_run_in(&scene, context, out.history || out.impacts ? &sinks : NULL, &r);
     if (!status) status = gb_dynamics_context_save(context);
     gb_dynamics_context_free(context);

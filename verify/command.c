@@ -4,12 +4,14 @@
 #include "gb_check.h"
 #include "gb_contact.h"
 #include "gb_error.h"
+#include "gb_massprops.h"
 #include "gb_scan_internal.h"
 #include "verify_sections.h"
 
 #include <cjson/cJSON.h>
 #include <gsl/gsl_errno.h>
 #include <math.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -238,6 +240,86 @@ static void test_run_cache(void)
     gb_check_true(&c, same && files == 1 && loaded[0] == 0 && loaded[1] == 1 && loaded[2] == 0,
                   "exit %d %d %d; loaded %d %d %d; %d hull file(s) in the cache; fingerprints %s %s %s", code[0], code[1], code[2],
                   loaded[0], loaded[1], loaded[2], files, prints[0], prints[1], prints[2]);
+    char clean_up[400];
+    snprintf(clean_up, sizeof clean_up, "rm -rf '%s'", dir);
+    if (system(clean_up)) return;
+}
+
+/* The mass properties in the user's cache: written by the first run of a paper body, read by the next; a file whose
+ * values were changed (the seal no longer matches) is not read — had it been, the changed inertia would change the
+ * state bits; a body of one's own writes none. */
+static int massprops_loaded(int code, const char *out, char *fingerprint, size_t size)
+{
+    int hull;
+    summary_hull(code, out, fingerprint, size, &hull);
+    cJSON *root = cJSON_Parse(strchr(out, '{') ? strchr(out, '{') : out);
+    const cJSON *l = cJSON_GetObjectItem(cJSON_GetObjectItem(root, "massprops"), "loaded");
+    const int loaded = cJSON_IsNumber(l) ? l->valueint : -1;
+    cJSON_Delete(root);
+    return loaded;
+}
+
+static void test_run_massprops_cache(void)
+{
+    char dir[] = "/tmp/gomboc-massprops-XXXXXX";
+    if (!mkdtemp(dir)) return;
+    static const char *const own = "[body]\nchi = theta - 5 * phi\nbeta = 0.12\n[integrator]\nsteps_per_period = 40\n"
+                                   "periods = 1\n[model]\ncontact = fast-grid\n";
+    char scene[256], mine[256], cache[300], prints[4][32], path[400] = "";
+    write_case(dir, "short", SHORT_SCENE, scene, sizeof scene);
+    write_case(dir, "mine", own, mine, sizeof mine);
+    snprintf(cache, sizeof cache, "%s/cache", dir);
+    static char out[1 << 16];
+    int loaded[4], code[4];
+    char args[800];
+    snprintf(args, sizeof args, "run %s --out %s --json", scene, dir);
+    setenv("GOMBOC_CACHE", "on", 1), setenv("XDG_CACHE_HOME", cache, 1);
+    for (int k = 0; k < 2; k++) code[k] = run(args, out, sizeof out), loaded[k] = massprops_loaded(code[k], out, prints[k], sizeof prints[k]);
+    /* change the cached inertia's bits (the file: magic, the struct, the seal) */
+    char listing[600];
+    snprintf(listing, sizeof listing, "ls %s/gomboc/massprops-*.gbm 2>/dev/null", cache);
+    FILE *ls = popen(listing, "r");
+    int files = 0;
+    if (ls) {
+        char line[400];
+        while (fgets(line, sizeof line, ls)) files++, line[strcspn(line, "\n")] = '\0', snprintf(path, sizeof path, "%s", line);
+        pclose(ls);
+    }
+    FILE *f = files == 1 ? fopen(path, "r+b") : NULL;
+    int changed = 0;
+    if (f) {
+        unsigned char b[8];
+        const long at = 8 + (long)offsetof(gb_massprops, inertia);
+        if (fseek(f, at, SEEK_SET) == 0 && fread(b, 8, 1, f) == 1) {
+            double x;
+            memcpy(&x, b, 8);
+            x *= 1.5;
+            changed = fseek(f, at, SEEK_SET) == 0 && fwrite(&x, 8, 1, f) == 1;
+        }
+        fclose(f);
+    }
+    code[2] = run(args, out, sizeof out), loaded[2] = massprops_loaded(code[2], out, prints[2], sizeof prints[2]);
+    snprintf(args, sizeof args, "run %s --out %s --json", mine, dir);
+    code[3] = run(args, out, sizeof out), loaded[3] = massprops_loaded(code[3], out, prints[3], sizeof prints[3]);
+    setenv("GOMBOC_CACHE", "off", 1), unsetenv("XDG_CACHE_HOME");
+    ls = popen(listing, "r");
+    int after = 0;
+    if (ls) {
+        char line[400];
+        while (fgets(line, sizeof line, ls)) after++;
+        pclose(ls);
+    }
+    gb_check c = {"2", "-", "gomboc run's mass properties in the user's cache: first run, second run, a cache file with its "
+                  "inertia changed, a body of one's own", "the first writes one file, the second reads it (the same state "
+                  "bits), the changed file is not read (the same bits again: read, its inertia would change them) and is "
+                  "replaced, the body of one's own adds no file", "exact: the state fingerprint"};
+    const int same = code[0] == 0 && code[1] == 0 && code[2] == 0 && !strcmp(prints[0], prints[1]) && !strcmp(prints[0], prints[2]) &&
+                     strcmp(prints[0], "none");
+    gb_check_true(&c, same && code[3] == 0 && files == 1 && changed && after == 1 && loaded[0] == 0 && loaded[1] == 1 &&
+                          loaded[2] == 0 && loaded[3] == 0,
+                  "exit %d %d %d %d; loaded %d %d %d %d; files %d then %d, changed %d; fingerprints %s %s %s", code[0], code[1],
+                  code[2], code[3], loaded[0], loaded[1], loaded[2], loaded[3], files, after, changed, prints[0], prints[1],
+                  prints[2]);
     char clean_up[400];
     snprintf(clean_up, sizeof clean_up, "rm -rf '%s'", dir);
     if (system(clean_up)) return;
@@ -519,6 +601,9 @@ int verify_register_command(void)
         {"command: gomboc run, case files and outputs", test_run_command, NULL},
         {"command: gomboc run without --hull: the hull in the user's cache", test_run_cache,
          "the fast grid's hull is built once per body and read from the user's cache by every later run, with the same bits"},
+        {"command: gomboc run: the mass properties in the user's cache", test_run_massprops_cache,
+         "the paper's bodies' mass properties are computed once and read back sealed from the user's cache, with the same "
+         "bits; a changed file is not read"},
         {"command: gomboc run --hull, the fast grid's hull from its file", test_run_hull,
          "a fast-grid run gives the same state bits with the hull Qhull builds and with the hull read from "
          "its file, and a damaged file is built anew"},
