@@ -41,6 +41,10 @@ CORE_SRC  := $(sort $(wildcard src/gb_*.c))
 CORE_OBJ  := $(CORE_SRC:src/%.c=$(BUILD)/obj/%.o)
 CLI_SRC   := $(sort $(wildcard src/gomboc*.c))
 CLI_OBJ   := $(CLI_SRC:src/%.c=$(BUILD)/obj/%.o)
+# gomboc prove runs gomboc-prove (src/gomboc_prove_exec.c says why): gomboc is linked without the proofs and, with
+# --as-needed, without Arb, FLINT, NTL and C++'s library; gomboc-prove is the whole command.
+PROVE_OBJ := $(BUILD)/obj/gomboc_prove.o $(BUILD)/obj/gomboc_prove_body.o
+PROVE_BIN  = $(BUILD)/gomboc-prove
 LIB       := $(BUILD)/libgomboc.a
 # The shared library beside the static one: soname libgomboc.so.$(SOMAJOR), built from position-independent
 # objects of their own (build/pic), only for install and the examples.
@@ -388,6 +392,7 @@ install-only: $(BIN) $(LIB) $(SOLIB)
 	install -m 644 CHANGELOG.md $(DESTDIR)$(PREFIX)/share/gomboc/CHANGELOG.md
 	install -m 644 $(SHARE_REPORTS) $(DESTDIR)$(PREFIX)/share/gomboc/reports/
 	install -m 755 $(BIN) $(DESTDIR)$(PREFIX)/bin/gomboc
+	install -m 755 $(PROVE_BIN) $(DESTDIR)$(PREFIX)/bin/gomboc-prove
 	install -m 644 $(LIB) $(DESTDIR)$(PREFIX)/lib/libgomboc.a
 	install -m 755 $(SOLIB) $(DESTDIR)$(PREFIX)/lib/$(notdir $(SOLIB))
 	ln -sf $(notdir $(SOLIB)) $(DESTDIR)$(PREFIX)/lib/$(SONAME)
@@ -441,7 +446,7 @@ check: verify
 
 # What `make install` put under $(DESTDIR)$(PREFIX), removed (directories it made are removed when empty).
 uninstall:
-	rm -f $(DESTDIR)$(PREFIX)/bin/gomboc $(DESTDIR)$(PREFIX)/lib/libgomboc.a $(DESTDIR)$(PREFIX)/lib/pkgconfig/gomboc.pc
+	rm -f $(DESTDIR)$(PREFIX)/bin/gomboc $(DESTDIR)$(PREFIX)/bin/gomboc-prove $(DESTDIR)$(PREFIX)/lib/libgomboc.a $(DESTDIR)$(PREFIX)/lib/pkgconfig/gomboc.pc
 	rm -f $(DESTDIR)$(PREFIX)/lib/$(notdir $(SOLIB)) $(DESTDIR)$(PREFIX)/lib/$(SONAME) $(DESTDIR)$(PREFIX)/lib/libgomboc.so
 	rm -f $(DESTDIR)$(PREFIX)/share/man/man1/gomboc.1
 	rm -f $(addprefix $(DESTDIR)$(PREFIX)/include/gomboc/,$(notdir $(PUBLIC_HEADERS)))
@@ -513,7 +518,10 @@ $(LIB): $(CORE_OBJ)
 	rm -f $@
 	ar rcs $@ $^
 
-$(BIN): $(CLI_OBJ) $(LIB)
+$(BIN): $(filter-out $(PROVE_OBJ),$(CLI_OBJ)) $(LIB) | $(PROVE_BIN)
+	$(CC) $(ALL_CFLAGS) $(LDFLAGS) -o $@ $(filter-out $(FLAGS_STAMP),$^) -Wl,--as-needed $(CORE_LIBS)
+
+$(PROVE_BIN): $(CLI_OBJ) $(LIB)
 	$(CC) $(ALL_CFLAGS) $(LDFLAGS) -o $@ $(filter-out $(FLAGS_STAMP),$^) $(CORE_LIBS)
 
 # The harness runs independent long computations on the machine's threads where OpenMP is (s6_chaos).

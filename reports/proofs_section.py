@@ -17,7 +17,7 @@ def proofs_section(out):
         return lines
     statements = data["statements"]
     lines += [f"`gomboc prove` on Arb's balls ({data['precision_bits']:g} bits): **{data['proved']:g} of "
-              f"{data['attempted']:g} statements attempted proved**; "
+              f"{data['attempted']:g} statements attempted proved**. "
               "Nothing here is estimated: each number is an interval rounded outwards from Arb's balls (or from the "
               "certificate's interval arithmetic, checked against Arb), and a statement is proved only when the intervals "
               "decide it (docs/proofs.md). The method's oracles and published results reproduced come first; then the "

@@ -253,7 +253,7 @@ static cJSON *horseshoe_statement(const horseshoe *h, const gb_proof_cover_resul
     return s;
 }
 
-int command_prove(int argc, char **argv)
+int command_prove_in_process(int argc, char **argv)
 {
     const char *precision_text = NULL, *depth_text = NULL, *resolution_text = NULL;
     int json = 0;
