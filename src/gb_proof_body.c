@@ -2,7 +2,7 @@
 
 #include "gb_certify_internal.h"
 #include "gb_error.h"
-#include "gb_proof_body_internal.h"
+#include "gb_proof_body_ties.h"
 #include "gb_proof_internal.h"
 
 #include <math.h>
@@ -15,6 +15,13 @@
  * checked against Arb op by op in verify/s7_proofs.c) because the surface's enclosures over boxes exist there
  * (gb_surface_enclose, with the phase's interval jets); the sums along the orbit, where widths would accumulate, run
  * on Arb's balls. */
+
+typedef struct run {
+    const gb_proof_body_def *def;
+    gb_proof_axes axes;
+    gb_proof_body_model *model;
+    struct gb_proof_body_cells *cells;
+} run;
 
 enum { ARC_TOP = 64, DEPTH_MAX = 40 };
 
@@ -64,24 +71,6 @@ static void fill_box(run *r, pbox *b, int region, double a_lo, double a_hi, doub
     r->model->boxes++;
 }
 
-gb_interval gb_proof_body_dot(const gb_interval a[3], const gb_interval b[3])
-{
-    gb_interval s = gb_interval_mul(a[0], b[0]);
-    s = gb_interval_add(s, gb_interval_mul(a[1], b[1]));
-    return gb_interval_add(s, gb_interval_mul(a[2], b[2]));
-}
-
-/* v(Q) = cos Q s₀ − sin Q e and v′(Q) = −sin Q s₀ − cos Q e over the arc [q_lo, q_hi]. */
-void gb_proof_body_directions(const run *r, double q_lo, double q_hi, gb_interval v[3], gb_interval dv[3])
-{
-    const gb_interval Q = gb_interval_make(q_lo, q_hi), c = gb_interval_cos(Q), s = gb_interval_sin(Q);
-    for (int k = 0; k < 3; k++) {
-        const gb_interval s0 = gb_interval_point(r->s0[k]);
-        v[k] = gb_interval_sub(gb_interval_mul(c, s0), gb_interval_mul(s, r->e[k]));
-        dv[k] = gb_interval_neg(gb_interval_add(gb_interval_mul(s, s0), gb_interval_mul(c, r->e[k])));
-    }
-}
-
 /* An upper bound of (x − x*)·v over the box and the arc: the direct enclosure met with the Taylor form about the box
  * centre (whose first-order term is the gradient of x·v there, small near the maximiser). */
 static double excess_upper(const pbox *b, const gb_interval xs[3], const gb_interval v[3])
@@ -112,7 +101,7 @@ static int sloped(const pbox *b, const gb_interval v[3])
 static const pbox *candidate(const run *r, const boxes *list, double q_mid)
 {
     gb_interval v[3], dv[3];
-    gb_proof_body_directions(r, q_mid, q_mid, v, dv);
+    gb_proof_body_directions(&r->axes, q_mid, q_mid, v, dv);
     const pbox *best = NULL;
     double best_h = -INFINITY;
     for (size_t k = 0; k < list->n; k++) {
@@ -162,7 +151,7 @@ static int keep(run *r, const boxes *in, double q_lo, double q_hi, double size, 
                 double *excess)
 {
     gb_interval v[3], dv[3];
-    gb_proof_body_directions(r, q_lo, q_hi, v, dv);
+    gb_proof_body_directions(&r->axes, q_lo, q_hi, v, dv);
     boxes from = {0}, to = {0};
     int status = GB_OK;
     for (size_t k = 0; k < in->n && !status; k++) status = push_box(&from, &in->at[k]);
@@ -186,19 +175,19 @@ static int keep(run *r, const boxes *in, double q_lo, double q_hi, double size, 
 static void cell_of(run *r, const boxes *kept, const gb_interval xs[3], double excess, double q_lo, double q_hi, cell *out)
 {
     gb_interval v[3], dv[3];
-    gb_proof_body_directions(r, q_lo, q_hi, v, dv);
+    gb_proof_body_directions(&r->axes, q_lo, q_hi, v, dv);
     const gb_interval base = gb_proof_body_dot(xs, v);
     out->q_lo = q_lo, out->q_hi = q_hi;
     out->H = (gb_interval){base.lo, gb_interval_up(base.hi + excess)};
     const double q_mid = 0.5 * (q_lo + q_hi);
-    gb_proof_body_directions(r, q_mid, q_mid, v, dv);
+    gb_proof_body_directions(&r->axes, q_mid, q_mid, v, dv);
     const gb_interval mid = gb_proof_body_dot(xs, v);
     out->H_mid = (gb_interval){mid.lo, gb_interval_up(mid.hi + excess)};
     for (size_t k = 0; k < kept->n; k++) {
         const gb_interval d = gb_proof_body_dot(kept->at[k].e.x, dv);
         out->dH = k ? gb_interval_hull(out->dH, d) : d;
     }
-    switch (gb_proof_body_structure(r, kept, q_lo, q_hi)) {
+    switch (gb_proof_body_structure(r->def->surface, &r->axes, kept, q_lo, q_hi)) {
     case GB_PROOF_BODY_SMOOTH: r->model->smooth_cells++; break;
     case GB_PROOF_BODY_TIE:
         if (r->model->tie_cells < 8) r->model->tie_q[r->model->tie_cells][0] = q_lo, r->model->tie_q[r->model->tie_cells][1] = q_hi;
@@ -260,7 +249,7 @@ static int top_model(run *r, slong prec)
     const gb_proof_body_def *def = r->def;
     double tt[3] = {0, 0, 0}, cp = 0.0;
     int pim = 0;
-    int status = gb_proof_body_top(def->surface, r->s0, tt, &cp, &pim);
+    int status = gb_proof_body_top(def->surface, r->axes.s0, tt, &cp, &pim);
     if (status) return status;
     arb_t rm, K11, K12, K22, t, u, e[3], nrm, ephi, eth, det, q;
     arb_init(rm), arb_init(K11), arb_init(K12), arb_init(K22), arb_init(t), arb_init(u), arb_init(nrm);
@@ -275,7 +264,7 @@ static int top_model(run *r, slong prec)
     arb_zero(u);
     for (int k = 0; k < 3; k++) arb_set_d(e[k], def->rocking[k]);
     for (int k = 0; k < 3; k++)
-        if (r->s0[k] != 0.0) arb_zero(e[k]); /* s₀ is a coordinate axis: the projection drops that component */
+        if (r->axes.s0[k] != 0.0) arb_zero(e[k]); /* s₀ is a coordinate axis: the projection drops that component */
     arb_zero(nrm);
     for (int k = 0; k < 3; k++) arb_addmul(nrm, e[k], e[k], prec);
     if (!arb_is_positive(nrm)) {
@@ -285,7 +274,7 @@ static int top_model(run *r, slong prec)
     arb_rsqrt(nrm, nrm, prec);
     for (int k = 0; k < 3; k++) {
         arb_mul(e[k], e[k], nrm, prec);
-        r->e[k] = (gb_interval){gb_proof_interval_of(e[k]).lo, gb_proof_interval_of(e[k]).hi};
+        r->axes.e[k] = (gb_interval){gb_proof_interval_of(e[k]).lo, gb_proof_interval_of(e[k]).hi};
     }
     arb_neg(ephi, e[2]); /* e·u_φ, u_φ = −e_z */
     arb_zero(eth);
@@ -333,7 +322,7 @@ static int top_model(run *r, slong prec)
     arb_div(t, t, u, prec);
     arb_sqrt(t, t, prec);
     r->model->rate = gb_proof_interval_of(t);
-    memcpy(r->model->top, r->s0, sizeof r->s0);
+    memcpy(r->model->top, r->axes.s0, sizeof r->axes.s0);
 done:
     arb_clear(rm), arb_clear(K11), arb_clear(K12), arb_clear(K22), arb_clear(t), arb_clear(u), arb_clear(nrm);
     arb_clear(ephi), arb_clear(eth), arb_clear(det), arb_clear(q);

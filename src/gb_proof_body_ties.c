@@ -14,7 +14,7 @@
  *   interval excludes 0 the difference is strictly monotone: at most one tie in the cell, where only H′ jumps (H is a
  *   support function: continuous);
  * - otherwise: not proved. */
-#include "gb_proof_body_internal.h"
+#include "gb_proof_body_ties.h"
 
 #include "gb_certify_internal.h"
 
@@ -86,7 +86,8 @@ static int touch(const double x[4], const double y[4])
     return x[0] <= y[1] && y[0] <= x[1] && x[2] <= y[3] && y[2] <= x[3];
 }
 
-gb_proof_body_piece gb_proof_body_structure(const run *r, const boxes *kept, double q_lo, double q_hi)
+gb_proof_body_piece gb_proof_body_structure(const gb_surface *surface, const gb_proof_axes *axes, const boxes *kept,
+                                            double q_lo, double q_hi)
 {
     size_t *pick = malloc(kept->n * sizeof *pick), *parent = malloc(kept->n * sizeof *parent);
     double (*box)[4] = malloc(kept->n * sizeof *box);
@@ -131,10 +132,10 @@ gb_proof_body_piece gb_proof_body_structure(const run *r, const boxes *kept, dou
         hull[c][2] = fmin(hull[c][2], box[i][2]), hull[c][3] = fmax(hull[c][3], box[i][3]);
     }
     gb_interval v[3], dv[3];
-    gb_proof_body_directions(r, q_lo, q_hi, v, dv);
+    gb_proof_body_directions(axes, q_lo, q_hi, v, dv);
     gb_surface_enclosure e[COMPONENTS_MAX];
     for (size_t c = 0; c < count; c++) {
-        gb_surface_enclose(r->def->surface, gb_region_chart(regions[c]), hull[c][0], hull[c][1], hull[c][2], hull[c][3], &e[c]);
+        gb_surface_enclose(surface, gb_region_chart(regions[c]), hull[c][0], hull[c][1], hull[c][2], hull[c][3], &e[c]);
         const gb_interval haa = gb_proof_body_dot(e[c].x_aa, v), hab = gb_proof_body_dot(e[c].x_ab, v),
                           hbb = gb_proof_body_dot(e[c].x_bb, v);
         const gb_interval det = gb_interval_sub(gb_interval_mul(haa, hbb), gb_interval_sqr(hab));

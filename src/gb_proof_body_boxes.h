@@ -1,0 +1,33 @@
+/* gb_proof_body_boxes — what the Gömböcs' enclosure (gb_proof_body.c) and the proof of its piecewise structure
+ * (gb_proof_body_ties.c) share: the surface's chart boxes with their enclosures, the rocking's axes and the directions
+ * of an arc of q. Internal to the library. */
+#ifndef GB_PROOF_BODY_BOXES_H
+#define GB_PROOF_BODY_BOXES_H
+
+#include "gb_surface_internal.h"
+
+/* A box of a chart of the surface with its enclosure. */
+typedef struct pbox {
+    double a_lo, a_hi, b_lo, b_hi;
+    int region;
+    gb_surface_enclosure e;
+} pbox;
+
+typedef struct boxes {
+    pbox *at;
+    size_t n, cap;
+} boxes;
+
+/* The rocking: s₀ (the top's direction, a coordinate axis) and e (unit, ⊥ s₀) as intervals. */
+typedef struct gb_proof_axes {
+    double s0[3];
+    gb_interval e[3];
+} gb_proof_axes;
+
+/* Σ a_k b_k, outwards. */
+gb_interval gb_proof_body_dot(const gb_interval a[3], const gb_interval b[3]);
+
+/* v(Q) = cos Q s₀ − sin Q e and v′(Q) = −sin Q s₀ − cos Q e over the arc [q_lo, q_hi]. */
+void gb_proof_body_directions(const gb_proof_axes *axes, double q_lo, double q_hi, gb_interval v[3], gb_interval dv[3]);
+
+#endif
