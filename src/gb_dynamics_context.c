@@ -294,6 +294,25 @@ static int same_atlas_def(const gb_atlas_def *a, const gb_atlas_def *b)
            a->max_level == b->max_level && a->max_depth == b->max_depth;
 }
 
+/* With a cache directory and no atlas file named: the file keyed there by the body and the atlas's definition (the
+ * paper's bodies only, as the mass properties), so that a `certificate = atlas` run's first cells are proved once per
+ * body, not once per run. The file's own header names its body and definition: one that does not match is built anew
+ * and replaced; it is merged and written as a named one is (gb_dynamics_context_save). */
+static int cached_atlas_file(gb_dynamics_context *c, const gb_surface *s, const gb_atlas_def *adef)
+{
+    const gb_morphology *m = s->morphology;
+    if (c->atlas_file || !c->cache_dir || !m->phase || m->user || m->polyhedron || m->kernel || !m->name) return GB_OK;
+    uint64_t key = gb_hash_add(GB_HASH_OFFSET, m->name, strlen(m->name));
+    key = gb_hash_add(key, &s->beta, sizeof s->beta);
+    key = gb_hash_add(key, &adef->height_tol, sizeof adef->height_tol);
+    const int levels[3] = {adef->first_level, adef->max_level, adef->max_depth};
+    key = gb_hash_add(key, levels, sizeof levels);
+    char path[4096];
+    if (snprintf(path, sizeof path, "%s/atlas-%016llx.gba", c->cache_dir, (unsigned long long)key) >= (int)sizeof path)
+        return GB_OK; /* a cache too deep to name: none */
+    return set_path(&c->atlas_file, path);
+}
+
 /* Lead's atlas for this body and definition, made there (and read from lead's atlas file) when lead has none:
  * NULL when lead holds another body's. Under lead's lock. */
 static int made_atlas(gb_dynamics_context *lead, const gb_surface *surface, const gb_atlas_def *adef, gb_atlas **out)
@@ -303,7 +322,8 @@ static int made_atlas(gb_dynamics_context *lead, const gb_surface *surface, cons
         if (same_body(&lead->atlas_surface, surface) && same_atlas_def(&lead->atlas_def, adef)) *out = lead->atlas;
         return GB_OK;
     }
-    const int status = gb_atlas_create(surface, adef, &lead->atlas);
+    int status = cached_atlas_file(lead, surface, adef);
+    if (!status) status = gb_atlas_create(surface, adef, &lead->atlas);
     if (status) return status;
     lead->atlas_surface = *surface, lead->atlas_def = *adef;
     if (lead->atlas_max_bytes) gb_atlas_set_max_bytes(lead->atlas, lead->atlas_max_bytes);
@@ -343,7 +363,8 @@ static int body_atlas(gb_dynamics *d, gb_dynamics_context *c, const gb_surface *
             return GB_OK;
         }
     }
-    const int status = gb_atlas_create(surface, &adef, &d->atlas);
+    int status = c->atlas ? GB_OK : cached_atlas_file(c, surface, &adef);
+    if (!status) status = gb_atlas_create(surface, &adef, &d->atlas);
     if (status || c->atlas) return status;
     c->atlas = d->atlas, c->atlas_surface = *surface, c->atlas_def = adef, d->atlas_borrowed = 1;
     /* a file that is missing, stale or damaged is built anew (and replaced when saved) */

@@ -325,6 +325,62 @@ static void test_run_massprops_cache(void)
     if (system(clean_up)) return;
 }
 
+/* The atlas of a `certificate = atlas` run in the user's cache: its cells proved by the first run, read by the next
+ * (none proved again), the same state bits; with --atlas FILE the named file is used and the cache gains none. */
+static void test_run_atlas_cache(void)
+{
+    char dir[] = "/tmp/gomboc-atlascache-XXXXXX";
+    if (!mkdtemp(dir)) return;
+    static const char *const text = "[body]\nmorphology = II\n[model]\nequation = rolling\ncontact = continuous\n"
+                                    "certificate = atlas\n[initial]\nomega = 1.3,-0.7,0.4\n[integrator]\nsteps_per_period = 40\n"
+                                    "periods = 1\nlocate_switches = yes\n";
+    char scene[256], cache[300], named[300], prints[3][32];
+    write_case(dir, "atlas", text, scene, sizeof scene);
+    snprintf(cache, sizeof cache, "%s/cache", dir);
+    snprintf(named, sizeof named, "%s/named.gba", dir);
+    static char out[1 << 16];
+    int loaded[3], code[3];
+    double built[3];
+    setenv("GOMBOC_CACHE", "on", 1), setenv("XDG_CACHE_HOME", cache, 1);
+    for (int k = 0; k < 3; k++) {
+        char args[800];
+        if (k < 2) snprintf(args, sizeof args, "run %s --out %s --json", scene, dir);
+        else snprintf(args, sizeof args, "run %s --out %s --atlas %s --json", scene, dir, named);
+        code[k] = run(args, out, sizeof out);
+        int hull;
+        summary_hull(code[k], out, prints[k], sizeof prints[k], &hull);
+        cJSON *root = cJSON_Parse(strchr(out, '{') ? strchr(out, '{') : out);
+        const cJSON *a = cJSON_GetObjectItem(root, "atlas");
+        loaded[k] = cJSON_IsNumber(cJSON_GetObjectItem(a, "loaded")) ? cJSON_GetObjectItem(a, "loaded")->valueint : -1;
+        built[k] = cJSON_GetNumberValue(cJSON_GetObjectItem(a, "build_seconds"));
+        cJSON_Delete(root);
+    }
+    setenv("GOMBOC_CACHE", "off", 1), unsetenv("XDG_CACHE_HOME");
+    char listing[600];
+    snprintf(listing, sizeof listing, "ls %s/gomboc | grep -c '^atlas-[0-9a-f]*\\.gba$'", cache);
+    FILE *ls = popen(listing, "r");
+    int files = -1;
+    if (ls) {
+        if (fscanf(ls, "%d", &files) != 1) files = -1;
+        pclose(ls);
+    }
+    FILE *f = fopen(named, "rb");
+    const int named_written = f != NULL;
+    if (f) fclose(f);
+    gb_check c = {"4", "29", "gomboc run with certificate = atlas, the user's cache at XDG_CACHE_HOME: first run, second run, "
+                  "a run naming --atlas", "the first proves the cells and writes one atlas file, the second reads it and proves "
+                  "none, the third writes the named file and adds none to the cache; the same state bits", "exact"};
+    const int same = code[0] == 0 && code[1] == 0 && code[2] == 0 && !strcmp(prints[0], prints[1]) && !strcmp(prints[0], prints[2]) &&
+                     strcmp(prints[0], "none");
+    gb_check_true(&c, same && loaded[0] == 0 && loaded[1] == 1 && built[0] > 0.0 && built[1] == 0.0 && files == 1 && named_written,
+                  "exit %d %d %d; loaded %d %d %d; build seconds %.3g %.3g; %d atlas file(s) in the cache, named file %s; "
+                  "fingerprints %s %s %s", code[0], code[1], code[2], loaded[0], loaded[1], loaded[2], built[0], built[1], files,
+                  named_written ? "written" : "missing", prints[0], prints[1], prints[2]);
+    char clean_up[400];
+    snprintf(clean_up, sizeof clean_up, "rm -rf '%s'", dir);
+    if (system(clean_up)) return;
+}
+
 /* --hull FILE: the first run builds the hull and writes it, the next reads it, a damaged file is built anew
  * and replaced; the same state bits every time. */
 static void test_run_hull(void)
@@ -604,6 +660,8 @@ int verify_register_command(void)
         {"command: gomboc run: the mass properties in the user's cache", test_run_massprops_cache,
          "the paper's bodies' mass properties are computed once and read back sealed from the user's cache, with the same "
          "bits; a changed file is not read"},
+        {"command: gomboc run: the atlas of verticals in the user's cache", test_run_atlas_cache,
+         "a certificate = atlas run's cells are proved once per body and read back from the user's cache, with the same bits"},
         {"command: gomboc run --hull, the fast grid's hull from its file", test_run_hull,
          "a fast-grid run gives the same state bits with the hull Qhull builds and with the hull read from "
          "its file, and a damaged file is built anew"},
