@@ -207,6 +207,20 @@ static int run_with_cache(const char *scene, const char *dir, const char *cache,
     return summary_hull(code, out, fingerprint, size, loaded);
 }
 
+/* The files KIND-HEX.EXT in the user's cache at `cache` (−1 when it cannot be listed). */
+static int cache_files(const char *cache, const char *kind, const char *ext)
+{
+    char listing[600];
+    snprintf(listing, sizeof listing, "ls %s/gomboc | grep -c '^%s-[0-9a-f]*\\.%s$'", cache, kind, ext);
+    FILE *ls = popen(listing, "r");
+    int files = -1;
+    if (ls) {
+        if (fscanf(ls, "%d", &files) != 1) files = -1;
+        pclose(ls);
+    }
+    return files;
+}
+
 /* The user's cache: without --hull the hull is kept in $XDG_CACHE_HOME/gomboc by the grid's content, built and written
  * by the first run of a body, read by every run after it in any process; a cache that cannot be made (its parent a
  * file) leaves the run as it was. */
@@ -224,14 +238,7 @@ static void test_run_cache(void)
     code[0] = run_with_cache(scene, dir, cache, prints[0], sizeof prints[0], &loaded[0]);
     code[1] = run_with_cache(scene, dir, cache, prints[1], sizeof prints[1], &loaded[1]);
     code[2] = run_with_cache(scene, dir, blocked, prints[2], sizeof prints[2], &loaded[2]);
-    char listing[600];
-    snprintf(listing, sizeof listing, "ls %s/gomboc | grep -c '^hull-[0-9a-f]*\\.gbh$'", cache);
-    FILE *ls = popen(listing, "r");
-    int files = -1;
-    if (ls) {
-        if (fscanf(ls, "%d", &files) != 1) files = -1;
-        pclose(ls);
-    }
+    const int files = cache_files(cache, "hull", "gbh");
     gb_check c = {"8", "29", "gomboc run without --hull, the user's cache at XDG_CACHE_HOME: first run, second run, a cache "
                   "whose parent is a file", "the first builds and writes one hull file, the second reads it, the third runs "
                   "without a cache; the same state bits", "exact: the state fingerprint"};
@@ -356,14 +363,7 @@ static void test_run_atlas_cache(void)
         cJSON_Delete(root);
     }
     setenv("GOMBOC_CACHE", "off", 1), unsetenv("XDG_CACHE_HOME");
-    char listing[600];
-    snprintf(listing, sizeof listing, "ls %s/gomboc | grep -c '^atlas-[0-9a-f]*\\.gba$'", cache);
-    FILE *ls = popen(listing, "r");
-    int files = -1;
-    if (ls) {
-        if (fscanf(ls, "%d", &files) != 1) files = -1;
-        pclose(ls);
-    }
+    const int files = cache_files(cache, "atlas", "gba");
     FILE *f = fopen(named, "rb");
     const int named_written = f != NULL;
     if (f) fclose(f);
