@@ -241,6 +241,20 @@ int gb_proof_body_top(const gb_surface *s, double s0[3], double tangent_theta[3]
     return GB_OK;
 }
 
+int gb_proof_body_axis(arb_ptr e, const double rocking[3], const double s0[3], slong prec)
+{
+    arb_t n;
+    arb_init(n);
+    for (int k = 0; k < 3; k++) arb_set_d(e + k, s0[k] != 0.0 ? 0.0 : rocking[k]); /* s₀ is a coordinate axis */
+    for (int k = 0; k < 3; k++) arb_addmul(n, e + k, e + k, prec);
+    const int across = arb_is_positive(n);
+    if (across) arb_rsqrt(n, n, prec);
+    for (int k = 0; k < 3 && across; k++) arb_mul(e + k, e + k, n, prec);
+    arb_clear(n);
+    return across ? GB_OK
+                  : gb_error_set(GB_EDOM, "the rocking direction is parallel to the top (allowed: a direction with a part across it)");
+}
+
 /* r_max, H″(0) = r_max² e_tᵀ (r_max I − K)⁻¹ e_t − r_max with K = β r_max⁻³ Hess f, Hess f = −[[1 + χ_φ², χ_φ],
  * [χ_φ, 1]] in (φ, θ) at the top (the sphere's metric is the identity on the equator and the gradient vanishes), e_t
  * = (e·u_φ, e·u_θ), u_φ = −e_z. And the unit e, projected on the plane ⊥ s₀. */
@@ -251,35 +265,24 @@ static int top_model(run *r, slong prec)
     int pim = 0;
     int status = gb_proof_body_top(def->surface, r->axes.s0, tt, &cp, &pim);
     if (status) return status;
-    arb_t rm, K11, K12, K22, t, u, e[3], nrm, ephi, eth, det, q;
-    arb_init(rm), arb_init(K11), arb_init(K12), arb_init(K22), arb_init(t), arb_init(u), arb_init(nrm);
+    arb_t rm, K11, K12, K22, t, u, ephi, eth, det, q;
+    arb_struct e[3];
+    arb_init(rm), arb_init(K11), arb_init(K12), arb_init(K22), arb_init(t), arb_init(u);
     arb_init(ephi), arb_init(eth), arb_init(det), arb_init(q);
-    for (int k = 0; k < 3; k++) arb_init(e[k]);
+    for (int k = 0; k < 3; k++) arb_init(e + k);
     /* r_max = (1 + 4β)^{1/4} */
     arb_set_d(t, def->surface->beta);
     arb_mul_2exp_si(t, t, 2);
     arb_add_ui(t, t, 1, prec);
     arb_root_ui(rm, t, 4, prec);
     /* e ⊥ s₀, unit */
-    arb_zero(u);
-    for (int k = 0; k < 3; k++) arb_set_d(e[k], def->rocking[k]);
-    for (int k = 0; k < 3; k++)
-        if (r->axes.s0[k] != 0.0) arb_zero(e[k]); /* s₀ is a coordinate axis: the projection drops that component */
-    arb_zero(nrm);
-    for (int k = 0; k < 3; k++) arb_addmul(nrm, e[k], e[k], prec);
-    if (!arb_is_positive(nrm)) {
-        status = gb_error_set(GB_EDOM, "the rocking direction is parallel to the top (allowed: a direction with a part across it)");
-        goto done;
-    }
-    arb_rsqrt(nrm, nrm, prec);
-    for (int k = 0; k < 3; k++) {
-        arb_mul(e[k], e[k], nrm, prec);
-        r->axes.e[k] = (gb_interval){gb_proof_interval_of(e[k]).lo, gb_proof_interval_of(e[k]).hi};
-    }
-    arb_neg(ephi, e[2]); /* e·u_φ, u_φ = −e_z */
+    status = gb_proof_body_axis(e, def->rocking, r->axes.s0, prec);
+    if (status) goto done;
+    for (int k = 0; k < 3; k++) r->axes.e[k] = (gb_interval){gb_proof_interval_of(e + k).lo, gb_proof_interval_of(e + k).hi};
+    arb_neg(ephi, e + 2); /* e·u_φ, u_φ = −e_z */
     arb_zero(eth);
     for (int k = 0; k < 3; k++)
-        if (tt[k] != 0.0) arb_mul_si(eth, e[k], (slong)tt[k], prec);
+        if (tt[k] != 0.0) arb_mul_si(eth, e + k, (slong)tt[k], prec);
     /* χ_φ */
     arb_set_d(q, cp);
     if (pim) {
@@ -324,9 +327,9 @@ static int top_model(run *r, slong prec)
     r->model->rate = gb_proof_interval_of(t);
     memcpy(r->model->top, r->axes.s0, sizeof r->axes.s0);
 done:
-    arb_clear(rm), arb_clear(K11), arb_clear(K12), arb_clear(K22), arb_clear(t), arb_clear(u), arb_clear(nrm);
+    arb_clear(rm), arb_clear(K11), arb_clear(K12), arb_clear(K22), arb_clear(t), arb_clear(u);
     arb_clear(ephi), arb_clear(eth), arb_clear(det), arb_clear(q);
-    for (int k = 0; k < 3; k++) arb_clear(e[k]);
+    for (int k = 0; k < 3; k++) arb_clear(e + k);
     return status;
 }
 

@@ -22,6 +22,10 @@ void gb_proof_mul_d(arb_t out, const arb_t x, double d, slong prec);
 struct gb_surface;
 int gb_proof_body_top(const struct gb_surface *s, double s0[3], double tangent_theta[3], double *chi_phi_num, int *pi_multiple);
 
+/* The rocking direction e as a unit vector ⊥ s₀ on Arb's balls (the component along the axis s₀ dropped, then
+ * normalised): GB_EDOM when nothing is left across s₀ (gb_proof_body.c). */
+int gb_proof_body_axis(arb_ptr e, const double rocking[3], const double s0[3], slong prec);
+
 /* GB_EDOM naming the allowed range when precision is outside it. */
 int gb_proof_check_precision(long precision);
 

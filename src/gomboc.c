@@ -90,13 +90,9 @@ static char **split_equals(int argc, char **argv, int *out_argc)
     return words;
 }
 
-static char **original_argv;
-char **cli_original_argv(void) { return original_argv; }
-
 /* The command (main without the process): the option fuzzer calls it with cli_parse_only set. */
 int gomboc_main(int argc, char **argv)
 {
-    original_argv = argv;
     gb_error_init_gsl();
     gb_integrate_blas_single_thread();
     if (argc < 2) {

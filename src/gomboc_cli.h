@@ -117,8 +117,6 @@ int command_prove(int argc, char **argv);
 /* The proofs themselves (gomboc_prove.c): linked into gomboc-prove (and the option fuzzer), not into gomboc, whose
  * command_prove runs gomboc-prove (gomboc_prove_exec.c). */
 int command_prove_in_process(int argc, char **argv);
-/* The command's own words as main received them (for a command that runs another program with them). */
-char **cli_original_argv(void);
 /* gomboc prove's statement on Gömböc `which` (0: I, 1: II) at Table 1's rolling forcing (gomboc_prove_body.c); resolution 0:
  * the coarsest that decides. NULL with *status set when a computation fails. */
 cJSON *prove_body_statement(size_t which, double resolution, long precision, int depth, int *proved, int *status);

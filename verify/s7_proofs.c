@@ -253,7 +253,7 @@ static void test_command(void)
     cJSON_Delete(root);
     static const struct {
         const char *args, *must;
-    } bad[] = {{"prove --precision 10", "--precision"}, {"prove --precision 100.5", "integer"}, {"prove --depth 41", "--depth"},
+    } bad[] = {{"prove --precision 10", "--precision"}, {"prove --precision 100.5", "integer"}, {"prove --depth 41", "--depth"}, {"prove --depth=41", "1 to 40"},
                {"prove --frobnicate", "--frobnicate"}, {"prove --precision 128 --precision 256", "twice"}};
     int refused = 0;
     char first[300] = "";
