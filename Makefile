@@ -31,8 +31,9 @@ SICONOS_SONAME := $(shell objdump -p $$($(CC) -print-file-name=libsiconos_numeri
 SICONOS_LIBS   := -ldl
 SICONOS_CFLAGS += $(if $(SICONOS_SONAME),-DGB_SICONOS_NUMERICS='"$(SICONOS_SONAME)"')
 # Arb (Debian libflint-arb-dev: the proofs' ball arithmetic, src/gb_proof.c) and FLINT under it: no pkg-config file
-# either; its headers sit in /usr/include, FLINT's in /usr/include/flint.
-ARB_LIBS       := -lflint-arb -lflint
+# either; its headers sit in /usr/include, FLINT's in /usr/include/flint; GMP under FLINT for its exact rationals
+# (gb_proof_cover.c: a map read in a frame).
+ARB_LIBS       := -lflint-arb -lflint -lgmp
 ALL_CFLAGS = $(WARN) $(CPPFLAGS) $(CFLAGS) $(shell pkg-config --cflags $(PKGS)) $(SICONOS_CFLAGS) -Isrc
 CORE_LIBS  = $(shell pkg-config --libs gsl libcjson inih qhull_r libsodium libmatheval) $(SICONOS_LIBS) $(ARB_LIBS) -lpthread -lm
 TEST_LIBS  = $(shell pkg-config --libs cunit)

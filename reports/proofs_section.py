@@ -62,9 +62,12 @@ def proofs_section(out):
             continue
         edges = "; ".join(f"U{i} = {interval(h['u'])}: its edges return to {interval(h['image_of_low_edge_u'])} and "
                           f"{interval(h['image_of_high_edge_u'])}, covers {h['covers']}" for i, h in enumerate(s["h_sets"]))
+        k = int(s.get("iterates", 1))
+        per_map = (f" for the map iterated {k} times, so h_top >= {s['entropy_lower_bound_map']:.17g} for the map itself"
+                   if k > 1 and "entropy_lower_bound_map" in s else "")
         trap = (f" The trapping rectangle's returns: across {interval(s['trap_image_u'])}, along {interval(s['trap_image_s'])}."
                 if "trap_image_u" in s else "")
         lines += [f"**{s['statement']}** ({s['result']}). System: {s['system']}. Sets: {s['sets']}. Reproduces: "
                   f"{s['reproduces']}. Method: {s['method']}. Theorem: {s['theorem']}. Reading: {s['reading']}.{trap} "
-                  f"Edges: {edges}. h_top >= {s['entropy_lower_bound']:.17g} ({s['seconds']:.3g} s CPU).", ""]
+                  f"Edges: {edges}. h_top >= {s['entropy_lower_bound']:.17g}{per_map} ({s['seconds']:.3g} s CPU).", ""]
     return lines

@@ -51,6 +51,9 @@ typedef struct gb_proof_cover_def {
     size_t sets;                  /* 1 ... 8 */
     gb_proof_interval set_u[GB_PROOF_HSETS_MAX]; /* U_i: disjoint */
     int pieces;                   /* the first cut of a range across: 1 ... 100000 */
+    int strip_pieces;             /* the cut of S along, for every piece across and every edge: 1 ... 100000 */
+    int halve_along;              /* 1: a piece that fails is halved along as well as across, and an edge's piece whose
+                                     image holds an end of an h-set is halved along (to depth); 0: across only */
     int depth;                    /* the most halvings of a piece that does not prove its inclusion: 0 ... 20 */
 } gb_proof_cover_def;
 
@@ -62,6 +65,7 @@ typedef struct gb_proof_cover_result {
     gb_proof_interval edge[GB_PROOF_HSETS_MAX][2];/* f's image of N_i's low and high edges: their extent across */
     int covers[GB_PROOF_HSETS_MAX][GB_PROOF_HSETS_MAX]; /* N_i ⇒ N_j proved */
     double entropy;                               /* a proved lower bound of h_top(f): ln ρ(A) (0 when ρ ≤ 1) */
+    double entropy_map;                           /* of the map iterated: h_top(f) / k, k the iterates (rounded down) */
     double rho;                                   /* the Collatz–Wielandt lower bound of ρ(A) */
     long pieces;                                  /* pieces enclosed, after halvings */
     long failed_pieces;                           /* pieces whose inclusion failed at the deepest halving */
@@ -71,7 +75,7 @@ typedef struct gb_proof_cover_result {
     double seconds;
 } gb_proof_cover_result;
 
-/* Default: RETURN, iterates 1, no trap, 1 set, 64 pieces, depth 6; the caller fills the map, the plane and the sets. */
+/* Default: RETURN, iterates 1, no trap, 1 set, 64 pieces, S whole (1 strip piece), halved across only, depth 6; the caller fills the map, the plane and the sets. */
 GB_API gb_proof_cover_def gb_proof_cover_def_default(void);
 
 /* GB_EDOM for a definition out of range (named with its range); GB_ENUMERIC when an enclosure cannot be carried
@@ -85,6 +89,19 @@ GB_API int gb_proof_cover_entropy_bound(const int *matrix, size_t n, double *log
 
 /* Hénon's map (x, y) ↦ (1 − a x² + y, b x), a = a_num/a_den, b = b_num/b_den, as a quadratic field read as a map. */
 GB_API gb_proof_field gb_proof_cover_henon(long a_num, long a_den, long b_num, long b_den);
+
+/* Hénon's map read in the affine frame v ↦ origin + frame·v: g(v) = frame⁻¹(H(origin + frame·v) − origin), every
+ * coefficient exact (FLINT's rationals). g is conjugate to H by an affine homeomorphism, so covering relations of
+ * h-sets of g (rectangles in the frame: parallelograms in the plane) are those of H, and h_top(g) = h_top(H). GB_EDOM
+ * when the frame is singular or a coefficient does not fit a long (named with what is allowed). */
+GB_API int gb_proof_cover_henon_framed(long a_num, long a_den, long b_num, long b_den, const gb_proof_rational origin[2],
+                                       const gb_proof_rational frame[2][2], gb_proof_field *out);
+
+/* The classical Hénon map (a = 7/5, b = 3/10) in the frame o = (3157/5000, 947/5000), F = [[−1, −13/25], [39/250, −1]]
+ * (o near the fixed point, F's columns near its unstable and stable eigenvectors), and five h-sets U_i × [−0.045, 0.045]
+ * of its 7th iterate found by a search on floats: *field the framed map, *def the covering relations to prove (a full
+ * horseshoe on 5 symbols: h_top ≥ ln 5 / 7). */
+GB_API int gb_proof_cover_henon_classical(gb_proof_field *field, gb_proof_cover_def *def);
 
 #ifdef __cplusplus
 }

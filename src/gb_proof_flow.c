@@ -27,7 +27,7 @@ static void rational_ball(arb_t out, gb_proof_rational q, slong prec)
     arb_div_si(out, out, q.den, prec);
 }
 
-static void field_init(field_balls *F, const gb_proof_field *f, int order, slong prec)
+void gb_proof_flow_field_init(field_balls *F, const gb_proof_field *f, int order, slong prec)
 {
     memset(F, 0, sizeof *F);
     F->n = f->dimension, F->order = order, F->prec = prec;
@@ -51,7 +51,7 @@ static void field_init(field_balls *F, const gb_proof_field *f, int order, slong
     }
 }
 
-static void field_clear(field_balls *F)
+void gb_proof_flow_field_clear(field_balls *F)
 {
     for (int i = 0; i < NMAX; i++) {
         arb_clear(&F->c[i]);
@@ -410,9 +410,9 @@ int gb_proof_flow_step_finish(const field_balls *F, lohner_set *S, const step_da
 void gb_proof_field_image(const gb_proof_field *field, arb_srcptr x, arb_ptr out, slong prec)
 {
     field_balls F;
-    field_init(&F, field, GB_PROOF_ORDER_MIN, prec);
+    gb_proof_flow_field_init(&F, field, GB_PROOF_ORDER_MIN, prec);
     gb_proof_flow_field_eval(&F, x, out);
-    field_clear(&F);
+    gb_proof_flow_field_clear(&F);
 }
 
 gb_proof_field gb_proof_flow_rossler(long a_num, long a_den, long b_num, long b_den, long c_num, long c_den)
@@ -495,7 +495,7 @@ static void set_of_box(const field_balls *F, lohner_set *S, const gb_proof_inter
 
 void gb_proof_flow_integration_init(integration *I, const gb_proof_flow_def *def, const gb_proof_interval *box)
 {
-    field_init(&I->F, def->field, def->order, def->precision);
+    gb_proof_flow_field_init(&I->F, def->field, def->order, def->precision);
     set_init(&I->S, I->F.n);
     set_of_box(&I->F, &I->S, box);
     step_init(&I->D, def->order);
@@ -507,7 +507,7 @@ void gb_proof_flow_integration_clear(integration *I)
     _arb_vec_clear(I->scratch, I->F.n * (I->F.order + 1));
     step_clear(&I->D);
     set_clear(&I->S);
-    field_clear(&I->F);
+    gb_proof_flow_field_clear(&I->F);
 }
 
 /* Takes one step from S at time *t (advanced): a step length chosen and halved until Picard's test holds. */

@@ -42,6 +42,9 @@ typedef struct integration {
     arb_ptr scratch;
 } integration;
 
+/* The field's coefficients as balls at prec (order: the Taylor order the balls serve), and their release. */
+void gb_proof_flow_field_init(field_balls *F, const gb_proof_field *f, int order, slong prec);
+void gb_proof_flow_field_clear(field_balls *F);
 /* f(x) over the box x. */
 void gb_proof_flow_field_eval(const field_balls *F, arb_srcptr x, arb_ptr out);
 /* The box x̂ + A r. */
