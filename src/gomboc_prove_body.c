@@ -161,10 +161,11 @@ cJSON *prove_body_statement(size_t which, double resolution, long precision, int
                                           "discontinuous planar systems). A simple zero gives for small eps a homoclinic "
                                           "trajectory near the separatrix (Battelli and Feckan 2008); chaos is not claimed: the "
                                           "period map is C1 only off the points on a tie line at the section's time and the "
-                                          "Smale-Birkhoff step for it is not carried out (the obstruction of Calamai, Franca "
-                                          "and Pospisil 2025 concerns a saddle on the discontinuity; here the saddle's cells "
-                                          "are C2). M bounded away from 0 gives no intersection near the separatrix for small "
-                                          "eps");
+                                          "Smale-Birkhoff step for it is not carried out; Calamai, Franca and Pospisil (2025, "
+                                          "from their abstracts) report for planar piecewise-smooth systems whose homoclinic "
+                                          "trajectory crosses the discontinuity transversally, as here, a generic geometric "
+                                          "obstruction that forbids chaos, not checked here. M bounded away from 0 gives no "
+                                          "intersection near the separatrix for small eps");
     cJSON *enc = cJSON_AddObjectToObject(s, "enclosures");
     cJSON_AddItemToObject(enc, "M", interval(M));
     cJSON_AddItemToObject(enc, "volume", interval(volume));
