@@ -58,6 +58,14 @@ def proofs_section(out):
                   + f"); zeros of M in t0: {zeros}; {s['cells']:g} cells of q at resolution {s['resolution']:g}, "
                   f"{s['surface_boxes']:g} surface boxes, {s['seconds']:.3g} s CPU.", ""]
     for s in statements:
+        if "boxes" not in s:
+            continue
+        boxes = "; ".join(f"the box y {interval(b['y'])}, z {interval(b['z'])}: K = {interval(b['K_y'])} x {interval(b['K_z'])} "
+                          f"({'inside' if b['proved'] else 'NOT inside'})" for b in s["boxes"])
+        lines += [f"**{s['statement']}** ({s['result']}). System: {s['system']}. Reproduces: {s['reproduces']}. Method: "
+                  f"{s['method']}. Theorem: {s['theorem']}. {boxes[:1].upper() + boxes[1:]}. Period {interval(s['period'])} "
+                  f"({s['seconds']:.3g} s CPU).", ""]
+    for s in statements:
         if "h_sets" not in s:
             continue
         edges = "; ".join(f"U{i} = {interval(h['u'])}: its edges return to {interval(h['image_of_low_edge_u'])} and "

@@ -200,20 +200,6 @@ static int check_cover_def(const gb_proof_cover_def *def)
     return GB_OK;
 }
 
-/* The derivative of the quadratic map over the box x: J_im = L_im + Σ_{k ≥ m} Q_imk x_k + Σ_{j ≤ m} Q_ijm x_j. */
-static void map_derivative(const field_balls *F, arb_srcptr x, arb_mat_t J)
-{
-    for (int i = 0; i < F->n; i++)
-        for (int m = 0; m < F->n; m++) {
-            arb_ptr e = arb_mat_entry(J, i, m);
-            arb_set(e, &F->L[i][m]);
-            for (int k = m; k < F->n; k++)
-                if (F->has_Q[i][m][k]) arb_addmul(e, &F->Q[i][m][k], x + k, F->prec);
-            for (int j = 0; j <= m; j++)
-                if (F->has_Q[i][j][m]) arb_addmul(e, &F->Q[i][j][m], x + j, F->prec);
-        }
-}
-
 /* f^k of the box x (2 balls) for a quadratic map, in affine form (the C⁰ Lohner algorithm for maps): the set is
  * ĉ + A r with r the box's half-widths, A a point matrix and ĉ a box; a step is, by the mean value theorem with J = Df
  * over the hull X = ĉ + A r (convex, holding mid ĉ), f(mid ĉ) + J (ĉ − mid ĉ) + (J A − A') r + A' r, A' = mid(J A).
@@ -237,7 +223,7 @@ static int affine_image(const field_balls *F, arb_ptr x, int iterates)
             arb_zero(&e[i]), mag_set(arb_radref(&e[i]), arb_radref(&c[i]));
             arb_set_arf(&c[i], arb_midref(&c[i]));
         }
-        map_derivative(F, hull, J);
+        gb_proof_flow_field_derivative(F, hull, J);
         gb_proof_flow_field_eval(F, c, y); /* f(mid ĉ) */
         arb_mat_mul(JA, J, A, prec);
         for (int i = 0; i < 2; i++)

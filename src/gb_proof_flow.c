@@ -120,7 +120,7 @@ static void taylor(const field_balls *F, arb_srcptr x0, int order, arb_ptr xs)
 /* The variational coefficients V_0 = I, …, V_order (n × n each, V[(k n + a) n + b]) along the series xs: the
  * derivatives of x_k with respect to the initial point, (k + 1) V_{k+1} = Σ_m J_m V_{k−m}, J_m the m-th coefficient
  * of Df along the solution. */
-static void variational(const field_balls *F, arb_srcptr xs, int order, arb_ptr V)
+static void variational_from(const field_balls *F, arb_srcptr xs, int order, const arb_mat_t V0, arb_ptr V)
 {
     const int n = F->n, w = order + 1, nn = n * n;
     arb_ptr J = _arb_vec_init(order * nn);
@@ -135,7 +135,10 @@ static void variational(const field_balls *F, arb_srcptr xs, int order, arb_ptr 
                     if (F->has_Q[a][j][q]) arb_addmul(e, &F->Q[a][j][q], xs + j * w + m, F->prec);
             }
     _arb_vec_zero(V, w * nn);
-    for (int a = 0; a < n; a++) arb_one(V + a * n + a);
+    for (int a = 0; a < n; a++)
+        for (int b = 0; b < n; b++)
+            if (V0) arb_set(V + a * n + b, arb_mat_entry(V0, a, b));
+            else if (a == b) arb_one(V + a * n + b);
     arb_t acc;
     arb_init(acc);
     for (int k = 0; k < order; k++)
@@ -151,6 +154,56 @@ static void variational(const field_balls *F, arb_srcptr xs, int order, arb_ptr 
             }
     arb_clear(acc);
     _arb_vec_clear(J, order * nn);
+}
+
+static void variational(const field_balls *F, arb_srcptr xs, int order, arb_ptr V)
+{
+    variational_from(F, xs, order, NULL, V);
+}
+
+void gb_proof_flow_field_derivative(const field_balls *F, arb_srcptr x, arb_mat_t J)
+{
+    for (int i = 0; i < F->n; i++)
+        for (int m = 0; m < F->n; m++) { /* J_im = L_im + Σ_{k ≥ m} Q_imk x_k + Σ_{j ≤ m} Q_ijm x_j */
+            arb_ptr e = arb_mat_entry(J, i, m);
+            arb_set(e, &F->L[i][m]);
+            for (int k = m; k < F->n; k++)
+                if (F->has_Q[i][m][k]) arb_addmul(e, &F->Q[i][m][k], x + k, F->prec);
+            for (int j = 0; j <= m; j++)
+                if (F->has_Q[i][j][m]) arb_addmul(e, &F->Q[i][j][m], x + j, F->prec);
+        }
+}
+
+static void widen(arb_t x, slong prec);
+
+/* The variational equation's Picard test: W with I + [0, h] Df(B) W ⊆ W holds DΦ_t of every solution in B over
+ * [0, h] (V' = Df(x) V, V(0) = I). 1 when found. */
+static int a_priori_variational(const field_balls *F, arb_srcptr B, const arb_t span, arb_mat_t W)
+{
+    const int n = F->n;
+    arb_mat_t J, Y;
+    arb_mat_init(J, n, n), arb_mat_init(Y, n, n);
+    gb_proof_flow_field_derivative(F, B, J);
+    arb_mat_scalar_mul_arb(J, J, span, F->prec); /* [0, h] Df(B) */
+    arb_mat_one(W);
+    int found = 0;
+    for (int attempt = 0; attempt < 12 && !found; attempt++) {
+        arb_mat_mul(Y, J, W, F->prec);
+        for (int a = 0; a < n; a++) arb_add_ui(arb_mat_entry(Y, a, a), arb_mat_entry(Y, a, a), 1, F->prec);
+        found = 1;
+        for (int a = 0; a < n && found; a++)
+            for (int b = 0; b < n && found; b++) found = arb_contains(arb_mat_entry(W, a, b), arb_mat_entry(Y, a, b));
+        if (found)
+            arb_mat_set(W, Y);
+        else
+            for (int a = 0; a < n; a++)
+                for (int b = 0; b < n; b++) {
+                    arb_union(arb_mat_entry(W, a, b), arb_mat_entry(W, a, b), arb_mat_entry(Y, a, b), F->prec);
+                    widen(arb_mat_entry(W, a, b), F->prec);
+                }
+    }
+    arb_mat_clear(J), arb_mat_clear(Y);
+    return found;
 }
 
 /* Σ_k a[k·stride] t^k by Horner, for a ball t. */
@@ -235,6 +288,8 @@ static void step_init(step_data *D, int order)
     D->order = order;
     D->centre = _arb_vec_init(NMAX * (order + 2));
     D->V = _arb_vec_init((order + 1) * NMAX * NMAX);
+    D->Vrem = _arb_vec_init(NMAX * NMAX);
+    D->c1 = 0;
     for (int i = 0; i < NMAX; i++) arb_init(&D->B[i]), arb_init(&D->Ar[i]), arb_init(&D->hull[i]);
 }
 
@@ -242,6 +297,7 @@ static void step_clear(step_data *D)
 {
     _arb_vec_clear(D->centre, NMAX * (D->order + 2));
     _arb_vec_clear(D->V, (D->order + 1) * NMAX * NMAX);
+    _arb_vec_clear(D->Vrem, NMAX * NMAX);
     for (int i = 0; i < NMAX; i++) arb_clear(&D->B[i]), arb_clear(&D->Ar[i]), arb_clear(&D->hull[i]);
 }
 
@@ -270,12 +326,25 @@ static int step_prepare(const field_balls *F, const lohner_set *S, double h, ste
     arf_set_d(end, h);
     arb_set_interval_arf(span, zero, end, F->prec);
     gb_proof_flow_set_hull(F, S, D->hull);
-    const int found = a_priori(F, D->hull, span, D->B);
+    int found = a_priori(F, D->hull, span, D->B);
+    arb_mat_t W;
+    arb_mat_init(W, n, n);
+    if (found && D->c1) found = a_priori_variational(F, D->B, span, W);
     arb_clear(span), arf_clear(zero), arf_clear(end);
-    if (!found) return 0;
+    if (!found) {
+        arb_mat_clear(W);
+        return 0;
+    }
     /* x_{p+1} over B, into the centre's place p + 1 after the centre's own coefficients */
     arb_ptr over_B = _arb_vec_init(n * (p + 2));
     taylor(F, D->B, p + 1, over_B);
+    if (D->c1) { /* V_{p+1} along solutions in B from V(ξ) ∈ W: the variational remainder's coefficient */
+        arb_ptr VB = _arb_vec_init((p + 2) * n * n);
+        variational_from(F, over_B, p + 1, W, VB);
+        _arb_vec_set(D->Vrem, VB + (p + 1) * n * n, n * n);
+        _arb_vec_clear(VB, (p + 2) * n * n);
+    }
+    arb_mat_clear(W);
     arb_ptr at_centre = _arb_vec_init(n * (p + 1));
     taylor(F, S->x, p, at_centre);
     for (int i = 0; i < n; i++) {
@@ -301,6 +370,19 @@ static void derivative_at(const field_balls *F, const step_data *D, const arb_t 
     const int n = F->n, nn = n * n;
     for (int a = 0; a < n; a++)
         for (int b = 0; b < n; b++) horner(arb_mat_entry(out, a, b), D->V + a * n + b, nn, F->order, t, F->prec);
+}
+
+void gb_proof_flow_derivative_at(const field_balls *F, const step_data *D, const arb_t t, arb_mat_t out)
+{
+    derivative_at(F, D, t, out);
+    if (!D->c1) return;
+    const int n = F->n;
+    arb_t tp;
+    arb_init(tp);
+    arb_pow_ui(tp, t, (ulong)F->order + 1, F->prec);
+    for (int a = 0; a < n; a++)
+        for (int b = 0; b < n; b++) arb_addmul(arb_mat_entry(out, a, b), tp, D->Vrem + a * n + b, F->prec);
+    arb_clear(tp);
 }
 
 /* Every solution from the set at every time of the ball t ⊆ [0, h]: a box. */
@@ -431,7 +513,7 @@ gb_proof_field gb_proof_flow_rossler(long a_num, long a_den, long b_num, long b_
 
 gb_proof_flow_def gb_proof_flow_def_default(const gb_proof_field *field)
 {
-    return (gb_proof_flow_def){field, 0, +1, 1, GB_PROOF_ORDER_DEFAULT, GB_PROOF_PRECISION_DEFAULT, 100.0, 0.5, 64};
+    return (gb_proof_flow_def){field, 0, +1, 1, GB_PROOF_ORDER_DEFAULT, GB_PROOF_PRECISION_DEFAULT, 100.0, 0.5, 64, 0};
 }
 
 int gb_proof_flow_def_check(const gb_proof_flow_def *def)

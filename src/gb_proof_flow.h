@@ -63,6 +63,8 @@ typedef struct gb_proof_flow_def {
     double time_max;  /* the longest time followed before giving up: > 0, at most 1e4 */
     double step_max;  /* the longest step: > 0 */
     int time_pieces;  /* the sub-intervals of a crossing step: 2 ... 4096 (default 64) */
+    int derivative;   /* 1: also enclose the return map's derivative (the C¹ step: variational equations with their
+                         own a-priori enclosure and remainder); 0: the map alone (default) */
 } gb_proof_flow_def;
 
 /* Defaults: coordinate 0, direction +1, 1 return, order 20, 128 bits, time_max 100, step_max 0.5, 64 pieces. */
@@ -74,6 +76,9 @@ typedef struct gb_proof_flow_crossing {
     long steps;                                            /* Taylor steps taken */
     double step_min;                                       /* the shortest step taken */
     double seconds;                                        /* CPU */
+    /* derivative: DP^k(x) for every x of the box, DP = (I − f eᵀ/f_c) DΦ_t at the crossing (e the section's normal),
+     * as the full n × n matrix (its row and column c are those of the plane's embedding: row c is 0) */
+    gb_proof_interval jacobian[GB_PROOF_FIELD_DIMENSION_MAX][GB_PROOF_FIELD_DIMENSION_MAX];
 } gb_proof_flow_crossing;
 
 /* GB_EDOM for a definition or a box out of range (a box whose coordinate-th component is not {0}); GB_ENUMERIC when
@@ -81,6 +86,24 @@ typedef struct gb_proof_flow_crossing {
  * undecided, the set does not leave one side before a window or reach the other after it, time_max is passed): the
  * message names the time and the reason. Nothing is enclosed then. */
 GB_API int gb_proof_flow_section_map(const gb_proof_flow_def *def, const gb_proof_interval *box, gb_proof_flow_crossing *out);
+
+/* Krawczyk's operator on the return map P^k − id over a box of the section. */
+typedef struct gb_proof_flow_orbit {
+    int proved;    /* K ⊂ int box: P^k has exactly one fixed point in the box (a periodic orbit through it) */
+    int excluded;  /* K misses the box in some coordinate: P^k has no fixed point there */
+    gb_proof_interval krawczyk[GB_PROOF_FIELD_DIMENSION_MAX];                          /* K (the section's coordinate 0) */
+    gb_proof_interval time;                                                          /* the return time over the box */
+    gb_proof_interval period; /* proved: the return time over K, which holds the fixed point (else NaN) */
+    gb_proof_interval jacobian[GB_PROOF_FIELD_DIMENSION_MAX][GB_PROOF_FIELD_DIMENSION_MAX]; /* DP^k over the box */
+    double seconds;
+} gb_proof_flow_orbit;
+
+/* K = x̂ − C (P^k(x̂) − x̂) + (I − C (DP^k(box) − I)) (box − x̂) on the plane, x̂ the box's middle, C the inverse of the
+ * middle of DP^k(box) − I in doubles (taken exact), P^k and its derivative enclosed by the C¹ step. K ⊂ int box proves
+ * a unique fixed point in the box (Krawczyk 1969; Neumaier 1990, Thm 5.1.7); K ∩ box = ∅ proves none. The
+ * definition's own derivative flag is ignored. GB_EDOM / GB_ENUMERIC as gb_proof_flow_section_map, or when the middle
+ * of DP^k − I is singular. */
+GB_API int gb_proof_flow_periodic_orbit(const gb_proof_flow_def *def, const gb_proof_interval *box, gb_proof_flow_orbit *out);
 
 /* The solution at time t of every initial point in the box (no section): the oracle's entry (a linear field against
  * its exponential, a nonlinear one against a tight non-rigorous integration). */

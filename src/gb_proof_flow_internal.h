@@ -32,6 +32,8 @@ typedef struct step_data {
     arb_ptr centre; /* n (order + 2): x_0 … x_p at x̂, then x_{p+1} over B */
     arb_ptr V;      /* (order + 1) n² over the hull */
     arb_struct B[NMAX], Ar[NMAX], hull[NMAX];
+    int c1;         /* 1: Vrem is prepared too */
+    arb_ptr Vrem;   /* n²: the variational coefficient p + 1 over B and the a-priori enclosure W of DΦ over the step */
 } step_data;
 
 /* The state of one integration: the field's balls, the set, a step's data and scratch for the step length. */
@@ -45,6 +47,11 @@ typedef struct integration {
 /* The field's coefficients as balls at prec (order: the Taylor order the balls serve), and their release. */
 void gb_proof_flow_field_init(field_balls *F, const gb_proof_field *f, int order, slong prec);
 void gb_proof_flow_field_clear(field_balls *F);
+/* Df over the box x (n × n). */
+void gb_proof_flow_field_derivative(const field_balls *F, arb_srcptr x, arb_mat_t J);
+/* DΦ over the prepared step at every time of the ball t ⊆ [0, h] and every point of the set: the Taylor part over the
+ * hull, plus t^(p+1) Vrem when the step was prepared with c1 (else the Taylor part alone: the mean value form's). */
+void gb_proof_flow_derivative_at(const field_balls *F, const step_data *D, const arb_t t, arb_mat_t out);
 /* f(x) over the box x. */
 void gb_proof_flow_field_eval(const field_balls *F, arb_srcptr x, arb_ptr out);
 /* The box x̂ + A r. */

@@ -25,19 +25,27 @@ typedef struct crossing {
     arb_struct image[NMAX];
     arb_t time;
     int collected;
+    /* the C¹ step (derivative on): DΦ from time 0 to the step's start for every point (Dtot), and the hull of DΦ at
+     * the pieces kept (Dcross); scratch Dstep, Dw */
+    int c1, derived;
+    arb_mat_t Dtot, Dcross, Dstep, Dw;
 } crossing;
 
-static void crossing_init(crossing *C)
+static void crossing_init(crossing *C, int n, int c1)
 {
     for (int i = 0; i < NMAX; i++) arb_init(&C->image[i]);
     arb_init(C->time);
     C->collected = 0;
+    C->c1 = c1, C->derived = 0;
+    arb_mat_init(C->Dtot, n, n), arb_mat_init(C->Dcross, n, n), arb_mat_init(C->Dstep, n, n), arb_mat_init(C->Dw, n, n);
+    arb_mat_one(C->Dtot);
 }
 
 static void crossing_clear(crossing *C)
 {
     for (int i = 0; i < NMAX; i++) arb_clear(&C->image[i]);
     arb_clear(C->time);
+    arb_mat_clear(C->Dtot), arb_mat_clear(C->Dcross), arb_mat_clear(C->Dstep), arb_mat_clear(C->Dw);
 }
 
 /* The most halvings of a sub-interval of a crossing step: to 2^-20 of it. */
@@ -77,6 +85,16 @@ static void collect(const field_balls *F, const step_data *D, int s, const arb_t
         }
         arb_set_interval_arf(sub, lo, hi, F->prec);
     }
+    if (keep && C->c1) { /* DΦ at the piece's times after Dtot, into the hull */
+        gb_proof_flow_derivative_at(F, D, sub, C->Dstep);
+        arb_mat_mul(C->Dw, C->Dstep, C->Dtot, F->prec);
+        if (!C->derived++)
+            arb_mat_set(C->Dcross, C->Dw);
+        else
+            for (int a = 0; a < n; a++)
+                for (int b = 0; b < n; b++)
+                    arb_union(arb_mat_entry(C->Dcross, a, b), arb_mat_entry(C->Dcross, a, b), arb_mat_entry(C->Dw, a, b), F->prec);
+    }
     if (keep) {
         arb_add(sub, sub, t0, F->prec);
         if (!C->collected++) {
@@ -110,7 +128,8 @@ int gb_proof_flow_section_map(const gb_proof_flow_def *def, const gb_proof_inter
     arb_struct fB[NMAX], piece[NMAX];
     for (int i = 0; i < NMAX; i++) arb_init(&fB[i]), arb_init(&piece[i]);
     crossing C;
-    crossing_init(&C);
+    crossing_init(&C, n, def->derivative);
+    D->c1 = def->derivative;
     arb_t t;
     arb_init(t);
     int window = 0, in_window = 1, done = 0;
@@ -168,6 +187,15 @@ int gb_proof_flow_section_map(const gb_proof_flow_def *def, const gb_proof_inter
                 break;
             }
         }
+        if (C.c1) { /* Dtot advanced by the step's DΦ at t = h (the step's data are overwritten by the next step) */
+            arb_t end;
+            arb_init(end);
+            arb_set_d(end, h);
+            gb_proof_flow_derivative_at(F, D, end, C.Dstep);
+            arb_mat_mul(C.Dw, C.Dstep, C.Dtot, F->prec);
+            arb_mat_swap(C.Dtot, C.Dw);
+            arb_clear(end);
+        }
         if (!gb_proof_flow_step_finish(F, S, D, h)) {
             status = gb_error_set(GB_ENUMERIC, "at t = %.6g the Lohner frame is singular", arf_get_d(arb_midref(t), ARF_RND_NEAR));
             break;
@@ -185,6 +213,27 @@ int gb_proof_flow_section_map(const gb_proof_flow_def *def, const gb_proof_inter
         for (int i = 0; i < n; i++) out->image[i] = gb_proof_interval_of(&C.image[i]);
         out->image[s] = (gb_proof_interval){0.0, 0.0};
         out->time = gb_proof_interval_of(C.time);
+    }
+    if (!status && C.c1) { /* DP = (I − f e_sᵀ / f_s) DΦ with f over the crossing's enclosure (the time's derivative: x_s = 0) */
+        arb_struct fC[NMAX];
+        for (int i = 0; i < NMAX; i++) arb_init(&fC[i]);
+        gb_proof_flow_field_eval(F, C.image, fC);
+        arb_t ratio;
+        arb_init(ratio);
+        for (int i = 0; i < n; i++) {
+            arb_div(ratio, &fC[i], &fC[s], F->prec);
+            for (int b = 0; b < n; b++) {
+                arb_ptr e = arb_mat_entry(C.Dw, i, b);
+                arb_set(e, arb_mat_entry(C.Dcross, i, b));
+                if (i == s) arb_zero(e);
+                else arb_submul(e, ratio, arb_mat_entry(C.Dcross, s, b), F->prec);
+            }
+        }
+        for (int a = 0; a < n; a++)
+            for (int b = 0; b < n; b++) out->jacobian[a][b] = gb_proof_interval_of(arb_mat_entry(C.Dw, a, b));
+        arb_clear(ratio);
+        for (int i = 0; i < NMAX; i++) arb_clear(&fC[i]);
+        if (!arb_mat_is_finite(C.Dw)) status = gb_error_set(GB_ENUMERIC, "the return map's derivative is not finite");
     }
     for (int i = 0; i < NMAX; i++) arb_clear(&fB[i]), arb_clear(&piece[i]);
     crossing_clear(&C);

@@ -175,6 +175,84 @@ static void test_rossler_against_gsl(void)
                   "enclosures at most %.3g wide)%s%s%s", held, tried, far, widest, first, status ? ": " : "", status ? gb_error_message() : "");
 }
 
+/* The C¹ step: the linear field's return map to y = 0 in closed form, Rössler's return map's derivative against GSL's
+ * central differences, and Rössler's period-1 orbit by Krawczyk against GSL's Newton. */
+static void test_c1_and_orbit(void)
+{
+    /* 1. x' = −3x/10 − 2y, y' = 2x − 3y/10, z' = 1 − z: from y = 0, x > 0 the first return to y = 0 (y' > 0) is at
+     * t = π, P(x, z) = (x e^(−0.3π), 1 + (z − 1) e^(−π)), DP = diag(e^(−0.3π), e^(−π)) on the plane */
+    const gb_proof_field turning = turning_field();
+    gb_proof_flow_def d = gb_proof_flow_def_default(&turning);
+    d.coordinate = 1, d.direction = 1, d.derivative = 1;
+    gb_proof_interval box[3] = {{0.5, 0.5 + 1e-6}, {0, 0}, {0.25, 0.25 + 1e-6}};
+    gb_proof_flow_crossing r;
+    int status = gb_proof_flow_section_map(&d, box, &r);
+    const double exact[2][2] = {{exp(-0.3 * M_PI), 0.0}, {0.0, exp(-M_PI)}};
+    static const int plane[2] = {0, 2};
+    int held = 0, teeth = 0;
+    double widest = 0.0;
+    for (int a = 0; a < 2 && !status; a++)
+        for (int b = 0; b < 2; b++) {
+            const gb_proof_interval e = r.jacobian[plane[a]][plane[b]];
+            held += holds(e, exact[a][b]);
+            widest = fmax(widest, e.hi - e.lo);
+            if (a == b) teeth += !holds(e, exact[a][b] * (1 + 1e-5)); /* the value 1e-5 off is outside */
+        }
+    gb_check cl = {"-", "-", "the C1 step on the linear field that turns and contracts: the return map to y = 0's derivative over a box "
+                   "1e-6 wide", "closed form: DP = diag(exp(-0.3 pi), exp(-pi)) in (x, z)",
+                   "proof: the 4 entries inside, at most 1e-6 wide (the box's own width), and each diagonal entry 1e-5 off outside"};
+    gb_check_true(&cl, !status && held == 4 && teeth == 2 && widest <= 1e-6, "%d of 4 inside, widest %.3g, %d of 2 moved values "
+                  "outside%s%s", held, widest, teeth, status ? ": " : "", status ? gb_error_message() : "");
+
+    /* 2. Rössler: the period-1 orbit by Newton on GSL's return map (central differences), then its box proved */
+    double v[2] = {-8.38, 0.0296}, time = 0.0, J[2][2] = {{0}};
+    const double h = 1e-5;
+    int gsl = 0;
+    for (int it = 0; it < 8 && !gsl; it++) {
+        double p[3], plus[3], minus[3], t2;
+        gsl |= rossler_return(v[0], v[1], 1, p, &time);
+        for (int b = 0; b < 2 && !gsl; b++) {
+            const double up[2] = {v[0] + (b == 0) * h, v[1] + (b == 1) * h}, down[2] = {v[0] - (b == 0) * h, v[1] - (b == 1) * h};
+            gsl |= rossler_return(up[0], up[1], 1, plus, &t2) || rossler_return(down[0], down[1], 1, minus, &t2);
+            J[0][b] = (plus[1] - minus[1]) / (2 * h), J[1][b] = (plus[2] - minus[2]) / (2 * h);
+        }
+        /* Newton on P(v) − v: (J − I) dv = −(P(v) − v) */
+        const double A = J[0][0] - 1, B = J[0][1], C = J[1][0], D = J[1][1] - 1, det = A * D - B * C;
+        const double r0 = -(p[1] - v[0]), r1 = -(p[2] - v[1]);
+        v[0] += (D * r0 - B * r1) / det, v[1] += (A * r1 - C * r0) / det;
+    }
+    const gb_proof_field ro = gb_proof_flow_rossler(1, 5, 1, 5, 57, 10);
+    gb_proof_flow_def rd = gb_proof_flow_def_default(&ro);
+    const double y0 = -8.38094174, z0 = 0.02959006;
+    gb_proof_interval wide[3] = {{0, 0}, {y0 - 1e-3, y0 + 1e-3}, {z0 - 1e-3, z0 + 1e-3}};
+    gb_proof_interval narrow[3] = {{0, 0}, {y0 - 1e-7, y0 + 1e-7}, {z0 - 1e-7, z0 + 1e-7}};
+    gb_proof_interval shifted[3] = {{0, 0}, {y0 + 0.01 - 1e-3, y0 + 0.01 + 1e-3}, {z0 - 1e-3, z0 + 1e-3}};
+    gb_proof_flow_orbit ow, on, os;
+    status = gb_proof_flow_periodic_orbit(&rd, wide, &ow);
+    if (!status) status = gb_proof_flow_periodic_orbit(&rd, narrow, &on);
+    if (!status) status = gb_proof_flow_periodic_orbit(&rd, shifted, &os);
+    /* DP over the narrow box against GSL's central differences at the orbit: their error h² P‴/6 + 1e-13/h ~ 1e-8 */
+    int dp_held = 0;
+    for (int a = 0; a < 2 && !status && !gsl; a++)
+        for (int b = 0; b < 2; b++) {
+            const gb_proof_interval e = on.jacobian[a + 1][b + 1];
+            dp_held += J[a][b] >= e.lo - 1e-7 && J[a][b] <= e.hi + 1e-7;
+        }
+    const int inside = !status && !gsl && holds(ow.krawczyk[1], v[0]) && holds(ow.krawczyk[2], v[1]) && holds(on.krawczyk[1], v[0]) &&
+                       holds(on.krawczyk[2], v[1]) && holds(on.period, time);
+    gb_check co = {"-", "-", "Roessler's period-1 orbit by Krawczyk's operator on the return map to x = 0 (the C1 step for DP)",
+                   "GSL rk8pd at 1e-13: Newton on its return map with central differences (h = 1e-5) for the orbit, its period "
+                   "and DP",
+                   "proof: the boxes 2e-3 and 2e-7 wide proved (K inside), GSL's orbit in both K and its period in the "
+                   "enclosure; DP over the narrow box holds GSL's differences within their error 1e-7 (h^2 times P's third derivative / 6, plus 1e-13 / h); "
+                   "a box shifted by 0.01 in y excluded (K misses it)"};
+    gb_check_true(&co, !status && !gsl && ow.proved && on.proved && inside && dp_held == 4 && os.excluded && !os.proved,
+                  "wide %s, narrow %s (y in [%.12g, %.12g], period [%.12g, %.12g]); GSL's orbit (%.12g, %.12g), period %.12g: %s; "
+                  "DP %d of 4; shifted %s%s%s", ow.proved ? "proved" : "NOT proved", on.proved ? "proved" : "NOT proved",
+                  on.krawczyk[1].lo, on.krawczyk[1].hi, on.period.lo, on.period.hi, v[0], v[1], time, inside ? "inside" : "OUTSIDE",
+                  dp_held, os.excluded ? "excluded" : "NOT excluded", status ? ": " : "", status ? gb_error_message() : "");
+}
+
 static void test_covering_controls(void)
 {
     const gb_proof_field f = gb_proof_flow_rossler(1, 5, 1, 5, 57, 10);
@@ -432,6 +510,8 @@ int verify_register_s7_covering(void)
          "the Taylor-Lohner integrator on Arb encloses exact solutions and does not wrap a turning box"},
         {"covering: Roessler's return map against GSL", test_rossler_against_gsl,
          "the rigorous return map of Roessler's flow holds an independent high-accuracy integration"},
+        {"covering: the C1 step and Roessler's period-1 orbit", test_c1_and_orbit,
+         "the return map's derivative against a closed form and GSL, and a periodic orbit proved by Krawczyk's operator"},
         {"covering: negative controls and the entropy bound", test_covering_controls,
          "covering relations that are false are refuted or refused, and the entropy bound meets known spectral radii"},
         {"covering: the classical Henon map in a frame", test_henon_classical,
