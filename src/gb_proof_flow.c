@@ -399,9 +399,7 @@ void gb_proof_flow_enclose_at(const field_balls *F, const step_data *D, const ar
     arb_mat_clear(DP);
 }
 
-/* The new frame: Q of the QR factorisation (Gram–Schmidt in doubles, taken exact) of mid(M) with the columns ordered
- * by |column| times the width of r along it, the widest first. */
-static void new_frame(int n, const arb_mat_t M, arb_srcptr r, arb_mat_t Q)
+void gb_proof_flow_new_frame(int n, const arb_mat_t M, arb_srcptr r, arb_mat_t Q)
 {
     double m[NMAX][NMAX], weight[NMAX];
     int order[NMAX];
@@ -411,7 +409,7 @@ static void new_frame(int n, const arb_mat_t M, arb_srcptr r, arb_mat_t Q)
             m[a][b] = arf_get_d(arb_midref(arb_mat_entry(M, a, b)), ARF_RND_NEAR);
             norm += m[a][b] * m[a][b];
         }
-        weight[b] = sqrt(norm) * mag_get_d(arb_radref(r + b));
+        weight[b] = sqrt(norm) * (r ? mag_get_d(arb_radref(r + b)) : 1.0);
         order[b] = b;
     }
     for (int i = 1; i < n; i++)
@@ -469,7 +467,7 @@ int gb_proof_flow_step_finish(const field_balls *F, lohner_set *S, const step_da
         arb_get_mid_arb(&S->x[i], &image[i]);
         arb_sub(&e[i], &image[i], &S->x[i], F->prec);
     }
-    new_frame(n, M, S->r, Anew);
+    gb_proof_flow_new_frame(n, M, S->r, Anew);
     const int invertible = arb_mat_inv(Ainv, Anew, F->prec);
     if (invertible) {
         arb_mat_mul(C, Ainv, M, F->prec);

@@ -47,6 +47,9 @@ typedef struct integration {
 /* The field's coefficients as balls at prec (order: the Taylor order the balls serve), and their release. */
 void gb_proof_flow_field_init(field_balls *F, const gb_proof_field *f, int order, slong prec);
 void gb_proof_flow_field_clear(field_balls *F);
+/* The new frame: Q of the QR factorisation (Gram–Schmidt in doubles, taken exact) of mid(M) with the columns ordered
+ * by |column| times the width of r along it (r NULL: by |column|), the widest first. */
+void gb_proof_flow_new_frame(int n, const arb_mat_t M, arb_srcptr r, arb_mat_t Q);
 /* Df over the box x (n × n). */
 void gb_proof_flow_field_derivative(const field_balls *F, arb_srcptr x, arb_mat_t J);
 /* DΦ over the prepared step at every time of the ball t ⊆ [0, h] and every point of the set: the Taylor part over the

@@ -25,10 +25,12 @@ typedef struct crossing {
     arb_struct image[NMAX];
     arb_t time;
     int collected;
-    /* the C¹ step (derivative on): DΦ from time 0 to the step's start for every point (Dtot), and the hull of DΦ at
-     * the pieces kept (Dcross); scratch Dstep, Dw */
+    /* the C¹ step (derivative on): DΦ from time 0 to the step's start for every point, as DA DQ (DA a point frame
+     * following the products' directions, DQ a box matrix: Lohner's QR device for the derivative, so that growth then
+     * contraction along different directions is not re-wrapped each step), and the hull of DΦ at the pieces kept
+     * (Dcross); scratch Dstep, Dw, Dinv */
     int c1, derived;
-    arb_mat_t Dtot, Dcross, Dstep, Dw;
+    arb_mat_t DA, DQ, Dcross, Dstep, Dw, Dinv;
 } crossing;
 
 static void crossing_init(crossing *C, int n, int c1)
@@ -37,15 +39,17 @@ static void crossing_init(crossing *C, int n, int c1)
     arb_init(C->time);
     C->collected = 0;
     C->c1 = c1, C->derived = 0;
-    arb_mat_init(C->Dtot, n, n), arb_mat_init(C->Dcross, n, n), arb_mat_init(C->Dstep, n, n), arb_mat_init(C->Dw, n, n);
-    arb_mat_one(C->Dtot);
+    arb_mat_init(C->DA, n, n), arb_mat_init(C->DQ, n, n), arb_mat_init(C->Dcross, n, n), arb_mat_init(C->Dstep, n, n);
+    arb_mat_init(C->Dw, n, n), arb_mat_init(C->Dinv, n, n);
+    arb_mat_one(C->DA), arb_mat_one(C->DQ);
 }
 
 static void crossing_clear(crossing *C)
 {
     for (int i = 0; i < NMAX; i++) arb_clear(&C->image[i]);
     arb_clear(C->time);
-    arb_mat_clear(C->Dtot), arb_mat_clear(C->Dcross), arb_mat_clear(C->Dstep), arb_mat_clear(C->Dw);
+    arb_mat_clear(C->DA), arb_mat_clear(C->DQ), arb_mat_clear(C->Dcross), arb_mat_clear(C->Dstep), arb_mat_clear(C->Dw);
+    arb_mat_clear(C->Dinv);
 }
 
 /* The most halvings of a sub-interval of a crossing step: to 2^-20 of it. */
@@ -85,9 +89,10 @@ static void collect(const field_balls *F, const step_data *D, int s, const arb_t
         }
         arb_set_interval_arf(sub, lo, hi, F->prec);
     }
-    if (keep && C->c1) { /* DΦ at the piece's times after Dtot, into the hull */
+    if (keep && C->c1) { /* DΦ at the piece's times after DA DQ, into the hull */
         gb_proof_flow_derivative_at(F, D, sub, C->Dstep);
-        arb_mat_mul(C->Dw, C->Dstep, C->Dtot, F->prec);
+        arb_mat_mul(C->Dinv, C->Dstep, C->DA, F->prec);
+        arb_mat_mul(C->Dw, C->Dinv, C->DQ, F->prec);
         if (!C->derived++)
             arb_mat_set(C->Dcross, C->Dw);
         else
@@ -187,13 +192,21 @@ int gb_proof_flow_section_map(const gb_proof_flow_def *def, const gb_proof_inter
                 break;
             }
         }
-        if (C.c1) { /* Dtot advanced by the step's DΦ at t = h (the step's data are overwritten by the next step) */
+        if (C.c1) { /* DA DQ advanced by the step's DΦ at t = h: B = DΦ DA, DA' the frame of mid B, DQ' = (DA'⁻¹ B) DQ */
             arb_t end;
             arb_init(end);
             arb_set_d(end, h);
             gb_proof_flow_derivative_at(F, D, end, C.Dstep);
-            arb_mat_mul(C.Dw, C.Dstep, C.Dtot, F->prec);
-            arb_mat_swap(C.Dtot, C.Dw);
+            arb_mat_mul(C.Dw, C.Dstep, C.DA, F->prec);
+            gb_proof_flow_new_frame(n, C.Dw, NULL, C.DA);
+            if (!arb_mat_inv(C.Dinv, C.DA, F->prec)) {
+                status = gb_error_set(GB_ENUMERIC, "at t = %.6g the derivative's frame is singular", arf_get_d(arb_midref(t), ARF_RND_NEAR));
+                arb_clear(end);
+                break;
+            }
+            arb_mat_mul(C.Dstep, C.Dinv, C.Dw, F->prec);
+            arb_mat_mul(C.Dw, C.Dstep, C.DQ, F->prec);
+            arb_mat_swap(C.DQ, C.Dw);
             arb_clear(end);
         }
         if (!gb_proof_flow_step_finish(F, S, D, h)) {
