@@ -270,18 +270,21 @@ static int plain_only(void)
 }
 
 /* `bench-gomboc-native --plain-process BODY`: the plain loop's whole job as a process of its own (the body's
- * grid, its copy of the nodes, the Table 1 run of 300 periods), for bench_whole_process to time from outside. */
+ * grid, its copy of the nodes, the Table 1 run of 300 periods), for bench_whole_process to time from outside; it
+ * prints the state's hash, the run's seconds and the set-up's (grid, copy, dynamics) for bench_atlas's pairs. */
 static int plain_process(const char *name)
 {
     const gb_dynamics_def def = gb_dynamics_default_def();
     gb_contact_grid *grid;
     plain_grid plain;
+    const double layout_start = now();
     if (gb_contact_grid_create(bench_body(name, 0.12), &def.grid, &grid) || plain_grid_create(grid, &plain)) return 1;
+    const double layout = now() - layout_start;
     double y[GB_STATE_SIZE];
     size_t switches;
     run_lowest = plain_lowest, run_lowest_context = &plain;
-    time_run(name, GB_CONTACT_MODEL_GRID, GB_VARIANT_PAPER, 1, y, &switches);
-    printf("%016llx\n", (unsigned long long)state_hash(y));
+    const double t = time_run(name, GB_CONTACT_MODEL_GRID, GB_VARIANT_PAPER, 1, y, &switches);
+    printf("%016llx %.6f %.6f\n", (unsigned long long)state_hash(y), t, last_setup + layout);
     plain_grid_free(&plain);
     gb_contact_grid_free(grid);
     return 0;
@@ -301,6 +304,10 @@ int main(int argc, char **argv)
         return bench_whole_process(argv[2], argv[3], NULL) ? 1 : 0;
     if (argc > 2 && !strcmp(argv[1], "--unilateral-maps")) /* that section alone, for development */
         return bench_unilateral_maps(argv[2], NULL) ? 1 : 0;
+    if (argc > 2 && !strcmp(argv[1], "--certified")) { /* that section alone, for development: NATIVE */
+        run_native(argv[2]);
+        return bench_atlas() ? 1 : 0;
+    }
     if (argc > 2 && !strcmp(argv[1], "--shared-atlas")) /* that section alone, for development */
         return bench_shared_atlas_cpu(argv[2], NULL) ? 1 : 0;
     if (argc > 1 && !strcmp(argv[1], "--unilateral")) { /* that section alone, for development */

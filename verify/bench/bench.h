@@ -35,6 +35,8 @@ extern double run_restitution;
 extern double run_units_g;
 
 int bench_atlas(void);
+/* The native build's path (bench-gomboc-native), for the paired whole-run ratios; NULL: none. */
+extern const char *native_path;
 const gb_surface *bench_body(const char *morphology, double beta);
 int bench_dynamics(void);
 void bench_flight(void);
