@@ -99,7 +99,7 @@ GB_API int gb_proof_cover_henon_framed(long a_num, long a_den, long b_num, long 
 
 /* The classical Hénon map (a = 7/5, b = 3/10) in the frame o = (3157/5000, 947/5000), F = [[−1, −13/25], [39/250, −1]]
  * (o near the fixed point, F's columns near its unstable and stable eigenvectors), and five h-sets U_i × [−0.045, 0.045]
- * of its 7th iterate found by a search on floats: *field the framed map, *def the covering relations to prove (a full
+ * of its 7th iterate found by a search on floats (scripts/henon_horseshoe_search.py): *field the framed map, *def the covering relations to prove (a full
  * horseshoe on 5 symbols: h_top ≥ ln 5 / 7). */
 GB_API int gb_proof_cover_henon_classical(gb_proof_field *field, gb_proof_cover_def *def);
 
