@@ -163,6 +163,7 @@ typedef struct horseshoe {
     const char *statement, *system, *sets, *theorem, *reading, *source;
     gb_proof_cover_def def;
     gb_proof_field field;
+    int status; /* GB_OK, or why the definition could not be built */
 } horseshoe;
 
 static void horseshoe_rossler(horseshoe *h)
@@ -230,7 +231,7 @@ static void horseshoe_henon_classical(horseshoe *h)
     h->reading = "chaos of the classical Henon map proved: a compact invariant set of H^7 semiconjugate to the full shift on 5 "
                  "symbols; the bound is below the published ones, as a lower bound may be (they use thousands of boxes or "
                  "manifold trellises)";
-    gb_proof_cover_henon_classical(&h->field, &h->def);
+    h->status = gb_proof_cover_henon_classical(&h->field, &h->def);
 }
 
 static cJSON *horseshoe_statement(const horseshoe *h, const gb_proof_cover_result *r, int *proved)
@@ -408,7 +409,7 @@ int command_prove_in_process(int argc, char **argv)
         horseshoes[k](&h);
         h.def.section.precision = (long)precision, h.def.precision = (long)precision;
         gb_proof_cover_result r;
-        status = gb_proof_cover(&h.def, &r);
+        status = h.status ? h.status : gb_proof_cover(&h.def, &r);
         if (status) break;
         int proved;
         cJSON_AddItemToArray(list, horseshoe_statement(&h, &r, &proved));
