@@ -40,28 +40,33 @@ struct gb_proof_body_cells {
     size_t origin; /* cells below it lie left of the origin */
 };
 
+/* Appends the `size`-byte item x to the array *at of *n items (capacity *cap, doubled from `first`). */
+static int push(void **at, size_t *n, size_t *cap, size_t size, size_t first, const void *x, const char *what)
+{
+    if (*n == *cap) {
+        const size_t grown = *cap ? 2 * *cap : first;
+        void *more = realloc(*at, grown * size);
+        if (!more) return gb_error_set(GB_ENOMEM, "out of memory for %s", what);
+        *at = more, *cap = grown;
+    }
+    memcpy((char *)*at + (*n)++ * size, x, size);
+    return GB_OK;
+}
+
 static int push_box(boxes *b, const pbox *x)
 {
-    if (b->n == b->cap) {
-        const size_t cap = b->cap ? 2 * b->cap : 64;
-        pbox *at = realloc(b->at, cap * sizeof *at);
-        if (!at) return gb_error_set(GB_ENOMEM, "out of memory for the surface's boxes");
-        b->at = at, b->cap = cap;
-    }
-    b->at[b->n++] = *x;
-    return GB_OK;
+    void *at = b->at;
+    const int status = push(&at, &b->n, &b->cap, sizeof *x, 64, x, "the surface's boxes");
+    b->at = at;
+    return status;
 }
 
 static int push_cell(struct gb_proof_body_cells *c, const cell *x)
 {
-    if (c->n == c->cap) {
-        const size_t cap = c->cap ? 2 * c->cap : 1024;
-        cell *at = realloc(c->at, cap * sizeof *at);
-        if (!at) return gb_error_set(GB_ENOMEM, "out of memory for the cells of q");
-        c->at = at, c->cap = cap;
-    }
-    c->at[c->n++] = *x;
-    return GB_OK;
+    void *at = c->at;
+    const int status = push(&at, &c->n, &c->cap, sizeof *x, 1024, x, "the cells of q");
+    c->at = at;
+    return status;
 }
 
 static void fill_box(run *r, pbox *b, int region, double a_lo, double a_hi, double b_lo, double b_hi)

@@ -1,6 +1,7 @@
 /* The `gomboc` command: good input gives the JSON keys the issue names; output is byte-identical
  * between runs; a failed write leaves no file behind (bad input: verify/bad_input.c). The binary
  * comes from $GOMBOC_BIN. */
+#include "bad_input.h"
 #include "gb_check.h"
 #include "gb_contact.h"
 #include "gb_error.h"
@@ -221,6 +222,14 @@ static int cache_files(const char *cache, const char *kind, const char *ext)
     return files;
 }
 
+/* Three runs that exited 0 and ended in one fingerprint (not "none"). */
+static int same_three(const int code[3], char prints[3][32])
+{
+    int same = 1;
+    for (int k = 0; k < 3; k++) same &= code[k] == 0 && !strcmp(prints[k], prints[0]) && strcmp(prints[k], "none");
+    return same;
+}
+
 /* The user's cache: without --hull the hull is kept in $XDG_CACHE_HOME/gomboc by the grid's content, built and written
  * by the first run of a body, read by every run after it in any process; a cache that cannot be made (its parent a
  * file) leaves the run as it was. */
@@ -242,14 +251,10 @@ static void test_run_cache(void)
     gb_check c = {"8", "29", "gomboc run without --hull, the user's cache at XDG_CACHE_HOME: first run, second run, a cache "
                   "whose parent is a file", "the first builds and writes one hull file, the second reads it, the third runs "
                   "without a cache; the same state bits", "exact: the state fingerprint"};
-    int same = 1;
-    for (int k = 0; k < 3; k++) same &= code[k] == 0 && !strcmp(prints[k], prints[0]) && strcmp(prints[k], "none");
-    gb_check_true(&c, same && files == 1 && loaded[0] == 0 && loaded[1] == 1 && loaded[2] == 0,
+    gb_check_true(&c, same_three(code, prints) && files == 1 && loaded[0] == 0 && loaded[1] == 1 && loaded[2] == 0,
                   "exit %d %d %d; loaded %d %d %d; %d hull file(s) in the cache; fingerprints %s %s %s", code[0], code[1], code[2],
                   loaded[0], loaded[1], loaded[2], files, prints[0], prints[1], prints[2]);
-    char clean_up[400];
-    snprintf(clean_up, sizeof clean_up, "rm -rf '%s'", dir);
-    if (system(clean_up)) return;
+    bad_input_remove_tree(dir);
 }
 
 /* The mass properties in the user's cache: written by the first run of a paper body, read by the next; a file whose
@@ -320,16 +325,13 @@ static void test_run_massprops_cache(void)
                   "inertia changed, a body of one's own", "the first writes one file, the second reads it (the same state "
                   "bits), the changed file is not read (the same bits again: read, its inertia would change them) and is "
                   "replaced, the body of one's own adds no file", "exact: the state fingerprint"};
-    const int same = code[0] == 0 && code[1] == 0 && code[2] == 0 && !strcmp(prints[0], prints[1]) && !strcmp(prints[0], prints[2]) &&
-                     strcmp(prints[0], "none");
+    const int same = same_three(code, prints);
     gb_check_true(&c, same && code[3] == 0 && files == 1 && changed && after == 1 && loaded[0] == 0 && loaded[1] == 1 &&
                           loaded[2] == 0 && loaded[3] == 0,
                   "exit %d %d %d %d; loaded %d %d %d %d; files %d then %d, changed %d; fingerprints %s %s %s", code[0], code[1],
                   code[2], code[3], loaded[0], loaded[1], loaded[2], loaded[3], files, after, changed, prints[0], prints[1],
                   prints[2]);
-    char clean_up[400];
-    snprintf(clean_up, sizeof clean_up, "rm -rf '%s'", dir);
-    if (system(clean_up)) return;
+    bad_input_remove_tree(dir);
 }
 
 /* The atlas of a `certificate = atlas` run in the user's cache: its cells proved by the first run, read by the next
@@ -370,15 +372,12 @@ static void test_run_atlas_cache(void)
     gb_check c = {"4", "29", "gomboc run with certificate = atlas, the user's cache at XDG_CACHE_HOME: first run, second run, "
                   "a run naming --atlas", "the first proves the cells and writes one atlas file, the second reads it and proves "
                   "none, the third writes the named file and adds none to the cache; the same state bits", "exact"};
-    const int same = code[0] == 0 && code[1] == 0 && code[2] == 0 && !strcmp(prints[0], prints[1]) && !strcmp(prints[0], prints[2]) &&
-                     strcmp(prints[0], "none");
+    const int same = same_three(code, prints);
     gb_check_true(&c, same && loaded[0] == 0 && loaded[1] == 1 && built[0] > 0.0 && built[1] == 0.0 && files == 1 && named_written,
                   "exit %d %d %d; loaded %d %d %d; build seconds %.3g %.3g; %d atlas file(s) in the cache, named file %s; "
                   "fingerprints %s %s %s", code[0], code[1], code[2], loaded[0], loaded[1], loaded[2], built[0], built[1], files,
                   named_written ? "written" : "missing", prints[0], prints[1], prints[2]);
-    char clean_up[400];
-    snprintf(clean_up, sizeof clean_up, "rm -rf '%s'", dir);
-    if (system(clean_up)) return;
+    bad_input_remove_tree(dir);
 }
 
 /* --hull FILE: the first run builds the hull and writes it, the next reads it, a damaged file is built anew

@@ -51,6 +51,8 @@ int bench_shared_atlas_cpu(const char *gomboc, FILE *out);
 int bench_whole_process(const char *native, const char *gomboc, FILE *out);
 int bench_work_precision(const char *python);
 double now(void);
+/* qsort's comparison of doubles, ascending. */
+int bench_compare_doubles(const void *a, const void *b);
 void run_native(const char *path);
 uint64_t state_hash(const double y[GB_STATE_SIZE]);
 double time_lyapunov(const char *m, gb_contact_model contact, gb_dynamics_variant variant, int repeats, double y[GB_STATE_SIZE], double *lambda);

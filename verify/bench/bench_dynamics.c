@@ -44,7 +44,7 @@ static int native_once(const char *name, double *run, double *setup)
     return pclose(p) == 0 && got;
 }
 
-static int compare_doubles(const void *a, const void *b)
+int bench_compare_doubles(const void *a, const void *b)
 {
     const double x = *(const double *)a, y = *(const double *)b;
     return (x > y) - (x < y);
@@ -225,7 +225,7 @@ int bench_atlas(void)
         remove(path);
         double median = NAN;
         if (pairs) {
-            qsort(ratio, (size_t)pairs, sizeof *ratio, compare_doubles);
+            qsort(ratio, (size_t)pairs, sizeof *ratio, bench_compare_doubles);
             median = ratio[pairs / 2];
             printf("     atlas file against the plain loop, set-up included, %d pairs (the plain loop in its own process, "
                    "then the atlas run): median %.1fx (%.1fx to %.1fx)\n", pairs, median, ratio[0], ratio[pairs - 1]);

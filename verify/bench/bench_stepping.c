@@ -20,12 +20,6 @@ static double draw(unsigned long long *s)
     return (double)((*s * 2685821657736338717ull) >> 11) / 4503599627370496.0 - 1.0;
 }
 
-static int compare(const void *a, const void *b)
-{
-    const double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
 /* A random box-like body turned about nothing (a diagonal inertia), `count` points of a plane below its centroid, and
  * velocities with the first point approaching. */
 static void random_impact(unsigned long long *s, int count, gb_impact_body *b, double (*p)[3], double v[3], double w[3])
@@ -73,8 +67,8 @@ static void one_step_problem(void)
             enumeration[it] = now() - start;
             gb_error_clear();
         }
-        qsort(fc3d, N, sizeof *fc3d, compare);
-        qsort(enumeration, N, sizeof *enumeration, compare);
+        qsort(fc3d, N, sizeof *fc3d, bench_compare_doubles);
+        qsort(enumeration, N, sizeof *enumeration, bench_compare_doubles);
         const double a = 1e6 * fc3d[N / 2], e = 1e6 * enumeration[N / 2];
         printf("%-7d %14.1f %18.1f %7.2fx %10d\n", count, a, e, e / a, unsolved);
         if (record)
