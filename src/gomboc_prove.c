@@ -292,7 +292,9 @@ static cJSON *horseshoe_statement(const horseshoe *h, const gb_proof_cover_resul
 }
 
 /* Rössler's period-1 orbit: Krawczyk's operator on the return map to x = 0 over a box 2e-3 wide (uniqueness there),
- * then over a box 2e-7 wide about the same middle (its K, and the period over K, pin the orbit down). */
+ * then over a box 2e-7 wide about the same middle (its K, and the period over K, pin the orbit down). The middle, to 8
+ * decimals, is where Newton on a floating-point return map lands (verify/s7_covering.c finds it again with GSL's rk8pd
+ * and checks that it lies in both K); it only places the boxes: what is proved is read from K. */
 static cJSON *orbit_statement(long precision, int *proved, int *status)
 {
     static const double y0 = -8.38094174, z0 = 0.02959006, wide = 1e-3, narrow = 1e-7;
