@@ -290,12 +290,47 @@ static int plain_process(const char *name)
     return 0;
 }
 
+static const char usage[] =
+    "usage: bench-gomboc [FILE [NATIVE [GOMBOC]]]\n"
+    "  every section; the whole-run ratios also as JSON to FILE (written to FILE.tmp, renamed when all pass),\n"
+    "  against the plain loop of NATIVE (bench-gomboc-native), scans and whole processes through GOMBOC\n"
+    "one section alone, for development:\n"
+    "  bench-gomboc --plain-only | --work-precision | --unilateral | --stepping | --friction\n"
+    "  bench-gomboc --certified NATIVE | --shared-atlas GOMBOC | --unilateral-maps GOMBOC\n"
+    "  bench-gomboc --whole-process NATIVE GOMBOC | --plain-process I|II\n";
+
+/* Which words a section takes after its option; -1: not an option of this program. */
+static int section_words(const char *option)
+{
+    static const struct { const char *name; int words; } sections[] = {
+        {"--plain-only", 0},    {"--work-precision", 0}, {"--unilateral", 0},     {"--stepping", 0},
+        {"--friction", 0},      {"--certified", 1},      {"--shared-atlas", 1},   {"--unilateral-maps", 1},
+        {"--whole-process", 2}, {"--plain-process", 1},
+    };
+    for (size_t k = 0; k < sizeof sections / sizeof sections[0]; k++)
+        if (!strcmp(option, sections[k].name)) return sections[k].words;
+    return -1;
+}
+
 int main(int argc, char **argv)
 {
-    /* bench-gomboc [FILE [NATIVE [GOMBOC]]]: also write the whole-run ratios as JSON to FILE (via FILE.tmp),
-     * against the plain loop of NATIVE (bench-gomboc-native), and time scans through the command GOMBOC;
-     * bench-gomboc --plain-only: that loop alone. */
     char tmp[1024] = "";
+    if (argc > 1 && (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h"))) {
+        fputs(usage, stdout);
+        return 0;
+    }
+    if (argc > 1 && argv[1][0] == '-') {
+        const int words = section_words(argv[1]);
+        if (words < 0 || argc != 2 + words ||
+            (!strcmp(argv[1], "--plain-process") && strcmp(argv[2], "I") && strcmp(argv[2], "II"))) {
+            fprintf(stderr, "bench-gomboc: %s%s: %s\n%s", argv[1], words < 0 ? "" : " ...",
+                    words < 0 ? "not an option of this program" : "wrong words after the option", usage);
+            return 2;
+        }
+    } else if (argc > 4) {
+        fprintf(stderr, "bench-gomboc: %d words given (allowed: at most FILE NATIVE GOMBOC)\n%s", argc - 1, usage);
+        return 2;
+    }
     gb_error_init_gsl();
     if (argc > 1 && !strcmp(argv[1], "--plain-only")) return plain_only();
     if (argc > 1 && !strcmp(argv[1], "--work-precision")) /* that section alone, for development */
@@ -322,14 +357,17 @@ int main(int argc, char **argv)
         bench_friction();
         return 0;
     }
-    if (argc > 2 && !strcmp(argv[1], "--plain-process")) return plain_process(!strcmp(argv[2], "II") ? "II" : "I");
-    if (argc > 2) run_native(argv[2]);
+    if (argc > 2 && !strcmp(argv[1], "--plain-process")) return plain_process(argv[2]);
     if (argc > 1) {
         snprintf(tmp, sizeof tmp, "%s.tmp", argv[1]);
         record = fopen(tmp, "w");
-        if (record) fputs("[\n", record);
+        if (!record) {
+            fprintf(stderr, "bench-gomboc: cannot write '%s' (allowed: FILE in an existing, writable directory)\n", tmp);
+            return 2;
+        }
+        fputs("[\n", record);
     }
-    gb_error_init_gsl();
+    if (argc > 2) run_native(argv[2]);
     static double zb[VERTICALS][3];
     static size_t brute_index[VERTICALS], fast_index[VERTICALS];
     gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
