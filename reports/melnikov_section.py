@@ -1,7 +1,7 @@
 """Report section "The Melnikov criterion (section 7)", from melnikov.json (verify/s7_melnikov.c) and the
 section-7 rows of checks.json: the oracles, the direct-splitting convergence, the Gömböc's reduced model
 (U, M, S over one turn, its contact ties), eq 93 against the exact condition over ψ, the threshold
-curves, and the verdicts. Recomputes no physics."""
+curves, the period map's manifolds (tangle.json, verify/s7_tangle.c), and the verdicts. Recomputes no physics."""
 import math
 import os
 
@@ -10,7 +10,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-from common import finish_figure, section_start  # noqa: E402
+from common import finish_figure, load_json, section_start  # noqa: E402
 
 
 def splitting_figure(out, rows):
@@ -73,6 +73,30 @@ def threshold_figure(out, bodies):
     axes[1].legend(fontsize=7)
     axes[1].set_title("Eq 93 against the exact condition at Table 1's ω", fontsize=9)
     finish_figure(fig, os.path.join(out, "melnikov-thresholds.png"))
+
+
+def tangle_lines(out):
+    """The period map's manifolds (tangle.json, verify/s7_tangle.c): small-ε oracles and Table 1's forcing."""
+    path = os.path.join(out, "tangle.json")
+    if not os.path.exists(path):
+        return ["(The period map's manifolds: tangle.json missing, the suite did not write it.)", ""]
+    rows = load_json(path).get("tangles", [])
+    lines = ["### The manifolds themselves", "",
+             "The period map's unstable and stable manifolds grown from fundamental domains and intersected, each "
+             "crossing confirmed on finer pieces of both curves (`docs/melnikov.md`, \"The manifolds at the scene's "
+             "forcing\"). At small ε the homoclinic orbits a fundamental domain crosses must be the simple zeros of "
+             "M(t₀); at ε = 1 (Table 1's forcing for the bodies) they are what the first order leaves open.", "",
+             "| model | ε | spacing | multipliers | passage [periods] | chord crossings | homoclinic orbits | "
+             "smallest angle [°] |", "|---|---|---|---|---|---|---|---|"]
+    for r in rows:
+        if r.get("status"):
+            lines.append(f"| {r['model']} | {r['epsilon']:g} | {r['spacing']:g} | failed (status {r['status']:.0f}) "
+                         "| | | | |")
+            continue
+        lines.append(f"| {r['model']} | {r['epsilon']:g} | {r['spacing']:g} | {r['multiplier_unstable']:.4f}, "
+                     f"{r['multiplier_stable']:.4f} | {r['passage_periods']:.2f} | {r['chord_crossings']:.0f} | "
+                     f"{r['homoclinic_orbits']:.0f} | {r['smallest_angle_deg']:.2f} |")
+    return lines + [""]
 
 
 def melnikov_section(out, rows):
@@ -140,6 +164,7 @@ def melnikov_section(out, rows):
                   "The forcing modulates the potential by (A1 + A2)/g of itself (the Table 1 verdict rows give it): the "
                   "first-order criterion is applied there outside the small-ε regime it is derived for, as the paper "
                   "applies it.", ""]
+    lines += tangle_lines(out)
     verdicts = [r for r in rows if r.get("section") == "7" and r.get("claim")]
     if verdicts:
         # the verdicts themselves are rows of the findings table at the top (§7): one table, not two

@@ -152,6 +152,57 @@ GB_API int gb_melnikov_split_forced(const gb_melnikov_model *model, const gb_mel
                                     const gb_melnikov_forcing *forcing, double epsilon, double t0, double *measured,
                                     double *flow_speed);
 
+/* The manifolds of a rotation's saddle under the whole perturbation εG, away from ε → 0: where the first
+ * order's verdict (a zero of M(t₀) or none) can be compared with the manifolds themselves. The period map P
+ * at phase t₀ (the flow from t₀ to t₀ + T, T = 2π/ω) has the saddle's periodic orbit as a hyperbolic fixed
+ * point x (gb_melnikov_split_forced's Newton); the unstable branch leaving x in the orbit's direction and the
+ * stable branch entering its copy x ± (P, 0) are grown from a fundamental domain each: the points x + s v
+ * with s from `start` to `start` times the multiplier (log-uniform in s, the domain's parameter σ ∈ [0, 1]),
+ * mapped by P (unstable) or P⁻¹ (stable) `iterates` times, with points inserted wherever neighbouring images
+ * are more than `spacing` apart (each inserted point mapped afresh from its σ). Every crossing of the two
+ * curves is located; a crossing is a homoclinic point of the map on the cylinder (q mod P), and each
+ * homoclinic orbit crosses each fundamental domain of the unstable branch once. The count in one domain,
+ * u ∈ [k, k + 1) with k half the unperturbed passage (both branches well inside their iterates), is the
+ * number of homoclinic orbits whose passage is at most that of the separatrix plus about three periods:
+ * at small ε, the simple zeros of M(t₀) in a period. Rotations only (GB_EDOM for a loop). */
+typedef struct gb_melnikov_tangle_def {
+    double epsilon;    /* the perturbation's scale: 1 is the forcing as given (> 0) */
+    double t0;         /* the period map's phase [s] */
+    double start;      /* the fundamental domains' first displacement from the fixed point (1e-12 to 1e-3) */
+    double spacing;    /* the largest distance between neighbouring points of a curve (1e-4 to 0.1) */
+    size_t max_points; /* a branch's points in all (≥ 100); GB_ENOCONV beyond */
+} gb_melnikov_tangle_def;
+
+GB_API gb_melnikov_tangle_def gb_melnikov_tangle_default_def(void); /* 1, 0, 1e-7, 0.01, 400000 */
+
+typedef struct gb_melnikov_crossing {
+    double u, s;       /* where on the unstable and the stable branch: iterates + σ */
+    double q, p;       /* the homoclinic point at phase t₀ (q unwrapped: from the saddle towards its copy) */
+    double angle;      /* between the two curves there [rad], in (0, π/2] */
+    int confirmed;     /* 1: the curves' pieces around it, drawn within 1e-7, cross (u, s, q, p, angle are
+                          theirs); 0: only the chords did; −1: outside the window, not examined */
+    size_t segment_unstable, segment_stable; /* the chords that crossed */
+} gb_melnikov_crossing;
+
+typedef struct gb_melnikov_tangle {
+    double saddle[2];             /* the fixed point x */
+    double multipliers[2];        /* unstable, stable */
+    double passage;               /* the separatrix's time from q_u + start to its copy − start, in periods */
+    int iterates;                 /* each branch's images of its fundamental domain: ⌈passage/2⌉ + 2 */
+    int window;                   /* k: the fundamental domain u ∈ [k, k + 1) counted */
+    size_t points_unstable, points_stable;
+    double widest_gap;            /* the largest distance left between neighbouring points (σ could not be split) */
+    size_t crossings;             /* all crossings found */
+    gb_melnikov_crossing *crossing; /* sorted by u */
+    size_t in_window;             /* confirmed crossings with u in the window: homoclinic orbits */
+    double smallest_angle;        /* among those [rad]; NAN when none */
+} gb_melnikov_tangle;
+
+GB_API int gb_melnikov_tangle_compute(const gb_melnikov_model *model, const gb_melnikov_orbit *orbit,
+                                      const gb_melnikov_forcing *forcing, const gb_melnikov_tangle_def *def,
+                                      gb_melnikov_tangle *out);
+GB_API void gb_melnikov_tangle_free(gb_melnikov_tangle *tangle);
+
 /* The second, independent orbit: the flow of eq 78 (rk8pd) started on the saddle's unstable direction,
  * and the time it takes from q = q_a to q = q_b (both on the way out from the saddle, before a loop's
  * turning point). To compare with gb_melnikov_time(q_b) − gb_melnikov_time(q_a). */

@@ -13,15 +13,9 @@
 
 /* ---- direct splitting under damping alone ------------------------------------------------------- */
 
-/* The perturbed system (eq 84) with its perturbation εG (eq 85); damping alone is ν₁ = ν₂ = 0. */
-typedef struct forced {
-    const gb_melnikov_model *m;
-    const gb_melnikov_forcing *f;
-    double epsilon;
-    int status;
-} forced;
+typedef gb_melnikov_forced forced;
 
-static int forced_rhs(double t, const double y[], double dydt[], void *params)
+int gb_melnikov_forced_rhs(double t, const double y[], double dydt[], void *params)
 {
     forced *F = params;
     gb_melnikov_values v;
@@ -44,7 +38,7 @@ static int forced_rhs(double t, const double y[], double dydt[], void *params)
 static int to_section(forced *F, double sign, double limit, const double x0[2], const double f0[2], double window, double y[2],
                       double *t_cross)
 {
-    gsl_odeiv2_system sys = {forced_rhs, NULL, 2, F};
+    gsl_odeiv2_system sys = {gb_melnikov_forced_rhs, NULL, 2, F};
     gsl_odeiv2_step *step = gsl_odeiv2_step_alloc(gsl_odeiv2_step_rk8pd, 2);
     gsl_odeiv2_control *control = gsl_odeiv2_control_y_new(1e-14, 1e-13);
     gsl_odeiv2_evolve *evolve = gsl_odeiv2_evolve_alloc(2);
@@ -145,10 +139,9 @@ int gb_melnikov_flight_time(const gb_melnikov_model *m, const gb_melnikov_orbit 
 
 /* ---- direct splitting under the full perturbation ---------------------------------------------- */
 
-/* y ← the flow of the forced system from t_from to t_to (either direction), rk8pd at 1e-13. */
-static int forced_flow(forced *F, double t_from, double t_to, double y[2])
+int gb_melnikov_forced_flow(forced *F, double t_from, double t_to, double y[2])
 {
-    gsl_odeiv2_system sys = {forced_rhs, NULL, 2, F};
+    gsl_odeiv2_system sys = {gb_melnikov_forced_rhs, NULL, 2, F};
     const double h = t_to > t_from ? 1e-3 : -1e-3;
     gsl_odeiv2_driver *d = gsl_odeiv2_driver_alloc_y_new(&sys, gsl_odeiv2_step_rk8pd, h, 1e-14, 1e-13);
     if (!d) return gb_error_set(GB_ENOMEM, "out of memory for the stepper");
@@ -159,9 +152,8 @@ static int forced_flow(forced *F, double t_from, double t_to, double y[2])
     return GB_OK;
 }
 
-/* The hyperbolic periodic orbit near the saddle at phase t0 (a fixed point of the period map, Newton
- * with a central-difference Jacobian) and the map's unstable and stable eigenvectors. */
-static int periodic_orbit(forced *F, double q_u, double t0, double x[2], double vu[2], double vs[2])
+int gb_melnikov_saddle_orbit(forced *F, double q_u, double t0, double x[2], double vu[2], double vs[2],
+                             double multipliers[2])
 {
     const double T = 2.0 * M_PI / F->f->omega, h = 1e-7;
     x[0] = q_u, x[1] = 0.0;
@@ -169,12 +161,12 @@ static int periodic_orbit(forced *F, double q_u, double t0, double x[2], double 
     int status = GB_OK;
     for (int it = 0; it < 30 && !status; it++) {
         double P[2] = {x[0], x[1]};
-        status = forced_flow(F, t0, t0 + T, P);
+        status = gb_melnikov_forced_flow(F, t0, t0 + T, P);
         for (int j = 0; j < 2 && !status; j++) {
             double a[2] = {x[0], x[1]}, b[2] = {x[0], x[1]};
             a[j] += h, b[j] -= h;
-            status = forced_flow(F, t0, t0 + T, a);
-            if (!status) status = forced_flow(F, t0, t0 + T, b);
+            status = gb_melnikov_forced_flow(F, t0, t0 + T, a);
+            if (!status) status = gb_melnikov_forced_flow(F, t0, t0 + T, b);
             for (int i = 0; i < 2; i++) J[i][j] = (a[i] - b[i]) / (2 * h);
         }
         if (status) break;
@@ -193,6 +185,7 @@ static int periodic_orbit(forced *F, double q_u, double t0, double x[2], double 
     const double eu[2] = {J[0][1], lu - J[0][0]}, es[2] = {J[0][1], ls - J[0][0]};
     const double nu = hypot(eu[0], eu[1]), ns = hypot(es[0], es[1]);
     vu[0] = eu[0] / nu, vu[1] = eu[1] / nu, vs[0] = es[0] / ns, vs[1] = es[1] / ns;
+    if (multipliers) multipliers[0] = lu, multipliers[1] = ls;
     return GB_OK;
 }
 
@@ -214,7 +207,7 @@ static int manifold_on_section(forced *F, double t0, const double xp[2], const d
         for (int j = 0; j <= 80; j++) {
             const double s = s_mid * pow(10.0, -1.0 + 2.0 * j / 80.0);
             double y[2] = {xp[0] + side * s * v[0], xp[1] + side * s * v[1]};
-            int status = forced_flow(F, t_start, t0, y);
+            int status = gb_melnikov_forced_flow(F, t_start, t0, y);
             if (status) return status;
             const double g = (y[0] - x0[0]) * f0[0] + (y[1] - x0[1]) * f0[1];
             if (j > 0 && g * prev_g <= 0.0) {
@@ -222,7 +215,7 @@ static int manifold_on_section(forced *F, double t0, const double xp[2], const d
                 for (int it = 0; it < 200 && hi - lo > 1e-15 * hi; it++) {
                     const double mid = sqrt(lo * hi);
                     z[0] = xp[0] + side * mid * v[0], z[1] = xp[1] + side * mid * v[1];
-                    status = forced_flow(F, t_start, t0, z);
+                    status = gb_melnikov_forced_flow(F, t_start, t0, z);
                     if (status) return status;
                     const double gm = (z[0] - x0[0]) * f0[0] + (z[1] - x0[1]) * f0[1];
                     if (gm * glo > 0.0) lo = mid, glo = gm;
@@ -252,7 +245,7 @@ int gb_melnikov_split_forced(const gb_melnikov_model *m, const gb_melnikov_orbit
     *flow_speed = hypot(f0[0], f0[1]);
     forced F = {m, f, epsilon, GB_OK};
     double xp[2], vu[2] = {0, 0}, vs[2] = {0, 0};
-    status = periodic_orbit(&F, o->q_u, t0, xp, vu, vs);
+    status = gb_melnikov_saddle_orbit(&F, o->q_u, t0, xp, vu, vs, NULL);
     if (status) return status;
     /* The unstable manifold leaves towards `dir`; the stable one is entered from the side of the loop, or
      * is that of the far copy of the periodic orbit (a rotation). */

@@ -12,6 +12,7 @@
 static const char *usage_melnikov =
     "usage: gomboc melnikov CASE [--json] [--mass top|variable] [--weight exact|paper]\n"
     "                            [--damping paper|exact] [--curve FILE] [--curve-points N]\n"
+    "                            [--tangle SPACING]\n"
     "\n"
     "  CASE            a scene file: its body, mass, g, damping and forcing (omega, A1, A2, psi)\n"
     "  --json          print one JSON object: q_u, E_s, D, C1, S1, C2, S2, A1_star, A2_star, mu_D,\n"
@@ -24,6 +25,9 @@ static const char *usage_melnikov =
     "                  same when M is frozen at the top)\n"
     "  --curve FILE    write the threshold A1 against omega as CSV (the scene's A2/A1 and psi), over\n"
     "                  omega +- 33 %% of the scene's in --curve-points points (default 13)\n"
+    "  --tangle SPACING  also grow the period map's manifolds at the scene's whole forcing (not its\n"
+    "                  first order) with points at most SPACING apart (1e-4 to 0.1; 0.01 is a good start)\n"
+    "                  and count the homoclinic orbits a fundamental domain crosses (seconds to a minute)\n"
     "\n"
     "The reduced model rocks the body about a horizontal axis through its top (docs/melnikov.md).\n";
 
@@ -64,15 +68,16 @@ static int threshold_at(melnikov_run *r, double omega, double A1, double A2, gb_
 typedef struct melnikov_options {
     const char *case_path, *curve;
     int json, variable_mass, paper_weight, damping_exact;
-    double points; /* --curve-points */
+    double points;  /* --curve-points */
+    double spacing; /* --tangle; NAN: not asked for */
 } melnikov_options;
 
 /* Read the options into *o: -1 to go on, else the exit status (0 for --help). */
 static int melnikov_options_read(int argc, char **argv, melnikov_options *o)
 {
-    *o = (melnikov_options){NULL, NULL, 0, 0, 0, 0, 13};
-    const char *points_text = NULL;
-    static const char *const valued[] = {"--mass", "--weight", "--damping", "--curve", "--curve-points", NULL};
+    *o = (melnikov_options){NULL, NULL, 0, 0, 0, 0, 13, NAN};
+    const char *points_text = NULL, *spacing_text = NULL;
+    static const char *const valued[] = {"--mass", "--weight", "--damping", "--curve", "--curve-points", "--tangle", NULL};
     for (int i = 0; i < argc; i++) {
         const char *opt = argv[i], *value = NULL;
         const int positional = cli_positional("melnikov", opt, &o->case_path, "case file", "CASE");
@@ -81,7 +86,7 @@ static int melnikov_options_read(int argc, char **argv, melnikov_options *o)
             return positional;
         }
         const int kind = cli_next_option("melnikov", argc, argv, &i, usage_melnikov, valued,
-                                         " (allowed: --json, --mass, --weight, --damping, --curve, --curve-points, --help)", NULL,
+                                         " (allowed: --json, --mass, --weight, --damping, --curve, --curve-points, --tangle, --help)", NULL,
                                          &o->json, &value);
         if (kind != CLI_VALUE) {
             if (kind == CLI_NEXT) continue;
@@ -92,6 +97,7 @@ static int melnikov_options_read(int argc, char **argv, melnikov_options *o)
         else if (!strcmp(opt, "--weight")) bad = parse_choice(opt, value, "exact", "paper", &o->paper_weight);
         else if (!strcmp(opt, "--damping")) bad = parse_choice(opt, value, "paper", "exact", &o->damping_exact);
         else if (!strcmp(opt, "--curve")) o->curve = value;
+        else if (!strcmp(opt, "--tangle")) spacing_text = value;
         else points_text = value;
         if (bad) return bad;
     }
@@ -104,9 +110,40 @@ static int melnikov_options_read(int argc, char **argv, melnikov_options *o)
         return EXIT_INPUT;
     if (o->points != floor(o->points))
         return cli_input_error("melnikov", "--curve-points %s: not an integer (allowed: an integer from 2 to 1000)", points_text);
+    if (spacing_text && cli_number("melnikov", "--tangle", spacing_text, 1e-4, 0.1, 0, " (allowed: a spacing from 1e-4 to 0.1)",
+                                   &o->spacing))
+        return EXIT_INPUT;
     const gb_file_use uses[] = {GB_FILE_USE(o->case_path, "CASE", GB_FILE_INPUT), GB_FILE_USE(o->curve, "--curve", GB_FILE_OUTPUT)};
     if (cli_files_check("melnikov", uses, 2)) return EXIT_INPUT;
     return -1;
+}
+
+/* The tangle's summary and its confirmed homoclinic points in the window. */
+static void tangle_json(cJSON *root, const gb_melnikov_tangle *t, double spacing)
+{
+    cJSON *o = cJSON_AddObjectToObject(root, "tangle");
+    cli_json_add(o, "spacing", spacing);
+    cJSON_AddItemToObject(o, "saddle", cli_json_vector(t->saddle, 2));
+    cJSON_AddItemToObject(o, "multipliers", cli_json_vector(t->multipliers, 2));
+    cli_json_add(o, "passage_periods", t->passage);
+    cli_json_add(o, "iterates", t->iterates);
+    cli_json_add(o, "window", t->window);
+    cli_json_add(o, "points", (double)(t->points_unstable + t->points_stable));
+    cli_json_add(o, "chord_crossings", (double)t->crossings);
+    cli_json_add(o, "homoclinic_orbits", (double)t->in_window);
+    cli_json_add(o, "smallest_angle_deg", t->in_window ? t->smallest_angle * 180 / M_PI : NAN);
+    cJSON *list = cJSON_AddArrayToObject(o, "homoclinic_points");
+    for (size_t i = 0; i < t->crossings; i++) {
+        const gb_melnikov_crossing *x = &t->crossing[i];
+        if (x->confirmed != 1) continue;
+        cJSON *row = cJSON_CreateObject();
+        cli_json_add(row, "u", x->u);
+        cli_json_add(row, "s", x->s);
+        cli_json_add(row, "q", x->q);
+        cli_json_add(row, "p", x->p);
+        cli_json_add(row, "angle_deg", x->angle * 180 / M_PI);
+        cJSON_AddItemToArray(list, row);
+    }
 }
 
 int command_melnikov(int argc, char **argv)
@@ -117,7 +154,7 @@ int command_melnikov(int argc, char **argv)
     const char *case_path = options.case_path, *curve = options.curve;
     const int json = options.json, variable_mass = options.variable_mass, paper_weight = options.paper_weight,
               damping_exact = options.damping_exact;
-    const double points = options.points;
+    const double points = options.points, spacing = options.spacing;
     gb_case scene;
     int status = gb_case_load(case_path, &scene);
     if (status) return cli_failure("melnikov", status);
@@ -140,11 +177,20 @@ int command_melnikov(int argc, char **argv)
     gb_melnikov_integrals I;
     double t93 = NAN, tx = NAN;
     gb_melnikov_criterion c = {0};
+    gb_melnikov_tangle tangle = {0};
     if (!status) {
         r.mu = damping_exact ? scene.dynamics.damping : scene.dynamics.damping / top.M;
         status = threshold_at(&r, F->omega, F->a1, F->a2, &I, &t93, &tx);
         const gb_melnikov_forcing f = {r.mu, F->a1, F->a2, F->omega, F->psi, damping_exact};
         gb_melnikov_judge(&I, &f, &c);
+        if (!status && !isnan(spacing)) {
+            gb_melnikov_tangle_def def = gb_melnikov_tangle_default_def();
+            def.spacing = spacing;
+            status = gb_melnikov_tangle_compute(&r.model, &r.orbit, &f, &def, &tangle);
+            if (status) /* said as the tangle's, not as the integrals' failure below */
+                status = gb_error_set(status == GB_ENUMERIC ? GB_ENOCONV : status, "%s: --tangle %g: %s", case_path, spacing,
+                                      gb_error_message());
+        }
     }
     cJSON *root = NULL;
     FILE *csv = NULL;
@@ -199,6 +245,7 @@ int command_melnikov(int argc, char **argv)
         cJSON *th = cJSON_AddObjectToObject(root, "threshold_A1");
         cli_json_add(th, "eq93", t93);
         cli_json_add(th, "exact", tx);
+        if (!isnan(spacing)) tangle_json(root, &tangle, spacing);
         cJSON *b = cJSON_AddObjectToObject(root, "body");
         cJSON_AddItemToObject(b, "top", cli_json_vector(info.top, 3));
         cli_json_add(b, "r_max", info.r_max);
@@ -214,6 +261,7 @@ int command_melnikov(int argc, char **argv)
     gb_melnikov_body_free(body);
     if (status) {
         cJSON_Delete(root);
+        gb_melnikov_tangle_free(&tangle);
         if (status == GB_ENUMERIC) /* the integrals at the scene's frequency, or at one of the curve's */
             return cli_failure("melnikov", gb_error_set(status, "%s: [forcing] omega = %.17g%s: the reduced model's integrals: %s",
                                                         case_path, F->omega, curve ? " (and the curve around it)" : "",
@@ -232,7 +280,13 @@ int command_melnikov(int argc, char **argv)
                r.mu * (damping_exact ? I.D_mass : I.D), fabs(F->a1) * I.A1 + fabs(F->a2) * I.A2, c.eq93 ? "holds" : "does not hold", c.oscillatory_max,
                c.sign_change ? "yes" : "no");
         printf("  threshold A1: %.6g by eq 93, %.6g exact (m/s2, A2/A1 and psi of the scene)\n", t93, tx);
+        if (!isnan(spacing))
+            printf("  the period map's manifolds at the scene's forcing (spacing %g): %zu homoclinic orbits a fundamental "
+                   "domain crosses%s%.1f deg (multipliers %.6g, %.6g; %zu points)\n", spacing, tangle.in_window,
+                   tangle.in_window ? ", the smallest angle " : "", tangle.in_window ? tangle.smallest_angle * 180 / M_PI : 0.0,
+                   tangle.multipliers[0], tangle.multipliers[1], tangle.points_unstable + tangle.points_stable);
     }
+    gb_melnikov_tangle_free(&tangle);
     cJSON_Delete(root);
     return 0;
 }

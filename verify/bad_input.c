@@ -263,6 +263,8 @@ static const bad_row rows[] = {
     {"melnikov @CASE@ --damping viscous", "[body]\nbeta = 0.1\n", 0, 2, {"--damping viscous: unknown", "allowed: paper, exact", ""}},
     {"melnikov @CASE@ --curve @D@/c.csv --curve-points 1", "[body]\nbeta = 0.1\n", 0, 2, {"--curve-points '1' is out of range", "(allowed: an integer from 2 to 1000)", ""}},
     {"melnikov @CASE@ --curve @D@/sub", "[body]\nbeta = 0.1\n", 0, 2, {"--curve", "is not a regular file", ""}},
+    {"melnikov @CASE@ --tangle 0.5", "[body]\nbeta = 0.1\n", 0, 2, {"--tangle '0.5' is out of range", "(allowed: a spacing from 1e-4 to 0.1)", ""}},
+    {"melnikov @CASE@ --tangle", "[body]\nbeta = 0.1\n", 0, 2, {"--tangle", "", ""}},
     /* The case file itself, and the output directory. */
     {"run @D@", NULL, 0, 2, {"not a regular file", "allowed: a scene file", ""}},
     {"lyapunov @D@", NULL, 0, 2, {"not a regular file", "allowed: a scene file", ""}},

@@ -28,6 +28,7 @@ int verify_register_s6_estimators(void);
 int verify_register_s6_chaos(void);
 int verify_register_s6_diagnostics(void);
 int verify_register_s7_melnikov(void);
+int verify_register_s7_tangle(void);
 int verify_register_s7_proofs(void);
 int verify_register_s7_proofs_body(void);
 int verify_register_s7_covering(void);
