@@ -93,9 +93,10 @@ def tangle_lines(out):
             lines.append(f"| {r['model']} | {r['epsilon']:g} | {r['spacing']:g} | failed (status {r['status']:.0f}) "
                          "| | | | |")
             continue
+        angle = f"{r['smallest_angle_deg']:.2f}" if r["homoclinic_orbits"] else "–"
         lines.append(f"| {r['model']} | {r['epsilon']:g} | {r['spacing']:g} | {r['multiplier_unstable']:.4f}, "
                      f"{r['multiplier_stable']:.4f} | {r['passage_periods']:.2f} | {r['chord_crossings']:.0f} | "
-                     f"{r['homoclinic_orbits']:.0f} | {r['smallest_angle_deg']:.2f} |")
+                     f"{r['homoclinic_orbits']:.0f} | {angle} |")
     return lines + [""]
 
 

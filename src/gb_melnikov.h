@@ -179,7 +179,7 @@ typedef struct gb_melnikov_crossing {
     double u, s;       /* where on the unstable and the stable branch: iterates + σ */
     double q, p;       /* the homoclinic point at phase t₀ (q unwrapped: from the saddle towards its copy) */
     double angle;      /* between the two curves there [rad], in (0, π/2] */
-    int confirmed;     /* 1: the curves' pieces around it, drawn within 1e-7, cross (u, s, q, p, angle are
+    int confirmed;     /* 1: the curves' pieces around it, drawn within 1e-6, cross (u, s, q, p, angle are
                           theirs); 0: only the chords did; −1: outside the window, not examined */
     size_t segment_unstable, segment_stable; /* the chords that crossed */
 } gb_melnikov_crossing;

@@ -200,9 +200,9 @@ static int intersect(const branch *U, const branch *S, double cell, gb_melnikov_
 
 /* A piece of one branch's iterate k over σ ∈ [a, b], as a polyline within about CHORD of the curve: a chord
  * is split while its midpoint's image lies farther than CHORD from its line or it is longer than the
- * spacing / 16 (50 halvings at most: a kink, where the flow crossed a tie line, ends there). */
+ * spacing / 4 (50 halvings at most: a kink, where the flow crossed a tie line, ends there). */
 enum { CHORD_DEPTH = 50 };
-static const double CHORD = 1e-7;
+static const double CHORD = 1e-6;
 
 typedef struct piece {
     double *sigma, *y; /* y: (q, p) pairs */
@@ -234,7 +234,7 @@ static int piece_refine(branch *b, const point *a, const point *c, int k, int de
         const double r[2] = {c->y[0] - a->y[0], c->y[1] - a->y[1]}, w[2] = {mid.y[0] - a->y[0], mid.y[1] - a->y[1]};
         const double length = hypot(r[0], r[1]);
         const double dev = length > 0.0 ? fabs(r[0] * w[1] - r[1] * w[0]) / length : hypot(w[0], w[1]);
-        if (dev > CHORD || length > b->spacing / 16) {
+        if (dev > CHORD || length > b->spacing / 4) {
             status = piece_refine(b, a, &mid, k, depth + 1, out);
             if (!status) status = piece_refine(b, &mid, c, k, depth + 1, out);
             return status;

@@ -85,7 +85,9 @@ static void test_small_epsilon(void)
                  "fundamental domain crosses", mu, nus[k], omega);
         gb_check c = {"7", "91", q, "the simple zeros of M(t0) in a period (closed form: nu* = 0.3676)",
                       "exact count: Melnikov's theorem at small eps"};
-        const int status = tangle("pendulum", &PARAMETRIC, &f, 0.05, 0.01, &t);
+        char label[64];
+        snprintf(label, sizeof label, "pendulum, nu %g", nus[k]);
+        const int status = tangle(label, &PARAMETRIC, &f, 0.05, 0.01, &t);
         gb_check_true(&c, !status && t.in_window == want && first_order_orbits(&PARAMETRIC, &f) == want,
                       "%s%zu orbits (of %zu chord crossings), want %zu; smallest angle %.2f deg", status ? gb_error_message() : "",
                       t.in_window, t.crossings, want, t.in_window ? t.smallest_angle * 180 / M_PI : 0.0);
