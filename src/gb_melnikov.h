@@ -203,6 +203,16 @@ GB_API int gb_melnikov_tangle_compute(const gb_melnikov_model *model, const gb_m
                                       gb_melnikov_tangle *out);
 GB_API void gb_melnikov_tangle_free(gb_melnikov_tangle *tangle);
 
+/* The scale s of the forcing's harmonics (ν₁, ν₂ times s, the damping kept) at which the manifolds start
+ * to cross, bracketed: bracket[0] a scale without a confirmed crossing in the window, bracket[1] one with.
+ * s = 0 (damping alone: the energy only falls) has none; s = 1, 2, 4, 8, 16 are tried until one crosses
+ * (none: bracket[1] = ∞), then `halvings` bisections (0 to 30). Crossing need not be monotone in s: the
+ * bracket holds a transition, not necessarily the first. To set against the first order's threshold
+ * (gb_melnikov_threshold's exact scale). */
+GB_API int gb_melnikov_tangle_threshold(const gb_melnikov_model *model, const gb_melnikov_orbit *orbit,
+                                        const gb_melnikov_forcing *forcing, const gb_melnikov_tangle_def *def,
+                                        int halvings, double bracket[2]);
+
 /* The second, independent orbit: the flow of eq 78 (rk8pd) started on the saddle's unstable direction,
  * and the time it takes from q = q_a to q = q_b (both on the way out from the saddle, before a loop's
  * turning point). To compare with gb_melnikov_time(q_b) − gb_melnikov_time(q_a). */

@@ -371,3 +371,39 @@ void gb_melnikov_tangle_free(gb_melnikov_tangle *t)
     free(t->crossing);
     t->crossing = NULL, t->crossings = 0;
 }
+
+/* Whether the manifolds cross (a confirmed crossing in the window) with the harmonics scaled by s. */
+static int crosses_at(const gb_melnikov_model *m, const gb_melnikov_orbit *o, const gb_melnikov_forcing *f,
+                      const gb_melnikov_tangle_def *def, double s, int *crossed)
+{
+    gb_melnikov_forcing g = *f;
+    g.nu1 *= s, g.nu2 *= s;
+    gb_melnikov_tangle t;
+    const int status = gb_melnikov_tangle_compute(m, o, &g, def, &t);
+    *crossed = !status && t.in_window > 0;
+    gb_melnikov_tangle_free(&t);
+    return status;
+}
+
+int gb_melnikov_tangle_threshold(const gb_melnikov_model *m, const gb_melnikov_orbit *o, const gb_melnikov_forcing *f,
+                                 const gb_melnikov_tangle_def *def, int halvings, double bracket[2])
+{
+    bracket[0] = 0.0, bracket[1] = NAN;
+    if (halvings < 0 || halvings > 30) return gb_error_set(GB_EDOM, "tangle threshold halvings = %d (allowed: 0 to 30)", halvings);
+    int crossed = 0, status = GB_OK;
+    double s = 1.0;
+    for (; s <= 16.0 && !status; s *= 2.0) {
+        status = crosses_at(m, o, f, def, s, &crossed);
+        if (status || crossed) break;
+        bracket[0] = s;
+    }
+    if (status) return status;
+    if (!crossed) return bracket[1] = INFINITY, GB_OK;
+    bracket[1] = s;
+    for (int k = 0; k < halvings && !status; k++) {
+        const double mid = 0.5 * (bracket[0] + bracket[1]);
+        status = crosses_at(m, o, f, def, mid, &crossed);
+        if (!status) bracket[crossed ? 1 : 0] = mid;
+    }
+    return status;
+}

@@ -8,6 +8,7 @@
  * Then Table 1's forcing itself (ε = 0.31 of g): whether the manifolds cross there, against what the first
  * order says, judged by a rule fixed before the data. */
 #include "gb_check.h"
+#include "gb_clock.h"
 #include "gb_dynamics.h"
 #include "gb_error.h"
 #include "gb_melnikov_body.h"
@@ -16,6 +17,7 @@
 
 #include <cjson/cJSON.h>
 #include <math.h>
+#include <pthread.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -28,34 +30,55 @@ static int parametric(void *c, double q, gb_melnikov_values *v)
 
 static const gb_melnikov_model PARAMETRIC = {parametric, NULL, -0.5, 0.5, 1, 2 * M_PI, 0.0, NAN, NULL, 0};
 
-static cJSON *rows;
+static cJSON *rows, *thresholds;
 
-/* The tangle of model m under f at scale eps and the given spacing; its row in the report's data. */
-static int tangle(const char *name, const gb_melnikov_model *m, const gb_melnikov_forcing *f, double eps, double spacing,
-                  gb_melnikov_tangle *t)
+/* What the report and the checks read of one tangle. */
+typedef struct tangle_summary {
+    const char *label;
+    double epsilon, spacing, multipliers[2], passage, smallest_angle;
+    size_t points, chords, orbits;
+    int status;
+} tangle_summary;
+
+/* The tangle of model m under f at scale eps and the given spacing, summarised (thread-safe: no check, no
+ * JSON); *widest (if not NULL) the widest confirmed angle [deg]. */
+static int summarise(const gb_melnikov_model *m, const gb_melnikov_orbit *o, const gb_melnikov_forcing *f, double eps,
+                     double spacing, tangle_summary *out, double *widest)
 {
-    gb_melnikov_orbit o;
+    gb_melnikov_tangle t;
     gb_melnikov_tangle_def def = gb_melnikov_tangle_default_def();
     def.epsilon = eps, def.spacing = spacing;
-    int status = gb_melnikov_orbit_find(m, &o);
-    if (!status) status = gb_melnikov_tangle_compute(m, &o, f, &def, t);
+    const int status = gb_melnikov_tangle_compute(m, o, f, &def, &t);
+    *out = (tangle_summary){out->label, eps, spacing, {t.multipliers[0], t.multipliers[1]}, t.passage,
+                            t.in_window ? t.smallest_angle * 180 / M_PI : NAN, t.points_unstable + t.points_stable,
+                            t.crossings, t.in_window, status};
+    if (widest) {
+        *widest = 0.0;
+        for (size_t i = 0; i < t.crossings; i++)
+            if (t.crossing[i].confirmed == 1) *widest = fmax(*widest, t.crossing[i].angle * 180 / M_PI);
+    }
+    gb_melnikov_tangle_free(&t);
+    return status;
+}
+
+/* Its row in the report's data. */
+static void summary_row(const char *model, const tangle_summary *t)
+{
     cJSON *row = cJSON_CreateObject();
-    cJSON_AddStringToObject(row, "model", name);
-    cJSON_AddNumberToObject(row, "epsilon", eps);
-    cJSON_AddNumberToObject(row, "spacing", spacing);
-    cJSON_AddNumberToObject(row, "status", status);
-    if (!status) {
+    cJSON_AddStringToObject(row, "model", t->label ? t->label : model);
+    cJSON_AddNumberToObject(row, "epsilon", t->epsilon);
+    cJSON_AddNumberToObject(row, "spacing", t->spacing);
+    cJSON_AddNumberToObject(row, "status", t->status);
+    if (!t->status) {
         cJSON_AddNumberToObject(row, "multiplier_unstable", t->multipliers[0]);
         cJSON_AddNumberToObject(row, "multiplier_stable", t->multipliers[1]);
         cJSON_AddNumberToObject(row, "passage_periods", t->passage);
-        cJSON_AddNumberToObject(row, "window", t->window);
-        cJSON_AddNumberToObject(row, "points", (double)(t->points_unstable + t->points_stable));
-        cJSON_AddNumberToObject(row, "chord_crossings", (double)t->crossings);
-        cJSON_AddNumberToObject(row, "homoclinic_orbits", (double)t->in_window);
-        cJSON_AddNumberToObject(row, "smallest_angle_deg", t->in_window ? t->smallest_angle * 180 / M_PI : 0.0);
+        cJSON_AddNumberToObject(row, "points", (double)t->points);
+        cJSON_AddNumberToObject(row, "chord_crossings", (double)t->chords);
+        cJSON_AddNumberToObject(row, "homoclinic_orbits", (double)t->orbits);
+        cJSON_AddNumberToObject(row, "smallest_angle_deg", t->orbits ? t->smallest_angle : 0.0);
     }
     cJSON_AddItemToArray(rows, row);
-    return status;
 }
 
 /* The number of simple zeros of M(t₀) over one period: 2 when the oscillatory part's maximum exceeds μD
@@ -73,25 +96,28 @@ static size_t first_order_orbits(const gb_melnikov_model *m, const gb_melnikov_f
 static void test_small_epsilon(void)
 {
     if (!rows) rows = cJSON_CreateArray();
+    if (!thresholds) thresholds = cJSON_CreateArray();
     /* the pendulum: ω = 2, μ = 0.1: M's threshold ν* = 8μ sinh(π)/(8π) = 0.3676 */
     const double omega = 2.0, mu = 0.1, nu_star = 8 * mu * sinh(M_PI * omega / 2) / (2 * M_PI * omega * omega);
     static const double nus[2] = {0.5, 0.3};
     for (int k = 0; k < 2; k++) {
         const gb_melnikov_forcing f = {mu, nus[k], 0.0, omega, 0.0, 0};
         const size_t want = nus[k] > nu_star ? 2 : 0;
-        gb_melnikov_tangle t;
-        char q[200];
+        char q[200], label[64];
         snprintf(q, sizeof q, "pendulum U = cos q, S = sin q (mu %g, nu %g, omega %g), eps 0.05: homoclinic orbits a "
                  "fundamental domain crosses", mu, nus[k], omega);
         gb_check c = {"7", "91", q, "the simple zeros of M(t0) in a period (closed form: nu* = 0.3676)",
                       "exact count: Melnikov's theorem at small eps"};
-        char label[64];
         snprintf(label, sizeof label, "pendulum, nu %g", nus[k]);
-        const int status = tangle(label, &PARAMETRIC, &f, 0.05, 0.01, &t);
-        gb_check_true(&c, !status && t.in_window == want && first_order_orbits(&PARAMETRIC, &f) == want,
+        gb_melnikov_orbit o;
+        tangle_summary t = {.label = label};
+        int status = gb_melnikov_orbit_find(&PARAMETRIC, &o);
+        if (!status) status = summarise(&PARAMETRIC, &o, &f, 0.05, 0.01, &t, NULL);
+        gb_check_true(&c, !status && t.orbits == want && first_order_orbits(&PARAMETRIC, &f) == want,
                       "%s%zu orbits (of %zu chord crossings), want %zu; smallest angle %.2f deg", status ? gb_error_message() : "",
-                      t.in_window, t.crossings, want, t.in_window ? t.smallest_angle * 180 / M_PI : 0.0);
-        gb_melnikov_tangle_free(&t);
+                      t.orbits, t.chords, want, t.orbits ? t.smallest_angle : 0.0);
+        t.label = NULL;
+        summary_row(label, &t);
     }
     const gb_melnikov_model none = {NULL, NULL, 0, 0, 1, 0.0, 3.0, NAN, NULL, 0};
     gb_melnikov_tangle t;
@@ -108,72 +134,127 @@ static void test_small_epsilon(void)
                   gb_error_message());
 }
 
-/* A body's reduced model (M frozen at the top, the paper's damping μ = c/M(q_u)) and Table 1's forcing. */
-static int body_model(const char *name, gb_melnikov_body **b, gb_melnikov_model *m, gb_melnikov_forcing *f)
-{
-    const gb_dynamics_def d = gb_dynamics_default_def();
-    int status = gb_melnikov_body_create(gb_check_body(name, 0.12), d.mass, d.forcing.g, GB_MELNIKOV_BODY_NODES, b);
-    if (status) return status;
-    *m = gb_melnikov_body_model(*b, GB_MELNIKOV_MASS_AT_TOP);
-    gb_melnikov_values top;
-    status = m->eval(m->context, 0.0, &top);
-    *f = (gb_melnikov_forcing){d.damping / top.M, d.forcing.a1, d.forcing.a2, d.forcing.omega, d.forcing.psi, 0};
-    return status;
-}
+/* One body's work at Table 1's forcing, done on a thread of its own (the two bodies side by side); the
+ * checks read it afterwards on the harness's thread. */
+typedef struct body_work {
+    const char *name;
+    const gb_surface *surface;
+    int status;
+    char message[256];
+    size_t first;                 /* M(t0)'s simple zeros in a period: 2 or 0 */
+    double first_threshold;       /* A1 by the first order, exactly (gb_melnikov_threshold) */
+    double a1;                    /* Table 1's */
+    tangle_summary small;         /* at 5 % of the forcing */
+    tangle_summary at[2];         /* at the forcing, spacing 0.02 and 0.01 */
+    double widest[2];             /* the widest confirmed angle [deg] at each */
+    double bracket[2];            /* the harmonics' scale where the manifolds start to cross */
+    double seconds;
+} body_work;
 
-static void gomboc_tangle(const char *name)
+static void *body_thread(void *arg)
 {
+    body_work *w = arg;
+    const double t0 = gb_wall_seconds();
+    const gb_dynamics_def d = gb_dynamics_default_def();
     gb_melnikov_body *b = NULL;
     gb_melnikov_model m;
-    gb_melnikov_forcing f;
-    char q[220];
-    int status = body_model(name, &b, &m, &f);
-    const size_t first = status ? 99 : first_order_orbits(&m, &f);
-    gb_melnikov_tangle t = {0};
-    snprintf(q, sizeof q, "Gomboc %s at 5 %% of Table 1's forcing: homoclinic orbits a fundamental domain crosses", name);
-    gb_check c = {"7", "91", q, "the simple zeros of M(t0) in a period", "exact count: Melnikov's theorem at small eps"};
-    if (!status) status = tangle(name, &m, &f, 0.05, 0.01, &t);
-    gb_check_true(&c, !status && t.in_window == first, "%s%zu orbits (of %zu chord crossings), M(t0) has %zu zeros",
-                  status ? gb_error_message() : "", t.in_window, t.crossings, first);
-    gb_melnikov_tangle_free(&t);
-    /* Table 1 itself, at two spacings */
-    size_t orbits[2] = {0, 0};
-    double widest[2] = {0, 0};
-    static const double spacing[2] = {0.02, 0.01};
-    for (int k = 0; k < 2 && !status; k++) {
-        status = tangle(name, &m, &f, 1.0, spacing[k], &t);
-        if (status) break;
-        orbits[k] = t.in_window;
-        for (size_t i = 0; i < t.crossings; i++)
-            if (t.crossing[i].confirmed == 1) widest[k] = fmax(widest[k], t.crossing[i].angle * 180 / M_PI);
-        gb_melnikov_tangle_free(&t);
+    gb_melnikov_orbit o;
+    gb_melnikov_values top;
+    gb_melnikov_integrals I;
+    int status = gb_melnikov_body_create(w->surface, d.mass, d.forcing.g, GB_MELNIKOV_BODY_NODES, &b);
+    if (!status) m = gb_melnikov_body_model(b, GB_MELNIKOV_MASS_AT_TOP), status = m.eval(m.context, 0.0, &top);
+    if (!status) status = gb_melnikov_orbit_find(&m, &o);
+    const gb_melnikov_forcing f = {status ? 0.0 : d.damping / top.M, d.forcing.a1, d.forcing.a2, d.forcing.omega,
+                                   d.forcing.psi, 0};
+    w->a1 = d.forcing.a1;
+    if (!status) status = gb_melnikov_integrals_compute(&m, &o, f.omega, GB_MELNIKOV_EXACT, &I);
+    if (!status) {
+        gb_melnikov_criterion c;
+        double s93, sx;
+        gb_melnikov_judge(&I, &f, &c);
+        gb_melnikov_threshold(&I, &f, &s93, &sx);
+        w->first = c.sign_change ? 2 : 0, w->first_threshold = sx * f.nu1;
     }
+    if (!status) status = summarise(&m, &o, &f, 0.05, 0.01, &w->small, NULL);
+    static const double spacing[2] = {0.02, 0.01};
+    for (int k = 0; k < 2 && !status; k++) status = summarise(&m, &o, &f, 1.0, spacing[k], &w->at[k], &w->widest[k]);
+    if (!status) {
+        gb_melnikov_tangle_def def = gb_melnikov_tangle_default_def();
+        def.spacing = 0.02;
+        status = gb_melnikov_tangle_threshold(&m, &o, &f, &def, 5, w->bracket);
+    }
+    if (status) snprintf(w->message, sizeof w->message, "%s", gb_error_message());
+    w->status = status;
+    gb_melnikov_body_free(b);
+    w->seconds = gb_wall_seconds() - t0;
+    return NULL;
+}
+
+static void gomboc_checks(const body_work *w)
+{
+    char q[220];
+    const int status = w->status;
+    snprintf(q, sizeof q, "Gomboc %s at 5 %% of Table 1's forcing: homoclinic orbits a fundamental domain crosses", w->name);
+    gb_check c = {"7", "91", q, "the simple zeros of M(t0) in a period", "exact count: Melnikov's theorem at small eps"};
+    gb_check_true(&c, !status && w->small.orbits == w->first, "%s%zu orbits (of %zu chord crossings), M(t0) has %zu zeros",
+                  status ? w->message : "", w->small.orbits, w->small.chords, w->first);
     /* measured: +1 the manifolds cross (both spacings find a confirmed crossing, one at 2 degrees or more),
      * −1 they do not (neither finds one), 0 otherwise; against the first order's +1 (zeros) or −1 */
-    const int crossed = orbits[0] && orbits[1] && widest[0] >= 2.0 && widest[1] >= 2.0;
-    const int measured = crossed ? 1 : !orbits[0] && !orbits[1] ? -1 : 0, predicted = first ? 1 : -1;
+    const size_t *n0 = &w->at[0].orbits, *n1 = &w->at[1].orbits;
+    const int crossed = *n0 && *n1 && w->widest[0] >= 2.0 && w->widest[1] >= 2.0;
+    const int measured = crossed ? 1 : !*n0 && !*n1 ? -1 : 0, predicted = w->first ? 1 : -1;
     snprintf(q, sizeof q, "Gomboc %s at Table 1's forcing (eps 0.31 of g): the period map's manifolds, against the "
-             "first order (M(t0) %s)", name, first ? "changes sign" : "has no zero");
+             "first order (M(t0) %s)", w->name, w->first ? "changes sign" : "has no zero");
     gb_check cv = {"7", "91-93", q, "the manifolds grown and intersected (spacing 0.02 and 0.01)", "-"};
     gb_check_verdict(&cv, "the first-order Melnikov verdict decides whether the reduced model's manifolds cross at "
-                     "Table 1's forcing (section 7)", !status && first != 99,
-                     gb_verdict_above(measured * predicted, 0.5, 0.0),
+                     "Table 1's forcing (section 7)", !status, gb_verdict_above(measured * predicted, 0.5, 0.0),
                      "above: holds when the manifolds cross (a confirmed crossing of 2 degrees or more in a fundamental "
                      "domain at both spacings) where M(t0) changes sign, or cross at neither spacing where it has no zero; "
                      "fails when the opposite is found at both; undecided otherwise",
                      "%s%zu and %zu homoclinic orbits a fundamental domain (spacing 0.02, 0.01), widest angle %.1f and "
-                     "%.1f deg", status ? gb_error_message() : "", orbits[0], orbits[1], widest[0], widest[1]);
-    gb_melnikov_body_free(b);
+                     "%.1f deg", status ? w->message : "", *n0, *n1, w->widest[0], w->widest[1]);
+    /* the threshold: the bracket's middle against the first order's, relative, with the bracket's half-width */
+    const double lo = w->bracket[0] * w->a1, hi = w->bracket[1] * w->a1, x = w->first_threshold;
+    snprintf(q, sizeof q, "Gomboc %s: A1 where the manifolds start to cross (A2/A1, omega, psi of Table 1) against the "
+             "first order's threshold", w->name);
+    gb_check ct = {"7", "93", q, "the exact first-order threshold", "-"};
+    gb_check_verdict(&ct, "the first-order Melnikov threshold locates where the reduced model's manifolds start to cross "
+                     "(section 7, eq 93)", !status && isfinite(hi) && x > 0.0,
+                     gb_verdict_equivalent(0.5 * (lo + hi) / x - 1.0, 0.5 * (hi - lo) / x, 1.0, 0.25),
+                     "equivalent: holds when the bracket of A1 (no crossing, crossing; 5 bisections at spacing 0.02) lies "
+                     "within 25 %% of the first-order threshold, fails when it lies wholly outside; undecided otherwise",
+                     "%sthe manifolds cross from A1 in [%.3f, %.3f] m/s2; first order %.3f m/s2 (%.0f %%)",
+                     status ? w->message : "", lo, hi, x, 100.0 * (0.5 * (lo + hi) / x - 1.0));
 }
 
 static void test_table1(void)
 {
     if (!rows) rows = cJSON_CreateArray();
-    gomboc_tangle("I");
-    gomboc_tangle("II");
+    if (!thresholds) thresholds = cJSON_CreateArray();
+    body_work w[2] = {{.name = "I", .surface = gb_check_body("I", 0.12)}, {.name = "II", .surface = gb_check_body("II", 0.12)}};
+    pthread_t thread[2];
+    int started[2];
+    for (int k = 0; k < 2; k++) started[k] = pthread_create(&thread[k], NULL, body_thread, &w[k]) == 0;
+    for (int k = 0; k < 2; k++) {
+        if (started[k]) pthread_join(thread[k], NULL);
+        else body_thread(&w[k]);
+    }
+    for (int k = 0; k < 2; k++) {
+        gomboc_checks(&w[k]);
+        summary_row(w[k].name, &w[k].small);
+        for (int j = 0; j < 2; j++) summary_row(w[k].name, &w[k].at[j]);
+        cJSON *row = cJSON_CreateObject();
+        cJSON_AddStringToObject(row, "model", w[k].name);
+        cJSON_AddNumberToObject(row, "threshold_A1_first_order", w[k].first_threshold);
+        cJSON_AddNumberToObject(row, "threshold_A1_manifolds_lo", w[k].bracket[0] * w[k].a1);
+        cJSON_AddNumberToObject(row, "threshold_A1_manifolds_hi", w[k].bracket[1] * w[k].a1);
+        cJSON_AddNumberToObject(row, "seconds", w[k].seconds);
+        cJSON_AddItemToArray(thresholds, row);
+    }
     cJSON *doc = cJSON_CreateObject();
     cJSON_AddItemToObject(doc, "tangles", rows);
-    rows = NULL;
+    cJSON_AddItemToObject(doc, "thresholds", thresholds);
+    rows = NULL, thresholds = NULL;
     gb_check cw = {"7", "91", "the tangles written for the report", "-", "exact"};
     const int written = gb_check_write_data("tangle.json", doc) == 0;
     gb_check_true(&cw, written, "%s", written ? "tangle.json written" : "cannot write tangle.json");
