@@ -9,6 +9,7 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+from matplotlib.lines import Line2D  # noqa: E402
 
 from common import finish_figure, load_json, section_start  # noqa: E402
 
@@ -75,12 +76,30 @@ def threshold_figure(out, bodies):
     finish_figure(fig, os.path.join(out, "melnikov-thresholds.png"))
 
 
+def tangle_figure(out, pictures):
+    fig, axes = plt.subplots(len(pictures), 1, figsize=(10, 4.2 * len(pictures)), squeeze=False)
+    for ax, pic in zip(axes[:, 0], pictures):
+        ax.plot(pic["unstable"]["q"], pic["unstable"]["p"], ",", color="tab:red", ms=1, label="unstable branch of q = 0")
+        ax.plot(pic["stable"]["q"], pic["stable"]["p"], ",", color="tab:blue", ms=1, label="stable branch of q = 2π")
+        ax.plot(pic["homoclinic"]["q"], pic["homoclinic"]["p"], "ko", ms=3, mfc="none", label="homoclinic points (one domain)")
+        ax.set_xlim(0, 2 * math.pi)
+        ax.set_ylabel("p [kg m²/s]")
+        ax.set_title(f"Gömböc {pic['model']}: the period map's manifolds at Table 1's forcing (phase 0)", fontsize=9)
+        ax.legend(handles=[Line2D([], [], color="tab:red", lw=1.5, label="unstable branch of q = 0"),
+                           Line2D([], [], color="tab:blue", lw=1.5, label="stable branch of q = 2π"),
+                           Line2D([], [], color="k", marker="o", ms=4, mfc="none", ls="",
+                                  label="homoclinic points (one fundamental domain)")], fontsize=7, loc="upper right")
+    axes[-1, 0].set_xlabel("q [rad]")
+    finish_figure(fig, os.path.join(out, "melnikov-tangle.png"))
+
+
 def tangle_lines(out):
     """The period map's manifolds (tangle.json, verify/s7_tangle.c): small-ε oracles and Table 1's forcing."""
     path = os.path.join(out, "tangle.json")
     if not os.path.exists(path):
         return ["(The period map's manifolds: tangle.json missing, the suite did not write it.)", ""]
-    rows = load_json(path).get("tangles", [])
+    doc = load_json(path)
+    rows = doc.get("tangles", [])
     lines = ["### The manifolds themselves", "",
              "The period map's unstable and stable manifolds grown from fundamental domains and intersected, each "
              "crossing confirmed on finer pieces of both curves (`docs/melnikov.md`, \"The manifolds at the scene's "
@@ -97,7 +116,7 @@ def tangle_lines(out):
         lines.append(f"| {r['model']} | {r['epsilon']:g} | {r['spacing']:g} | {r['multiplier_unstable']:.4f}, "
                      f"{r['multiplier_stable']:.4f} | {r['passage_periods']:.2f} | {r['chord_crossings']:.0f} | "
                      f"{r['homoclinic_orbits']:.0f} | {angle} |")
-    thresholds = load_json(path).get("thresholds", [])
+    thresholds = doc.get("thresholds", [])
     if thresholds:
         lines += ["", "Where the manifolds start to cross as A₁ grows (A₂/A₁, ω and ψ of Table 1, the damping kept; the "
                   "bracket after five bisections at spacing 0.02), against the first order's exact threshold:", "",
@@ -106,6 +125,10 @@ def tangle_lines(out):
         for t in thresholds:
             lo, hi, x = t["threshold_A1_manifolds_lo"], t["threshold_A1_manifolds_hi"], t["threshold_A1_first_order"]
             lines.append(f"| {t['model']} | {lo:.3f} | {hi:.3f} | {x:.3f} | {100 * (0.5 * (lo + hi) / x - 1):+.0f} % |")
+    pictures = doc.get("pictures", [])
+    if pictures:
+        tangle_figure(out, pictures)
+        lines += ["", "![the manifolds at Table 1's forcing](melnikov-tangle.png)"]
     return lines + [""]
 
 

@@ -171,9 +171,10 @@ typedef struct gb_melnikov_tangle_def {
     double start;      /* the fundamental domains' first displacement from the fixed point (1e-12 to 1e-3) */
     double spacing;    /* the largest distance between neighbouring points of a curve (1e-4 to 0.1) */
     size_t max_points; /* a branch's points in all (≥ 100); GB_ENOCONV beyond */
+    int keep_curves;   /* 1: the result keeps both branches' points (curve[], below) */
 } gb_melnikov_tangle_def;
 
-GB_API gb_melnikov_tangle_def gb_melnikov_tangle_default_def(void); /* 1, 0, 1e-7, 0.01, 400000 */
+GB_API gb_melnikov_tangle_def gb_melnikov_tangle_default_def(void); /* 1, 0, 1e-7, 0.01, 400000, 0 */
 
 typedef struct gb_melnikov_crossing {
     double u, s;       /* where on the unstable and the stable branch: iterates + σ */
@@ -196,6 +197,9 @@ typedef struct gb_melnikov_tangle {
     gb_melnikov_crossing *crossing; /* sorted by u */
     size_t in_window;             /* confirmed crossings with u in the window: homoclinic orbits */
     double smallest_angle;        /* among those [rad]; NAN when none */
+    double *curve[2];             /* with keep_curves: the unstable [0] and stable [1] branch as (u or s, q, p)
+                                     triples in the order grown, curve_points[k] of them; else NULL */
+    size_t curve_points[2];
 } gb_melnikov_tangle;
 
 GB_API int gb_melnikov_tangle_compute(const gb_melnikov_model *model, const gb_melnikov_orbit *orbit,

@@ -11,7 +11,7 @@
 
 gb_melnikov_tangle_def gb_melnikov_tangle_default_def(void)
 {
-    return (gb_melnikov_tangle_def){1.0, 0.0, 1e-7, 0.01, 400000};
+    return (gb_melnikov_tangle_def){1.0, 0.0, 1e-7, 0.01, 400000, 0};
 }
 
 /* A point of a fundamental domain (its σ) and its image after the branch's current iterate. */
@@ -286,6 +286,16 @@ static int confirm(branch *U, branch *S, gb_melnikov_crossing *x, piece *pu, pie
     return GB_OK;
 }
 
+/* A branch's points kept in the result as (u, q, p) triples. */
+static int keep_curve(const branch *b, gb_melnikov_tangle *out, int k)
+{
+    double *c = malloc((b->len ? b->len : 1) * 3 * sizeof *c);
+    if (!c) return gb_error_set(GB_ENOMEM, "out of memory for the manifolds' curves");
+    for (size_t i = 0; i < b->len; i++) c[3 * i] = b->u[i], c[3 * i + 1] = b->q[i], c[3 * i + 2] = b->p[i];
+    out->curve[k] = c, out->curve_points[k] = b->len;
+    return GB_OK;
+}
+
 static int def_check(const gb_melnikov_model *m, const gb_melnikov_forcing *f, const gb_melnikov_tangle_def *d)
 {
     if (!(m->period > 0.0)) return gb_error_set(GB_EDOM, "the tangle is grown for a rotation only (allowed: period > 0)");
@@ -359,6 +369,8 @@ int gb_melnikov_tangle_compute(const gb_melnikov_model *m, const gb_melnikov_orb
         if (!(x->angle >= out->smallest_angle)) out->smallest_angle = x->angle;
     }
     free(pu.sigma), free(pu.y), free(ps.sigma), free(ps.y);
+    if (!status && def->keep_curves) status = keep_curve(&U, out, 0);
+    if (!status && def->keep_curves) status = keep_curve(&S, out, 1);
     out->points_unstable = U.len, out->points_stable = S.len;
     out->widest_gap = fmax(U.widest_gap, S.widest_gap);
     branch_free(&U), branch_free(&S);
@@ -368,8 +380,8 @@ int gb_melnikov_tangle_compute(const gb_melnikov_model *m, const gb_melnikov_orb
 
 void gb_melnikov_tangle_free(gb_melnikov_tangle *t)
 {
-    free(t->crossing);
-    t->crossing = NULL, t->crossings = 0;
+    free(t->crossing), free(t->curve[0]), free(t->curve[1]);
+    t->crossing = NULL, t->crossings = 0, t->curve[0] = t->curve[1] = NULL, t->curve_points[0] = t->curve_points[1] = 0;
 }
 
 /* Whether the manifolds cross (a confirmed crossing in the window) with the harmonics scaled by s. */

@@ -41,13 +41,14 @@ typedef struct tangle_summary {
 } tangle_summary;
 
 /* The tangle of model m under f at scale eps and the given spacing, summarised (thread-safe: no check, no
- * JSON); *widest (if not NULL) the widest confirmed angle [deg]. */
+ * JSON); *widest (if not NULL) the widest confirmed angle [deg]; the tangle itself, with its curves, kept in
+ * *keep (if not NULL; the caller frees it). */
 static int summarise(const gb_melnikov_model *m, const gb_melnikov_orbit *o, const gb_melnikov_forcing *f, double eps,
-                     double spacing, tangle_summary *out, double *widest)
+                     double spacing, tangle_summary *out, double *widest, gb_melnikov_tangle *keep)
 {
     gb_melnikov_tangle t;
     gb_melnikov_tangle_def def = gb_melnikov_tangle_default_def();
-    def.epsilon = eps, def.spacing = spacing;
+    def.epsilon = eps, def.spacing = spacing, def.keep_curves = keep != NULL;
     const int status = gb_melnikov_tangle_compute(m, o, f, &def, &t);
     *out = (tangle_summary){out->label, eps, spacing, {t.multipliers[0], t.multipliers[1]}, t.passage,
                             t.in_window ? t.smallest_angle * 180 / M_PI : NAN, t.points_unstable + t.points_stable,
@@ -57,7 +58,8 @@ static int summarise(const gb_melnikov_model *m, const gb_melnikov_orbit *o, con
         for (size_t i = 0; i < t.crossings; i++)
             if (t.crossing[i].confirmed == 1) *widest = fmax(*widest, t.crossing[i].angle * 180 / M_PI);
     }
-    gb_melnikov_tangle_free(&t);
+    if (keep && !status) *keep = t;
+    else gb_melnikov_tangle_free(&t);
     return status;
 }
 
@@ -112,7 +114,7 @@ static void test_small_epsilon(void)
         gb_melnikov_orbit o;
         tangle_summary t = {.label = label};
         int status = gb_melnikov_orbit_find(&PARAMETRIC, &o);
-        if (!status) status = summarise(&PARAMETRIC, &o, &f, 0.05, 0.01, &t, NULL);
+        if (!status) status = summarise(&PARAMETRIC, &o, &f, 0.05, 0.01, &t, NULL, NULL);
         gb_check_true(&c, !status && t.orbits == want && first_order_orbits(&PARAMETRIC, &f) == want,
                       "%s%zu orbits (of %zu chord crossings), want %zu; smallest angle %.2f deg", status ? gb_error_message() : "",
                       t.orbits, t.chords, want, t.orbits ? t.smallest_angle : 0.0);
@@ -148,6 +150,7 @@ typedef struct body_work {
     tangle_summary at[2];         /* at the forcing, spacing 0.02 and 0.01 */
     double widest[2];             /* the widest confirmed angle [deg] at each */
     double bracket[2];            /* the harmonics' scale where the manifolds start to cross */
+    gb_melnikov_tangle picture;   /* at the forcing, spacing 0.02, with its curves: the report's figure */
     double seconds;
 } body_work;
 
@@ -175,9 +178,10 @@ static void *body_thread(void *arg)
         gb_melnikov_threshold(&I, &f, &s93, &sx);
         w->first = c.sign_change ? 2 : 0, w->first_threshold = sx * f.nu1;
     }
-    if (!status) status = summarise(&m, &o, &f, 0.05, 0.01, &w->small, NULL);
+    if (!status) status = summarise(&m, &o, &f, 0.05, 0.01, &w->small, NULL, NULL);
     static const double spacing[2] = {0.02, 0.01};
-    for (int k = 0; k < 2 && !status; k++) status = summarise(&m, &o, &f, 1.0, spacing[k], &w->at[k], &w->widest[k]);
+    for (int k = 0; k < 2 && !status; k++)
+        status = summarise(&m, &o, &f, 1.0, spacing[k], &w->at[k], &w->widest[k], k == 0 ? &w->picture : NULL);
     if (!status) {
         gb_melnikov_tangle_def def = gb_melnikov_tangle_default_def();
         def.spacing = 0.02;
@@ -227,10 +231,41 @@ static void gomboc_checks(const body_work *w)
                      status ? w->message : "", lo, hi, x, 100.0 * (0.5 * (lo + hi) / x - 1.0));
 }
 
+/* A body's two branches at Table 1's forcing for the report's figure: at most 6000 points a branch (every
+ * n-th), and the confirmed homoclinic points of the window. */
+static cJSON *picture_json(const char *name, const gb_melnikov_tangle *t)
+{
+    cJSON *o = cJSON_CreateObject();
+    cJSON_AddStringToObject(o, "model", name);
+    static const char *const keys[2] = {"unstable", "stable"};
+    for (int k = 0; k < 2; k++) {
+        const size_t n = t->curve_points[k], every = n / 6000 + 1;
+        cJSON *q = cJSON_CreateArray(), *p = cJSON_CreateArray();
+        for (size_t i = 0; i < n; i += every) {
+            cJSON_AddItemToArray(q, cJSON_CreateNumber(round(t->curve[k][3 * i + 1] * 1e5) / 1e5));
+            cJSON_AddItemToArray(p, cJSON_CreateNumber(round(t->curve[k][3 * i + 2] * 1e5) / 1e5));
+        }
+        cJSON *branch = cJSON_AddObjectToObject(o, keys[k]);
+        cJSON_AddItemToObject(branch, "q", q);
+        cJSON_AddItemToObject(branch, "p", p);
+    }
+    cJSON *hq = cJSON_CreateArray(), *hp = cJSON_CreateArray();
+    for (size_t i = 0; i < t->crossings; i++)
+        if (t->crossing[i].confirmed == 1) {
+            cJSON_AddItemToArray(hq, cJSON_CreateNumber(t->crossing[i].q));
+            cJSON_AddItemToArray(hp, cJSON_CreateNumber(t->crossing[i].p));
+        }
+    cJSON *h = cJSON_AddObjectToObject(o, "homoclinic");
+    cJSON_AddItemToObject(h, "q", hq);
+    cJSON_AddItemToObject(h, "p", hp);
+    return o;
+}
+
 static void test_table1(void)
 {
     if (!rows) rows = cJSON_CreateArray();
     if (!thresholds) thresholds = cJSON_CreateArray();
+    cJSON *pictures = cJSON_CreateArray();
     body_work w[2] = {{.name = "I", .surface = gb_check_body("I", 0.12)}, {.name = "II", .surface = gb_check_body("II", 0.12)}};
     pthread_t thread[2];
     int started[2];
@@ -250,10 +285,13 @@ static void test_table1(void)
         cJSON_AddNumberToObject(row, "threshold_A1_manifolds_hi", w[k].bracket[1] * w[k].a1);
         cJSON_AddNumberToObject(row, "seconds", w[k].seconds);
         cJSON_AddItemToArray(thresholds, row);
+        cJSON_AddItemToArray(pictures, picture_json(w[k].name, &w[k].picture));
+        gb_melnikov_tangle_free(&w[k].picture);
     }
     cJSON *doc = cJSON_CreateObject();
     cJSON_AddItemToObject(doc, "tangles", rows);
     cJSON_AddItemToObject(doc, "thresholds", thresholds);
+    cJSON_AddItemToObject(doc, "pictures", pictures);
     rows = NULL, thresholds = NULL;
     gb_check cw = {"7", "91", "the tangles written for the report", "-", "exact"};
     const int written = gb_check_write_data("tangle.json", doc) == 0;
