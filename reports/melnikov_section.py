@@ -64,6 +64,16 @@ def threshold_figure(out, bodies):
         axes[0].semilogy([p[0] for p in c], [p[1] for p in c], "--", lw=0.8, label=f"Gömböc {b['body']}: eq 93")
         s = b["psi_scan"]
         axes[1].plot([r["psi"] for r in s], [r["threshold_A1_exact"] / r["threshold_A1_eq93"] for r in s], label=f"Gömböc {b['body']}")
+    curve_path = os.path.join(out, "tangle-curve.json")  # make verify-full's: where the manifolds start to cross
+    if os.path.exists(curve_path):
+        rows = [r for r in load_json(curve_path) if not r.get("status")]
+        for body in sorted({r["body"] for r in rows}):
+            mine = [r for r in rows if r["body"] == body]
+            lo = [r["threshold_A1_manifolds_lo"] for r in mine]
+            hi = [r["threshold_A1_manifolds_hi"] for r in mine]
+            axes[0].errorbar([r["omega"] for r in mine], [0.5 * (a + b) for a, b in zip(lo, hi)],
+                             yerr=[[0.5 * (b - a) for a, b in zip(lo, hi)]] * 2, fmt="s", ms=4, capsize=2,
+                             label=f"Gömböc {body}: the manifolds start to cross")
     axes[0].axhline(2.0, color="k", lw=0.5)
     axes[0].set_xlabel("ω [rad/s]")
     axes[0].set_ylabel("threshold A1 [m/s²]")
@@ -125,6 +135,18 @@ def tangle_lines(out):
         for t in thresholds:
             lo, hi, x = t["threshold_A1_manifolds_lo"], t["threshold_A1_manifolds_hi"], t["threshold_A1_first_order"]
             lines.append(f"| {t['model']} | {lo:.3f} | {hi:.3f} | {x:.3f} | {100 * (0.5 * (lo + hi) / x - 1):+.0f} % |")
+    curve_path = os.path.join(out, "tangle-curve.json")
+    if os.path.exists(curve_path):
+        lines += ["", "Over the (ω, A₁) maps' range of ω (`make verify-full`; also the squares of the threshold figure above):",
+                  "", "| body | ω [rad/s] | A₁ without crossing | A₁ with crossing | first-order threshold | difference |",
+                  "|---|---|---|---|---|---|"]
+        for r in load_json(curve_path):
+            if r.get("status"):
+                lines.append(f"| {r['body']} | {r['omega']:g} | failed | | | |")
+                continue
+            lo, hi, x = r["threshold_A1_manifolds_lo"], r["threshold_A1_manifolds_hi"], r["threshold_A1_first_order"]
+            lines.append(f"| {r['body']} | {r['omega']:g} | {lo:.3f} | {hi:.3f} | {x:.3f} | "
+                         f"{100 * (0.5 * (lo + hi) / x - 1):+.0f} % |")
     pictures = doc.get("pictures", [])
     if pictures:
         tangle_figure(out, pictures)

@@ -136,6 +136,32 @@ static void test_small_epsilon(void)
                   gb_error_message());
 }
 
+/* A Table 1 body's reduced model (M frozen at the top) and its orbit, with the paper's damping μ = c/M(q_u);
+ * *b to free. */
+static int reduced_model(const gb_surface *surface, gb_melnikov_body **b, gb_melnikov_model *m, gb_melnikov_orbit *o,
+                         double *mu)
+{
+    const gb_dynamics_def d = gb_dynamics_default_def();
+    gb_melnikov_values top;
+    int status = gb_melnikov_body_create(surface, d.mass, d.forcing.g, GB_MELNIKOV_BODY_NODES, b);
+    if (!status) *m = gb_melnikov_body_model(*b, GB_MELNIKOV_MASS_AT_TOP), status = m->eval(m->context, 0.0, &top);
+    if (!status) status = gb_melnikov_orbit_find(m, o), *mu = d.damping / top.M;
+    return status;
+}
+
+/* fn on a and on b, each on a thread of its own (on this one when a thread cannot start). */
+static void side_by_side(void *(*fn)(void *), void *a, void *b)
+{
+    void *work[2] = {a, b};
+    pthread_t thread[2];
+    int started[2];
+    for (int k = 0; k < 2; k++) started[k] = pthread_create(&thread[k], NULL, fn, work[k]) == 0;
+    for (int k = 0; k < 2; k++) {
+        if (started[k]) pthread_join(thread[k], NULL);
+        else fn(work[k]);
+    }
+}
+
 /* One body's work at Table 1's forcing, done on a thread of its own (the two bodies side by side); the
  * checks read it afterwards on the harness's thread. */
 typedef struct body_work {
@@ -162,13 +188,10 @@ static void *body_thread(void *arg)
     gb_melnikov_body *b = NULL;
     gb_melnikov_model m;
     gb_melnikov_orbit o;
-    gb_melnikov_values top;
     gb_melnikov_integrals I;
-    int status = gb_melnikov_body_create(w->surface, d.mass, d.forcing.g, GB_MELNIKOV_BODY_NODES, &b);
-    if (!status) m = gb_melnikov_body_model(b, GB_MELNIKOV_MASS_AT_TOP), status = m.eval(m.context, 0.0, &top);
-    if (!status) status = gb_melnikov_orbit_find(&m, &o);
-    const gb_melnikov_forcing f = {status ? 0.0 : d.damping / top.M, d.forcing.a1, d.forcing.a2, d.forcing.omega,
-                                   d.forcing.psi, 0};
+    double mu = 0.0;
+    int status = reduced_model(w->surface, &b, &m, &o, &mu);
+    const gb_melnikov_forcing f = {mu, d.forcing.a1, d.forcing.a2, d.forcing.omega, d.forcing.psi, 0};
     w->a1 = d.forcing.a1;
     if (!status) status = gb_melnikov_integrals_compute(&m, &o, f.omega, GB_MELNIKOV_EXACT, &I);
     if (!status) {
@@ -267,13 +290,7 @@ static void test_table1(void)
     if (!thresholds) thresholds = cJSON_CreateArray();
     cJSON *pictures = cJSON_CreateArray();
     body_work w[2] = {{.name = "I", .surface = gb_check_body("I", 0.12)}, {.name = "II", .surface = gb_check_body("II", 0.12)}};
-    pthread_t thread[2];
-    int started[2];
-    for (int k = 0; k < 2; k++) started[k] = pthread_create(&thread[k], NULL, body_thread, &w[k]) == 0;
-    for (int k = 0; k < 2; k++) {
-        if (started[k]) pthread_join(thread[k], NULL);
-        else body_thread(&w[k]);
-    }
+    side_by_side(body_thread, &w[0], &w[1]);
     for (int k = 0; k < 2; k++) {
         gomboc_checks(&w[k]);
         summary_row(w[k].name, &w[k].small);
@@ -299,12 +316,85 @@ static void test_table1(void)
     cJSON_Delete(doc);
 }
 
+/* make verify-full: the A1 where the manifolds start to cross, over the (ω, A1) maps' range of ω, against the
+ * first order's threshold there (A2/A1, ψ and the damping of Table 1). */
+enum { CURVE_OMEGAS = 7 };
+typedef struct curve_work {
+    const char *name;
+    const gb_surface *surface;
+    double a1, omega[CURVE_OMEGAS], first[CURVE_OMEGAS], bracket[CURVE_OMEGAS][2];
+    int status[CURVE_OMEGAS], built;
+    char message[256];
+} curve_work;
+
+static void *curve_thread(void *arg)
+{
+    curve_work *w = arg;
+    const gb_dynamics_def d = gb_dynamics_default_def();
+    gb_melnikov_body *b = NULL;
+    gb_melnikov_model m;
+    gb_melnikov_orbit o;
+    double mu = 0.0;
+    int status = reduced_model(w->surface, &b, &m, &o, &mu);
+    w->built = !status, w->a1 = d.forcing.a1;
+    if (status) snprintf(w->message, sizeof w->message, "%s", gb_error_message());
+    for (int k = 0; k < CURVE_OMEGAS && !status; k++) {
+        gb_melnikov_forcing f = {mu, d.forcing.a1, d.forcing.a2, 12.0 + 2.0 * k, d.forcing.psi, 0};
+        gb_melnikov_integrals I;
+        double s93, sx;
+        w->omega[k] = f.omega;
+        int s = gb_melnikov_integrals_compute(&m, &o, f.omega, GB_MELNIKOV_EXACT, &I);
+        if (!s) gb_melnikov_threshold(&I, &f, &s93, &sx), w->first[k] = sx * f.nu1;
+        gb_melnikov_tangle_def def = gb_melnikov_tangle_default_def();
+        def.spacing = 0.02;
+        if (!s) s = gb_melnikov_tangle_threshold(&m, &o, &f, &def, 5, w->bracket[k]);
+        if (s) snprintf(w->message, sizeof w->message, "omega %g: %s", f.omega, gb_error_message());
+        w->status[k] = s;
+        if (s) w->bracket[k][0] = w->bracket[k][1] = NAN;
+    }
+    gb_melnikov_body_free(b);
+    return NULL;
+}
+
+static void test_curve_full(void)
+{
+    if (!gb_check_full) return;
+    curve_work w[2] = {{.name = "I", .surface = gb_check_body("I", 0.12)}, {.name = "II", .surface = gb_check_body("II", 0.12)}};
+    side_by_side(curve_thread, &w[0], &w[1]);
+    cJSON *doc = cJSON_CreateArray();
+    for (int k = 0; k < 2; k++) {
+        int failed = !w[k].built;
+        for (int j = 0; j < CURVE_OMEGAS && w[k].built; j++) {
+            failed += w[k].status[j] != 0;
+            cJSON *row = cJSON_CreateObject();
+            cJSON_AddStringToObject(row, "body", w[k].name);
+            cJSON_AddNumberToObject(row, "omega", w[k].omega[j]);
+            cJSON_AddNumberToObject(row, "threshold_A1_first_order", w[k].first[j]);
+            cJSON_AddNumberToObject(row, "threshold_A1_manifolds_lo", w[k].bracket[j][0] * w[k].a1);
+            cJSON_AddNumberToObject(row, "threshold_A1_manifolds_hi", w[k].bracket[j][1] * w[k].a1);
+            cJSON_AddNumberToObject(row, "status", w[k].status[j]);
+            cJSON_AddItemToArray(doc, row);
+        }
+        char q[200];
+        snprintf(q, sizeof q, "Gomboc %s (make verify-full): the A1 where the manifolds start to cross at omega = 12 ... 24 "
+                 "rad/s", w[k].name);
+        gb_check c = {"7", "93", q, "-", "recorded: brackets of 5 bisections at spacing 0.02"};
+        gb_check_true(&c, !failed, "%s%d of %d brackets computed", failed ? w[k].message : "", CURVE_OMEGAS - failed,
+                      CURVE_OMEGAS);
+    }
+    gb_check cw = {"7", "93", "the manifolds' threshold curve written for the report", "-", "exact"};
+    const int written = gb_check_write_data("tangle-curve.json", doc) == 0;
+    gb_check_true(&cw, written, "%s", written ? "tangle-curve.json written" : "cannot write tangle-curve.json");
+    cJSON_Delete(doc);
+}
+
 int verify_register_s7_tangle(void)
 {
     static const verify_test tests[] = {
         {"eq 91 at small eps: the homoclinic orbits are M's simple zeros", test_small_epsilon,
          "the manifolds grown from fundamental domains cross where Melnikov's theorem says they must, and only there"},
         {"section 7 at Table 1's forcing: the manifolds themselves", test_table1, NULL},
+        {"section 7 (make verify-full): where the manifolds start to cross, over omega", test_curve_full, NULL},
         {NULL, NULL, NULL},
     };
     return verify_register_suite("Section 7 beyond first order: the period map's manifolds", tests);
