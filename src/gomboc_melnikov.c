@@ -12,7 +12,7 @@
 static const char *usage_melnikov =
     "usage: gomboc melnikov CASE [--json] [--mass top|variable] [--weight exact|paper]\n"
     "                            [--damping paper|exact] [--curve FILE] [--curve-points N]\n"
-    "                            [--tangle SPACING]\n"
+    "                            [--tangle SPACING [--tangle-threshold N]]\n"
     "\n"
     "  CASE            a scene file: its body, mass, g, damping and forcing (omega, A1, A2, psi)\n"
     "  --json          print one JSON object: q_u, E_s, D, C1, S1, C2, S2, A1_star, A2_star, mu_D,\n"
@@ -28,6 +28,8 @@ static const char *usage_melnikov =
     "  --tangle SPACING  also grow the period map's manifolds at the scene's whole forcing (not its\n"
     "                  first order) with points at most SPACING apart (1e-4 to 0.1; 0.01 is a good start)\n"
     "                  and count the homoclinic orbits a fundamental domain crosses (seconds to a minute)\n"
+    "  --tangle-threshold N  also bracket the A1 at which the manifolds start to cross (A2 scaled with\n"
+    "                  it, the damping kept; A2 when A1 = 0) by N bisections (1 to 30; each a tangle, 5 gives A1 / 32)\n"
     "\n"
     "The reduced model rocks the body about a horizontal axis through its top (docs/melnikov.md).\n";
 
@@ -70,14 +72,16 @@ typedef struct melnikov_options {
     int json, variable_mass, paper_weight, damping_exact;
     double points;  /* --curve-points */
     double spacing; /* --tangle; NAN: not asked for */
+    double halvings; /* --tangle-threshold; 0: not asked for */
 } melnikov_options;
 
 /* Read the options into *o: -1 to go on, else the exit status (0 for --help). */
 static int melnikov_options_read(int argc, char **argv, melnikov_options *o)
 {
-    *o = (melnikov_options){NULL, NULL, 0, 0, 0, 0, 13, NAN};
-    const char *points_text = NULL, *spacing_text = NULL;
-    static const char *const valued[] = {"--mass", "--weight", "--damping", "--curve", "--curve-points", "--tangle", NULL};
+    *o = (melnikov_options){NULL, NULL, 0, 0, 0, 0, 13, NAN, 0};
+    const char *points_text = NULL, *spacing_text = NULL, *halvings_text = NULL;
+    static const char *const valued[] = {"--mass",   "--weight",           "--damping", "--curve", "--curve-points",
+                                         "--tangle", "--tangle-threshold", NULL};
     for (int i = 0; i < argc; i++) {
         const char *opt = argv[i], *value = NULL;
         const int positional = cli_positional("melnikov", opt, &o->case_path, "case file", "CASE");
@@ -86,7 +90,7 @@ static int melnikov_options_read(int argc, char **argv, melnikov_options *o)
             return positional;
         }
         const int kind = cli_next_option("melnikov", argc, argv, &i, usage_melnikov, valued,
-                                         " (allowed: --json, --mass, --weight, --damping, --curve, --curve-points, --tangle, --help)", NULL,
+                                         " (allowed: --json, --mass, --weight, --damping, --curve, --curve-points, --tangle, --tangle-threshold, --help)", NULL,
                                          &o->json, &value);
         if (kind != CLI_VALUE) {
             if (kind == CLI_NEXT) continue;
@@ -98,6 +102,7 @@ static int melnikov_options_read(int argc, char **argv, melnikov_options *o)
         else if (!strcmp(opt, "--damping")) bad = parse_choice(opt, value, "paper", "exact", &o->damping_exact);
         else if (!strcmp(opt, "--curve")) o->curve = value;
         else if (!strcmp(opt, "--tangle")) spacing_text = value;
+        else if (!strcmp(opt, "--tangle-threshold")) halvings_text = value;
         else points_text = value;
         if (bad) return bad;
     }
@@ -113,13 +118,22 @@ static int melnikov_options_read(int argc, char **argv, melnikov_options *o)
     if (spacing_text && cli_number("melnikov", "--tangle", spacing_text, 1e-4, 0.1, 0, " (allowed: a spacing from 1e-4 to 0.1)",
                                    &o->spacing))
         return EXIT_INPUT;
+    if (halvings_text && !spacing_text)
+        return cli_input_error("melnikov", "--tangle-threshold %s without --tangle (allowed: --tangle-threshold with --tangle "
+                               "SPACING)", halvings_text);
+    if (halvings_text && cli_number("melnikov", "--tangle-threshold", halvings_text, 1, 30, 0,
+                                    " (allowed: an integer from 1 to 30)", &o->halvings))
+        return EXIT_INPUT;
+    if (o->halvings != floor(o->halvings))
+        return cli_input_error("melnikov", "--tangle-threshold %s: not an integer (allowed: an integer from 1 to 30)",
+                               halvings_text);
     const gb_file_use uses[] = {GB_FILE_USE(o->case_path, "CASE", GB_FILE_INPUT), GB_FILE_USE(o->curve, "--curve", GB_FILE_OUTPUT)};
     if (cli_files_check("melnikov", uses, 2)) return EXIT_INPUT;
     return -1;
 }
 
 /* The tangle's summary and its confirmed homoclinic points in the window. */
-static void tangle_json(cJSON *root, const gb_melnikov_tangle *t, double spacing)
+static void tangle_json(cJSON *root, const gb_melnikov_tangle *t, double spacing, const double bracket[2])
 {
     cJSON *o = cJSON_AddObjectToObject(root, "tangle");
     cli_json_add(o, "spacing", spacing);
@@ -132,6 +146,7 @@ static void tangle_json(cJSON *root, const gb_melnikov_tangle *t, double spacing
     cli_json_add(o, "chord_crossings", (double)t->crossings);
     cli_json_add(o, "homoclinic_orbits", (double)t->in_window);
     cli_json_add(o, "smallest_angle_deg", t->in_window ? t->smallest_angle * 180 / M_PI : NAN);
+    if (!isnan(bracket[0])) cJSON_AddItemToObject(o, "threshold_A1", cli_json_vector(bracket, 2));
     cJSON *list = cJSON_AddArrayToObject(o, "homoclinic_points");
     for (size_t i = 0; i < t->crossings; i++) {
         const gb_melnikov_crossing *x = &t->crossing[i];
@@ -154,7 +169,8 @@ int command_melnikov(int argc, char **argv)
     const char *case_path = options.case_path, *curve = options.curve;
     const int json = options.json, variable_mass = options.variable_mass, paper_weight = options.paper_weight,
               damping_exact = options.damping_exact;
-    const double points = options.points, spacing = options.spacing;
+    const double points = options.points, spacing = options.spacing, halvings = options.halvings;
+    double bracket[2] = {NAN, NAN}; /* --tangle-threshold: A1 without and with crossings */
     gb_case scene;
     int status = gb_case_load(case_path, &scene);
     if (status) return cli_failure("melnikov", status);
@@ -187,6 +203,11 @@ int command_melnikov(int argc, char **argv)
             gb_melnikov_tangle_def def = gb_melnikov_tangle_default_def();
             def.spacing = spacing;
             status = gb_melnikov_tangle_compute(&r.model, &r.orbit, &f, &def, &tangle);
+            if (!status && halvings > 0) {
+                status = gb_melnikov_tangle_threshold(&r.model, &r.orbit, &f, &def, (int)halvings, bracket);
+                const double unit = F->a1 != 0.0 ? F->a1 : F->a2; /* A1's, or A2's without a fundamental */
+                bracket[0] *= unit, bracket[1] *= unit;
+            }
             if (status) /* said as the tangle's, not as the integrals' failure below */
                 status = gb_error_set(status == GB_ENUMERIC ? GB_ENOCONV : status, "%s: --tangle %g: %s", case_path, spacing,
                                       gb_error_message());
@@ -245,7 +266,7 @@ int command_melnikov(int argc, char **argv)
         cJSON *th = cJSON_AddObjectToObject(root, "threshold_A1");
         cli_json_add(th, "eq93", t93);
         cli_json_add(th, "exact", tx);
-        if (!isnan(spacing)) tangle_json(root, &tangle, spacing);
+        if (!isnan(spacing)) tangle_json(root, &tangle, spacing, bracket);
         cJSON *b = cJSON_AddObjectToObject(root, "body");
         cJSON_AddItemToObject(b, "top", cli_json_vector(info.top, 3));
         cli_json_add(b, "r_max", info.r_max);
@@ -285,6 +306,9 @@ int command_melnikov(int argc, char **argv)
                    "domain crosses%s%.1f deg (multipliers %.6g, %.6g; %zu points)\n", spacing, tangle.in_window,
                    tangle.in_window ? ", the smallest angle " : "", tangle.in_window ? tangle.smallest_angle * 180 / M_PI : 0.0,
                    tangle.multipliers[0], tangle.multipliers[1], tangle.points_unstable + tangle.points_stable);
+        if (halvings > 0)
+            printf("  the manifolds start to cross between %s = %.6g and %.6g m/s2 (A2/A1 and psi of the scene; first order: "
+                   "%.6g)\n", F->a1 != 0.0 ? "A1" : "A2", bracket[0], bracket[1], tx);
     }
     gb_melnikov_tangle_free(&tangle);
     cJSON_Delete(root);
