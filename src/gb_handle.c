@@ -4,6 +4,7 @@
 #include "gb_contact.h"
 #include "gb_error.h"
 #include "gb_massprops.h"
+#include "gb_melnikov_body.h"
 #include "gb_run.h"
 #include "gb_scan.h"
 #include "gb_shape.h"
@@ -237,6 +238,41 @@ int gb_handle_scene_melnikov(const gb_handle_scene *scene, double out[2])
 {
     if (!scene) return gb_error_set(GB_EINVAL, "no scene");
     return gb_scan_melnikov_margins(&scene->scene, &out[0], &out[1]);
+}
+
+int gb_handle_scene_tangle(const gb_handle_scene *scene, double spacing, int halvings, double out[6])
+{
+    if (!scene) return gb_error_set(GB_EINVAL, "no scene");
+    const gb_forcing *F = &scene->scene.dynamics.forcing;
+    if (!(F->g > 0.0))
+        return gb_error_set(GB_EDOM, "[forcing] g = %g: without gravity the reduced potential has no saddle (allowed: g > 0)",
+                            F->g);
+    gb_melnikov_body *body = NULL;
+    gb_melnikov_orbit orbit;
+    gb_melnikov_values top;
+    gb_melnikov_tangle t = {0};
+    int status = gb_melnikov_body_create(&scene->scene.body, scene->scene.dynamics.mass, F->g, GB_MELNIKOV_BODY_NODES, &body);
+    const gb_melnikov_model m = status ? (gb_melnikov_model){0} : gb_melnikov_body_model(body, GB_MELNIKOV_MASS_AT_TOP);
+    if (!status) status = gb_melnikov_orbit_find(&m, &orbit);
+    if (!status) status = m.eval(m.context, orbit.q_u, &top);
+    const gb_melnikov_forcing f = {status ? 0.0 : scene->scene.dynamics.damping / top.M, F->a1, F->a2, F->omega, F->psi, 0};
+    gb_melnikov_tangle_def def = gb_melnikov_tangle_default_def();
+    def.spacing = spacing;
+    double bracket[2] = {NAN, NAN};
+    if (!status) status = gb_melnikov_tangle_compute(&m, &orbit, &f, &def, &t);
+    if (!status && halvings > 0) {
+        status = gb_melnikov_tangle_threshold(&m, &orbit, &f, &def, halvings, bracket);
+        const double unit = F->a1 != 0.0 ? F->a1 : F->a2;
+        bracket[0] *= unit, bracket[1] *= unit;
+    }
+    if (!status) {
+        const double v[6] = {(double)t.in_window, t.in_window ? t.smallest_angle * 180 / M_PI : NAN, t.multipliers[0],
+                             t.multipliers[1], bracket[0], bracket[1]};
+        memcpy(out, v, sizeof v);
+    }
+    gb_melnikov_tangle_free(&t);
+    gb_melnikov_body_free(body);
+    return status;
 }
 
 int gb_handle_scene_contact(const gb_handle_scene *scene, const double zb[3], double out[6])

@@ -62,6 +62,12 @@ GB_API int gb_handle_scene_equilibria(const gb_handle_scene *scene, double *out,
  * model's manifolds cross). */
 GB_API int gb_handle_scene_melnikov(const gb_handle_scene *scene, double out[2]);
 
+/* The reduced model's manifolds at the scene's whole forcing, as `gomboc melnikov CASE --tangle SPACING
+ * [--tangle-threshold HALVINGS]` computes them (M frozen at the top, the paper's damping): out[0] the homoclinic
+ * orbits a fundamental domain crosses, out[1] the smallest angle there [deg] (NaN without), out[2], out[3] the period
+ * map's multipliers, out[4], out[5] the A1 bracket where the manifolds start to cross (HALVINGS > 0; else NaN). */
+GB_API int gb_handle_scene_tangle(const gb_handle_scene *scene, double spacing, int halvings, double out[6]);
+
 /* A scan file run as `gomboc scan` runs it, on `threads` threads (0: one per online processor), its CSV (header, then
  * every point's row in index order: the bytes of the command's NAME-scan.csv) into *csv (malloc'd; free it with
  * gb_handle_text_free). `progress` (may be NULL), one call at a time from the scan's threads: the phase (0 the

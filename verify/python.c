@@ -123,6 +123,26 @@ static void test_same_bits(void)
     char *shown = errors ? cJSON_PrintUnformatted(errors) : NULL;
     gb_check_true(&ce, errors_ok, "%.400s", shown ? shown : py);
     free(shown);
+    /* the manifolds: tangle() against `gomboc melnikov --tangle 0.05 --json` for the same scene */
+    static char tangled[1 << 16];
+    snprintf(args, sizeof args, "melnikov cases/table1-gomboc-I.ini --tangle 0.05 --json");
+    const int tcode = gb_check_command(binary(), args, tangled, sizeof tangled);
+    cJSON *tj = tcode == 0 && strchr(tangled, '{') ? cJSON_Parse(strchr(tangled, '{')) : NULL;
+    const cJSON *tt = cJSON_GetObjectItem(tj, "tangle"), *pt = cJSON_GetObjectItem(package, "tangle");
+    const double want[4] = {cJSON_GetNumberValue(cJSON_GetObjectItem(tt, "homoclinic_orbits")),
+                            cJSON_GetNumberValue(cJSON_GetObjectItem(tt, "smallest_angle_deg")),
+                            cJSON_GetNumberValue(cJSON_GetArrayItem(cJSON_GetObjectItem(tt, "multipliers"), 0)),
+                            cJSON_GetNumberValue(cJSON_GetArrayItem(cJSON_GetObjectItem(tt, "multipliers"), 1))};
+    int tangle_equal = tt && cJSON_GetArraySize(pt) == 4;
+    for (int i = 0; i < 4 && tangle_equal; i++) tangle_equal = cJSON_GetNumberValue(cJSON_GetArrayItem(pt, i)) == want[i];
+    const char *tangle_refused = cJSON_GetStringValue(cJSON_GetObjectItem(package, "tangle_refused"));
+    gb_check ct = {"7", "91", "the Python package's tangle(0.05) of Table 1's Gomboc I, and tangle(0.5)",
+                   "gomboc melnikov --tangle 0.05 --json: orbits, smallest angle, multipliers; GombocError naming the range",
+                   "exact: bit for bit"};
+    gb_check_true(&ct, tangle_equal && tangle_refused && strstr(tangle_refused, "1e-4 to 0.1"),
+                  "command exit %d; %g orbits, smallest angle %.6g deg (command) %s the package's; 0.5: %s", tcode, want[0],
+                  want[1], tangle_equal ? "equal to" : "DIFFERENT FROM", tangle_refused ? tangle_refused : "not refused");
+    cJSON_Delete(tj);
     /* the body: `gomboc shape --scene` and `gomboc contact --method continuous` against the package's */
     static char shape[1 << 16], contact[1 << 16];
     snprintf(args, sizeof args, "shape --scene cases/table1-gomboc-I.ini --json");

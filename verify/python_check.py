@@ -38,6 +38,13 @@ equilibria = scene.equilibria()
 out["equilibria"] = [[str(t), float(p), float(q), float(r)] for t, p, q, r in
                      zip(equilibria["type"], equilibria["phi"], equilibria["theta"], equilibria["r"])]
 out["equilibria_counts"] = equilibria["counts"]
+tangle = scene.tangle(0.05)
+out["tangle"] = [tangle["homoclinic_orbits"], tangle["smallest_angle"]] + list(tangle["multipliers"])
+try:
+    scene.tangle(0.5)
+    out["tangle_refused"] = None
+except gomboc.GombocError as e:
+    out["tangle_refused"] = e.message
 tiny = os.path.join(folder, "tiny.ini")
 with open(tiny, "w", encoding="utf-8") as handle:
     handle.write(f"[scan]\ndescription = the Python package's 2 x 2 check\nbase = {os.path.abspath(scene_path)}\n"

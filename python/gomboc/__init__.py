@@ -49,6 +49,7 @@ int gb_handle_scene_massprops(const gb_handle_scene *scene, double out[13]);
 int gb_handle_scene_contact(const gb_handle_scene *scene, const double zb[3], double out[6]);
 int gb_handle_scene_equilibria(const gb_handle_scene *scene, double *out, size_t capacity, size_t *count);
 int gb_handle_scene_melnikov(const gb_handle_scene *scene, double out[2]);
+int gb_handle_scene_tangle(const gb_handle_scene *scene, double spacing, int halvings, double out[6]);
 typedef void (*gb_handle_progress)(void *user, int phase, size_t done, size_t total, double seconds);
 int gb_handle_scan(const char *path, unsigned threads, gb_handle_progress progress, void *user, char **csv);
 void gb_handle_text_free(char *text);
@@ -189,6 +190,22 @@ class Scene:
         out = _ffi.new("double[2]")
         _check(_lib.gb_handle_scene_melnikov(self._handle, out))
         return {"margin": out[0], "margin_eq93": out[1]}
+
+    def tangle(self, spacing=0.01, threshold=0):
+        """The reduced model's manifolds at the scene's whole forcing, as `gomboc melnikov --tangle SPACING
+        [--tangle-threshold N]`: "homoclinic_orbits" a fundamental domain crosses, "smallest_angle" [deg],
+        "multipliers" of the period map, and with threshold = N > 0 bisections "threshold_A1", the A1 bracket where
+        the manifolds start to cross."""
+        if not 1e-4 <= spacing <= 0.1:
+            raise GombocError(1, f"tangle spacing {spacing} (allowed: 1e-4 to 0.1)")
+        if threshold != int(threshold) or not 0 <= threshold <= 30:
+            raise GombocError(1, f"tangle threshold {threshold} (allowed: an integer from 0 to 30)")
+        out = _ffi.new("double[6]")
+        _check(_lib.gb_handle_scene_tangle(self._handle, float(spacing), int(threshold), out))
+        result = {"homoclinic_orbits": int(out[0]), "smallest_angle": out[1], "multipliers": (out[2], out[3])}
+        if threshold:
+            result["threshold_A1"] = (out[4], out[5])
+        return result
 
     def run(self, history=True, impacts=False):
         """Run the scene (the same bits as `gomboc run`); history: keep every sample; impacts: every impact."""
