@@ -203,6 +203,7 @@ static int intersect(const branch *U, const branch *S, double cell, gb_melnikov_
  * spacing / 4 (50 halvings at most: a kink, where the flow crossed a tie line, ends there). */
 enum { CHORD_DEPTH = 50 };
 static const double CHORD = 1e-6;
+static const double SAME_CROSSING = 1e-4; /* in u and in s: the same crossing confirmed twice */
 
 typedef struct piece {
     double *sigma, *y; /* y: (q, p) pairs */
@@ -357,10 +358,12 @@ int gb_melnikov_tangle_compute(const gb_melnikov_model *m, const gb_melnikov_orb
         if (!(x->u >= out->window && x->u < out->window + 1)) continue;
         status = confirm(&U, &S, x, &pu, &ps);
         if (status || !x->confirmed) continue;
-        int again = 0; /* two coarse crossings may confirm as the same one */
+        /* two coarse crossings may confirm as the same one, placed by two pieces a little apart (each within
+         * CHORD of the curves: a few 1e-6 in u and s at spacing 0.05) */
+        int again = 0;
         for (size_t j = 0; j < i; j++)
-            again |= out->crossing[j].confirmed == 1 && fabs(out->crossing[j].u - x->u) < 1e-9 &&
-                     fabs(out->crossing[j].s - x->s) < 1e-9;
+            again |= out->crossing[j].confirmed == 1 && fabs(out->crossing[j].u - x->u) < SAME_CROSSING &&
+                     fabs(out->crossing[j].s - x->s) < SAME_CROSSING;
         if (again) {
             x->confirmed = 0;
             continue;
