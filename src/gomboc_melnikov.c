@@ -144,6 +144,7 @@ static void tangle_json(cJSON *root, const gb_melnikov_tangle *t, double spacing
     cli_json_add(o, "window", t->window);
     cli_json_add(o, "points", (double)(t->points_unstable + t->points_stable));
     cli_json_add(o, "chord_crossings", (double)t->crossings);
+    cli_json_add(o, "widest_gap", t->widest_gap); /* above the spacing: a gap whose parameter could not be split */
     cli_json_add(o, "homoclinic_orbits", (double)t->in_window);
     cli_json_add(o, "smallest_angle_deg", t->in_window ? t->smallest_angle * 180 / M_PI : NAN);
     if (!isnan(bracket[0])) cJSON_AddItemToObject(o, "threshold_A1", cli_json_vector(bracket, 2));
@@ -306,6 +307,9 @@ int command_melnikov(int argc, char **argv)
                    "domain crosses%s%.1f deg (multipliers %.6g, %.6g; %zu points)\n", spacing, tangle.in_window,
                    tangle.in_window ? ", the smallest angle " : "", tangle.in_window ? tangle.smallest_angle * 180 / M_PI : 0.0,
                    tangle.multipliers[0], tangle.multipliers[1], tangle.points_unstable + tangle.points_stable);
+        if (!isnan(spacing) && tangle.widest_gap > spacing)
+            printf("  note: neighbouring points stayed %.3g apart where the parameter could not be split: crossings there "
+                   "may be missed\n", tangle.widest_gap);
         if (halvings > 0)
             printf("  the manifolds start to cross between %s = %.6g and %.6g m/s2 (A2/A1 and psi of the scene; first order: "
                    "%.6g)\n", F->a1 != 0.0 ? "A1" : "A2", bracket[0], bracket[1], tx);

@@ -196,8 +196,6 @@ class Scene:
         [--tangle-threshold N]`: "homoclinic_orbits" a fundamental domain crosses, "smallest_angle" [deg],
         "multipliers" of the period map, and with threshold = N > 0 bisections "threshold_A1", the A1 bracket where
         the manifolds start to cross."""
-        if not 1e-4 <= spacing <= 0.1:
-            raise GombocError(1, f"tangle spacing {spacing} (allowed: 1e-4 to 0.1)")
         if threshold != int(threshold) or not 0 <= threshold <= 30:
             raise GombocError(1, f"tangle threshold {threshold} (allowed: an integer from 0 to 30)")
         out = _ffi.new("double[6]")
