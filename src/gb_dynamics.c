@@ -158,8 +158,12 @@ int gb_dyn_field(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], double
     if (gb_dyn_state_finite(t, y)) return GB_ENUMERIC;
     gb_dyn_vertical_of_quaternion(q, zb);
     if (!(isfinite(zb[0]) && isfinite(zb[1]) && isfinite(zb[2]))) return gb_dyn_diverged(t); /* a quaternion overflowed */
-    double geff, geff_rate, zeta = NAN;
-    gb_forcing_geff_with_rate(&d->def.forcing, t, &geff, &geff_rate);
+    double zeta = NAN;
+    if (!d->forcing_valid || t != d->forcing_t) {
+        gb_forcing_geff_with_rate(&d->def.forcing, t, &d->forcing_geff, &d->forcing_rate);
+        d->forcing_t = t, d->forcing_valid = 1;
+    }
+    const double geff = d->forcing_geff;
     /* under a law with a free centroid the translation is integrated: the mode gives its rates */
     const int translating = d->law->free_centroid;
     gb_dyn_rates rates = {{0.0, 0.0, 0.0}, 0.0, 0.0};
@@ -180,7 +184,7 @@ int gb_dyn_field(gb_dynamics *d, double t, const double y[GB_STATE_SIZE], double
     /* Ẇ = P_d + m ġ_eff ζ with ζ = −z_b·r_c on the plane (eqs 37, 50); in flight E = ½ m |v|² + ½ ω·I_G ω +
      * m g_eff ζ obeys the same balance, since d/dt(½ m |v|²) = −m g_eff ζ̇ there */
     dydt[GB_STATE_WORK] = -d->def.damping * gb_vec_dot(omega, omega) +
-                          d->def.mass * geff_rate * zeta;
+                          d->def.mass * d->forcing_rate * zeta;
     return GB_OK;
 }
 

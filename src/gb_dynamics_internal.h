@@ -238,6 +238,10 @@ struct gb_dynamics {
      * checked by gb_dynamics_switch_pending and then again by gb_dynamics_accept at the same state. */
     int memo_valid, memo_found;
     gb_dyn_event memo_event;
+    /* g_eff and its rate at the field's last time: RK4's second and third stages share their time, and a
+     * step's first stage has its predecessor's last (the forcing is fixed for the dynamics' life) */
+    int forcing_valid;
+    double forcing_t, forcing_geff, forcing_rate;
     double memo_key[8];
     gb_contact_point memo_continued, memo_other;
     struct gb_dyn_stepper *stepper; /* the time-stepping strategy's (gb_dynamics_stepping.c; NULL: events) */

@@ -234,6 +234,45 @@ static void test_fallback(void)
     gb_check_close(&cs, s2 || !simplex_point.used_fallback ? NAN : s4_distance(simplex_point.rc, p.x), 0.0, 0.0, 1e-6);
 }
 
+/* The chart Newton works in is POLAR_X where sin φ < GB_CONTACT_POLAR_CAP. The library decides it by comparing φ
+ * with the equation's two roots away from them and by sin itself within 1e-9 rad of them: contacts placed across
+ * both roots (φ₀ = r + δ and π − r + δ, r = asin(CAP), δ from −2e-6 to 2e-6 and within the 1e-9 band) must come
+ * back in the chart sin φ of the point returned names. Morphology II is smooth at the poles. */
+static void test_polar_cap_chart(void)
+{
+    gb_surface s;
+    gb_surface_init(&s, "II", 0.12);
+    const gb_contact_refine_def def = gb_contact_refine_default_def();
+    const double root = asin(GB_CONTACT_POLAR_CAP);
+    static const double offsets[] = {-2e-6, -1e-7, -3e-9, -1.2e-9, -8e-10, -1e-10, 0.0, 1e-10, 8e-10, 1.2e-9, 3e-9,
+                                     1e-7, 2e-6};
+    const size_t n = sizeof offsets / sizeof offsets[0];
+    int tried = 0, agree = 0, failed = 0, in_x = 0, in_z = 0;
+    for (int side = 0; side < 2; side++)
+        for (size_t k = 0; k < n; k++) {
+            const double phi0 = (side ? M_PI - root : root) + offsets[k];
+            gb_surface_point p;
+            gb_surface_eval(&s, phi0, 2.385, &p);
+            const double zb[3] = {-p.n_hat[0], -p.n_hat[1], -p.n_hat[2]}; /* the plane touches at (φ₀, 2.385) */
+            gb_contact_point c;
+            tried++;
+            if (gb_contact_refine(&s, zb, phi0 + 1e-4, 2.385, &def, &c)) {
+                failed++;
+                continue;
+            }
+            const gb_surface_chart expected = sin(c.phi) < GB_CONTACT_POLAR_CAP ? GB_SURFACE_CHART_POLAR_X
+                                                                                 : GB_SURFACE_CHART_POLAR_Z;
+            agree += c.chart == expected;
+            in_x += c.chart == GB_SURFACE_CHART_POLAR_X, in_z += c.chart == GB_SURFACE_CHART_POLAR_Z;
+        }
+    char q[160];
+    snprintf(q, sizeof q, "%d contacts across sin(phi) = %g, %d failed to converge", tried, GB_CONTACT_POLAR_CAP, failed);
+    gb_check cc = {"4", "31-35", q, "the chart sin(phi) of the returned point names", "exact: every contact"};
+    gb_check_true(&cc, failed == 0 && agree == tried, "%d of %d in the chart sin(phi) names", agree, tried);
+    gb_check cb = {"4", "31-35", q, "both charts met (the comparison is not vacuous)", "at least 8 of each"};
+    gb_check_true(&cb, in_x >= 8 && in_z >= 8, "%d in POLAR_X, %d in POLAR_Z", in_x, in_z);
+}
+
 /* ------------------------------------------------------------ grid against continuous */
 
 typedef struct grid_row {
@@ -685,6 +724,9 @@ int verify_register_s4_contact(void)
          "exactly one minimum, as strict convexity demands"},
         {"eq 29: branch seeding finds the global minimum", test_branch_seeding, NULL},
         {"eq 29-33: the multimin fallback near a pole", test_fallback, NULL},
+        {"eq 31-35: Newton's chart across the polar cap", test_polar_cap_chart,
+         "a contact near the poles is polished in the chart sin(phi) of the point itself names, on both sides of "
+         "the cap and within a nanoradian of its edge"},
         {"eq 29, 36: grid against continuous, 45x90 to 720x1440", test_grid_convergence, NULL},
         {"eq 29, 36: agreement with the scipy reference", test_scipy_reference,
          "continuous minima (count, heights, positions) agree with an independent sympy/scipy.optimize "

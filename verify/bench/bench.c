@@ -19,6 +19,7 @@
 
 #include <gsl/gsl_randist.h>
 #include <gsl/gsl_rng.h>
+#include <ftw.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -43,6 +44,21 @@ double now(void)
     struct timespec t;
     clock_gettime(CLOCK_MONOTONIC, &t);
     return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+/* Remove the folder `dir` the bench made and everything under it (without a shell); 0 on success, else a
+ * message on stderr and 1. */
+static int remove_entry(const char *path, const struct stat *st, int flag, struct FTW *ftw)
+{
+    (void)st, (void)flag, (void)ftw;
+    return remove(path);
+}
+
+int bench_remove_tree(const char *dir)
+{
+    if (nftw(dir, remove_entry, 16, FTW_DEPTH | FTW_PHYS) == 0) return 0;
+    fprintf(stderr, "bench: cannot remove %s\n", dir);
+    return 1;
 }
 
 typedef int (*grid_search)(const gb_contact_grid *, const double[3], gb_contact_node *);
@@ -81,6 +97,7 @@ double run_units_g = 1.0;  /* 9.81: Table 1's amplitudes read in units of g (eq 
 double run_restitution;    /* the unilateral law's e */
 double run_friction = INFINITY; /* the unilateral law's μ (INFINITY: the rough plane) */
 const char *run_atlas_file;
+const char *run_cache_dir;
 gb_atlas_stats last_atlas;
 size_t last_atlas_fallbacks;
 int last_atlas_loaded;
@@ -97,13 +114,14 @@ double time_run(const char *m, gb_contact_model contact, gb_dynamics_variant var
     return time_run_with(m, contact, variant, repeats, NULL, y, switches);
 }
 
-/* A fresh context for one timed run: the atlas file (continuous contact) and the grid's lowest-node
- * search the bench is comparing, nothing else shared between repeats. */
+/* A fresh context for one timed run: the atlas file (continuous contact), the cache directory where a row
+ * names one, and the grid's lowest-node search the bench is comparing, nothing else shared between repeats. */
 static gb_dynamics_context *bench_context(gb_contact_model contact)
 {
     gb_dynamics_context *context = NULL;
     if (gb_dynamics_context_create(&context) ||
-        gb_dynamics_context_files(context, contact == GB_CONTACT_MODEL_CONTINUOUS ? run_atlas_file : NULL, NULL)) {
+        gb_dynamics_context_files(context, contact == GB_CONTACT_MODEL_CONTINUOUS ? run_atlas_file : NULL, NULL) ||
+        gb_dynamics_context_cache(context, run_cache_dir)) {
         fprintf(stderr, "bench: %s\n", gb_error_message());
         exit(1);
     }

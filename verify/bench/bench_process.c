@@ -146,9 +146,7 @@ int bench_whole_process(const char *native, const char *gomboc, FILE *out)
                     name, 1e3 * process, 1e3 * best[0], 1e3 * best[1], 1e3 * best[2], 1e3 * best[3], 1e3 * best[5],
                     1e3 * first);
     }
-    char cleanup[128];
-    snprintf(cleanup, sizeof cleanup, "rm -rf '%s'", dir);
-    if (system(cleanup) != 0) fprintf(stderr, "bench: cannot remove %s\n", dir);
+    bench_remove_tree(dir);
     return failures;
 }
 
@@ -210,9 +208,7 @@ int bench_scans(const char *gomboc, FILE *out)
         fprintf(out, ",\n  {\"scan_model\": \"%s\", \"points_per_second_1\": %.4f, \"points_per_second_2\": %.4f, "
                      "\"parallel_efficiency\": %.4f}", map, 625.0 / seconds[0], 625.0 / seconds[1], seconds[0] / (2.0 * seconds[1]));
     printf("\n(target, issue 19: parallel efficiency >= 90 %% on 2 threads)\n");
-    char cleanup[128];
-    snprintf(cleanup, sizeof cleanup, "rm -rf '%s'", dir);
-    if (system(cleanup) != 0) fprintf(stderr, "bench: cannot remove %s\n", dir);
+    bench_remove_tree(dir);
     return failures;
 }
 
@@ -261,9 +257,7 @@ int bench_shared_atlas_cpu(const char *gomboc, FILE *out)
                          "\"ratio_to_one_thread\": %.4f}", threads[k], cpu, wall, rate, rate / rate1);
     }
     printf("\n(target, issue 57: points per CPU-second at N threads >= 0.9 of one thread's)\n");
-    char cleanup[128];
-    snprintf(cleanup, sizeof cleanup, "rm -rf '%s'", dir);
-    if (system(cleanup) != 0) fprintf(stderr, "bench: cannot remove %s\n", dir);
+    bench_remove_tree(dir);
     return failures;
 }
 
@@ -295,8 +289,6 @@ int bench_unilateral_maps(const char *gomboc, FILE *out)
         if (out) fprintf(out, ",\n  {\"unilateral_map\": \"%s\", \"wall_seconds\": %.3f}", maps[k], seconds);
     }
     printf("\ntarget (issue 42): every unilateral map <= 300 s on 2 cores; the slowest here %.1f s\n", worst);
-    char cleanup[128];
-    snprintf(cleanup, sizeof cleanup, "rm -rf '%s'", dir);
-    if (system(cleanup) != 0) fprintf(stderr, "bench: cannot remove %s\n", dir);
+    bench_remove_tree(dir);
     return failures;
 }
