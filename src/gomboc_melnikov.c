@@ -27,7 +27,8 @@ static const char *usage_melnikov =
     "                  omega +- 33 %% of the scene's in --curve-points points (default 13)\n"
     "  --tangle SPACING  also grow the period map's manifolds at the scene's whole forcing (not its\n"
     "                  first order) with points at most SPACING apart (1e-4 to 0.1; 0.01 is a good start)\n"
-    "                  and count the homoclinic orbits a fundamental domain crosses (seconds to a minute)\n"
+    "                  and count the homoclinic orbits a fundamental domain crosses (seconds to a minute;\n"
+    "                  with --mass top only: its window is the unperturbed separatrix's passage)\n"
     "  --tangle-threshold N  also bracket the A1 at which the manifolds start to cross (A2 scaled with\n"
     "                  it, the damping kept; A2 when A1 = 0) by N bisections (1 to 30; each a tangle, 5 gives A1 / 32)\n"
     "\n"
@@ -118,6 +119,10 @@ static int melnikov_options_read(int argc, char **argv, melnikov_options *o)
     if (spacing_text && cli_number("melnikov", "--tangle", spacing_text, 1e-4, 0.1, 0, " (allowed: a spacing from 1e-4 to 0.1)",
                                    &o->spacing))
         return EXIT_INPUT;
+    if (spacing_text && o->variable_mass) /* the passage that sets the window is the unperturbed separatrix's */
+        return cli_input_error("melnikov", "--tangle %s with --mass variable: the tangle's window is the unperturbed "
+                               "separatrix's passage, and with M jumping at the ties there is no separatrix "
+                               "(allowed: --tangle with --mass top, the default; docs/melnikov.md)", spacing_text);
     if (halvings_text && !spacing_text)
         return cli_input_error("melnikov", "--tangle-threshold %s without --tangle (allowed: --tangle-threshold with --tangle "
                                "SPACING)", halvings_text);

@@ -267,6 +267,7 @@ static const bad_row rows[] = {
     {"melnikov @CASE@ --tangle", "[body]\nbeta = 0.1\n", 0, 2, {"--tangle", "", ""}},
     {"melnikov @CASE@ --tangle-threshold 5", "[body]\nbeta = 0.1\n", 0, 2, {"--tangle-threshold 5 without --tangle", "allowed: --tangle-threshold with --tangle SPACING", ""}},
     {"melnikov @CASE@ --tangle 0.02 --tangle-threshold 31", "[body]\nbeta = 0.1\n", 0, 2, {"--tangle-threshold '31' is out of range", "(allowed: an integer from 1 to 30)", ""}},
+    {"melnikov @CASE@ --mass variable --tangle 0.02", "[body]\nbeta = 0.1\n", 0, 2, {"--tangle 0.02 with --mass variable", "there is no separatrix", "allowed: --tangle with --mass top"}},
     /* The case file itself, and the output directory. */
     {"run @D@", NULL, 0, 2, {"not a regular file", "allowed: a scene file", ""}},
     {"lyapunov @D@", NULL, 0, 2, {"not a regular file", "allowed: a scene file", ""}},
