@@ -211,7 +211,7 @@ int bench_atlas(void)
          * the median of the ratios, since the two workloads drift apart on a shared machine (the plain loop is
          * memory-bound). The atlas run is a later run of the body, as a user's is: its atlas from the file and its
          * mass properties from a cache directory, both written by the run before the pairs. */
-        enum { PAIRS = 7 };
+        enum { PAIRS = 15 };
         double ratio[PAIRS];
         int pairs = 0;
         char cache[] = "/tmp/gomboc-bench-cache-XXXXXX";
