@@ -29,6 +29,8 @@ enum { ARC_TOP = 64, DEPTH_MAX = 40 };
 typedef struct cell {
     double q_lo, q_hi;
     gb_interval H, dH, H_mid;
+    gb_interval d2H; /* H″ on the cell where `curved` (one contact, C², its Hessian proved definite) */
+    int curved;
 } cell;
 
 struct gb_proof_body_cells {
@@ -192,8 +194,19 @@ static void cell_of(run *r, const boxes *kept, const gb_interval xs[3], double e
         const gb_interval d = gb_proof_body_dot(kept->at[k].e.x, dv);
         out->dH = k ? gb_interval_hull(out->dH, d) : d;
     }
+    out->curved = 0;
     switch (gb_proof_body_structure(r->def->surface, &r->axes, kept, q_lo, q_hi)) {
-    case GB_PROOF_BODY_SMOOTH: r->model->smooth_cells++; break;
+    case GB_PROOF_BODY_SMOOTH: {
+        r->model->smooth_cells++;
+        gb_interval term;
+        gb_proof_body_directions(&r->axes, q_lo, q_hi, v, dv);
+        if (gb_proof_body_second(kept, v, dv, &term)) {
+            out->d2H = gb_interval_sub(term, out->H), out->curved = 1;
+            r->model->curved_cells++;
+            r->model->second_width_max = gb_interval_max(r->model->second_width_max, out->d2H.hi - out->d2H.lo);
+        }
+        break;
+    }
     case GB_PROOF_BODY_TIE:
         if (r->model->tie_cells < 8) r->model->tie_q[r->model->tie_cells][0] = q_lo, r->model->tie_q[r->model->tie_cells][1] = q_hi;
         r->model->tie_cells++;
@@ -529,6 +542,21 @@ static int sweep(run *r, slong prec)
     _arb_vec_clear(dt, (slong)c->n);
     arb_clear(rm), arb_clear(scale), arb_clear(M), arb_clear(H), arb_clear(p), arb_clear(w), arb_clear(a), arb_clear(D), arb_clear(t);
     return status;
+}
+
+int gb_proof_body_second_at(const gb_proof_body_model *model, double q, gb_proof_interval *out)
+{
+    const struct gb_proof_body_cells *c = model ? model->cells_data : NULL;
+    if (!c) return gb_error_set(GB_EINVAL, "the model holds no cells (enclosed and not freed: allowed)");
+    for (size_t k = 0; k < c->n + 2; k++) {
+        const cell *x = k < c->n ? &c->at[k] : &c->tail[k - c->n];
+        if (!(q >= x->q_lo && q <= x->q_hi)) continue;
+        if (!x->curved) continue; /* a cell sharing q with a neighbour may be the one proved */
+        *out = (gb_proof_interval){x->d2H.lo, x->d2H.hi};
+        return GB_OK;
+    }
+    return gb_error_set(GB_EDOM, "q = %.17g lies in no cell on which H'' is enclosed (allowed: a q of a C2 cell whose "
+                        "Hessian is proved definite; not a tie's or an open cell)", q);
 }
 
 void gb_proof_body_free(gb_proof_body_model *model)

@@ -20,7 +20,8 @@
  * - on Arb's balls: p on each cell, t(q) at the cells' ends summed from t(origin) = 0, and D = ∫ p dq,
  *   C_k = ∫ S cos(kωt) dq, S_k = ∫ S sin(kωt) dq as sums of cell enclosures; within `cut` of the saddle only bounds:
  *   0 ≤ ∫ p dq ≤ cut · max p and |∫ S (…) dq| ≤ cut · max |S| there;
- * - the piecewise structure of H on each cell from its kept boxes (gb_proof_body_ties.c): C², or at most one tie.
+ * - the piecewise structure of H on each cell from its kept boxes (gb_proof_body_ties.c): C², or at most one tie;
+ *   on a C² cell H″ = −H − gᵀK⁻¹g (K the chart Hessian of x·v, g = (x_a·v′, x_b·v′)) over the kept boxes.
  * M enters as an interval (gb_proof_body_inertia encloses it): the statement holds for every M in it. */
 #ifndef GB_PROOF_BODY_H
 #define GB_PROOF_BODY_H
@@ -64,6 +65,8 @@ typedef struct gb_proof_body_model {
     size_t smooth_cells;        /* cells (the two neighbourhoods of the saddle among them) on which H is proved C² */
     size_t tie_cells;           /* cells proved to hold at most one tie (two contacts, their heights' difference monotone) */
     size_t open_cells;          /* cells on which neither is proved (gb_proof_body_ties.c) */
+    size_t curved_cells;        /* C² cells on which H″ is enclosed (the chart Hessian of x·v proved definite there) */
+    double second_width_max;    /* the widest of those enclosures */
     double tie_q[8][2];         /* the first 8 tie cells' ranges of q */
     double gap_min;             /* the least lower bound of r_max − H over the cells (> 0: the orbit is a rotation) */
     double height_spread_max;   /* the widest E over the cells (H's excess over x*·v) */
@@ -105,6 +108,12 @@ typedef struct gb_proof_body_result {
 
 GB_API int gb_proof_body_melnikov(const gb_proof_body_def *def, const gb_proof_body_model *model,
                                   const gb_proof_body_forcing *forcing, gb_proof_body_result *out);
+
+/* H″(q) enclosed on the cell holding q (H″ = −H − gᵀK⁻¹g with K the chart Hessian of x·v and g = (x_a·v′, x_b·v′)
+ * over the cell's kept boxes: the implicit function theorem at the unique maximiser; the linear part a Lohner step of
+ * the reduced field needs). GB_EDOM when q lies in no C² cell whose Hessian is proved definite (a tie's cell, an open
+ * one, outside [0, 2π]). */
+GB_API int gb_proof_body_second_at(const gb_proof_body_model *model, double q, gb_proof_interval *out);
 
 GB_API void gb_proof_body_free(gb_proof_body_model *model);
 

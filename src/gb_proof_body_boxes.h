@@ -30,4 +30,11 @@ gb_interval gb_proof_body_dot(const gb_interval a[3], const gb_interval b[3]);
 /* v(Q) = cos Q s₀ − sin Q e and v′(Q) = −sin Q s₀ − cos Q e over the arc [q_lo, q_hi]. */
 void gb_proof_body_directions(const gb_proof_axes *axes, double q_lo, double q_hi, gb_interval v[3], gb_interval dv[3]);
 
+/* H″ − (−H) = −gᵀ K⁻¹ g over the arc whose directions are v, v′, on its kept boxes: K = [x_ab·v] the chart Hessian of
+ * x·v and g = (x_a·v′, x_b·v′). At the maximiser x* of x·v(q) the implicit function theorem gives x*′ = −J K⁻¹ g, so
+ * H″ = x*·v″ + x*′·v′ = −H − gᵀ K⁻¹ g where the maximiser is unique and K definite. *out: the hull over the boxes;
+ * returns 1 when every box is C² (gb_surface_enclosure.smooth) and its K proved negative definite (K_aa < 0 and
+ * det K > 0 over it), else 0 (*out the line). */
+int gb_proof_body_second(const boxes *kept, const gb_interval v[3], const gb_interval dv[3], gb_interval *out);
+
 #endif
