@@ -181,15 +181,17 @@ static int keep(run *r, const boxes *in, double q_lo, double q_hi, double size, 
 /* The cell [q_lo, q_hi] from its kept boxes. */
 static void cell_of(run *r, const boxes *kept, const gb_interval xs[3], double excess, double q_lo, double q_hi, cell *out)
 {
-    gb_interval v[3], dv[3];
+    gb_interval v[3], dv[3], v_mid[3], dv_mid[3];
     gb_proof_body_directions(&r->axes, q_lo, q_hi, v, dv);
     const gb_interval base = gb_proof_body_dot(xs, v);
     out->q_lo = q_lo, out->q_hi = q_hi;
     out->H = (gb_interval){base.lo, gb_interval_up(base.hi + excess)};
     const double q_mid = 0.5 * (q_lo + q_hi);
-    gb_proof_body_directions(&r->axes, q_mid, q_mid, v, dv);
-    const gb_interval mid = gb_proof_body_dot(xs, v);
+    gb_proof_body_directions(&r->axes, q_mid, q_mid, v_mid, dv_mid);
+    const gb_interval mid = gb_proof_body_dot(xs, v_mid);
     out->H_mid = (gb_interval){mid.lo, gb_interval_up(mid.hi + excess)};
+    /* H′(q) = x*(q)·v′(q) for every q of the cell: x* in a kept box, v′(q) in v′ over the whole cell (v′ at the middle
+     * alone misses H′ by up to H·w/2 where H″ < −H/2, as near the saddle) */
     for (size_t k = 0; k < kept->n; k++) {
         const gb_interval d = gb_proof_body_dot(kept->at[k].e.x, dv);
         out->dH = k ? gb_interval_hull(out->dH, d) : d;
@@ -199,7 +201,6 @@ static void cell_of(run *r, const boxes *kept, const gb_interval xs[3], double e
     case GB_PROOF_BODY_SMOOTH: {
         r->model->smooth_cells++;
         gb_interval term;
-        gb_proof_body_directions(&r->axes, q_lo, q_hi, v, dv);
         if (gb_proof_body_second(kept, v, dv, &term)) {
             out->d2H = gb_interval_sub(term, out->H), out->curved = 1;
             r->model->curved_cells++;
@@ -544,19 +545,20 @@ static int sweep(run *r, slong prec)
     return status;
 }
 
-int gb_proof_body_second_at(const gb_proof_body_model *model, double q, gb_proof_interval *out)
+int gb_proof_body_cell_at(const gb_proof_body_model *model, double q, gb_proof_body_cell *out)
 {
     const struct gb_proof_body_cells *c = model ? model->cells_data : NULL;
-    if (!c) return gb_error_set(GB_EINVAL, "the model holds no cells (enclosed and not freed: allowed)");
+    if (!c) return gb_error_set(GB_EINVAL, "the model holds no cells (allowed: one enclosed and not freed)");
+    const cell *found = NULL;
     for (size_t k = 0; k < c->n + 2; k++) {
         const cell *x = k < c->n ? &c->at[k] : &c->tail[k - c->n];
-        if (!(q >= x->q_lo && q <= x->q_hi)) continue;
-        if (!x->curved) continue; /* a cell sharing q with a neighbour may be the one proved */
-        *out = (gb_proof_interval){x->d2H.lo, x->d2H.hi};
-        return GB_OK;
+        if (q >= x->q_lo && q <= x->q_hi && (!found || (!found->curved && x->curved))) found = x;
     }
-    return gb_error_set(GB_EDOM, "q = %.17g lies in no cell on which H'' is enclosed (allowed: a q of a C2 cell whose "
-                        "Hessian is proved definite; not a tie's or an open cell)", q);
+    if (!found) return gb_error_set(GB_EDOM, "q = %.17g lies in no cell (allowed: 0 <= q <= 2 pi)", q);
+    *out = (gb_proof_body_cell){found->q_lo, found->q_hi, {found->H.lo, found->H.hi}, {found->dH.lo, found->dH.hi},
+                                {-INFINITY, INFINITY}, found->curved};
+    if (found->curved) out->d2H = (gb_proof_interval){found->d2H.lo, found->d2H.hi};
+    return GB_OK;
 }
 
 void gb_proof_body_free(gb_proof_body_model *model)

@@ -109,11 +109,17 @@ typedef struct gb_proof_body_result {
 GB_API int gb_proof_body_melnikov(const gb_proof_body_def *def, const gb_proof_body_model *model,
                                   const gb_proof_body_forcing *forcing, gb_proof_body_result *out);
 
-/* H″(q) enclosed on the cell holding q (H″ = −H − gᵀK⁻¹g with K the chart Hessian of x·v and g = (x_a·v′, x_b·v′)
- * over the cell's kept boxes: the implicit function theorem at the unique maximiser; the linear part a Lohner step of
- * the reduced field needs). GB_EDOM when q lies in no C² cell whose Hessian is proved definite (a tie's cell, an open
- * one, outside [0, 2π]). */
-GB_API int gb_proof_body_second_at(const gb_proof_body_model *model, double q, gb_proof_interval *out);
+/* The cell of the model holding q: its range, H and H′ enclosed over it, and H″ where `curved` (a C² cell whose chart
+ * Hessian of x·v is proved definite on every kept box: H″ = −H − gᵀK⁻¹g with g = (x_a·v′, x_b·v′), the implicit
+ * function theorem at the unique maximiser; the linear part a Lohner step of the reduced field needs). Where two cells
+ * share q the curved one is given. GB_EDOM when q lies outside [0, 2π]; GB_EINVAL for a model without cells. */
+typedef struct gb_proof_body_cell {
+    double q_lo, q_hi;
+    gb_proof_interval H, dH, d2H; /* d2H: the whole line unless curved */
+    int curved;
+} gb_proof_body_cell;
+
+GB_API int gb_proof_body_cell_at(const gb_proof_body_model *model, double q, gb_proof_body_cell *out);
 
 GB_API void gb_proof_body_free(gb_proof_body_model *model);
 
