@@ -141,7 +141,7 @@ cJSON *prove_body_statement(size_t which, double resolution, long precision, int
     cJSON_AddItemToObject(data, "rocking", cli_json_vector(est.info.rocking, 3));
     cli_json_add(data, "origin", est.origin);
     cJSON *hyp = cJSON_AddArrayToObject(s, "hypotheses");
-    char line[256];
+    char line[512]; /* room for the piecewise hypothesis with its ties' list at its longest (256 could truncate it) */
     snprintf(line, sizeof line, "the saddle q = 0 is hyperbolic: H''(0) in [%.9g, %.9g] < 0 (closed form at the top, where "
              "sin phi cos chi = 1 only)", model.curvature.lo, model.curvature.hi);
     add_hypothesis(hyp, line, model.curvature.hi < 0.0 ? "proved" : "not proved");
