@@ -27,7 +27,10 @@ int gb_proof_body_second(const boxes *kept, const gb_interval v[3], const gb_int
         const gb_surface_enclosure *e = &kept->at[k].e;
         const gb_interval A = gb_proof_body_dot(e->x_aa, v), B = gb_proof_body_dot(e->x_ab, v), C = gb_proof_body_dot(e->x_bb, v);
         const gb_interval det = gb_interval_sub(gb_interval_mul(A, C), gb_interval_sqr(B));
-        if (!(e->smooth && A.hi < 0.0 && det.lo > 0.0)) return 0; /* not C² over the box (I at ±e_z), or not definite */
+        if (!(e->smooth && A.hi < 0.0 && det.lo > 0.0)) { /* not C² over the box (I at ±e_z), or not definite */
+            *out = (gb_interval){-INFINITY, INFINITY};
+            return 0;
+        }
         const gb_interval ga = gb_proof_body_dot(e->x_a, dv), gb = gb_proof_body_dot(e->x_b, dv);
         /* gᵀ K⁻¹ g = (C g_a² − 2 B g_a g_b + A g_b²) / det K */
         const gb_interval num = gb_interval_add(gb_interval_sub(gb_interval_mul(C, gb_interval_sqr(ga)),
