@@ -78,4 +78,13 @@ def proofs_section(out):
         lines += [f"**{s['statement']}** ({s['result']}). System: {s['system']}. Sets: {s['sets']}. Reproduces: "
                   f"{s['reproduces']}. Method: {s['method']}. Theorem: {s['theorem']}. Reading: {s['reading']}.{trap} "
                   f"Edges: {edges}. h_top >= {s['entropy_lower_bound']:.17g}{per_map} ({s['seconds']:.3g} s CPU).", ""]
+    for s in statements:
+        if "strips" not in s:
+            continue
+        strips = "; ".join(f"U{i} = {interval(h['u'])} in {h['returns']:g}: its edges to {interval(h['image_of_low_edge_u'])} and "
+                           f"{interval(h['image_of_high_edge_u'])}" + ("" if h["across"] else " (NOT proved)")
+                           for i, h in enumerate(s["strips"]))
+        lines += [f"**{s['statement']}** ({s['result']}). System: {s['system']}. Sets: {s['sets']}. Reproduces: "
+                  f"{s['reproduces']}. Method: {s['method']}. Theorem: {s['theorem']}. Reading: {s['reading']}. "
+                  f"Strips: {strips}. h_top >= {s['entropy_lower_bound']:.17g} ({s['seconds']:.3g} s CPU).", ""]
     return lines

@@ -56,6 +56,18 @@ gb_proof_interval gb_proof_interval_of(const arb_t x)
     return out;
 }
 
+gb_proof_interval gb_proof_half(gb_proof_interval x, int upper)
+{
+    const double middle = 0.5 * (x.lo + x.hi);
+    return upper ? (gb_proof_interval){middle, x.hi} : (gb_proof_interval){x.lo, middle};
+}
+
+int gb_proof_halvable(gb_proof_interval x)
+{
+    const double middle = 0.5 * (x.lo + x.hi);
+    return middle > x.lo && middle < x.hi;
+}
+
 void gb_proof_ball_of(arb_t out, gb_proof_interval x, slong prec)
 {
     arf_t lo, hi;

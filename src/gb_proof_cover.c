@@ -204,7 +204,7 @@ static int check_cover_def(const gb_proof_cover_def *def)
  * ĉ + A r with r the box's half-widths, A a point matrix and ĉ a box; a step is, by the mean value theorem with J = Df
  * over the hull X = ĉ + A r (convex, holding mid ĉ), f(mid ĉ) + J (ĉ − mid ĉ) + (J A − A') r + A' r, A' = mid(J A).
  * The linear part is carried exactly, so a thin box turned and stretched k times is not re-wrapped at every step. */
-static int affine_image(const field_balls *F, arb_ptr x, int iterates)
+int gb_proof_affine_image(const field_balls *F, arb_ptr x, int iterates)
 {
     const slong prec = F->prec;
     arb_struct c[2], r[2], e[2], hull[2], y[2];
@@ -266,7 +266,7 @@ static int image_of(const gb_proof_cover_def *def, const field_balls *F, gb_proo
     arb_struct x[2];
     for (int i = 0; i < 2; i++) arb_init(&x[i]);
     gb_proof_ball_of(&x[def->u], u, F->prec), gb_proof_ball_of(&x[def->s], s, F->prec);
-    const int finite = affine_image(F, x, iterates);
+    const int finite = gb_proof_affine_image(F, x, iterates);
     *image_u = gb_proof_interval_of(&x[def->u]), *image_s = gb_proof_interval_of(&x[def->s]);
     for (int i = 0; i < 2; i++) arb_clear(&x[i]);
     return finite ? GB_OK : gb_error_set(GB_ENUMERIC, "the map's enclosure is not finite");
@@ -288,18 +288,6 @@ static int inside(gb_proof_interval x, gb_proof_interval box)
     return x.lo > box.lo && x.hi < box.hi;
 }
 
-static gb_proof_interval half(gb_proof_interval x, int upper)
-{
-    const double middle = 0.5 * (x.lo + x.hi);
-    return upper ? (gb_proof_interval){middle, x.hi} : (gb_proof_interval){x.lo, middle};
-}
-
-static int halvable(gb_proof_interval x)
-{
-    const double middle = 0.5 * (x.lo + x.hi);
-    return middle > x.lo && middle < x.hi;
-}
-
 /* 1 when f^k(u × s) lies in int S along (and in int region_u across, for the trap), halving u (and s, with
  * halve_along) on failure to depth; 0 with out->failure naming the first piece that fails at the deepest halving. */
 static int prove_piece(inclusion *I, gb_proof_interval u, gb_proof_interval s, int level)
@@ -317,11 +305,12 @@ static int prove_piece(inclusion *I, gb_proof_interval u, gb_proof_interval s, i
             I->hull_s.lo = fmin(I->hull_s.lo, is.lo), I->hull_s.hi = fmax(I->hull_s.hi, is.hi);
         return 1;
     }
-    if (level < def->depth && halvable(u)) {
-        if (!def->halve_along || !halvable(s))
-            return prove_piece(I, half(u, 0), s, level + 1) && prove_piece(I, half(u, 1), s, level + 1);
+    if (level < def->depth && gb_proof_halvable(u)) {
+        if (!def->halve_along || !gb_proof_halvable(s))
+            return prove_piece(I, gb_proof_half(u, 0), s, level + 1) &&
+                   prove_piece(I, gb_proof_half(u, 1), s, level + 1);
         for (int k = 0; k < 4; k++)
-            if (!prove_piece(I, half(u, k & 1), half(s, k >> 1), level + 1)) return 0;
+            if (!prove_piece(I, gb_proof_half(u, k & 1), gb_proof_half(s, k >> 1), level + 1)) return 0;
         return 1;
     }
     I->out->failed_pieces++;
@@ -372,9 +361,9 @@ static int edge_image(const gb_proof_cover_def *def, const field_balls *F, doubl
     const int status = image_of(def, F, (gb_proof_interval){at, at}, s, def->iterates, &iu, &is);
     ++*pieces;
     if (status) return status;
-    if (def->halve_along && level < def->depth && halvable(s) && holds_an_end(def, iu)) {
-        const int low = edge_image(def, F, at, half(s, 0), level + 1, image_u, any, pieces);
-        return low ? low : edge_image(def, F, at, half(s, 1), level + 1, image_u, any, pieces);
+    if (def->halve_along && level < def->depth && gb_proof_halvable(s) && holds_an_end(def, iu)) {
+        const int low = edge_image(def, F, at, gb_proof_half(s, 0), level + 1, image_u, any, pieces);
+        return low ? low : edge_image(def, F, at, gb_proof_half(s, 1), level + 1, image_u, any, pieces);
     }
     if (!*any) *image_u = iu, *any = 1;
     else image_u->lo = fmin(image_u->lo, iu.lo), image_u->hi = fmax(image_u->hi, iu.hi);

@@ -1,6 +1,6 @@
 /* gb_proof_flow_internal — what the rigorous integrator's two files share (gb_proof_flow.c: the field, the Taylor step
- * and the C⁰ Lohner update; gb_proof_section.c: the crossings of a plane), and what gb_proof_cover.c takes from them.
- * Not installed, not exported. */
+ * and the C⁰ Lohner update; gb_proof_section.c: the crossings of a plane), and what gb_proof_cover.c and
+ * gb_proof_returns.c take from them. Not installed, not exported. */
 #ifndef GB_PROOF_FLOW_INTERNAL_H
 #define GB_PROOF_FLOW_INTERNAL_H
 
@@ -73,6 +73,9 @@ void gb_proof_flow_integration_clear(integration *I);
 int gb_proof_flow_check(const gb_proof_flow_def *def, const gb_proof_interval *box);
 /* The definition's ranges alone. */
 int gb_proof_flow_def_check(const gb_proof_flow_def *def);
+/* f^k of the box x (2 balls) for a quadratic map of the plane, in affine form (the C⁰ Lohner algorithm for maps,
+ * gb_proof_cover.c; gb_proof_returns.c uses it too): 0 when the enclosure is not finite. */
+int gb_proof_affine_image(const field_balls *F, arb_ptr x, int iterates);
 /* f(x) over the box of balls x, the field's formula read as a map (gb_proof_cover.c: Hénon's). */
 void gb_proof_field_image(const gb_proof_field *field, arb_srcptr x, arb_ptr out, slong prec);
 

@@ -13,6 +13,11 @@ gb_proof_interval gb_proof_interval_of(const arb_t x);
 /* The interval [lo, hi] of doubles as a ball (exact endpoints). */
 void gb_proof_ball_of(arb_t out, gb_proof_interval x, slong prec);
 
+/* The lower (upper = 0) or upper half of x, split at its middle; and whether that middle lies strictly inside x (a
+ * piece can still be halved). */
+gb_proof_interval gb_proof_half(gb_proof_interval x, int upper);
+int gb_proof_halvable(gb_proof_interval x);
+
 /* out = x d for a double d (exact as a ball). */
 void gb_proof_mul_d(arb_t out, const arb_t x, double d, slong prec);
 
