@@ -27,8 +27,8 @@ static int proper(gb_proof_interval x) { return isfinite(x.lo) && isfinite(x.hi)
 
 static int check_def(const gb_proof_returns_def *def)
 {
-    if (!def) return gb_error_set(GB_EINVAL, "returns across a rectangle need a definition");
-    if (!def->map) return gb_error_set(GB_EINVAL, "returns across a rectangle need a map");
+    if (!def) return gb_error_set(GB_EINVAL, "returns across a band need a definition");
+    if (!def->map) return gb_error_set(GB_EINVAL, "returns across a band need a map");
     if (def->map->dimension != 2)
         return gb_error_set(GB_EDOM, "field dimension = %d is out of range (allowed: 2 for a map of the plane)",
                             def->map->dimension);
@@ -37,6 +37,11 @@ static int check_def(const gb_proof_returns_def *def)
     if (!proper(def->window))
         return gb_error_set(GB_EDOM, "window = [%g, %g] is out of range (allowed: a finite interval with lo < hi)",
                             def->window.lo, def->window.hi);
+    if (!isfinite(def->curvature) || fabs(def->curvature) > 100.0 || !isfinite(def->vertex) || fabs(def->vertex) > 1e6)
+        return gb_error_set(GB_EDOM,
+                            "the band's centre line %g (u - %g)^2 is out of range (allowed: |curvature| <= 100, "
+                            "|vertex| <= 1e6, both finite)",
+                            def->curvature, def->vertex);
     if (!proper(def->strip))
         return gb_error_set(GB_EDOM, "strip = [%g, %g] is out of range (allowed: a finite interval with lo < hi)",
                             def->strip.lo, def->strip.hi);
@@ -62,17 +67,32 @@ static int check_def(const gb_proof_returns_def *def)
     return GB_OK;
 }
 
-/* f^m of the rectangle u × s: its extents across and along; 0 when the enclosure is not finite. */
-static int image(const field_balls *F, gb_proof_interval u, gb_proof_interval s, int m, gb_proof_interval *iu,
-                 gb_proof_interval *is)
+/* The band's centre line κ (u − u₀)² over the ball u, into out. */
+static void centre_line(const gb_proof_returns_def *def, const arb_t u, arb_t out, slong prec)
+{
+    arb_set_d(out, def->vertex);
+    arb_sub(out, u, out, prec);
+    arb_sqr(out, out, prec);
+    gb_proof_mul_d(out, out, def->curvature, prec);
+}
+
+/* f^m of the piece u × s of the band's chart (u across, s along the band: the frame's s less the centre line):
+ * enclosed in the frame as a box, mapped, and read back in the chart; 0 when the enclosure is not finite. */
+static int image(const gb_proof_returns_def *def, const field_balls *F, gb_proof_interval u, gb_proof_interval s, int m,
+                 gb_proof_interval *iu, gb_proof_interval *is)
 {
     arb_struct x[2];
-    arb_init(&x[0]), arb_init(&x[1]);
+    arb_t line;
+    arb_init(&x[0]), arb_init(&x[1]), arb_init(line);
     gb_proof_ball_of(&x[0], u, F->prec), gb_proof_ball_of(&x[1], s, F->prec);
+    centre_line(def, &x[0], line, F->prec);
+    arb_add(&x[1], &x[1], line, F->prec);
     const int finite = gb_proof_affine_image(F, x, m);
+    centre_line(def, &x[0], line, F->prec);
+    arb_sub(&x[1], &x[1], line, F->prec);
     *iu = gb_proof_interval_of(&x[0]), *is = gb_proof_interval_of(&x[1]);
-    arb_clear(&x[0]), arb_clear(&x[1]);
-    return finite;
+    arb_clear(&x[0]), arb_clear(&x[1]), arb_clear(line);
+    return finite && arb_is_finite(&x[1]);
 }
 
 typedef struct walk {
@@ -99,7 +119,7 @@ static int edge_side(walk *w, double at, gb_proof_interval s, int level, gb_proo
 {
     const gb_proof_interval W = w->def->window;
     gb_proof_interval iu, is;
-    const int finite = image(w->F, (gb_proof_interval){at, at}, s, w->m, &iu, &is);
+    const int finite = image(w->def, w->F, (gb_proof_interval){at, at}, s, w->m, &iu, &is);
     w->out->pieces++;
     int side = !finite ? 0 : iu.hi < W.lo ? -1 : iu.lo > W.hi ? 1 : 0;
     if (!side && finite && level < w->def->depth && gb_proof_halvable(s)) {
@@ -130,7 +150,7 @@ static int across_piece(walk *w, gb_proof_interval u, gb_proof_interval s, int l
 {
     const gb_proof_interval W = w->def->window, S = w->def->strip;
     gb_proof_interval iu, is;
-    const int finite = image(w->F, u, s, w->m, &iu, &is);
+    const int finite = image(w->def, w->F, u, s, w->m, &iu, &is);
     w->out->pieces++;
     if (finite && (iu.hi < W.lo || iu.lo > W.hi || (is.lo > S.lo && is.hi < S.hi))) return 1;
     if (finite && level < w->def->depth && gb_proof_halvable(u)) {
@@ -206,7 +226,7 @@ int gb_proof_returns(const gb_proof_returns_def *def, gb_proof_returns_result *o
 {
     int status = check_def(def);
     if (status) return status;
-    if (!out) return gb_error_set(GB_EINVAL, "returns across a rectangle need a result");
+    if (!out) return gb_error_set(GB_EINVAL, "returns across a band need a result");
     memset(out, 0, sizeof *out);
     const double start = gb_proof_cpu_seconds();
     field_balls F;
@@ -243,18 +263,21 @@ int gb_proof_returns_henon_classical(gb_proof_field *field, gb_proof_returns_def
     static const struct {
         double lo, hi;
         int m;
-    } strips[] = {{-0.379704200, -0.356188100, 7},  {-0.353768050, -0.348646650, 13}, {-0.337326500, -0.333939300, 12},
-                  {-0.324098150, -0.310366650, 10}, {-0.243067800, -0.211075000, 7},  {-0.197701650, -0.166216350, 6},
-                  {-0.130099750, -0.117344100, 8},  {-0.116330550, 0.054457700, 2},   {0.056334000, 0.063154800, 10},
-                  {0.063888500, 0.071677900, 9},    {0.092218600, 0.112125650, 7},    {0.119549650, 0.140658750, 8},
-                  {0.151923800, 0.175974950, 9},    {0.180933950, 0.197271100, 10}};
+    } strips[] = {{-0.415654800, -0.393925200, 7},  {-0.383728200, -0.355896600, 7},  {-0.355477200, -0.349800000, 12},
+                  {-0.338796600, -0.333385800, 12}, {-0.246510600, -0.211851600, 7},  {-0.206250000, -0.167074800, 6},
+                  {-0.157981200, -0.152912400, 14}, {-0.152876400, -0.147962400, 14}, {-0.126661200, -0.117261600, 9},
+                  {-0.115580400, -0.104251200, 9},  {-0.098257200, -0.088180800, 10}, {-0.086218800, -0.076167600, 10},
+                  {-0.069660600, -0.059625600, 9},  {-0.057888600, -0.046489200, 8},  {-0.040203600, 0.071218200, 3},
+                  {0.092215200, 0.116234400, 7},    {0.119060400, 0.141036600, 8},    {0.153256800, 0.179509800, 9},
+                  {0.180435000, 0.202233000, 9},    {0.213769200, 0.241377600, 8},    {0.242117400, 0.266934000, 8}};
     if (!field || !def) return gb_error_set(GB_EINVAL, "the classical Henon returns need a field and a definition");
     const int status = gb_proof_cover_henon_framed(7, 5, 3, 10, origin, frame, field);
     if (status) return status;
     *def = gb_proof_returns_def_default();
     def->map = field;
-    def->window = (gb_proof_interval){-0.38, 0.2};
-    def->strip = (gb_proof_interval){-0.03, 0.03};
+    def->window = (gb_proof_interval){-0.42, 0.3};
+    def->strip = (gb_proof_interval){-0.018, 0.018};
+    def->curvature = 0.14, def->vertex = 0.05;
     def->sets = sizeof strips / sizeof strips[0];
     for (size_t i = 0; i < def->sets; i++)
         def->set_u[i] = (gb_proof_interval){strips[i].lo, strips[i].hi}, def->returns[i] = strips[i].m;

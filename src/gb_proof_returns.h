@@ -1,9 +1,10 @@
-/* gb_proof_returns — strips of a rectangle that return across it, and the lower bound of topological entropy their
- * return times prove.
+/* gb_proof_returns — strips of a band (a rectangle in a chart) that return across it, and the lower bound of
+ * topological entropy their return times prove.
  *
  * A quadratic map f of the plane (gb_proof_field read as a map) in coordinates u (across: the expanding direction) and
- * s (along). R = W × S is a rectangle, V_i = U_i × S strips of it with disjoint U_i inside W, and m_i a return time for
- * each. The strip returns across R when
+ * s (along), read in the chart (u, s − κ (u − u₀)²) that straightens a band bent along the parabola s = κ (u − u₀)²
+ * (κ = 0: the plain coordinates). In the chart R = W × S is a rectangle, V_i = U_i × S strips of it with disjoint U_i
+ * inside W, and m_i a return time for each. The strip returns across R when
  *   (edges) f^m_i maps the edge {min U_i} × S wholly to one side beyond W and {max U_i} × S wholly to the other, and
  *   (across) every point of V_i whose image lies in W across has its image in int S along
  * (the image may leave R's band anywhere beyond W). Then V_i covers every V_j for f^m_i: in the charts of the h-sets
@@ -32,11 +33,12 @@ extern "C" {
 enum { GB_PROOF_RETURNS_MAX = 64, GB_PROOF_RETURN_TIME_MAX = 32 };
 
 typedef struct gb_proof_returns_def {
-    const gb_proof_field *map;                     /* the map of the plane (dimension 2): coordinate 0 is u, 1 is s */
-    long precision;                                /* Arb's bits */
-    gb_proof_interval window;                      /* W: R across */
-    gb_proof_interval strip;                       /* S: R along, and every strip's extent along */
-    size_t sets;                                   /* 1 ... 64 */
+    const gb_proof_field *map; /* the map of the plane (dimension 2): coordinate 0 is u, 1 is s */
+    long precision;            /* Arb's bits */
+    gb_proof_interval window;  /* W: R across */
+    gb_proof_interval strip;   /* S: R along, and every strip's extent along, about the band's centre line */
+    double curvature, vertex;  /* the band's centre line s = curvature (u - vertex)² (0: a straight rectangle) */
+    size_t sets;               /* 1 ... 64 */
     gb_proof_interval set_u[GB_PROOF_RETURNS_MAX]; /* U_i: disjoint, inside W */
     int returns[GB_PROOF_RETURNS_MAX];             /* m_i: 1 ... 32 */
     int pieces;                                    /* the first cut of a strip across: 1 ... 100000 */
@@ -66,9 +68,9 @@ GB_API int gb_proof_returns(const gb_proof_returns_def *def, gb_proof_returns_re
  * the root is not above 1 (a single strip). GB_EDOM for counts or times out of range. */
 GB_API int gb_proof_returns_entropy_bound(const int *returns, size_t n, double *log_x);
 
-/* The classical Hénon map (a = 7/5, b = 3/10) in the frame of gb_proof_cover_henon_classical, R = [-0.38, 0.2] ×
- * [-0.03, 0.03] and the strips of scripts/henon_returns_search.py with their return times: *field the framed map,
- * *def the returns to prove. */
+/* The classical Hénon map (a = 7/5, b = 3/10) in the frame of gb_proof_cover_henon_classical, the band about
+ * s = 0.14 (u - 0.05)², R = [-0.42, 0.3] × [-0.018, 0.018] in its chart, and the strips of
+ * scripts/henon_returns_search.py with their return times: *field the framed map, *def the returns to prove. */
 GB_API int gb_proof_returns_henon_classical(gb_proof_field *field, gb_proof_returns_def *def);
 
 #ifdef __cplusplus

@@ -1,5 +1,5 @@
-/* Proved on Arb's balls: strips of a rectangle that return across it, and the renewal bound of entropy
- * (gb_proof_returns).
+/* Proved on Arb's balls: strips of a band (a rectangle in a chart) that return across it, and the renewal bound of
+ * entropy (gb_proof_returns).
  *
  * Oracles, none sharing code with what they check:
  * - the renewal equation Σ x^-m_i = 1 in closed form: two strips of time 1 give x = 2 (the full 2-shift), times 2 and 3
@@ -7,9 +7,9 @@
  * - Hénon's map iterated directly in long double in the plane's own coordinates (not the framed map the proof reads):
  *   the enclosures of every strip's edges hold the floats' images of 201 points of each edge, and points of each
  *   strip whose floats land inside the window have their floats inside the strip along;
- * - negative controls with teeth: a strip given a return time one longer, a strip cut at its middle (its new edge's image
- *   lands in the window), and the rectangle's band narrowed below where the images reach, each losing what it must,
- *   with the float point that shows why;
+ * - negative controls with teeth: the strip of the shortest return given a return time one shorter, a strip cut at
+ *   its middle (its new edge's image lands in the window), and the band narrowed below where the images reach, each
+ *   losing what it must, with the float point that shows why;
  * - the search that found the strips (scripts/henon_returns_search.py), run again: it prints the shipped table;
  * - the definitions' ranges: each bad window, strip, set, return time or count refused with GB_EDOM naming it. */
 #include "gb_check.h"
@@ -52,11 +52,13 @@ static void test_renewal_bound(void)
 static const long double frame_o[2] = {3157.0L / 5000, 947.0L / 5000};
 static const long double frame_F[2][2] = {{-1.0L, -13.0L / 25}, {39.0L / 250, -1.0L}};
 
-/* v ↦ F⁻¹(H^m(o + F v) − o), Hénon's map (x, y) ↦ (1 − 1.4 x² + y, 0.3 x) iterated in the plane. */
-static void iterate_through_plane(const double v[2], int m, long double out[2])
+/* The point (u, s) of the band's chart (s about the centre line κ (u − u₀)²) through the frame into the plane, Hénon's
+ * map (x, y) ↦ (1 − 1.4 x² + y, 0.3 x) iterated m times there, and back through the frame into the chart. */
+static void iterate_through_plane(const gb_proof_returns_def *def, const double v[2], int m, long double out[2])
 {
-    long double x = frame_o[0] + frame_F[0][0] * v[0] + frame_F[0][1] * v[1];
-    long double y = frame_o[1] + frame_F[1][0] * v[0] + frame_F[1][1] * v[1];
+    const long double s = v[1] + def->curvature * ((long double)v[0] - def->vertex) * ((long double)v[0] - def->vertex);
+    long double x = frame_o[0] + frame_F[0][0] * v[0] + frame_F[0][1] * s;
+    long double y = frame_o[1] + frame_F[1][0] * v[0] + frame_F[1][1] * s;
     for (int n = 0; n < m; n++) {
         const long double x0 = x;
         x = 1.0L - 1.4L * x0 * x0 + y, y = 0.3L * x0;
@@ -64,6 +66,7 @@ static void iterate_through_plane(const double v[2], int m, long double out[2])
     const long double det = frame_F[0][0] * frame_F[1][1] - frame_F[0][1] * frame_F[1][0];
     const long double d0 = x - frame_o[0], d1 = y - frame_o[1];
     out[0] = (frame_F[1][1] * d0 - frame_F[0][1] * d1) / det, out[1] = (frame_F[0][0] * d1 - frame_F[1][0] * d0) / det;
+    out[1] -= def->curvature * (out[0] - def->vertex) * (out[0] - def->vertex);
 }
 
 static int holds(gb_proof_interval a, double x) { return a.lo <= x && x <= a.hi; }
@@ -81,13 +84,14 @@ static void test_henon_returns(void)
             const double s = def.strip.lo + (def.strip.hi - def.strip.lo) * k / 200.0;
             for (int e = 0; e < 2; e++) { /* the edges: inside their enclosures */
                 long double w[2];
-                iterate_through_plane((const double[2]){e ? def.set_u[i].hi : def.set_u[i].lo, s}, def.returns[i], w);
+                iterate_through_plane(&def, (const double[2]){e ? def.set_u[i].hi : def.set_u[i].lo, s}, def.returns[i],
+                                      w);
                 tried++, held += holds(r.edge[i][e], (double)w[0]);
             }
             for (int j = 0; j <= 50; j++) { /* points inside: landing in the window, inside the band */
                 const double u = def.set_u[i].lo + (def.set_u[i].hi - def.set_u[i].lo) * j / 50.0;
                 long double w[2];
-                iterate_through_plane((const double[2]){u, s}, def.returns[i], w);
+                iterate_through_plane(&def, (const double[2]){u, s}, def.returns[i], w);
                 if (w[0] >= def.window.lo && w[0] <= def.window.hi)
                     landed++, inside += w[1] > def.strip.lo && w[1] < def.strip.hi;
             }
@@ -105,17 +109,18 @@ static void test_henon_returns(void)
     }
     gb_check c = {
         "-", "-",
-        "Henon's map at the classical a = 1.4, b = 0.3: the 14 strips of a search returning across R = [-0.38, 0.2] x "
-        "[-0.03, 0.03] (the horseshoe's frame)",
+        "Henon's map at the classical a = 1.4, b = 0.3: the 21 strips of a search returning across the band R = "
+        "[-0.42, "
+        "0.3] x [-0.018, 0.018] about s = 0.14 (u - 0.05)^2 (the horseshoe's frame)",
         "every return proved (edges beyond the window on opposite sides, the image in the window inside the band), so "
         "h_top >= ln x with sum x^-m_i = 1: above the horseshoe's ln 5 / 7 = 0.22992, below Friedland & Milnor's ln 2; "
         "each edge's enclosure holds the floats' images of 201 of its points, iterated in the plane",
         "exact for the returns; the bound within 1e-9 below the root of the same return times in doubles (bisection "
         "here); the floats' iterates (error ~1e-13 after 13 steps) inside"};
     gb_check_true(&c,
-                  !status && r.proved == def.sets && def.sets == 14 && r.entropy <= lo * (1 + 4 * DBL_EPSILON) &&
+                  !status && r.proved == def.sets && def.sets == 21 && r.entropy <= lo * (1 + 4 * DBL_EPSILON) &&
                       r.entropy >= lo - 1e-9 && r.entropy > log(5.0) / 7.0 && r.entropy < log(2.0) && held == tried &&
-                      tried == 14 * 201 * 2 && inside == landed && landed > 0 && r.failed_pieces == 0,
+                      tried == 21 * 201 * 2 && inside == landed && landed > 0 && r.failed_pieces == 0,
                   "%zu of %zu returns, h_top >= %.9f (doubles' root %.9f), %d of %d edge points inside their "
                   "enclosures, %d of %d "
                   "points landing in the window inside the band, %ld pieces, %.3g s%s%s",
@@ -128,54 +133,63 @@ static void test_returns_controls(void)
     gb_proof_field g;
     gb_proof_returns_def def;
     int status = gb_proof_returns_henon_classical(&g, &def);
-    /* 1. strip 7 (U = [-0.1163, 0.0545], 2 iterates) asked to return in 3 */
+    /* 1. the strip with the shortest return (k: 3 iterates, the widest) asked to return one iterate sooner (it also
+     * returns across in 4: that is a second return, not a control) */
+    size_t k = 0;
+    for (size_t i = 1; !status && i < def.sets; i++)
+        if (def.returns[i] < def.returns[k]) k = i;
     gb_proof_returns_def later = def, cut = def, narrow = def;
-    later.returns[7] = 3;
+    later.returns[k] = def.returns[k] - 1;
     /* 2. strip 0 (7 iterates) cut at its middle: its new high edge's image lands inside the window */
     cut.set_u[0].hi = 0.5 * (def.set_u[0].lo + def.set_u[0].hi);
-    /* 3. the band narrowed to [-0.01, 0.01]: the images of the strips in the window reach s = 0.02 and more */
-    narrow.strip = (gb_proof_interval){-0.01, 0.01};
+    /* 3. the band narrowed to a third: the images of the strips in the window reach further along */
+    narrow.strip = (gb_proof_interval){def.strip.lo / 3, def.strip.hi / 3};
     gb_proof_returns_result rl, rs, rn;
     if (!status) status = gb_proof_returns(&later, &rl);
     if (!status) status = gb_proof_returns(&cut, &rs);
     if (!status) status = gb_proof_returns(&narrow, &rn);
-    /* why, in floats: the later strip's high edge lands in the window; so does the cut strip's new edge; a point of
-     * the narrowed strip 7 lands in the window outside the narrowed band */
-    long double w[2];
-    iterate_through_plane((const double[2]){def.set_u[7].hi, 0.0}, 3, w);
-    const int later_lands = w[0] > def.window.lo && w[0] < def.window.hi;
-    iterate_through_plane((const double[2]){cut.set_u[0].hi, 0.0}, def.returns[0], w);
+    /* why, in floats: an edge of the later strip lands in the window; so does the cut strip's new edge; a point of
+     * strip k of the narrowed band lands in the window outside that band */
+    long double w[2], w2[2];
+    iterate_through_plane(&def, (const double[2]){def.set_u[k].lo, 0.0}, later.returns[k], w);
+    iterate_through_plane(&def, (const double[2]){def.set_u[k].hi, 0.0}, later.returns[k], w2);
+    const int sooner_lands = (w[0] > def.window.lo && w[0] < def.window.hi) ||
+                             (w2[0] > def.window.lo && w2[0] < def.window.hi) ||
+                             (w[0] - def.window.lo) * (w2[0] - def.window.lo) > 0;
+    iterate_through_plane(&def, (const double[2]){cut.set_u[0].hi, 0.0}, def.returns[0], w);
     const int cut_lands = w[0] > def.window.lo && w[0] < def.window.hi;
     int narrow_leaves = 0;
     for (int j = 0; j <= 400 && !narrow_leaves; j++)
-        for (int k = 0; k <= 20 && !narrow_leaves; k++) {
-            const double u = def.set_u[7].lo + (def.set_u[7].hi - def.set_u[7].lo) * j / 400.0,
-                         s = -0.01 + 0.02 * k / 20.0;
-            iterate_through_plane((const double[2]){u, s}, def.returns[7], w);
-            narrow_leaves = w[0] > def.window.lo && w[0] < def.window.hi && fabsl(w[1]) > 0.01L;
+        for (int n = 0; n <= 20 && !narrow_leaves; n++) {
+            const double u = def.set_u[k].lo + (def.set_u[k].hi - def.set_u[k].lo) * j / 400.0,
+                         s = narrow.strip.lo + (narrow.strip.hi - narrow.strip.lo) * n / 20.0;
+            iterate_through_plane(&def, (const double[2]){u, s}, def.returns[k], w);
+            narrow_leaves = w[0] > def.window.lo && w[0] < def.window.hi && fabsl(w[1]) > narrow.strip.hi;
         }
     size_t others = 0;
-    for (size_t i = 0; !status && i < def.sets; i++) others += i != 7 && rl.across[i];
+    for (size_t i = 0; !status && i < def.sets; i++) others += i != k && rl.across[i];
     gb_check c = {
         "-", "-",
-        "negative controls of the classical returns: strip 7 asked to return in 3 iterates (not 2), strip 0 "
-        "cut at its middle, the band narrowed to [-0.01, 0.01]",
-        "each loses its return, the first failure named, and a float point shows why (strip 7's high edge lands in "
-        "the window after 3; so does the cut strip's new edge after 7; a point of strip 7 lands in the window "
-        "outside the narrowed band); the other 13 strips keep theirs when strip 7's time is changed",
+        "negative controls of the classical returns: the strip of the shortest return asked to return one iterate "
+        "sooner, strip 0 cut at its middle, the band narrowed to a third",
+        "each loses its return, the first failure named, and a float point shows why (an edge of the sooner strip "
+        "lands in the window, or both on one side; the cut strip's new edge lands in the window; a point of the "
+        "shortest strip lands in the window outside the narrowed band); the other 20 strips keep theirs when one "
+        "strip's time is changed",
         "exact"};
     gb_check_true(
         &c,
-        !status && !rl.across[7] && others == 13 && !rs.across[0] && rs.side[0][1] == 0 && !rn.across[7] &&
-            rl.failure[0] && rs.failure[0] && rn.failure[0] && later_lands && cut_lands && narrow_leaves,
-        "later: strip 7 %s (%s); cut: strip 0 %s, high edge side %d; narrowed: strip 7 %s (%zu of 14 kept); floats: "
-        "%d %d %d%s%s",
-        rl.across[7] ? "PROVED" : "not proved", rl.failure, rs.across[0] ? "PROVED" : "not proved", rs.side[0][1],
-        rn.across[7] ? "PROVED" : "not proved", rn.proved, later_lands, cut_lands, narrow_leaves, status ? ": " : "",
-        status ? gb_error_message() : "");
+        !status && !rl.across[k] && others == def.sets - 1 && !rs.across[0] && rs.side[0][1] == 0 && !rn.across[k] &&
+            rl.failure[0] && rs.failure[0] && rn.failure[0] && sooner_lands && cut_lands && narrow_leaves,
+        "sooner: strip %zu %s (%s); cut: strip 0 %s, high edge side %d; narrowed: strip %zu %s (%zu of %zu kept); "
+        "floats: %d %d %d%s%s",
+        k, rl.across[k] ? "PROVED" : "not proved", rl.failure, rs.across[0] ? "PROVED" : "not proved", rs.side[0][1], k,
+        rn.across[k] ? "PROVED" : "not proved", rn.proved, def.sets, sooner_lands, cut_lands, narrow_leaves,
+        status ? ": " : "", status ? gb_error_message() : "");
 }
 
-/* The table gb_proof_returns_henon_classical proves is the search's output: the script run again, its strips read back. */
+/* The table gb_proof_returns_henon_classical proves is the search's output: the script run again, its strips read
+ * back. */
 static void test_search_table(void)
 {
     static char out[1 << 14];
@@ -199,9 +213,13 @@ static void test_search_table(void)
         "-", "-", "the classical Henon returns' strips and their return times, as shipped",
         "scripts/henon_returns_search.py run again (floats, numpy): the strips it prints, in order, and its root",
         "exact for the strips (both sides print 9 decimals); the root to the 6 decimals printed"};
-    gb_check_true(&c, code == 0 && !status && read == def.sets && same == def.sets && fabs(printed - 0.384953) < 5e-7,
-                  "exit %d, %zu strips printed, %zu equal to the table's %zu, root %.6f", code, read, same, def.sets,
-                  printed);
+    double proved_root = NAN;
+    const int bound_status = status ? status : gb_proof_returns_entropy_bound(def.returns, def.sets, &proved_root);
+    gb_check_true(&c,
+                  code == 0 && !status && !bound_status && read == def.sets && same == def.sets &&
+                      fabs(printed - proved_root) < 5e-7,
+                  "exit %d, %zu strips printed, %zu equal to the table's %zu, root %.6f (the table's times give %.9f)",
+                  code, read, same, def.sets, printed, proved_root);
 }
 
 static void test_returns_refused(void)
@@ -210,20 +228,22 @@ static void test_returns_refused(void)
     gb_proof_returns_def good;
     const int built = gb_proof_returns_henon_classical(&g, &good) == GB_OK;
     const gb_proof_field three_d = gb_proof_flow_rossler(1, 5, 1, 5, 57, 10);
-    enum { BAD = 9 };
+    enum { BAD = 10 };
     struct {
         const char *what, *must;
         gb_proof_returns_def def;
     } bad[BAD];
     for (int k = 0; k < BAD; k++) bad[k].def = good;
     bad[0].what = "overlapping strips", bad[0].must = "overlap", bad[0].def.set_u[1].lo = good.set_u[0].hi - 0.001;
-    bad[1].what = "a strip outside the window", bad[1].must = "inside the window", bad[1].def.set_u[13].hi = 0.25;
+    bad[1].what = "a strip outside the window", bad[1].must = "inside the window",
+    bad[1].def.set_u[good.sets - 1].hi = good.window.hi + 0.05;
     bad[2].what = "return time 0", bad[2].must = "return time", bad[2].def.returns[3] = 0;
     bad[3].what = "return time 33", bad[3].must = "return time", bad[3].def.returns[3] = 33;
     bad[4].what = "a window with lo > hi", bad[4].must = "window", bad[4].def.window = (gb_proof_interval){0.2, -0.38};
     bad[5].what = "a band of zero width", bad[5].must = "strip", bad[5].def.strip = (gb_proof_interval){0.01, 0.01};
     bad[6].what = "65 strips", bad[6].must = "sets", bad[6].def.sets = 65;
     bad[7].what = "depth 31", bad[7].must = "depth", bad[7].def.depth = 31;
+    bad[9].what = "a centre line of curvature 1000", bad[9].must = "curvature", bad[9].def.curvature = 1000.0;
     bad[8].what = "a flow in R^3 for a map of the plane", bad[8].must = "dimension", bad[8].def.map = &three_d;
     int refused = 0;
     char first[300] = "";
@@ -246,7 +266,7 @@ static void test_returns_refused(void)
     const int times[2] = {1, 40};
     const int bound_refused =
         gb_proof_returns_entropy_bound(times, 2, &h) == GB_EDOM && strstr(gb_error_message(), "allowed");
-    gb_check c = {"-", "-", "returns across a rectangle: definitions out of range",
+    gb_check c = {"-", "-", "returns across a band: definitions out of range",
                   "GB_EDOM naming the field and its allowed range", "exact"};
     gb_check_true(&c, built && refused == BAD && bound_refused && default_refused,
                   "%d of %d definitions refused, a return time of 40 for the bound %s, the default's empty window %s%s",
@@ -260,7 +280,7 @@ int verify_register_s7_returns(void)
         {"returns: the renewal bound against closed forms", test_renewal_bound,
          "the entropy of strips with return times, proved on Arb, meets the roots of known renewal equations"},
         {"returns: the classical Henon map's strips", test_henon_returns,
-         "14 strips of a rectangle return across it under the classical Henon map, against floats iterated in the "
+         "21 strips of a band return across it under the classical Henon map, against floats iterated in the "
          "plane"},
         {"returns: negative controls", test_returns_controls,
          "a wrong return time, a strip cut at its middle and a band too narrow each lose their return"},
@@ -269,6 +289,5 @@ int verify_register_s7_returns(void)
         {"returns: definitions out of range", test_returns_refused, NULL},
         {NULL, NULL, NULL},
     };
-    return verify_register_suite("Proved on Arb's balls: strips returning across a rectangle (the renewal bound)",
-                                 tests);
+    return verify_register_suite("Proved on Arb's balls: strips returning across a band (the renewal bound)", tests);
 }
