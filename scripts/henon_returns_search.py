@@ -13,7 +13,7 @@ has one return time. Their return times m_i give h_top >= ln x, x the root above
 `gomboc prove` has proved the returns on Arb's balls. The scan over S, K, V and W keeps the largest root.
 
 Nothing here is a proof. Usage: python3 scripts/henon_returns_search.py [--scan]
-(a few seconds; --scan: about five minutes; numpy)
+(a few seconds; --scan: about two minutes; numpy)
 """
 import math
 import sys
