@@ -96,6 +96,10 @@ GB_API int gb_proof_pi_fraction(long num, long den, gb_proof_interval *out);
  * x outside its domain. */
 GB_API int gb_proof_encloses(const char *operation, double x, double y, double lo, double hi, int *holds);
 
+/* Frees the calling thread's caches of Arb and FLINT (constants such as π, kept per thread): a thread that proved
+ * something calls it before it ends. The CPU seconds the proofs report are their own thread's. */
+GB_API void gb_proof_thread_done(void);
+
 #ifdef __cplusplus
 }
 #endif

@@ -34,7 +34,7 @@ int gb_proof_body_axis(arb_ptr e, const double rocking[3], const double s0[3], s
 /* GB_EDOM naming the allowed range when precision is outside it. */
 int gb_proof_check_precision(long precision);
 
-/* CPU seconds of the process. */
+/* CPU seconds of the calling thread. */
 double gb_proof_cpu_seconds(void);
 
 #endif

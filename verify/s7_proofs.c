@@ -256,8 +256,10 @@ static void test_command(void)
     cJSON_Delete(root);
     static const struct {
         const char *args, *must;
-    } bad[] = {{"prove --precision 10", "--precision"}, {"prove --precision 100.5", "integer"}, {"prove --depth 41", "--depth"}, {"prove --depth=41", "1 to 40"},
-               {"prove --frobnicate", "--frobnicate"}, {"prove --precision 128 --precision 256", "twice"}};
+    } bad[] = {{"prove --precision 10", "--precision"}, {"prove --precision 100.5", "integer"},
+               {"prove --depth 41", "--depth"},         {"prove --depth=41", "1 to 40"},
+               {"prove --frobnicate", "--frobnicate"},  {"prove --precision 128 --precision 256", "twice"},
+               {"prove --threads 0", "--threads"},      {"prove --threads 2.5", "integer"}};
     int refused = 0;
     char first[300] = "";
     for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
