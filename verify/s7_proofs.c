@@ -273,11 +273,60 @@ static void test_command(void)
                   (int)(sizeof bad / sizeof bad[0]), first);
 }
 
+/* Equal JSON trees, except for the keys whose values are times (seconds, and the summaries that quote them). */
+static int same_apart_from_times(const cJSON *a, const cJSON *b)
+{
+    if (!a || !b || a->type != b->type) return 0;
+    if (cJSON_IsNumber(a)) return a->valuedouble == b->valuedouble;
+    if (cJSON_IsString(a)) return !strcmp(a->valuestring, b->valuestring);
+    if (!cJSON_IsArray(a) && !cJSON_IsObject(a)) return 1;
+    if (cJSON_GetArraySize(a) != cJSON_GetArraySize(b)) return 0;
+    for (const cJSON *x = a->child, *y = b->child; x && y; x = x->next, y = y->next) {
+        if (cJSON_IsObject(a) && strcmp(x->string, y->string)) return 0;
+        if (cJSON_IsObject(a) && (!strcmp(x->string, "seconds") || !strcmp(x->string, "summary"))) continue;
+        if (!same_apart_from_times(x, y)) return 0;
+    }
+    return 1;
+}
+
+/* verify-full: `gomboc prove --threads 1` states what the default (two threads on two cores) states. */
+static void test_command_threads(void)
+{
+    if (!gb_check_full) return;
+    static char one[1 << 18], two[1 << 18];
+    const int c1 = gb_check_command(binary(), "prove --json --threads 1", one, sizeof one);
+    const int c2 = gb_check_command(binary(), "prove --json --threads 2", two, sizeof two);
+    for (char *out[2] = {one, two}, **o = out; o < out + 2; o++) {
+        char *mark = strstr(*o, "@@exit=");
+        if (mark) *mark = '\0';
+    }
+    cJSON *r1 = cJSON_Parse(one), *r2 = cJSON_Parse(two);
+    const int same = r1 && r2 && same_apart_from_times(r1, r2);
+    const double listed = cJSON_GetArraySize(cJSON_GetObjectItem(r2, "statements"));
+    /* teeth: one number of one enclosure moved by an ulp must be told apart */
+    cJSON *moved = cJSON_Duplicate(r2, 1);
+    cJSON *last = cJSON_GetArrayItem(cJSON_GetObjectItem(moved, "statements"), (int)listed - 1);
+    cJSON *bound = cJSON_GetArrayItem(cJSON_GetObjectItem(cJSON_GetObjectItem(last, "enclosures"), "M"), 0);
+    if (bound) cJSON_SetNumberValue(bound, nextafter(bound->valuedouble, INFINITY));
+    const int told = bound && !same_apart_from_times(r2, moved);
+    cJSON_Delete(moved), cJSON_Delete(r1), cJSON_Delete(r2);
+    gb_check c = {
+        "-", "-", "gomboc prove --threads 1 against --threads 2 (verify-full)",
+        "every statement, enclosure and verdict the same; only the CPU seconds (and the summaries quoting them) "
+        "differ; the comparison tells an enclosure moved by one ulp apart",
+        "exact"};
+    gb_check_true(&c, c1 == c2 && (c1 == 0 || c1 == 1) && same && told && listed == 16,
+                  "exits %d and %d, %g statements, %s; Gomboc II's M moved by an ulp %s", c1, c2, listed,
+                  same ? "the same apart from times" : "THEY DIFFER", told ? "told apart" : "NOT told apart");
+}
+
 int verify_register_s7_proofs(void)
 {
     static const verify_test tests[] = {
-        {"proofs: the pendulum's and Duffing's Melnikov integrals enclosed, their closed forms met", test_oracle_integrals,
-         "the Melnikov integrals of the pendulum and of Duffing's oscillator are enclosed rigorously and hold their closed forms"},
+        {"proofs: the pendulum's and Duffing's Melnikov integrals enclosed, their closed forms met",
+         test_oracle_integrals,
+         "the Melnikov integrals of the pendulum and of Duffing's oscillator are enclosed rigorously and hold their "
+         "closed forms"},
         {"proofs: today's Melnikov tables lie within their error bars of the enclosures", test_tables_inside,
          "the non-rigorous Melnikov integrals are within their stated error of the rigorous enclosures"},
         {"proofs: the zero prover against closed forms, with a negative control at the threshold", test_zero_prover,
@@ -285,6 +334,8 @@ int verify_register_s7_proofs(void)
         {"proofs: gb_interval.h against Arb", test_interval_against_arb,
          "the certificate's interval arithmetic encloses the exact results Arb encloses"},
         {"proofs: gomboc prove", test_command, NULL},
+        {"proofs: gomboc prove on one thread and on two (verify-full)", test_command_threads,
+         "gomboc prove states the same on one thread and on two"},
         {NULL, NULL, NULL},
     };
     return verify_register_suite("Proved on Arb's balls: the Melnikov oracles (section 7)", tests);
