@@ -57,24 +57,34 @@ int main(int argc, char **argv)
     snprintf(key, sizeof key, "%s/key", key_dir);
     setenv("GOMBOC_KEY", key, 1);
     if (CU_initialize_registry() != CUE_SUCCESS) return 1;
-    if (verify_register_s0_verdicts() || verify_register_s2_surface() || verify_register_s2_massprops() ||
-        verify_register_s2_shape() || verify_register_s2_polyhedron() || verify_register_s2_bodies() ||
-        verify_register_s2_expression() || verify_register_s4_contact() || verify_register_s4_grid() ||
-        verify_register_s4_certify() || verify_register_s4_atlas() || verify_register_s5_dynamics() ||
-        verify_register_s5_references() || verify_register_s5_impact() || verify_register_s5_flight() ||
-        verify_register_s5_friction_impact() || verify_register_s5_friction() || verify_register_s5_compliant() ||
-        verify_register_s5_stepping() || verify_register_s6_estimators() || verify_register_s6_chaos() ||
-        verify_register_s6_diagnostics() || verify_register_s7_melnikov() || verify_register_s7_tangle() ||
-        verify_register_s7_proofs() || verify_register_s7_proofs_body() || verify_register_s7_covering() ||
-        verify_register_s7_returns() || verify_register_s8_scan() || verify_register_s8_scan_runs() ||
-        verify_register_s8_scan_atlas() || verify_register_s8_ensembles() || verify_register_siconos() ||
-        verify_register_command() || verify_register_python() || verify_register_surface() ||
-        verify_register_figures() || verify_register_bad_input() || verify_register_bad_input_bodies() ||
-        verify_register_bad_input_processes()) {
-        fprintf(stderr, "verify: cannot register suites: %s\n", CU_get_error_msg());
-        CU_cleanup_registry();
-        return 1;
-    }
+    static int (*const registrations[])(void) = {
+        verify_register_s0_verdicts,      verify_register_s2_surface,
+        verify_register_s2_massprops,     verify_register_s2_shape,
+        verify_register_s2_polyhedron,    verify_register_s2_bodies,
+        verify_register_s2_expression,    verify_register_s4_contact,
+        verify_register_s4_grid,          verify_register_s4_certify,
+        verify_register_s4_atlas,         verify_register_s5_dynamics,
+        verify_register_s5_references,    verify_register_s5_impact,
+        verify_register_s5_flight,        verify_register_s5_friction_impact,
+        verify_register_s5_friction,      verify_register_s5_compliant,
+        verify_register_s5_stepping,      verify_register_s6_estimators,
+        verify_register_s6_chaos,         verify_register_s6_diagnostics,
+        verify_register_s7_melnikov,      verify_register_s7_tangle,
+        verify_register_s7_proofs,        verify_register_s7_proofs_body,
+        verify_register_s7_covering,      verify_register_s7_returns,
+        verify_register_s8_scan,          verify_register_s8_scan_runs,
+        verify_register_s8_scan_atlas,    verify_register_s8_ensembles,
+        verify_register_siconos,          verify_register_command,
+        verify_register_python,           verify_register_surface,
+        verify_register_figures,          verify_register_bad_input,
+        verify_register_bad_input_bodies, verify_register_bad_input_processes,
+    };
+    for (size_t k = 0; k < sizeof registrations / sizeof registrations[0]; k++)
+        if (registrations[k]()) {
+            fprintf(stderr, "verify: cannot register suites: %s\n", CU_get_error_msg());
+            CU_cleanup_registry();
+            return 1;
+        }
     CU_basic_set_mode(CU_BRM_VERBOSE);
     if (only || test) {
         for (CU_pSuite suite = CU_get_registry()->pSuite; suite; suite = suite->pNext) {
