@@ -33,6 +33,14 @@ def input_errors(main):
         sys.exit(2)
 
 
+def is_number(value):
+    try:
+        float(value)
+        return True
+    except ValueError:
+        return False
+
+
 def load_table(path, required=(), text=()):
     """A CSV gomboc wrote, as a numpy structured array (a row a record, named columns): every row as long as the
     header, every value a number but those of the `text` columns, the `required` columns present and at least
@@ -52,22 +60,22 @@ def load_table(path, required=(), text=()):
             raise InputError(f"{path}:1: no column '{column}' (allowed: a file this gomboc wrote, whose header has it)")
     if len(rows) < 2:
         raise InputError(f"{path}:2: no rows after the header (allowed: at least one row)")
-    columns = {name: [] for name in header}
-    for line, row in enumerate(rows[1:], start=2):
-        if len(row) != len(header):
-            raise InputError(f"{path}:{line}: {len(row)} values where the header names {len(header)} columns")
-        for name, value in zip(header, row):
-            if name in text:
-                columns[name].append(value)
-                continue
-            try:
-                columns[name].append(float(value))
-            except ValueError:
-                raise InputError(f"{path}:{line}: column '{name}': '{value}' is not a number") from None
+    body = rows[1:]
     dtype = [(name, "U64" if name in text else "f8") for name in header]
-    table = numpy.zeros(len(rows) - 1, dtype=dtype)
-    for name in header:
-        table[name] = columns[name]
+    table = numpy.zeros(len(body), dtype=dtype)
+    try:
+        if any(len(row) != len(header) for row in body):
+            raise ValueError
+        for name, values in zip(header, zip(*body)):
+            table[name] = values if name in text else numpy.fromiter(map(float, values), float, len(body))
+    except ValueError:  # the first row that is too short or long, or the first value not a number, named
+        for line, row in enumerate(body, start=2):
+            if len(row) != len(header):
+                raise InputError(f"{path}:{line}: {len(row)} values where the header names {len(header)} columns") from None
+            for name, value in zip(header, row):
+                if name not in text and not is_number(value):
+                    raise InputError(f"{path}:{line}: column '{name}': '{value}' is not a number") from None
+        raise
     return table
 
 
