@@ -95,13 +95,6 @@ char *bad_input_snapshot(const char *dir)
     return out;
 }
 
-static int remove_entry(const char *path, const struct stat *st, int flag, struct FTW *ftw)
-{
-    (void)st, (void)flag, (void)ftw;
-    return remove(path);
-}
-void bad_input_remove_tree(const char *dir) { nftw(dir, remove_entry, 16, FTW_DEPTH | FTW_PHYS); }
-
 /* Run `command` (a shell fragment) in `dir`, its standard error and output captured in `out`. */
 int bad_input_run_in(const char *dir, const char *command, char *out, size_t cap)
 {
@@ -461,8 +454,7 @@ void bad_input_write_bytes(const char *path, const char *text, size_t len)
  * would change the directory, and never a file of the system such as /dev/null. */
 static void prepare(char *dir, const bad_row *row)
 {
-    strcpy(dir, "/tmp/gomboc-bad-XXXXXX");
-    if (!mkdtemp(dir)) return;
+    if (gb_check_tempdir("bad", dir, GB_CHECK_TEMPDIR_SIZE)) return;
     char path[512];
     snprintf(path, sizeof path, "%s/keep.txt", dir);
     bad_input_write_bytes(path, "a file the command must leave alone\n", 36);
@@ -502,7 +494,7 @@ int bad_input_row(const char *args, const char *env, const char *text, size_t te
                   const char *file_text, size_t file_len, int exit, const char *const must[3], char *out, size_t cap)
 {
     const bad_row row = {args, text, text_len, exit, {must[0], must[1], must[2]}};
-    char dir[64];
+    char dir[GB_CHECK_TEMPDIR_SIZE];
     prepare(dir, &row);
     if (file_name) {
         char path[256];
@@ -521,7 +513,7 @@ int bad_input_row(const char *args, const char *env, const char *text, size_t te
         if (must[m] && must[m][0] && !strstr(out, must[m])) named = 0;
     const int unchanged = !strcmp(before, after);
     free(before), free(after), free(expanded), free(command);
-    bad_input_remove_tree(dir);
+    gb_check_tempdir_remove(dir);
     return code == exit && named && unchanged;
 }
 
@@ -570,7 +562,7 @@ static void test_strict_but_fair(void)
     };
     for (size_t k = 0; k < sizeof good / sizeof good[0]; k++) {
         const bad_row row = {good[k].args, good[k].text, 0, 0, {NULL, NULL, NULL}};
-        char dir[64];
+        char dir[GB_CHECK_TEMPDIR_SIZE];
         prepare(dir, &row);
         char *args = expand(good[k].args, dir);
         size_t size = strlen(bad_input_binary()) + strlen(args) + 4;
@@ -585,12 +577,12 @@ static void test_strict_but_fair(void)
         gb_check c = {"-", "-", q, "exit 0 and the value as written", "exact"};
         gb_check_true(&c, code == 0 && strstr(out, good[k].expect), "exit %d: %.300s", code, out);
         free(args), free(command);
-        bad_input_remove_tree(dir);
+        gb_check_tempdir_remove(dir);
     }
 
     /* An output directory 1190 characters deep and a case file of 240 characters: no path is cut. */
-    char dir[64] = "/tmp/gomboc-long-XXXXXX";
-    if (!mkdtemp(dir)) return;
+    char dir[GB_CHECK_TEMPDIR_SIZE];
+    if (gb_check_tempdir("long", dir, sizeof dir)) return;
     char deep[1400];
     deep_directory(dir, 1180, deep, sizeof deep);
     char name[300];
@@ -609,7 +601,7 @@ static void test_strict_but_fair(void)
                    "file system", "exact"};
     gb_check_true(&cl, code == 0 && access(history, F_OK) == 0, "exit %d, %zu-character output path: %.200s", code,
                   strlen(history), out);
-    bad_input_remove_tree(dir);
+    gb_check_tempdir_remove(dir);
 }
 
 /* A run writes NAME-* outputs only through temporaries ".gomboc-PID-XXXXXX": none may survive a
@@ -625,9 +617,9 @@ int bad_input_count_temporaries(const char *dir)
 
 static void test_temporaries(void)
 {
-    char dir[64] = "/tmp/gomboc-temp-XXXXXX";
-    if (!mkdtemp(dir)) return;
-    char case_path[128];
+    char dir[GB_CHECK_TEMPDIR_SIZE];
+    if (gb_check_tempdir("temp", dir, sizeof dir)) return;
+    char case_path[320];
     snprintf(case_path, sizeof case_path, "%s/long.ini", dir);
     const char *scene = "[integrator]\nperiods = 100000\n[model]\ncontact = fast-grid\n";
     bad_input_write_bytes(case_path, scene, strlen(scene));
@@ -647,7 +639,7 @@ static void test_temporaries(void)
     int wstatus = 0;
     waitpid(child, &wstatus, 0);
     gb_check ct = {"-", "-", "SIGTERM during gomboc run: its temporary existed and is removed, no output appears", "file system", "exact"};
-    char history[160];
+    char history[320];
     snprintf(history, sizeof history, "%s/long-history.csv", dir);
     gb_check_true(&ct, seen && WIFSIGNALED(wstatus) && WTERMSIG(wstatus) == SIGTERM && bad_input_count_temporaries(dir) == 0 &&
                        access(history, F_OK) != 0,
@@ -657,21 +649,21 @@ static void test_temporaries(void)
     const pid_t gone = fork();
     if (gone == 0) _exit(0);
     waitpid(gone, NULL, 0);
-    char stale[160], other[160];
+    char stale[320], other[320];
     snprintf(stale, sizeof stale, "%s/.gomboc-%ld-Ab3dEf", dir, (long)gone);
     snprintf(other, sizeof other, "%s/.gomboc-notours", dir);
     bad_input_write_bytes(stale, "half", 4);
     bad_input_write_bytes(other, "not a temporary of ours", 23);
     const char *quick = "[integrator]\nperiods = 1\nsteps_per_period = 20\n[model]\ncontact = fast-grid\n";
     bad_input_write_bytes(case_path, quick, strlen(quick));
-    char command[400], out[4096];
+    char command[1024], out[4096];
     snprintf(command, sizeof command, "%s run '%s' --out '%s'", bad_input_binary(), case_path, dir);
     const int code = bad_input_run_in(dir, command, out, sizeof out);
     gb_check cs = {"-", "-", "a temporary left by a killed process is removed by the next run in its directory; other files stay",
                    "file system", "exact"};
     gb_check_true(&cs, code == 0 && access(stale, F_OK) != 0 && access(other, F_OK) == 0, "exit %d, stale %s, other %s", code,
                   access(stale, F_OK) ? "removed" : "LEFT", access(other, F_OK) ? "REMOVED" : "kept");
-    bad_input_remove_tree(dir);
+    gb_check_tempdir_remove(dir);
 }
 
 /* ---- the rule for every file written: inputs by identity, output sets, concurrent writers ---------- */
@@ -685,8 +677,8 @@ static int run_here(const char *dir, const char *args, char *out, size_t cap)
 
 static void test_outputs(void)
 {
-    char dir[64] = "/tmp/gomboc-out-XXXXXX";
-    if (!mkdtemp(dir)) return;
+    char dir[GB_CHECK_TEMPDIR_SIZE];
+    if (gb_check_tempdir("out", dir, sizeof dir)) return;
     char path[512], out[1 << 14];
     const char *atlas_scene = "[model]\nequation = rolling\ncontact = continuous\ncertificate = atlas\n[integrator]\nperiods = 1\n";
     snprintf(path, sizeof path, "%s/a.ini", dir);
@@ -847,7 +839,7 @@ static void test_outputs(void)
                    "exact"};
     gb_check_true(&cp, code == 2 && strstr(out, whole_path), "exit %d, %zu-character path, message of %zu characters", code,
                   strlen(deep) + 18, strlen(out));
-    bad_input_remove_tree(dir);
+    gb_check_tempdir_remove(dir);
 }
 
 /* cases/README.md states, for every key, the allowed values the reader enforces, in the same words. */

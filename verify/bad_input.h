@@ -16,7 +16,6 @@ int bad_input_row(const char *args, const char *env, const char *text, size_t te
 const char *bad_input_binary(void);
 int bad_input_run_in(const char *dir, const char *command, char *out, size_t cap);
 void bad_input_write_bytes(const char *path, const char *text, size_t len);
-void bad_input_remove_tree(const char *dir);
 char *bad_input_snapshot(const char *dir);
 int bad_input_count_temporaries(const char *dir);
 /* In a started command's child: SIGHUP, SIGINT, SIGQUIT, SIGTERM at their defaults, none blocked, then `ignored`

@@ -238,9 +238,9 @@ static void write_text(const char *path, const char *text)
  * centroid, computed again about the moved body, is its origin. */
 static void test_expression_centroid(void)
 {
-    char dir[64] = "/tmp/gomboc-r4-XXXXXX";
-    if (!mkdtemp(dir)) return;
-    char path[128], command[1024], out[1 << 14];
+    char dir[GB_CHECK_TEMPDIR_SIZE];
+    if (gb_check_tempdir("r4", dir, sizeof dir)) return;
+    char path[320], command[1024], out[1 << 14];
     snprintf(path, sizeof path, "%s/off.ini", dir);
     write_text(path, "[body]\nr = 0.5*sin(phi)*cos(theta) + sqrt(0.75 + (0.5*sin(phi)*cos(theta))^2)\n[forcing]\nA1 = 0\nA2 = 0\n"
                      "[model]\ncontact = fast-grid\ncontact_law = unilateral\ndamping = 0\n[integrator]\nlocate_switches = yes\n"
@@ -269,16 +269,16 @@ static void test_expression_centroid(void)
     gb_check_true(&c, code == 0 && spin < 0.1 && residual < 1e-6 && origin[0] < -0.09 && origin[0] > -0.11 && moved < 1e-9,
                   "exit %d; final |omega| %.3g rad/s; ledger %.3g J; egg's origin (%.12g, %.3g, %.3g), moved centroid %.3g m",
                   code, spin, residual, origin[0], origin[1], origin[2], moved);
-    bad_input_remove_tree(dir);
+    gb_check_tempdir_remove(dir);
 }
 
 /* (3) A scan's identity holds its base's mesh: a finished scan of a block, the block made twice as tall, --resume
  * starts anew (before: "nothing to resume", the small block's rows kept). */
 static void test_scan_mesh_identity(void)
 {
-    char dir[64] = "/tmp/gomboc-r4s-XXXXXX";
-    if (!mkdtemp(dir)) return;
-    char path[128], command[2048], out[1 << 14];
+    char dir[GB_CHECK_TEMPDIR_SIZE];
+    if (gb_check_tempdir("r4s", dir, sizeof dir)) return;
+    char path[320], command[2048], out[1 << 14];
     const char *bin = bad_input_binary();
     static const char *const block[2] = {"OFF\n8 6 0\n-0.1 -0.15 -0.4\n0.1 -0.15 -0.4\n-0.1 0.15 -0.4\n0.1 0.15 -0.4\n-0.1 -0.15 0.4\n"
                                          "0.1 -0.15 0.4\n-0.1 0.15 0.4\n0.1 0.15 0.4\n" CUBE_FACES,
@@ -302,7 +302,7 @@ static void test_scan_mesh_identity(void)
                   "not 'nothing to resume': the scan starts anew, its CSV the fresh scan's of the tall block and not the small "
                   "block's", "exact"};
     gb_check_true(&c, code == 0 && !strstr(out, "nothing to resume") && strstr(out, "SAME-AS-FRESH"), "exit %d: %.400s", code, out);
-    bad_input_remove_tree(dir);
+    gb_check_tempdir_remove(dir);
 }
 
 /* (14) A step too coarse that turns the body little: Table 1's Gömböc I under the unilateral law at 2 steps a
@@ -310,8 +310,8 @@ static void test_scan_mesh_identity(void)
  * own 160 steps is not. (15) A body given by r = 1e3 m: its mass properties' absolute target scales with it. */
 static void test_ledger_and_scale(void)
 {
-    char dir[64] = "/tmp/gomboc-r4l-XXXXXX";
-    if (!mkdtemp(dir)) return;
+    char dir[GB_CHECK_TEMPDIR_SIZE];
+    if (gb_check_tempdir("r4l", dir, sizeof dir)) return;
     char command[8192], out[1 << 15], here[1024];
     if (!getcwd(here, sizeof here)) snprintf(here, sizeof here, ".");
     snprintf(command, sizeof command, "cd %s && sed 's/^steps_per_period = .*/steps_per_period = 2/' %s/cases/table1-gomboc-I-unilateral.ini"
@@ -335,7 +335,7 @@ static void test_ledger_and_scale(void)
     gb_check cb = {"2", "53", "a body given by r = 1e3 m (a sphere): its volume", "4/3 pi 1e9 m^3",
                    "1e-10 relative: the quadrature's 1e-11 target per integral"};
     gb_check_close(&cb, v, sphere, 1e-10, 0.0);
-    bad_input_remove_tree(dir);
+    gb_check_tempdir_remove(dir);
 }
 
 int verify_register_bad_input_bodies(void)

@@ -45,9 +45,9 @@ static pid_t start_run(const char *dir, const char *case_path, int ignored)
 /* (3) A signal the parent ignored stays ignored: SIGHUP under nohup, SIGINT for a background job. */
 static void test_signals_ignored(void)
 {
-    char dir[64] = "/tmp/gomboc-sig-XXXXXX";
-    if (!mkdtemp(dir)) return;
-    char case_path[128];
+    char dir[GB_CHECK_TEMPDIR_SIZE];
+    if (gb_check_tempdir("sig", dir, sizeof dir)) return;
+    char case_path[320];
     snprintf(case_path, sizeof case_path, "%s/long.ini", dir);
     bad_input_write_bytes(case_path, long_scene, strlen(long_scene));
     static const int signals[] = {SIGHUP, SIGINT};
@@ -71,15 +71,15 @@ static void test_signals_ignored(void)
     gb_check c = {"-", "-", "gomboc run with SIGHUP ignored by its parent (nohup), then with SIGINT ignored (a background job)",
                   "the signal changes nothing; SIGTERM still ends the run and removes its temporaries", "exact"};
     gb_check_true(&c, kept == 2, "%s", report);
-    bad_input_remove_tree(dir);
+    gb_check_tempdir_remove(dir);
 }
 
 /* (4) A lock held by another process is waited for a bounded time, then named; the run says so before its
  * computation. */
 static void test_lock_bounded(void)
 {
-    char dir[64] = "/tmp/gomboc-lock-XXXXXX";
-    if (!mkdtemp(dir)) return;
+    char dir[GB_CHECK_TEMPDIR_SIZE];
+    if (gb_check_tempdir("lock", dir, sizeof dir)) return;
     char path[256], out[4096], command[1024];
     snprintf(path, sizeof path, "%s/a.ini", dir);
     const char *atlas_scene = "[model]\nequation = rolling\ncontact = continuous\ncertificate = atlas\n[integrator]\nperiods = 1\n";
@@ -104,16 +104,16 @@ static void test_lock_bounded(void)
                        before && after && !strcmp(before, after) && freed == 0,
                   "exit %d after %.2f s (then %d once free): %.300s", code, seconds, freed, out);
     free(before), free(after);
-    bad_input_remove_tree(dir);
+    gb_check_tempdir_remove(dir);
 }
 
 /* (5) A temporary whose writer lives where its PID cannot be seen (another PID namespace, another host on
  * NFS): its lock says it is alive, and it is left; once the lock goes, the next run removes it. */
 static void test_foreign_temporary(void)
 {
-    char dir[64] = "/tmp/gomboc-ns-XXXXXX";
-    if (!mkdtemp(dir)) return;
-    char case_path[128], temp[160], command[512], out[4096];
+    char dir[GB_CHECK_TEMPDIR_SIZE];
+    if (gb_check_tempdir("ns", dir, sizeof dir)) return;
+    char case_path[320], temp[320], command[512], out[4096];
     snprintf(case_path, sizeof case_path, "%s/quick.ini", dir);
     const char *quick = "[integrator]\nperiods = 1\nsteps_per_period = 20\n[model]\ncontact = fast-grid\n";
     bad_input_write_bytes(case_path, quick, strlen(quick));
@@ -134,16 +134,16 @@ static void test_foreign_temporary(void)
     gb_check_true(&c, locked && live == 0 && kept && gone == 0 && removed, "locked %d; run exit %d, temporary %s; after its "
                   "lock went: run exit %d, temporary %s", locked, live, kept ? "kept" : "REMOVED", gone,
                   removed ? "removed" : "LEFT");
-    bad_input_remove_tree(dir);
+    gb_check_tempdir_remove(dir);
 }
 
 /* (8, 14) Files limited to 4 KiB (ulimit -f, RLIMIT_FSIZE): the write fails with EFBIG, which the run
  * reports as any failed write (exit 1, naming the file), with no temporary left and nothing written. */
 static void test_file_size_limit(void)
 {
-    char dir[64] = "/tmp/gomboc-fsize-XXXXXX";
-    if (!mkdtemp(dir)) return;
-    char case_path[128], log[160];
+    char dir[GB_CHECK_TEMPDIR_SIZE];
+    if (gb_check_tempdir("fsize", dir, sizeof dir)) return;
+    char case_path[320], log[320];
     snprintf(case_path, sizeof case_path, "%s/l.ini", dir);
     snprintf(log, sizeof log, "%s/../%s.log", dir, strrchr(dir, '/') + 1);
     const char *scene = "[model]\ncontact = fast-grid\n[integrator]\nperiods = 20\n[diagnostics]\nlyapunov = yes\n";
@@ -171,15 +171,15 @@ static void test_file_size_limit(void)
                   WIFEXITED(wstatus) ? WEXITSTATUS(wstatus) : WTERMSIG(wstatus), bad_input_count_temporaries(dir),
                   before && after && !strcmp(before, after) ? "unchanged" : "CHANGED", message ? message : "(none)");
     free(before), free(after), free(message);
-    bad_input_remove_tree(dir);
+    gb_check_tempdir_remove(dir);
 }
 
 /* (18) Two runs of one scene name, from two directories, into one output directory at once: each set is
  * renamed into place with the directory locked, so the outputs are one whole set, whichever came last. */
 static void test_concurrent_runs(void)
 {
-    char dir[64] = "/tmp/gomboc-race-XXXXXX";
-    if (!mkdtemp(dir)) return;
+    char dir[GB_CHECK_TEMPDIR_SIZE];
+    if (gb_check_tempdir("race", dir, sizeof dir)) return;
     char path[256], out[8192], command[2048];
     static const char *const scenes[2] = {
         "[integrator]\nperiods = 2\nsteps_per_period = 40\n[model]\ncontact = fast-grid\n[diagnostics]\nstrobe = yes\n"
@@ -204,15 +204,15 @@ static void test_concurrent_runs(void)
     gb_check c = {"-", "-", "two runs of one scene name (2 and 3 periods, history, strobe, spectrum) into one directory at once, "
                   "12 trials", "both exit 0 and gomboc check finds the set whole, every trial", "exact"};
     gb_check_true(&c, whole == trials, "%d of %d trials whole: %.300s", whole, trials, out);
-    bad_input_remove_tree(dir);
+    gb_check_tempdir_remove(dir);
 }
 
 /* The rest: a cache sealed under another key, an axis the base refuses, a FIFO beside a run's outputs, a
  * step too coarse for the spin, and (6) the impact of two points 1e-15 apart. */
 static void test_round3_runs(void)
 {
-    char dir[64] = "/tmp/gomboc-r3-XXXXXX";
-    if (!mkdtemp(dir)) return;
+    char dir[GB_CHECK_TEMPDIR_SIZE];
+    if (gb_check_tempdir("r3", dir, sizeof dir)) return;
     char path[256], out[8192], command[2048];
     /* (7) a hull sealed under another user's key is rebuilt, as a damaged one is */
     snprintf(path, sizeof path, "%s/h.ini", dir);
@@ -313,7 +313,7 @@ static void test_round3_runs(void)
                        strstr(out, "the step is too coarse for the body's spin") && strstr(out, "energy ledger drifted"),
                   "exit %d, %d impacts, the most negative normal impulse %.3g of %.3g: %.200s", dropped, rows, worst, scale,
                   strstr(out, "warning") ? strstr(out, "warning") : out);
-    bad_input_remove_tree(dir);
+    gb_check_tempdir_remove(dir);
 }
 
 

@@ -50,8 +50,8 @@ static void test_json_keys_and_determinism(void)
 
 static void test_failed_write_leaves_nothing(void)
 {
-    char dir[] = "/tmp/gomboc-verify-XXXXXX";
-    if (!mkdtemp(dir)) return;
+    char dir[GB_CHECK_TEMPDIR_SIZE];
+    if (gb_check_tempdir("verify", dir, sizeof dir)) return;
     char path[256], args[512], out[8192] = "";
     snprintf(path, sizeof path, "%s/missing-folder/map.csv", dir);
     snprintf(args, sizeof args, "shape --morphology I --beta 0.02 --radial-map %s", path);
@@ -98,7 +98,7 @@ static void test_failed_write_leaves_nothing(void)
                   written, rows, equal);
     gb_contact_grid_free(grid);
     remove(path);
-    rmdir(dir);
+    gb_check_tempdir_remove(dir);
 }
 
 /* Run a contact query and parse its JSON (NULL on failure). */
@@ -235,8 +235,8 @@ static int same_three(const int code[3], char prints[3][32])
  * file) leaves the run as it was. */
 static void test_run_cache(void)
 {
-    char dir[] = "/tmp/gomboc-cache-XXXXXX";
-    if (!mkdtemp(dir)) return;
+    char dir[GB_CHECK_TEMPDIR_SIZE];
+    if (gb_check_tempdir("cache", dir, sizeof dir)) return;
     char scene[256], cache[300], blocked[300], prints[3][32];
     write_case(dir, "short", SHORT_SCENE, scene, sizeof scene);
     snprintf(cache, sizeof cache, "%s/cache", dir);
@@ -254,7 +254,7 @@ static void test_run_cache(void)
     gb_check_true(&c, same_three(code, prints) && files == 1 && loaded[0] == 0 && loaded[1] == 1 && loaded[2] == 0,
                   "exit %d %d %d; loaded %d %d %d; %d hull file(s) in the cache; fingerprints %s %s %s", code[0], code[1], code[2],
                   loaded[0], loaded[1], loaded[2], files, prints[0], prints[1], prints[2]);
-    bad_input_remove_tree(dir);
+    gb_check_tempdir_remove(dir);
 }
 
 /* The mass properties in the user's cache: written by the first run of a paper body, read by the next; a file whose
@@ -273,8 +273,8 @@ static int massprops_loaded(int code, const char *out, char *fingerprint, size_t
 
 static void test_run_massprops_cache(void)
 {
-    char dir[] = "/tmp/gomboc-massprops-XXXXXX";
-    if (!mkdtemp(dir)) return;
+    char dir[GB_CHECK_TEMPDIR_SIZE];
+    if (gb_check_tempdir("massprops", dir, sizeof dir)) return;
     static const char *const own = "[body]\nchi = theta - 5 * phi\nbeta = 0.12\n[integrator]\nsteps_per_period = 40\n"
                                    "periods = 1\n[model]\ncontact = fast-grid\n";
     char scene[256], mine[256], cache[300], prints[4][32], path[400] = "";
@@ -331,15 +331,15 @@ static void test_run_massprops_cache(void)
                   "exit %d %d %d %d; loaded %d %d %d %d; files %d then %d, changed %d; fingerprints %s %s %s", code[0], code[1],
                   code[2], code[3], loaded[0], loaded[1], loaded[2], loaded[3], files, after, changed, prints[0], prints[1],
                   prints[2]);
-    bad_input_remove_tree(dir);
+    gb_check_tempdir_remove(dir);
 }
 
 /* The atlas of a `certificate = atlas` run in the user's cache: its cells proved by the first run, read by the next
  * (none proved again), the same state bits; with --atlas FILE the named file is used and the cache gains none. */
 static void test_run_atlas_cache(void)
 {
-    char dir[] = "/tmp/gomboc-atlascache-XXXXXX";
-    if (!mkdtemp(dir)) return;
+    char dir[GB_CHECK_TEMPDIR_SIZE];
+    if (gb_check_tempdir("atlascache", dir, sizeof dir)) return;
     static const char *const text = "[body]\nmorphology = II\n[model]\nequation = rolling\ncontact = continuous\n"
                                     "certificate = atlas\n[initial]\nomega = 1.3,-0.7,0.4\n[integrator]\nsteps_per_period = 40\n"
                                     "periods = 1\nlocate_switches = yes\n";
@@ -377,15 +377,15 @@ static void test_run_atlas_cache(void)
                   "exit %d %d %d; loaded %d %d %d; build seconds %.3g %.3g; %d atlas file(s) in the cache, named file %s; "
                   "fingerprints %s %s %s", code[0], code[1], code[2], loaded[0], loaded[1], loaded[2], built[0], built[1], files,
                   named_written ? "written" : "missing", prints[0], prints[1], prints[2]);
-    bad_input_remove_tree(dir);
+    gb_check_tempdir_remove(dir);
 }
 
 /* --hull FILE: the first run builds the hull and writes it, the next reads it, a damaged file is built anew
  * and replaced; the same state bits every time. */
 static void test_run_hull(void)
 {
-    char dir[] = "/tmp/gomboc-hull-XXXXXX";
-    if (!mkdtemp(dir)) return;
+    char dir[GB_CHECK_TEMPDIR_SIZE];
+    if (gb_check_tempdir("hull", dir, sizeof dir)) return;
     char scene[256], hull[300], prints[4][32];
     write_case(dir, "short", SHORT_SCENE, scene, sizeof scene);
     snprintf(hull, sizeof hull, "%s/II.hull", dir);
@@ -406,13 +406,13 @@ static void test_run_hull(void)
                   loaded[1], loaded[2], loaded[3], prints[0], prints[1], prints[2], prints[3]);
     char summary[300];
     snprintf(summary, sizeof summary, "%s/short-summary.json", dir);
-    remove(summary), remove(hull), remove(scene), rmdir(dir);
+    remove(summary), remove(hull), remove(scene), gb_check_tempdir_remove(dir);
 }
 
 static void test_run_command(void)
 {
-    char dir[] = "/tmp/gomboc-run-XXXXXX";
-    if (!mkdtemp(dir)) return;
+    char dir[GB_CHECK_TEMPDIR_SIZE];
+    if (gb_check_tempdir("run", dir, sizeof dir)) return;
     /* A good short scene, twice: identical bytes; history = no writes no history. */
     char path[256], args[600], out[1 << 14] = "", first[1 << 14], second[1 << 14];
     write_case(dir, "short", SHORT_SCENE, path, sizeof path);
@@ -482,7 +482,7 @@ static void test_run_command(void)
                   "%d values", running ? cJSON_GetArraySize(running) : -1);
     cJSON_Delete(root);
     remove(path);
-    rmdir(dir);
+    gb_check_tempdir_remove(dir);
 }
 
 /* The command's conventions: --version, --option=value as --option value, help TOPIC as TOPIC --help. */
@@ -553,8 +553,8 @@ static void header_of(const char *path, char *out, size_t size)
  * friction, and the scan's header from the library's own list. */
 static void test_outputs_documented(void)
 {
-    char dir[] = "/tmp/gomboc-columns-XXXXXX";
-    if (!mkdtemp(dir)) return;
+    char dir[GB_CHECK_TEMPDIR_SIZE];
+    if (gb_check_tempdir("columns", dir, sizeof dir)) return;
     static const char *const scene_text =
         "[body]\nmorphology = I\nbeta = 0.12\n[forcing]\nA1 = 19.62\nA2 = 9.81\n[integrator]\nsteps_per_period = 40\n"
         "periods = 8\nlocate_switches = yes\n[model]\ncontact = fast-grid\ncontact_law = unilateral\n%s"
@@ -601,7 +601,7 @@ static void test_outputs_documented(void)
     documented_columns("NAME-scan.csv", documented, sizeof documented);
     gb_check cs = {"8", "-", "NAME-scan.csv: every column in docs/outputs.md, in order", "gb_scan's list of columns", "exact"};
     gb_check_true(&cs, !strcmp(written, documented), "written '%.300s'; documented '%.300s'", written, documented);
-    rmdir(dir);
+    gb_check_tempdir_remove(dir);
 }
 
 /* `gomboc help` names every command the program runs: each word a command accepts ("gomboc WORD --help"

@@ -15,7 +15,7 @@
  *   legend, no marker cut by an axes' edge, nothing within 3 pixels of anything else, whole ticks on an index,
  *   every axes labelled), and the paper's figure numbers in the titles; a λ map's points whose sign is not known
  *   dotted, counted against the CSV;
- * The commands run in a directory of their own under /tmp. */
+ * The commands run in a directory of their own under TMPDIR (/tmp when unset). */
 #include "gb_check.h"
 #include "gb_dynamics.h"
 #include "verify_sections.h"
@@ -73,13 +73,6 @@ static double before(const char *title, const char *mark)
     return p < at ? strtod(p, NULL) : NAN;
 }
 
-static void clean(const char *dir)
-{
-    char command[600];
-    snprintf(command, sizeof command, "rm -rf '%s'", dir);
-    if (system(command)) return;
-}
-
 /* Run a reports/ script (its arguments in `args`) and record that it ran; 0 when it did. */
 static int script(const char *args, const char *what, char *out, size_t cap)
 {
@@ -116,8 +109,8 @@ static void layout_tally(const cJSON *fig, const char *file, layout_count *count
 
 static void test_figures(void)
 {
-    char dir[] = "/tmp/gomboc-figures-XXXXXX";
-    if (!mkdtemp(dir)) return;
+    char dir[GB_CHECK_TEMPDIR_SIZE];
+    if (gb_check_tempdir("figures", dir, sizeof dir)) return;
     char args[1024], out[8192];
     int code = 0;
     static const char *const scenes[2] = {"cases/table1-gomboc-I.ini", "cases/bodies/housner-block.ini"};
@@ -142,7 +135,7 @@ static void test_figures(void)
     gb_check_true(&runs, code == 0, "exit %d: %.300s", code, out);
     snprintf(args, sizeof args, "reports/run_report.py %s table1-gomboc-I housner-block --page page.md", dir);
     if (code || script(args, "run_report.py on table1-gomboc-I and housner-block", out, sizeof out)) {
-        clean(dir);
+        gb_check_tempdir_remove(dir);
         return;
     }
     cJSON *s1 = read_json(dir, "table1-gomboc-I-summary.json"), *s2 = read_json(dir, "housner-block-summary.json");
@@ -240,15 +233,15 @@ static void test_figures(void)
                   first_long);
     cJSON_Delete(s1), cJSON_Delete(s2), cJSON_Delete(m1), cJSON_Delete(m2);
     free(page);
-    clean(dir);
+    gb_check_tempdir_remove(dir);
 }
 
 /* The report writers against bad input: a malformed CSV is one line naming the file, row and column, exit 2,
  * never a traceback; a link at an output's name is replaced, never written through. */
 static void test_writers_bad_input(void)
 {
-    char dir[] = "/tmp/gomboc-writers-XXXXXX";
-    if (!mkdtemp(dir)) return;
+    char dir[GB_CHECK_TEMPDIR_SIZE];
+    if (gb_check_tempdir("writers", dir, sizeof dir)) return;
     char args[1024], out[8192], path[700];
     snprintf(args, sizeof args, "run cases/bodies/housner-block.ini --out %s", dir);
     const int ran = gb_check_command(gomboc(), args, out, sizeof out);
@@ -323,7 +316,7 @@ static void test_writers_bad_input(void)
     gb_check_true(&cl, linked == 0 && code == 0 && replaced && kept && !strcmp(kept, "keep"), "exit %d, %s, target %s: %.200s", code,
                   replaced ? "replaced" : "not replaced", kept && !strcmp(kept, "keep") ? "unchanged" : "CHANGED", out);
     free(kept), free(history);
-    clean(dir);
+    gb_check_tempdir_remove(dir);
 }
 
 /* ---- the animation ---------------------------------------------------------------------------------- */
@@ -406,8 +399,8 @@ static double delay_drift(const cJSON *a, int *frames)
 
 static void test_animation(void)
 {
-    char dir[] = "/tmp/gomboc-animation-XXXXXX";
-    if (!mkdtemp(dir)) return;
+    char dir[GB_CHECK_TEMPDIR_SIZE];
+    if (gb_check_tempdir("animation", dir, sizeof dir)) return;
     char args[1024], out[8192];
     snprintf(args, sizeof args, "run cases/table1-gomboc-I-unilateral.ini --out %s", dir);
     int code = gb_check_command(gomboc(), args, out, sizeof out);
@@ -426,7 +419,7 @@ static void test_animation(void)
     if (planted) fputs("a user's own file", planted), fclose(planted);
     snprintf(args, sizeof args, "reports/animate.py %s table1-gomboc-I-unilateral --surface %s/map.csv --seconds 1 --fps 10", dir, dir);
     if (code || script(args, "animate.py on table1-gomboc-I-unilateral (1 s, 10 frames a second)", out, sizeof out)) {
-        clean(dir);
+        gb_check_tempdir_remove(dir);
         return;
     }
     char *kept = gb_check_read_file(has_ffmpeg ? own_gif : own_mp4);
@@ -493,15 +486,15 @@ static void test_animation(void)
     gb_check_true(&cv, with > 0 && shown == with, "%d of %d frames show it (worst channel distance %.0f)", shown, with, worst);
     cJSON_Delete(a);
     free(h.text), free(h.rows);
-    clean(dir);
+    gb_check_tempdir_remove(dir);
 }
 
 /* Fig 1 (reports/shape_report.py) measured as a reader sees it; and a scan's λ map saying where its sign is not
  * known (reports/plot_scan.py: a dot where |λ| ≤ 2 lambda_error), counted against the CSV it was drawn from. */
 static void test_figure_one_and_maps(void)
 {
-    char dir[] = "/tmp/gomboc-figure-one-XXXXXX";
-    if (!mkdtemp(dir)) return;
+    char dir[GB_CHECK_TEMPDIR_SIZE];
+    if (gb_check_tempdir("figure-one", dir, sizeof dir)) return;
     char args[1024], out[8192];
     snprintf(args, sizeof args, "shape --scene cases/table1-gomboc-I.ini --json --radial-map %s/radial-map-table1-gomboc-I.csv "
              "> %s/shape-table1-gomboc-I.json", dir, dir);
@@ -543,7 +536,7 @@ static void test_figure_one_and_maps(void)
                       "the count from the CSV it was drawn from", "exact"};
         gb_check_true(&c, dotted == unsure && of == 12, "%d of %d dotted, %d expected", dotted, of, unsure);
     }
-    clean(dir);
+    gb_check_tempdir_remove(dir);
 }
 
 /* The body in motion for bodies of one's own: the die (a mesh: its hull's faces from gomboc shape --faces) and an egg
@@ -551,8 +544,8 @@ static void test_figure_one_and_maps(void)
  * visible, the lowest drawn point where the body touches, and a GIF's frame times as the rate asked. */
 static void test_animation_bodies(void)
 {
-    char dir[] = "/tmp/gomboc-animation-bodies-XXXXXX";
-    if (!mkdtemp(dir)) return;
+    char dir[GB_CHECK_TEMPDIR_SIZE];
+    if (gb_check_tempdir("animation-bodies", dir, sizeof dir)) return;
     char args[1024], out[8192];
     snprintf(args, sizeof args, "run cases/bodies/die-drop.ini --out %s 2>&1 > /dev/null && %s shape --scene cases/bodies/die-drop.ini "
              "--faces %s/faces-die-drop.csv > /dev/null", dir, gomboc(), dir);
@@ -578,7 +571,7 @@ static void test_animation_bodies(void)
                      "exit 0", "exact"};
     gb_check_true(&runs, code == 0 && body && contact, "exit %d: %.300s", code, out);
     if (code || !body || !contact) {
-        clean(dir);
+        gb_check_tempdir_remove(dir);
         return;
     }
     static const char *const names[2] = {"die-drop", "egg"};
@@ -628,15 +621,15 @@ static void test_animation_bodies(void)
         cJSON_Delete(a);
         free(h.text), free(h.rows);
     }
-    clean(dir);
+    gb_check_tempdir_remove(dir);
 }
 
 /* A run on a plane of finite friction: its page states the summary's sliding section (μ, the time sliding, the slips
  * and sticks, friction's work) in the summary's own numbers. */
 static void test_friction_on_page(void)
 {
-    char dir[] = "/tmp/gomboc-friction-page-XXXXXX";
-    if (!mkdtemp(dir)) return;
+    char dir[GB_CHECK_TEMPDIR_SIZE];
+    if (gb_check_tempdir("friction-page", dir, sizeof dir)) return;
     char args[800], out[8192];
     snprintf(args, sizeof args, "run cases/bodies/coin-friction.ini --out %s", dir);
     const int code = gb_check_command(gomboc(), args, out, sizeof out);
@@ -646,7 +639,7 @@ static void test_friction_on_page(void)
                   "exact: the same numbers as printed from the summary"};
     if (code || script(args, "run_report.py on coin-friction", out, sizeof out)) {
         gb_check_true(&c, 0, "exit %d: %.300s", code, out);
-        clean(dir);
+        gb_check_tempdir_remove(dir);
         return;
     }
     cJSON *summary = read_json(dir, "coin-friction-summary.json");
@@ -664,15 +657,15 @@ static void test_friction_on_page(void)
                   page && strstr(page, expected) ? "found" : "missing");
     free(page);
     cJSON_Delete(summary);
-    clean(dir);
+    gb_check_tempdir_remove(dir);
 }
 
 /* A body at rest with λ and its windows (Housner's block standing on its face, 24 periods, windows of 2): the page's λ
  * lines say what the record says, not a chaos that "lasts to period 0". */
 static void test_rest_on_page(void)
 {
-    char dir[] = "/tmp/gomboc-rest-page-XXXXXX";
-    if (!mkdtemp(dir)) return;
+    char dir[GB_CHECK_TEMPDIR_SIZE];
+    if (gb_check_tempdir("rest-page", dir, sizeof dir)) return;
     char path[300], args[800], out[8192];
     snprintf(path, sizeof path, "%s/rest.ini", dir);
     FILE *f = fopen(path, "w");
@@ -691,7 +684,7 @@ static void test_rest_on_page(void)
                   "lasts to period 0) and, where the record is not converged, why", "exact"};
     if (code || script(args, "run_report.py on a body at rest", out, sizeof out)) {
         gb_check_true(&c, 0, "exit %d: %.300s", code, out);
-        clean(dir);
+        gb_check_tempdir_remove(dir);
         return;
     }
     cJSON *summary = read_json(dir, "rest-summary.json");
@@ -705,7 +698,7 @@ static void test_rest_on_page(void)
                   none ? "no window chaotic" : "WRONG", converged, why ? "" : ", no reason given");
     free(page);
     cJSON_Delete(summary);
-    clean(dir);
+    gb_check_tempdir_remove(dir);
 }
 
 int verify_register_figures(void)

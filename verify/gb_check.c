@@ -4,11 +4,14 @@
 
 #include <CUnit/CUnit.h>
 #include <cjson/cJSON.h>
+#include <errno.h>
+#include <ftw.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -16,6 +19,10 @@ const char *gb_check_data_dir = ".";
 int gb_check_full = 0;
 static cJSON *rows, *tests;
 static double last_time;
+/* In a second process (gb_check_second_process): each row keeps the message and label its assertion had, and the
+ * tests that ran to their end are listed, for the first process to replay (gb_check_replay). */
+static int second_process;
+static cJSON *completed;
 
 static double now(void)
 {
@@ -59,7 +66,50 @@ static cJSON *assert_and_record(const gb_check *c, const char *kind, int passed,
 {
     if (!passed) fprintf(stdout, "\n%s %s:%d %s\n", label, file, line, message);
     CU_assertImplementation(passed ? CU_TRUE : CU_FALSE, (unsigned)line, message, file, "", CU_FALSE);
-    return new_row(c, kind, passed, seconds, file, line);
+    cJSON *row = new_row(c, kind, passed, seconds, file, line);
+    if (second_process) cJSON_AddStringToObject(row, "message", message), cJSON_AddStringToObject(row, "label", label);
+    return row;
+}
+
+void gb_check_second_process(void) { second_process = 1; }
+
+void gb_check_test_end(void)
+{
+    if (!second_process) return;
+    if (!completed) completed = cJSON_CreateArray();
+    cJSON *t = cJSON_CreateObject();
+    cJSON_AddStringToObject(t, "suite", CU_get_current_suite() ? CU_get_current_suite()->pName : "");
+    cJSON_AddStringToObject(t, "test", CU_get_current_test() ? CU_get_current_test()->pName : "");
+    cJSON_AddItemToArray(completed, t);
+}
+
+static int names_test(const cJSON *item, const char *suite, const char *test)
+{
+    return !strcmp(cJSON_GetStringValue(cJSON_GetObjectItem(item, "suite")) ?: "", suite) &&
+           !strcmp(cJSON_GetStringValue(cJSON_GetObjectItem(item, "test")) ?: "", test);
+}
+
+int gb_check_replay(const cJSON *document, const char *suite, const char *test)
+{
+    const cJSON *row, *done;
+    cJSON_ArrayForEach(row, cJSON_GetObjectItem(document, "rows"))
+    {
+        if (!names_test(row, suite, test)) continue;
+        const int passed = cJSON_IsTrue(cJSON_GetObjectItem(row, "passed"));
+        const char *file = cJSON_GetStringValue(cJSON_GetObjectItem(row, "file")) ?: "?",
+                   *message = cJSON_GetStringValue(cJSON_GetObjectItem(row, "message")) ?: "",
+                   *label = cJSON_GetStringValue(cJSON_GetObjectItem(row, "label")) ?: "FAILED";
+        const int line = (int)cJSON_GetNumberValue(cJSON_GetObjectItem(row, "line"));
+        if (!passed) fprintf(stdout, "\n%s %s:%d %s\n", label, file, line, message);
+        CU_assertImplementation(passed ? CU_TRUE : CU_FALSE, (unsigned)line, message, file, "", CU_FALSE);
+        cJSON *kept = cJSON_Duplicate(row, 1);
+        cJSON_DeleteItemFromObject(kept, "message");
+        cJSON_DeleteItemFromObject(kept, "label");
+        if (!rows) rows = cJSON_CreateArray();
+        cJSON_AddItemToArray(rows, kept);
+    }
+    cJSON_ArrayForEach(done, cJSON_GetObjectItem(document, "completed")) if (names_test(done, suite, test)) return 1;
+    return 0;
 }
 
 /* JSON has no NaN or infinity: those go as strings. */
@@ -173,10 +223,63 @@ int gb_check_register_test(const char *suite, const char *test, const char *esta
     return 0;
 }
 
+static struct {
+    char *suite;
+    int rank;
+} * ranks;
+static size_t rank_count;
+
+void gb_check_suite_rank(const char *suite, int rank)
+{
+    void *grown = realloc(ranks, (rank_count + 1) * sizeof *ranks);
+    if (!grown) return;
+    ranks = grown;
+    ranks[rank_count].suite = strdup(suite);
+    ranks[rank_count].rank = rank;
+    if (ranks[rank_count].suite) rank_count++;
+}
+
+static int rank_of(const cJSON *item)
+{
+    const char *suite = cJSON_GetStringValue(cJSON_GetObjectItem(item, "suite"));
+    for (size_t k = 0; suite && k < rank_count; k++)
+        if (!strcmp(ranks[k].suite, suite)) return ranks[k].rank;
+    return 1 << 30;
+}
+
+/* Reorder `array`'s items by their suite's rank, keeping the order within a rank (an insertion into runs by rank). */
+static void order_by_suite(cJSON *array)
+{
+    const int n = cJSON_GetArraySize(array);
+    if (!rank_count || n < 2) return;
+    cJSON **items = malloc((size_t)n * sizeof *items);
+    int *keys = malloc((size_t)n * sizeof *keys);
+    if (!items || !keys) {
+        free(items), free(keys);
+        return;
+    }
+    for (int k = n - 1; k >= 0; k--) items[k] = cJSON_DetachItemFromArray(array, k);
+    for (int k = 0; k < n; k++) keys[k] = rank_of(items[k]);
+    for (int k = 1; k < n; k++) { /* stable insertion sort on runs: the items are already sorted within a suite */
+        cJSON *item = items[k];
+        const int key = keys[k];
+        int j = k - 1;
+        while (j >= 0 && keys[j] > key) items[j + 1] = items[j], keys[j + 1] = keys[j], j--;
+        items[j + 1] = item, keys[j + 1] = key;
+    }
+    for (int k = 0; k < n; k++) cJSON_AddItemToArray(array, items[k]);
+    free(items), free(keys);
+}
+
 int gb_check_write(const char *path)
 {
+    order_by_suite(tests);
+    order_by_suite(rows);
     cJSON *document = cJSON_CreateObject();
     cJSON_AddNumberToObject(document, "schema", GB_CHECK_SCHEMA);
+    if (second_process)
+        cJSON_AddItemReferenceToObject(document, "completed",
+                                       completed ? completed : (completed = cJSON_CreateArray()));
     cJSON_AddItemReferenceToObject(document, "tests", tests ? tests : (tests = cJSON_CreateArray()));
     cJSON_AddItemReferenceToObject(document, "rows", rows ? rows : (rows = cJSON_CreateArray()));
     char *text = cJSON_Print(document);
@@ -269,4 +372,60 @@ char *gb_check_read_file(const char *path)
     if (text) text[n] = '\0';
     fclose(f);
     return text;
+}
+
+/* The directories gb_check_tempdir made, in order (a test makes a few; the harness a few hundred at most). */
+static char **made;
+static size_t made_count;
+
+int gb_check_tempdir(const char *tag, char *dir, size_t size)
+{
+    const char *base = getenv("TMPDIR");
+    if (!base || !*base) base = "/tmp";
+    const int n = snprintf(dir, size, "%s/gomboc-%s-XXXXXX", base, tag);
+    const char *why = NULL;
+    char **grown = NULL;
+    if (n < 0 || (size_t)n >= size)
+        why = "the path is too long for the test's buffer";
+    else if (!mkdtemp(dir))
+        why = strerror(errno);
+    else if (!(grown = realloc(made, (made_count + 1) * sizeof *made)) || !(grown[made_count] = strdup(dir)))
+        why = "out of memory", rmdir(dir);
+    if (grown) made = grown;
+    if (why) {
+        gb_check c = {"-", "-", "a temporary directory of the test's own", "mkdtemp under TMPDIR", "exact"};
+        gb_check_true(&c, 0, "cannot make %s/gomboc-%s-XXXXXX: %s", base, tag, why);
+        return 1;
+    }
+    made_count++;
+    return 0;
+}
+
+static int remove_entry(const char *path, const struct stat *st, int flag, struct FTW *ftw)
+{
+    (void)st, (void)flag, (void)ftw;
+    return remove(path);
+}
+
+void gb_check_tempdir_remove(const char *dir)
+{
+    nftw(dir, remove_entry, 16, FTW_DEPTH | FTW_PHYS);
+    for (size_t k = 0; k < made_count; k++)
+        if (made[k] && !strcmp(made[k], dir)) free(made[k]), made[k] = NULL;
+}
+
+size_t gb_check_tempdirs_made(void) { return made_count; }
+
+size_t gb_check_tempdirs_left(char *out, size_t size)
+{
+    size_t left = 0, used = 0;
+    if (size) out[0] = '\0';
+    for (size_t k = 0; k < made_count; k++) {
+        struct stat st;
+        if (!made[k] || lstat(made[k], &st) != 0) continue;
+        left++;
+        if (used < size) used += (size_t)snprintf(out + used, size - used, "%s%s", left > 1 ? ", " : "", made[k]);
+        gb_check_tempdir_remove(made[k]);
+    }
+    return left;
 }

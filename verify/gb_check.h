@@ -70,6 +70,31 @@ int gb_check_write(const char *path);
  * NUL-terminated); the exit status, or -1 when it could not be run. */
 int gb_check_command(const char *binary, const char *args, char *out, size_t cap);
 
+/* The harness in two processes (main's --jobs 2): the second runs some suites and writes its rows with the
+ * message and label each assertion had, and the tests it ran to their end (gb_check_test_end, at each test's
+ * end); the first replays them in their place, each row asserted again through CUnit with its message and
+ * recorded as it was. gb_check_replay returns 1 when the second process ran the test to its end. */
+struct cJSON;
+void gb_check_second_process(void);
+void gb_check_test_end(void);
+int gb_check_replay(const struct cJSON *document, const char *suite, const char *test);
+/* The place of a suite in the report's order: gb_check_write lists the tests and rows by it (stably; a suite without
+ * one goes last), whatever the order the suites ran in. */
+void gb_check_suite_rank(const char *suite, int rank);
+
+/* A fresh directory of the test's own, $TMPDIR/gomboc-TAG-XXXXXX (/tmp when TMPDIR is unset or empty), its
+ * path in `dir` (GB_CHECK_TEMPDIR_SIZE bytes hold it for a TMPDIR of up to 120 characters). Returns 0 on
+ * success; otherwise the test gets a failing row saying why and nothing is made. The harness lists what it
+ * made: gb_check_tempdir_remove takes a directory off the list with all it holds, and gb_check_tempdirs_left
+ * names those a test left behind. */
+#define GB_CHECK_TEMPDIR_SIZE 160
+int gb_check_tempdir(const char *tag, char *dir, size_t size);
+void gb_check_tempdir_remove(const char *dir);
+/* How many directories gb_check_tempdir has made so far; those of them still there, joined by ", " into
+ * `out`, and their number (each is then removed: a leftover is reported once). */
+size_t gb_check_tempdirs_made(void);
+size_t gb_check_tempdirs_left(char *out, size_t size);
+
 /* The whole file at `path`, NUL-terminated, malloc'd (the caller frees it); NULL when it cannot be read. */
 char *gb_check_read_file(const char *path);
 
@@ -80,7 +105,6 @@ extern int gb_check_full;
 extern const char *gb_check_data_dir;
 
 /* Save `document` as gb_check_data_dir/name (atomically) for the report. Returns 0 on success. */
-struct cJSON;
 int gb_check_write_data(const char *name, const struct cJSON *document);
 /* The same for a text as it stands (a command's JSON, whose numbers cJSON's printing would round). */
 int gb_check_write_text(const char *name, const char *text);

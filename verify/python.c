@@ -39,12 +39,8 @@ static int last_row(const char *path, double *out, int n)
 static void test_same_bits(void)
 {
     const char *lib = getenv("GOMBOC_LIB");
-    char dir[] = "/tmp/gomboc-python-XXXXXX";
-    if (!mkdtemp(dir)) {
-        gb_check c = {"-", "-", "the Python package", "a temporary directory", "exact"};
-        gb_check_true(&c, 0, "mkdtemp failed");
-        return;
-    }
+    char dir[GB_CHECK_TEMPDIR_SIZE];
+    if (gb_check_tempdir("python", dir, sizeof dir)) return;
     /* the scene at 60 periods, as a file for the command */
     char scene[256], args[1024];
     snprintf(scene, sizeof scene, "%s/table1.ini", dir);
@@ -230,9 +226,7 @@ static void test_same_bits(void)
     gb_check_true(&cp, figure_bytes > 1000 && page_bytes > 100 && refused && strstr(refused, "nonesuch") && strstr(refused, "allowed"),
                   "figure %g bytes, page %g bytes, refused: %.150s", figure_bytes, page_bytes, refused ? refused : "no");
     cJSON_Delete(command), cJSON_Delete(package);
-    snprintf(args, sizeof args, "rm -rf %s", dir);
-    if (system(args)) { /* the directory is the test's own; a failure to remove it is no result */
-    }
+    gb_check_tempdir_remove(dir);
 }
 
 int verify_register_python(void)

@@ -326,8 +326,8 @@ static void test_expressions_table1(void)
 
 static void test_bad_bodies(void)
 {
-    char dir[] = "/tmp/gomboc-bodies-XXXXXX";
-    if (!mkdtemp(dir)) return;
+    char dir[GB_CHECK_TEMPDIR_SIZE];
+    if (gb_check_tempdir("bodies", dir, sizeof dir)) return;
     char mesh[512], scene[512];
     snprintf(mesh, sizeof mesh, "%s/dent.off", dir);
     /* a cube with its top centre pushed in: the vertex (0, 0, 0.5) inside the hull */
@@ -369,7 +369,7 @@ static void test_bad_bodies(void)
     }
     unlink(mesh);
     unlink(scene);
-    rmdir(dir);
+    gb_check_tempdir_remove(dir);
 }
 
 /* ---- every shipped scene's body ------------------------------------------------------------------ */
@@ -442,7 +442,7 @@ static void test_scene_bodies(void)
 /* gomboc shape --scene states beta only where it enters the body: an r expression without it says "beta not used" */
 static void test_beta_stated(void)
 {
-    char dir[] = "/tmp/gomboc-beta-XXXXXX";
+    char dir[GB_CHECK_TEMPDIR_SIZE];
     const char *bin = getenv("GOMBOC_BIN") ? getenv("GOMBOC_BIN") : "build/gomboc";
     static const struct {
         const char *body, *must, *never;
@@ -451,9 +451,9 @@ static void test_beta_stated(void)
                  {"morphology = II", "beta = 0.12", "beta not used"}};
     int right = 0;
     char first[300] = "";
-    if (mkdtemp(dir))
+    if (!gb_check_tempdir("beta", dir, sizeof dir))
         for (size_t k = 0; k < 3; k++) {
-            char path[128], args[256];
+            char path[320], args[360];
             static char out[1 << 14];
             snprintf(path, sizeof path, "%s/body%zu.ini", dir, k);
             FILE *f = fopen(path, "w");
@@ -471,7 +471,7 @@ static void test_beta_stated(void)
             if (!ok && !first[0]) snprintf(first, sizeof first, "; '%s': exit %d, '%s'", cases[k].body, code, head);
             remove(path);
         }
-    rmdir(dir);
+    gb_check_tempdir_remove(dir);
     gb_check c = {"2", "-", "gomboc shape --scene: the body line of an r expression without beta, one with it, the paper's II",
                   "'beta not used'; 'beta = 0.12' twice", "exact"};
     gb_check_true(&c, right == 3, "%d of 3 as stated%s", right, first);
@@ -503,13 +503,13 @@ static cJSON *run_scene_text(const char *dir, const char *name, const char *text
  * (the paper's own model) */
 static void test_grid_model_said(void)
 {
-    char dir[] = "/tmp/gomboc-grid-XXXXXX";
+    char dir[GB_CHECK_TEMPDIR_SIZE];
     static const struct {
         const char *body;
         int said;
     } cases[] = {{"r = 1 + 0.1*cos(theta)*sin(phi)", 1}, {"morphology = I", 0}};
     int right = 0;
-    if (mkdtemp(dir))
+    if (!gb_check_tempdir("grid", dir, sizeof dir))
         for (size_t k = 0; k < 2; k++) {
             char text[300], name[16];
             static char out[1 << 14];
@@ -523,7 +523,7 @@ static void test_grid_model_said(void)
             right += code == 0 && in_summary == cases[k].said && in_note == cases[k].said;
             cJSON_Delete(root);
         }
-    rmdir(dir);
+    gb_check_tempdir_remove(dir);
     gb_check c = {"2", "-", "a run of an r expression on the fast grid, and of the paper's Gomboc I on it",
                   "the first says it runs as its grid polyhedron (summary key, note on standard error); the second does not",
                   "exact"};
@@ -538,8 +538,8 @@ static void test_grid_model_said(void)
  * from-scratch contact's last bits depend on Newton's start; the expression evaluates the surface by another path). */
 static void test_continuous_own(void)
 {
-    char dir[] = "/tmp/gomboc-continuous-own-XXXXXX";
-    if (!mkdtemp(dir)) return;
+    char dir[GB_CHECK_TEMPDIR_SIZE];
+    if (gb_check_tempdir("continuous-own", dir, sizeof dir)) return;
     static char out[1 << 14];
     static const char *const bodies[3] = {"morphology = I\nbeta = 0.12\n[model]\ncertificate = per-vertical",
                                           "morphology = I\nbeta = 0.12\n[model]\ncertificate = multi-start",
@@ -576,17 +576,17 @@ static void test_continuous_own(void)
                           !strcmp(certificate[2], "multi-start"),
                   "switches %s, %s, %s; final omega apart by %.3g and %.3g rad/s; certificates %s, %s, %s", switches[0], switches[1],
                   switches[2], apart[0], apart[1], certificate[0], certificate[1], certificate[2]);
-    rmdir(dir);
+    gb_check_tempdir_remove(dir);
 }
 
 /* λ of a smooth body of one's own on a grid, and on the grid twice as fine: `gomboc run`'s summary gives both, the second
  * the λ of the same scene run on that grid */
 static void test_second_grid(void)
 {
-    char dir[] = "/tmp/gomboc-second-grid-XXXXXX";
+    char dir[GB_CHECK_TEMPDIR_SIZE];
     double lambda[2] = {NAN, NAN}, second = NAN;
     int code[2] = {-1, -1};
-    if (mkdtemp(dir))
+    if (!gb_check_tempdir("second-grid", dir, sizeof dir))
         for (int k = 0; k < 2; k++) {
             char text[500], name[16];
             static char out[1 << 14];
@@ -604,7 +604,7 @@ static void test_second_grid(void)
                 second = cJSON_GetNumberValue(cJSON_GetObjectItem(g, "lambda_max_second_grid"));
             cJSON_Delete(root);
         }
-    rmdir(dir);
+    gb_check_tempdir_remove(dir);
     gb_check c = {"2", "77", "an r expression on a 30 x 60 fast grid with lambda (20 periods): the summary's lambda on the grid "
                   "twice as fine", "the same scene run on the 60 x 120 grid: its lambda_max", "exact: the same run, bit for bit"};
     gb_check_true(&c, code[0] == 0 && code[1] == 0 && isfinite(second) && second == lambda[1],
@@ -616,13 +616,13 @@ static void test_second_grid(void)
  * from; every one that ended is a landing: landings + (flying at the end) = released + lift-offs + bounces + flown on */
 static void test_flights_counted(void)
 {
-    char dir[] = "/tmp/gomboc-flights-XXXXXX";
+    char dir[GB_CHECK_TEMPDIR_SIZE];
     const char *bin = getenv("GOMBOC_BIN") ? getenv("GOMBOC_BIN") : "build/gomboc";
     static const char *const scenes[] = {"cases/bodies/die-drop.ini", "cases/table1-gomboc-II-g-units-unilateral.ini",
                                          "cases/table1-gomboc-I-g-units-bouncing.ini"};
     int closed = 0, flying_on = 0;
     char detail[600] = "";
-    if (mkdtemp(dir))
+    if (!gb_check_tempdir("flights", dir, sizeof dir))
         for (size_t k = 0; k < 3; k++) {
             char args[300];
             static char out[1 << 12];
@@ -651,10 +651,7 @@ static void test_flights_counted(void)
                      lift_offs, bounces, on);
             cJSON_Delete(root);
         }
-    char rm[128];
-    snprintf(rm, sizeof rm, "rm -rf %s", dir);
-    if (system(rm)) { /* the test's own directory: a failure to remove it is no result */
-    }
+    gb_check_tempdir_remove(dir);
     gb_check c = {"-", "-", "the flights counted: the die dropped, Table 1's Gomboc II in units of g, Gomboc I bouncing",
                   "landings + flying at the end = released + lift-offs + bounces + landings flown on, in each; some flown on",
                   "exact: counts"};

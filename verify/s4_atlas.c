@@ -204,8 +204,9 @@ static int flip_byte(const char *path, long offset)
  * atlas saved and loaded again, with that file damaged, and with a file built for another β. */
 static void test_table1_runs(void)
 {
-    char path[64];
-    snprintf(path, sizeof path, "/tmp/gomboc-atlas-check-%ld.atlas", (long)getpid());
+    char dir[GB_CHECK_TEMPDIR_SIZE], path[GB_CHECK_TEMPDIR_SIZE + 16];
+    if (gb_check_tempdir("atlas-check", dir, sizeof dir)) return;
+    snprintf(path, sizeof path, "%s/check.atlas", dir);
     for (int m = 0; m < 2; m++) {
         const char *body = m ? "II" : "I";
         double y[4][GB_STATE_SIZE];
@@ -261,7 +262,7 @@ static void test_table1_runs(void)
     status = gb_atlas_create(gb_check_body("II", 0.12), &ad, &a);
     const int same = status ? status : gb_atlas_load(a, path);
     gb_atlas_free(a);
-    remove(path);
+    gb_check_tempdir_remove(dir);
     gb_check k = {"4", "29", "an atlas file built for another beta or eta is refused; the file of this body loads",
                   "error path", "exact"};
     gb_check_true(&k, beta == GB_EIO && beta_named && eta == GB_EIO && same == GB_OK,
@@ -273,8 +274,9 @@ static void test_table1_runs(void)
  * from it holds them all and builds nothing for the verticals of either. */
 static void test_merged_writers(void)
 {
-    char path[64];
-    snprintf(path, sizeof path, "/tmp/gomboc-atlas-merge-%ld.atlas", (long)getpid());
+    char dir[GB_CHECK_TEMPDIR_SIZE], path[GB_CHECK_TEMPDIR_SIZE + 16];
+    if (gb_check_tempdir("atlas-merge", dir, sizeof dir)) return;
+    snprintf(path, sizeof path, "%s/merge.atlas", dir);
     remove(path);
     gb_atlas *a[3] = {NULL, NULL, NULL};
     gb_atlas_def ad = gb_atlas_default_def();
@@ -314,7 +316,7 @@ static void test_merged_writers(void)
     }
     gb_atlas_free(other);
     for (int k = 0; k < 3; k++) gb_atlas_free(a[k]);
-    remove(path);
+    gb_check_tempdir_remove(dir);
     gb_check c = {"4", "29", "two atlases of Gomboc I built apart (8 verticals within 0.6 rad of +z, 8 of +x), written to one "
                   "file in turn, the second merging the first's cells",
                   "the file holds both: its cells are the sum, and no cell is built for the 16 verticals", "exact"};

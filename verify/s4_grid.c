@@ -327,9 +327,9 @@ static int hull_file_refused(const gb_contact_grid *g, const char *path, const c
 static void test_hull_file(void)
 {
     s4_draw_sample();
-    char dir[] = "/tmp/gomboc-hull-XXXXXX";
-    if (!mkdtemp(dir)) return;
-    char path[128], other[128];
+    char dir[GB_CHECK_TEMPDIR_SIZE];
+    if (gb_check_tempdir("hull", dir, sizeof dir)) return;
+    char path[320], other[320];
     snprintf(path, sizeof path, "%s/hull", dir);
     snprintf(other, sizeof other, "%s/hull-II", dir);
     /* Table 1's grids (centred) and the linspace placement, whose hull keeps coplanar nodes */
@@ -392,7 +392,7 @@ static void test_hull_file(void)
         truncated = refusals_ok && hull_file_refused(g2, other, "does not match");
     }
     free(data);
-    char absent[160];
+    char absent[320];
     snprintf(absent, sizeof absent, "%s/absent", dir);
     const int missing = hull_file_refused(g2, dir, "hull file refused") && hull_file_refused(g2, absent, "hull file refused");
     gb_check cr = {"8", "29", "a hull file is refused for another body or beta, with one bit flipped, with a bit flipped "
@@ -404,7 +404,7 @@ static void test_hull_file(void)
                   forged ? "refused" : "TAKEN", truncated ? "refused" : "TAKEN", missing ? "refused" : "TAKEN");
     gb_contact_tracker_free(t1), gb_contact_tracker_free(t2);
     gb_contact_grid_free(g1), gb_contact_grid_free(g2), gb_contact_grid_free(gb);
-    remove(path), remove(other), rmdir(dir);
+    remove(path), remove(other), gb_check_tempdir_remove(dir);
 }
 
 int verify_register_s4_grid(void)

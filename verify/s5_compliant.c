@@ -499,7 +499,7 @@ static int write_grid_polyhedron(const char *path)
 static void test_polyhedron_rest(void)
 {
     if (!gb_check_full) return;
-    char dir[] = "/tmp/gomboc-polyhedron-XXXXXX", path[64];
+    char dir[GB_CHECK_TEMPDIR_SIZE], path[320];
     gb_check c = {"5", "-",
                   "Gomboc II's 90 x 180 grid polyhedron (12 326 hull vertices) released tilted 0.3 rad on a still plane, c = 3, "
                   "after 50 periods: the angle between its rest vertical under the compliant law (k = 1e5, 1e6 N/m, n = 1, "
@@ -507,7 +507,7 @@ static void test_polyhedron_rest(void)
                   "the same rest face, and the angle falls at first order in 1/k: by a factor 5 at least over the decade, "
                   "the body still (|omega| <= 1e-5 rad/s) in all three runs",
                   "5: half the factor 10 of first order (the face's compression ~ m g / k, and its tilt with it)"};
-    if (!mkdtemp(dir)) {
+    if (gb_check_tempdir("polyhedron", dir, sizeof dir)) {
         gb_check_true(&c, 0, "cannot make a temporary directory");
         return;
     }
@@ -531,7 +531,7 @@ static void test_polyhedron_rest(void)
                   "%.2g J (unilateral), %.2g, %.2g J (compliant, rtol 1e-6)", status ? gb_error_message() : "ran", a1, a2,
                   log10(a1 / a2), s0, s1, s2, status ? NAN : r0, status ? NAN : r1, status ? NAN : r2);
     remove(path);
-    rmdir(dir);
+    gb_check_tempdir_remove(dir);
 }
 
 int verify_register_s5_compliant(void)

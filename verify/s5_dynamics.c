@@ -350,8 +350,8 @@ static int cache_scene(const char *dir, const char *name, const char *morphology
  * on the fast grid (reference and partner on one tracker) against the brute-force grid. */
 static void test_dynamics_context(void)
 {
-    char dir[] = "/tmp/gomboc-cache-XXXXXX";
-    if (!mkdtemp(dir)) return;
+    char dir[GB_CHECK_TEMPDIR_SIZE];
+    if (gb_check_tempdir("cache", dir, sizeof dir)) return;
     static const struct { const char *morphology, *model; } runs[] = {
         {"II", "equation = paper\ncontact = fast-grid"},
         {"I", "equation = paper\ncontact = fast-grid"},
@@ -388,7 +388,7 @@ static void test_dynamics_context(void)
     if (status) gb_error_clear();
     for (int k = 0; k < RUNS; k++) gb_run_result_free(&alone[k]), gb_run_result_free(&shared[k]);
     gb_dynamics_context_free(context);
-    rmdir(dir);
+    gb_check_tempdir_remove(dir);
 }
 
 /* The dimensionless run (eqs 53–65) equals the dimensional one after rescaling: Ω(τ) = ω(τ/ω_f)/ω_f,

@@ -315,13 +315,13 @@ static void test_edge_stops(void)
     const double v0 = 1.0, mu = 0.3, g = 9.81, periods = 0.51;
     static const char mesh[] = "OFF\n6 5 0\n0 -0.2 0\n0.1 -0.2 0.3\n-0.1 -0.2 0.3\n0 0.2 0\n0.1 0.2 0.3\n-0.1 0.2 0.3\n"
                                "3 0 2 1\n3 3 4 5\n4 0 1 4 3\n4 1 2 5 4\n4 2 0 3 5\n";
-    char dir[] = "/tmp/gomboc-wedge-XXXXXX", path[64], scene_path[64], text[900];
+    char dir[GB_CHECK_TEMPDIR_SIZE], path[320], scene_path[320], text[900];
     gb_check c = {"-", "-", "a wedge on its edge sliding along it at v0 = 1 m/s on mu = 0.3, event-driven (rk4, 2000 steps/s): the "
                   "time spent sliding [s]",
                   "v0/(mu g) = 0.33979 s, both ends stopped together (not sliding at the end, one stop)",
                   "1e-5 s: the stop is located where the slip falls to its stop speed, ~2e-6 m/s here, which mu g = 2.94 "
                   "m/s^2 reaches within 1e-6 s"};
-    if (!mkdtemp(dir)) {
+    if (gb_check_tempdir("wedge", dir, sizeof dir)) {
         gb_check_true(&c, 0, "cannot make a temporary directory");
         return;
     }
@@ -353,7 +353,7 @@ static void test_edge_stops(void)
     gb_check_close(&cl, status ? NAN : r.sliding.friction_loss + r.impact_energy_lost, 0.5 * v0 * v0, 0.0, 1e-6);
     if (!status) gb_run_result_free(&r);
     remove(path);
-    rmdir(dir);
+    gb_check_tempdir_remove(dir);
 }
 
 /* ---- Table 1 on a plane of finite friction --------------------------------------------------------- */

@@ -100,9 +100,8 @@ static const char scan_text[] = "[scan]\ndescription = the harness's scan\nbase 
 /* A fresh directory with the base scene and the scan file; on failure `check` fails and 1 returns. */
 int s8_make_scan_dir(s8_scan_dir *d, const gb_check *check)
 {
-    snprintf(d->path, sizeof d->path, "/tmp/gomboc-scan-XXXXXX");
-    if (!mkdtemp(d->path)) return !gb_check_true(check, 0, "cannot make a directory: %s", strerror(errno));
-    char base[8192], path[160];
+    if (gb_check_tempdir("scan", d->path, sizeof d->path)) return 1;
+    char base[8192], path[320];
     s8_scene_text(base, sizeof base, 18.0, 1.0, 300.0, 50, 0);
     snprintf(path, sizeof path, "%s/base.ini", d->path);
     snprintf(d->scan, sizeof d->scan, "%s/map.ini", d->path);
@@ -120,12 +119,7 @@ int s8_scan_run(const s8_scan_dir *d, const char *extra, char *out, size_t cap)
     return s8_run(args, out, cap);
 }
 
-void s8_remove_scan_dir(const s8_scan_dir *d)
-{
-    char command[256];
-    snprintf(command, sizeof command, "rm -rf '%s'", d->path);
-    if (system(command) != 0) fprintf(stderr, "verify: cannot remove %s\n", d->path);
-}
+void s8_remove_scan_dir(const s8_scan_dir *d) { gb_check_tempdir_remove(d->path); }
 
 /* ---- the unilateral law's mechanism, per point ------------------------------------------------------ */
 

@@ -19,7 +19,7 @@ void s8_scene_text(char *out, size_t size, double omega, double a2, double perio
 double s8_number_at(const cJSON *o, const char *a, const char *b);
 
 typedef struct s8_scan_dir {
-    char path[64], scan[128], csv[160], journal[160];
+    char path[GB_CHECK_TEMPDIR_SIZE], scan[200], csv[200], journal[200];
 } s8_scan_dir;
 enum { SCAN_POINTS = 9 };
 

@@ -44,11 +44,7 @@ static void test_scan_atlas(void)
     gb_check cs = {"4, 8.3", "29", "gomboc scan --atlas FILE: a rolling-model scan (2 x 2 points, 4 periods, continuous "
                    "contact) with one atlas of verticals for every point, made by the first points, then loaded",
                    "the CSV of the per-vertical certificate, byte for byte; the atlas file written", "exact"};
-    snprintf(d.path, sizeof d.path, "/tmp/gomboc-scan-XXXXXX");
-    if (!mkdtemp(d.path)) {
-        gb_check_true(&cs, 0, "cannot make a directory: %s", strerror(errno));
-        return;
-    }
+    if (gb_check_tempdir("scan", d.path, sizeof d.path)) return;
     static const char base[] = "[body]\nmorphology = I\nbeta = 0.12\n[forcing]\nA1 = 2.0\nA2 = 1.0\nomega = 18\npsi = pi/3\n"
                                "[model]\nequation = rolling\ncontact = continuous\ncertificate = %s\ndamping = 0.02\n"
                                "[integrator]\nmethod = rk4\nsteps_per_period = 160\nlocate_switches = yes\n";

@@ -195,7 +195,7 @@ static int signalled_scan(const s8_scan_dir *d, size_t lines, int sig, const cha
 /* kill -9 once the journal holds `lines` lines. */
 static int killed_scan(const s8_scan_dir *d, size_t lines)
 {
-    char err[96];
+    char err[320];
     snprintf(err, sizeof err, "%s/killed.txt", d->path);
     const int wstatus = signalled_scan(d, lines, SIGKILL, err);
     remove(err);
@@ -235,7 +235,7 @@ static void test_threads_and_resume(void)
 
     /* Ctrl-C: the scan says how to continue, and --resume does. */
     remove(d.csv);
-    char err[96];
+    char err[320];
     snprintf(err, sizeof err, "%s/interrupted.txt", d.path);
     const int istatus = signalled_scan(&d, 3, SIGINT, err);
     char *said = gb_check_read_file(err);

@@ -218,14 +218,14 @@ static void test_scene_and_files(void)
                    "no, yes, yes, no: the default follows the law (cases/README.md)", "exact"};
     gb_check_true(&cl, followed == 4, "%d of 4 as documented", followed);
     /* the documented status of a file that is not one (gb_case.h): a missing path and a directory, made here */
-    char dir[] = "/tmp/gomboc-verify-XXXXXX", missing[64];
-    const int made = mkdtemp(dir) != NULL;
+    char dir[GB_CHECK_TEMPDIR_SIZE], missing[320];
+    const int made = !gb_check_tempdir("verify", dir, sizeof dir);
     snprintf(missing, sizeof missing, "%s/none.ini", dir);
     const int missing_status = made ? gb_case_load(missing, &scene) : -1;
     const int named = strstr(gb_error_message(), "none.ini") != NULL;
     const int dir_status = made ? gb_case_load(dir, &scene) : -1;
     gb_error_clear();
-    if (made) rmdir(dir);
+    if (made) gb_check_tempdir_remove(dir);
     gb_check cf = {"-", "-", "gb_case_load of a missing file and of a directory (made under a temporary directory)",
                    "GB_EINVAL both, the path named (gb_case.h)", "exact"};
     gb_check_true(&cf, missing_status == GB_EINVAL && named && dir_status == GB_EINVAL, "missing: %d (path named %d), directory: %d",
