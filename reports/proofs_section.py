@@ -81,7 +81,9 @@ def proofs_section(out):
     for s in statements:
         if "strips" not in s:
             continue
-        strips = "; ".join(f"U{i} = {interval(h['u'])} in {h['returns']:g}: its edges to {interval(h['image_of_low_edge_u'])} and "
+        strips = "; ".join(f"U{i} = {interval(h['u'])} in {h['returns']:g}"
+                           + (f" across its reach {interval(h['reach'])} ({h['targets']:g} strips in it)" if "reach" in h else "")
+                           + f": its edges to {interval(h['image_of_low_edge_u'])} and "
                            f"{interval(h['image_of_high_edge_u'])}" + ("" if h["across"] else " (NOT proved)")
                            for i, h in enumerate(s["strips"]))
         lines += [f"**{s['statement']}** ({s['result']}). System: {s['system']}. Sets: {s['sets']}. Reproduces: "

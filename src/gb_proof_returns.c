@@ -25,6 +25,13 @@ gb_proof_returns_def gb_proof_returns_def_default(void)
 
 static int proper(gb_proof_interval x) { return isfinite(x.lo) && isfinite(x.hi) && x.lo < x.hi; }
 
+/* T_i: the strip's reach, W where it is left {0, 0}. */
+static gb_proof_interval reach_of(const gb_proof_returns_def *def, size_t i)
+{
+    const gb_proof_interval T = def->reach[i];
+    return T.lo == 0.0 && T.hi == 0.0 ? def->window : T;
+}
+
 static int check_def(const gb_proof_returns_def *def)
 {
     if (!def) return gb_error_set(GB_EINVAL, "returns across a band need a definition");
@@ -63,6 +70,12 @@ static int check_def(const gb_proof_returns_def *def)
         for (size_t j = 0; j < i; j++)
             if (U.lo <= def->set_u[j].hi && def->set_u[j].lo <= U.hi)
                 return gb_error_set(GB_EDOM, "sets %zu and %zu overlap (allowed: disjoint strips)", j, i);
+        const gb_proof_interval T = reach_of(def, i);
+        if (!proper(T) || T.lo < def->window.lo || T.hi > def->window.hi)
+            return gb_error_set(GB_EDOM,
+                                "set %zu's reach = [%g, %g] is out of range (allowed: lo < hi inside the window [%g, "
+                                "%g], or 0, 0 for the window)",
+                                i, T.lo, T.hi, def->window.lo, def->window.hi);
     }
     return GB_OK;
 }
@@ -100,6 +113,7 @@ typedef struct walk {
     const field_balls *F;
     int m;
     size_t set;
+    gb_proof_interval reach; /* T: W, or the part of it the strip returns across */
     gb_proof_returns_result *out;
 } walk;
 
@@ -113,11 +127,11 @@ static void note_failure(walk *w, const char *what, gb_proof_interval u, gb_proo
         w->set, w->m, what, u.lo, u.hi, s.lo, s.hi, iu.lo, iu.hi, is.lo, is.hi);
 }
 
-/* Where the edge {at} × s lands across: -1 wholly below W, 1 wholly above, 0 not proved (halved along to depth); the
+/* Where the edge {at} × s lands across: -1 wholly below T, 1 wholly above, 0 not proved (halved along to depth); the
  * hull of its images joins *hull. */
 static int edge_side(walk *w, double at, gb_proof_interval s, int level, gb_proof_interval *hull, int *any)
 {
-    const gb_proof_interval W = w->def->window;
+    const gb_proof_interval W = w->reach;
     gb_proof_interval iu, is;
     const int finite = image(w->def, w->F, (gb_proof_interval){at, at}, s, w->m, &iu, &is);
     w->out->pieces++;
@@ -144,11 +158,11 @@ static int edge_side(walk *w, double at, gb_proof_interval s, int level, gb_proo
     return side;
 }
 
-/* 1 when every point of u × s whose image lies in W across has its image in int S along: an image wholly beyond W, or
+/* 1 when every point of u × s whose image lies in T across has its image in int S along: an image wholly beyond T, or
  * wholly inside S, proves its piece; otherwise the piece is halved across and along, to depth. */
 static int across_piece(walk *w, gb_proof_interval u, gb_proof_interval s, int level)
 {
-    const gb_proof_interval W = w->def->window, S = w->def->strip;
+    const gb_proof_interval W = w->reach, S = w->def->strip;
     gb_proof_interval iu, is;
     const int finite = image(w->def, w->F, u, s, w->m, &iu, &is);
     w->out->pieces++;
@@ -222,6 +236,152 @@ int gb_proof_returns_entropy_bound(const int *returns, size_t n, double *log_x)
     return GB_OK;
 }
 
+/* M(e^h) v on the vertices `alive` marks (row i: e^(-h m_i) Σ_j edge_ij v_j), in doubles. */
+static void graph_apply(const int *returns, const unsigned char *edge, size_t n, const unsigned char *alive, double h,
+                        const double *v, double *out)
+{
+    for (size_t i = 0; i < n; i++) {
+        double sum = 0.0;
+        for (size_t j = 0; alive[i] && j < n; j++)
+            if (alive[j] && edge[i * n + j]) sum += v[j];
+        out[i] = alive[i] ? exp(-h * returns[i]) * sum : 0.0;
+    }
+}
+
+/* The positive vector v (largest entry 1) of the power iteration of M(e^h) + I on the alive vertices, the least ratio
+ * (M v)_i / v_i over them (a lower bound of ρ by Collatz and Wielandt when v > 0) and, in *growth, the iteration's
+ * estimate of ρ. */
+static double graph_ratio(const int *returns, const unsigned char *edge, size_t n, const unsigned char *alive, double h,
+                          double *v, size_t *worst, double *growth)
+{
+    double w[GB_PROOF_RETURNS_MAX];
+    for (size_t i = 0; i < n; i++) v[i] = alive[i] ? 1.0 : 0.0;
+    for (int k = 0; k < 2000; k++) {
+        graph_apply(returns, edge, n, alive, h, v, w);
+        double top = 0.0;
+        for (size_t i = 0; i < n; i++) w[i] += v[i], top = fmax(top, w[i]);
+        for (size_t i = 0; i < n; i++) v[i] = top > 0.0 ? w[i] / top : 0.0;
+        *growth = top - 1.0; /* v's largest entry was 1 */
+    }
+    graph_apply(returns, edge, n, alive, h, v, w);
+    double least = INFINITY;
+    for (size_t i = 0; i < n; i++)
+        if (alive[i] && w[i] / v[i] < least) least = w[i] / v[i], *worst = i;
+    return least;
+}
+
+/* 1 when M(e^h) v ≥ v is proved on Arb's balls on the alive vertices (h and v exact doubles). */
+static int graph_holds(const int *returns, const unsigned char *edge, size_t n, const unsigned char *alive, double h,
+                       const double *v)
+{
+    arb_t sum, factor, value;
+    arb_init(sum), arb_init(factor), arb_init(value);
+    const slong prec = 128;
+    int holds = 1;
+    for (size_t i = 0; i < n && holds; i++) {
+        if (!alive[i]) continue;
+        arb_zero(sum);
+        for (size_t j = 0; j < n; j++)
+            if (alive[j] && edge[i * n + j]) arb_set_d(value, v[j]), arb_add(sum, sum, value, prec);
+        arb_set_d(factor, h);
+        arb_mul_si(factor, factor, -returns[i], prec);
+        arb_exp(factor, factor, prec);
+        arb_mul(sum, sum, factor, prec);
+        arb_set_d(value, v[i]);
+        arb_sub(sum, sum, value, prec);
+        holds = arb_is_nonnegative(sum);
+    }
+    arb_clear(sum), arb_clear(factor), arb_clear(value);
+    return holds;
+}
+
+int gb_proof_returns_graph_bound(const int *returns, const unsigned char *edge, size_t n, double *log_x)
+{
+    if (!returns || !edge || !log_x)
+        return gb_error_set(GB_EINVAL, "the graph bound needs return times, edges and an output");
+    if (n < 1 || n > GB_PROOF_RETURNS_MAX)
+        return gb_error_set(GB_EDOM, "vertices: %zu is out of range (allowed: 1 to %d)", n, GB_PROOF_RETURNS_MAX);
+    for (size_t i = 0; i < n; i++)
+        if (returns[i] < 1 || returns[i] > GB_PROOF_RETURN_TIME_MAX)
+            return gb_error_set(GB_EDOM, "return time %zu = %d is out of range (allowed: 1 to %d)", i, returns[i],
+                                GB_PROOF_RETURN_TIME_MAX);
+    *log_x = 0.0;
+    unsigned char alive[GB_PROOF_RETURNS_MAX];
+    double v[GB_PROOF_RETURNS_MAX];
+    memset(alive, 1, n);
+    /* take out the vertices without an edge to one left, then, at the float root, those whose ratio stays below 1 */
+    for (int pass = 0; pass < 2 * GB_PROOF_RETURNS_MAX; pass++) {
+        int changed = 0;
+        for (size_t i = 0; i < n; i++) {
+            size_t out_edges = 0;
+            for (size_t j = 0; alive[i] && j < n; j++) out_edges += alive[j] && edge[i * n + j];
+            if (alive[i] && !out_edges) alive[i] = 0, changed = 1;
+        }
+        size_t left = 0, worst = 0;
+        for (size_t i = 0; i < n; i++) left += alive[i];
+        if (!left) return GB_OK;
+        if (changed) continue;
+        double lo = 0.0, hi = log((double)n) + 1.0, growth = 0.0;
+        for (int k = 0; k < 60; k++) {
+            const double mid = 0.5 * (lo + hi);
+            graph_ratio(returns, edge, n, alive, mid, v, &worst, &growth);
+            if (growth >= 1.0)
+                lo = mid;
+            else
+                hi = mid;
+        }
+        if (lo <= 0.0) return GB_OK;
+        const double least = graph_ratio(returns, edge, n, alive, lo, v, &worst, &growth);
+        if (least < 1.0 - 1e-9) { /* a vertex that cannot keep up (a class of slower growth): without it */
+            alive[worst] = 0;
+            continue;
+        }
+        for (int k = 40; k >= 1; k--) { /* the float root, lowered until M v >= v is proved there */
+            const double h = lo * (1.0 - ldexp(1.0, -k));
+            if (graph_holds(returns, edge, n, alive, h, v)) {
+                *log_x = h;
+                break;
+            }
+        }
+        return GB_OK;
+    }
+    return GB_OK;
+}
+
+/* The bound of the strips `counted` marks: the graph's, i → j when U_j lies in T_i (targets[i] gets the count of
+ * each strip's), or the renewal bound's when every T_i is W (the same graph, whose matrix has rank one). */
+static int strips_bound(const gb_proof_returns_def *def, const int *counted, size_t *targets, double *log_x)
+{
+    unsigned char edge[GB_PROOF_RETURNS_MAX * GB_PROOF_RETURNS_MAX];
+    size_t index[GB_PROOF_RETURNS_MAX], n = 0;
+    int times[GB_PROOF_RETURNS_MAX], partial = 0;
+    for (size_t i = 0; i < def->sets; i++)
+        if (counted[i]) times[n] = def->returns[i], index[n++] = i;
+    *log_x = 0.0;
+    if (!n) return GB_OK;
+    for (size_t a = 0; a < n; a++) {
+        const gb_proof_interval T = reach_of(def, index[a]);
+        partial |= T.lo != def->window.lo || T.hi != def->window.hi;
+        for (size_t b = 0; b < n; b++) {
+            const gb_proof_interval U = def->set_u[index[b]];
+            edge[a * n + b] = U.lo >= T.lo && U.hi <= T.hi;
+            if (targets) targets[index[a]] += edge[a * n + b];
+        }
+    }
+    return partial ? gb_proof_returns_graph_bound(times, edge, n, log_x)
+                   : gb_proof_returns_entropy_bound(times, n, log_x);
+}
+
+int gb_proof_returns_table_bound(const gb_proof_returns_def *def, double *log_x)
+{
+    int status = check_def(def);
+    if (status) return status;
+    if (!log_x) return gb_error_set(GB_EINVAL, "the table's bound needs an output");
+    int all[GB_PROOF_RETURNS_MAX];
+    for (size_t i = 0; i < def->sets; i++) all[i] = 1;
+    return strips_bound(def, all, NULL, log_x);
+}
+
 int gb_proof_returns(const gb_proof_returns_def *def, gb_proof_returns_result *out)
 {
     int status = check_def(def);
@@ -231,9 +391,8 @@ int gb_proof_returns(const gb_proof_returns_def *def, gb_proof_returns_result *o
     const double start = gb_proof_cpu_seconds();
     field_balls F;
     gb_proof_flow_field_init(&F, def->map, GB_PROOF_ORDER_MIN, def->precision);
-    int times[GB_PROOF_RETURNS_MAX];
     for (size_t i = 0; i < def->sets; i++) {
-        walk w = {def, &F, def->returns[i], i, out};
+        walk w = {def, &F, def->returns[i], i, reach_of(def, i), out};
         const gb_proof_interval U = def->set_u[i];
         for (int e = 0; e < 2; e++) {
             int any = 0;
@@ -241,16 +400,23 @@ int gb_proof_returns(const gb_proof_returns_def *def, gb_proof_returns_result *o
             out->side[i][e] = edge_side(&w, e ? U.hi : U.lo, def->strip, 0, &out->edge[i][e], &any);
         }
         int across = out->side[i][0] && out->side[i][1] == -out->side[i][0];
+        if (out->side[i][0] && out->side[i][1] == out->side[i][0])
+            note_failure(
+                &w, out->side[i][0] < 0 ? "both edges land below the reach:" : "both edges land above the reach:", U,
+                def->strip,
+                (gb_proof_interval){fmin(out->edge[i][0].lo, out->edge[i][1].lo),
+                                    fmax(out->edge[i][0].hi, out->edge[i][1].hi)},
+                def->strip);
         for (int k = 0; k < def->pieces && across; k++) {
             const gb_proof_interval piece = {k ? U.lo + (U.hi - U.lo) * k / def->pieces : U.lo,
                                              k + 1 < def->pieces ? U.lo + (U.hi - U.lo) * (k + 1) / def->pieces : U.hi};
             across = across_piece(&w, piece, def->strip, 0);
         }
         out->across[i] = across;
-        if (across) times[out->proved++] = def->returns[i];
+        out->proved += across != 0;
     }
     gb_proof_flow_field_clear(&F);
-    if (out->proved) status = gb_proof_returns_entropy_bound(times, out->proved, &out->entropy);
+    if (out->proved) status = strips_bound(def, out->across, out->targets, &out->entropy);
     out->seconds = gb_proof_cpu_seconds() - start;
     return status;
 }
@@ -281,5 +447,31 @@ int gb_proof_returns_henon_classical(gb_proof_field *field, gb_proof_returns_def
     def->sets = sizeof strips / sizeof strips[0];
     for (size_t i = 0; i < def->sets; i++)
         def->set_u[i] = (gb_proof_interval){strips[i].lo, strips[i].hi}, def->returns[i] = strips[i].m;
+    return GB_OK;
+}
+
+int gb_proof_returns_henon_partial(gb_proof_field *field, gb_proof_returns_def *def)
+{
+    /* scripts/henon_returns_search.py --partial: U_i, m_i and the reach T_i of the strips returning across part of W */
+    static const struct {
+        double lo, hi;
+        int m;
+        double reach_lo, reach_hi;
+    } strips[] = {{0.073716600, 0.091999200, 1, -0.162528000, -0.137311800},
+                  {-0.046266000, -0.041672400, 2, -0.162528000, -0.152894400},
+                  {-0.330352800, -0.313053000, 8, -0.420000000, -0.043346400},
+                  {-0.293456400, -0.265914600, 8, -0.420000000, -0.043346400},
+                  {-0.146245200, -0.139844400, 10, -0.388826700, 0.179972400},
+                  {-0.166212600, -0.159757800, 10, -0.289948200, 0.147146700},
+                  {-0.348754200, -0.345024600, 13, -0.420000000, -0.344298300},
+                  {-0.344549400, -0.341161800, 13, -0.420000000, -0.344298300},
+                  {-0.076126200, -0.073852800, 14, 0.147146700, 0.208001100}};
+    const int status = gb_proof_returns_henon_classical(field, def);
+    if (status) return status;
+    for (size_t k = 0; k < sizeof strips / sizeof strips[0]; k++, def->sets++) {
+        def->set_u[def->sets] = (gb_proof_interval){strips[k].lo, strips[k].hi};
+        def->returns[def->sets] = strips[k].m;
+        def->reach[def->sets] = (gb_proof_interval){strips[k].reach_lo, strips[k].reach_hi};
+    }
     return GB_OK;
 }

@@ -16,7 +16,16 @@
  * differ at their k-th symbol put their orbits in two different strips at the same time, at least the strips' distance
  * apart: the number of (T, ε)-separated orbits grows like x^T, x the root above 1 of Σ_i x^-m_i = 1 (the growth of the
  * paths of a graph with one vertex and a cycle of m_i edges through it for each strip), so h_top(f) ≥ ln x. The bound
- * proved is ln x₀ for an x₀ with Σ x₀^-m_i ≥ 1 shown on Arb's balls (the sum falls as x grows). */
+ * proved is ln x₀ for an x₀ with Σ x₀^-m_i ≥ 1 shown on Arb's balls (the sum falls as x grows).
+ *
+ * A strip may instead return across part of R: its reach T_i, an interval inside W, takes W's place in both conditions
+ * (its edges' images beyond T_i on opposite sides, which may be inside W; its points whose image lies in T_i across
+ * land in int S). The same homotopy, in the chart of a V_j with U_j inside T_i, shows V_i covers that V_j for f^m_i.
+ * The strips are then the vertices of a graph, with an edge i → j of length m_i when U_j lies in T_i; counting its
+ * paths of total length ≤ T as above, h_top(f) ≥ ln x₀ for any x₀ > 1 at which a positive vector v has
+ * M(x₀) v ≥ v, M(x)_ij = x^-m_i on the edges (by induction on T the paths from i number at least c v_i x₀^T), a
+ * vertex without an edge to a vertex left being taken out first. With every T_i = W, M(x) has rank one and this is
+ * the renewal bound. */
 #ifndef GB_PROOF_RETURNS_H
 #define GB_PROOF_RETURNS_H
 
@@ -41,6 +50,7 @@ typedef struct gb_proof_returns_def {
     size_t sets;               /* 1 ... 64 */
     gb_proof_interval set_u[GB_PROOF_RETURNS_MAX]; /* U_i: disjoint, inside W */
     int returns[GB_PROOF_RETURNS_MAX];             /* m_i: 1 ... 32 */
+    gb_proof_interval reach[GB_PROOF_RETURNS_MAX]; /* T_i: inside W; {0, 0} (the default): W itself */
     int pieces;                                    /* the first cut of a strip across: 1 ... 100000 */
     int depth; /* the most halvings (across and along) of a piece that does not prove itself: 0 ... 30 */
 } gb_proof_returns_def;
@@ -50,6 +60,7 @@ typedef struct gb_proof_returns_result {
     int side[GB_PROOF_RETURNS_MAX][2]; /* where the low and high edges land: -1 below W, 1 above, 0 not proved */
     gb_proof_interval edge[GB_PROOF_RETURNS_MAX][2]; /* their images across (hulls of the enclosures) */
     size_t proved;                                   /* the strips whose return is proved */
+    size_t targets[GB_PROOF_RETURNS_MAX];            /* the proved strips inside each strip's reach */
     double entropy;                                  /* ln x₀ from the proved strips' return times (0 when none) */
     long pieces;                                     /* pieces enclosed, after halvings */
     long failed_pieces;                              /* pieces undecided at the deepest halving */
@@ -68,10 +79,24 @@ GB_API int gb_proof_returns(const gb_proof_returns_def *def, gb_proof_returns_re
  * the root is not above 1 (a single strip). GB_EDOM for counts or times out of range. */
 GB_API int gb_proof_returns_entropy_bound(const int *returns, size_t n, double *log_x);
 
+/* A proved lower bound ln x₀ of ln x, x the root above 1 of ρ(M(x)) = 1 for the graph of n ≤ 64 strips with return
+ * times m_i (1 ... 32) and edges i → j where edge[i * n + j] is not 0 (M(x)_ij = x^-m_i there): ln x₀ with M(x₀) v ≥ v
+ * proved on Arb's balls for a positive v (the Perron vector in doubles, on the vertices left once those without an edge
+ * to a vertex left are taken out); 0 when no x₀ > 1 is proved. GB_EDOM for counts or times out of range. */
+GB_API int gb_proof_returns_graph_bound(const int *returns, const unsigned char *edge, size_t n, double *log_x);
+
+/* The bound the definition's strips would prove if every one returned (the graph's, or the renewal bound's when every
+ * reach is W): what a statement claims before its returns are proved. GB_EDOM for a definition out of range. */
+GB_API int gb_proof_returns_table_bound(const gb_proof_returns_def *def, double *log_x);
+
 /* The classical Hénon map (a = 7/5, b = 3/10) in the frame of gb_proof_cover_henon_classical, the band about
  * s = 0.14 (u - 0.05)², R = [-0.42, 0.3] × [-0.018, 0.018] in its chart, and the strips of
  * scripts/henon_returns_search.py with their return times: *field the framed map, *def the returns to prove. */
 GB_API int gb_proof_returns_henon_classical(gb_proof_field *field, gb_proof_returns_def *def);
+
+/* The same band and strips, and the strips of scripts/henon_returns_search.py --partial that return across part of it
+ * (each with its reach): *def the returns to prove, their bound the graph's. */
+GB_API int gb_proof_returns_henon_partial(gb_proof_field *field, gb_proof_returns_def *def);
 
 #ifdef __cplusplus
 }
