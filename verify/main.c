@@ -69,6 +69,15 @@ static void run_in_second_process(void)
     gb_check_true(&c, 0, "the second process %s before this test's end (its output: %s)", second_end, second_log);
 }
 
+/* After the run: the second process waited for (when no proxy ran, as under --only), its results file removed. */
+static void finish_second_process(void)
+{
+    if (second > 0) waitpid(second, NULL, 0), second = 0;
+    if (second_results[0]) remove(second_results);
+    cJSON_Delete(second_document);
+    second_document = NULL;
+}
+
 /* Run the registry's suites (those `mask` marks when it is not NULL) whose names contain `only`, and of those the
  * tests whose names contain `test` (NULL: every suite, every test, in CUnit's one run of the registry). */
 static void run_selected(const char *only, const char *test, const unsigned char *mask)
@@ -134,9 +143,16 @@ int main(int argc, char **argv)
         else if (!strcmp(argv[i], "--full")) gb_check_full = 1;
         else if (!strcmp(argv[i], "--only") && i + 1 < argc) only = argv[++i];
         else if (!strcmp(argv[i], "--test") && i + 1 < argc) test = argv[++i];
-        else if (!strcmp(argv[i], "--jobs") && i + 1 < argc)
-            jobs = atoi(argv[++i]);
-        else {
+        else if (!strcmp(argv[i], "--jobs") && i + 1 < argc) {
+            char *end;
+            const long n = strtol(argv[++i], &end, 10);
+            if (*end || end == argv[i] || n < 1 || n > 256) {
+                fprintf(stderr, "%s: --jobs '%s' is out of range (allowed: an integer from 1 to 256)\n", argv[0],
+                        argv[i]);
+                return 2;
+            }
+            jobs = (int)n;
+        } else {
             fprintf(stderr,
                     "usage: %s [--results FILE] [--data DIR] [--full] [--only TEXT] [--test TEXT] [--jobs N]\n"
                     "  --only TEXT  run only the suites whose name contains TEXT (for development)\n"
@@ -159,12 +175,12 @@ int main(int argc, char **argv)
     snprintf(key, sizeof key, "%s/key", key_dir);
     setenv("GOMBOC_KEY", key, 1);
     if (CU_initialize_registry() != CUE_SUCCESS) return 1;
-    /* The suites in the report's order; `second`: the suite runs in the second process under --jobs 2 (the
-     * Lyapunov exponents, the Melnikov analysis and its proofs, Siconos's scenes, bodies of one's own as scenes and
-     * the Python package: about half the checks' time;
-     * none of them reads what a suite of the first process writes, nor the reverse). Under --jobs 2 the first
-     * process registers its own suites first, so that it runs them before it waits for the second's; the rows
-     * are written in the report's order whatever the order they ran in (gb_check_suite_rank). */
+    /* The suites in the report's order; `second`: the suite runs in the second process under --jobs 2 (the Lyapunov
+     * exponents, the Melnikov analysis and its proofs, Siconos's scenes, bodies of one's own as scenes and the Python
+     * package: about half the checks' time; none of them reads what a suite of the first process writes, nor the
+     * reverse). Under --jobs 2 the first process registers its own suites first, so that it runs them before it
+     * waits for the second's; the rows are written in the report's order whatever the order they ran in
+     * (gb_check_suite_rank). */
     static const struct {
         int (*add)(void);
         int second;
@@ -214,6 +230,7 @@ int main(int argc, char **argv)
     if (jobs >= 2 && start_second_process(second_suite, results, only, test))
         fprintf(stderr, "verify: cannot start a second process; every suite runs in this one\n");
     run_selected(only, test, NULL);
+    finish_second_process();
     const unsigned failures = CU_get_number_of_failures() + CU_get_number_of_tests_failed();
     const int write_failed = gb_check_write(results);
     CU_cleanup_registry();
