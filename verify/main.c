@@ -135,6 +135,9 @@ int main(int argc, char **argv)
     const char *results = "checks.json", *only = NULL, *test = NULL;
     int jobs = 1;
     harness_pid = getpid();
+    /* `make verify` starts the harness in the background of its recipe's shell, which sets it to ignore SIGINT and
+     * SIGQUIT: Ctrl-C must still stop it (and, through PR_SET_PDEATHSIG, its second process) */
+    signal(SIGINT, SIG_DFL), signal(SIGQUIT, SIG_DFL);
     /* the commands the checks run keep nothing in the user's cache (a check of it names its own directory) */
     setenv("GOMBOC_CACHE", "off", 1);
     for (int i = 1; i < argc; i++) {
