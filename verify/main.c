@@ -39,8 +39,8 @@ static void remove_key_dir(void)
  * its output goes to a log and its rows (each with its assertion's message) and the tests it ran to their end to a
  * file. In the first process each of those tests is a proxy that waits for the child once, then replays the
  * child's rows in the test's place: every row asserted through CUnit again with the message it had, so that one
- * CUnit run counts every test and assertion, in the order of the registry. A test the child did not run to its
- * end (the child crashed or was killed) fails, naming how the child ended. */
+ * CUnit run counts every test and assertion (the second's suites registered last, so run after the first's). A
+ * test the child did not run to its end (the child crashed or was killed) fails, naming how the child ended. */
 static pid_t second = -1;
 static char second_results[4096], second_log[4096];
 static cJSON *second_document;
@@ -124,8 +124,8 @@ static int start_second_process(const unsigned char *second_suite, const char *r
             suites++;
             for (CU_pTest t = suite->pTest; t; t = t->pNext) t->pTestFunc = run_in_second_process;
         }
-    printf("verify: %zu suites run in a second process beside this one (their output: %s) and are reported in their "
-           "place\n",
+    printf("verify: %zu suites run in a second process beside this one (its output: %s); their results follow this "
+           "one's own suites\n",
            suites, second_log);
     return 0;
 }
