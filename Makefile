@@ -137,11 +137,14 @@ FIG2     = $(BIN) contact --beta 0.12 --zb $(FIG2_ZB) --json
 # (JOBS) the harness runs half its suites in a second process (verify/main.c, --jobs). Their output goes to a log that
 # is shown after the scenes' own output, as it grows, so CUnit's run summary stays the last thing printed before the
 # report line.
+# The checks' temporary directories live in one directory of the run's own (their TMPDIR), removed at the end and on
+# an interruption whatever a check left.
 verify-only: $(BIN) $(VERIFY_BIN) $(SOLIB) $(if $(MPICC),$(MPI_BIN))
 	@mkdir -p $(OUT)
-	@GOMBOC_BIN=$(BIN) GOMBOC_LIB=$(SOLIB) $(MPI_ENV) $(VERIFY_BIN) --results $(OUT)/checks.json --data $(OUT) --jobs $(JOBS) \
-	  $(VERIFY_FLAGS) \
-	  > $(OUT)/checks.log 2>&1 & checks=$$!; \
+	@scratch=$$(mktemp -d "$${TMPDIR:-/tmp}/gomboc-checks-XXXXXX") || exit 1; checks=; \
+	trap 'rm -rf "$$scratch"' EXIT; trap '[ -z "$$checks" ] || kill $$checks 2>/dev/null; rm -rf "$$scratch"; exit 130' INT TERM; \
+	TMPDIR=$$scratch GOMBOC_BIN=$(BIN) GOMBOC_LIB=$(SOLIB) $(MPI_ENV) $(VERIFY_BIN) --results $(OUT)/checks.json --data $(OUT) \
+	  --jobs $(JOBS) $(VERIFY_FLAGS) > $(OUT)/checks.log 2>&1 & checks=$$!; \
 	$(MAKE) --no-print-directory verify-scenes; scenes=$$?; \
 	echo "verify: the checks ($(VERIFY_BIN), started beside the scenes; their log $(OUT)/checks.log):"; \
 	tail -n +1 --pid=$$checks -f $(OUT)/checks.log; \
