@@ -181,6 +181,29 @@ static int across_piece(walk *w, gb_proof_interval u, gb_proof_interval s, int l
     return 0;
 }
 
+/* GB_EDOM unless there are 1 ... 64 return times, each 1 ... 32. */
+static int check_times(const int *returns, size_t n)
+{
+    if (n < 1 || n > GB_PROOF_RETURNS_MAX)
+        return gb_error_set(GB_EDOM, "return times: %zu is out of range (allowed: 1 to %d)", n, GB_PROOF_RETURNS_MAX);
+    for (size_t i = 0; i < n; i++)
+        if (returns[i] < 1 || returns[i] > GB_PROOF_RETURN_TIME_MAX)
+            return gb_error_set(GB_EDOM, "return time %zu = %d is out of range (allowed: 1 to %d)", i, returns[i],
+                                GB_PROOF_RETURN_TIME_MAX);
+    return GB_OK;
+}
+
+/* The float root ln x lowered by a relative 2^-40, 2^-39, ... until `proved` holds there on Arb's balls: that value,
+ * or 0 when none is proved (or the root is not above 0). */
+static double lowered_until_proved(double root, int (*proved)(const void *context, double h), const void *context)
+{
+    for (int k = 40; k >= 1 && root > 0.0; k--) {
+        const double h = root * (1.0 - ldexp(1.0, -k));
+        if (proved(context, h)) return h;
+    }
+    return 0.0;
+}
+
 /* The root above 1 of Σ x^-m_i = 1 as ln x, by bisection on doubles (the sum falls as x grows). */
 static double renewal_root(const int *returns, size_t n)
 {
@@ -197,9 +220,16 @@ static double renewal_root(const int *returns, size_t n)
     return lo;
 }
 
+typedef struct times {
+    const int *returns;
+    size_t n;
+} times;
+
 /* 1 when Σ exp(-h m_i) ≥ 1 is proved on Arb's balls (h exact). */
-static int renewal_holds(const int *returns, size_t n, double h)
+static int renewal_holds(const void *context, double h)
 {
+    const int *returns = ((const times *)context)->returns;
+    const size_t n = ((const times *)context)->n;
     arb_t sum, term;
     arb_init(sum), arb_init(term);
     const slong prec = 128;
@@ -218,33 +248,22 @@ static int renewal_holds(const int *returns, size_t n, double h)
 int gb_proof_returns_entropy_bound(const int *returns, size_t n, double *log_x)
 {
     if (!returns || !log_x) return gb_error_set(GB_EINVAL, "the renewal bound needs return times and an output");
-    if (n < 1 || n > GB_PROOF_RETURNS_MAX)
-        return gb_error_set(GB_EDOM, "return times: %zu is out of range (allowed: 1 to %d)", n, GB_PROOF_RETURNS_MAX);
-    for (size_t i = 0; i < n; i++)
-        if (returns[i] < 1 || returns[i] > GB_PROOF_RETURN_TIME_MAX)
-            return gb_error_set(GB_EDOM, "return time %zu = %d is out of range (allowed: 1 to %d)", i, returns[i],
-                                GB_PROOF_RETURN_TIME_MAX);
-    *log_x = 0.0;
-    const double root = renewal_root(returns, n);
-    for (int k = 40; k >= 1 && root > 0.0; k--) { /* the float root, lowered until the sum is proved at least 1 there */
-        const double h = root * (1.0 - ldexp(1.0, -k));
-        if (renewal_holds(returns, n, h)) {
-            *log_x = h;
-            break;
-        }
-    }
+    const int status = check_times(returns, n);
+    if (status) return status;
+    const times t = {returns, n};
+    *log_x = lowered_until_proved(renewal_root(returns, n), renewal_holds, &t);
     return GB_OK;
 }
 
-/* M(e^h) v on the vertices `alive` marks (row i: e^(-h m_i) Σ_j edge_ij v_j), in doubles. */
-static void graph_apply(const int *returns, const unsigned char *edge, size_t n, const unsigned char *alive, double h,
+/* M v on the vertices `alive` marks (row i: factor_i Σ_j edge_ij v_j, factor_i = e^(-h m_i)), in doubles. */
+static void graph_apply(const double *factor, const unsigned char *edge, size_t n, const unsigned char *alive,
                         const double *v, double *out)
 {
     for (size_t i = 0; i < n; i++) {
         double sum = 0.0;
         for (size_t j = 0; alive[i] && j < n; j++)
             if (alive[j] && edge[i * n + j]) sum += v[j];
-        out[i] = alive[i] ? exp(-h * returns[i]) * sum : 0.0;
+        out[i] = alive[i] ? factor[i] * sum : 0.0;
     }
 }
 
@@ -254,26 +273,37 @@ static void graph_apply(const int *returns, const unsigned char *edge, size_t n,
 static double graph_ratio(const int *returns, const unsigned char *edge, size_t n, const unsigned char *alive, double h,
                           double *v, size_t *worst, double *growth)
 {
-    double w[GB_PROOF_RETURNS_MAX];
-    for (size_t i = 0; i < n; i++) v[i] = alive[i] ? 1.0 : 0.0;
+    double w[GB_PROOF_RETURNS_MAX], factor[GB_PROOF_RETURNS_MAX];
+    for (size_t i = 0; i < n; i++) v[i] = alive[i] ? 1.0 : 0.0, factor[i] = exp(-h * returns[i]);
     for (int k = 0; k < 2000; k++) {
-        graph_apply(returns, edge, n, alive, h, v, w);
+        graph_apply(factor, edge, n, alive, v, w);
         double top = 0.0;
         for (size_t i = 0; i < n; i++) w[i] += v[i], top = fmax(top, w[i]);
         for (size_t i = 0; i < n; i++) v[i] = top > 0.0 ? w[i] / top : 0.0;
         *growth = top - 1.0; /* v's largest entry was 1 */
     }
-    graph_apply(returns, edge, n, alive, h, v, w);
+    graph_apply(factor, edge, n, alive, v, w);
     double least = INFINITY;
     for (size_t i = 0; i < n; i++)
         if (alive[i] && w[i] / v[i] < least) least = w[i] / v[i], *worst = i;
     return least;
 }
 
+typedef struct graph {
+    const int *returns;
+    const unsigned char *edge, *alive;
+    const double *v;
+    size_t n;
+} graph;
+
 /* 1 when M(e^h) v ≥ v is proved on Arb's balls on the alive vertices (h and v exact doubles). */
-static int graph_holds(const int *returns, const unsigned char *edge, size_t n, const unsigned char *alive, double h,
-                       const double *v)
+static int graph_holds(const void *context, double h)
 {
+    const graph *G = context;
+    const int *returns = G->returns;
+    const unsigned char *edge = G->edge, *alive = G->alive;
+    const double *v = G->v;
+    const size_t n = G->n;
     arb_t sum, factor, value;
     arb_init(sum), arb_init(factor), arb_init(value);
     const slong prec = 128;
@@ -299,12 +329,8 @@ int gb_proof_returns_graph_bound(const int *returns, const unsigned char *edge, 
 {
     if (!returns || !edge || !log_x)
         return gb_error_set(GB_EINVAL, "the graph bound needs return times, edges and an output");
-    if (n < 1 || n > GB_PROOF_RETURNS_MAX)
-        return gb_error_set(GB_EDOM, "vertices: %zu is out of range (allowed: 1 to %d)", n, GB_PROOF_RETURNS_MAX);
-    for (size_t i = 0; i < n; i++)
-        if (returns[i] < 1 || returns[i] > GB_PROOF_RETURN_TIME_MAX)
-            return gb_error_set(GB_EDOM, "return time %zu = %d is out of range (allowed: 1 to %d)", i, returns[i],
-                                GB_PROOF_RETURN_TIME_MAX);
+    const int status = check_times(returns, n);
+    if (status) return status;
     *log_x = 0.0;
     unsigned char alive[GB_PROOF_RETURNS_MAX];
     double v[GB_PROOF_RETURNS_MAX];
@@ -336,13 +362,8 @@ int gb_proof_returns_graph_bound(const int *returns, const unsigned char *edge, 
             alive[worst] = 0;
             continue;
         }
-        for (int k = 40; k >= 1; k--) { /* the float root, lowered until M v >= v is proved there */
-            const double h = lo * (1.0 - ldexp(1.0, -k));
-            if (graph_holds(returns, edge, n, alive, h, v)) {
-                *log_x = h;
-                break;
-            }
-        }
+        const graph G = {returns, edge, alive, v, n};
+        *log_x = lowered_until_proved(lo, graph_holds, &G);
         return GB_OK;
     }
     return GB_OK;
