@@ -10,14 +10,23 @@
 
 /* ---------------------------------------------------------------- the vertical */
 
-int gb_contact_unit_vertical(const double zb[3], double unit[3])
+/* √(z_b·z_b) is finite and positive exactly when z_b·z_b is: the check needs no root. */
+int gb_contact_vertical_check(const double zb[3])
 {
-    const double n = gb_vec_norm(zb);
-    if (!(isfinite(n) && n > 0.0))
+    const double n2 = gb_vec_dot(zb, zb);
+    if (!(isfinite(n2) && n2 > 0.0))
         return gb_error_set(GB_EDOM,
                             "z_b = (%g, %g, %g) has no direction: the body-frame vertical must be a "
                             "finite, non-zero vector",
                             zb[0], zb[1], zb[2]);
+    return GB_OK;
+}
+
+int gb_contact_unit_vertical(const double zb[3], double unit[3])
+{
+    const int status = gb_contact_vertical_check(zb);
+    if (status) return status;
+    const double n = gb_vec_norm(zb);
     for (int i = 0; i < 3; i++) unit[i] = zb[i] / n;
     return GB_OK;
 }

@@ -113,6 +113,8 @@ int gb_contact_grid_search(const gb_contact_grid *grid, const double d[3], size_
  * p + (∂q/∂z_b)·Δz_b with the sensitivity of gb_contact_sensitivity. For POLAR_Z it is (φ + Δa, θ + Δb)
  * unwrapped (gb_contact_refine wraps its start). */
 void gb_contact_chart_offset(const gb_contact_point *p, double da, double db, double *phi, double *theta);
+/* gb_contact_unit_vertical's check alone (GB_EDOM for a zero or non-finite z_b), without dividing. */
+int gb_contact_vertical_check(const double zb[3]);
 /* gb_contact_rate for a contact whose sensitivity ∂(φ, θ)/∂z_b (gb_contact_sensitivity) is already known, at
  * the unit vertical d: ṙ_c and the chart rates (q_dot may be NULL), eq 72; for a caller that keeps the
  * sensitivity (the dynamics reuse it as the next Newton start's predictor). */

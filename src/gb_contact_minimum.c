@@ -549,8 +549,7 @@ int gb_contact_sensitivity(const gb_surface *surface, const double zb[3],
                            const gb_contact_point *contact, double dq_dzb[2][3])
 {
     (void)surface;
-    double d[3];
-    int status = gb_contact_unit_vertical(zb, d);
+    const int status = gb_contact_vertical_check(zb); /* the Hessian and tangents are the contact's: z_b only checked */
     if (status) return status;
     const double *H = contact->hessian;
     const double det = H[0] * H[2] - H[1] * H[1];
