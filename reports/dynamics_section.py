@@ -191,14 +191,14 @@ def dynamics_section(out, rows):
                   "three aligned arrays, a vectorised min-reduction, then the first node at the minimum), with the "
                   "library's equations around it, all built with -O3 -march=native (the best flags of this compiler); it "
                   "must return brute force's node on 10⁴ seeded verticals and reach the same final state. Beside it: the "
-                  "library's own loop over every node in that build and in the shipped -O2 build. Targets (issue 20): fast "
+                  "library's own loop over every node in that build and in the shipped build (`CFLAGS`, -O3 by default). Targets (issue 20): fast "
                   "grid and continuous contact certified global at every step, each ≥ 20× the baseline; the continuous "
                   "column here is certified per vertical, and the table after the set-up's gives it with the atlas of "
                   "verticals. Nodes per query: "
                   "the heights the fast grid's tracker computes per contact query. The certificate columns count its checks "
                   "in the continuous run: global (proved), lower minimum found (a branch switch), undecided (a box it could "
                   "neither settle nor split further; the step keeps the continued branch).", "",
-                  "| body | plain loop [s] | same node and state | library loop -O3 [s] | library loop -O2 [s] | fast grid [s] | "
+                  "| body | plain loop [s] | same node and state | library loop, native [s] | library loop, shipped flags [s] | fast grid [s] | "
                   "nodes per query | speed-up | fast run identical | continuous rolling, certified [s] | speed-up | checks | "
                   "global | lower found | undecided | boxes tested per check |",
                   "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
@@ -210,7 +210,7 @@ def dynamics_section(out, rows):
                         if "certificate_checks" in r else "— | — | — | — | —")
                 base = r.get("baseline_seconds") or r["plain_seconds"]
                 native = (f"{r['baseline_seconds']:.3f} | {'yes' if r.get('baseline_same_state') else '**no**'}"
-                          if r.get("baseline_seconds") else "not run (ratios against -O2) | —")
+                          if r.get("baseline_seconds") else "not run (ratios against the shipped library loop) | —")
                 library = f"{r['library_native_seconds']:.3f}" if r.get("library_native_seconds") else "—"
                 nodes = f"{r['fast_nodes_per_query']:.1f}" if "fast_nodes_per_query" in r else "—"
                 lines.append(f"| {r['body']} | {native} | {library} | {r['plain_seconds']:.3f} | {r['fast_seconds']:.3f} | "

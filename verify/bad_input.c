@@ -656,7 +656,7 @@ static void test_temporaries(void)
     bad_input_write_bytes(other, "not a temporary of ours", 23);
     const char *quick = "[integrator]\nperiods = 1\nsteps_per_period = 20\n[model]\ncontact = fast-grid\n";
     bad_input_write_bytes(case_path, quick, strlen(quick));
-    char command[1024], out[4096];
+    char command[2 * 4096 + 1024], out[4096]; /* room for the binary's path (4096) and the two others whole */
     snprintf(command, sizeof command, "%s run '%s' --out '%s'", bad_input_binary(), case_path, dir);
     const int code = bad_input_run_in(dir, command, out, sizeof out);
     gb_check cs = {"-", "-", "a temporary left by a killed process is removed by the next run in its directory; other files stay",
@@ -740,7 +740,7 @@ static void test_outputs(void)
     for (int trial = 0; trial < 12; trial++) {
         snprintf(path, sizeof path, "%s/race.atlas", dir);
         remove(path);
-        char command[1024];
+        char command[2 * 4096 + 1024]; /* the binary's path (up to 4096) twice, whole */
         snprintf(command, sizeof command,
                  "mkdir -p o1 o2 && { %s run a.ini --out o1 --atlas race.atlas & %s run a.ini --out o2 --atlas race.atlas & "
                  "wait %%1; e1=$?; wait %%2; e2=$?; test $e1 -eq 0 -a $e2 -eq 0 -a -f o1/a-summary.json -a -f o2/a-summary.json; }",
