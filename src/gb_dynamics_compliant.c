@@ -187,7 +187,7 @@ static int compliant_switch(gb_dynamics *d, double t, double y[GB_STATE_SIZE], c
     gb_dyn_set_contact(d, branch);
     d->branch_switches++, d->last_switch_time = t;
     d->memo_valid = d->last_valid = 0;
-    d->contact_rate[0] = d->contact_rate[1] = 0.0; /* no predictor until the next accepted step */
+    gb_dyn_forget_rate(d);
     return GB_OK;
 }
 

@@ -89,6 +89,35 @@ int gb_dyn_point_rate(const gb_dynamics *d, const double zb[3], const gb_contact
     return gb_contact_rate(&d->surface, zb, p, w, v, NULL);
 }
 
+/* Store the accepted contact's time, and what its (φ̇, θ̇) (eq 72) is computed from when a Newton start needs it. */
+int gb_dyn_remember_rate(gb_dynamics *d, double t, const double y[GB_STATE_SIZE])
+{
+    d->contact_time = t;
+    if (d->def.contact != GB_CONTACT_MODEL_CONTINUOUS) return GB_OK; /* a node does not move on the body */
+    gb_dyn_vertical(y, d->rate_zb);
+    memcpy(d->rate_omega, y + GB_STATE_OMEGA, sizeof d->rate_omega);
+    d->rate_contact = d->contact;
+    d->rate_pending = 1;
+    return GB_OK;
+}
+
+void gb_dyn_forget_rate(gb_dynamics *d)
+{
+    d->contact_rate[0] = d->contact_rate[1] = 0.0;
+    d->rate_pending = 0;
+}
+
+/* The accepted contact's (φ̇, θ̇), computed from what gb_dyn_remember_rate kept the first time it is asked for. */
+static const double *accepted_rate(gb_dynamics *d)
+{
+    double rc_dot[3];
+    if (d->rate_pending &&
+        gb_contact_rate(&d->surface, d->rate_zb, &d->rate_contact, d->rate_omega, rc_dot, d->contact_rate) != GB_OK)
+        d->contact_rate[0] = d->contact_rate[1] = 0.0; /* a singular Hessian: start from the point itself */
+    d->rate_pending = 0;
+    return d->contact_rate;
+}
+
 /* The contact for vertical zb (unit) and angular velocity ω, warm-started from the accepted one. */
 int gb_dyn_contact_at(gb_dynamics *d, double t, const double zb[3], const double omega[3], gb_dyn_contact *c)
 {
@@ -120,8 +149,8 @@ int gb_dyn_contact_at(gb_dynamics *d, double t, const double zb[3], const double
         gb_contact_chart_offset(&d->last_point, gb_vec_dot(d->last_dq[0], step), gb_vec_dot(d->last_dq[1], step),
                                 &start[0], &start[1]);
     } else {
-        const double dt = t - d->contact_time;
-        gb_contact_chart_offset(&d->contact, d->contact_rate[0] * dt, d->contact_rate[1] * dt, &start[0], &start[1]);
+        const double dt = t - d->contact_time, *rate = accepted_rate(d);
+        gb_contact_chart_offset(&d->contact, rate[0] * dt, rate[1] * dt, &start[0], &start[1]);
     }
     if (!same) status = gb_contact_refine(&d->surface, unit, start[0], start[1], &d->refine, &c->point);
     if ((status == GB_ENOCONV || (!status && !c->point.is_minimum)) && (d->certify || d->starts)) {
@@ -184,18 +213,6 @@ void gb_dyn_set_contact(gb_dynamics *d, const gb_contact_point *p)
 {
     d->contact = *p;
     if (d->def.contact != GB_CONTACT_MODEL_CONTINUOUS) d->index = p->node;
-}
-
-/* Store the accepted contact's time and its (φ̇, θ̇) (eq 72) for the next Newton starts. */
-int gb_dyn_remember_rate(gb_dynamics *d, double t, const double y[GB_STATE_SIZE])
-{
-    double zb[3], rc_dot[3];
-    gb_dyn_vertical(y, zb);
-    d->contact_time = t;
-    if (d->def.contact != GB_CONTACT_MODEL_CONTINUOUS) return GB_OK; /* a node does not move on the body */
-    if (gb_contact_rate(&d->surface, zb, &d->contact, y + GB_STATE_OMEGA, rc_dot, d->contact_rate) != GB_OK)
-        d->contact_rate[0] = d->contact_rate[1] = 0.0; /* a singular Hessian: start from the point itself */
-    return GB_OK;
 }
 
 /* Is `candidate` the global minimum at zb? The atlas answers where it can, gb_certify elsewhere. */

@@ -176,6 +176,10 @@ void gb_dynamics_adopt_contact(gb_dynamics *to, const gb_dynamics *from)
     memcpy(to->flight.v0, from->flight.v0, sizeof to->flight.v0);
     to->contact_time = from->contact_time;
     memcpy(to->contact_rate, from->contact_rate, sizeof to->contact_rate);
+    to->rate_pending = from->rate_pending;
+    memcpy(to->rate_zb, from->rate_zb, sizeof to->rate_zb);
+    memcpy(to->rate_omega, from->rate_omega, sizeof to->rate_omega);
+    to->rate_contact = from->rate_contact;
     to->slide.count = from->slide.count;
     memcpy(to->slide.slides, from->slide.slides, sizeof to->slide.slides);
     memcpy(to->slide.start, from->slide.start, sizeof to->slide.start);

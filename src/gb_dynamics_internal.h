@@ -198,8 +198,13 @@ struct gb_dynamics {
     gb_contact_point contact;
     /* Newton's predictor for continuous contact: (φ, θ) ≈ contact + rate (t − contact_time), with the
      * rate of eq 72 at the accepted state; the start changes which minimum is reached only across a fold,
-     * and otherwise its last bits at most. */
+     * and otherwise its last bits at most. The rate is computed when a start first needs it (rate_pending:
+     * from the accepted state's vertical, ω and contact, kept as they were), which is seldom: the start
+     * below serves every evaluation but the first after a switch or an event. */
     double contact_time, contact_rate[2];
+    int rate_pending;
+    double rate_zb[3], rate_omega[3];
+    gb_contact_point rate_contact;
     /* ... or, when valid, from the last contact found (at any evaluation since the accepted state) by its
      * sensitivity (eq 70): (φ, θ) ≈ last + ∂(φ, θ)/∂z_b (z_b − z_b,last). Between the two middle stages of
      * RK4 the verticals differ by O(h²) and this start is the minimum to ~1e-12 rad. */
@@ -328,6 +333,7 @@ int gb_dyn_point_rate(const gb_dynamics *d, const double zb[3], const gb_contact
 int gb_dyn_contact_at(gb_dynamics *d, double t, const double zb[3], const double omega[3], gb_dyn_contact *c);
 int gb_dyn_contact_global(gb_dynamics *d, const double zb[3]);
 int gb_dyn_remember_rate(gb_dynamics *d, double t, const double y[GB_STATE_SIZE]);
+void gb_dyn_forget_rate(gb_dynamics *d); /* no predictor until the next accepted step */
 /* The global minimum at zb from scratch: gb_certify's, or with certificate = multi-start the lowest polished local
  * minimum of the branch grid (gb_dynamics_contact.c). */
 int gb_dyn_global_minimum(gb_dynamics *d, const double zb[3], gb_contact_point *out);

@@ -528,7 +528,7 @@ static int after_flight_event(gb_dynamics *d, int status)
 {
     d->event = GB_DYN_EVENT_NONE;
     d->memo_valid = 0;
-    d->contact_rate[0] = d->contact_rate[1] = 0.0;
+    gb_dyn_forget_rate(d);
     d->last_valid = 0;
     return status;
 }
@@ -538,7 +538,7 @@ static int after_switch(gb_dynamics *d, double t)
 {
     d->last_switch_time = t;
     d->memo_valid = 0;
-    d->contact_rate[0] = d->contact_rate[1] = 0.0; /* no predictor until the next accepted step */
+    gb_dyn_forget_rate(d);
     d->last_valid = 0;
     if (d->def.contact == GB_CONTACT_MODEL_CONTINUOUS) d->branch_switches++;
     else d->grid_switches++;
