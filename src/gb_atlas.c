@@ -452,7 +452,13 @@ static int find_cell(gb_atlas *A, const double d[3], const gb_contact_refine_def
         c = &c->child[(u >= um) + 2 * (v >= vm)];
     }
     if (state == CELL_CERTIFIED || state == CELL_FAILED) {
-        for (int s = 0; s < 2; s++) A->hint[s][0] = c->site[s].hint_phi, A->hint[s][1] = c->site[s].hint_theta;
+        double d0[3], rho;
+        cell_geometry(c, d0, &rho);
+        for (int s = 0; s < 2; s++) {
+            A->hint[s][0] = c->site[s].hint_phi, A->hint[s][1] = c->site[s].hint_theta;
+            memcpy(A->ref_d[s], d0, sizeof d0);
+            A->ref_h[s] = gb_vec_dot(d0, c->site[s].x0); /* the site was built around its minimum at the centre */
+        }
         A->last = c;
     }
     *out = c;
@@ -519,6 +525,8 @@ int gb_atlas_create(const gb_surface *surface, const gb_atlas_def *def, gb_atlas
         box_fill(K, &K->roots[k], &K->root_enclosures[k], region, 0, g[0], g[1], g[2], g[3]);
     }
     K->stats.boxes = GB_ROOT_COUNT;
+    for (int k = 0; k < GB_ROOT_COUNT; k++)
+        K->radius = fmax(K->radius, gb_certify_norm_of_mags(K->root_enclosures[k].x));
     A->last_half_width = SITE_MAX_HALF_WIDTH;
     gb_atlas_faces_reset(A);
     *out = A;
@@ -583,7 +591,21 @@ static int site_minimum(gb_atlas *A, const site *st, int s, const double d[3], c
     }
     if (!q->is_minimum || !site_holds(st, q->phi, q->theta, NULL)) return 0;
     A->hint[s][0] = q->phi, A->hint[s][1] = q->theta;
+    memcpy(A->ref_d[s], d, sizeof A->ref_d[s]);
+    A->ref_h[s] = q->height;
     return 1;
+}
+
+/* Is site s of the view's last cell no lower than `floor` at d, from its minimum at the reference vertical d_r
+ * (the cell's centre, or the site's last Newton solve), without a solve? At d_r that minimum, at height h_r, is
+ * the site's critical point inside each of its boxes, on which d_r·x'' is positive definite (the cell's proof,
+ * for every vertical of the cell): the lowest point of each box, so h_r = min over the boxes of d_r·x. For any d,
+ * with x_d the lowest point of the boxes at d, min d·x = d_r·x_d + (d − d_r)·x_d ≥ h_r − R |d − d_r|, R ≥ |x|.
+ * The slack covers the rounding of h_r (the minimum's position to ~1e-15) and of the sums here. */
+static int site_no_lower(const gb_atlas *A, int s, const double d[3], double floor)
+{
+    const double step[3] = {d[0] - A->ref_d[s][0], d[1] - A->ref_d[s][1], d[2] - A->ref_d[s][2]};
+    return A->ref_h[s] - A->core->radius * gb_vec_norm(step) - GB_CERTIFY_SLACK_ROUNDING >= floor;
 }
 
 int gb_atlas_check(gb_atlas *A, const double zb[3], const gb_contact_point *minimum, const gb_contact_refine_def *refine,
@@ -607,13 +629,16 @@ int gb_atlas_check(gb_atlas *A, const double zb[3], const gb_contact_point *mini
     }
     gb_contact_point best;
     double best_height = INFINITY;
+    int settled = 0; /* sites other than home known to lie no lower than H − η, or solved */
     for (int s = 0; s < c->sites; s++) {
         if (s == home) continue;
+        settled++;
+        if (site_no_lower(A, s, d, H - eta)) continue; /* what the solve below would conclude */
         gb_contact_point q;
         if (!site_minimum(A, &c->site[s], s, d, refine, &q, out)) return GB_OK;
         if (q.height < best_height) best = q, best_height = q.height;
     }
-    if (home < 0 && !isfinite(best_height)) return GB_OK;
+    if (home < 0 && !settled) return GB_OK;
     A->stats.answered++;
     if (best_height < H - eta) {
         out->verdict = GB_CERTIFY_LOWER_FOUND;

@@ -80,6 +80,7 @@ typedef struct gb_atlas_core {
     size_t certifiers_free, certifiers_cap;
     size_t max_bytes;      /* no cell is built beyond this memory (0: no bound); its checks are undecided then */
     size_t cells_held;     /* the cells taken from the arena: the six faces and four a split */
+    double radius;         /* ≥ |x| over the whole surface (the root boxes' enclosures) */
     gb_atlas_stats stats;  /* the cells and boxes: cells, cells_failed, two_site_cells, cells_split, boxes,
                             * deepest_level, build_seconds, and the waits (wait_seconds, waits) */
 } gb_atlas_core;
@@ -89,6 +90,8 @@ struct gb_atlas {
     gb_atlas_core *core;
     cell *last;          /* the cell of the last check */
     double hint[2][2];   /* where Newton starts in each site of `last`: the last minimum found there */
+    double ref_d[2][3],
+        ref_h[2]; /* each site's minimum of `last` at a vertical: its height there (the skip, gb_atlas.c) */
     double last_half_width;
     gb_atlas_stats stats; /* this view's checks: checks, answered, lower_found, newton_runs, boxes_tested */
 };

@@ -440,6 +440,81 @@ static void test_shared_views(void)
                   full_stats.cells + full_stats.cells_failed + full_stats.cells_split);
 }
 
+/* The bound a check trusts instead of a Newton solve (gb_atlas.c, site_no_lower): at a vertical d of a cell, each
+ * site's lowest point lies no lower than h_r − R |d − d_r| from the site's minimum at the cell's centre d_r (height
+ * h_r), R ≥ |x| on the surface. Here against the site's minimum solved at d, at the centres and 0.9 and 0.99 of the
+ * way to the corners of the two-site cells that 400 verticals near +z and 400 near +x fall in; and the bound without
+ * its term R |d - d_r| must fail somewhere (else this comparison could not tell). */
+static void test_skip_bound(void)
+{
+    for (int m = 0; m < 2; m++) {
+        const gb_surface *s = gb_check_body(m ? "II" : "I", 0.12);
+        const gb_atlas_def ad = gb_atlas_default_def();
+        const gb_contact_refine_def rd = gb_contact_refine_default_def();
+        gb_atlas *atlas = NULL;
+        int status = gb_atlas_create(s, &ad, &atlas);
+        gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
+        gsl_rng_set(rng, 20261202UL + (unsigned long)m);
+        size_t cells = 0, tested = 0, below = 0, bare_below = 0, unsolved = 0;
+        double worst = INFINITY, used = 0.0; /* the largest share of R |d - d_r| a minimum fell by */
+        const void *seen[64];
+        for (int k = 0; k < 800 && !status; k++) {
+            const double r = 0.5 * sqrt(gsl_rng_uniform(rng)), t = 2.0 * M_PI * gsl_rng_uniform(rng);
+            const double a[3] = {sin(r) * cos(t), sin(r) * sin(t), cos(r)},
+                         zb[3] = {k < 400 ? a[0] : a[2], a[1], k < 400 ? a[2] : a[0]};
+            gb_atlas_cell_info info;
+            status = gb_atlas_cell(atlas, zb, &info);
+            if (status || info.sites != 2) continue;
+            int known = 0;
+            for (size_t j = 0; j < cells && j < 64; j++) known |= seen[j] == (const void *)atlas->last;
+            if (known || cells == 64) continue;
+            seen[cells++] = atlas->last;
+            const double centre[3] = {info.d0[0], info.d0[1], info.d0[2]};
+            status = gb_atlas_cell(atlas, centre, &info); /* the same cell: its references are its centre's */
+            static const double toward[3] = {0.0, 0.9, 0.99};
+            for (int j = 0; j < 9 && !status; j++) {
+                const double f = toward[(j + 3) / 4];
+                const double *corner = info.corner[j ? (j - 1) % 4 : 0];
+                double z[3], d[3];
+                for (int i = 0; i < 3; i++) z[i] = info.d0[i] + f * (corner[i] - info.d0[i]);
+                status = gb_contact_unit_vertical(z, d);
+                for (int site = 0; site < 2 && !status; site++) {
+                    gb_contact_point q;
+                    if (gb_contact_refine(s, d, atlas->hint[site][0], atlas->hint[site][1], &rd, &q) || !q.is_minimum) {
+                        gb_error_clear();
+                        unsolved++;
+                        continue;
+                    }
+                    const double step[3] = {d[0] - atlas->ref_d[site][0], d[1] - atlas->ref_d[site][1],
+                                            d[2] - atlas->ref_d[site][2]};
+                    const double reach = atlas->core->radius * gb_vec_norm(step);
+                    const double margin = q.height - (atlas->ref_h[site] - reach - GB_CERTIFY_SLACK_ROUNDING);
+                    tested++;
+                    below += margin < 0.0;
+                    bare_below += q.height < atlas->ref_h[site] - GB_CERTIFY_SLACK_ROUNDING;
+                    if (reach > 0.0) used = fmax(used, (atlas->ref_h[site] - q.height) / reach);
+                    worst = fmin(worst, margin);
+                }
+            }
+        }
+        gsl_rng_free(rng);
+        gb_atlas_free(atlas);
+        char q[240];
+        snprintf(q, sizeof q,
+                 "Gomboc %s: the bound that spares a check the Newton solve of a site, h_r - R |d - d_r|, at the "
+                 "centres and near the corners of two-site cells",
+                 m ? "II" : "I");
+        gb_check c = {"4", "29", q,
+                      "the site's minimum at each vertical, by Newton from the cell's hint; h_r alone as the control",
+                      "every minimum at or above its bound (no slack beyond the bound's own 1e-13); h_r alone broken "
+                      "somewhere"};
+        gb_check_true(&c, !status && tested > 100 && below == 0 && bare_below > 0,
+                      "%s; %zu two-site cells, %zu site minima against the bound (%zu not solved), %zu below it, least "
+                      "margin %.3g, at most %.3f of R |d - d_r| used; below h_r alone: %zu",
+                      status ? gb_error_message() : "ran", cells, tested, unsolved, below, worst, used, bare_below);
+    }
+}
+
 /* A bad atlas definition is refused with its allowed range. */
 static void test_bad_definition(void)
 {
@@ -459,6 +534,7 @@ int verify_register_s4_atlas(void)
         {"eq 29: the atlas's Table 1 runs are the per-vertical certificate's runs; its file", test_table1_runs, NULL},
         {"eq 29: runs sharing one atlas file add up their cells", test_merged_writers, NULL},
         {"eq 29: threads sharing one atlas in memory prove each cell once", test_shared_views, NULL},
+        {"eq 29: the bound that spares a site's Newton solve holds", test_skip_bound, NULL},
         {"eq 29: atlas definition out of range", test_bad_definition, NULL},
         {NULL, NULL, NULL},
     };
