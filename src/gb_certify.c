@@ -723,10 +723,9 @@ static int certify_check(gb_certify *c, const double zb[3], const gb_contact_poi
     return GB_OK;
 }
 
-int gb_certify_global_minimum(gb_certify *c, const double zb[3], const gb_contact_refine_def *refine,
-                              gb_contact_point *out)
+int gb_certify_first_candidate(const gb_certify *c, const double zb[3], const gb_contact_refine_def *refine,
+                               double d[3], gb_contact_point *out)
 {
-    double d[3];
     int status = gb_contact_unit_vertical(zb, d);
     if (status) return status;
     /* start: the lowest root-box centre */
@@ -739,7 +738,14 @@ int gb_certify_global_minimum(gb_certify *c, const double zb[3], const gb_contac
         const double h = gb_vec_dot(d, x);
         if (h < best) best = h, phi0 = phi, theta0 = theta;
     }
-    status = gb_contact_refine(&c->surface, d, phi0, theta0, refine, out);
+    return gb_contact_refine(&c->surface, d, phi0, theta0, refine, out);
+}
+
+int gb_certify_global_minimum(gb_certify *c, const double zb[3], const gb_contact_refine_def *refine,
+                              gb_contact_point *out)
+{
+    double d[3];
+    int status = gb_certify_first_candidate(c, zb, refine, d, out);
     for (int round = 0; !status && round < 64; round++) {
         gb_certify_result r;
         status = gb_certify_check(c, d, out, refine, &r);

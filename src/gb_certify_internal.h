@@ -7,6 +7,7 @@
 #ifndef GB_CERTIFY_INTERNAL_H
 #define GB_CERTIFY_INTERNAL_H
 
+#include "gb_certify.h"
 #include "gb_interval.h"
 #include "gb_surface_internal.h"
 
@@ -125,5 +126,11 @@ static inline int gb_certify_range_inside_periodic(double lo, double hi, double 
         if (lo + 2.0 * GB_INTERVAL_PI * k >= outer_lo && hi + 2.0 * GB_INTERVAL_PI * k <= outer_hi) return 1;
     return 0;
 }
+
+/* gb_certify_global_minimum's first candidate: Newton from the lowest root-box centre at the unit vertical d of zb
+ * (into d). A caller that certifies it global another way (the atlas) has the point gb_certify_global_minimum
+ * returns when its first check says GLOBAL, bit for bit. */
+int gb_certify_first_candidate(const gb_certify *certify, const double zb[3], const gb_contact_refine_def *refine,
+                               double d[3], gb_contact_point *out);
 
 #endif

@@ -3,6 +3,7 @@
  * and the competitor the certificate proves or finds lower (gb_dynamics_internal.h). */
 #include "gb_dynamics_internal.h"
 
+#include "gb_certify_internal.h"
 #include "gb_contact.h"
 #include "gb_error.h"
 #include "gb_vec.h"
@@ -202,10 +203,30 @@ static int multistart_lowest(gb_dynamics *d, const double zb[3], gb_contact_poin
     return GB_OK;
 }
 
-/* The global minimum at zb from scratch: certified (gb_certify), or the multi-start's lowest. */
+/* certificate = atlas: gb_certify_global_minimum's first candidate when the atlas proves it global, which is then
+ * the point gb_certify would return (its first check deciding the same predicate), without its boxes; 0 otherwise
+ * (undecided, a lower minimum, or an error), and gb_certify is asked as before. */
+static int atlas_global_minimum(gb_dynamics *d, const double zb[3], gb_contact_point *out)
+{
+    double unit[3];
+    gb_contact_point p;
+    gb_certify_result r;
+    if (gb_certify_first_candidate(d->certify, zb, &d->refine, unit, &p) ||
+        gb_atlas_check(d->atlas, unit, &p, &d->refine, &r)) {
+        gb_error_clear(); /* gb_certify meets the same error, and says it */
+        return 0;
+    }
+    if (r.verdict != GB_CERTIFY_GLOBAL) return 0;
+    *out = p;
+    return 1;
+}
+
+/* The global minimum at zb from scratch: certified (the atlas where it can, gb_certify), or the multi-start's lowest. */
 int gb_dyn_global_minimum(gb_dynamics *d, const double zb[3], gb_contact_point *out)
 {
-    return d->starts ? multistart_lowest(d, zb, out) : gb_certify_global_minimum(d->certify, zb, &d->refine, out);
+    if (d->starts) return multistart_lowest(d, zb, out);
+    if (d->atlas && atlas_global_minimum(d, zb, out)) return GB_OK;
+    return gb_certify_global_minimum(d->certify, zb, &d->refine, out);
 }
 
 /* The accepted contact (P) becomes p; a grid body's node index with it. */
