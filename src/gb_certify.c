@@ -74,6 +74,7 @@ struct gb_certify {
     gb_certify_def def;
     node roots[GB_ROOT_COUNT];
     gb_surface_enclosure root_enclosures[GB_ROOT_COUNT];
+    int roots_enclosed; /* the roots' enclosures are made by the first check (a run whose atlas answers needs none) */
     gb_arena quads;  /* every split box's four children */
     size_t nodes;
     unsigned long epoch, next_serial;
@@ -642,11 +643,13 @@ int gb_certify_create(const gb_surface *surface, const gb_certify_def *def, gb_c
     gb_arena_init(&c->quads, sizeof(quad));
     c->epoch = 1;
     c->last_half_width = BASIN_MAX_HALF_WIDTH;
-    for (int k = 0; k < GB_ROOT_COUNT; k++) {
+    for (int k = 0; k < GB_ROOT_COUNT; k++) { /* their boxes; enclosed by roots_enclose */
         int region;
         double box[4];
         gb_root_box(k, &region, box);
-        node_fill(c, &c->roots[k], &c->root_enclosures[k], region, 0, box[0], box[1], box[2], box[3]);
+        node *n = &c->roots[k];
+        n->a_lo = box[0], n->a_hi = box[1], n->b_lo = box[2], n->b_hi = box[3];
+        n->region = (unsigned char)region;
     }
     c->nodes = GB_ROOT_COUNT;
     *out = c;
@@ -680,10 +683,22 @@ int gb_certify_check(gb_certify *c, const double zb[3], const gb_contact_point *
     return status;
 }
 
+/* The root boxes enclosed, once, before a check first reads them (as gb_certify_create once did). */
+static void roots_enclose(gb_certify *c)
+{
+    if (c->roots_enclosed) return;
+    for (int k = 0; k < GB_ROOT_COUNT; k++) {
+        node *n = &c->roots[k];
+        node_fill(c, n, &c->root_enclosures[k], n->region, 0, n->a_lo, n->a_hi, n->b_lo, n->b_hi);
+    }
+    c->roots_enclosed = 1;
+}
+
 static int certify_check(gb_certify *c, const double zb[3], const gb_contact_point *minimum,
                          const gb_contact_refine_def *refine, gb_certify_result *out)
 {
     memset(out, 0, sizeof *out);
+    roots_enclose(c);
     pass p = {.eta = c->def.height_tol, .refine = refine, .out = out};
     int status = gb_contact_unit_vertical(zb, p.d);
     if (status) return status;

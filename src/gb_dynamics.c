@@ -136,9 +136,9 @@ int gb_dyn_diverged(double t)
 
 int gb_dyn_state_finite(double t, const double y[GB_STATE_SIZE])
 {
-    for (int i = 0; i < GB_STATE_SIZE; i++)
-        if (!isfinite(y[i])) return gb_dyn_diverged(t);
-    return GB_OK;
+    double nan_if_not = 0.0; /* y·0 is ±0 for a finite y, NaN for ±inf and NaN: one test for the whole state */
+    for (int i = 0; i < GB_STATE_SIZE; i++) nan_if_not += y[i] * 0.0;
+    return nan_if_not == nan_if_not ? GB_OK : gb_dyn_diverged(t);
 }
 
 void gb_dyn_to_inertial(const double y[GB_STATE_SIZE], const double body[3], double out[3])
