@@ -18,19 +18,20 @@
  * (gb_dynamics_jumps.c). Every public call below goes through it; gb_dyn_field reaches it through the
  * state (gb_dynamics.c). */
 static const gb_dyn_mode modes[GB_DYN_MODES] = {
+    /* start NULL: the hybrid system's own start */
     [GB_DYN_ONE_POINT] = {"one point", 1, gb_dyn_one_point_field, gb_dyn_one_point_accept, gb_dyn_one_point_pending,
                           gb_dyn_one_point_gap, gb_dyn_one_point_event, gb_dyn_one_point_jump, gb_dyn_one_point_observe,
-                          gb_dyn_translate_on_plane},
+                          gb_dyn_translate_on_plane, NULL},
     [GB_DYN_TWO_POINT] = {"two points", 1, gb_dyn_two_point_field, gb_dyn_two_point_accept, gb_dyn_two_point_pending,
                           gb_dyn_two_point_gap, gb_dyn_two_point_event, gb_dyn_two_point_jump, gb_dyn_two_point_observe,
-                          gb_dyn_translate_on_plane},
+                          gb_dyn_translate_on_plane, NULL},
     [GB_DYN_REST] = {"at rest", 0, gb_dyn_rest_field, gb_dyn_rest_accept, gb_dyn_rest_pending, gb_dyn_rest_gap,
-                     gb_dyn_rest_event, gb_dyn_no_jump, gb_dyn_rest_observe, gb_dyn_rest_translate},
+                     gb_dyn_rest_event, gb_dyn_no_jump, gb_dyn_rest_observe, gb_dyn_rest_translate, NULL},
     [GB_DYN_FLIGHT] = {"flight", 1, gb_dyn_flight_field, gb_dyn_flight_accept, gb_dyn_flight_pending, gb_dyn_flight_gap,
-                       gb_dyn_flight_event, gb_dyn_no_jump, gb_dyn_flight_observe, gb_dyn_flight_translate},
+                       gb_dyn_flight_event, gb_dyn_no_jump, gb_dyn_flight_observe, gb_dyn_flight_translate, NULL},
     [GB_DYN_SLIDING] = {"sliding", 1, gb_dyn_sliding_field, gb_dyn_sliding_accept, gb_dyn_sliding_pending,
                         gb_dyn_sliding_gap, gb_dyn_sliding_event, gb_dyn_no_jump, gb_dyn_sliding_observe,
-                        gb_dyn_sliding_translate},
+                        gb_dyn_sliding_translate, NULL},
 };
 
 int gb_dynamics_create_in(const gb_surface *surface, const gb_dynamics_def *def, gb_dynamics_context *context,

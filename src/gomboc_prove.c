@@ -549,7 +549,7 @@ int command_prove_in_process(int argc, char **argv)
     for (int k = 0; k < FORCINGS && !status; k++) {
         const forcing *f = &forcings[k];
         gb_proof_integrals I;
-        gb_proof_interval psi;
+        gb_proof_interval psi = {0}; /* read only once made (the struct below is built before the status is tested) */
         status = gb_proof_oracle_integrals(f->system, f->omega, (long)precision, &I);
         if (!status) status = gb_proof_pi_fraction(f->psi_num, f->psi_den, &psi);
         gb_proof_zeros z;

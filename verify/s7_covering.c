@@ -319,7 +319,7 @@ static void test_covering_controls(void)
 
     /* Collatz–Wielandt against known spectral radii */
     const int full[4] = {1, 1, 1, 1}, golden[4] = {1, 1, 1, 0}, nilpotent[4] = {0, 1, 0, 0};
-    double l_full, r_full, l_golden, r_golden, l_nil, r_nil;
+    double l_full = NAN, r_full = NAN, l_golden = NAN, r_golden = NAN, l_nil = NAN, r_nil = NAN; /* NaN where a call failed */
     status = gb_proof_cover_entropy_bound(full, 2, &l_full, &r_full) || gb_proof_cover_entropy_bound(golden, 2, &l_golden, &r_golden) ||
              gb_proof_cover_entropy_bound(nilpotent, 2, &l_nil, &r_nil);
     const double phi = 0.5 * (1.0 + sqrt(5.0));

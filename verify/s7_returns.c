@@ -30,7 +30,7 @@
 static void test_renewal_bound(void)
 {
     const int two[2] = {1, 1}, plastic[2] = {2, 3}, golden[2] = {1, 2}, one[1] = {5};
-    double l_two, l_plastic, l_golden, l_one;
+    double l_two = NAN, l_plastic = NAN, l_golden = NAN, l_one = NAN; /* NaN where a call failed */
     const int status =
         gb_proof_returns_entropy_bound(two, 2, &l_two) || gb_proof_returns_entropy_bound(plastic, 2, &l_plastic) ||
         gb_proof_returns_entropy_bound(golden, 2, &l_golden) || gb_proof_returns_entropy_bound(one, 1, &l_one);
@@ -260,7 +260,7 @@ static void test_graph_bound(void)
     /* the same with a third vertex reached from 0 and without an edge out; then with a loop of its own (growth 1) */
     const unsigned char dead_end[9] = {1, 1, 1, 1, 0, 0, 0, 0, 0}, slow[9] = {1, 1, 1, 1, 0, 0, 0, 0, 1};
     const unsigned char acyclic[4] = {0, 1, 0, 0};
-    double l_golden, l_plastic, l_dead, l_slow, l_acyclic;
+    double l_golden = NAN, l_plastic = NAN, l_dead = NAN, l_slow = NAN, l_acyclic = NAN; /* NaN where a call failed */
     const int status = gb_proof_returns_graph_bound(ones, golden, 2, &l_golden) ||
                        gb_proof_returns_graph_bound(plastic, complete, 2, &l_plastic) ||
                        gb_proof_returns_graph_bound(ones, dead_end, 3, &l_dead) ||
