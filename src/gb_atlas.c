@@ -452,8 +452,8 @@ static int find_cell(gb_atlas *A, const double d[3], const gb_contact_refine_def
         c = &c->child[(u >= um) + 2 * (v >= vm)];
     }
     if (state == CELL_CERTIFIED || state == CELL_FAILED) {
-        double d0[3], rho;
-        cell_geometry(c, d0, &rho);
+        double d0[3]; /* the cell's centre, as cell_geometry and the proof had it */
+        face_point(c->face, 0.5 * (c->u_lo + c->u_hi), 0.5 * (c->v_lo + c->v_hi), d0);
         for (int s = 0; s < 2; s++) {
             A->hint[s][0] = c->site[s].hint_phi, A->hint[s][1] = c->site[s].hint_theta;
             memcpy(A->ref_d[s], d0, sizeof d0);

@@ -10,11 +10,11 @@
 
 /* ---------------------------------------------------------------- the vertical */
 
-/* √(z_b·z_b) is finite and positive exactly when z_b·z_b is: the check needs no root. */
-int gb_contact_vertical_check(const double zb[3])
+/* z_b·z_b = n2, or GB_EDOM: √n2 is finite and positive exactly when n2 is, so the test needs no root. */
+static int vertical_square(const double zb[3], double *n2)
 {
-    const double n2 = gb_vec_dot(zb, zb);
-    if (!(isfinite(n2) && n2 > 0.0))
+    *n2 = gb_vec_dot(zb, zb);
+    if (!(isfinite(*n2) && *n2 > 0.0))
         return gb_error_set(GB_EDOM,
                             "z_b = (%g, %g, %g) has no direction: the body-frame vertical must be a "
                             "finite, non-zero vector",
@@ -22,11 +22,18 @@ int gb_contact_vertical_check(const double zb[3])
     return GB_OK;
 }
 
+int gb_contact_vertical_check(const double zb[3])
+{
+    double n2;
+    return vertical_square(zb, &n2);
+}
+
 int gb_contact_unit_vertical(const double zb[3], double unit[3])
 {
-    const int status = gb_contact_vertical_check(zb);
+    double n2;
+    const int status = vertical_square(zb, &n2);
     if (status) return status;
-    const double n = gb_vec_norm(zb);
+    const double n = sqrt(n2); /* gb_vec_norm's root of the same sum */
     for (int i = 0; i < 3; i++) unit[i] = zb[i] / n;
     return GB_OK;
 }
