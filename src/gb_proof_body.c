@@ -197,7 +197,7 @@ static void cell_of(run *r, const boxes *kept, const gb_interval xs[3], double e
         out->dH = k ? gb_interval_hull(out->dH, d) : d;
     }
     out->curved = 0;
-    switch (gb_proof_body_structure(r->def->surface, &r->axes, kept, q_lo, q_hi)) {
+    switch (gb_proof_body_structure(r->def->surface, &r->axes, kept, q_lo, q_hi, NULL, NULL)) {
     case GB_PROOF_BODY_SMOOTH: {
         r->model->smooth_cells++;
         gb_interval term;
@@ -572,6 +572,40 @@ void gb_proof_body_free(gb_proof_body_model *model)
     model->cells_data = NULL;
 }
 
+/* The certificate's root cover of the surface, enclosed. */
+static int root_boxes(run *r, boxes *roots)
+{
+    int status = GB_OK;
+    for (int k = 0; k < GB_ROOT_COUNT && !status; k++) {
+        int region;
+        double b[4];
+        gb_root_box(k, &region, b);
+        pbox x;
+        fill_box(r, &x, region, b[0], b[1], b[2], b[3]);
+        status = push_box(roots, &x);
+    }
+    return status;
+}
+
+int gb_proof_body_arc_boxes(const gb_proof_body_def *def, double q_lo, double q_hi, double size, gb_proof_axes *axes,
+                            boxes *out)
+{
+    *out = (boxes){0};
+    int status = check_def(def);
+    if (status) return status;
+    gb_proof_body_model scratch = {0};
+    run r = {.def = def, .model = &scratch};
+    boxes roots = {0};
+    gb_interval xs[3];
+    double excess;
+    status = top_model(&r, def->precision);
+    if (!status) status = root_boxes(&r, &roots);
+    if (!status) status = keep(&r, &roots, q_lo, q_hi, size, out, xs, &excess);
+    free(roots.at);
+    *axes = r.axes;
+    return status;
+}
+
 /* The cells of [lo, hi] in ARC_TOP / 2 arcs, from the root boxes. */
 static int range(run *r, const boxes *roots, double lo, double hi)
 {
@@ -608,14 +642,7 @@ int gb_proof_body_enclose(const gb_proof_body_def *def, gb_proof_body_model *out
     out->cells_data = r.cells;
     status = top_model(&r, def->precision);
     boxes roots = {0};
-    for (int k = 0; k < GB_ROOT_COUNT && !status; k++) {
-        int region;
-        double b[4];
-        gb_root_box(k, &region, b);
-        pbox x;
-        fill_box(&r, &x, region, b[0], b[1], b[2], b[3]);
-        status = push_box(&roots, &x);
-    }
+    if (!status) status = root_boxes(&r, &roots);
     if (!status) status = range(&r, &roots, def->cut, def->origin);
     r.cells->origin = r.cells->n;
     if (!status) status = range(&r, &roots, def->origin, two_pi - def->cut);

@@ -123,6 +123,32 @@ GB_API int gb_proof_body_cell_at(const gb_proof_body_model *model, double q, gb_
 
 GB_API void gb_proof_body_free(gb_proof_body_model *model);
 
+/* The Taylor coefficients of H over an arc of q (src/gb_proof_body_jet.c, docs/proofs.md): H_k ∋ H⁽ᵏ⁾(q)/k! for every
+ * q in [q_lo, q_hi] and k = 0 … order, where H is C² with one contact on the arc. The contact x*(q) = x(a, b) is the
+ * maximiser of x·v(q), in the chart of the arc's kept boxes: it lies in their hull, where x·v is strictly concave
+ * (gb_proof_body_structure), and an interval Newton step (Krawczyk's) narrows that hull to (a, b). Its coefficients
+ * then solve the chart's stationarity (x_a·v, x_b·v) = 0 order by order in Taylor arithmetic on Arb's balls, the k-th
+ * from the chart Hessian of x·v and the lower ones, and H = x*·v is their product with v. A point's coefficients come
+ * from the arc [q, q]; an arc's enclose the remainder of a Taylor step across it. GB_EDOM for an order or arc out of
+ * range or a definition gb_proof_body_enclose refuses; GB_ENUMERIC where H is not proved C² with one contact on the
+ * arc (a tie, boxes kept in two charts) or the Newton step does not hold the contact. */
+#define GB_PROOF_BODY_JET_ORDER_MAX 32
+#define GB_PROOF_BODY_JET_ARC_MAX 0.1
+
+typedef struct gb_proof_body_jet {
+    double q_lo, q_hi;
+    int order;
+    gb_proof_interval H[GB_PROOF_BODY_JET_ORDER_MAX + 1]; /* H⁽ᵏ⁾(q)/k! over the arc */
+    int chart;                                            /* gb_surface_chart of the contact's coordinates */
+    gb_proof_interval a, b;                               /* the contact's chart coordinates over the arc */
+    size_t kept;                                          /* the arc's kept boxes */
+    int newton_steps;                                     /* Krawczyk steps taken */
+    double seconds;                                       /* CPU */
+} gb_proof_body_jet;
+
+GB_API int gb_proof_body_jet_enclose(const gb_proof_body_def *def, double q_lo, double q_hi, int order,
+                                     gb_proof_body_jet *out);
+
 /* M = aᵀ I_c a + m r_max² of the paper's body I or II (homogeneous, mass m; a = e × s₀ with e projected ⊥ s₀ and
  * normalised) and its volume, by Arb's quadrature nested over the sphere (src/gb_proof_mass.c). GB_EDOM for another body
  * or the precision out of range; GB_ENUMERIC when the quadrature does not enclose them. */

@@ -4,6 +4,7 @@
 #ifndef GB_PROOF_BODY_BOXES_H
 #define GB_PROOF_BODY_BOXES_H
 
+#include "gb_proof_body.h"
 #include "gb_surface_internal.h"
 
 /* A box of a chart of the surface with its enclosure. */
@@ -36,5 +37,11 @@ void gb_proof_body_directions(const gb_proof_axes *axes, double q_lo, double q_h
  * returns 1 when every box is C² (gb_surface_enclosure.smooth) and its K proved negative definite (K_aa < 0 and
  * det K > 0 over it), else 0 (*out the line). */
 int gb_proof_body_second(const boxes *kept, const gb_interval v[3], const gb_interval dv[3], gb_interval *out);
+
+/* The boxes of the certificate's root cover, and their quarters split while wider than `size`, that may hold the
+ * maximiser of x·v(q) for some q of [q_lo, q_hi] (the branch-and-bound of gb_proof_body_enclose's cells), and the
+ * rocking's axes. *out is the caller's to free (out->at). GB_EDOM for a definition out of range. */
+int gb_proof_body_arc_boxes(const gb_proof_body_def *def, double q_lo, double q_hi, double size, gb_proof_axes *axes,
+                            boxes *out);
 
 #endif

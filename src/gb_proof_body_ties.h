@@ -11,7 +11,10 @@ typedef enum gb_proof_body_piece {
     GB_PROOF_BODY_OPEN = 2    /* neither proved */
 } gb_proof_body_piece;
 
+/* The piece the arc [q_lo, q_hi] is; for SMOOTH also the one component's region and hull {a_lo, a_hi, b_lo, b_hi} in
+ * its chart (where x·v is proved strictly concave and the maximiser lies for every q of the arc), when the pointers
+ * are not NULL. */
 gb_proof_body_piece gb_proof_body_structure(const gb_surface *surface, const gb_proof_axes *axes, const boxes *kept,
-                                            double q_lo, double q_hi);
+                                            double q_lo, double q_hi, int *hull_region, double hull_box[4]);
 
 #endif
