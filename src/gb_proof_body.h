@@ -124,7 +124,8 @@ GB_API int gb_proof_body_cell_at(const gb_proof_body_model *model, double q, gb_
 GB_API void gb_proof_body_free(gb_proof_body_model *model);
 
 /* The Taylor coefficients of H over an arc of q (src/gb_proof_body_jet.c, docs/proofs.md): H_k ∋ H⁽ᵏ⁾(q)/k! for every
- * q in [q_lo, q_hi] and k = 0 … order, where H is C² with one contact on the arc. The contact x*(q) = x(a, b) is the
+ * q in [q_lo, q_hi] (−2π ≤ q_lo ≤ q_hi ≤ 4π: H is 2π-periodic) and k = 0 … order, where H is C² with one contact on
+ * the arc. The contact x*(q) = x(a, b) is the
  * maximiser of x·v(q), in the chart of the arc's kept boxes: it lies in their hull, where x·v is strictly concave
  * (gb_proof_body_structure), and an interval Newton step (Krawczyk's) narrows that hull to (a, b). Its coefficients
  * then solve the chart's stationarity (x_a·v, x_b·v) = 0 order by order in Taylor arithmetic on Arb's balls, the k-th
@@ -148,6 +149,17 @@ typedef struct gb_proof_body_jet {
 
 GB_API int gb_proof_body_jet_enclose(const gb_proof_body_def *def, double q_lo, double q_hi, int order,
                                      gb_proof_body_jet *out);
+
+/* The reduced field at a forcing, not averaged and not linearised in ε, integrated on Arb's balls (src/gb_proof_body_flow.c):
+ * q̇ = P, Ṗ = −(m/M) a(t) H′(q) − μP with P = q̇, a(t) = g + A₁ cos ωt + A₂ cos(2ωt + ψ) and μ = c/M (the forcing's
+ * damping c, its depth unused). image[0] ∋ q and image[1] ∋ P at t0 + t of every solution from the box (q, P) at t0, for
+ * every M and ψ in their intervals. The C⁰ Lohner integrator of gb_proof_flow (order 4 … 31), H′'s Taylor coefficients
+ * from gb_proof_body_jet_enclose over each ball of q a step needs. GB_EDOM for a forcing, box, order or t out of range
+ * (t a multiple of 2⁻³⁰ in (0, 100]); GB_ENUMERIC when the set cannot be followed, naming why (a step's q across a tie, or
+ * wider than GB_PROOF_BODY_JET_ARC_MAX). */
+GB_API int gb_proof_body_flow(const gb_proof_body_def *def, const gb_proof_body_forcing *forcing,
+                              const gb_proof_interval box[2], double t0, double t, int order,
+                              gb_proof_interval image[2]);
 
 /* M = aᵀ I_c a + m r_max² of the paper's body I or II (homogeneous, mass m; a = e × s₀ with e projected ⊥ s₀ and
  * normalised) and its volume, by Arb's quadrature nested over the sphere (src/gb_proof_mass.c). GB_EDOM for another body

@@ -328,9 +328,10 @@ static int check_arc(double q_lo, double q_hi, int order)
     if (!(order >= 0 && order <= GB_PROOF_BODY_JET_ORDER_MAX))
         return gb_error_set(GB_EDOM, "order = %d is out of range (allowed: 0 to %d)", order,
                             GB_PROOF_BODY_JET_ORDER_MAX);
-    if (!(q_lo >= 0.0 && q_lo <= q_hi && q_hi <= two_pi && q_hi - q_lo <= GB_PROOF_BODY_JET_ARC_MAX))
+    if (!(q_lo >= -two_pi && q_lo <= q_hi && q_hi <= 2.0 * two_pi && q_hi - q_lo <= GB_PROOF_BODY_JET_ARC_MAX))
         return gb_error_set(GB_EDOM,
-                            "the arc [%g, %g] is out of range (allowed: 0 <= q_lo <= q_hi <= 2 pi, at most %g wide)",
+                            "the arc [%g, %g] is out of range (allowed: -2 pi <= q_lo <= q_hi <= 4 pi, at most %g "
+                            "wide)",
                             q_lo, q_hi, GB_PROOF_BODY_JET_ARC_MAX);
     return GB_OK;
 }

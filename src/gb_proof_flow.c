@@ -31,6 +31,7 @@ void gb_proof_flow_field_init(field_balls *F, const gb_proof_field *f, int order
 {
     memset(F, 0, sizeof *F);
     F->n = f->dimension, F->order = order, F->prec = prec;
+    gb_proof_flow_term_init(&F->term);
     for (int i = 0; i < NMAX; i++) {
         arb_init(&F->c[i]);
         for (int j = 0; j < NMAX; j++) {
@@ -53,6 +54,7 @@ void gb_proof_flow_field_init(field_balls *F, const gb_proof_field *f, int order
 
 void gb_proof_flow_field_clear(field_balls *F)
 {
+    gb_proof_flow_term_clear(&F->term);
     for (int i = 0; i < NMAX; i++) {
         arb_clear(&F->c[i]);
         for (int j = 0; j < NMAX; j++) {
@@ -78,6 +80,7 @@ void gb_proof_flow_field_eval(const field_balls *F, arb_srcptr x, arb_ptr out)
                 }
         }
     }
+    if (F->term.row >= 0) gb_proof_flow_term_eval(F, x, out + F->term.row);
     arb_clear(t);
 }
 
@@ -92,6 +95,8 @@ static void taylor(const field_balls *F, arb_srcptr x0, int order, arb_ptr xs)
     arb_struct products[NMAX][NMAX];
     for (int j = 0; j < n; j++)
         for (int k = 0; k < n; k++) arb_init(&products[j][k]);
+    arb_ptr g = F->term.row >= 0 ? _arb_vec_init(order + 1) : NULL;
+    if (g) gb_proof_flow_term_jet(F, x0 + F->term.var, order, g);
     for (int k = 0; k < order; k++) {
         for (int j = 0; j < n; j++)
             for (int l = j; l < n; l++) {
@@ -109,11 +114,16 @@ static void taylor(const field_balls *F, arb_srcptr x0, int order, arb_ptr xs)
                 for (int l = j; l < n; l++)
                     if (F->has_Q[i][j][l]) arb_addmul(acc, &F->Q[i][j][l], &products[j][l], F->prec);
             }
+            if (i == F->term.row) {
+                gb_proof_flow_term_coefficient(F, xs, w, k, g, conv);
+                arb_add(acc, acc, conv, F->prec);
+            }
             arb_div_ui(xs + i * w + k + 1, acc, (ulong)(k + 1), F->prec);
         }
     }
     for (int j = 0; j < n; j++)
         for (int k = 0; k < n; k++) arb_clear(&products[j][k]);
+    if (g) _arb_vec_clear(g, order + 1);
     arb_clear(acc), arb_clear(conv);
 }
 
@@ -134,6 +144,12 @@ static void variational_from(const field_balls *F, arb_srcptr xs, int order, con
                 for (int j = 0; j <= q; j++)
                     if (F->has_Q[a][j][q]) arb_addmul(e, &F->Q[a][j][q], xs + j * w + m, F->prec);
             }
+    if (F->term.row >= 0 && order > 0) {
+        arb_ptr g = _arb_vec_init(order + 1);
+        gb_proof_flow_term_jet(F, xs + F->term.var * w, order, g);
+        gb_proof_flow_term_jacobian(F, xs, w, order, g, J);
+        _arb_vec_clear(g, order + 1);
+    }
     _arb_vec_zero(V, w * nn);
     for (int a = 0; a < n; a++)
         for (int b = 0; b < n; b++)
@@ -172,6 +188,16 @@ void gb_proof_flow_field_derivative(const field_balls *F, arb_srcptr x, arb_mat_
             for (int j = 0; j <= m; j++)
                 if (F->has_Q[i][j][m]) arb_addmul(e, &F->Q[i][j][m], x + j, F->prec);
         }
+    if (F->term.row >= 0) {
+        const int n = F->n;
+        arb_ptr g = _arb_vec_init(2), row = _arb_vec_init(n * n);
+        gb_proof_flow_term_jet(F, x + F->term.var, 1, g);
+        gb_proof_flow_term_jacobian(F, x, 1, 1, g, row);
+        for (int m = 0; m < n; m++)
+            arb_add(arb_mat_entry(J, F->term.row, m), arb_mat_entry(J, F->term.row, m), row + F->term.row * n + m,
+                    F->prec);
+        _arb_vec_clear(g, 2), _arb_vec_clear(row, n * n);
+    }
 }
 
 static void widen(arb_t x, slong prec);
@@ -192,7 +218,9 @@ static int a_priori_variational(const field_balls *F, arb_srcptr B, const arb_t 
         for (int a = 0; a < n; a++) arb_add_ui(arb_mat_entry(Y, a, a), arb_mat_entry(Y, a, a), 1, F->prec);
         found = 1;
         for (int a = 0; a < n && found; a++)
-            for (int b = 0; b < n && found; b++) found = arb_contains(arb_mat_entry(W, a, b), arb_mat_entry(Y, a, b));
+            for (int b = 0; b < n && found; b++)
+                found = arb_is_finite(arb_mat_entry(Y, a, b)) &&
+                        arb_contains(arb_mat_entry(W, a, b), arb_mat_entry(Y, a, b));
         if (found)
             arb_mat_set(W, Y);
         else
@@ -268,7 +296,7 @@ static int a_priori(const field_balls *F, arb_srcptr X, const arb_t span, arb_pt
         for (int i = 0; i < n; i++) {
             arb_mul(&Y[i], &fx[i], span, F->prec);
             arb_add(&Y[i], &Y[i], X + i, F->prec);
-            found &= arb_contains(B + i, &Y[i]);
+            found &= arb_is_finite(&Y[i]) && arb_contains(B + i, &Y[i]); /* an infinite B holds anything */
         }
         if (found)
             for (int i = 0; i < n; i++) arb_set(B + i, &Y[i]); /* Y ⊆ B gives X + [0, h] f(Y) ⊆ Y as well */
@@ -608,16 +636,10 @@ int gb_proof_flow_step_take(const field_balls *F, lohner_set *S, step_data *D, c
     return GB_OK;
 }
 
-int gb_proof_flow_time(const gb_proof_flow_def *def, const gb_proof_interval *box, double t_end, gb_proof_interval *image)
+/* Follows the integration's set to t_end: the image's box. */
+static int run_time(integration *I, const gb_proof_flow_def *def, double t_end, gb_proof_interval *image)
 {
-    int status = gb_proof_flow_check(def, box);
-    if (status) return status;
-    if (!(t_end >= 0.0 && t_end <= def->time_max) || ldexp(t_end, 30) != floor(ldexp(t_end, 30)))
-        return gb_error_set(GB_EDOM, "t = %g is out of range (allowed: 0 to time_max = %g, a multiple of 2^-30)", t_end,
-                            def->time_max);
-    if (!image) return gb_error_set(GB_EINVAL, "a flow needs an image");
-    integration I;
-    gb_proof_flow_integration_init(&I, def, box);
+    int status = GB_OK;
     arb_t t;
     arb_init(t);
     arb_struct hull[NMAX];
@@ -626,17 +648,62 @@ int gb_proof_flow_time(const gb_proof_flow_def *def, const gb_proof_interval *bo
     while (!status && done < t_end) {
         double h;
         arb_set_d(t, done);
-        status = gb_proof_flow_step_take(&I.F, &I.S, &I.D, def, t_end - done, I.scratch, &h, t);
-        if (!status && !gb_proof_flow_step_finish(&I.F, &I.S, &I.D, h))
+        status = gb_proof_flow_step_take(&I->F, &I->S, &I->D, def, t_end - done, I->scratch, &h, t);
+        if (!status && !gb_proof_flow_step_finish(&I->F, &I->S, &I->D, h))
             status = gb_error_set(GB_ENUMERIC, "at t = %g the Lohner frame is singular", done);
+        for (int i = 0; i < I->F.n && !status; i++)
+            if (!arb_is_finite(&I->S.x[i]) || !arb_is_finite(&I->S.r[i]))
+                status = gb_error_set(GB_ENUMERIC, "at t = %g the set's enclosure is no longer finite", done + h);
         done += h;
     }
     if (!status) {
-        gb_proof_flow_set_hull(&I.F, &I.S, hull);
-        for (int i = 0; i < I.F.n; i++) image[i] = gb_proof_interval_of(&hull[i]);
+        gb_proof_flow_set_hull(&I->F, &I->S, hull);
+        for (int i = 0; i < I->F.n; i++) image[i] = gb_proof_interval_of(&hull[i]);
     }
     for (int i = 0; i < NMAX; i++) arb_clear(&hull[i]);
     arb_clear(t);
+    return status;
+}
+
+static int check_time(const gb_proof_flow_def *def, const gb_proof_interval *box, double t_end,
+                      gb_proof_interval *image)
+{
+    int status = gb_proof_flow_check(def, box);
+    if (status) return status;
+    if (!(t_end >= 0.0 && t_end <= def->time_max) || ldexp(t_end, 30) != floor(ldexp(t_end, 30)))
+        return gb_error_set(GB_EDOM, "t = %g is out of range (allowed: 0 to time_max = %g, a multiple of 2^-30)", t_end,
+                            def->time_max);
+    return image ? GB_OK : gb_error_set(GB_EINVAL, "a flow needs an image");
+}
+
+int gb_proof_flow_time(const gb_proof_flow_def *def, const gb_proof_interval *box, double t_end,
+                       gb_proof_interval *image)
+{
+    int status = check_time(def, box, t_end, image);
+    if (status) return status;
+    integration I;
+    gb_proof_flow_integration_init(&I, def, box);
+    status = run_time(&I, def, t_end, image);
     gb_proof_flow_integration_clear(&I);
+    return status;
+}
+
+int gb_proof_flow_time_of(const field_balls *F, const gb_proof_flow_def *def, const gb_proof_interval *box,
+                          double t_end, gb_proof_interval *image)
+{
+    int status = check_time(def, box, t_end, image);
+    if (!status && (F->n != def->field->dimension || F->order != def->order))
+        status = gb_error_set(GB_EINVAL, "the field's dimension and order are not the definition's");
+    if (status) return status;
+    integration I;
+    I.F = *F; /* borrowed: not cleared here */
+    set_init(&I.S, F->n);
+    set_of_box(&I.F, &I.S, box);
+    step_init(&I.D, def->order);
+    I.scratch = _arb_vec_init(F->n * (def->order + 1));
+    status = run_time(&I, def, t_end, image);
+    _arb_vec_clear(I.scratch, F->n * (def->order + 1));
+    step_clear(&I.D);
+    set_clear(&I.S);
     return status;
 }
