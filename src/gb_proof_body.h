@@ -161,6 +161,22 @@ GB_API int gb_proof_body_flow(const gb_proof_body_def *def, const gb_proof_body_
                               const gb_proof_interval box[2], double t0, double t, int order,
                               gb_proof_interval image[2]);
 
+/* The period map of the same field from the forcing's phase 0: the return of (q, P) at the k-th upward crossing of the
+ * section sin ωt = 0 (the flow in (q, P, cos ωt, sin ωt); the period 2π/ω is not a double, the section is exact),
+ * periods = k (1 … 16); with derivative, also ∂(q, P)/∂(q₀, P₀) over the box (the integrator's C¹ step). Errors as
+ * gb_proof_body_flow's, and GB_ENUMERIC when a crossing is not decided. */
+typedef struct gb_proof_body_return {
+    gb_proof_interval q, P;           /* at the k-th return */
+    gb_proof_interval time;           /* its time (holds 2πk/ω) */
+    gb_proof_interval jacobian[2][2]; /* derivative: the period map's derivative over the box */
+    long steps;
+    double seconds;
+} gb_proof_body_return;
+
+GB_API int gb_proof_body_period_map(const gb_proof_body_def *def, const gb_proof_body_forcing *forcing,
+                                    const gb_proof_interval box[2], int periods, int order, int derivative,
+                                    gb_proof_body_return *out);
+
 /* M = aᵀ I_c a + m r_max² of the paper's body I or II (homogeneous, mass m; a = e × s₀ with e projected ⊥ s₀ and
  * normalised) and its volume, by Arb's quadrature nested over the sphere (src/gb_proof_mass.c). GB_EDOM for another body
  * or the precision out of range; GB_ENUMERIC when the quadrature does not enclose them. */

@@ -81,32 +81,27 @@ static int check_forcing(const gb_proof_body_forcing *f, double t, int order, co
     return GB_OK;
 }
 
-int gb_proof_body_flow(const gb_proof_body_def *def, const gb_proof_body_forcing *forcing,
-                       const gb_proof_interval box[2], double t0, double t, int order, gb_proof_interval image[2])
+/* The field in (q, P, c, s) at the forcing, its term's jets in *J (gb_proof_flow_field_clear releases it). */
+static void reduced_field(const gb_proof_body_def *def, const gb_proof_body_forcing *forcing, int order, jets *J,
+                          field_balls *F)
 {
-    int status = check_forcing(forcing, t, order, box);
-    if (!status && !isfinite(t0)) status = gb_error_set(GB_EDOM, "t0 = %g is not finite", t0);
-    if (!status && !(def->precision >= GB_PROOF_PRECISION_MIN && def->precision <= GB_PROOF_PRECISION_MAX))
-        status = gb_proof_check_precision(def->precision);
-    if (status) return status;
     const slong prec = def->precision;
-    gb_proof_field shape = {.dimension = 4};
-    field_balls F;
-    gb_proof_flow_field_init(&F, &shape, order, prec);
+    const gb_proof_field shape = {.dimension = 4};
+    gb_proof_flow_field_init(F, &shape, order, prec);
     arb_t mM, x, y;
     arb_init(mM), arb_init(x), arb_init(y);
     /* m / M, μ = c / M */
     gb_proof_ball_of(x, def->inertia, prec);
     arb_set_d(mM, def->mass);
     arb_div(mM, mM, x, prec);
-    arb_one(&F.L[0][1]);
+    arb_one(&F->L[0][1]);
     arb_set_d(y, forcing->damping);
     arb_div(y, y, x, prec);
-    arb_neg(&F.L[1][1], y);
-    arb_set_d(&F.L[3][2], forcing->omega);
-    arb_neg(&F.L[2][3], &F.L[3][2]);
+    arb_neg(&F->L[1][1], y);
+    arb_set_d(&F->L[3][2], forcing->omega);
+    arb_neg(&F->L[2][3], &F->L[3][2]);
     /* the term −(m/M) a(c, s) H′(q) of row 1 */
-    field_term *T = &F.term;
+    field_term *T = &F->term;
     T->row = 1, T->var = 0;
     arb_set_d(x, def->g);
     arb_mul(&T->a0, x, mM, prec);
@@ -125,23 +120,81 @@ int gb_proof_body_flow(const gb_proof_body_def *def, const gb_proof_body_forcing
     arb_sin(x, x, prec);
     arb_mul(&T->a2[2][3], y, x, prec);
     arb_mul_2exp_si(&T->a2[2][3], &T->a2[2][3], 1); /* +2 (m/M) A₂ sin ψ c s */
-    jets J = {.def = def, .lo = NAN, .hi = NAN, .order = -1};
-    T->jet = h_prime, T->context = &J;
-    /* the initial phase */
+    *J = (jets){.def = def, .lo = NAN, .hi = NAN, .order = -1};
+    T->jet = h_prime, T->context = J;
+    arb_clear(mM), arb_clear(x), arb_clear(y);
+}
+
+static int check_all(const gb_proof_body_def *def, const gb_proof_body_forcing *forcing, const gb_proof_interval box[2],
+                     double t, int order)
+{
+    const int status = check_forcing(forcing, t, order, box);
+    if (status) return status;
+    return gb_proof_check_precision(def->precision);
+}
+
+/* The message of a failed integration, with the jets' reason when one failed (a failure the step's halving cured is no
+ * failure). */
+static int failure(int status, const jets *J, const char *what)
+{
+    if (status && J->failed)
+        return gb_error_set(GB_ENUMERIC, "the reduced field's %s: %s (%s)", what, J->why, gb_error_message());
+    return status;
+}
+
+int gb_proof_body_flow(const gb_proof_body_def *def, const gb_proof_body_forcing *forcing,
+                       const gb_proof_interval box[2], double t0, double t, int order, gb_proof_interval image[2])
+{
+    int status = check_all(def, forcing, box, t, order);
+    if (!status && !isfinite(t0)) status = gb_error_set(GB_EDOM, "t0 = %g is not finite (allowed: a finite time)", t0);
+    if (status) return status;
+    const slong prec = def->precision;
+    field_balls F;
+    jets J;
+    reduced_field(def, forcing, order, &J, &F);
+    arb_t x, y;
+    arb_init(x), arb_init(y);
     gb_proof_interval start[4] = {box[0], box[1], {0, 0}, {0, 0}}, end[4];
     arb_set_d(x, forcing->omega);
     arb_set_d(y, t0);
     arb_mul(x, x, y, prec);
     arb_sin_cos(y, x, x, prec);
     start[2] = gb_proof_interval_of(x), start[3] = gb_proof_interval_of(y);
+    arb_clear(x), arb_clear(y);
+    const gb_proof_field shape = {.dimension = 4};
     gb_proof_flow_def fdef = gb_proof_flow_def_default(&shape);
     fdef.order = order, fdef.precision = prec, fdef.step_max = 0.05;
-    status = gb_proof_flow_time_of(&F, &fdef, start, t, end);
-    if (J.failed && status) /* (a failure the step's halving cured is no failure) */
-        status = gb_error_set(GB_ENUMERIC, "the reduced field's flow from t0 = %g over %g: %s (%s)", t0, t, J.why,
-                              gb_error_message());
+    status = failure(gb_proof_flow_time_of(&F, &fdef, start, t, end), &J, "flow");
     if (!status) image[0] = end[0], image[1] = end[1];
-    arb_clear(mM), arb_clear(x), arb_clear(y);
+    gb_proof_flow_field_clear(&F);
+    return status;
+}
+
+int gb_proof_body_period_map(const gb_proof_body_def *def, const gb_proof_body_forcing *forcing,
+                             const gb_proof_interval box[2], int periods, int order, int derivative,
+                             gb_proof_body_return *out)
+{
+    memset(out, 0, sizeof *out);
+    int status = check_all(def, forcing, box, 1.0, order);
+    if (!status && !(periods >= 1 && periods <= 16))
+        status = gb_error_set(GB_EDOM, "periods = %d is out of range (allowed: 1 to 16)", periods);
+    if (status) return status;
+    field_balls F;
+    jets J;
+    reduced_field(def, forcing, order, &J, &F);
+    const gb_proof_interval start[4] = {box[0], box[1], {1.0, 1.0}, {0.0, 0.0}};
+    const gb_proof_field shape = {.dimension = 4};
+    gb_proof_flow_def fdef = gb_proof_flow_def_default(&shape);
+    fdef.order = order, fdef.precision = def->precision, fdef.step_max = 0.05;
+    fdef.coordinate = 3, fdef.direction = 1, fdef.returns = periods, fdef.derivative = derivative != 0;
+    fdef.time_max = 100.0;
+    gb_proof_flow_crossing C;
+    status = failure(gb_proof_flow_section_map_of(&F, &fdef, start, &C), &J, "period map");
+    if (!status) {
+        out->q = C.image[0], out->P = C.image[1], out->time = C.time, out->steps = C.steps, out->seconds = C.seconds;
+        for (int a = 0; a < 2 && derivative; a++)
+            for (int b = 0; b < 2; b++) out->jacobian[a][b] = C.jacobian[a][b];
+    }
     gb_proof_flow_field_clear(&F);
     return status;
 }

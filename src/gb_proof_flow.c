@@ -600,24 +600,6 @@ static void set_of_box(const field_balls *F, lohner_set *S, const gb_proof_inter
     arb_clear(b);
 }
 
-
-void gb_proof_flow_integration_init(integration *I, const gb_proof_flow_def *def, const gb_proof_interval *box)
-{
-    gb_proof_flow_field_init(&I->F, def->field, def->order, def->precision);
-    set_init(&I->S, I->F.n);
-    set_of_box(&I->F, &I->S, box);
-    step_init(&I->D, def->order);
-    I->scratch = _arb_vec_init(I->F.n * (def->order + 1));
-}
-
-void gb_proof_flow_integration_clear(integration *I)
-{
-    _arb_vec_clear(I->scratch, I->F.n * (I->F.order + 1));
-    step_clear(&I->D);
-    set_clear(&I->S);
-    gb_proof_flow_field_clear(&I->F);
-}
-
 /* Takes one step from S at time *t (advanced): a step length chosen and halved until Picard's test holds. */
 int gb_proof_flow_step_take(const field_balls *F, lohner_set *S, step_data *D, const gb_proof_flow_def *def, double h_cap,
                      arb_ptr scratch, double *h_taken, const arb_t t_now)
@@ -681,10 +663,10 @@ int gb_proof_flow_time(const gb_proof_flow_def *def, const gb_proof_interval *bo
 {
     int status = check_time(def, box, t_end, image);
     if (status) return status;
-    integration I;
-    gb_proof_flow_integration_init(&I, def, box);
-    status = run_time(&I, def, t_end, image);
-    gb_proof_flow_integration_clear(&I);
+    field_balls F;
+    gb_proof_flow_field_init(&F, def->field, def->order, def->precision);
+    status = gb_proof_flow_time_of(&F, def, box, t_end, image);
+    gb_proof_flow_field_clear(&F);
     return status;
 }
 
@@ -696,14 +678,24 @@ int gb_proof_flow_time_of(const field_balls *F, const gb_proof_flow_def *def, co
         status = gb_error_set(GB_EINVAL, "the field's dimension and order are not the definition's");
     if (status) return status;
     integration I;
-    I.F = *F; /* borrowed: not cleared here */
-    set_init(&I.S, F->n);
-    set_of_box(&I.F, &I.S, box);
-    step_init(&I.D, def->order);
-    I.scratch = _arb_vec_init(F->n * (def->order + 1));
+    gb_proof_flow_integration_borrow(&I, F, box);
     status = run_time(&I, def, t_end, image);
-    _arb_vec_clear(I.scratch, F->n * (def->order + 1));
-    step_clear(&I.D);
-    set_clear(&I.S);
+    gb_proof_flow_integration_release(&I);
     return status;
+}
+
+void gb_proof_flow_integration_borrow(integration *I, const field_balls *F, const gb_proof_interval *box)
+{
+    I->F = *F; /* borrowed: gb_proof_flow_integration_release does not clear it */
+    set_init(&I->S, F->n);
+    set_of_box(&I->F, &I->S, box);
+    step_init(&I->D, F->order);
+    I->scratch = _arb_vec_init(F->n * (F->order + 1));
+}
+
+void gb_proof_flow_integration_release(integration *I)
+{
+    _arb_vec_clear(I->scratch, I->F.n * (I->F.order + 1));
+    step_clear(&I->D);
+    set_clear(&I->S);
 }

@@ -76,11 +76,8 @@ void gb_proof_flow_enclose_at(const field_balls *F, const step_data *D, const ar
 /* Ends the prepared step of length h: S becomes the set at time h. 0 when the new frame cannot be inverted. */
 int gb_proof_flow_step_finish(const field_balls *F, lohner_set *S, const step_data *D, double h);
 /* Prepares one step from S at time t_now, at most h_cap long (multiples of 2^-30), halved until Picard's test holds. */
-int gb_proof_flow_step_take(const field_balls *F, lohner_set *S, step_data *D, const gb_proof_flow_def *def, double h_cap,
-                            arb_ptr scratch, double *h_taken, const arb_t t_now);
-/* The integration of the box's set under def's field (A = I, x̂ the box's middle). */
-void gb_proof_flow_integration_init(integration *I, const gb_proof_flow_def *def, const gb_proof_interval *box);
-void gb_proof_flow_integration_clear(integration *I);
+int gb_proof_flow_step_take(const field_balls *F, lohner_set *S, step_data *D, const gb_proof_flow_def *def,
+                            double h_cap, arb_ptr scratch, double *h_taken, const arb_t t_now);
 /* The term's parts (gb_proof_flow_term.c): init and clear (row −1: none); G's coefficients 0 … order over the ball x
  * (indeterminate when the jet fails); A(x) G(x_var) over the box x added to *out; the k-th coefficient of A G along
  * the series xs (stride w, coefficients 0 … k), g G's coefficients at xs's x_var(0); the coefficients m < len of the
@@ -95,6 +92,13 @@ void gb_proof_flow_term_jacobian(const field_balls *F, arb_srcptr xs, int w, int
  * names the dimension): every solution from the box at time t_end. */
 int gb_proof_flow_time_of(const field_balls *F, const gb_proof_flow_def *def, const gb_proof_interval *box,
                           double t_end, gb_proof_interval *image);
+/* gb_proof_flow_section_map for the caller's field F (its term too): def's field only names the dimension. */
+int gb_proof_flow_section_map_of(const field_balls *F, const gb_proof_flow_def *def, const gb_proof_interval *box,
+                                 gb_proof_flow_crossing *out);
+/* The integration of the box's set under the caller's field F (A = I, x̂ the box's middle; F borrowed: the release
+ * leaves it alone). */
+void gb_proof_flow_integration_borrow(integration *I, const field_balls *F, const gb_proof_interval *box);
+void gb_proof_flow_integration_release(integration *I);
 /* The definition's and the box's ranges (GB_EDOM naming the one out of range). */
 int gb_proof_flow_check(const gb_proof_flow_def *def, const gb_proof_interval *box);
 /* The definition's ranges alone. */

@@ -114,18 +114,52 @@ static void collect(const field_balls *F, const step_data *D, int s, const arb_t
     arb_clear(sub);
 }
 
-int gb_proof_flow_section_map(const gb_proof_flow_def *def, const gb_proof_interval *box, gb_proof_flow_crossing *out)
+static int check_section(const gb_proof_flow_def *def, const gb_proof_interval *box, gb_proof_flow_crossing *out)
 {
     int status = gb_proof_flow_check(def, box);
     if (status) return status;
     if (!out) return gb_error_set(GB_EINVAL, "a section map needs a result");
-    const int s = def->coordinate, dir = def->direction;
+    const int s = def->coordinate;
     if (box[s].lo != 0.0 || box[s].hi != 0.0)
         return gb_error_set(GB_EDOM, "box component %d = [%g, %g] is not on the section (allowed: [0, 0])", s, box[s].lo, box[s].hi);
+    return GB_OK;
+}
+
+static int section_map(integration *Ip, const gb_proof_flow_def *def, gb_proof_flow_crossing *out);
+
+int gb_proof_flow_section_map(const gb_proof_flow_def *def, const gb_proof_interval *box, gb_proof_flow_crossing *out)
+{
+    int status = check_section(def, box, out);
+    if (status) return status;
+    field_balls F;
+    gb_proof_flow_field_init(&F, def->field, def->order, def->precision);
+    status = gb_proof_flow_section_map_of(&F, def, box, out);
+    gb_proof_flow_field_clear(&F);
+    return status;
+}
+
+int gb_proof_flow_section_map_of(const field_balls *F, const gb_proof_flow_def *def, const gb_proof_interval *box,
+                                 gb_proof_flow_crossing *out)
+{
+    int status = check_section(def, box, out);
+    if (!status && (F->n != def->field->dimension || F->order != def->order))
+        status = gb_error_set(GB_EINVAL, "the field's dimension and order are not the definition's");
+    if (status) return status;
+    integration I;
+    gb_proof_flow_integration_borrow(&I, F, box);
+    status = section_map(&I, def, out);
+    gb_proof_flow_integration_release(&I);
+    return status;
+}
+
+/* The k-th crossing of the integration's set (the box on the section). */
+static int section_map(integration *Ip, const gb_proof_flow_def *def, gb_proof_flow_crossing *out)
+{
+    integration I = *Ip;
+    int status = GB_OK;
+    const int s = def->coordinate, dir = def->direction;
     memset(out, 0, sizeof *out);
     const double start = gb_proof_cpu_seconds();
-    integration I;
-    gb_proof_flow_integration_init(&I, def, box);
     field_balls *const F = &I.F;
     lohner_set *const S = &I.S;
     step_data *const D = &I.D;
@@ -251,7 +285,7 @@ int gb_proof_flow_section_map(const gb_proof_flow_def *def, const gb_proof_inter
     for (int i = 0; i < NMAX; i++) arb_clear(&fB[i]), arb_clear(&piece[i]);
     crossing_clear(&C);
     arb_clear(t);
-    gb_proof_flow_integration_clear(&I);
+    *Ip = I;
     out->seconds = gb_proof_cpu_seconds() - start;
     return status;
 }
