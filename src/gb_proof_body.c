@@ -197,7 +197,7 @@ static void cell_of(run *r, const boxes *kept, const gb_interval xs[3], double e
         out->dH = k ? gb_interval_hull(out->dH, d) : d;
     }
     out->curved = 0;
-    switch (gb_proof_body_structure(r->def->surface, &r->axes, kept, q_lo, q_hi, NULL, NULL)) {
+    switch (gb_proof_body_structure(r->def->surface, &r->axes, kept, q_lo, q_hi, NULL)) {
     case GB_PROOF_BODY_SMOOTH: {
         r->model->smooth_cells++;
         gb_interval term;

@@ -150,6 +150,19 @@ typedef struct gb_proof_body_jet {
 GB_API int gb_proof_body_jet_enclose(const gb_proof_body_def *def, double q_lo, double q_hi, int order,
                                      gb_proof_body_jet *out);
 
+/* A tie of H on an arc (src/gb_proof_body_jet.c): the q* where the arc's two contacts are equally high, by interval
+ * Newton steps on their heights' difference d = h_A − h_B (each contact's coefficients from its component's hull, its
+ * existence there proved by Krawczyk's test over the whole arc, d′ proved away from 0), and H′'s jump there, |d′(q*)|
+ * (H = max(h_A, h_B): its derivative jumps up). A Newton image inside the arc proves the tie and its uniqueness. GB_EDOM
+ * for an arc out of range; GB_ENUMERIC when the arc is not proved to hold one tie of two contacts. */
+typedef struct gb_proof_body_tie {
+    gb_proof_interval q, H, jump;
+    int proved, newton_steps;
+    double seconds;
+} gb_proof_body_tie;
+
+GB_API int gb_proof_body_tie_locate(const gb_proof_body_def *def, double q_lo, double q_hi, gb_proof_body_tie *out);
+
 /* The reduced field at a forcing, not averaged and not linearised in ε, integrated on Arb's balls (src/gb_proof_body_flow.c):
  * q̇ = P, Ṗ = −(m/M) a(t) H′(q) − μP with P = q̇, a(t) = g + A₁ cos ωt + A₂ cos(2ωt + ψ) and μ = c/M (the forcing's
  * damping c, its depth unused). image[0] ∋ q and image[1] ∋ P at t0 + t of every solution from the box (q, P) at t0, for

@@ -253,8 +253,9 @@ static void residual(const body *Bd, const arb_t a0, const arb_t b0, const arb_t
 
 /* Krawczyk's operator on X = (x[0], x[1]) for F(·, Q) = 0, met with X: K = c − C F(c) + (I − C J(X)) (X − c), c the
  * midpoint, C the inverse of J's midpoint in doubles. Every zero in X lies in K. Returns 0 when K ∩ X is empty (no
- * zero in X: the contact is not where the boxes say). */
-static int krawczyk(const body *Bd, const arb_t Q, arb_t x[2])
+ * zero in X: the contact is not where the boxes say); *interior: K ⊂ int X, which proves a zero in X for every q of Q,
+ * unique (Krawczyk 1969; Neumaier 1990, Thm 5.1.7). */
+static int krawczyk(const body *Bd, const arb_t Q, arb_t x[2], int *interior)
 {
     const slong prec = Bd->prec;
     arb_t J[2][2], c[2], F[2], d[2], k[2], t, u;
@@ -285,6 +286,7 @@ static int krawczyk(const body *Bd, const arb_t Q, arb_t x[2])
             arb_addmul(k[i], t, d[j], prec);
         }
     }
+    *interior = held && arb_contains_interior(x[0], k[0]) && arb_contains_interior(x[1], k[1]);
     for (int i = 0; i < 2 && held; i++) held = arb_intersection(x[i], x[i], k[i], prec);
     for (int i = 0; i < 2; i++) {
         arb_clear(c[i]), arb_clear(F[i]), arb_clear(d[i]), arb_clear(k[i]);
@@ -294,29 +296,36 @@ static int krawczyk(const body *Bd, const arb_t Q, arb_t x[2])
     return held;
 }
 
-/* The arc's contact: its kept boxes form one component on which x·v is strictly concave (gb_proof_body_structure), so
- * the maximiser of every q of the arc is the one critical point in that component's hull; X = the hull, in its chart. */
-static int contact_hull(const gb_proof_body_def *def, double q_lo, double q_hi, body *Bd, arb_t x[2], size_t *kept)
+/* The arc's contact. branch −1: its kept boxes form one component on which x·v is strictly concave
+ * (gb_proof_body_structure), so the maximiser of every q of the arc is the one critical point in that component's hull;
+ * branch 0 or 1: the arc holds a tie (two components, H the larger of their maxima) and X is that component's hull (its
+ * critical point then proved by Krawczyk's test). X = the hull, in its chart. */
+static int contact_hull(const gb_proof_body_def *def, double q_lo, double q_hi, int branch, body *Bd, arb_t x[2],
+                        size_t *kept)
 {
     gb_proof_axes axes;
     boxes k = {0};
     const double size = fmin(fmax(q_hi - q_lo, 1e-4), 1e-3);
     int status = gb_proof_body_arc_boxes(def, q_lo, q_hi, size, &axes, &k);
-    int region = 0;
-    double hull[4];
+    gb_proof_body_hull hulls[2];
     *kept = k.n;
-    if (!status && gb_proof_body_structure(def->surface, &axes, &k, q_lo, q_hi, &region, hull) != GB_PROOF_BODY_SMOOTH)
+    const gb_proof_body_piece want = branch < 0 ? GB_PROOF_BODY_SMOOTH : GB_PROOF_BODY_TIE;
+    if (!status && gb_proof_body_structure(def->surface, &axes, &k, q_lo, q_hi, hulls) != want)
         status = gb_error_set(GB_ENUMERIC,
-                              "H is not proved C2 with one contact on q in [%.17g, %.17g] (a tie, or "
-                              "boxes the structure leaves open): the arc has no Taylor coefficients here",
+                              branch < 0 ? "H is not proved C2 with one contact on q in [%.17g, %.17g] (a tie, "
+                                           "or boxes the structure leaves open): the arc has no Taylor "
+                                           "coefficients here"
+                                         : "q in [%.17g, %.17g] is not proved to hold one tie of two contacts",
                               q_lo, q_hi);
     if (!status) {
-        Bd->chart = gb_region_chart(region);
+        const gb_proof_body_hull *h = &hulls[branch < 0 ? 0 : branch];
+        Bd->chart = gb_region_chart(h->region);
         for (int i = 0; i < 3; i++) {
             Bd->s0[i] = axes.s0[i];
             gb_proof_ball_of(Bd->e + i, (gb_proof_interval){axes.e[i].lo, axes.e[i].hi}, Bd->prec);
         }
-        for (int i = 0; i < 2; i++) gb_proof_ball_of(x[i], (gb_proof_interval){hull[2 * i], hull[2 * i + 1]}, Bd->prec);
+        for (int i = 0; i < 2; i++)
+            gb_proof_ball_of(x[i], (gb_proof_interval){h->box[2 * i], h->box[2 * i + 1]}, Bd->prec);
     }
     free(k.at);
     return status;
@@ -336,49 +345,70 @@ static int check_arc(double q_lo, double q_hi, int order)
     return GB_OK;
 }
 
-/* H's coefficients 0 … order on the arc evaluated directly, every quantity a ball over the arc (into H); the contact's
- * enclosure and counts into *out. */
-static int direct(const gb_proof_body_def *def, double q_lo, double q_hi, int order, slong prec, arb_ptr H,
-                  gb_proof_body_jet *out)
+static void body_open(body *Bd, slong prec)
 {
-    int status;
-    body Bd = {.prec = prec};
-    arb_init(Bd.beta), arb_init(Bd.c2);
-    for (int i = 0; i < 3; i++) arb_init(Bd.e + i);
-    arb_t x[2], Q, J[2][2], det, R[2], t;
-    arb_init(x[0]), arb_init(x[1]), arb_init(Q), arb_init(det), arb_init(R[0]), arb_init(R[1]), arb_init(t);
+    *Bd = (body){.prec = prec};
+    arb_init(Bd->beta), arb_init(Bd->c2);
+    for (int i = 0; i < 3; i++) arb_init(Bd->e + i);
+}
+
+static void body_close(body *Bd)
+{
+    arb_clear(Bd->beta), arb_clear(Bd->c2);
+    for (int i = 0; i < 3; i++) arb_clear(Bd->e + i);
+}
+
+/* The body's constants on balls, once contact_hull has set its chart and axes. */
+static void body_constants(const gb_proof_body_def *def, body *Bd)
+{
+    Bd->one = strcmp(def->surface->morphology->name, "I") == 0;
+    arb_set_d(Bd->beta, def->surface->beta);
+    arb_const_pi(Bd->c2, Bd->prec);
+    arb_mul_ui(Bd->c2, Bd->c2, 3, Bd->prec);
+    arb_mul_2exp_si(Bd->c2, Bd->c2, -1);
+}
+
+/* H's coefficients 0 … order over the ball Q of q evaluated directly, every quantity a ball over Q (into H), from the
+ * contact's hull X0 (narrowed by Krawczyk's operator first; with `existence`, its first image must lie inside X0); the
+ * contact's enclosure and the steps into *out. */
+static int coefficients(const body *Bd, arb_t X0[2], const arb_t Q, int order, int existence, arb_ptr H,
+                        gb_proof_body_jet *out)
+{
+    const slong prec = Bd->prec;
+    int status = GB_OK;
+    arb_t x[2], J[2][2], det, R[2], t;
+    arb_init(x[0]), arb_init(x[1]), arb_init(det), arb_init(R[0]), arb_init(R[1]), arb_init(t);
     for (int i = 0; i < 4; i++) arb_init(J[i / 2][i % 2]);
+    arb_set(x[0], X0[0]), arb_set(x[1], X0[1]);
     arb_poly_t a, b, q, h, Fa, Fb;
     arb_poly_init(a), arb_poly_init(b), arb_poly_init(q), arb_poly_init(h), arb_poly_init(Fa), arb_poly_init(Fb);
-    status = contact_hull(def, q_lo, q_hi, &Bd, x, &out->kept);
-    if (!status) {
-        Bd.one = strcmp(def->surface->morphology->name, "I") == 0;
-        arb_set_d(Bd.beta, def->surface->beta);
-        arb_const_pi(Bd.c2, prec);
-        arb_mul_ui(Bd.c2, Bd.c2, 3, prec);
-        arb_mul_2exp_si(Bd.c2, Bd.c2, -1);
-        gb_proof_ball_of(Q, (gb_proof_interval){q_lo, q_hi}, prec);
-    }
+    const gb_proof_interval range = gb_proof_interval_of(Q);
     /* narrow the hull while a step takes off more than 1 % of its width */
     for (int step = 0; step < 60 && !status; step++) {
         const double before = mag_get_d(arb_radref(x[0])) + mag_get_d(arb_radref(x[1]));
-        if (!krawczyk(&Bd, Q, x))
+        int interior = 0;
+        if (!krawczyk(Bd, Q, x, &interior))
             status = gb_error_set(GB_ENUMERIC,
                                   "the Newton step leaves no contact in the kept boxes' hull for q in "
                                   "[%.17g, %.17g]",
-                                  q_lo, q_hi);
+                                  range.lo, range.hi);
+        else if (existence && step == 0 && !interior)
+            status = gb_error_set(GB_ENUMERIC,
+                                  "a branch's contact is not proved to exist in its hull for q in "
+                                  "[%.17g, %.17g] (Krawczyk's image not inside it)",
+                                  range.lo, range.hi);
         out->newton_steps = step + 1;
         if (!(mag_get_d(arb_radref(x[0])) + mag_get_d(arb_radref(x[1])) < 0.99 * before)) break;
     }
     if (!status) {
-        jacobian(&Bd, x[0], x[1], Q, J);
+        jacobian(Bd, x[0], x[1], Q, J);
         arb_mul(det, J[0][0], J[1][1], prec);
         arb_submul(det, J[0][1], J[1][0], prec);
         if (!arb_is_positive(det))
             status = gb_error_set(GB_ENUMERIC,
                                   "the chart Hessian of x.v is not proved definite over the contact for q in "
                                   "[%.17g, %.17g]",
-                                  q_lo, q_hi);
+                                  range.lo, range.hi);
     }
     series w;
     series_init(&w, order + 1, prec);
@@ -387,7 +417,7 @@ static int direct(const gb_proof_body_def *def, double q_lo, double q_hi, int or
         arb_poly_set_coeff_arb(q, 0, Q), arb_poly_set_coeff_si(q, 1, 1);
         for (slong k = 1; k <= order; k++) {
             w.n = k + 1; /* a_k = b_k = 0 here: F's k-th coefficient is R_k */
-            evaluate(&Bd, &w, a, b, q, h, Fa, Fb);
+            evaluate(Bd, &w, a, b, q, h, Fa, Fb);
             arb_poly_get_coeff_arb(R[0], Fa, k), arb_poly_get_coeff_arb(R[1], Fb, k);
             /* (a_k, b_k) = −J⁻¹ R = −[[J11, −J01], [−J10, J00]] R / det */
             arb_mul(t, J[1][1], R[0], prec), arb_submul(t, J[0][1], R[1], prec);
@@ -398,21 +428,39 @@ static int direct(const gb_proof_body_def *def, double q_lo, double q_hi, int or
             arb_poly_set_coeff_arb(b, k, t);
         }
         w.n = order + 1;
-        evaluate(&Bd, &w, a, b, q, h, Fa, Fb);
+        evaluate(Bd, &w, a, b, q, h, Fa, Fb);
         for (int k = 0; k <= order && !status; k++) {
             arb_poly_get_coeff_arb(H + k, h, k);
             if (!arb_is_finite(H + k))
-                status = gb_error_set(GB_ENUMERIC, "H's coefficient %d is not finite on [%.17g, %.17g]", k, q_lo, q_hi);
+                status = gb_error_set(GB_ENUMERIC, "H's coefficient %d is not finite on [%.17g, %.17g]", k, range.lo,
+                                      range.hi);
         }
         out->a = gb_proof_interval_of(x[0]), out->b = gb_proof_interval_of(x[1]);
-        out->chart = (int)Bd.chart;
+        out->chart = (int)Bd->chart;
     }
     series_clear(&w);
     arb_poly_clear(a), arb_poly_clear(b), arb_poly_clear(q), arb_poly_clear(h), arb_poly_clear(Fa), arb_poly_clear(Fb);
-    arb_clear(x[0]), arb_clear(x[1]), arb_clear(Q), arb_clear(det), arb_clear(R[0]), arb_clear(R[1]), arb_clear(t);
+    arb_clear(x[0]), arb_clear(x[1]), arb_clear(det), arb_clear(R[0]), arb_clear(R[1]), arb_clear(t);
     for (int i = 0; i < 4; i++) arb_clear(J[i / 2][i % 2]);
-    arb_clear(Bd.beta), arb_clear(Bd.c2);
-    for (int i = 0; i < 3; i++) arb_clear(Bd.e + i);
+    return status;
+}
+
+/* H's coefficients 0 … order on the arc of one contact, evaluated directly over it (into H). */
+static int direct(const gb_proof_body_def *def, double q_lo, double q_hi, int order, slong prec, arb_ptr H,
+                  gb_proof_body_jet *out)
+{
+    body Bd;
+    body_open(&Bd, prec);
+    arb_t x[2], Q;
+    arb_init(x[0]), arb_init(x[1]), arb_init(Q);
+    int status = contact_hull(def, q_lo, q_hi, -1, &Bd, x, &out->kept);
+    if (!status) {
+        body_constants(def, &Bd);
+        gb_proof_ball_of(Q, (gb_proof_interval){q_lo, q_hi}, prec);
+        status = coefficients(&Bd, x, Q, order, 0, H, out);
+    }
+    arb_clear(x[0]), arb_clear(x[1]), arb_clear(Q);
+    body_close(&Bd);
     return status;
 }
 
@@ -454,5 +502,83 @@ int gb_proof_body_jet_enclose(const gb_proof_body_def *def, double q_lo, double 
     out->seconds = gb_proof_cpu_seconds() - start;
     _arb_vec_clear(H, order + 2), _arb_vec_clear(mid, order + 2);
     arb_clear(T), arb_clear(t);
+    return status;
+}
+
+/* d = h_A − h_B and its derivative over the ball Q: the two branches' coefficients 0 and 1 from their hulls. */
+static int difference(const body Bd[2], arb_t X[2][2], const arb_t Q, arb_t d, arb_t dd, arb_t h, arb_t dh0,
+                      int existence)
+{
+    arb_ptr H[2] = {_arb_vec_init(2), _arb_vec_init(2)};
+    gb_proof_body_jet scratch;
+    int status = GB_OK;
+    for (int br = 0; br < 2 && !status; br++) status = coefficients(&Bd[br], X[br], Q, 1, existence, H[br], &scratch);
+    if (!status) {
+        arb_sub(d, H[0], H[1], Bd[0].prec);
+        arb_sub(dd, H[0] + 1, H[1] + 1, Bd[0].prec);
+        arb_set(h, H[0]), arb_set(dh0, H[0] + 1);
+    }
+    _arb_vec_clear(H[0], 2), _arb_vec_clear(H[1], 2);
+    return status;
+}
+
+int gb_proof_body_tie_locate(const gb_proof_body_def *def, double q_lo, double q_hi, gb_proof_body_tie *out)
+{
+    memset(out, 0, sizeof *out);
+    int status = check_arc(q_lo, q_hi, 1);
+    if (!status && !(q_hi > q_lo))
+        status = gb_error_set(GB_EDOM, "the arc [%g, %g] is a point (allowed: q_lo < q_hi)", q_lo, q_hi);
+    if (status) return status;
+    const double start = gb_proof_cpu_seconds();
+    const slong prec = def->precision >= GB_PROOF_PRECISION_MIN ? def->precision : GB_PROOF_PRECISION_DEFAULT;
+    body Bd[2];
+    arb_t X[2][2], Q, m, d, dd, h, dh, N;
+    for (int br = 0; br < 2; br++) body_open(&Bd[br], prec), arb_init(X[br][0]), arb_init(X[br][1]);
+    arb_init(Q), arb_init(m), arb_init(d), arb_init(dd), arb_init(h), arb_init(dh), arb_init(N);
+    size_t kept;
+    for (int br = 0; br < 2 && !status; br++) {
+        status = contact_hull(def, q_lo, q_hi, br, &Bd[br], X[br], &kept);
+        if (!status) body_constants(def, &Bd[br]);
+    }
+    gb_proof_ball_of(Q, (gb_proof_interval){q_lo, q_hi}, prec);
+    /* each branch's contact proved over the whole arc, and d′ away from 0 there */
+    if (!status) status = difference(Bd, X, Q, d, dd, h, dh, 1);
+    if (!status && arb_contains_zero(dd))
+        status =
+            gb_error_set(GB_ENUMERIC, "the heights' difference is not proved monotone on [%.17g, %.17g]", q_lo, q_hi);
+    /* Newton: N = m − d(m)/d′(Q), Q ← N ∩ Q, while it narrows */
+    for (int step = 0; step < 40 && !status; step++) {
+        const double before = mag_get_d(arb_radref(Q));
+        arb_set_arf(m, arb_midref(Q));
+        arb_t dm, unused, unused2, unused3;
+        arb_init(dm), arb_init(unused), arb_init(unused2), arb_init(unused3);
+        status = difference(Bd, X, m, dm, unused, unused2, unused3, 0);
+        if (!status) status = difference(Bd, X, Q, unused, dd, unused2, unused3, 0);
+        if (!status) {
+            arb_div(N, dm, dd, prec);
+            arb_sub(N, m, N, prec);
+            out->proved |= arb_contains_interior(Q, N);
+            if (!arb_intersection(Q, Q, N, prec))
+                status =
+                    gb_error_set(GB_ENUMERIC, "no tie lies in [%.17g, %.17g] (the Newton image misses it)", q_lo, q_hi);
+        }
+        arb_clear(dm), arb_clear(unused), arb_clear(unused2), arb_clear(unused3);
+        out->newton_steps = step + 1;
+        if (!status && !(mag_get_d(arb_radref(Q)) < 0.99 * before)) break;
+    }
+    /* at the tie: H and the jump of H′, |d′| */
+    if (!status) status = difference(Bd, X, Q, d, dd, h, dh, 0);
+    if (!status) {
+        arb_abs(dd, dd);
+        out->q = gb_proof_interval_of(Q), out->H = gb_proof_interval_of(h), out->jump = gb_proof_interval_of(dd);
+        if (!out->proved)
+            status = gb_error_set(GB_ENUMERIC,
+                                  "a tie in [%.17g, %.17g] is not proved (the Newton image never "
+                                  "fell inside the arc)",
+                                  q_lo, q_hi);
+    }
+    out->seconds = gb_proof_cpu_seconds() - start;
+    for (int br = 0; br < 2; br++) body_close(&Bd[br]), arb_clear(X[br][0]), arb_clear(X[br][1]);
+    arb_clear(Q), arb_clear(m), arb_clear(d), arb_clear(dd), arb_clear(h), arb_clear(dh), arb_clear(N);
     return status;
 }

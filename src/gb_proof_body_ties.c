@@ -87,7 +87,7 @@ static int touch(const double x[4], const double y[4])
 }
 
 gb_proof_body_piece gb_proof_body_structure(const gb_surface *surface, const gb_proof_axes *axes, const boxes *kept,
-                                            double q_lo, double q_hi, int *hull_region, double hull_box[4])
+                                            double q_lo, double q_hi, gb_proof_body_hull hulls[2])
 {
     size_t *pick = malloc(kept->n * sizeof *pick), *parent = malloc(kept->n * sizeof *parent);
     double (*box)[4] = malloc(kept->n * sizeof *box);
@@ -141,10 +141,12 @@ gb_proof_body_piece gb_proof_body_structure(const gb_surface *surface, const gb_
         const gb_interval det = gb_interval_sub(gb_interval_mul(haa, hbb), gb_interval_sqr(hab));
         if (!(e[c].smooth && haa.hi < 0.0 && det.lo > 0.0)) goto done;
     }
+    for (size_t c = 0; c < count && hulls; c++) {
+        hulls[c].region = regions[c];
+        for (int k = 0; k < 4; k++) hulls[c].box[k] = hull[c][k];
+    }
     if (count == 1) {
         result = GB_PROOF_BODY_SMOOTH;
-        if (hull_region) *hull_region = regions[0];
-        for (int k = 0; k < 4 && hull_box; k++) hull_box[k] = hull[0][k];
     } else {
         gb_interval d[3];
         for (int k = 0; k < 3; k++) d[k] = gb_interval_sub(e[0].x[k], e[1].x[k]);

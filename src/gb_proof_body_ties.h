@@ -11,10 +11,15 @@ typedef enum gb_proof_body_piece {
     GB_PROOF_BODY_OPEN = 2    /* neither proved */
 } gb_proof_body_piece;
 
-/* The piece the arc [q_lo, q_hi] is; for SMOOTH also the one component's region and hull {a_lo, a_hi, b_lo, b_hi} in
- * its chart (where x·v is proved strictly concave and the maximiser lies for every q of the arc), when the pointers
- * are not NULL. */
+/* A component's region and hull {a_lo, a_hi, b_lo, b_hi} in its chart, where x·v is proved strictly concave. */
+typedef struct gb_proof_body_hull {
+    int region;
+    double box[4];
+} gb_proof_body_hull;
+
+/* The piece the arc [q_lo, q_hi] is; when hulls is not NULL also the components' hulls (one for SMOOTH, where the
+ * maximiser lies for every q of the arc; two for TIE, each holding the maximiser where its branch is the higher). */
 gb_proof_body_piece gb_proof_body_structure(const gb_surface *surface, const gb_proof_axes *axes, const boxes *kept,
-                                            double q_lo, double q_hi, int *hull_region, double hull_box[4]);
+                                            double q_lo, double q_hi, gb_proof_body_hull hulls[2]);
 
 #endif

@@ -241,6 +241,53 @@ static void test_bad_arcs(void)
     gb_check_true(&c, !status && named == cases, "%d of %d refused naming the argument", named, cases);
 }
 
+/* The ties: each of the float model's kinks (bisection on its branches' heights) located by interval Newton on an arc
+ * 4e-4 wide about it, and its jump of H′; an arc without a tie refused. */
+static void test_ties(void)
+{
+    int status = GB_OK, ties = 0, proved = 0, inside = 0, jumps = 0, teeth = 0, refused = 0;
+    double widest = 0.0, seconds = 0.0;
+    char first[300] = "";
+    for (int b = 0; b < 2 && !status; b++) {
+        setup s;
+        status = setup_body(&s, bodies[b]);
+        for (size_t k = 0; k < s.info.kinks && k < 16 && !status; k++) {
+            const double q = s.info.kink_q[k];
+            gb_proof_body_tie t;
+            status = gb_proof_body_tie_locate(&s.def, q - 2e-4, q + 2e-4, &t);
+            if (status) break;
+            seconds += t.seconds;
+            ties++, proved += t.proved;
+            /* the float's bisection stops at 4e-16 relative on heights Newton polished to about 1e-14: over |d′| > 0.5,
+             * 1e-13; its jump from two float H′, 1e-11 */
+            const int in = near_interval(q, t.q, 1e-13), jump = near_interval(s.info.kink_jump[k], t.jump, 1e-11);
+            inside += in, jumps += jump;
+            teeth += !near_interval(q + 1e-12, t.q, 0.0) && !near_interval(q - 1e-12, t.q, 0.0);
+            widest = fmax(widest, t.q.hi - t.q.lo);
+            if ((!in || !jump) && !first[0])
+                snprintf(first, sizeof first,
+                         "; %s: kink %.17g (jump %.12g) against [%.17g, %.17g] (jump [%.12g, %.12g])", bodies[b], q,
+                         s.info.kink_jump[k], t.q.lo, t.q.hi, t.jump.lo, t.jump.hi);
+        }
+        gb_proof_body_tie none;
+        if (!status) refused += gb_proof_body_tie_locate(&s.def, 2.0, 2.0004, &none) == GB_ENUMERIC;
+        gb_error_clear();
+        if (s.body) gb_melnikov_body_free(s.body);
+    }
+    gb_check c = {"7", "78",
+                  "the ties of H (where the two contacts are equally high) and H''s jumps there, Gomboc I and II",
+                  "the float model's kinks (bisection on its branches' heights) and their jumps",
+                  "1e-13 in q (the float heights' Newton tolerance over |d'| > 0.5), 1e-11 in the jump (two float H')"};
+    gb_check_true(
+        &c,
+        !status && ties == 6 && proved == ties && inside == ties && jumps == ties && teeth == ties && refused == 2 &&
+            widest <= 1e-14,
+        "%d ties proved of %d (widest %.2g), the float's kinks inside %d and their jumps %d, the kinks moved by "
+        "1e-12 outside %d, arcs without a tie refused %d of 2; %.2f s CPU%s%s%s",
+        proved, ties, widest, inside, jumps, teeth, refused, seconds, first, status ? ": " : "",
+        status ? gb_error_message() : "");
+}
+
 /* Table 1's rolling forcing of Gömböc II (cases/table1-gomboc-II-rolling.ini), m = 1. */
 static const gb_proof_body_forcing table1 = {
     .damping = 0.02, .A1 = 2.0, .A2 = 1.0, .omega = 18.0, .psi = {M_PI / 3.0, M_PI / 3.0}};
@@ -487,6 +534,8 @@ int verify_register_s7_proofs_jet(void)
          "the coefficients over an arc enclose the remainder of a Taylor step across it; arcs across a tie are "
          "refused"},
         {"proofs: bad arcs and orders of H's Taylor coefficients", test_bad_arcs, NULL},
+        {"proofs: the ties of H located by interval Newton", test_ties,
+         "each tie of the two contacts is proved unique and enclosed to rounding, with the jump of H' there"},
         {"proofs: the reduced field's flow holds GSL's solutions", test_flow,
          "the reduced field at the paper's forcing (not linearised in epsilon) is integrated rigorously where no tie "
          "is "
