@@ -44,4 +44,14 @@ int gb_proof_body_second(const boxes *kept, const gb_interval v[3], const gb_int
 int gb_proof_body_arc_boxes(const gb_proof_body_def *def, double q_lo, double q_hi, double size, gb_proof_axes *axes,
                             boxes *out);
 
+/* H's coefficients over an arc for one branch at a tie q_s (gb_proof_body_jet.c): the branch that is the maximiser
+ * below q_s (above = 0) or above it, on an arc wholly on its side (its existence proved by Krawczyk's test where the
+ * arc's structure still sees both contacts). GB_ENUMERIC for an arc reaching q_s. */
+int gb_proof_body_jet_branch(const gb_proof_body_def *def, double q_lo, double q_hi, int order, double q_s, int above,
+                             gb_proof_body_jet *out);
+
+/* Both contacts' coefficients over a tie's arc (each proved over the whole arc by Krawczyk's test). */
+int gb_proof_body_jet_components(const gb_proof_body_def *def, double q_lo, double q_hi, int order,
+                                 gb_proof_body_jet out[2]);
+
 #endif

@@ -8,6 +8,7 @@
 #include "gb_proof_body.h"
 
 #include "gb_error.h"
+#include "gb_proof_body_boxes.h"
 #include "gb_proof_flow_internal.h"
 #include "gb_proof_internal.h"
 
@@ -19,6 +20,9 @@
  * failure's message. */
 typedef struct jets {
     const gb_proof_body_def *def;
+    int branch;      /* 1: one branch at the tie q_s (below it, or above), the state's q read as q − shift */
+    double q_s, shift;
+    int above;
     double lo, hi;
     int order;
     gb_proof_interval H[GB_PROOF_BODY_JET_ORDER_MAX + 1];
@@ -29,7 +33,15 @@ typedef struct jets {
 static int h_prime(void *context, const arb_t x, int order, arb_ptr g)
 {
     jets *J = context;
-    const gb_proof_interval q = gb_proof_interval_of(x);
+    gb_proof_interval q = gb_proof_interval_of(x);
+    if (J->branch) { /* the state is q − q_s */
+        arb_t y;
+        arb_init(y);
+        arb_set_d(y, J->shift);
+        arb_add(y, y, x, J->def->precision);
+        q = gb_proof_interval_of(y);
+        arb_clear(y);
+    }
     if (!(q.hi - q.lo <= GB_PROOF_BODY_JET_ARC_MAX) || order + 1 > GB_PROOF_BODY_JET_ORDER_MAX) {
         if (!J->failed)
             snprintf(J->why, sizeof J->why,
@@ -41,7 +53,8 @@ static int h_prime(void *context, const arb_t x, int order, arb_ptr g)
     }
     if (!(q.lo == J->lo && q.hi == J->hi && order + 1 <= J->order)) {
         gb_proof_body_jet jet;
-        if (gb_proof_body_jet_enclose(J->def, q.lo, q.hi, order + 1, &jet)) {
+        if (J->branch ? gb_proof_body_jet_branch(J->def, q.lo, q.hi, order + 1, J->q_s, J->above, &jet)
+                      : gb_proof_body_jet_enclose(J->def, q.lo, q.hi, order + 1, &jet)) {
             if (!J->failed) snprintf(J->why, sizeof J->why, "%s", gb_error_message());
             gb_error_clear();
             J->failed = 1;
@@ -120,7 +133,7 @@ static void reduced_field(const gb_proof_body_def *def, const gb_proof_body_forc
     arb_sin(x, x, prec);
     arb_mul(&T->a2[2][3], y, x, prec);
     arb_mul_2exp_si(&T->a2[2][3], &T->a2[2][3], 1); /* +2 (m/M) A₂ sin ψ c s */
-    *J = (jets){.def = def, .lo = NAN, .hi = NAN, .order = -1};
+    *J = (jets){.def = def, .lo = NAN, .hi = NAN, .order = -1}; /* one contact; the caller may choose a branch */
     T->jet = h_prime, T->context = J;
     arb_clear(mM), arb_clear(x), arb_clear(y);
 }
@@ -196,5 +209,102 @@ int gb_proof_body_period_map(const gb_proof_body_def *def, const gb_proof_body_f
             for (int b = 0; b < 2; b++) out->jacobian[a][b] = C.jacobian[a][b];
     }
     gb_proof_flow_field_clear(&F);
+    return status;
+}
+
+/* The section at the tie: phase 1's crossing of q = q_s (the branch below), then phase 2 from it (the branch above) to
+ * the period's end. */
+int gb_proof_body_period_map_tie(const gb_proof_body_def *def, const gb_proof_body_forcing *forcing,
+                                 const gb_proof_interval box[2], const gb_proof_body_tie *tie, int order,
+                                 gb_proof_body_return *out)
+{
+    memset(out, 0, sizeof *out);
+    int status = check_all(def, forcing, box, 1.0, order);
+    if (!status && !(tie->proved && tie->q.lo <= tie->q.hi && tie->jump.hi < INFINITY && box[0].hi < tie->q.lo && box[1].lo > 0.0))
+        status = gb_error_set(GB_EDOM, "the box must lie below a proved tie and move up (allowed: q_hi < the tie's q, q' > 0)");
+    if (status) return status;
+    const slong prec = def->precision;
+    const double q_s = 0.5 * tie->q.lo + 0.5 * tie->q.hi, delta = fmax(q_s - tie->q.lo, tie->q.hi - q_s);
+    const gb_proof_field shape = {.dimension = 4};
+    gb_proof_flow_def fdef = gb_proof_flow_def_default(&shape);
+    fdef.order = order, fdef.precision = prec, fdef.step_max = 0.01, fdef.direction = 1, fdef.returns = 1;
+    field_balls F;
+    jets J;
+    gb_proof_flow_crossing C1 = {0}, C2 = {0};
+    arb_t x, y, z;
+    arb_init(x), arb_init(y), arb_init(z);
+    /* phase 1: the branch below the tie, in x = q − q_a, to x = 0, q_a = q_s − η below the tie by more than its
+     * enclosure's width; then the sliver [q_a, q_b] (q_b = q_s + η) crossed with H′ bounded by both branches'; then
+     * phase 2 from q_b on the branch above */
+    const double eta = 1e-7, q_a = q_s - eta, q_b = q_s + eta;
+    reduced_field(def, forcing, order, &J, &F);
+    J.branch = 1, J.q_s = q_s, J.shift = q_a, J.above = 0;
+    gb_proof_interval start[4] = {box[0], box[1], {1.0, 1.0}, {0.0, 0.0}};
+    gb_proof_ball_of(x, box[0], prec);
+    arb_set_d(y, q_a);
+    arb_sub(x, x, y, prec);
+    start[0] = gb_proof_interval_of(x);
+    fdef.coordinate = 0;
+    if (!(delta < 0.01 * eta && box[0].hi < q_a))
+        status = gb_error_set(GB_ENUMERIC, "the tie's enclosure (%g wide) or the box is too close to the sliver", 2 * delta);
+    if (!status) status = failure(gb_proof_flow_section_map_of(&F, &fdef, start, &C1), &J, "flow to the tie");
+    gb_proof_flow_field_clear(&F);
+    /* within the period, moving up */
+    arb_const_pi(z, prec);
+    arb_mul_2exp_si(z, z, 1);
+    arb_set_d(y, forcing->omega);
+    arb_div(z, z, y, prec); /* T = 2π/ω */
+    gb_proof_interval T = gb_proof_interval_of(z);
+    if (!status && !(C1.time.hi < T.lo && C1.image[1].lo > 0.0))
+        status = gb_error_set(GB_ENUMERIC, "the tie is not crossed moving up within the period (t in [%g, %g], q' in [%g, %g])",
+                              C1.time.lo, C1.time.hi, C1.image[1].lo, C1.image[1].hi);
+    gb_proof_interval again[4], sliver_time = {0, 0};
+    if (!status) {
+        /* the sliver: H′ is one of the two branches' at every q of it (the tie lies inside), so |q″| ≤ (m/M) max|a|
+         * max|H′| + μ max|q′| while q′ stays in its guess G, which it does since it moves by less than G's margin in the
+         * crossing's longest time (q_b − q_a)/G.lo; |(cos, sin)′| ≤ ω */
+        gb_proof_body_jet both[2];
+        status = gb_proof_body_jet_components(def, q_a, q_b, 1, both);
+        const gb_proof_body_jet A = both[0], B = both[1];
+        if (!status) {
+            const double Hp = fmax(fmax(fabs(A.H[1].lo), fabs(A.H[1].hi)), fmax(fabs(B.H[1].lo), fabs(B.H[1].hi)));
+            const double amax = def->g + fabs(forcing->A1) + fabs(forcing->A2);
+            const gb_proof_interval P0 = C1.image[1];
+            const gb_proof_interval G = {0.9 * P0.lo, 1.1 * P0.hi};
+            const double width = q_b - q_a; /* exact (Sterbenz) */
+            const double dt = width / G.lo * (1.0 + 1e-12);
+            const double acc = (def->mass / def->inertia.lo * amax * Hp + forcing->damping / def->inertia.lo * G.hi) * (1.0 + 1e-12);
+            const double dP = acc * dt, dphase = forcing->omega * dt * (1.0 + 1e-12);
+            if (!(P0.lo - dP > G.lo && P0.hi + dP < G.hi))
+                status = gb_error_set(GB_ENUMERIC, "the tie's sliver is not crossed within the guess of q'");
+            again[0] = (gb_proof_interval){0.0, 0.0}, again[1] = (gb_proof_interval){P0.lo - dP, P0.hi + dP};
+            again[2] = (gb_proof_interval){C1.image[2].lo - dphase, C1.image[2].hi + dphase};
+            again[3] = (gb_proof_interval){C1.image[3].lo - dphase, C1.image[3].hi + dphase};
+            sliver_time = (gb_proof_interval){width / G.hi * (1.0 - 1e-12), dt};
+        }
+    }
+    if (!status) {
+        /* phase 2: the branch above the tie, from q_b to the period's end (the upward crossing of sin ωt = 0) */
+        reduced_field(def, forcing, order, &J, &F);
+        J.branch = 1, J.q_s = q_s, J.shift = q_b, J.above = 1;
+        fdef.coordinate = 3;
+        if (again[3].lo <= 0.0 && again[3].hi >= 0.0)
+            status = gb_error_set(GB_ENUMERIC, "the tie is crossed at the period's end (sin wt in [%g, %g])", again[3].lo, again[3].hi);
+        if (!status) status = failure(gb_proof_flow_section_map_of(&F, &fdef, again, &C2), &J, "flow from the tie");
+        gb_proof_flow_field_clear(&F);
+    }
+    if (!status) {
+        gb_proof_ball_of(x, C2.image[0], prec);
+        arb_set_d(y, q_b);
+        arb_add(x, x, y, prec);
+        out->q = gb_proof_interval_of(x), out->P = C2.image[1];
+        gb_proof_ball_of(x, C1.time, prec), gb_proof_ball_of(y, C2.time, prec);
+        arb_add(x, x, y, prec);
+        gb_proof_ball_of(y, sliver_time, prec);
+        arb_add(x, x, y, prec);
+        out->time = gb_proof_interval_of(x);
+        out->steps = C1.steps + C2.steps, out->seconds = C1.seconds + C2.seconds;
+    }
+    arb_clear(x), arb_clear(y), arb_clear(z);
     return status;
 }

@@ -464,6 +464,34 @@ static int direct(const gb_proof_body_def *def, double q_lo, double q_hi, int or
     return status;
 }
 
+/* The result's coefficients (when H is not NULL), arc, order and CPU seconds since start. */
+static void fill_jet(gb_proof_body_jet *out, arb_srcptr H, int order, double q_lo, double q_hi, double start)
+{
+    for (int k = 0; k <= order && H; k++) out->H[k] = gb_proof_interval_of(H + k);
+    out->q_lo = q_lo, out->q_hi = q_hi, out->order = order;
+    out->seconds = gb_proof_cpu_seconds() - start;
+}
+
+/* H_k met with mid_k + (k + 1) H_{k+1} T for k = 0 … order (T: the arc less its middle). */
+static int centred(arb_ptr H, arb_srcptr mid, const arb_t T, int order, slong prec, double q_lo, double q_hi)
+{
+    arb_t t;
+    arb_init(t);
+    int status = GB_OK;
+    for (int k = 0; k <= order && !status; k++) {
+        arb_mul_ui(t, H + k + 1, (ulong)k + 1, prec);
+        arb_mul(t, t, T, prec);
+        arb_add(t, t, mid + k, prec);
+        if (!arb_intersection(H + k, H + k, t, prec))
+            status = gb_error_set(GB_ENUMERIC,
+                                  "H's coefficient %d: the centred form misses the direct enclosure on "
+                                  "[%.17g, %.17g]",
+                                  k, q_lo, q_hi);
+    }
+    arb_clear(t);
+    return status;
+}
+
 /* On an arc, each coefficient is also the centred form c_k(q_m) + (k + 1) c_{k+1}(Q) (q − q_m) (the mean value theorem:
  * c_k′ = (k + 1) c_{k+1}), c_k(q_m) at the arc's middle and c_{k+1}(Q) the direct enclosure, met with the direct one:
  * the direct evaluation loses the cancellations between the contact's and v's variation over the arc. */
@@ -486,22 +514,110 @@ int gb_proof_body_jet_enclose(const gb_proof_body_def *def, double q_lo, double 
         gb_proof_ball_of(T, (gb_proof_interval){q_lo, q_hi}, prec);
         arb_set_d(t, q_m);
         arb_sub(T, T, t, prec);
-        for (int k = 0; k <= order && !status; k++) {
-            arb_mul_ui(t, H + k + 1, (ulong)k + 1, prec);
-            arb_mul(t, t, T, prec);
-            arb_add(t, t, mid + k, prec);
-            if (!arb_intersection(H + k, H + k, t, prec))
-                status = gb_error_set(GB_ENUMERIC,
-                                      "H's coefficient %d: the centred form misses the direct enclosure on "
-                                      "[%.17g, %.17g]",
-                                      k, q_lo, q_hi);
-        }
+        if (!status) status = centred(H, mid, T, order, prec, q_lo, q_hi);
     }
-    for (int k = 0; k <= order && !status; k++) out->H[k] = gb_proof_interval_of(H + k);
-    out->q_lo = q_lo, out->q_hi = q_hi, out->order = order;
-    out->seconds = gb_proof_cpu_seconds() - start;
+    fill_jet(out, status ? NULL : H, order, q_lo, q_hi, start);
     _arb_vec_clear(H, order + 2), _arb_vec_clear(mid, order + 2);
     arb_clear(T), arb_clear(t);
+    return status;
+}
+
+/* The contact of one branch at a tie q_s, on an arc wholly on the branch's side (a branch is followed up to its tie,
+ * not across it): the arc's one contact where its structure is SMOOTH; on an arc where the structure still sees the
+ * tie's two components, the one that is the higher at the arc's end away from the tie (told apart by their heights). Its hull into X, the chart and constants into Bd; *tie: two
+ * components (the contact's existence over the arc then still to be proved). */
+static int branch_hull(const gb_proof_body_def *def, double q_lo, double q_hi, double q_s, int above, body *Bd,
+                       arb_t X[2], int *tie, size_t *kept)
+{
+    *tie = 0;
+    if (above ? q_lo <= q_s : q_hi >= q_s)
+        return gb_error_set(GB_ENUMERIC, "the branch %s the tie at %.17g is not followed to q in [%.17g, %.17g]",
+                            above ? "above" : "below", q_s, q_lo, q_hi);
+    int status = contact_hull(def, q_lo, q_hi, -1, Bd, X, kept);
+    if (!status) {
+        body_constants(def, Bd);
+        return GB_OK;
+    }
+    gb_error_clear();
+    body other;
+    body_open(&other, Bd->prec);
+    arb_t Y[2], end, h[2];
+    arb_init(Y[0]), arb_init(Y[1]), arb_init(end), arb_init(h[0]), arb_init(h[1]);
+    status = contact_hull(def, q_lo, q_hi, 0, Bd, X, kept);
+    if (!status) status = contact_hull(def, q_lo, q_hi, 1, &other, Y, kept);
+    if (!status) {
+        body_constants(def, Bd), body_constants(def, &other);
+        arb_set_d(end, above ? q_hi : q_lo);
+        gb_proof_body_jet scratch;
+        status = coefficients(Bd, X, end, 0, 0, h[0], &scratch);
+        if (!status) status = coefficients(&other, Y, end, 0, 0, h[1], &scratch);
+    }
+    if (!status && arb_lt(h[0], h[1])) { /* the other component is the branch's */
+        body swap = *Bd;
+        *Bd = other, other = swap;
+        arb_swap(X[0], Y[0]), arb_swap(X[1], Y[1]);
+    } else if (!status && !arb_gt(h[0], h[1])) {
+        status = gb_error_set(GB_ENUMERIC, "at q = %.17g the two contacts are not told apart", above ? q_hi : q_lo);
+    }
+    *tie = 1;
+    arb_clear(Y[0]), arb_clear(Y[1]), arb_clear(end), arb_clear(h[0]), arb_clear(h[1]);
+    body_close(&other);
+    return status;
+}
+
+int gb_proof_body_jet_branch(const gb_proof_body_def *def, double q_lo, double q_hi, int order, double q_s, int above,
+                             gb_proof_body_jet *out)
+{
+    memset(out, 0, sizeof *out);
+    int status = check_arc(q_lo, q_hi, order);
+    if (status) return status;
+    const double start = gb_proof_cpu_seconds();
+    const slong prec = def->precision >= GB_PROOF_PRECISION_MIN ? def->precision : GB_PROOF_PRECISION_DEFAULT;
+    body Bd;
+    body_open(&Bd, prec);
+    arb_t X[2], Q, T, t;
+    arb_init(X[0]), arb_init(X[1]), arb_init(Q), arb_init(T), arb_init(t);
+    arb_ptr H = _arb_vec_init(order + 2), mid = _arb_vec_init(order + 2);
+    int tie = 0;
+    status = branch_hull(def, q_lo, q_hi, q_s, above, &Bd, X, &tie, &out->kept);
+    gb_proof_ball_of(Q, (gb_proof_interval){q_lo, q_hi}, prec);
+    if (!status) status = coefficients(&Bd, X, Q, order + 1, tie, H, out);
+    if (!status && q_hi > q_lo) { /* the centred form about the middle, from the same hull */
+        const double q_m = 0.5 * q_lo + 0.5 * q_hi;
+        gb_proof_body_jet at_mid;
+        arb_set_d(t, q_m);
+        status = coefficients(&Bd, X, t, order, 0, mid, &at_mid);
+        arb_sub(T, Q, t, prec);
+        if (!status) status = centred(H, mid, T, order, prec, q_lo, q_hi);
+    }
+    fill_jet(out, status ? NULL : H, order, q_lo, q_hi, start);
+    _arb_vec_clear(H, order + 2), _arb_vec_clear(mid, order + 2);
+    arb_clear(X[0]), arb_clear(X[1]), arb_clear(Q), arb_clear(T), arb_clear(t);
+    body_close(&Bd);
+    return status;
+}
+
+int gb_proof_body_jet_components(const gb_proof_body_def *def, double q_lo, double q_hi, int order,
+                                 gb_proof_body_jet out[2])
+{
+    memset(out, 0, 2 * sizeof *out);
+    int status = check_arc(q_lo, q_hi, order);
+    const slong prec = def->precision >= GB_PROOF_PRECISION_MIN ? def->precision : GB_PROOF_PRECISION_DEFAULT;
+    arb_t X[2], Q;
+    arb_init(X[0]), arb_init(X[1]), arb_init(Q);
+    arb_ptr H = _arb_vec_init(order + 1);
+    gb_proof_ball_of(Q, (gb_proof_interval){q_lo, q_hi}, prec);
+    for (int br = 0; br < 2 && !status; br++) {
+        body Bd;
+        body_open(&Bd, prec);
+        status = contact_hull(def, q_lo, q_hi, br, &Bd, X, &out[br].kept);
+        if (!status) body_constants(def, &Bd), status = coefficients(&Bd, X, Q, order, 1, H, &out[br]);
+        for (int k = 0; k <= order && !status; k++) out[br].H[k] = gb_proof_interval_of(H + k);
+        out[br].q_lo = q_lo, out[br].q_hi = q_hi, out[br].order = order;
+        body_close(&Bd);
+    }
+    _arb_vec_clear(H, order + 1);
+    arb_clear(X[0]), arb_clear(X[1]), arb_clear(Q);
     return status;
 }
 

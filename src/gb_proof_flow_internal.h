@@ -92,7 +92,8 @@ void gb_proof_flow_term_jacobian(const field_balls *F, arb_srcptr xs, int w, int
  * names the dimension): every solution from the box at time t_end. */
 int gb_proof_flow_time_of(const field_balls *F, const gb_proof_flow_def *def, const gb_proof_interval *box,
                           double t_end, gb_proof_interval *image);
-/* gb_proof_flow_section_map for the caller's field F (its term too): def's field only names the dimension. */
+/* gb_proof_flow_section_map for the caller's field F (its term too): def's field only names the dimension. The box may
+ * also lie wholly off the plane: the first crossing in the stated direction is then crossing 1. */
 int gb_proof_flow_section_map_of(const field_balls *F, const gb_proof_flow_def *def, const gb_proof_interval *box,
                                  gb_proof_flow_crossing *out);
 /* The integration of the box's set under the caller's field F (A = I, x̂ the box's middle; F borrowed: the release

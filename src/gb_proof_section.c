@@ -141,7 +141,9 @@ int gb_proof_flow_section_map(const gb_proof_flow_def *def, const gb_proof_inter
 int gb_proof_flow_section_map_of(const field_balls *F, const gb_proof_flow_def *def, const gb_proof_interval *box,
                                  gb_proof_flow_crossing *out)
 {
-    int status = check_section(def, box, out);
+    const gb_proof_interval b = box[def->coordinate];
+    const int off = b.hi < 0.0 || b.lo > 0.0; /* wholly off the plane: its first crossing is crossing 1 */
+    int status = off ? gb_proof_flow_check(def, box) : check_section(def, box, out);
     if (!status && (F->n != def->field->dimension || F->order != def->order))
         status = gb_error_set(GB_EINVAL, "the field's dimension and order are not the definition's");
     if (status) return status;
@@ -171,7 +173,9 @@ static int section_map(integration *Ip, const gb_proof_flow_def *def, gb_proof_f
     D->c1 = def->derivative;
     arb_t t;
     arb_init(t);
-    int window = 0, in_window = 1, done = 0;
+    /* a set on the plane is in window 0 (its own); one off it, on the side the crossings leave, in none yet */
+    const gb_proof_interval b = gb_proof_interval_of(&S->x[s]);
+    int window = 0, in_window = b.lo == 0.0 && b.hi == 0.0 && arb_is_zero(&S->r[s]), done = 0;
     out->step_min = INFINITY;
     while (!status && !done) {
         if (arf_cmp_d(arb_midref(t), def->time_max) > 0) {
@@ -254,6 +258,12 @@ static int section_map(integration *Ip, const gb_proof_flow_def *def, gb_proof_f
         arb_clear(hb);
         out->steps++;
         out->step_min = fmin(out->step_min, h);
+        /* the k-th window ends once the set lies wholly on the side it enters: no further step is needed to see it
+         * (a field defined only up to the plane, as a branch of the Gömböcs' H′ up to its tie, has none beyond) */
+        if (in_window && window == def->returns) {
+            gb_proof_flow_set_hull(F, S, piece);
+            done = strictly_on(&piece[s], dir);
+        }
     }
     if (!status && !C.collected) status = gb_error_set(GB_ENUMERIC, "the crossing was not enclosed");
     if (!status) {

@@ -489,6 +489,41 @@ static void test_period_map(void)
         status ? ": " : "", status ? gb_error_message() : "");
 }
 
+/* The period map across a tie: Gömböc II from (0.7, 1.0), which meets its tie near 0.78 a fifth into the period,
+ * against GSL's rk8pd on the float model (whose H′ switches at its own kink). */
+static void test_period_map_tie(void)
+{
+    const double T = 2.0 * M_PI / table1.omega;
+    flow_body fb;
+    int status = setup_flow(&fb, "II"), inside = 0, teeth = 0, timed = 0;
+    gb_proof_body_tie tie;
+    gb_proof_body_return r = {0};
+    double y[2] = {0.7, 1.0}, later[2] = {0, 0};
+    if (!status)
+        status = gb_proof_body_tie_locate(&fb.s.def, fb.s.info.kink_q[0] - 2e-4, fb.s.info.kink_q[0] + 2e-4, &tie);
+    const gb_proof_interval box[2] = {{0.7, 0.7}, {1.0, 1.0}};
+    if (!status) status = gb_proof_body_period_map_tie(&fb.s.def, &table1, box, &tie, 12, &r);
+    if (!status) status = float_flow(&fb.F, y, T);
+    if (!status) {
+        later_by(&fb.F, y, T, 1e-5, later);
+        /* GSL across the kink: its tolerances 1e-13 against 1e-11 moved it by 1e-11; 1e-9 */
+        inside = near_interval(y[0], r.q, 1e-9) && near_interval(y[1], r.P, 1e-9);
+        teeth = !near_interval(later[0], r.q, 1e-9);
+        timed = r.time.lo <= T && r.time.hi >= T;
+    }
+    if (fb.s.body) gb_melnikov_body_free(fb.s.body);
+    gb_check c = {"7", "78, 91",
+                  "the reduced field's period map of Gomboc II across its tie near q = 0.78, from (0.7, 1.0)",
+                  "GSL's rk8pd to 2 pi / omega on the float model (its H' switching at its own kink)",
+                  "GSL's error across the kink, 1e-9 (tolerances 1e-13 and 1e-11 differ by 1e-11)"};
+    gb_check_true(
+        &c, !status && inside && teeth && timed,
+        "GSL (%.12g, %.12g) inside [%.12g, %.12g] x [%.12g, %.12g]: %d; moved on 1e-5 s outside: %d; the time holds "
+        "2 pi / omega: %d; %ld steps, %.1f s CPU%s%s",
+        y[0], y[1], r.q.lo, r.q.hi, r.P.lo, r.P.hi, inside, teeth, timed, r.steps, r.seconds, status ? ": " : "",
+        status ? gb_error_message() : "");
+}
+
 static void test_bad_flows(void)
 {
     setup s;
@@ -542,6 +577,8 @@ int verify_register_s7_proofs_jet(void)
          "crossed"},
         {"proofs: the reduced field's period map and its derivative", test_period_map,
          "the period map of the reduced field at the paper's forcing and its derivative are enclosed rigorously"},
+        {"proofs: the reduced field's period map across a tie", test_period_map_tie,
+         "the period map of the reduced field is enclosed across a tie of the contact, where H' jumps"},
         {"proofs: bad forcings, orders and times of the reduced field's flow", test_bad_flows, NULL},
         {NULL, NULL, NULL},
     };
