@@ -80,7 +80,7 @@ void gb_proof_flow_field_eval(const field_balls *F, arb_srcptr x, arb_ptr out)
                 }
         }
     }
-    if (F->term.row >= 0) gb_proof_flow_term_eval(F, x, out + F->term.row);
+    if (F->term.row >= 0) gb_proof_flow_term_eval(&F->term, F->n, F->prec, x, out + F->term.row);
     arb_clear(t);
 }
 
@@ -96,7 +96,7 @@ static void taylor(const field_balls *F, arb_srcptr x0, int order, arb_ptr xs)
     for (int j = 0; j < n; j++)
         for (int k = 0; k < n; k++) arb_init(&products[j][k]);
     arb_ptr g = F->term.row >= 0 ? _arb_vec_init(order + 1) : NULL;
-    if (g) gb_proof_flow_term_jet(F, x0 + F->term.var, order, g);
+    if (g) gb_proof_flow_term_jet(&F->term, x0 + F->term.var, order, g);
     for (int k = 0; k < order; k++) {
         for (int j = 0; j < n; j++)
             for (int l = j; l < n; l++) {
@@ -115,7 +115,7 @@ static void taylor(const field_balls *F, arb_srcptr x0, int order, arb_ptr xs)
                     if (F->has_Q[i][j][l]) arb_addmul(acc, &F->Q[i][j][l], &products[j][l], F->prec);
             }
             if (i == F->term.row) {
-                gb_proof_flow_term_coefficient(F, xs, w, k, g, conv);
+                gb_proof_flow_term_coefficient(&F->term, F->n, F->prec, xs, w, k, g, conv);
                 arb_add(acc, acc, conv, F->prec);
             }
             arb_div_ui(xs + i * w + k + 1, acc, (ulong)(k + 1), F->prec);
@@ -146,8 +146,8 @@ static void variational_from(const field_balls *F, arb_srcptr xs, int order, con
             }
     if (F->term.row >= 0 && order > 0) {
         arb_ptr g = _arb_vec_init(order + 1);
-        gb_proof_flow_term_jet(F, xs + F->term.var * w, order, g);
-        gb_proof_flow_term_jacobian(F, xs, w, order, g, J);
+        gb_proof_flow_term_jet(&F->term, xs + F->term.var * w, order, g);
+        gb_proof_flow_term_jacobian(&F->term, F->n, F->prec, xs, w, order, g, J);
         _arb_vec_clear(g, order + 1);
     }
     _arb_vec_zero(V, w * nn);
@@ -191,8 +191,8 @@ void gb_proof_flow_field_derivative(const field_balls *F, arb_srcptr x, arb_mat_
     if (F->term.row >= 0) {
         const int n = F->n;
         arb_ptr g = _arb_vec_init(2), row = _arb_vec_init(n * n);
-        gb_proof_flow_term_jet(F, x + F->term.var, 1, g);
-        gb_proof_flow_term_jacobian(F, x, 1, 1, g, row);
+        gb_proof_flow_term_jet(&F->term, x + F->term.var, 1, g);
+        gb_proof_flow_term_jacobian(&F->term, F->n, F->prec, x, 1, 1, g, row);
         for (int m = 0; m < n; m++)
             arb_add(arb_mat_entry(J, F->term.row, m), arb_mat_entry(J, F->term.row, m), row + F->term.row * n + m,
                     F->prec);

@@ -5,22 +5,13 @@
 #define GB_PROOF_FLOW_INTERNAL_H
 
 #include "gb_proof_flow.h"
+#include "gb_proof_flow_term_internal.h"
 
 #include <arb.h>
 #include <arb_mat.h>
 
 enum { NMAX = GB_PROOF_FIELD_DIMENSION_MAX };
-
-/* An optional term of one row, f_row += A(x) G(x_var): A = a0 + Σ_l a1_l x_l + Σ_{l ≤ m} a2_lm x_l x_m (balls), G a
- * function of the one variable x_var given by its Taylor coefficients over a ball: jet(context, x, order, g) sets
- * g[k] ∋ G⁽ᵏ⁾(y)/k! for every y in x, k = 0 … order, and returns 0; nonzero when it cannot (the coefficients are
- * then indeterminate, and no step that needs them holds). The Gömböcs' reduced field: G = H′ (gb_proof_body_flow.c). */
-typedef struct field_term {
-    int row, var; /* row < 0: no term */
-    arb_struct a0, a1[NMAX], a2[NMAX][NMAX];
-    int (*jet)(void *context, const arb_t x, int order, arb_ptr g);
-    void *context;
-} field_term;
+_Static_assert((int)NMAX == (int)GB_PROOF_TERM_DIMENSION_MAX, "the term holds the field's dimensions");
 
 /* The field's coefficients as balls, and which quadratic terms are present. */
 typedef struct field_balls {
@@ -28,7 +19,7 @@ typedef struct field_balls {
     slong prec;
     arb_struct c[NMAX], L[NMAX][NMAX], Q[NMAX][NMAX][NMAX];
     int has_Q[NMAX][NMAX][NMAX], pair_used[NMAX][NMAX];
-    field_term term;
+    field_term term; /* the one non-polynomial term, if any (gb_proof_flow_term_internal.h) */
 } field_balls;
 
 /* The set x̂ + A r. */
@@ -78,16 +69,6 @@ int gb_proof_flow_step_finish(const field_balls *F, lohner_set *S, const step_da
 /* Prepares one step from S at time t_now, at most h_cap long (multiples of 2^-30), halved until Picard's test holds. */
 int gb_proof_flow_step_take(const field_balls *F, lohner_set *S, step_data *D, const gb_proof_flow_def *def,
                             double h_cap, arb_ptr scratch, double *h_taken, const arb_t t_now);
-/* The term's parts (gb_proof_flow_term.c): init and clear (row −1: none); G's coefficients 0 … order over the ball x
- * (indeterminate when the jet fails); A(x) G(x_var) over the box x added to *out; the k-th coefficient of A G along
- * the series xs (stride w, coefficients 0 … k), g G's coefficients at xs's x_var(0); the coefficients m < len of the
- * term's row of Df along xs added to J (J[m n² + row n + q]), g G's coefficients 0 … len there. */
-void gb_proof_flow_term_init(field_term *T);
-void gb_proof_flow_term_clear(field_term *T);
-void gb_proof_flow_term_jet(const field_balls *F, const arb_t x, int order, arb_ptr g);
-void gb_proof_flow_term_eval(const field_balls *F, arb_srcptr x, arb_t out);
-void gb_proof_flow_term_coefficient(const field_balls *F, arb_srcptr xs, int w, int k, arb_srcptr g, arb_t out);
-void gb_proof_flow_term_jacobian(const field_balls *F, arb_srcptr xs, int w, int len, arb_srcptr g, arb_ptr J);
 /* gb_proof_flow_time for the caller's field F (its term too) under def's order, step and time limits (def->field only
  * names the dimension): every solution from the box at time t_end. */
 int gb_proof_flow_time_of(const field_balls *F, const gb_proof_flow_def *def, const gb_proof_interval *box,

@@ -4,7 +4,7 @@
  * the composition of G's Taylor polynomial at x_var(0) with x_var(t) − x_var(0): exact to the series' length, since that
  * difference has no constant term; with x_var(0) a ball, G's coefficients over the ball hold those at each of its
  * points, so the composition holds the series of every solution from it. */
-#include "gb_proof_flow_internal.h"
+#include "gb_proof_flow_term_internal.h"
 
 #include <arb_poly.h>
 
@@ -12,31 +12,31 @@ void gb_proof_flow_term_init(field_term *T)
 {
     T->row = -1, T->var = 0, T->jet = NULL, T->context = NULL;
     arb_init(&T->a0);
-    for (int l = 0; l < NMAX; l++) {
+    for (int l = 0; l < GB_PROOF_TERM_DIMENSION_MAX; l++) {
         arb_init(&T->a1[l]);
-        for (int m = 0; m < NMAX; m++) arb_init(&T->a2[l][m]);
+        for (int m = 0; m < GB_PROOF_TERM_DIMENSION_MAX; m++) arb_init(&T->a2[l][m]);
     }
 }
 
 void gb_proof_flow_term_clear(field_term *T)
 {
     arb_clear(&T->a0);
-    for (int l = 0; l < NMAX; l++) {
+    for (int l = 0; l < GB_PROOF_TERM_DIMENSION_MAX; l++) {
         arb_clear(&T->a1[l]);
-        for (int m = 0; m < NMAX; m++) arb_clear(&T->a2[l][m]);
+        for (int m = 0; m < GB_PROOF_TERM_DIMENSION_MAX; m++) arb_clear(&T->a2[l][m]);
     }
 }
 
-void gb_proof_flow_term_jet(const field_balls *F, const arb_t x, int order, arb_ptr g)
+void gb_proof_flow_term_jet(const field_term *T, const arb_t x, int order, arb_ptr g)
 {
-    if (F->term.jet(F->term.context, x, order, g))
+    if (T->jet(T->context, x, order, g))
         for (int k = 0; k <= order; k++) arb_indeterminate(g + k);
 }
 
 /* The series x_l(t) of length len from xs (coefficient k of x_l at xs[l w + k]). */
-static void state_series(const field_balls *F, arb_srcptr xs, int w, int len, arb_poly_struct *x)
+static void state_series(int n, arb_srcptr xs, int w, int len, arb_poly_struct *x)
 {
-    for (int l = 0; l < F->n; l++) {
+    for (int l = 0; l < n; l++) {
         arb_poly_fit_length(x + l, len);
         for (int k = 0; k < len; k++) arb_set(x[l].coeffs + k, xs + l * w + k);
         _arb_poly_set_length(x + l, len);
@@ -94,60 +94,62 @@ static void series_G(const field_term *T, const arb_poly_struct *x, arb_srcptr g
     arb_poly_clear(u), arb_poly_clear(c);
 }
 
-void gb_proof_flow_term_eval(const field_balls *F, arb_srcptr x, arb_t out)
+void gb_proof_flow_term_eval(const field_term *T, int n, slong prec, arb_srcptr x, arb_t out)
 {
     arb_t g, a;
     arb_init(g), arb_init(a);
-    gb_proof_flow_term_jet(F, x + F->term.var, 0, g);
-    arb_poly_struct xs[NMAX];
-    for (int l = 0; l < F->n; l++) arb_poly_init(xs + l), arb_poly_set_arb(xs + l, x + l);
+    gb_proof_flow_term_jet(T, x + T->var, 0, g);
+    arb_poly_struct xs[GB_PROOF_TERM_DIMENSION_MAX];
+    for (int l = 0; l < n; l++) arb_poly_init(xs + l), arb_poly_set_arb(xs + l, x + l);
     arb_poly_t A;
     arb_poly_init(A);
-    series_A(&F->term, F->n, xs, 1, F->prec, A, NULL);
+    series_A(T, n, xs, 1, prec, A, NULL);
     arb_poly_get_coeff_arb(a, A, 0);
-    arb_addmul(out, a, g, F->prec);
-    for (int l = 0; l < F->n; l++) arb_poly_clear(xs + l);
+    arb_addmul(out, a, g, prec);
+    for (int l = 0; l < n; l++) arb_poly_clear(xs + l);
     arb_poly_clear(A);
     arb_clear(g), arb_clear(a);
 }
 
-void gb_proof_flow_term_coefficient(const field_balls *F, arb_srcptr xs, int w, int k, arb_srcptr g, arb_t out)
+void gb_proof_flow_term_coefficient(const field_term *T, int n, slong prec, arb_srcptr xs, int w, int k, arb_srcptr g,
+                                    arb_t out)
 {
     const int len = k + 1;
-    arb_poly_struct x[NMAX];
-    for (int l = 0; l < F->n; l++) arb_poly_init(x + l);
+    arb_poly_struct x[GB_PROOF_TERM_DIMENSION_MAX];
+    for (int l = 0; l < n; l++) arb_poly_init(x + l);
     arb_poly_t A, G;
     arb_poly_init(A), arb_poly_init(G);
-    state_series(F, xs, w, len, x);
-    series_A(&F->term, F->n, x, len, F->prec, A, NULL);
-    series_G(&F->term, x, g, len, F->prec, G, NULL);
-    arb_poly_mullow(A, A, G, len, F->prec);
+    state_series(n, xs, w, len, x);
+    series_A(T, n, x, len, prec, A, NULL);
+    series_G(T, x, g, len, prec, G, NULL);
+    arb_poly_mullow(A, A, G, len, prec);
     arb_poly_get_coeff_arb(out, A, k);
-    for (int l = 0; l < F->n; l++) arb_poly_clear(x + l);
+    for (int l = 0; l < n; l++) arb_poly_clear(x + l);
     arb_poly_clear(A), arb_poly_clear(G);
 }
 
-void gb_proof_flow_term_jacobian(const field_balls *F, arb_srcptr xs, int w, int len, arb_srcptr g, arb_ptr J)
+void gb_proof_flow_term_jacobian(const field_term *T, int n, slong prec, arb_srcptr xs, int w, int len, arb_srcptr g,
+                                 arb_ptr J)
 {
-    const int n = F->n, nn = n * n, row = F->term.row;
-    arb_poly_struct x[NMAX], dA[NMAX];
+    const int nn = n * n, row = T->row;
+    arb_poly_struct x[GB_PROOF_TERM_DIMENSION_MAX], dA[GB_PROOF_TERM_DIMENSION_MAX];
     for (int l = 0; l < n; l++) arb_poly_init(x + l), arb_poly_init(dA + l);
     arb_poly_t A, G, dG, p;
     arb_poly_init(A), arb_poly_init(G), arb_poly_init(dG), arb_poly_init(p);
-    state_series(F, xs, w, len, x);
-    series_A(&F->term, n, x, len, F->prec, A, dA);
-    series_G(&F->term, x, g, len, F->prec, G, dG);
+    state_series(n, xs, w, len, x);
+    series_A(T, n, x, len, prec, A, dA);
+    series_G(T, x, g, len, prec, G, dG);
     arb_t c;
     arb_init(c);
     for (int q = 0; q < n; q++) { /* ∂(A G)/∂x_q = ∂A/∂x_q G + [q = var] A G′ */
-        arb_poly_mullow(p, dA + q, G, len, F->prec);
-        if (q == F->term.var) {
-            arb_poly_mullow(A, A, dG, len, F->prec); /* A is not needed again */
-            arb_poly_add(p, p, A, F->prec);
+        arb_poly_mullow(p, dA + q, G, len, prec);
+        if (q == T->var) {
+            arb_poly_mullow(A, A, dG, len, prec); /* A is not needed again */
+            arb_poly_add(p, p, A, prec);
         }
         for (int m = 0; m < len; m++) {
             arb_poly_get_coeff_arb(c, p, m);
-            arb_add(J + m * nn + row * n + q, J + m * nn + row * n + q, c, F->prec);
+            arb_add(J + m * nn + row * n + q, J + m * nn + row * n + q, c, prec);
         }
     }
     arb_clear(c);
