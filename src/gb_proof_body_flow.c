@@ -71,7 +71,7 @@ static int h_prime(void *context, const arb_t x, int order, arb_ptr g)
     return 0;
 }
 
-static int check_forcing(const gb_proof_body_forcing *f, double t, int order, const gb_proof_interval box[2])
+static int check_forcing(const gb_proof_body_forcing *f, int order, const gb_proof_interval box[2])
 {
     if (!(f->damping >= 0.0 && isfinite(f->damping)))
         return gb_error_set(GB_EDOM, "damping = %g is out of range (allowed: >= 0)", f->damping);
@@ -85,8 +85,6 @@ static int check_forcing(const gb_proof_body_forcing *f, double t, int order, co
     if (!(order >= GB_PROOF_ORDER_MIN && order < GB_PROOF_BODY_JET_ORDER_MAX))
         return gb_error_set(GB_EDOM, "order = %d is out of range (allowed: %d to %d)", order, GB_PROOF_ORDER_MIN,
                             GB_PROOF_BODY_JET_ORDER_MAX - 1);
-    if (!(t > 0.0 && t <= 100.0))
-        return gb_error_set(GB_EDOM, "t = %g is out of range (allowed: 0 < t <= 100, a multiple of 2^-30)", t);
     for (int i = 0; i < 2; i++)
         if (!(isfinite(box[i].lo) && isfinite(box[i].hi) && box[i].lo <= box[i].hi))
             return gb_error_set(GB_EDOM, "box component %d = [%g, %g] is not a finite interval (allowed: lo <= hi)", i,
@@ -139,9 +137,9 @@ static void reduced_field(const gb_proof_body_def *def, const gb_proof_body_forc
 }
 
 static int check_all(const gb_proof_body_def *def, const gb_proof_body_forcing *forcing, const gb_proof_interval box[2],
-                     double t, int order)
+                     int order)
 {
-    const int status = check_forcing(forcing, t, order, box);
+    const int status = check_forcing(forcing, order, box);
     if (status) return status;
     return gb_proof_check_precision(def->precision);
 }
@@ -158,7 +156,9 @@ static int failure(int status, const jets *J, const char *what)
 int gb_proof_body_flow(const gb_proof_body_def *def, const gb_proof_body_forcing *forcing,
                        const gb_proof_interval box[2], double t0, double t, int order, gb_proof_interval image[2])
 {
-    int status = check_all(def, forcing, box, t, order);
+    int status = check_all(def, forcing, box, order);
+    if (!status && !(t > 0.0 && t <= 100.0))
+        status = gb_error_set(GB_EDOM, "t = %g is out of range (allowed: 0 < t <= 100, a multiple of 2^-30)", t);
     if (!status && !isfinite(t0)) status = gb_error_set(GB_EDOM, "t0 = %g is not finite (allowed: a finite time)", t0);
     if (status) return status;
     const slong prec = def->precision;
@@ -188,7 +188,7 @@ int gb_proof_body_period_map(const gb_proof_body_def *def, const gb_proof_body_f
                              gb_proof_body_return *out)
 {
     memset(out, 0, sizeof *out);
-    int status = check_all(def, forcing, box, 1.0, order);
+    int status = check_all(def, forcing, box, order);
     if (!status && !(periods >= 1 && periods <= 16))
         status = gb_error_set(GB_EDOM, "periods = %d is out of range (allowed: 1 to 16)", periods);
     if (status) return status;
@@ -219,7 +219,7 @@ int gb_proof_body_period_map_tie(const gb_proof_body_def *def, const gb_proof_bo
                                  gb_proof_body_return *out)
 {
     memset(out, 0, sizeof *out);
-    int status = check_all(def, forcing, box, 1.0, order);
+    int status = check_all(def, forcing, box, order);
     if (!status && !(tie->proved && tie->q.lo <= tie->q.hi && tie->jump.hi < INFINITY && box[0].hi < tie->q.lo && box[1].lo > 0.0))
         status = gb_error_set(GB_EDOM, "the box must lie below a proved tie and move up (allowed: q_hi < the tie's q, q' > 0)");
     if (status) return status;

@@ -601,15 +601,14 @@ static void set_of_box(const field_balls *F, lohner_set *S, const gb_proof_inter
 }
 
 /* A field with a term (its coefficients over an arc can be far wider than at a point): the step's Lagrange remainder
- * x_{p+1}(B) h^{p+1} at most 1e-12 plus a thousandth of the set's own width, so that the set does not grow by it. Quadratic
+ * x_{p+1}(B) h^{p+1} at most 1e-10 plus a thousandth of the set's own width, so that the set does not grow by it. Quadratic
  * fields: always (their steps as they were). */
-static int remainder_small(const field_balls *F, const lohner_set *S, const step_data *D, double h)
+static int remainder_small(const field_balls *F, const step_data *D, double h)
 {
     if (F->term.row < 0) return 1;
     const int p = F->order;
     double own = 0.0;
     for (int i = 0; i < F->n; i++) own = fmax(own, mag_get_d(arb_radref(&D->hull[i])));
-    (void)S;
     for (int i = 0; i < F->n; i++) {
         const double r = mag_get_d(arb_radref(D->centre + i * (p + 2) + p + 1)) +
                          fabs(arf_get_d(arb_midref(D->centre + i * (p + 2) + p + 1), ARF_RND_UP));
@@ -625,7 +624,7 @@ int gb_proof_flow_step_take(const field_balls *F, lohner_set *S, step_data *D, c
     /* steps are multiples of 2^-30, so that their sums (the times) are exact doubles */
     double h = floor(ldexp(fmin(step_length(F, S, def->step_max, scratch), h_cap), 30));
     h = ldexp(fmax(h, 1.0), -30);
-    while (!step_prepare(F, S, h, D) || !remainder_small(F, S, D, h)) {
+    while (!step_prepare(F, S, h, D) || !remainder_small(F, D, h)) {
         h = ldexp(floor(ldexp(h, 29)), -30);
         if (h < 1e-9) {
             return gb_error_set(GB_ENUMERIC, "no a-priori enclosure of the set's solutions at t = %.6g even for a step of 1e-9 "
