@@ -193,13 +193,15 @@ GB_API int gb_proof_body_period_map(const gb_proof_body_def *def, const gb_proof
 /* The period map (one period from phase 0) of a box below a tie that moves up in q (q̇ > 0) and meets the tie once within
  * the period (the tie as gb_proof_body_tie_locate proved it, its enclosure narrower than 2e-9): the branch below the tie
  * integrated to the section q = q_s − 1e-7 (q_s the enclosure's middle), the sliver [q_s − 1e-7, q_s + 1e-7], which
- * holds the tie, crossed with bounds (q̈ bounded with H′ in the hull of both branches', the time by the slowest q̇),
- * and the branch above from q_s + 1e-7 to the period's end. The return's time is the sum of the three. GB_EDOM for a box
- * not below the tie or not moving up; GB_ENUMERIC when a part cannot be followed or the tie is not met within the
- * period. */
+ * holds the tie, crossed with bounds (in q as the independent variable, H′ in the hull of both branches'; the time
+ * turns the forcing's phase exactly), and the branch above from q_s + 1e-7 to the period's end. The return's time is
+ * the sum of the three. With derivative, also the period map's derivative over the box: the three parts' derivatives
+ * composed through the sections q = q_s ∓ 1e-7 (the sliver's by Grönwall's bound on its variational equation). GB_EDOM
+ * for a box not below the tie or not moving up; GB_ENUMERIC when a part cannot be followed or the tie is not met within
+ * the period. */
 GB_API int gb_proof_body_period_map_tie(const gb_proof_body_def *def, const gb_proof_body_forcing *forcing,
                                         const gb_proof_interval box[2], const gb_proof_body_tie *tie, int order,
-                                        gb_proof_body_return *out);
+                                        int derivative, gb_proof_body_return *out);
 
 /* M = aᵀ I_c a + m r_max² of the paper's body I or II (homogeneous, mass m; a = e × s₀ with e projected ⊥ s₀ and
  * normalised) and its volume, by Arb's quadrature nested over the sphere (src/gb_proof_mass.c). GB_EDOM for another body

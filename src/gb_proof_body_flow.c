@@ -212,11 +212,237 @@ int gb_proof_body_period_map(const gb_proof_body_def *def, const gb_proof_body_f
     return status;
 }
 
-/* The section at the tie: phase 1's crossing of q = q_s (the branch below), then phase 2 from it (the branch above) to
- * the period's end. */
+/* The sliver [q_a, q_b] about a tie, crossed with bounds. In q as the independent variable the state y = (P, c, s)
+ * moves by dP/dq = −(m/M) a(c, s) H′(q)/P − μ, dc/dq = −ωs/P, ds/dq = ωc/P. The sliver is cut at the tie's enclosure
+ * [t₋, t₊]: below it H′ is the branch below's, above it the branch above's, and across the enclosure itself (about
+ * 1e-15 wide) within the hull of both. Over one part [q₀, q₀ + w], H′ within the ball H there, from y₀ (boxes):
+ * - a priori, P stays in G = [0.9 P₀, 1.1 P₀] (checked: P₀ + [0, w] dP/dq over G lies inside G), so the part takes
+ *   τ ≤ w / min G and (c, s) stay within ωτ of (c₀, s₀) (cos and sin are 1-Lipschitz in ωt);
+ * - P at its end lies in P₀ + w dP/dq over (G's verified hull P̄, the phase boxes), the time τ in w / P̄, and (c, s)
+ *   is (c₀, s₀) turned by ωτ (exact: t moves by τ);
+ * - the derivative ∂y/∂y₀ solves J′ = A J, J(q₀) = I, A = ∂(dy/dq)/∂y: by Grönwall ‖J − I‖∞ ≤ δ = e^{Lw} − 1 with
+ *   L = ‖A‖∞ over the same boxes, and then J(q₀ + w) = I + ∫ A J dq lies in I + w A (I ± δ).
+ * The map across the sliver is the composition of the parts' section maps q = const, so no saltation enters: the
+ * state (P, t) is continuous across the tie. */
+typedef struct sliver {
+    const gb_proof_body_forcing *forcing;
+    double g;
+    slong prec;
+    arb_t mM, mu, cp, sp; /* m/M, μ = c/M, cos ψ, sin ψ */
+} sliver;
+
+/* x·d (multiply) or x + d for a double d (exact as a ball). */
+static void with_d(arb_t out, const arb_t x, double d, int multiply, slong prec)
+{
+    arb_t y;
+    arb_init(y);
+    arb_set_d(y, d);
+    if (multiply)
+        arb_mul(out, x, y, prec);
+    else
+        arb_add(out, x, y, prec);
+    arb_clear(y);
+}
+
+/* dP/dq = −(m/M) a H / P − μ over the boxes. */
+static void slope(const sliver *K, const arb_t a, const arb_t H, const arb_t P, arb_t out)
+{
+    arb_mul(out, K->mM, a, K->prec);
+    arb_mul(out, out, H, K->prec);
+    arb_div(out, out, P, K->prec);
+    arb_add(out, out, K->mu, K->prec);
+    arb_neg(out, out);
+}
+
+/* One part [q_from, q_to] of the sliver, H′ within the ball H over it: y = (P, c, s) at q_from becomes y at q_to, τ
+ * grows by the part's time and J (3 × 3) is multiplied on the left by the part's derivative. */
+static int sliver_part(const sliver *K, const arb_t H, double q_from, double q_to, gb_proof_interval y[3], arb_t tau,
+                       arb_mat_t J)
+{
+    const slong prec = K->prec;
+    const double omega = K->forcing->omega, A1 = K->forcing->A1, A2 = K->forcing->A2;
+    const gb_proof_interval P0 = y[0];
+    arb_t w, G, C, S, a, ac, as, x, z, gP, Pv, t, c0, s0;
+    arb_ptr v[] = {w, G, C, S, a, ac, as, x, z, gP, Pv, t, c0, s0};
+    for (size_t i = 0; i < sizeof v / sizeof v[0]; i++) arb_init(v[i]);
+    arf_t bound;
+    arf_init(bound);
+    arb_set_d(w, q_to);
+    with_d(w, w, -q_from, 0, prec);
+    gb_proof_ball_of(G, (gb_proof_interval){0.9 * P0.lo, 1.1 * P0.hi}, prec);
+    gb_proof_ball_of(c0, y[1], prec);
+    gb_proof_ball_of(s0, y[2], prec);
+    /* τ ≤ w / min G: the phase boxes (c₀, s₀) ± ωτ */
+    arb_div(x, w, G, prec);
+    with_d(x, x, omega, 1, prec);
+    arb_get_abs_ubound_arf(bound, x, prec);
+    arb_zero_pm_one(z);
+    arb_mul_arf(z, z, bound, prec);
+    arb_add(C, c0, z, prec);
+    arb_add(S, s0, z, prec);
+    /* a = g + A₁c + A₂((c² − s²) cos ψ − 2cs sin ψ), and its partial derivatives a_c, a_s */
+    arb_sqr(x, C, prec);
+    arb_sqr(z, S, prec);
+    arb_sub(x, x, z, prec);
+    arb_mul(x, x, K->cp, prec);
+    arb_mul(z, C, S, prec);
+    arb_mul(z, z, K->sp, prec);
+    arb_mul_2exp_si(z, z, 1);
+    arb_sub(x, x, z, prec);
+    with_d(a, x, A2, 1, prec);
+    with_d(x, C, A1, 1, prec);
+    arb_add(a, a, x, prec);
+    with_d(a, a, K->g, 0, prec);
+    arb_mul(x, C, K->cp, prec);
+    arb_mul(z, S, K->sp, prec);
+    arb_sub(x, x, z, prec);
+    with_d(ac, x, 2.0 * A2, 1, prec);
+    with_d(ac, ac, A1, 0, prec);
+    arb_mul(x, S, K->cp, prec);
+    arb_mul(z, C, K->sp, prec);
+    arb_add(x, x, z, prec);
+    with_d(as, x, -2.0 * A2, 1, prec);
+    /* P over the part: P₀ + [0, w] dP/dq over G, inside G */
+    slope(K, a, H, G, gP);
+    arb_zero_pm_one(x);
+    with_d(x, x, 1.0, 0, prec);
+    arb_mul_2exp_si(x, x, -1); /* [0, 1] */
+    arb_mul(x, x, w, prec);
+    arb_mul(x, x, gP, prec);
+    gb_proof_ball_of(Pv, P0, prec);
+    arb_add(Pv, Pv, x, prec);
+    const gb_proof_interval Gi = gb_proof_interval_of(G), Pi = gb_proof_interval_of(Pv);
+    int status = GB_OK;
+    if (!(P0.lo > 0.0 && Pi.lo > Gi.lo && Pi.hi < Gi.hi))
+        status = gb_error_set(GB_ENUMERIC, "the tie's sliver is not crossed within the guess of q' (q' in [%g, %g])",
+                              P0.lo, P0.hi);
+    if (!status) {
+        /* P at the end, the time τ = ∫ dq / P, (c, s) turned by ωτ */
+        slope(K, a, H, Pv, gP);
+        arb_mul(gP, gP, w, prec);
+        gb_proof_ball_of(x, P0, prec);
+        arb_add(x, x, gP, prec);
+        y[0] = gb_proof_interval_of(x);
+        arb_div(t, w, Pv, prec);
+        arb_add(tau, tau, t, prec);
+        with_d(x, t, omega, 1, prec);
+        arb_t st, ct;
+        arb_init(st), arb_init(ct);
+        arb_sin_cos(st, ct, x, prec);
+        arb_mul(x, c0, ct, prec);
+        arb_mul(z, s0, st, prec);
+        arb_sub(x, x, z, prec);
+        y[1] = gb_proof_interval_of(x);
+        arb_mul(x, s0, ct, prec);
+        arb_mul(z, c0, st, prec);
+        arb_add(x, x, z, prec);
+        y[2] = gb_proof_interval_of(x);
+        arb_clear(st), arb_clear(ct);
+        /* A over (P̄, C, S): rows dP/dq, dc/dq, ds/dq; columns ∂/∂P, ∂/∂c, ∂/∂s */
+        arb_mat_t A, B, Jp;
+        arb_mat_init(A, 3, 3), arb_mat_init(B, 3, 3), arb_mat_init(Jp, 3, 3);
+        arb_mul(x, K->mM, H, prec);
+        arb_sqr(z, Pv, prec);
+        arb_mul(arb_mat_entry(A, 0, 0), x, a, prec);
+        arb_div(arb_mat_entry(A, 0, 0), arb_mat_entry(A, 0, 0), z, prec);
+        arb_mul(arb_mat_entry(A, 0, 1), x, ac, prec);
+        arb_div(arb_mat_entry(A, 0, 1), arb_mat_entry(A, 0, 1), Pv, prec);
+        arb_neg(arb_mat_entry(A, 0, 1), arb_mat_entry(A, 0, 1));
+        arb_mul(arb_mat_entry(A, 0, 2), x, as, prec);
+        arb_div(arb_mat_entry(A, 0, 2), arb_mat_entry(A, 0, 2), Pv, prec);
+        arb_neg(arb_mat_entry(A, 0, 2), arb_mat_entry(A, 0, 2));
+        with_d(arb_mat_entry(A, 1, 0), S, omega, 1, prec);
+        arb_div(arb_mat_entry(A, 1, 0), arb_mat_entry(A, 1, 0), z, prec);
+        arb_set_d(x, omega);
+        arb_div(x, x, Pv, prec);
+        arb_neg(arb_mat_entry(A, 1, 2), x);
+        with_d(arb_mat_entry(A, 2, 0), C, -omega, 1, prec);
+        arb_div(arb_mat_entry(A, 2, 0), arb_mat_entry(A, 2, 0), z, prec);
+        arb_set(arb_mat_entry(A, 2, 1), x);
+        /* L = the largest row sum of |A| (an upper bound); δ = e^{Lw} − 1; J over the part I ± δ, at its end
+         * I + w A (I ± δ) */
+        arb_zero(z);
+        for (int i = 0; i < 3; i++) {
+            arb_zero(x);
+            for (int j = 0; j < 3; j++) {
+                arb_get_abs_ubound_arf(bound, arb_mat_entry(A, i, j), prec);
+                arb_add_arf(x, x, bound, prec);
+            }
+            arb_get_ubound_arf(bound, x, prec);
+            arb_set_arf(x, bound);
+            arb_max(z, z, x, prec);
+        }
+        arb_mul(z, z, w, prec);
+        arb_expm1(z, z, prec);
+        arb_get_ubound_arf(bound, z, prec);
+        arb_mat_one(B);
+        for (int i = 0; i < 3; i++)
+            for (int j = 0; j < 3; j++) arb_add_error_arf(arb_mat_entry(B, i, j), bound);
+        arb_mat_mul(Jp, A, B, prec);
+        arb_mat_scalar_mul_arb(Jp, Jp, w, prec);
+        arb_mat_one(B);
+        arb_mat_add(Jp, Jp, B, prec);
+        arb_mat_mul(B, Jp, J, prec);
+        arb_mat_set(J, B);
+        arb_mat_clear(A), arb_mat_clear(B), arb_mat_clear(Jp);
+    }
+    arf_clear(bound);
+    for (size_t i = 0; i < sizeof v / sizeof v[0]; i++) arb_clear(v[i]);
+    return status;
+}
+
+/* The sliver [q_a, q_b] from phase 1's end (x, P, c, s): again = (0, P, c, s) at q_b, the time across it, and Js =
+ * ∂(P, c, s)(q_b)/∂(P, c, s)(q_a). */
+static int sliver_cross(const gb_proof_body_def *def, const gb_proof_body_forcing *forcing,
+                        const gb_proof_body_tie *tie, double q_s, const gb_proof_interval end[4], double q_a,
+                        double q_b, gb_proof_interval again[4], gb_proof_interval *time, arb_mat_t Js)
+{
+    const slong prec = def->precision;
+    /* the parts' ends: the tie's enclosure, on either side of q_s (the branches are told apart on arcs short of it) */
+    const double cut[2] = {fmin(tie->q.lo, nextafter(q_s, -INFINITY)), fmax(tie->q.hi, nextafter(q_s, INFINITY))};
+    gb_proof_body_jet below, above, both[2];
+    int status = gb_proof_body_jet_branch(def, q_a, cut[0], 1, q_s, 0, &below);
+    if (!status) status = gb_proof_body_jet_components(def, cut[0], cut[1], 1, both);
+    if (!status) status = gb_proof_body_jet_branch(def, cut[1], q_b, 1, q_s, 1, &above);
+    if (status) return status;
+    sliver K = {.forcing = forcing, .g = def->g, .prec = prec};
+    arb_init(K.mM), arb_init(K.mu), arb_init(K.cp), arb_init(K.sp);
+    arb_t x, H[3], tau;
+    arb_init(x), arb_init(tau);
+    for (int i = 0; i < 3; i++) arb_init(H[i]);
+    gb_proof_ball_of(x, def->inertia, prec);
+    arb_set_d(K.mM, def->mass);
+    arb_div(K.mM, K.mM, x, prec);
+    arb_set_d(K.mu, forcing->damping);
+    arb_div(K.mu, K.mu, x, prec);
+    gb_proof_ball_of(x, forcing->psi, prec);
+    arb_sin_cos(K.sp, K.cp, x, prec);
+    gb_proof_ball_of(H[0], below.H[1], prec);
+    gb_proof_ball_of(
+        H[1], (gb_proof_interval){fmin(both[0].H[1].lo, both[1].H[1].lo), fmax(both[0].H[1].hi, both[1].H[1].hi)},
+        prec);
+    gb_proof_ball_of(H[2], above.H[1], prec);
+    const double ends[4] = {q_a, cut[0], cut[1], q_b};
+    gb_proof_interval y[3] = {end[1], end[2], end[3]};
+    arb_mat_one(Js);
+    for (int part = 0; part < 3 && !status; part++)
+        status = sliver_part(&K, H[part], ends[part], ends[part + 1], y, tau, Js);
+    if (!status) {
+        again[0] = (gb_proof_interval){0.0, 0.0}, again[1] = y[0], again[2] = y[1], again[3] = y[2];
+        *time = gb_proof_interval_of(tau);
+    }
+    arb_clear(K.mM), arb_clear(K.mu), arb_clear(K.cp), arb_clear(K.sp);
+    arb_clear(x), arb_clear(tau);
+    for (int i = 0; i < 3; i++) arb_clear(H[i]);
+    return status;
+}
+
+/* The section at the tie: phase 1's crossing of q = q_a (the branch below), the sliver to q_b, then phase 2 from it
+ * (the branch above) to the period's end; with derivative, the three derivatives composed (the chain rule through the
+ * sections q = q_a and q = q_b, on which the state is (P, c, s)). */
 int gb_proof_body_period_map_tie(const gb_proof_body_def *def, const gb_proof_body_forcing *forcing,
                                  const gb_proof_interval box[2], const gb_proof_body_tie *tie, int order,
-                                 gb_proof_body_return *out)
+                                 int derivative, gb_proof_body_return *out)
 {
     memset(out, 0, sizeof *out);
     int status = check_all(def, forcing, box, order);
@@ -228,14 +454,17 @@ int gb_proof_body_period_map_tie(const gb_proof_body_def *def, const gb_proof_bo
     const gb_proof_field shape = {.dimension = 4};
     gb_proof_flow_def fdef = gb_proof_flow_def_default(&shape);
     fdef.order = order, fdef.precision = prec, fdef.step_max = 0.01, fdef.direction = 1, fdef.returns = 1;
+    fdef.derivative = derivative != 0;
     field_balls F;
     jets J;
     gb_proof_flow_crossing C1 = {0}, C2 = {0};
     arb_t x, y, z;
     arb_init(x), arb_init(y), arb_init(z);
+    arb_mat_t Js;
+    arb_mat_init(Js, 3, 3);
     /* phase 1: the branch below the tie, in x = q − q_a, to x = 0, q_a = q_s − η below the tie by more than its
-     * enclosure's width; then the sliver [q_a, q_b] (q_b = q_s + η) crossed with H′ bounded by both branches'; then
-     * phase 2 from q_b on the branch above */
+     * enclosure's width; then the sliver [q_a, q_b] (q_b = q_s + η) crossed with bounds; then phase 2 from q_b on the
+     * branch above */
     const double eta = 1e-7, q_a = q_s - eta, q_b = q_s + eta;
     reduced_field(def, forcing, order, &J, &F);
     J.branch = 1, J.q_s = q_s, J.shift = q_a, J.above = 0;
@@ -259,30 +488,7 @@ int gb_proof_body_period_map_tie(const gb_proof_body_def *def, const gb_proof_bo
         status = gb_error_set(GB_ENUMERIC, "the tie is not crossed moving up within the period (t in [%g, %g], q' in [%g, %g])",
                               C1.time.lo, C1.time.hi, C1.image[1].lo, C1.image[1].hi);
     gb_proof_interval again[4], sliver_time = {0, 0};
-    if (!status) {
-        /* the sliver: H′ is one of the two branches' at every q of it (the tie lies inside), so |q″| ≤ (m/M) max|a|
-         * max|H′| + μ max|q′| while q′ stays in its guess G, which it does since it moves by less than G's margin in the
-         * crossing's longest time (q_b − q_a)/G.lo; |(cos, sin)′| ≤ ω */
-        gb_proof_body_jet both[2];
-        status = gb_proof_body_jet_components(def, q_a, q_b, 1, both);
-        const gb_proof_body_jet A = both[0], B = both[1];
-        if (!status) {
-            const double Hp = fmax(fmax(fabs(A.H[1].lo), fabs(A.H[1].hi)), fmax(fabs(B.H[1].lo), fabs(B.H[1].hi)));
-            const double amax = def->g + fabs(forcing->A1) + fabs(forcing->A2);
-            const gb_proof_interval P0 = C1.image[1];
-            const gb_proof_interval G = {0.9 * P0.lo, 1.1 * P0.hi};
-            const double width = q_b - q_a; /* exact (Sterbenz) */
-            const double dt = width / G.lo * (1.0 + 1e-12);
-            const double acc = (def->mass / def->inertia.lo * amax * Hp + forcing->damping / def->inertia.lo * G.hi) * (1.0 + 1e-12);
-            const double dP = acc * dt, dphase = forcing->omega * dt * (1.0 + 1e-12);
-            if (!(P0.lo - dP > G.lo && P0.hi + dP < G.hi))
-                status = gb_error_set(GB_ENUMERIC, "the tie's sliver is not crossed within the guess of q'");
-            again[0] = (gb_proof_interval){0.0, 0.0}, again[1] = (gb_proof_interval){P0.lo - dP, P0.hi + dP};
-            again[2] = (gb_proof_interval){C1.image[2].lo - dphase, C1.image[2].hi + dphase};
-            again[3] = (gb_proof_interval){C1.image[3].lo - dphase, C1.image[3].hi + dphase};
-            sliver_time = (gb_proof_interval){width / G.hi * (1.0 - 1e-12), dt};
-        }
-    }
+    if (!status) status = sliver_cross(def, forcing, tie, q_s, C1.image, q_a, q_b, again, &sliver_time, Js);
     if (!status) {
         /* phase 2: the branch above the tie, from q_b to the period's end (the upward crossing of sin ωt = 0) */
         reduced_field(def, forcing, order, &J, &F);
@@ -305,6 +511,24 @@ int gb_proof_body_period_map_tie(const gb_proof_body_def *def, const gb_proof_bo
         out->time = gb_proof_interval_of(x);
         out->steps = C1.steps + C2.steps, out->seconds = C1.seconds + C2.seconds;
     }
+    if (!status && derivative) {
+        /* D = D₂ E D₁: D₁ = ∂(x, P, c, s)/∂(q₀, P₀) at q = q_a (row x zero), E the sliver's J on (P, c, s), D₂ from q_b */
+        arb_mat_t D1, E, D2, D;
+        arb_mat_init(D1, 4, 2), arb_mat_init(E, 4, 4), arb_mat_init(D2, 4, 4), arb_mat_init(D, 4, 2);
+        for (int a = 0; a < 4; a++) {
+            for (int b = 0; b < 2; b++) gb_proof_ball_of(arb_mat_entry(D1, a, b), C1.jacobian[a][b], prec);
+            for (int b = 0; b < 4; b++) {
+                gb_proof_ball_of(arb_mat_entry(D2, a, b), C2.jacobian[a][b], prec);
+                if (a > 0 && b > 0) arb_set(arb_mat_entry(E, a, b), arb_mat_entry(Js, a - 1, b - 1));
+            }
+        }
+        arb_mat_mul(D, E, D1, prec);
+        arb_mat_mul(D1, D2, D, prec);
+        for (int a = 0; a < 2; a++)
+            for (int b = 0; b < 2; b++) out->jacobian[a][b] = gb_proof_interval_of(arb_mat_entry(D1, a, b));
+        arb_mat_clear(D1), arb_mat_clear(E), arb_mat_clear(D2), arb_mat_clear(D);
+    }
+    arb_mat_clear(Js);
     arb_clear(x), arb_clear(y), arb_clear(z);
     return status;
 }

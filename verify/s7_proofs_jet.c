@@ -422,6 +422,27 @@ static void test_flow(void)
 
 /* The period map: the return to sin ωt = 0, against GSL's flow to 2π/ω and its central differences, and Liouville's
  * det DP = e^{−μT} (the (q, P) field's trace is −μ) at the saddle. */
+/* det DP over the enclosures of a period map's derivative (outward in doubles, then widened by 1e-15). */
+static gb_proof_interval det_of(const gb_proof_body_return *r)
+{
+    const gb_proof_interval *J0 = r->jacobian[0], *J1 = r->jacobian[1];
+    const double p[4] = {J0[0].lo * J1[1].lo, J0[0].lo * J1[1].hi, J0[0].hi * J1[1].lo, J0[0].hi * J1[1].hi};
+    const double q[4] = {J0[1].lo * J1[0].lo, J0[1].lo * J1[0].hi, J0[1].hi * J1[0].lo, J0[1].hi * J1[0].hi};
+    double plo = p[0], phi = p[0], qlo = q[0], qhi = q[0];
+    for (int k = 1; k < 4; k++)
+        plo = fmin(plo, p[k]), phi = fmax(phi, p[k]), qlo = fmin(qlo, q[k]), qhi = fmax(qhi, q[k]);
+    return (gb_proof_interval){plo - qhi - 1e-15, phi - qlo + 1e-15};
+}
+
+/* Liouville: the period map's det DP = e^{−μT}, μ = c/M, the time T exact (the section is at a fixed phase); 1 when
+ * the enclosure of det DP holds e^{−μT} for some M of scale·M's interval. */
+static int liouville_met(const gb_proof_body_return *r, gb_proof_interval M, double T, double scale)
+{
+    const gb_proof_interval d = det_of(r);
+    const double e_lo = exp(-table1.damping / (scale * M.lo) * T), e_hi = exp(-table1.damping / (scale * M.hi) * T);
+    return d.lo <= fmax(e_lo, e_hi) && d.hi >= fmin(e_lo, e_hi);
+}
+
 static void test_period_map(void)
 {
     const double T = 2.0 * M_PI / table1.omega, h = 1e-6;
@@ -460,15 +481,11 @@ static void test_period_map(void)
                      fd[0][0], fd[0][1], fd[1][0], fd[1][1]);
         if (q0 == 0.0) {
             kept += r.q.lo <= 0.0 && r.q.hi >= 0.0 && r.P.lo <= 0.0 && r.P.hi >= 0.0;
-            /* det DP over the enclosures (outward in doubles, then widened by 1e-15) against e^{−μT}, μ = c/M over M */
+            liouville += liouville_met(&r, fb.M, T, 1.0);
+            liouville_teeth += !liouville_met(&r, fb.M, T, 1.01); /* M 1 % larger */
             const gb_proof_interval *J0 = r.jacobian[0], *J1 = r.jacobian[1];
-            const double lo = J0[0].lo * J1[1].lo - fmax(J0[1].hi * J1[0].hi, J0[1].lo * J1[0].lo) - 1e-15;
-            const double hi = J0[0].hi * J1[1].hi - fmin(J0[1].lo * J1[0].lo, J0[1].hi * J1[0].hi) + 1e-15;
-            const double e_lo = exp(-table1.damping / fb.M.lo * T), e_hi = exp(-table1.damping / fb.M.hi * T);
-            liouville += lo <= fmax(e_lo, e_hi) && hi >= fmin(e_lo, e_hi);
-            const double moved = exp(-table1.damping / (1.01 * fb.M.lo) * T); /* M 1 % larger */
-            liouville_teeth += !(lo <= moved && hi >= moved);
-            const double tr = 0.5 * (J0[0].lo + J1[1].lo), det = 0.5 * (lo + hi);
+            const gb_proof_interval d = det_of(&r);
+            const double tr = 0.5 * (J0[0].lo + J1[1].lo), det = 0.5 * (d.lo + d.hi);
             lambda[0] = tr + sqrt(tr * tr - det), lambda[1] = tr - sqrt(tr * tr - det);
         }
         gb_melnikov_body_free(fb.s.body);
@@ -490,38 +507,62 @@ static void test_period_map(void)
 }
 
 /* The period map across a tie: Gömböc II from (0.7, 1.0), which meets its tie near 0.78 a fifth into the period,
- * against GSL's rk8pd on the float model (whose H′ switches at its own kink). */
+ * against GSL's rk8pd on the float model (whose H′ switches at its own kink); its derivative against GSL's central
+ * differences and Liouville's det DP = e^{−μT}, which hold across the tie too (the flow is continuous there and the
+ * return time exact). */
 static void test_period_map_tie(void)
 {
-    const double T = 2.0 * M_PI / table1.omega;
+    const double T = 2.0 * M_PI / table1.omega, h = 1e-5;
     flow_body fb;
-    int status = setup_flow(&fb, "II"), inside = 0, teeth = 0, timed = 0;
+    int status = setup_flow(&fb, "II"), inside = 0, teeth = 0, timed = 0, derivative = 0, liouville = 0, moved = 0;
     gb_proof_body_tie tie;
     gb_proof_body_return r = {0};
-    double y[2] = {0.7, 1.0}, later[2] = {0, 0};
+    double y[2] = {0.7, 1.0}, later[2] = {0, 0},
+           d[4][2] = {{0.7 + h, 1.0}, {0.7 - h, 1.0}, {0.7, 1.0 + h}, {0.7, 1.0 - h}};
+    double fd[2][2] = {{NAN, NAN}, {NAN, NAN}};
     if (!status)
         status = gb_proof_body_tie_locate(&fb.s.def, fb.s.info.kink_q[0] - 2e-4, fb.s.info.kink_q[0] + 2e-4, &tie);
     const gb_proof_interval box[2] = {{0.7, 0.7}, {1.0, 1.0}};
-    if (!status) status = gb_proof_body_period_map_tie(&fb.s.def, &table1, box, &tie, 12, &r);
+    if (!status) status = gb_proof_body_period_map_tie(&fb.s.def, &table1, box, &tie, 12, 1, &r);
     if (!status) status = float_flow(&fb.F, y, T);
+    for (int k = 0; k < 4 && !status; k++) status = float_flow(&fb.F, d[k], T);
     if (!status) {
         later_by(&fb.F, y, T, 1e-5, later);
         /* GSL across the kink: its tolerances 1e-13 against 1e-11 moved it by 1e-11; 1e-9 */
         inside = near_interval(y[0], r.q, 1e-9) && near_interval(y[1], r.P, 1e-9);
         teeth = !near_interval(later[0], r.q, 1e-9);
         timed = r.time.lo <= T && r.time.hi >= T;
+        /* central differences: GSL's 1e-11 across the kink over 2h (5e-7), and h² |P‴| / 6: 1e-6 */
+        derivative = 1;
+        for (int i = 0; i < 2; i++)
+            for (int j = 0; j < 2; j++) {
+                fd[i][j] = (d[2 * j][i] - d[2 * j + 1][i]) / (2.0 * h);
+                derivative &= near_interval(fd[i][j], r.jacobian[i][j], 1e-6);
+            }
+        liouville = liouville_met(&r, fb.M, T, 1.0);
+        moved = !liouville_met(&r, fb.M, T, 1.01);
     }
+    const gb_proof_interval det = status ? (gb_proof_interval){NAN, NAN} : det_of(&r);
     if (fb.s.body) gb_melnikov_body_free(fb.s.body);
     gb_check c = {"7", "78, 91",
-                  "the reduced field's period map of Gomboc II across its tie near q = 0.78, from (0.7, 1.0)",
-                  "GSL's rk8pd to 2 pi / omega on the float model (its H' switching at its own kink)",
-                  "GSL's error across the kink, 1e-9 (tolerances 1e-13 and 1e-11 differ by 1e-11)"};
+                  "the reduced field's period map of Gomboc II across its tie near q = 0.78, from (0.7, 1.0), and its "
+                  "derivative",
+                  "GSL's rk8pd to 2 pi / omega on the float model (its H' switching at its own kink) and its central "
+                  "differences (step 1e-5); Liouville's det DP = exp(-mu T)",
+                  "GSL's error across the kink, 1e-9 (tolerances 1e-13 and 1e-11 differ by 1e-11); the differences' "
+                  "1e-11 over the step and truncation, 1e-6; det 1e-15 (doubles)"};
     gb_check_true(
-        &c, !status && inside && teeth && timed,
+        &c, !status && inside && teeth && timed && derivative && liouville && moved,
         "GSL (%.12g, %.12g) inside [%.12g, %.12g] x [%.12g, %.12g]: %d; moved on 1e-5 s outside: %d; the time holds "
-        "2 pi / omega: %d; %ld steps, %.1f s CPU%s%s",
-        y[0], y[1], r.q.lo, r.q.hi, r.P.lo, r.P.hi, inside, teeth, timed, r.steps, r.seconds, status ? ": " : "",
-        status ? gb_error_message() : "");
+        "2 pi / omega: %d; DP [[%.9g, %.9g], [%.9g, %.9g]] (widest %.2g) inside the differences [[%.9g, %.9g], "
+        "[%.9g, %.9g]]: %d; det DP in [%.12g, %.12g] holds exp(-mu T): %d (not with M 1 %% larger: %d); %ld steps, "
+        "%.1f s CPU%s%s",
+        y[0], y[1], r.q.lo, r.q.hi, r.P.lo, r.P.hi, inside, teeth, timed, r.jacobian[0][0].lo, r.jacobian[0][1].lo,
+        r.jacobian[1][0].lo, r.jacobian[1][1].lo,
+        fmax(fmax(r.jacobian[0][0].hi - r.jacobian[0][0].lo, r.jacobian[0][1].hi - r.jacobian[0][1].lo),
+             fmax(r.jacobian[1][0].hi - r.jacobian[1][0].lo, r.jacobian[1][1].hi - r.jacobian[1][1].lo)),
+        fd[0][0], fd[0][1], fd[1][0], fd[1][1], derivative, det.lo, det.hi, liouville, moved, r.steps, r.seconds,
+        status ? ": " : "", status ? gb_error_message() : "");
 }
 
 static void test_bad_flows(void)
@@ -578,7 +619,8 @@ int verify_register_s7_proofs_jet(void)
         {"proofs: the reduced field's period map and its derivative", test_period_map,
          "the period map of the reduced field at the paper's forcing and its derivative are enclosed rigorously"},
         {"proofs: the reduced field's period map across a tie", test_period_map_tie,
-         "the period map of the reduced field is enclosed across a tie of the contact, where H' jumps"},
+         "the period map of the reduced field and its derivative are enclosed across a tie of the contact, where H' "
+         "jumps"},
         {"proofs: bad forcings, orders and times of the reduced field's flow", test_bad_flows, NULL},
         {NULL, NULL, NULL},
     };
