@@ -46,7 +46,7 @@ CLI_SRC   := $(sort $(wildcard src/gomboc*.c))
 CLI_OBJ   := $(CLI_SRC:src/%.c=$(BUILD)/obj/%.o)
 # gomboc prove runs gomboc-prove (src/gomboc_prove_exec.c says why): gomboc is linked without the proofs and, with
 # --as-needed, without Arb, FLINT, NTL and C++'s library; gomboc-prove is the whole command.
-PROVE_OBJ := $(BUILD)/obj/gomboc_prove.o $(BUILD)/obj/gomboc_prove_body.o
+PROVE_OBJ := $(BUILD)/obj/gomboc_prove.o $(BUILD)/obj/gomboc_prove_body.o $(BUILD)/obj/gomboc_prove_chain.o
 PROVE_BIN  = $(BUILD)/gomboc-prove
 LIB       := $(BUILD)/libgomboc.a
 # The shared library beside the static one: soname libgomboc.so.$(SOMAJOR), built from position-independent
@@ -233,7 +233,9 @@ study-only: $(BIN)
 	$(call scan_all,$(STUDIES),study,ensembles of cases/studies)
 
 # --- the statements proved on Arb's balls (docs/proofs.md): gomboc prove, its JSON in reports/out/proofs.json (make
-# verify runs it too, in its harness, and draws the report's section "Proved" from it); exit 1 when one is not proved.
+# verify runs it too, in its harness, and draws the report's section "Proved" from it); then Gömböc II's horseshoe
+# (gomboc prove --horseshoe, minutes: make prove alone), its JSON in reports/out/proof-horseshoe.json; exit 1 when one
+# is not proved.
 prove: deps
 	@$(MAKE) --no-print-directory prove-only
 
@@ -241,6 +243,10 @@ prove-only: $(BIN)
 	@mkdir -p $(OUT)
 	$(BIN) prove --json > $(OUT)/proofs.json.tmp && mv $(OUT)/proofs.json.tmp $(OUT)/proofs.json
 	$(BIN) prove
+	$(BIN) prove --horseshoe --json > $(OUT)/proof-horseshoe.json.tmp && \
+	  mv $(OUT)/proof-horseshoe.json.tmp $(OUT)/proof-horseshoe.json
+	@$(PYTHON) -c 'import json, sys; s = json.load(open(sys.argv[1]))["statements"][0]; \
+	  print(s["statement"] + ": " + s["result"] + " " + s["summary"])' $(OUT)/proof-horseshoe.json
 
 # --- scans on MPI ranks: OpenMPI installed, gomboc-mpi built, and its checks (1, 2 and 3 ranks, a kill -9
 # of every rank and --resume: the same bytes as one thread). make verify runs them too where mpicc is.

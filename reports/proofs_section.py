@@ -2,7 +2,9 @@
 with its result, the enclosures and its CPU time. Kept apart from the findings: a finding is decided by a rule on
 estimates with error bars; a statement here is a theorem about the stated system, with the hypotheses it rests on and
 which of them are proved."""
-from common import section_start
+import os
+
+from common import load_json, section_start
 
 
 def interval(pair):
@@ -89,4 +91,24 @@ def proofs_section(out):
         lines += [f"**{s['statement']}** ({s['result']}). System: {s['system']}. Sets: {s['sets']}. Reproduces: "
                   f"{s['reproduces']}. Method: {s['method']}. Theorem: {s['theorem']}. Reading: {s['reading']}. "
                   f"Strips: {strips}. h_top >= {s['entropy_lower_bound']:.17g} ({s['seconds']:.3g} s CPU).", ""]
+    lines += horseshoe_lines(out)
     return lines
+
+
+def horseshoe_lines(out):
+    """Gömböc II's horseshoe: `make prove` alone proves all its links (minutes); make verify's harness proves three."""
+    path = os.path.join(out, "proof-horseshoe.json")
+    if not os.path.exists(path):
+        return ["Gömböc II's horseshoe along a homoclinic orbit (`gomboc prove --horseshoe`) takes minutes: `make prove` "
+                "proves it and writes reports/out/proof-horseshoe.json, which this section then shows; `make verify` "
+                "proves its three covering relations by the saddle, its sets' disjointness and its entropy bound (the "
+                "harness's suite on it).", ""]
+    s = load_json(path)["statements"][0]
+    hyps = "; ".join(f"{h['hypothesis']} ({h['status']})" for h in s["hypotheses"])
+    links = ", ".join(f"{l['link']}" + (f" across the tie {interval(l['tie'])}" if "tie" in l else "")
+                      + (f" (strip {l['strip_margin']:.3f}, edges {l['edge_margin']:.3f})" if l["covers"]
+                         else f" (NOT proved: {l['failure']})") for l in s["links"])
+    return [f"**{s['statement']}** ({s['result']}; `make prove`, reports/out/proof-horseshoe.json). System: {s['system']}. "
+            f"Sets: {s['sets']}. Method: {s['method']}. Theorem: {s['theorem']}. Hypotheses: {hyps}. Links, with the "
+            f"margins proved (of the target's half-widths): {links}. ln rho >= {s['log_rho']:.17g} ({s['seconds']:.4g} s "
+            "CPU).", ""]

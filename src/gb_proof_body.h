@@ -192,7 +192,9 @@ GB_API int gb_proof_body_period_map(const gb_proof_body_def *def, const gb_proof
 
 /* The period map (one period from phase 0) of a box below a tie that moves up in q (q̇ > 0) and meets the tie once within
  * the period (the tie as gb_proof_body_tie_locate proved it, its enclosure narrower than 2e-9): the branch below the tie
- * integrated to the section q = q_s − 1e-7 (q_s the enclosure's middle), the sliver [q_s − 1e-7, q_s + 1e-7], which
+ * integrated to the section q = q_s − 2e-4 (q_s the enclosure's middle; the box lies below it) and from there to the
+ * section q = q_s − 1e-7 (a set on a section keeps its spread in q far below 1e-7, so that its crossing needs no
+ * coefficients past the tie), the sliver [q_s − 1e-7, q_s + 1e-7], which
  * holds the tie, crossed with bounds (in q as the independent variable, H′ in the hull of both branches'; the time
  * turns the forcing's phase exactly), and the branch above from q_s + 1e-7 to the period's end. The return's time is
  * the sum of the three. With derivative, also the period map's derivative over the box: the three parts' derivatives
@@ -202,6 +204,88 @@ GB_API int gb_proof_body_period_map(const gb_proof_body_def *def, const gb_proof
 GB_API int gb_proof_body_period_map_tie(const gb_proof_body_def *def, const gb_proof_body_forcing *forcing,
                                         const gb_proof_interval box[2], const gb_proof_body_tie *tie, int order,
                                         int derivative, gb_proof_body_return *out);
+
+/* An h-set of the period map's plane (q, P): the parallelogram c + F diag(a, b) [−1, 1]², F's first column the direction
+ * across (the one the map stretches), its second the one along; every number a double, taken exact. */
+typedef struct gb_proof_body_hset {
+    double centre[2];
+    double frame[2][2]; /* frame[i][j]: component i of column j */
+    double half[2];     /* a, b > 0 */
+} gb_proof_body_hset;
+
+typedef struct gb_proof_body_link {
+    int covers;          /* N ⇒ M proved */
+    int strip, edges;    /* its two parts proved */
+    int orientation;     /* covers: +1 when N's edge x = −1 maps below M (ξ < −1), −1 when above */
+    double strip_margin; /* strip: 1 − the largest |η| proved over N's image (M's units) */
+    double edge_margin;  /* edges: the least distance proved of the edges' images beyond ξ = ±1 */
+    long pieces, maps;   /* pieces enclosed, period maps computed */
+    double seconds;      /* CPU */
+    char failure[300];   /* the first piece whose part was not proved, and why, or "" */
+} gb_proof_body_link;
+
+/* The covering relation N ⇒ M of the period map (one period from phase 0; with `tie`, N's points cross it moving up within
+ * the period: gb_proof_body_period_map_tie, else gb_proof_body_period_map): P(N) inside M's strip |η| < 1 and N's
+ * edges x = ±1 mapped beyond M's ends ξ = ∓1, one each (Zgliczyński & Gidea 2004, Def. 6; gb_proof_cover.h). The image
+ * by the mean value form on pieces of N: P of each piece's middle, and DP over the piece's box hull; `pieces` across
+ * (1 … 4096) to start, each halved across (an edge's, along) up to `depth` times (0 … 20) while its part is not proved.
+ * M is taken `turns` (−1, 0, 1) times 2π on in q, exactly: the period map lives on the cylinder q mod 2π. GB_EDOM for
+ * an h-set that is not finite or whose frame is singular, or turns, pieces, depth or precision out of range; otherwise
+ * GB_OK with the relation proved or not in out (a relation not proved is not disproved; out->failure says where it
+ * stopped). */
+GB_API int gb_proof_body_cover_link(const gb_proof_body_def *def, const gb_proof_body_forcing *forcing,
+                                    const gb_proof_body_tie *tie, const gb_proof_body_hset *N,
+                                    const gb_proof_body_hset *M, int turns, int pieces, int depth, int order,
+                                    gb_proof_body_link *out);
+
+/* 1 when A and B are proved disjoint on the cylinder q mod 2π (B moved by −2π, 0 and 2π in q): for each, one of the
+ * four sides of A's or B's coordinates has every corner of the other beyond it (the separating axis of two
+ * parallelograms), on Arb's balls at the precision. */
+GB_API int gb_proof_body_hsets_disjoint(const gb_proof_body_hset *A, const gb_proof_body_hset *B, long precision);
+
+/* A proved lower bound of ln ρ for the graph of a self-loop at N₀ and a cycle N₀ ⇒ N₁ ⇒ … ⇒ N_{L−1} ⇒ N₀ (length L,
+ * 2 … 10000): ρ the root above 1 of x^L = x^{L−1} + 1, bounded below by a bisection on Arb's balls (f(x) = x^{L−1}(x − 1)
+ * − 1 increases above 1, so f(x₀) < 0 proves ρ > x₀). GB_EDOM for L out of range. */
+GB_API int gb_proof_body_chain_entropy(int length, double *log_rho);
+
+/* The h-sets of a horseshoe of the period map placed on floats along one homoclinic orbit (src/gb_proof_body_chain.c:
+ * nothing there is proved; the sets are the input of gb_proof_body_cover_link). The orbit leaves the saddle (0, 0)
+ * along W^u and reaches its copy (2π, 0) along W^s: Newton's method on P^{n_u}(δ v_u) = P^{−n_s}((2π, 0) − σ v_s) from
+ * the seeds; N₀ is the saddle's box in its eigenvectors, N_1 … N_m lie at the orbit's points first … last in frames
+ * carried along it (across: W^u's tangent, along: W^s's), their half-widths shrinking across and growing along by rho
+ * a period against the linear part; the chain is N₀ ⇒ N₀, N₀ ⇒ N_1 ⇒ … ⇒ N_m ⇒ N₀ (2π on). */
+enum { GB_PROOF_BODY_CHAIN_MAX = 200 };
+
+typedef struct gb_proof_body_chain_def {
+    int unstable_iterates, stable_iterates; /* n_u, n_s ≥ 1, their sum at most GB_PROOF_BODY_CHAIN_MAX */
+    double unstable_seed, stable_seed;      /* δ and σ to start Newton from, in (0, 1e-3] */
+    int first, last;                        /* the orbit's points of N_1 and N_m: 1 ≤ first < last < n_u + n_s */
+    double saddle_half[2];                  /* N₀'s r_u, r_s in (0, 1) */
+    double first_half[2];                   /* N_1's a_1, b_1 in (0, 1) */
+    double rho;                             /* the margin a period, in (1, 2] */
+    double along_min;                       /* the least half-width along, in [0, 1) */
+} gb_proof_body_chain_def;
+
+/* Gömböc II at Table 1's rolling forcing: the sets docs/proofs.md describes. */
+GB_API gb_proof_body_chain_def gb_proof_body_chain_default(void);
+
+typedef struct gb_proof_body_chain {
+    size_t sets; /* m + 1: N₀, N_1 … N_m */
+    gb_proof_body_hset *set;
+    int *tie;              /* tie[i]: the float model's tie (gb_melnikov_body_info.kink_q's index) the link from N_i
+                                  crosses, or −1 */
+    size_t orbit_points;   /* n_u + n_s + 1 */
+    double homoclinic[2];  /* the orbit's point n_u */
+    double residual;       /* |P^{n_u}(δ v_u) − P^{−n_s}(…)| at Newton's end */
+    double multipliers[2]; /* the saddle's, unstable and stable */
+    double liouville; /* ∏ α_k β_k along the orbit: det DP's product there (frames at both ends the saddle's) */
+} gb_proof_body_chain;
+
+/* GB_EDOM for a definition out of range (named with its range); GB_ENUMERIC when the float integration fails or Newton
+ * ends farther than 1e-6 from a homoclinic point. gb_proof_body_chain_free releases it. */
+GB_API int gb_proof_body_chain_design(const gb_proof_body_def *def, const gb_proof_body_forcing *forcing,
+                                      const gb_proof_body_chain_def *chain, gb_proof_body_chain *out);
+GB_API void gb_proof_body_chain_free(gb_proof_body_chain *chain);
 
 /* M = aᵀ I_c a + m r_max² of the paper's body I or II (homogeneous, mass m; a = e × s₀ with e projected ⊥ s₀ and
  * normalised) and its volume, by Arb's quadrature nested over the sphere (src/gb_proof_mass.c). GB_EDOM for another body

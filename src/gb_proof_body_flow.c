@@ -231,16 +231,13 @@ typedef struct sliver {
     arb_t mM, mu, cp, sp; /* m/M, μ = c/M, cos ψ, sin ψ */
 } sliver;
 
-/* x·d (multiply) or x + d for a double d (exact as a ball). */
-static void with_d(arb_t out, const arb_t x, double d, int multiply, slong prec)
+/* out = x + d for a double d (exact as a ball). */
+static void add_d(arb_t out, const arb_t x, double d, slong prec)
 {
     arb_t y;
     arb_init(y);
     arb_set_d(y, d);
-    if (multiply)
-        arb_mul(out, x, y, prec);
-    else
-        arb_add(out, x, y, prec);
+    arb_add(out, x, y, prec);
     arb_clear(y);
 }
 
@@ -268,13 +265,13 @@ static int sliver_part(const sliver *K, const arb_t H, double q_from, double q_t
     arf_t bound;
     arf_init(bound);
     arb_set_d(w, q_to);
-    with_d(w, w, -q_from, 0, prec);
+    add_d(w, w, -q_from, prec);
     gb_proof_ball_of(G, (gb_proof_interval){0.9 * P0.lo, 1.1 * P0.hi}, prec);
     gb_proof_ball_of(c0, y[1], prec);
     gb_proof_ball_of(s0, y[2], prec);
     /* τ ≤ w / min G: the phase boxes (c₀, s₀) ± ωτ */
     arb_div(x, w, G, prec);
-    with_d(x, x, omega, 1, prec);
+    gb_proof_mul_d(x, x, omega, prec);
     arb_get_abs_ubound_arf(bound, x, prec);
     arb_zero_pm_one(z);
     arb_mul_arf(z, z, bound, prec);
@@ -289,23 +286,23 @@ static int sliver_part(const sliver *K, const arb_t H, double q_from, double q_t
     arb_mul(z, z, K->sp, prec);
     arb_mul_2exp_si(z, z, 1);
     arb_sub(x, x, z, prec);
-    with_d(a, x, A2, 1, prec);
-    with_d(x, C, A1, 1, prec);
+    gb_proof_mul_d(a, x, A2, prec);
+    gb_proof_mul_d(x, C, A1, prec);
     arb_add(a, a, x, prec);
-    with_d(a, a, K->g, 0, prec);
+    add_d(a, a, K->g, prec);
     arb_mul(x, C, K->cp, prec);
     arb_mul(z, S, K->sp, prec);
     arb_sub(x, x, z, prec);
-    with_d(ac, x, 2.0 * A2, 1, prec);
-    with_d(ac, ac, A1, 0, prec);
+    gb_proof_mul_d(ac, x, 2.0 * A2, prec);
+    add_d(ac, ac, A1, prec);
     arb_mul(x, S, K->cp, prec);
     arb_mul(z, C, K->sp, prec);
     arb_add(x, x, z, prec);
-    with_d(as, x, -2.0 * A2, 1, prec);
+    gb_proof_mul_d(as, x, -2.0 * A2, prec);
     /* P over the part: P₀ + [0, w] dP/dq over G, inside G */
     slope(K, a, H, G, gP);
     arb_zero_pm_one(x);
-    with_d(x, x, 1.0, 0, prec);
+    add_d(x, x, 1.0, prec);
     arb_mul_2exp_si(x, x, -1); /* [0, 1] */
     arb_mul(x, x, w, prec);
     arb_mul(x, x, gP, prec);
@@ -325,7 +322,7 @@ static int sliver_part(const sliver *K, const arb_t H, double q_from, double q_t
         y[0] = gb_proof_interval_of(x);
         arb_div(t, w, Pv, prec);
         arb_add(tau, tau, t, prec);
-        with_d(x, t, omega, 1, prec);
+        gb_proof_mul_d(x, t, omega, prec);
         arb_t st, ct;
         arb_init(st), arb_init(ct);
         arb_sin_cos(st, ct, x, prec);
@@ -351,12 +348,12 @@ static int sliver_part(const sliver *K, const arb_t H, double q_from, double q_t
         arb_mul(arb_mat_entry(A, 0, 2), x, as, prec);
         arb_div(arb_mat_entry(A, 0, 2), arb_mat_entry(A, 0, 2), Pv, prec);
         arb_neg(arb_mat_entry(A, 0, 2), arb_mat_entry(A, 0, 2));
-        with_d(arb_mat_entry(A, 1, 0), S, omega, 1, prec);
+        gb_proof_mul_d(arb_mat_entry(A, 1, 0), S, omega, prec);
         arb_div(arb_mat_entry(A, 1, 0), arb_mat_entry(A, 1, 0), z, prec);
         arb_set_d(x, omega);
         arb_div(x, x, Pv, prec);
         arb_neg(arb_mat_entry(A, 1, 2), x);
-        with_d(arb_mat_entry(A, 2, 0), C, -omega, 1, prec);
+        gb_proof_mul_d(arb_mat_entry(A, 2, 0), C, -omega, prec);
         arb_div(arb_mat_entry(A, 2, 0), arb_mat_entry(A, 2, 0), z, prec);
         arb_set(arb_mat_entry(A, 2, 1), x);
         /* L = the largest row sum of |A| (an upper bound); δ = e^{Lw} − 1; J over the part I ± δ, at its end
@@ -462,21 +459,54 @@ int gb_proof_body_period_map_tie(const gb_proof_body_def *def, const gb_proof_bo
     arb_init(x), arb_init(y), arb_init(z);
     arb_mat_t Js;
     arb_mat_init(Js, 3, 3);
-    /* phase 1: the branch below the tie, in x = q − q_a, to x = 0, q_a = q_s − η below the tie by more than its
-     * enclosure's width; then the sliver [q_a, q_b] (q_b = q_s + η) crossed with bounds; then phase 2 from q_b on the
-     * branch above */
-    const double eta = 1e-7, q_a = q_s - eta, q_b = q_s + eta;
+    /* phase 1: the branch below the tie, in x = q − q_a, to x = 0 (q_a = q_s − η, below the tie by more than its
+     * enclosure's width) in two sections: first to q_s − Δ, where the whole set crosses well short of the tie (a set
+     * crossing a section straddles it by its own width, and the branch below has no coefficients past the tie), then
+     * from that section, where every point has the same q and the set's spread in q stays far below η, to q_a; then
+     * the sliver [q_a, q_b] (q_b = q_s + η) crossed with bounds; then phase 2 from q_b on the branch above */
+    const double eta = 1e-7, q_a = q_s - eta, q_b = q_s + eta, q_early = q_s - 2e-4;
     reduced_field(def, forcing, order, &J, &F);
-    J.branch = 1, J.q_s = q_s, J.shift = q_a, J.above = 0;
+    J.branch = 1, J.q_s = q_s, J.shift = q_early, J.above = 0;
     gb_proof_interval start[4] = {box[0], box[1], {1.0, 1.0}, {0.0, 0.0}};
     gb_proof_ball_of(x, box[0], prec);
-    arb_set_d(y, q_a);
+    arb_set_d(y, q_early);
     arb_sub(x, x, y, prec);
     start[0] = gb_proof_interval_of(x);
     fdef.coordinate = 0;
-    if (!(delta < 0.01 * eta && box[0].hi < q_a))
-        status = gb_error_set(GB_ENUMERIC, "the tie's enclosure (%g wide) or the box is too close to the sliver", 2 * delta);
-    if (!status) status = failure(gb_proof_flow_section_map_of(&F, &fdef, start, &C1), &J, "flow to the tie");
+    gb_proof_flow_crossing C0 = {0};
+    if (!(delta < 0.01 * eta && box[0].hi < q_early))
+        status =
+            gb_error_set(GB_ENUMERIC, "the tie's enclosure (%g wide) or the box is too close to the tie (q_hi >= %.9g)",
+                         2 * delta, q_early);
+    if (!status) status = failure(gb_proof_flow_section_map_of(&F, &fdef, start, &C0), &J, "flow to the tie");
+    if (!status) {
+        J.shift = q_a;
+        arb_set_d(x, q_early);
+        arb_set_d(y, q_a);
+        arb_sub(x, x, y, prec);
+        start[0] = gb_proof_interval_of(x);
+        for (int i = 1; i < 4; i++) start[i] = C0.image[i];
+        status = failure(gb_proof_flow_section_map_of(&F, &fdef, start, &C1), &J, "flow to the tie");
+    }
+    if (!status) { /* phase 1 whole: the times add, the derivatives compose (C0's row x is 0) */
+        gb_proof_ball_of(x, C0.time, prec), gb_proof_ball_of(y, C1.time, prec);
+        arb_add(x, x, y, prec);
+        C1.time = gb_proof_interval_of(x);
+        C1.steps += C0.steps, C1.seconds += C0.seconds;
+        if (derivative) {
+            arb_mat_t A, B, D;
+            arb_mat_init(A, 4, 4), arb_mat_init(B, 4, 4), arb_mat_init(D, 4, 4);
+            for (int a = 0; a < 4; a++)
+                for (int b = 0; b < 4; b++) {
+                    gb_proof_ball_of(arb_mat_entry(A, a, b), C1.jacobian[a][b], prec);
+                    gb_proof_ball_of(arb_mat_entry(B, a, b), C0.jacobian[a][b], prec);
+                }
+            arb_mat_mul(D, A, B, prec);
+            for (int a = 0; a < 4; a++)
+                for (int b = 0; b < 4; b++) C1.jacobian[a][b] = gb_proof_interval_of(arb_mat_entry(D, a, b));
+            arb_mat_clear(A), arb_mat_clear(B), arb_mat_clear(D);
+        }
+    }
     gb_proof_flow_field_clear(&F);
     /* within the period, moving up */
     arb_const_pi(z, prec);

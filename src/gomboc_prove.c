@@ -5,7 +5,8 @@
  * rigorous integrator, Hénon's full horseshoe at a = 6 and a horseshoe of the classical Hénon map's 7th iterate on five
  * parallelograms, the classical map's renewal bound from strips of a band that return across it, and the
  * Gömböcs' reduced models (§7) at Table 1's rolling forcing:
- * their Melnikov functions enclosed from the body and their zeros decided (gomboc_prove_body.c). */
+ * their Melnikov functions enclosed from the body and their zeros decided (gomboc_prove_body.c); with --horseshoe,
+ * instead, Gömböc II's period map at that forcing has a horseshoe (gomboc_prove_chain.c). */
 #include "gomboc_cli.h"
 
 #include "gb_error.h"
@@ -22,7 +23,7 @@
 #include <unistd.h>
 
 static const char *usage_prove =
-    "usage: gomboc prove [--precision BITS] [--depth N] [--resolution R] [--threads N] [--json]\n"
+    "usage: gomboc prove [--precision BITS] [--depth N] [--resolution R] [--threads N] [--horseshoe] [--json]\n"
     "\n"
     "Proves, on Arb's ball arithmetic, the statements docs/proofs.md lists, and prints each with its\n"
     "hypotheses, the theorem it rests on, the enclosures (intervals rounded outwards) and its CPU time:\n"
@@ -49,7 +50,11 @@ static const char *usage_prove =
     "                    until the verdict is decided)\n"
     "  --threads N       1: every statement in turn; 2 or more: Gomboc I's statement (the longest) on a\n"
     "                    thread of its own beside the others (1 to 256; default 2 where the machine has\n"
-    "                    two processors or more, else 1); the statements are the same either way\n"
+    "                    two processors or more, else 1); the statements are the same either way;\n"
+    "                    with --horseshoe, its covering relations on N threads\n"
+    "  --horseshoe       instead, Gomboc II's horseshoe at Table 1's rolling forcing: covering relations of\n"
+    "                    its period map along a homoclinic orbit, h_top >= ln rho (minutes; make prove;\n"
+    "                    --precision and --threads apply)\n"
     "  --json            the statements as JSON on standard output\n"
     "\n"
     "Exit 0 when every statement attempted is proved, 1 when one is not (it says which and why), 2 for bad\n"
@@ -483,17 +488,60 @@ static void *body_statement(void *arg)
     return NULL;
 }
 
+/* Each statement on a line with its result and summary, then the count. */
+static void print_statements(const cJSON *list, int proved_count, int attempted, double precision)
+{
+    const cJSON *item;
+    cJSON_ArrayForEach(item, list)
+    {
+        const cJSON *st = cJSON_GetObjectItemCaseSensitive(item, "statement"),
+                    *res = cJSON_GetObjectItemCaseSensitive(item, "result");
+        const cJSON *summary = cJSON_GetObjectItemCaseSensitive(item, "summary");
+        printf("%s: %s%s%s\n", st->valuestring, res->valuestring, cJSON_IsString(summary) ? " " : "",
+               cJSON_IsString(summary) ? summary->valuestring : "");
+    }
+    printf("%d of %d statements attempted proved at %.0f bits (gomboc prove --json: the enclosures)\n", proved_count,
+           attempted, precision);
+}
+
+/* gomboc prove --horseshoe: that statement alone (gomboc_prove_chain.c). */
+static int prove_horseshoe(long precision, int threads, int json)
+{
+    int proved = 0, status = GB_OK;
+    cJSON *statement = prove_chain_statement(precision, threads, &proved, &status);
+    if (!statement) return cli_failure("prove", status);
+    cJSON *root = cJSON_CreateObject(), *list = cJSON_AddArrayToObject(root, "statements");
+    cli_json_add(root, "precision_bits", (double)precision);
+    cJSON_AddItemToArray(list, statement);
+    cli_json_add(root, "attempted", 1);
+    cli_json_add(root, "proved", proved);
+    if (json)
+        cli_print_json(root);
+    else
+        print_statements(list, proved, 1, (double)precision);
+    cJSON_Delete(root);
+    if (!proved) {
+        fprintf(stderr, "gomboc prove: the horseshoe is not proved (its links say why)\n");
+        return EXIT_COMPUTE;
+    }
+    return 0;
+}
+
 int command_prove_in_process(int argc, char **argv)
 {
     const char *precision_text = NULL, *depth_text = NULL, *resolution_text = NULL, *threads_text = NULL;
-    int json = 0;
+    int json = 0, chain = 0;
     for (int i = 0; i < argc; i++) {
+        if (!strcmp(argv[i], "--horseshoe")) {
+            chain = 1;
+            continue;
+        }
         const char *value = NULL;
-        const int kind =
-            cli_next_option("prove", argc, argv, &i, usage_prove,
-                            (const char *const[]){"--precision", "--depth", "--resolution", "--threads", NULL},
-                            " (allowed: --precision BITS, --depth N, --resolution R, --threads N, --json, --help)",
-                            NULL, &json, &value);
+        const int kind = cli_next_option(
+            "prove", argc, argv, &i, usage_prove,
+            (const char *const[]){"--precision", "--depth", "--resolution", "--threads", NULL},
+            " (allowed: --precision BITS, --depth N, --resolution R, --threads N, --horseshoe, --json, --help)", NULL,
+            &json, &value);
         if (kind == CLI_HELP) return 0;
         if (kind == CLI_NEXT) continue;
         if (kind != CLI_VALUE) return kind;
@@ -525,6 +573,7 @@ int command_prove_in_process(int argc, char **argv)
         return cli_input_error("prove", "--threads %s: not an integer (allowed: an integer from 1 to 256)",
                                threads_text);
     if (cli_parse_only) return 0;
+    if (chain) return prove_horseshoe((long)precision, (int)threads, json);
 
     /* Gömböc I's statement (the longest) starts first, on a thread of its own when there are two; Gömböc II's
      * follows the others on this thread */
@@ -612,17 +661,7 @@ int command_prove_in_process(int argc, char **argv)
     if (json) {
         cli_print_json(root);
     } else {
-        const cJSON *item;
-        cJSON_ArrayForEach(item, list)
-        {
-            const cJSON *st = cJSON_GetObjectItemCaseSensitive(item, "statement"), *res = cJSON_GetObjectItemCaseSensitive(item, "result");
-            const cJSON *summary = cJSON_GetObjectItemCaseSensitive(item, "summary");
-            printf("%s: %s%s%s", st->valuestring, res->valuestring, cJSON_IsString(summary) ? " " : "",
-                   cJSON_IsString(summary) ? summary->valuestring : "");
-            printf("\n");
-        }
-        printf("%d of %d statements attempted proved at %.0f bits (gomboc prove --json: the enclosures)\n", proved_count,
-               attempted, precision);
+        print_statements(list, proved_count, attempted, precision);
     }
     cJSON_Delete(root);
     if (proved_count < attempted) {

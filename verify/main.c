@@ -215,6 +215,7 @@ int main(int argc, char **argv)
         {verify_register_s7_proofs, 1},
         {verify_register_s7_proofs_body, 1},
         {verify_register_s7_proofs_jet, 1},
+        {verify_register_s7_horseshoe, 1},
         {verify_register_s7_covering, 1},
         {verify_register_s7_returns, 1},
         {verify_register_s8_scan, 0},

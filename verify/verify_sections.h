@@ -32,6 +32,7 @@ int verify_register_s7_tangle(void);
 int verify_register_s7_proofs(void);
 int verify_register_s7_proofs_body(void);
 int verify_register_s7_proofs_jet(void);
+int verify_register_s7_horseshoe(void);
 int verify_register_s7_covering(void);
 int verify_register_s7_returns(void);
 int verify_register_s8_scan(void);
