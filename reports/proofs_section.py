@@ -96,19 +96,22 @@ def proofs_section(out):
 
 
 def horseshoe_lines(out):
-    """Gömböc II's horseshoe: `make prove` alone proves all its links (minutes); make verify's harness proves three."""
+    """The Gömböcs' horseshoes: `make prove` alone proves all their links (minutes); make verify's harness proves
+    three of Gömböc II's."""
     path = os.path.join(out, "proof-horseshoe.json")
     if not os.path.exists(path):
-        return ["Gömböc II's horseshoe along a homoclinic orbit (`gomboc prove --horseshoe`) takes minutes: `make prove` "
-                "proves it and writes reports/out/proof-horseshoe.json, which this section then shows; `make verify` "
-                "proves its three covering relations by the saddle, its sets' disjointness and its entropy bound (the "
-                "harness's suite on it).", ""]
-    s = load_json(path)["statements"][0]
-    hyps = "; ".join(f"{h['hypothesis']} ({h['status']})" for h in s["hypotheses"])
-    links = ", ".join(f"{l['link']}" + (f" across the tie {interval(l['tie'])}" if "tie" in l else "")
-                      + (f" (strip {l['strip_margin']:.3f}, edges {l['edge_margin']:.3f})" if l["covers"]
-                         else f" (NOT proved: {l['failure']})") for l in s["links"])
-    return [f"**{s['statement']}** ({s['result']}; `make prove`, reports/out/proof-horseshoe.json). System: {s['system']}. "
-            f"Sets: {s['sets']}. Method: {s['method']}. Theorem: {s['theorem']}. Hypotheses: {hyps}. Links, with the "
-            f"margins proved (of the target's half-widths): {links}. ln rho >= {s['log_rho']:.17g} ({s['seconds']:.4g} s "
-            "CPU).", ""]
+        return ["The Gömböcs' horseshoes along homoclinic orbits (`gomboc prove --horseshoe`) take minutes: `make prove` "
+                "proves them and writes reports/out/proof-horseshoe.json, which this section then shows; `make verify` "
+                "proves Gömböc II's three covering relations by the saddle, its sets' disjointness and its entropy bound "
+                "(the harness's suite on it).", ""]
+    lines = []
+    for s in load_json(path)["statements"]:
+        hyps = "; ".join(f"{h['hypothesis']} ({h['status']})" for h in s["hypotheses"])
+        links = ", ".join(f"{l['link']}" + (f" across the tie {interval(l['tie'])}" if "tie" in l else "")
+                          + (f" (strip {l['strip_margin']:.3f}, edges {l['edge_margin']:.3f})" if l["covers"]
+                             else f" (NOT proved: {l['failure']})") for l in s["links"])
+        lines += [f"**{s['statement']}** ({s['result']}; `make prove`, reports/out/proof-horseshoe.json). System: "
+                  f"{s['system']}. Sets: {s['sets']}. Method: {s['method']}. Theorem: {s['theorem']}. Hypotheses: {hyps}. "
+                  f"Links, with the margins proved (of the target's half-widths): {links}. ln rho >= {s['log_rho']:.17g} "
+                  f"({s['seconds']:.4g} s CPU).", ""]
+    return lines

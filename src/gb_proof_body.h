@@ -266,8 +266,8 @@ typedef struct gb_proof_body_chain_def {
     double along_min;                       /* the least half-width along, in [0, 1) */
 } gb_proof_body_chain_def;
 
-/* Gömböc II at Table 1's rolling forcing: the sets docs/proofs.md describes. */
-GB_API gb_proof_body_chain_def gb_proof_body_chain_default(void);
+/* The sets docs/proofs.md describes for Gömböc "I" or "II" at Table 1's rolling forcing; GB_EDOM for another name. */
+GB_API int gb_proof_body_chain_default(const char *morphology, gb_proof_body_chain_def *out);
 
 typedef struct gb_proof_body_chain {
     size_t sets; /* m + 1: N₀, N_1 … N_m */

@@ -120,9 +120,9 @@ int command_prove_in_process(int argc, char **argv);
 /* gomboc prove's statement on Gömböc `which` (0: I, 1: II) at Table 1's rolling forcing (gomboc_prove_body.c); resolution 0:
  * the coarsest that decides. NULL with *status set when a computation fails. */
 cJSON *prove_body_statement(size_t which, double resolution, long precision, int depth, int *proved, int *status);
-/* gomboc prove --horseshoe's statement (gomboc_prove_chain.c): Gömböc II's horseshoe along a homoclinic orbit, its links
- * on `threads` threads. NULL with *status set when a computation fails. */
-cJSON *prove_chain_statement(long precision, int threads, int *proved, int *status);
+/* gomboc prove --horseshoe's statement on Gömböc `morphology` ("I" or "II", gomboc_prove_chain.c): its horseshoe along a
+ * homoclinic orbit, its links on `threads` threads. NULL with *status set when a computation fails. */
+cJSON *prove_chain_statement(const char *morphology, long precision, int threads, int *proved, int *status);
 
 /* The user's cache of hulls and mass properties for context: $XDG_CACHE_HOME/gomboc, else $HOME/.cache/gomboc (made,
  * 0700); none when GOMBOC_CACHE=off or it cannot be made. gb_ status (a cache never fails a run: GB_OK but for memory). */

@@ -1,4 +1,4 @@
-/* gomboc prove --horseshoe — Gömböc II's period map at Table 1's rolling forcing has a horseshoe: covering relations of
+/* gomboc prove --horseshoe — each Gömböc's period map at Table 1's rolling forcing has a horseshoe: covering relations of
  * parallelograms along one homoclinic orbit (N₀ ⇒ N₀ at the saddle, N₀ ⇒ N₁ ⇒ … ⇒ N_m ⇒ N₀ round the excursion), each
  * proved on Arb's balls, the sets proved disjoint on the cylinder, and the graph's entropy bounded below
  * (gb_proof_body_chain_design, gb_proof_body_cover_link; docs/proofs.md). The links are independent: they run on the
@@ -15,7 +15,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* Table 1's rolling scene of Gömböc II (cases/table1-gomboc-II-rolling.ini), as gomboc_prove_body.c reads it. */
+/* Table 1's rolling scenes (cases/table1-gomboc-I-rolling.ini, -II-rolling.ini), as gomboc_prove_body.c reads them. */
 static const double BETA = 0.12, MASS = 1.0, G = 9.81, DAMPING = 0.02, A1 = 2.0, A2 = 1.0, OMEGA = 18.0;
 /* The links' first cut across, the halvings allowed and the Taylor order. */
 enum { PIECES = 1, DEPTH = 6, ORDER = 12 };
@@ -68,11 +68,11 @@ static void add_hypothesis(cJSON *list, const char *text, int holds)
     cJSON_AddItemToArray(list, h);
 }
 
-/* The definition of Gömböc II's reduced field (M enclosed, ψ = π/3 enclosed) and its float model's ties. */
-static int setup(gb_surface *surface, gb_proof_body_def *def, gb_proof_body_forcing *forcing, gb_melnikov_body_info *info,
-                 long precision)
+/* The definition of a Gömböc's reduced field (M enclosed, ψ = π/3 enclosed) and its float model's ties. */
+static int setup(const char *morphology, gb_surface *surface, gb_proof_body_def *def, gb_proof_body_forcing *forcing,
+                 gb_melnikov_body_info *info, long precision)
 {
-    int status = gb_surface_init(surface, "II", BETA);
+    int status = gb_surface_init(surface, morphology, BETA);
     gb_melnikov_body *body = NULL;
     if (!status) status = gb_melnikov_body_create(surface, MASS, G, GB_MELNIKOV_BODY_NODES, &body);
     if (status) return status;
@@ -88,15 +88,16 @@ static int setup(gb_surface *surface, gb_proof_body_def *def, gb_proof_body_forc
     return status;
 }
 
-cJSON *prove_chain_statement(long precision, int threads, int *proved, int *status)
+cJSON *prove_chain_statement(const char *morphology, long precision, int threads, int *proved, int *status)
 {
     *proved = 0;
     gb_surface surface;
     gb_proof_body_def def;
     gb_proof_body_forcing forcing;
     gb_melnikov_body_info info;
-    *status = setup(&surface, &def, &forcing, &info, precision);
-    const gb_proof_body_chain_def cd = gb_proof_body_chain_default();
+    *status = setup(morphology, &surface, &def, &forcing, &info, precision);
+    gb_proof_body_chain_def cd = {0};
+    if (!*status) *status = gb_proof_body_chain_default(morphology, &cd);
     gb_proof_body_chain chain = {0};
     if (!*status) *status = gb_proof_body_chain_design(&def, &forcing, &cd, &chain);
     gb_proof_body_tie ties[16];
@@ -142,10 +143,12 @@ cJSON *prove_chain_statement(long precision, int threads, int *proved, int *stat
     *proved = covered == count && apart == pairs;
     cJSON *s = cJSON_CreateObject();
     char text[512];
-    snprintf(text, sizeof text, "Gomboc II, beta = %g, Table 1's rolling forcing (A1 = %g, A2 = %g m/s2, omega = %g, psi = "
-             "pi/3, c = %g), reduced field of section 7 (M at the top, not linearised in eps): its period map has a horseshoe "
-             "of %zu sets along a homoclinic orbit, h_top >= %.5f a period", BETA, A1, A2, OMEGA, DAMPING, chain.sets,
-             floor(log_rho * 1e5) / 1e5);
+    snprintf(text, sizeof text,
+             "Gomboc %s, beta = %g, Table 1's rolling forcing (A1 = %g, A2 = %g m/s2, omega = %g, psi = "
+             "pi/3, c = %g), reduced field of section 7 (M at the top, not linearised in eps): its period map has a "
+             "horseshoe "
+             "of %zu sets along a homoclinic orbit, h_top >= %.5f a period",
+             morphology, BETA, A1, A2, OMEGA, DAMPING, chain.sets, floor(log_rho * 1e5) / 1e5);
     cJSON_AddStringToObject(s, "statement", text);
     cJSON_AddStringToObject(s, "system", "q' = P, P' = -(m / M) a(t) H'(q) - (c / M) P, a(t) = g + A1 cos(omega t) + A2 "
                                          "cos(2 omega t + psi), H the support function along the rocking direction; the "
@@ -174,6 +177,7 @@ cJSON *prove_chain_statement(long precision, int threads, int *proved, int *stat
                         "moving up within the period (proved by the enclosures: q' > 0 there)",
                    covered == count);
     cJSON *data = cJSON_AddObjectToObject(s, "data");
+    cJSON_AddStringToObject(data, "morphology", morphology);
     cli_json_add(data, "beta", BETA);
     cli_json_add(data, "damping", DAMPING);
     cli_json_add(data, "A1", A1);

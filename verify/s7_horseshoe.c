@@ -59,7 +59,8 @@ static int setup_chain(chain_setup *s)
         status = gb_proof_body_inertia(&shared.surface, 1.0, shared.info.rocking, GB_PROOF_PRECISION_DEFAULT,
                                        &shared.def.inertia, NULL);
     }
-    const gb_proof_body_chain_def cd = gb_proof_body_chain_default();
+    gb_proof_body_chain_def cd;
+    if (!status) status = gb_proof_body_chain_default("II", &cd);
     if (!status) status = gb_proof_body_chain_design(&shared.def, &table1, &cd, &shared.chain);
     if (!status) atexit(release_shared);
     shared_status = status;
@@ -76,7 +77,8 @@ static void test_design(void)
     double e_saddle = NAN, e_orbit = NAN, widest = 0.0, farthest = 0.0, meeting = NAN;
     if (!status) {
         /* the orbit's two halves meet in the set at the homoclinic point: its smaller half-width */
-        const gb_proof_body_chain_def cd = gb_proof_body_chain_default();
+        gb_proof_body_chain_def cd;
+        gb_proof_body_chain_default("II", &cd);
         const int at = cd.unstable_iterates - cd.first + 1;
         if (at >= 1 && (size_t)at < s.chain.sets) meeting = fmin(s.chain.set[at].half[0], s.chain.set[at].half[1]);
         const double M = 0.5 * s.def.inertia.lo + 0.5 * s.def.inertia.hi, e = exp(-table1.damping / M * T);
@@ -226,7 +228,8 @@ static void test_bad_chains(void)
             refused += st == GB_EDOM, named += st == GB_EDOM && strstr(gb_error_message(), bad[k].word) != NULL;
             gb_error_clear();
         }
-        gb_proof_body_chain_def cd = gb_proof_body_chain_default();
+        gb_proof_body_chain_def cd;
+        gb_proof_body_chain_default("II", &cd);
         gb_proof_body_chain_def defs[4] = {cd, cd, cd, cd};
         defs[0].rho = 1.0, defs[1].first = defs[1].last, defs[2].unstable_seed = 0.0, defs[3].stable_iterates = 0;
         const char *words[4] = {"rho", "first", "seeds", "iterates"};
@@ -236,15 +239,20 @@ static void test_bad_chains(void)
             refused += st == GB_EDOM, named += st == GB_EDOM && strstr(gb_error_message(), words[k]) != NULL;
             gb_error_clear();
         }
+        gb_proof_body_chain_def none;
+        cases++;
+        const int sd = gb_proof_body_chain_default("III", &none);
+        refused += sd == GB_EDOM, named += sd == GB_EDOM && strstr(gb_error_message(), "I, II") != NULL;
+        gb_error_clear();
         double h = 0.0;
         cases++;
         const int st = gb_proof_body_chain_entropy(1, &h);
         refused += st == GB_EDOM, named += st == GB_EDOM && strstr(gb_error_message(), "length") != NULL;
         gb_error_clear();
     }
-    gb_check c = {"7", "78, 91", "bad h-sets, pieces, depths, turns, chains and cycles refused",
+    gb_check c = {"7", "78, 91", "bad h-sets, pieces, depths, turns, chains, bodies and cycles refused",
                   "each names what is out of range", "exact"};
-    gb_check_true(&c, !status && refused == cases && named == cases && cases == 10,
+    gb_check_true(&c, !status && refused == cases && named == cases && cases == 11,
                   "%d of %d refused, %d naming the argument%s%s", refused, cases, named, status ? ": " : "",
                   status ? gb_error_message() : "");
 }
