@@ -100,8 +100,8 @@ def horseshoe_lines(out):
     three of Gömböc II's."""
     path = os.path.join(out, "proof-horseshoe.json")
     if not os.path.exists(path):
-        return ["The Gömböcs' horseshoes along homoclinic orbits (`gomboc prove --horseshoe`) take minutes: `make prove` "
-                "proves them and writes reports/out/proof-horseshoe.json, which this section then shows; `make verify` "
+        return ["Gömböc II's horseshoe along a homoclinic orbit (`gomboc prove --horseshoe`) takes minutes: `make prove` "
+                "proves it and writes reports/out/proof-horseshoe.json, which this section then shows; `make verify` "
                 "proves Gömböc II's three covering relations by the saddle, its sets' disjointness and its entropy bound "
                 "(the harness's suite on it).", ""]
     lines = []
