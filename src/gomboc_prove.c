@@ -8,6 +8,7 @@
  * their Melnikov functions enclosed from the body and their zeros decided (gomboc_prove_body.c); with --horseshoe,
  * instead, Gömböc II's period map at that forcing has a horseshoe (gomboc_prove_chain.c). */
 #include "gomboc_cli.h"
+#include "gomboc_prove.h"
 
 #include "gb_error.h"
 #include "gb_proof.h"
@@ -82,10 +83,38 @@ enum { FORCINGS = sizeof forcings / sizeof forcings[0] };
 static const double omegas[] = {0.5, 1.0, 3.0};
 enum { OMEGAS = sizeof omegas / sizeof omegas[0] };
 
-static cJSON *interval_json(gb_proof_interval x)
+const prove_table1 prove_rolling = {
+    .beta = 0.12, .mass = 1.0, .g = 9.81, .damping = 0.02, .A1 = 2.0, .A2 = 1.0, .omega = 18.0};
+
+cJSON *prove_json_interval(gb_proof_interval x)
 {
     const double v[2] = {x.lo, x.hi};
     return cli_json_vector(v, 2);
+}
+
+void prove_add_hypothesis(cJSON *list, const char *text, const char *status)
+{
+    cJSON *h = cJSON_CreateObject();
+    cJSON_AddStringToObject(h, "hypothesis", text);
+    cJSON_AddStringToObject(h, "status", status);
+    cJSON_AddItemToArray(list, h);
+}
+
+const char *prove_status(int holds) { return holds ? "proved" : "not proved"; }
+
+cJSON *prove_rolling_data(cJSON *statement, const char *morphology, gb_proof_interval psi)
+{
+    cJSON *data = cJSON_AddObjectToObject(statement, "data");
+    cJSON_AddStringToObject(data, "morphology", morphology);
+    cli_json_add(data, "beta", prove_rolling.beta);
+    cli_json_add(data, "mass", prove_rolling.mass);
+    cli_json_add(data, "g", prove_rolling.g);
+    cli_json_add(data, "damping", prove_rolling.damping);
+    cli_json_add(data, "A1", prove_rolling.A1);
+    cli_json_add(data, "A2", prove_rolling.A2);
+    cli_json_add(data, "omega", prove_rolling.omega);
+    cJSON_AddItemToObject(data, "psi", prove_json_interval(psi));
+    return data;
 }
 
 static const char *const integral_names[5] = {"D", "C1", "S1", "C2", "S2"};
@@ -110,8 +139,8 @@ static cJSON *integrals_statement(const gb_proof_integrals *I, int *proved)
     cJSON *enc = cJSON_AddObjectToObject(s, "enclosures");
     for (int k = 0; k < 5; k++) {
         cJSON *e = cJSON_AddObjectToObject(enc, integral_names[k]);
-        cJSON_AddItemToObject(e, "quadrature", interval_json(*q[k]));
-        cJSON_AddItemToObject(e, "closed_form", interval_json(I->closed[k]));
+        cJSON_AddItemToObject(e, "quadrature", prove_json_interval(*q[k]));
+        cJSON_AddItemToObject(e, "closed_form", prove_json_interval(I->closed[k]));
     }
     *proved = I->consistent;
     cJSON_AddStringToObject(s, "result", I->consistent ? "proved" : "not proved: a quadrature enclosure misses its closed form");
@@ -148,11 +177,12 @@ static cJSON *zeros_statement(const forcing *f, const gb_proof_integrals *I, con
                                                  ? "hold: analytic, saddle q = pi (eigenvalues +-1), the rotation orbit p = 2 cos(q/2)"
                                                  : "hold: analytic, saddle x = 0 (eigenvalues +-1), the loop x = sqrt 2 sech t");
     cJSON_AddStringToObject(s, "reading", f->reading);
-    cJSON_AddItemToObject(s, "psi", interval_json(psi));
+    cJSON_AddItemToObject(s, "psi", prove_json_interval(psi));
     cJSON_AddStringToObject(s, "verdict", gb_proof_verdict_name(z->verdict));
     cli_json_add(s, "zeros", (double)z->zeros);
     cJSON *where = cJSON_AddArrayToObject(s, "zero_t0");
-    for (size_t k = 0; k < z->zeros && k < GB_PROOF_ZEROS_MAX; k++) cJSON_AddItemToArray(where, interval_json(z->where[k]));
+    for (size_t k = 0; k < z->zeros && k < GB_PROOF_ZEROS_MAX; k++)
+        cJSON_AddItemToArray(where, prove_json_interval(z->where[k]));
     cli_json_add(s, "slope_min", z->slope_min);
     cli_json_add(s, "margin", z->margin);
     cli_json_add(s, "pieces", (double)z->boxes);
@@ -267,17 +297,17 @@ static cJSON *horseshoe_statement(const horseshoe *h, const gb_proof_cover_resul
     cJSON_AddStringToObject(s, "reading", h->reading);
     if (h->def.trap) {
         cli_json_add(s, "trapped", r->trapped);
-        cJSON_AddItemToObject(s, "trap_image_u", interval_json(r->trap_image_u));
-        cJSON_AddItemToObject(s, "trap_image_s", interval_json(r->trap_image_s));
+        cJSON_AddItemToObject(s, "trap_image_u", prove_json_interval(r->trap_image_u));
+        cJSON_AddItemToObject(s, "trap_image_s", prove_json_interval(r->trap_image_s));
     }
     cJSON *sets = cJSON_AddArrayToObject(s, "h_sets");
     int relations = 0;
     for (size_t i = 0; i < h->def.sets; i++) {
         cJSON *e = cJSON_CreateObject();
-        cJSON_AddItemToObject(e, "u", interval_json(h->def.set_u[i]));
+        cJSON_AddItemToObject(e, "u", prove_json_interval(h->def.set_u[i]));
         cli_json_add(e, "strip", r->strip[i]);
-        cJSON_AddItemToObject(e, "image_of_low_edge_u", interval_json(r->edge[i][0]));
-        cJSON_AddItemToObject(e, "image_of_high_edge_u", interval_json(r->edge[i][1]));
+        cJSON_AddItemToObject(e, "image_of_low_edge_u", prove_json_interval(r->edge[i][0]));
+        cJSON_AddItemToObject(e, "image_of_high_edge_u", prove_json_interval(r->edge[i][1]));
         cJSON *row = cJSON_AddArrayToObject(e, "covers");
         for (size_t j = 0; j < h->def.sets; j++) cJSON_AddItemToArray(row, cJSON_CreateNumber(r->covers[i][j])), relations += r->covers[i][j];
         cJSON_AddItemToArray(sets, e);
@@ -384,14 +414,14 @@ static cJSON *returns_statement(long precision, int partial, int *proved, int *s
     cJSON *list = cJSON_AddArrayToObject(s, "strips");
     for (size_t i = 0; i < def.sets; i++) {
         cJSON *e = cJSON_CreateObject();
-        cJSON_AddItemToObject(e, "u", interval_json(def.set_u[i]));
+        cJSON_AddItemToObject(e, "u", prove_json_interval(def.set_u[i]));
         cli_json_add(e, "returns", def.returns[i]);
         if (def.reach[i].lo != 0.0 || def.reach[i].hi != 0.0)
-            cJSON_AddItemToObject(e, "reach", interval_json(def.reach[i]));
+            cJSON_AddItemToObject(e, "reach", prove_json_interval(def.reach[i]));
         cli_json_add(e, "across", r.across[i]);
         cli_json_add(e, "targets", (double)r.targets[i]);
-        cJSON_AddItemToObject(e, "image_of_low_edge_u", interval_json(r.edge[i][0]));
-        cJSON_AddItemToObject(e, "image_of_high_edge_u", interval_json(r.edge[i][1]));
+        cJSON_AddItemToObject(e, "image_of_low_edge_u", prove_json_interval(r.edge[i][0]));
+        cJSON_AddItemToObject(e, "image_of_high_edge_u", prove_json_interval(r.edge[i][1]));
         cJSON_AddItemToArray(list, e);
     }
     cli_json_add(s, "entropy_lower_bound", r.entropy);
@@ -445,17 +475,17 @@ static cJSON *orbit_statement(long precision, int *proved, int *status)
     const gb_proof_flow_orbit *o[2] = {&unique, &tight};
     for (int k = 0; k < 2; k++) {
         cJSON *b = cJSON_CreateObject();
-        cJSON_AddItemToObject(b, "y", interval_json(k ? small[1] : big[1]));
-        cJSON_AddItemToObject(b, "z", interval_json(k ? small[2] : big[2]));
-        cJSON_AddItemToObject(b, "K_y", interval_json(o[k]->krawczyk[1]));
-        cJSON_AddItemToObject(b, "K_z", interval_json(o[k]->krawczyk[2]));
+        cJSON_AddItemToObject(b, "y", prove_json_interval(k ? small[1] : big[1]));
+        cJSON_AddItemToObject(b, "z", prove_json_interval(k ? small[2] : big[2]));
+        cJSON_AddItemToObject(b, "K_y", prove_json_interval(o[k]->krawczyk[1]));
+        cJSON_AddItemToObject(b, "K_z", prove_json_interval(o[k]->krawczyk[2]));
         cli_json_add(b, "proved", o[k]->proved);
         cJSON_AddItemToArray(boxes, b);
     }
-    cJSON_AddItemToObject(s, "period", interval_json(tight.period));
+    cJSON_AddItemToObject(s, "period", prove_json_interval(tight.period));
     cJSON *dp = cJSON_AddArrayToObject(s, "DP_over_wide_box"); /* rows y, z; columns y, z */
     for (int a = 1; a < 3; a++)
-        for (int b = 1; b < 3; b++) cJSON_AddItemToArray(dp, interval_json(unique.jacobian[a][b]));
+        for (int b = 1; b < 3; b++) cJSON_AddItemToArray(dp, prove_json_interval(unique.jacobian[a][b]));
     char result[200];
     snprintf(result, sizeof result, *proved ? "proved" : "not proved: K is not inside the box%s",
              unique.excluded || tight.excluded ? " (it misses it: no fixed point there)" : "");

@@ -1,6 +1,7 @@
 /* gomboc prove — the Gömböcs' statements: the Melnikov function of each reduced model (§7, the `top` reading, Table 1's
  * rolling forcing) enclosed from the body and its zeros decided (gb_proof_body; docs/proofs.md). */
 #include "gomboc_cli.h"
+#include "gomboc_prove.h"
 
 #include "gb_error.h"
 #include "gb_melnikov_body.h"
@@ -10,8 +11,7 @@
 #include <stdio.h>
 #include <string.h>
 
-/* Table 1's rolling scenes (cases/table1-gomboc-I-rolling.ini, -II-rolling.ini; verify/s7_proofs.c checks that these are
- * the files' values): β, m, g, c, A₁, A₂ [m/s²], ω, ψ = π/3. */
+/* The two bodies of Table 1's rolling scenes (their forcing is prove_rolling, gomboc_prove.h) and the claims decided. */
 typedef struct table1 {
     const char *morphology;
     gb_proof_verdict expected;
@@ -22,7 +22,6 @@ static const table1 bodies[] = {
     {"I", GB_PROOF_NO_ZERO, "M(t0) != 0 for every t0"},
     {"II", GB_PROOF_SIMPLE_ZEROS, "M(t0) has simple zeros only"},
 };
-static const double BETA = 0.12, MASS = 1.0, G = 9.81, DAMPING = 0.02, A1 = 2.0, A2 = 1.0, OMEGA = 18.0;
 
 /* The resolutions tried in turn until the verdict is decided (a cell's width over its distance to the saddle). All but
  * the last are tried with at most COARSE_DEPTH halvings of t₀'s pieces: an enclosure too wide to decide leaves pieces
@@ -32,21 +31,7 @@ static const double resolutions[] = {1e-3, 3e-4, 1e-4};
 enum { RESOLUTIONS = sizeof resolutions / sizeof resolutions[0], COARSE_DEPTH = 12 };
 #define CUT 2e-3
 
-static cJSON *interval(gb_proof_interval x)
-{
-    const double v[2] = {x.lo, x.hi};
-    return cli_json_vector(v, 2);
-}
-
 static int inside(double x, gb_proof_interval i) { return x >= i.lo && x <= i.hi; }
-
-static void add_hypothesis(cJSON *list, const char *text, const char *status)
-{
-    cJSON *h = cJSON_CreateObject();
-    cJSON_AddStringToObject(h, "hypothesis", text);
-    cJSON_AddStringToObject(h, "status", status);
-    cJSON_AddItemToArray(list, h);
-}
 
 /* The numeric model of gb_melnikov_body: the rocking direction, the orbit's t = 0 point and today's estimates. */
 typedef struct estimate {
@@ -59,17 +44,19 @@ typedef struct estimate {
 static int estimate_of(const gb_surface *surface, estimate *out)
 {
     gb_melnikov_body *body = NULL;
-    int status = gb_melnikov_body_create(surface, MASS, G, GB_MELNIKOV_BODY_NODES, &body);
+    int status = gb_melnikov_body_create(surface, prove_rolling.mass, prove_rolling.g, GB_MELNIKOV_BODY_NODES, &body);
     if (status) return status;
     gb_melnikov_body_get_info(body, &out->info);
     const gb_melnikov_model model = gb_melnikov_body_model(body, GB_MELNIKOV_MASS_AT_TOP);
     gb_melnikov_orbit orbit;
     status = gb_melnikov_orbit_find(&model, &orbit);
-    if (!status) status = gb_melnikov_integrals_compute(&model, &orbit, OMEGA, GB_MELNIKOV_EXACT, &out->integrals);
+    if (!status)
+        status = gb_melnikov_integrals_compute(&model, &orbit, prove_rolling.omega, GB_MELNIKOV_EXACT, &out->integrals);
     gb_melnikov_values top;
     if (!status) status = model.eval(model.context, orbit.q_u, &top);
     if (!status) {
-        const gb_melnikov_forcing f = {DAMPING / top.M, A1, A2, OMEGA, M_PI / 3.0, 0};
+        const gb_melnikov_forcing f = {prove_rolling.damping / top.M, prove_rolling.A1, prove_rolling.A2,
+                                       prove_rolling.omega,           M_PI / 3.0,       0};
         gb_melnikov_criterion c;
         gb_melnikov_judge(&out->integrals, &f, &c);
         out->mu_D = f.mu * out->integrals.D, out->oscillatory_max = c.oscillatory_max;
@@ -84,17 +71,24 @@ cJSON *prove_body_statement(size_t which, double resolution, long precision, int
     const table1 *b = &bodies[which];
     *proved = 0;
     gb_surface surface;
-    *status = gb_surface_init(&surface, b->morphology, BETA);
+    *status = gb_surface_init(&surface, b->morphology, prove_rolling.beta);
     estimate est;
     if (!*status) *status = estimate_of(&surface, &est);
     gb_proof_interval M = {0, 0}, volume = {0, 0}, psi;
-    if (!*status) *status = gb_proof_body_inertia(&surface, MASS, est.info.rocking, precision, &M, &volume);
+    if (!*status)
+        *status = gb_proof_body_inertia(&surface, prove_rolling.mass, est.info.rocking, precision, &M, &volume);
     if (!*status) *status = gb_proof_pi_fraction(1, 3, &psi);
     if (*status) return NULL;
-    gb_proof_body_def def = {.surface = &surface, .mass = MASS, .g = G, .inertia = M, .origin = est.origin, .cut = CUT,
+    gb_proof_body_def def = {.surface = &surface,
+                             .mass = prove_rolling.mass,
+                             .g = prove_rolling.g,
+                             .inertia = M,
+                             .origin = est.origin,
+                             .cut = CUT,
                              .precision = precision};
     memcpy(def.rocking, est.info.rocking, sizeof def.rocking);
-    gb_proof_body_forcing forcing = {DAMPING, A1, A2, OMEGA, psi, depth};
+    gb_proof_body_forcing forcing = {
+        prove_rolling.damping, prove_rolling.A1, prove_rolling.A2, prove_rolling.omega, psi, depth};
     gb_proof_body_model model = {0};
     gb_proof_body_result r = {0};
     double seconds = 0.0;
@@ -114,8 +108,11 @@ cJSON *prove_body_statement(size_t which, double resolution, long precision, int
     }
     cJSON *s = cJSON_CreateObject();
     char text[512];
-    snprintf(text, sizeof text, "Gomboc %s, beta = %g, Table 1's rolling forcing (A1 = %g, A2 = %g m/s2, omega = %g, psi = pi/3, "
-             "c = %g), reduced model of section 7: %s", b->morphology, BETA, A1, A2, OMEGA, DAMPING, b->claim);
+    snprintf(text, sizeof text,
+             "Gomboc %s, beta = %g, Table 1's rolling forcing (A1 = %g, A2 = %g m/s2, omega = %g, psi = pi/3, "
+             "c = %g), reduced model of section 7: %s",
+             b->morphology, prove_rolling.beta, prove_rolling.A1, prove_rolling.A2, prove_rolling.omega,
+             prove_rolling.damping, b->claim);
     cJSON_AddStringToObject(s, "statement", text);
     cJSON_AddStringToObject(s, "system", "M q'' = -m g H'(q) + eps G, G = -mu M q' - m H'(q) (A1 cos(omega t) + A2 cos(2 omega t + "
                                          "psi)), H(q) = max over the body of x . v(q), v(q) = cos q s0 - sin q e; M frozen at the "
@@ -128,37 +125,30 @@ cJSON *prove_body_statement(size_t which, double resolution, long precision, int
                                          "enclosures on Arb's balls (H Lipschitz with H' in its cell's interval: closed forms "
                                          "between bounding lines); M by Arb's quadrature over the sphere; the zeros by the prover "
                                          "of the oracles");
-    cJSON *data = cJSON_AddObjectToObject(s, "data");
-    cJSON_AddStringToObject(data, "morphology", b->morphology);
-    cli_json_add(data, "beta", BETA);
-    cli_json_add(data, "mass", MASS);
-    cli_json_add(data, "g", G);
-    cli_json_add(data, "damping", DAMPING);
-    cli_json_add(data, "A1", A1);
-    cli_json_add(data, "A2", A2);
-    cli_json_add(data, "omega", OMEGA);
-    cJSON_AddItemToObject(data, "psi", interval(psi));
+    cJSON *data = prove_rolling_data(s, b->morphology, psi);
     cJSON_AddItemToObject(data, "rocking", cli_json_vector(est.info.rocking, 3));
     cli_json_add(data, "origin", est.origin);
     cJSON *hyp = cJSON_AddArrayToObject(s, "hypotheses");
     char line[512]; /* room for the piecewise hypothesis with its ties' list at its longest (256 could truncate it) */
     snprintf(line, sizeof line, "the saddle q = 0 is hyperbolic: H''(0) in [%.9g, %.9g] < 0 (closed form at the top, where "
              "sin phi cos chi = 1 only)", model.curvature.lo, model.curvature.hi);
-    add_hypothesis(hyp, line, model.curvature.hi < 0.0 ? "proved" : "not proved");
+    prove_add_hypothesis(hyp, line, prove_status(model.curvature.hi < 0.0));
     snprintf(line, sizeof line, "the separatrix is a rotation: r_max - H(q) >= %.3g on every cell outside the saddle's "
              "neighbourhoods (and > 0 for 0 < q < 2 pi: only the top is at r_max)", model.gap_min);
-    add_hypothesis(hyp, line, model.gap_min > 0.0 ? "proved" : "not proved");
-    add_hypothesis(hyp, "the orbit crosses every contact tie transversally (q' = p / M > 0 on every cell, so at every tie)",
-                   model.gap_min > 0.0 ? "proved" : "not proved");
+    prove_add_hypothesis(hyp, line, prove_status(model.gap_min > 0.0));
+    prove_add_hypothesis(
+        hyp, "the orbit crosses every contact tie transversally (q' = p / M > 0 on every cell, so at every tie)",
+        model.gap_min > 0.0 ? "proved" : "not proved");
     char ties[96] = "";
     for (size_t k = 0; k < est.info.kinks && k < 4; k++)
         snprintf(ties + strlen(ties), sizeof ties - strlen(ties), "%s%.4g", k ? ", " : " near q = ", est.info.kink_q[k]);
     snprintf(line, sizeof line, "H is piecewise C2 with finitely many ties, where only H' jumps: %zu cells proved C2, %zu "
              "proved to hold at most one tie each, %zu not decided (the numeric model locates %zu ties%s)", model.smooth_cells,
              model.tie_cells, model.open_cells, est.info.kinks, ties);
-    add_hypothesis(hyp, line, model.open_cells == 0 ? "proved" : "not proved");
-    add_hypothesis(hyp, "eps small (Table 1's forcing is eps = 0.31 of g): the theorem is asymptotic in eps", "not a property of "
-                   "the model: the statement is first order in eps");
+    prove_add_hypothesis(hyp, line, prove_status(model.open_cells == 0));
+    prove_add_hypothesis(hyp, "eps small (Table 1's forcing is eps = 0.31 of g): the theorem is asymptotic in eps",
+                         "not a property of "
+                         "the model: the statement is first order in eps");
     cJSON_AddStringToObject(s, "theorem", "the first-order splitting eps M(t0) / |f| (docs/proofs.md: across a tie the normal "
                                           "component q' of the field is continuous, so the saltation keeps the wedge f ^ v and "
                                           "the classical integral holds; Kukucka 2007, Battelli and Feckan 2008 for "
@@ -171,18 +161,19 @@ cJSON *prove_body_statement(size_t which, double resolution, long precision, int
                                           "obstruction that forbids chaos, not checked here. M bounded away from 0 gives no "
                                           "intersection near the separatrix for small eps");
     cJSON *enc = cJSON_AddObjectToObject(s, "enclosures");
-    cJSON_AddItemToObject(enc, "M", interval(M));
-    cJSON_AddItemToObject(enc, "volume", interval(volume));
-    cJSON_AddItemToObject(enc, "r_max", interval(model.r_max));
-    cJSON_AddItemToObject(enc, "rate", interval(model.rate));
-    cJSON_AddItemToObject(enc, "mu", interval(r.mu));
-    cJSON_AddItemToObject(enc, "D", interval(model.D));
-    cJSON_AddItemToObject(enc, "mu_D", interval(r.mu_D));
+    cJSON_AddItemToObject(enc, "M", prove_json_interval(M));
+    cJSON_AddItemToObject(enc, "volume", prove_json_interval(volume));
+    cJSON_AddItemToObject(enc, "r_max", prove_json_interval(model.r_max));
+    cJSON_AddItemToObject(enc, "rate", prove_json_interval(model.rate));
+    cJSON_AddItemToObject(enc, "mu", prove_json_interval(r.mu));
+    cJSON_AddItemToObject(enc, "D", prove_json_interval(model.D));
+    cJSON_AddItemToObject(enc, "mu_D", prove_json_interval(r.mu_D));
     const gb_proof_interval *q[4] = {&r.integrals.C1, &r.integrals.S1, &r.integrals.C2, &r.integrals.S2};
     const double e[5] = {est.integrals.D, est.integrals.C1, est.integrals.S1, est.integrals.C2, est.integrals.S2};
     static const char *const names[4] = {"C1", "S1", "C2", "S2"};
     int all_inside = inside(e[0], model.D);
-    for (int k = 0; k < 4; k++) cJSON_AddItemToObject(enc, names[k], interval(*q[k])), all_inside &= inside(e[k + 1], *q[k]);
+    for (int k = 0; k < 4; k++)
+        cJSON_AddItemToObject(enc, names[k], prove_json_interval(*q[k])), all_inside &= inside(e[k + 1], *q[k]);
     cJSON *num = cJSON_AddObjectToObject(s, "estimates");
     cli_json_add(num, "D", e[0]);
     for (int k = 0; k < 4; k++) cli_json_add(num, names[k], e[k + 1]);
@@ -196,7 +187,8 @@ cJSON *prove_body_statement(size_t which, double resolution, long precision, int
     cJSON_AddStringToObject(s, "verdict", gb_proof_verdict_name(r.zeros.verdict));
     cli_json_add(s, "zeros", (double)r.zeros.zeros);
     cJSON *where = cJSON_AddArrayToObject(s, "zero_t0");
-    for (size_t k = 0; k < r.zeros.zeros && k < GB_PROOF_ZEROS_MAX; k++) cJSON_AddItemToArray(where, interval(r.zeros.where[k]));
+    for (size_t k = 0; k < r.zeros.zeros && k < GB_PROOF_ZEROS_MAX; k++)
+        cJSON_AddItemToArray(where, prove_json_interval(r.zeros.where[k]));
     cli_json_add(s, "slope_min", r.zeros.slope_min);
     cli_json_add(s, "margin", r.zeros.margin);
     *proved = r.zeros.verdict == b->expected && model.curvature.hi < 0.0 && model.gap_min > 0.0;

@@ -4,6 +4,7 @@
  * (gb_proof_body_chain_design, gb_proof_body_cover_link; docs/proofs.md). The links are independent: they run on the
  * threads asked. */
 #include "gomboc_cli.h"
+#include "gomboc_prove.h"
 
 #include "gb_error.h"
 #include "gb_melnikov_body.h"
@@ -15,8 +16,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* Table 1's rolling scenes (cases/table1-gomboc-I-rolling.ini, -II-rolling.ini), as gomboc_prove_body.c reads them. */
-static const double BETA = 0.12, MASS = 1.0, G = 9.81, DAMPING = 0.02, A1 = 2.0, A2 = 1.0, OMEGA = 18.0;
 /* The links' first cut across, the halvings allowed and the Taylor order. */
 enum { PIECES = 1, DEPTH = 6, ORDER = 12 };
 
@@ -54,37 +53,30 @@ static void *run_links(void *arg)
     }
 }
 
-static cJSON *interval(gb_proof_interval x)
-{
-    const double v[2] = {x.lo, x.hi};
-    return cli_json_vector(v, 2);
-}
-
-static void add_hypothesis(cJSON *list, const char *text, int holds)
-{
-    cJSON *h = cJSON_CreateObject();
-    cJSON_AddStringToObject(h, "hypothesis", text);
-    cJSON_AddStringToObject(h, "status", holds ? "proved" : "not proved");
-    cJSON_AddItemToArray(list, h);
-}
-
 /* The definition of a Gömböc's reduced field (M enclosed, ψ = π/3 enclosed) and its float model's ties. */
 static int setup(const char *morphology, gb_surface *surface, gb_proof_body_def *def, gb_proof_body_forcing *forcing,
                  gb_melnikov_body_info *info, long precision)
 {
-    int status = gb_surface_init(surface, morphology, BETA);
+    int status = gb_surface_init(surface, morphology, prove_rolling.beta);
     gb_melnikov_body *body = NULL;
-    if (!status) status = gb_melnikov_body_create(surface, MASS, G, GB_MELNIKOV_BODY_NODES, &body);
+    if (!status)
+        status = gb_melnikov_body_create(surface, prove_rolling.mass, prove_rolling.g, GB_MELNIKOV_BODY_NODES, &body);
     if (status) return status;
     gb_melnikov_body_get_info(body, info);
     gb_melnikov_body_free(body);
-    *def = (gb_proof_body_def){.surface = surface, .mass = MASS, .g = G, .origin = 3.0, .cut = 2e-3,
-                               .resolution = 1e-3, .precision = precision};
+    *def = (gb_proof_body_def){.surface = surface,
+                               .mass = prove_rolling.mass,
+                               .g = prove_rolling.g,
+                               .origin = 3.0,
+                               .cut = 2e-3,
+                               .resolution = 1e-3,
+                               .precision = precision};
     memcpy(def->rocking, info->rocking, sizeof def->rocking);
     gb_proof_interval psi = {M_PI / 3.0, M_PI / 3.0};
-    status = gb_proof_body_inertia(surface, MASS, info->rocking, precision, &def->inertia, NULL);
+    status = gb_proof_body_inertia(surface, prove_rolling.mass, info->rocking, precision, &def->inertia, NULL);
     if (!status) status = gb_proof_pi_fraction(1, 3, &psi);
-    *forcing = (gb_proof_body_forcing){DAMPING, A1, A2, OMEGA, psi, 0};
+    *forcing =
+        (gb_proof_body_forcing){prove_rolling.damping, prove_rolling.A1, prove_rolling.A2, prove_rolling.omega, psi, 0};
     return status;
 }
 
@@ -148,7 +140,8 @@ cJSON *prove_chain_statement(const char *morphology, long precision, int threads
              "pi/3, c = %g), reduced field of section 7 (M at the top, not linearised in eps): its period map has a "
              "horseshoe "
              "of %zu sets along a homoclinic orbit, h_top >= %.5f a period",
-             morphology, BETA, A1, A2, OMEGA, DAMPING, chain.sets, floor(log_rho * 1e5) / 1e5);
+             morphology, prove_rolling.beta, prove_rolling.A1, prove_rolling.A2, prove_rolling.omega,
+             prove_rolling.damping, chain.sets, floor(log_rho * 1e5) / 1e5);
     cJSON_AddStringToObject(s, "statement", text);
     cJSON_AddStringToObject(s, "system", "q' = P, P' = -(m / M) a(t) H'(q) - (c / M) P, a(t) = g + A1 cos(omega t) + A2 "
                                          "cos(2 omega t + psi), H the support function along the rocking direction; the "
@@ -170,21 +163,16 @@ cJSON *prove_chain_statement(const char *morphology, long precision, int threads
     cJSON *hyp = cJSON_AddArrayToObject(s, "hypotheses");
     char line[256];
     snprintf(line, sizeof line, "every covering relation of the graph: %zu of %zu proved", covered, count);
-    add_hypothesis(hyp, line, covered == count);
+    prove_add_hypothesis(hyp, line, prove_status(covered == count));
     snprintf(line, sizeof line, "the sets pairwise disjoint on the cylinder: %zu of %zu pairs proved apart", apart, pairs);
-    add_hypothesis(hyp, line, apart == pairs);
-    add_hypothesis(hyp, "P continuous on each set: the flow is, and every solution from a set that meets a tie crosses it "
-                        "moving up within the period (proved by the enclosures: q' > 0 there)",
-                   covered == count);
-    cJSON *data = cJSON_AddObjectToObject(s, "data");
-    cJSON_AddStringToObject(data, "morphology", morphology);
-    cli_json_add(data, "beta", BETA);
-    cli_json_add(data, "damping", DAMPING);
-    cli_json_add(data, "A1", A1);
-    cli_json_add(data, "A2", A2);
-    cli_json_add(data, "omega", OMEGA);
-    cJSON_AddItemToObject(data, "psi", interval(forcing.psi));
-    cJSON_AddItemToObject(data, "M", interval(def.inertia));
+    prove_add_hypothesis(hyp, line, prove_status(apart == pairs));
+    prove_add_hypothesis(
+        hyp,
+        "P continuous on each set: the flow is, and every solution from a set that meets a tie crosses it "
+        "moving up within the period (proved by the enclosures: q' > 0 there)",
+        prove_status(covered == count));
+    cJSON *data = prove_rolling_data(s, morphology, forcing.psi);
+    cJSON_AddItemToObject(data, "M", prove_json_interval(def.inertia));
     cli_json_add(data, "unstable_iterates", cd.unstable_iterates);
     cli_json_add(data, "stable_iterates", cd.stable_iterates);
     cli_json_add(data, "first", cd.first);
@@ -199,7 +187,7 @@ cJSON *prove_chain_statement(const char *morphology, long precision, int threads
         char name[64];
         snprintf(name, sizeof name, "N%zu => N%zu%s", jobs[k].from, jobs[k].to, jobs[k].turns ? " (2 pi on)" : "");
         cJSON_AddStringToObject(l, "link", name);
-        if (jobs[k].tie >= 0) cJSON_AddItemToObject(l, "tie", interval(ties[jobs[k].tie].q));
+        if (jobs[k].tie >= 0) cJSON_AddItemToObject(l, "tie", prove_json_interval(ties[jobs[k].tie].q));
         cJSON_AddBoolToObject(l, "covers", r->covers);
         if (r->covers) {
             cli_json_add(l, "strip_margin", r->strip_margin);

@@ -1,0 +1,26 @@
+/* What the proof commands share (gomboc_prove.c, gomboc_prove_body.c, gomboc_prove_chain.c): Table 1's rolling forcing,
+ * written once, and the JSON of an enclosure and of a hypothesis. Internal to gomboc-prove. */
+#ifndef GOMBOC_PROVE_H
+#define GOMBOC_PROVE_H
+
+#include "gb_proof.h"
+
+#include <cJSON.h>
+
+/* Table 1's rolling scenes (cases/table1-gomboc-I-rolling.ini, -II-rolling.ini; verify/s7_proofs_body.c checks that the
+ * statements' data are the files' values): β, m, g [m/s²], c, A₁, A₂ [m/s²], ω [1/s]; ψ = π/3 is enclosed where used. */
+typedef struct prove_table1 {
+    double beta, mass, g, damping, A1, A2, omega;
+} prove_table1;
+extern const prove_table1 prove_rolling;
+
+/* [lo, hi] as a JSON pair. */
+cJSON *prove_json_interval(gb_proof_interval x);
+/* Appends {"hypothesis": text, "status": status} to list. */
+void prove_add_hypothesis(cJSON *list, const char *text, const char *status);
+/* "proved" or "not proved". */
+const char *prove_status(int holds);
+/* Adds the statement's "data" object: the body's morphology, Table 1's rolling forcing and ψ's enclosure; returns it. */
+cJSON *prove_rolling_data(cJSON *statement, const char *morphology, gb_proof_interval psi);
+
+#endif
