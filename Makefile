@@ -398,9 +398,9 @@ references-only: $(BIN)
 
 # The command, the static and shared libraries, the public headers (src/gomboc.h includes them all; the
 # internal ones, *_internal.h, gb_interval.h, gb_arena.h, gb_vec.h, gb_hash.h, gb_clock.h, the readers behind gb_case
-# and gb_scan, gb_ini.h and gb_parse.h, and the caches' seals, gb_seal.h, stay), a pkg-config file and the man page, under $(DESTDIR)$(PREFIX).
+# and gb_scan, gb_ini.h (gb_parse.h is public: gomboc.h includes it), the caches' seals, gb_seal.h, and a body expression's tree, gb_expression.h, stay), a pkg-config file and the man page, under $(DESTDIR)$(PREFIX).
 PREFIX  ?= /usr/local
-PRIVATE_HEADERS := %_internal.h src/gb_interval.h src/gb_arena.h src/gb_vec.h src/gb_hash.h src/gb_clock.h src/gb_ini.h src/gb_seal.h
+PRIVATE_HEADERS := %_internal.h src/gb_interval.h src/gb_arena.h src/gb_vec.h src/gb_hash.h src/gb_clock.h src/gb_ini.h src/gb_seal.h src/gb_expression.h
 PUBLIC_HEADERS = src/gomboc.h $(filter-out $(PRIVATE_HEADERS),$(wildcard src/gb_*.h))
 
 # Only what it installs is built (not the harness). No public header includes a dependency's, so the
@@ -445,6 +445,10 @@ example-only: $(BIN) $(LIB) $(SOLIB)
 	$(CXX) -std=c++17 -Wall -Wextra -Werror examples/cxx_link.cpp -o $(BUILD)/example-cxx $$($(STAGED_PC) --cflags --libs gomboc)
 	cd / && LD_LIBRARY_PATH=$(STAGE)/usr/local/lib $(abspath $(BUILD))/example-cxx
 	@case "$$($(STAGED_PC) --cflags gomboc)" in *cjson*|*gsl*) echo "example: a dependency's flags leak into --cflags"; exit 1;; esac
+	@for h in $(notdir $(PUBLIC_HEADERS)); do \
+	  printf '#include <%s>\nint main(void) { return 0; }\n' $$h | \
+	  $(CC) -std=c11 -Wall -Wextra -Werror -fsyntax-only -x c - $$($(STAGED_PC) --cflags gomboc) \
+	  || { echo "example: the installed header $$h does not compile on its own"; exit 1; }; done
 	$(CC) -std=c11 -Wall -Wextra -Werror examples/contact_and_scene.c -o $(BUILD)/example-static $$($(STAGED_PC) --cflags gomboc) \
 	  $$($(STAGED_PC) --static --libs gomboc | sed 's|-lgomboc|-l:libgomboc.a|')
 	cd / && $(abspath $(BUILD))/example-static > /dev/null
@@ -465,7 +469,7 @@ example-only: $(BIN) $(LIB) $(SOLIB)
 	cd / && PYTHONPATH=$(STAGE)$(subst $(PREFIX),/usr/local,$(PYDIR)) $(PYTHON) $(abspath examples/python_run.py) $(abspath cases/table1-gomboc-I.ini)
 	@$(MAKE) --no-print-directory uninstall DESTDIR=$(STAGE) PREFIX=/usr/local > /dev/null
 	@left=$$(find $(STAGE) -type f -o -type l); test -z "$$left" || { echo "uninstall left: $$left"; exit 1; }
-	@echo "example: built and run against the staged shared library (soname $(SONAME)) and, through pkg-config --static, the static one; the command linked against the shared library runs; the Python package runs from the install; man page renders; uninstall leaves no file"
+	@echo "example: built and run against the staged shared library (soname $(SONAME)) and, through pkg-config --static, the static one; every installed header compiles on its own; the command linked against the shared library runs; the Python package runs from the install; man page renders; uninstall leaves no file"
 
 # `make check` is `make verify`, by the usual name.
 check: verify

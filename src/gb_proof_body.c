@@ -2,7 +2,7 @@
 
 #include "gb_certify_internal.h"
 #include "gb_error.h"
-#include "gb_proof_body_ties.h"
+#include "gb_proof_body_ties_internal.h"
 #include "gb_proof_internal.h"
 
 #include <math.h>

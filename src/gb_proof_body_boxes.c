@@ -1,4 +1,4 @@
-#include "gb_proof_body_boxes.h"
+#include "gb_proof_body_boxes_internal.h"
 
 #include <math.h>
 

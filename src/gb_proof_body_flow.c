@@ -8,7 +8,7 @@
 #include "gb_proof_body.h"
 
 #include "gb_error.h"
-#include "gb_proof_body_boxes.h"
+#include "gb_proof_body_boxes_internal.h"
 #include "gb_proof_flow_internal.h"
 #include "gb_proof_internal.h"
 

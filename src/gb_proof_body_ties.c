@@ -14,7 +14,7 @@
  *   interval excludes 0 the difference is strictly monotone: at most one tie in the cell, where only H′ jumps (H is a
  *   support function: continuous);
  * - otherwise: not proved. */
-#include "gb_proof_body_ties.h"
+#include "gb_proof_body_ties_internal.h"
 
 #include "gb_certify_internal.h"
 

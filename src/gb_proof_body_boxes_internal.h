@@ -1,8 +1,8 @@
 /* gb_proof_body_boxes — what the Gömböcs' enclosure (gb_proof_body.c) and the proof of its piecewise structure
  * (gb_proof_body_ties.c) share: the surface's chart boxes with their enclosures, the rocking's axes and the directions
  * of an arc of q. Internal to the library. */
-#ifndef GB_PROOF_BODY_BOXES_H
-#define GB_PROOF_BODY_BOXES_H
+#ifndef GB_PROOF_BODY_BOXES_INTERNAL_H
+#define GB_PROOF_BODY_BOXES_INTERNAL_H
 
 #include "gb_proof_body.h"
 #include "gb_surface_internal.h"

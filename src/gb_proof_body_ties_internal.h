@@ -1,9 +1,9 @@
 /* gb_proof_body_ties — the piecewise structure of H on one cell of q, proved from the cell's kept boxes
  * (gb_proof_body_ties.c says how). Internal to the library. */
-#ifndef GB_PROOF_BODY_TIES_H
-#define GB_PROOF_BODY_TIES_H
+#ifndef GB_PROOF_BODY_TIES_INTERNAL_H
+#define GB_PROOF_BODY_TIES_INTERNAL_H
 
-#include "gb_proof_body_boxes.h"
+#include "gb_proof_body_boxes_internal.h"
 
 typedef enum gb_proof_body_piece {
     GB_PROOF_BODY_SMOOTH = 0, /* one contact, C² in q: one component of boxes on which x·v is strictly concave */
