@@ -245,8 +245,8 @@ prove-only: $(BIN)
 	$(BIN) prove
 	$(BIN) prove --horseshoe --json > $(OUT)/proof-horseshoe.json.tmp && \
 	  mv $(OUT)/proof-horseshoe.json.tmp $(OUT)/proof-horseshoe.json
-	@$(PYTHON) -c 'import json, sys; s = json.load(open(sys.argv[1]))["statements"][0]; \
-	  print(s["statement"] + ": " + s["result"] + " " + s["summary"])' $(OUT)/proof-horseshoe.json
+	@$(PYTHON) -c 'import json, sys; [print(s["statement"] + ": " + s["result"] + " " + s["summary"]) \
+	  for s in json.load(open(sys.argv[1]))["statements"]]' $(OUT)/proof-horseshoe.json
 
 # --- scans on MPI ranks: OpenMPI installed, gomboc-mpi built, and its checks (1, 2 and 3 ranks, a kill -9
 # of every rank and --resume: the same bytes as one thread). make verify runs them too where mpicc is.

@@ -24,7 +24,8 @@
 #include <unistd.h>
 
 static const char *usage_prove =
-    "usage: gomboc prove [--precision BITS] [--depth N] [--resolution R] [--threads N] [--horseshoe] [--json]\n"
+    "usage: gomboc prove [--precision BITS] [--depth N] [--resolution R] [--threads N] [--json]\n"
+    "       gomboc prove --horseshoe [--morphology I|II] [--precision BITS] [--threads N] [--json]\n"
     "\n"
     "Proves, on Arb's ball arithmetic, the statements docs/proofs.md lists, and prints each with its\n"
     "hypotheses, the theorem it rests on, the enclosures (intervals rounded outwards) and its CPU time:\n"
@@ -56,6 +57,8 @@ static const char *usage_prove =
     "  --horseshoe       instead, Gomboc II's horseshoe at Table 1's rolling forcing: covering relations of\n"
     "                    its period map along a homoclinic orbit, h_top >= ln rho (minutes; make prove;\n"
     "                    --precision and --threads apply)\n"
+    "  --morphology M    with --horseshoe, Gomboc M's (I or II; default II). Gomboc I's 36 links take hours\n"
+    "                    on two cores (docs/proofs.md, What is open) and have not been run to their end\n"
     "  --json            the statements as JSON on standard output\n"
     "\n"
     "Exit 0 when every statement attempted is proved, 1 when one is not (it says which and why), 2 for bad\n"
@@ -536,10 +539,11 @@ static void print_statements(const cJSON *list, int proved_count, int attempted,
 
 /* gomboc prove --horseshoe: that statement alone, Gömböc II's (gomboc_prove_chain.c; Gömböc I's sets exist, its run is
  * not part of the command: docs/proofs.md, "What is open"). */
-static int prove_horseshoe(long precision, int threads, int json)
+/* --horseshoe: the horseshoe of the body named (NULL: Gömböc II's, the one make prove proves). */
+static int prove_horseshoe(const char *morphology, long precision, int threads, int json)
 {
-    static const char *const bodies[] = {"II"};
-    enum { BODIES = sizeof bodies / sizeof bodies[0] };
+    const char *const bodies[] = {morphology ? morphology : "II"};
+    enum { BODIES = 1 };
     cJSON *root = cJSON_CreateObject(), *list = cJSON_AddArrayToObject(root, "statements");
     cli_json_add(root, "precision_bits", (double)precision);
     int proved_count = 0, status = GB_OK;
@@ -569,26 +573,29 @@ static int prove_horseshoe(long precision, int threads, int json)
 
 int command_prove_in_process(int argc, char **argv)
 {
-    const char *precision_text = NULL, *depth_text = NULL, *resolution_text = NULL, *threads_text = NULL;
+    const char *precision_text = NULL, *depth_text = NULL, *resolution_text = NULL, *threads_text = NULL,
+               *morphology = NULL;
     int json = 0, chain = 0;
     for (int i = 0; i < argc; i++) {
         if (!strcmp(argv[i], "--horseshoe")) {
-            chain = 1;
+            if (cli_flag("prove", argv[i], &chain)) return EXIT_INPUT;
             continue;
         }
         const char *value = NULL;
         const int kind = cli_next_option(
             "prove", argc, argv, &i, usage_prove,
-            (const char *const[]){"--precision", "--depth", "--resolution", "--threads", NULL},
-            " (allowed: --precision BITS, --depth N, --resolution R, --threads N, --horseshoe, --json, --help)", NULL,
-            &json, &value);
+            (const char *const[]){"--precision", "--depth", "--resolution", "--threads", "--morphology", NULL},
+            " (allowed: --precision BITS, --depth N, --resolution R, --threads N, --horseshoe, --morphology I|II, "
+            "--json, --help)",
+            NULL, &json, &value);
         if (kind == CLI_HELP) return 0;
         if (kind == CLI_NEXT) continue;
         if (kind != CLI_VALUE) return kind;
-        const char **slot = !strcmp(argv[i - 1], "--precision") ? &precision_text
-                            : !strcmp(argv[i - 1], "--depth")   ? &depth_text
-                            : !strcmp(argv[i - 1], "--threads") ? &threads_text
-                                                                : &resolution_text;
+        const char **slot = !strcmp(argv[i - 1], "--precision")    ? &precision_text
+                            : !strcmp(argv[i - 1], "--depth")      ? &depth_text
+                            : !strcmp(argv[i - 1], "--threads")    ? &threads_text
+                            : !strcmp(argv[i - 1], "--morphology") ? &morphology
+                                                                   : &resolution_text;
         if (*slot) return cli_input_error("prove", "%s given twice (allowed: once)", argv[i - 1]);
         *slot = value;
     }
@@ -612,8 +619,16 @@ int command_prove_in_process(int argc, char **argv)
     if (threads != floor(threads))
         return cli_input_error("prove", "--threads %s: not an integer (allowed: an integer from 1 to 256)",
                                threads_text);
+    if (morphology && !chain)
+        return cli_input_error("prove",
+                               "--morphology %s without --horseshoe (allowed: --morphology with --horseshoe only; "
+                               "the Melnikov statements are made for both bodies)",
+                               morphology);
+    if (morphology && strcmp(morphology, "I") && strcmp(morphology, "II"))
+        return cli_input_error("prove", "--morphology %s: no horseshoe for it (allowed: I or II, Table 1's bodies)",
+                               morphology);
     if (cli_parse_only) return 0;
-    if (chain) return prove_horseshoe((long)precision, (int)threads, json);
+    if (chain) return prove_horseshoe(morphology, (long)precision, (int)threads, json);
 
     /* Gömböc I's statement (the longest) starts first, on a thread of its own when there are two; Gömböc II's
      * follows the others on this thread */

@@ -248,6 +248,12 @@ static const bad_row rows[] = {
     {"scan @CASE@ --out @D@ --threads 0", "[scan]\n", 0, 2, {"--threads '0' is out of range", "(allowed: an integer from 1 to 256)", ""}},
     {"scan @CASE@ --out @D@ --json", "[scan]\n", 0, 2, {"unknown option '--json'", "--out, --resume, --threads", ""}},
     {"scan --out @D@", NULL, 0, 2, {"missing SCAN", "a scan file", ""}},
+    /* gomboc prove (run as gomboc-prove beside the command): its options, and --morphology for the horseshoes only. */
+    {"prove --precision 32", NULL, 0, 2, {"--precision '32' is out of range", "(allowed: an integer from 64 to 4096)", ""}},
+    {"prove --depth 1.5", NULL, 0, 2, {"--depth 1.5: not an integer", "(allowed: an integer from 1 to 40)", ""}},
+    {"prove --horseshoe --horseshoe", NULL, 0, 2, {"option '--horseshoe' is given twice", "allowed: each option once", ""}},
+    {"prove --morphology I", NULL, 0, 2, {"--morphology I without --horseshoe", "allowed: --morphology with --horseshoe only", ""}},
+    {"prove --horseshoe --morphology III", NULL, 0, 2, {"--morphology III: no horseshoe for it", "allowed: I or II", ""}},
     /* gomboc melnikov: the reduced model needs a saddle. */
     {"melnikov @CASE@", "[body]\nbeta = 0\n", 0, 2, {"beta = 0: a sphere has no unstable equilibrium", "0 < beta < 0.25", ""}},
     {"melnikov @CASE@", "[forcing]\ng = 0\n", 0, 2, {"[forcing] g = 0", "no saddle", "g > 0"}},
