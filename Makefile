@@ -46,7 +46,7 @@ CLI_SRC   := $(sort $(wildcard src/gomboc*.c))
 CLI_OBJ   := $(CLI_SRC:src/%.c=$(BUILD)/obj/%.o)
 # gomboc prove runs gomboc-prove (src/gomboc_prove_exec.c says why): gomboc is linked without the proofs and, with
 # --as-needed, without Arb, FLINT, NTL and C++'s library; gomboc-prove is the whole command.
-PROVE_OBJ := $(BUILD)/obj/gomboc_prove.o $(BUILD)/obj/gomboc_prove_body.o $(BUILD)/obj/gomboc_prove_chain.o
+PROVE_OBJ := $(BUILD)/obj/gomboc_prove.o $(BUILD)/obj/gomboc_prove_body.o $(BUILD)/obj/gomboc_prove_chain.o $(BUILD)/obj/gomboc_prove_common.o
 PROVE_BIN  = $(BUILD)/gomboc-prove
 LIB       := $(BUILD)/libgomboc.a
 # The shared library beside the static one: soname libgomboc.so.$(SOMAJOR), built from position-independent

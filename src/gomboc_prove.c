@@ -8,7 +8,7 @@
  * their Melnikov functions enclosed from the body and their zeros decided (gomboc_prove_body.c); with --horseshoe,
  * instead, Gömböc II's period map at that forcing has a horseshoe (gomboc_prove_chain.c). */
 #include "gomboc_cli.h"
-#include "gomboc_prove.h"
+#include "gomboc_prove_common.h"
 
 #include "gb_error.h"
 #include "gb_proof.h"
@@ -85,40 +85,6 @@ enum { FORCINGS = sizeof forcings / sizeof forcings[0] };
 
 static const double omegas[] = {0.5, 1.0, 3.0};
 enum { OMEGAS = sizeof omegas / sizeof omegas[0] };
-
-const prove_table1 prove_rolling = {
-    .beta = 0.12, .mass = 1.0, .g = 9.81, .damping = 0.02, .A1 = 2.0, .A2 = 1.0, .omega = 18.0};
-
-cJSON *prove_json_interval(gb_proof_interval x)
-{
-    const double v[2] = {x.lo, x.hi};
-    return cli_json_vector(v, 2);
-}
-
-void prove_add_hypothesis(cJSON *list, const char *text, const char *status)
-{
-    cJSON *h = cJSON_CreateObject();
-    cJSON_AddStringToObject(h, "hypothesis", text);
-    cJSON_AddStringToObject(h, "status", status);
-    cJSON_AddItemToArray(list, h);
-}
-
-const char *prove_status(int holds) { return holds ? "proved" : "not proved"; }
-
-cJSON *prove_rolling_data(cJSON *statement, const char *morphology, gb_proof_interval psi)
-{
-    cJSON *data = cJSON_AddObjectToObject(statement, "data");
-    cJSON_AddStringToObject(data, "morphology", morphology);
-    cli_json_add(data, "beta", prove_rolling.beta);
-    cli_json_add(data, "mass", prove_rolling.mass);
-    cli_json_add(data, "g", prove_rolling.g);
-    cli_json_add(data, "damping", prove_rolling.damping);
-    cli_json_add(data, "A1", prove_rolling.A1);
-    cli_json_add(data, "A2", prove_rolling.A2);
-    cli_json_add(data, "omega", prove_rolling.omega);
-    cJSON_AddItemToObject(data, "psi", prove_json_interval(psi));
-    return data;
-}
 
 static const char *const integral_names[5] = {"D", "C1", "S1", "C2", "S2"};
 

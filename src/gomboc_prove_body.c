@@ -1,7 +1,7 @@
 /* gomboc prove — the Gömböcs' statements: the Melnikov function of each reduced model (§7, the `top` reading, Table 1's
  * rolling forcing) enclosed from the body and its zeros decided (gb_proof_body; docs/proofs.md). */
 #include "gomboc_cli.h"
-#include "gomboc_prove.h"
+#include "gomboc_prove_common.h"
 
 #include "gb_error.h"
 #include "gb_melnikov_body.h"
@@ -11,7 +11,7 @@
 #include <stdio.h>
 #include <string.h>
 
-/* The two bodies of Table 1's rolling scenes (their forcing is prove_rolling, gomboc_prove.h) and the claims decided. */
+/* The two bodies of Table 1's rolling scenes (their forcing is prove_rolling, gomboc_prove_common.h) and the claims decided. */
 typedef struct table1 {
     const char *morphology;
     gb_proof_verdict expected;

@@ -4,7 +4,7 @@
  * (gb_proof_body_chain_design, gb_proof_body_cover_link; docs/proofs.md). The links are independent: they run on the
  * threads asked. */
 #include "gomboc_cli.h"
-#include "gomboc_prove.h"
+#include "gomboc_prove_common.h"
 
 #include "gb_error.h"
 #include "gb_melnikov_body.h"

@@ -1,7 +1,8 @@
-/* What the proof commands share (gomboc_prove.c, gomboc_prove_body.c, gomboc_prove_chain.c): Table 1's rolling forcing,
- * written once, and the JSON of an enclosure and of a hypothesis. Internal to gomboc-prove. */
-#ifndef GOMBOC_PROVE_H
-#define GOMBOC_PROVE_H
+/* What the proof commands (gomboc_prove.c, gomboc_prove_body.c, gomboc_prove_chain.c) share, defined in
+ * gomboc_prove_common.c: Table 1's rolling forcing, written once, and the JSON of an enclosure, a hypothesis and a
+ * Gömböc statement's data. Internal to gomboc-prove. */
+#ifndef GOMBOC_PROVE_COMMON_H
+#define GOMBOC_PROVE_COMMON_H
 
 #include "gb_proof.h"
 
