@@ -6,7 +6,8 @@
  * parallelograms, the classical map's renewal bound from strips of a band that return across it, and the
  * Gömböcs' reduced models (§7) at Table 1's rolling forcing:
  * their Melnikov functions enclosed from the body and their zeros decided (gomboc_prove_body.c); with --horseshoe,
- * instead, Gömböc II's period map at that forcing has a horseshoe (gomboc_prove_chain.c). */
+ * instead, Gömböc II's period map at that forcing has a horseshoe, or Gömböc I's with --morphology I
+ * (gomboc_prove_chain.c). */
 #include "gomboc_cli.h"
 #include "gomboc_prove_common.h"
 
@@ -503,35 +504,28 @@ static void print_statements(const cJSON *list, int proved_count, int attempted,
            attempted, precision);
 }
 
-/* gomboc prove --horseshoe: that statement alone, Gömböc II's (gomboc_prove_chain.c; Gömböc I's sets exist, its run is
- * not part of the command: docs/proofs.md, "What is open"). */
-/* --horseshoe: the horseshoe of the body named (NULL: Gömböc II's, the one make prove proves). */
+/* gomboc prove --horseshoe: that statement alone, for the body named (NULL: Gömböc II, the one make prove proves;
+ * gomboc_prove_chain.c). Gömböc I's runs for hours on two cores: docs/proofs.md, "What is open". */
 static int prove_horseshoe(const char *morphology, long precision, int threads, int json)
 {
-    const char *const bodies[] = {morphology ? morphology : "II"};
-    enum { BODIES = 1 };
     cJSON *root = cJSON_CreateObject(), *list = cJSON_AddArrayToObject(root, "statements");
     cli_json_add(root, "precision_bits", (double)precision);
-    int proved_count = 0, status = GB_OK;
-    for (int k = 0; k < BODIES && !status; k++) {
-        int proved = 0;
-        cJSON *statement = prove_chain_statement(bodies[k], precision, threads, &proved, &status);
-        if (statement) cJSON_AddItemToArray(list, statement), proved_count += proved;
-    }
+    int proved = 0, status = GB_OK;
+    cJSON *statement = prove_chain_statement(morphology ? morphology : "II", precision, threads, &proved, &status);
+    if (statement) cJSON_AddItemToArray(list, statement);
     if (status) {
         cJSON_Delete(root);
         return cli_failure("prove", status);
     }
-    cli_json_add(root, "attempted", BODIES);
-    cli_json_add(root, "proved", proved_count);
+    cli_json_add(root, "attempted", 1);
+    cli_json_add(root, "proved", proved);
     if (json)
         cli_print_json(root);
     else
-        print_statements(list, proved_count, BODIES, (double)precision);
+        print_statements(list, proved, 1, (double)precision);
     cJSON_Delete(root);
-    if (proved_count < BODIES) {
-        fprintf(stderr, "gomboc prove: %d of %d horseshoes not proved (their links say why)\n", BODIES - proved_count,
-                BODIES);
+    if (!proved) {
+        fprintf(stderr, "gomboc prove: the horseshoe is not proved (its links say why)\n");
         return EXIT_COMPUTE;
     }
     return 0;
