@@ -74,38 +74,45 @@ static int derivative(const float_field *F, const double x[2], double J[2][2])
     return GB_OK;
 }
 
+/* Table 1's rolling forcing (cases/table1-gomboc-*-rolling.ini). Gömböc II: a crossing of W^u's 29th image of its
+ * fundamental domain from 1e-7 with W^s's 30th (the float tangle's), sets from z_16 (0.017 from the saddle) to z_47
+ * (8e-4 from its copy). Gömböc I: the same pair of images (their only crossing), sets from z_15 (0.015) to z_48
+ * (6e-4), N_1 thinner across (the images' curvature by the copy). */
+static const struct {
+    const char *morphology;
+    gb_proof_body_chain_def def;
+} defaults[] = {
+    {"II",
+     {.unstable_iterates = 29,
+      .stable_iterates = 30,
+      .unstable_seed = 1.3632e-7,
+      .stable_seed = 1.1336e-7,
+      .first = 16,
+      .last = 47,
+      .saddle_half = {0.011, 5e-4},
+      .first_half = {4e-7, 2.6e-4},
+      .rho = 1.05,
+      .along_min = 1e-6}},
+    {"I",
+     {.unstable_iterates = 29,
+      .stable_iterates = 30,
+      .unstable_seed = 2.0445e-7,
+      .stable_seed = 1.6313e-7,
+      .first = 15,
+      .last = 48,
+      .saddle_half = {0.0093, 4e-4},
+      .first_half = {1e-7, 2.1e-4},
+      .rho = 1.05,
+      .along_min = 1e-6}},
+};
+
 int gb_proof_body_chain_default(const char *morphology, gb_proof_body_chain_def *out)
 {
-    /* Table 1's rolling forcing (cases/table1-gomboc-*-rolling.ini). Gömböc II: a crossing of W^u's 29th image of its
-     * fundamental domain from 1e-7 with W^s's 30th (the float tangle's), sets from z_16 (0.017 from the saddle) to z_47
-     * (8e-4 from its copy). Gömböc I: the same pair of images (their only crossing), sets from z_15 (0.015) to z_48
-     * (6e-4), N_1 thinner across (the images' curvature by the copy) */
-    if (morphology && !strcmp(morphology, "II")) {
-        *out = (gb_proof_body_chain_def){.unstable_iterates = 29,
-                                         .stable_iterates = 30,
-                                         .unstable_seed = 1.3632e-7,
-                                         .stable_seed = 1.1336e-7,
-                                         .first = 16,
-                                         .last = 47,
-                                         .saddle_half = {0.011, 5e-4},
-                                         .first_half = {4e-7, 2.6e-4},
-                                         .rho = 1.05,
-                                         .along_min = 1e-6};
-        return GB_OK;
-    }
-    if (morphology && !strcmp(morphology, "I")) {
-        *out = (gb_proof_body_chain_def){.unstable_iterates = 29,
-                                         .stable_iterates = 30,
-                                         .unstable_seed = 2.0445e-7,
-                                         .stable_seed = 1.6313e-7,
-                                         .first = 15,
-                                         .last = 48,
-                                         .saddle_half = {0.0093, 4e-4},
-                                         .first_half = {1e-7, 2.1e-4},
-                                         .rho = 1.05,
-                                         .along_min = 1e-6};
-        return GB_OK;
-    }
+    for (size_t k = 0; morphology && k < sizeof defaults / sizeof defaults[0]; k++)
+        if (!strcmp(morphology, defaults[k].morphology)) {
+            *out = defaults[k].def;
+            return GB_OK;
+        }
     return gb_error_set(GB_EDOM, "the chain's body '%s' has no default sets (allowed: I, II)",
                         morphology ? morphology : "(none)");
 }
