@@ -43,6 +43,8 @@ extern "C" {
 #define GB_PROOF_BODY_RESOLUTION_MIN 1e-5
 #define GB_PROOF_BODY_RESOLUTION_MAX 0.1
 
+typedef struct gb_proof_body_arcs gb_proof_body_arcs;
+
 typedef struct gb_proof_body_def {
     const gb_surface *surface;  /* the paper's Gömböc I or II, 0 < β < 1/4 */
     double mass, g;             /* m [kg] > 0, g [m/s²] > 0 */
@@ -52,6 +54,8 @@ typedef struct gb_proof_body_def {
     double cut;                 /* the saddle's neighbourhoods [0, cut] and [2π − cut, 2π] (GB_PROOF_BODY_CUT_MIN … MAX) */
     double resolution;          /* a cell's width over its distance to the saddle (GB_PROOF_BODY_RESOLUTION_MIN … MAX) */
     long precision;             /* Arb's bits */
+    gb_proof_body_arcs *arcs;   /* NULL, or H's coefficients over fixed cells of q made for this definition
+                                   (gb_proof_body_arcs_create), which the reduced field's integrations share */
 } gb_proof_body_def;
 
 typedef struct gb_proof_body_model {
@@ -149,6 +153,32 @@ typedef struct gb_proof_body_jet {
 
 GB_API int gb_proof_body_jet_enclose(const gb_proof_body_def *def, double q_lo, double q_hi, int order,
                                      gb_proof_body_jet *out);
+
+/* H's coefficients H_0 … H_order over the fixed cells [i w, (i + 1) w] of q, w = 2^−level, each enclosed once by
+ * gb_proof_body_jet_enclose when an integration first needs it and kept (src/gb_proof_body_arcs.c). With def->arcs set,
+ * the reduced field's integrations (gb_proof_body_flow, gb_proof_body_period_map, gb_proof_body_cover_link) take H's
+ * coefficients over an arc as the hull of those of the cells covering it (at most 64): H and H′ for Picard's test of a
+ * step's a-priori enclosure over any arc, the higher ones of a step's remainder over arcs of two cells or more. An arc
+ * touching a refused cell (a tie in it), a narrower one's higher coefficients (a step's centre) and a branch followed to
+ * its tie are enclosed as without the table. The hull holds H⁽ᵏ⁾(q)/k! at every q of the arc, as the arc's own
+ * enclosure does, so the statements proved are of the same kind; their margins may differ slightly. The table may be
+ * shared by threads (one mutex; a cell enclosed outside it) and keeps at most 2¹⁶ cells; what it answers does not depend
+ * on the threads' order. GB_EDOM for a level or order (1 … GB_PROOF_BODY_JET_ORDER_MAX) out of range or a precision
+ * gb_proof_body_enclose refuses. */
+#define GB_PROOF_BODY_ARCS_LEVEL_MIN 6
+#define GB_PROOF_BODY_ARCS_LEVEL_MAX 16
+
+typedef struct gb_proof_body_arcs_stats {
+    size_t cells;    /* cells enclosed and kept */
+    size_t refused;  /* cells that could not be enclosed (kept as such) */
+    size_t served;   /* arcs answered from the cells */
+    size_t declined; /* arcs left to their own enclosure because a cell was refused */
+    double seconds;  /* CPU spent enclosing the cells kept */
+} gb_proof_body_arcs_stats;
+
+GB_API int gb_proof_body_arcs_create(const gb_proof_body_def *def, int level, int order, gb_proof_body_arcs **out);
+GB_API void gb_proof_body_arcs_get_stats(gb_proof_body_arcs *arcs, gb_proof_body_arcs_stats *out);
+GB_API void gb_proof_body_arcs_free(gb_proof_body_arcs *arcs);
 
 /* A tie of H on an arc (src/gb_proof_body_jet.c): the q* where the arc's two contacts are equally high, by interval
  * Newton steps on their heights' difference d = h_A − h_B (each contact's coefficients from its component's hull, its

@@ -8,6 +8,7 @@
 #include "gb_proof_body.h"
 
 #include "gb_error.h"
+#include "gb_proof_body_arcs_internal.h"
 #include "gb_proof_body_boxes_internal.h"
 #include "gb_proof_flow_internal.h"
 #include "gb_proof_internal.h"
@@ -53,8 +54,9 @@ static int h_prime(void *context, const arb_t x, int order, arb_ptr g)
     }
     if (!(q.lo == J->lo && q.hi == J->hi && order + 1 <= J->order)) {
         gb_proof_body_jet jet;
-        if (J->branch ? gb_proof_body_jet_branch(J->def, q.lo, q.hi, order + 1, J->q_s, J->above, &jet)
-                      : gb_proof_body_jet_enclose(J->def, q.lo, q.hi, order + 1, &jet)) {
+        const int served = !J->branch && gb_proof_body_arcs_jet(J->def->arcs, J->def, q.lo, q.hi, order + 1, jet.H);
+        if (!served && (J->branch ? gb_proof_body_jet_branch(J->def, q.lo, q.hi, order + 1, J->q_s, J->above, &jet)
+                                  : gb_proof_body_jet_enclose(J->def, q.lo, q.hi, order + 1, &jet))) {
             if (!J->failed) snprintf(J->why, sizeof J->why, "%s", gb_error_message());
             gb_error_clear();
             J->failed = 1;

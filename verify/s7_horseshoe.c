@@ -10,6 +10,10 @@
  *   target is moved along by three of its half-widths (the image then lies outside its strip) or widened across by a
  *   fifth (the edges' images then fall inside it) — negative controls of each of the two conditions;
  * - disjointness: every pair of the chain's sets proved apart on the cylinder, and a set against itself 2π on never;
+ * - H's coefficients over the shared cells of q (gb_proof_body_arcs, which the links use as `gomboc prove --horseshoe`
+ *   does): the point coefficients at each arc's ends and middle inside the cells' hull and inside the arc's own
+ *   enclosure (gb_proof_body_jet_enclose); a cell across a tie refused and its arc left to the caller; the same
+ *   answer from a fresh table and from one filled by other arcs first;
  * - Gömböc I's default sets (its links are not proved here: hours): the same float design checks, five centres'
  *   rigorous images, and its sets pairwise apart;
  * - the entropy bound: against the golden ratio's closed form for a cycle of 2, and a float bisection for the chain. */
@@ -17,6 +21,7 @@
 #include "gb_error.h"
 #include "gb_melnikov_body.h"
 #include "gb_proof_body.h"
+#include "gb_proof_body_arcs_internal.h"
 #include "verify_sections.h"
 
 #include <math.h>
@@ -83,6 +88,9 @@ static int setup_body(int b, chain_setup *s)
 }
 
 static int setup_chain(chain_setup *s) { return setup_body(0, s); }
+
+/* The cells `gomboc prove --horseshoe` shares among its links (src/gomboc_prove_chain.c): 2^-9 wide, to order 14. */
+enum { CELL_LEVEL = 9, CELL_ORDER = 14 };
 
 /* The float design of body b's chain against Liouville, and the rigorous period map of five of its centres; for
  * Gömböc I also its sets' disjointness (its links are not proved here: docs/proofs.md, "What is open"). */
@@ -157,6 +165,9 @@ static void test_links(void)
     int status = setup_chain(&s), proved = 0, strip_refused = 0, edges_refused = 0;
     double seconds = 0.0, strip_margin = INFINITY, edge_margin = INFINITY;
     char first[400] = "";
+    gb_proof_body_arcs *arcs = NULL;
+    if (!status) status = gb_proof_body_arcs_create(&s.def, CELL_LEVEL, CELL_ORDER, &arcs);
+    s.def.arcs = arcs;
     if (!status) {
         const gb_proof_body_hset *N = s.chain.set;
         const int from[3] = {0, 0, 1}, to[3] = {0, 1, 2};
@@ -179,15 +190,105 @@ static void test_links(void)
         if (!status) status = gb_proof_body_cover_link(&s.def, &table1, NULL, &N[1], &wide, 0, 1, 2, 12, &r);
         edges_refused = !status && r.strip && !r.edges;
     }
-    gb_check c = {"7", "78, 91", "covering relations of Gomboc II's period map by the saddle: N0 => N0, N0 => N1, N1 => N2",
-                  "the covering relation's two conditions proved on Arb's balls (mean value form, C1 period map); "
-                  "negative controls: the target moved along by three half-widths, or a fifth wider across",
+    gb_proof_body_arcs_free(arcs);
+    gb_check c = {"7", "78, 91",
+                  "covering relations of Gomboc II's period map by the saddle: N0 => N0, N0 => N1, N1 => N2",
+                  "the covering relation's two conditions proved on Arb's balls (mean value form, C1 period map, H's "
+                  "coefficients from the shared cells as the command takes them); negative controls: the target moved "
+                  "along by three half-widths, or a fifth wider across",
                   "proved or not proved: no tolerance (the design's margin is 1 - 1/rho = 0.048 of the target)"};
     gb_check_true(&c, !status && proved == 3 && strip_refused && edges_refused,
                   "%d of 3 proved (strip margin %.3f, edges beyond by %.3f of the target's half-widths), moved target "
                   "refused %d, widened target refused %d; %.1f s CPU%s%s%s",
                   proved, strip_margin, edge_margin, strip_refused, edges_refused, seconds, first, status ? ": " : "",
                   status ? gb_error_message() : "");
+}
+
+/* No tie of the float model within `gap` of [q0, q1]. */
+static int clear_of_ties(const gb_melnikov_body_info *info, double q0, double q1, double gap)
+{
+    for (size_t k = 0; k < info->kinks && k < 16; k++)
+        if (info->kink_q[k] > q0 - gap && info->kink_q[k] < q1 + gap) return 0;
+    return 1;
+}
+
+static double width(gb_proof_interval x) { return x.hi - x.lo; }
+
+/* H's coefficients over arcs as the links take them (the hull of the shared cells') against the points' at each arc's
+ * ends and middle and against the arc's own enclosure; a tie's cell refused; one answer whatever the table held. */
+static void test_cells(void)
+{
+    enum { ARCS = 16 };
+    chain_setup s;
+    int status = setup_chain(&s), arcs = 0, served = 0, inside_cells = 0, inside_own = 0, ties = 0, declined = 0;
+    int same = 0, other_def = 0;
+    double ratio_lo = INFINITY, ratio_hi = 0.0;
+    char first[300] = "";
+    gb_proof_body_arcs *A = NULL, *B = NULL;
+    if (!status) status = gb_proof_body_arcs_create(&s.def, CELL_LEVEL, CELL_ORDER, &A);
+    if (!status) status = gb_proof_body_arcs_create(&s.def, CELL_LEVEL, CELL_ORDER, &B);
+    double q[ARCS][2];
+    gb_proof_interval H[ARCS][CELL_ORDER + 1];
+    int asked[ARCS] = {0};
+    for (int k = 0; k < ARCS && !status; k++) { /* arcs 0.004 … 0.05 wide over q in (0.35, 6) */
+        q[k][0] = 0.35 + 5.6 * k / ARCS, q[k][1] = q[k][0] + 0.004 + 0.046 * (k % 4) / 3.0;
+        if (!clear_of_ties(&s.info, q[k][0], q[k][1], 0.06)) continue;
+        arcs++, asked[k] = 1;
+        if (!gb_proof_body_arcs_jet(A, &s.def, q[k][0], q[k][1], CELL_ORDER, H[k])) continue;
+        served++, asked[k] = 2;
+        gb_proof_body_jet own, at;
+        status = gb_proof_body_jet_enclose(&s.def, q[k][0], q[k][1], CELL_ORDER, &own);
+        int in_cells = 1, in_own = 1;
+        for (int i = 0; i < 3 && !status; i++) {
+            const double x = i == 1 ? 0.5 * q[k][0] + 0.5 * q[k][1] : q[k][i / 2];
+            status = gb_proof_body_jet_enclose(&s.def, x, x, CELL_ORDER, &at);
+            for (int c = 0; c <= CELL_ORDER && !status; c++) {
+                in_cells &= at.H[c].lo >= H[k][c].lo && at.H[c].hi <= H[k][c].hi;
+                in_own &= at.H[c].lo >= own.H[c].lo && at.H[c].hi <= own.H[c].hi;
+            }
+        }
+        inside_cells += in_cells, inside_own += in_own;
+        for (int c = 1; c <= CELL_ORDER && !status; c += CELL_ORDER - 1) {
+            const double r = width(H[k][c]) / width(own.H[c]);
+            ratio_lo = fmin(ratio_lo, r), ratio_hi = fmax(ratio_hi, r);
+        }
+        if (!in_cells && !first[0])
+            snprintf(first, sizeof first, "; arc [%.6g, %.6g]: a point's coefficients outside the cells' hull", q[k][0],
+                     q[k][1]);
+    }
+    for (size_t t = 0; t < s.info.kinks && t < 16 && !status; t++) { /* an arc across a tie */
+        gb_proof_interval T[3];
+        ties++;
+        declined += !gb_proof_body_arcs_jet(A, &s.def, s.info.kink_q[t] - 3e-3, s.info.kink_q[t] + 3e-3, 2, T);
+    }
+    for (int k = ARCS - 1; k >= 0 && !status; k--) /* B answers the arcs in the other order */
+        if (asked[k] == 2) {
+            gb_proof_interval again[CELL_ORDER + 1];
+            same += gb_proof_body_arcs_jet(B, &s.def, q[k][0], q[k][1], CELL_ORDER, again) &&
+                    !memcmp(again, H[k], sizeof again);
+        }
+    gb_proof_body_arcs_stats stats = {0};
+    if (A) gb_proof_body_arcs_get_stats(A, &stats);
+    gb_proof_body_def other = s.def;
+    other.precision = 2 * s.def.precision;
+    gb_proof_interval T[3];
+    other_def = !status && !gb_proof_body_arcs_jet(A, &other, 1.0, 1.01, 2, T);
+    gb_proof_body_arcs_free(A), gb_proof_body_arcs_free(B);
+    gb_check c = {"7", "78, 91",
+                  "Gomboc II's H over 16 arcs 0.004 ... 0.05 wide from cells of q 2^-9 wide, to order 14, as the "
+                  "horseshoe's links take them",
+                  "each arc's ends' and middle's coefficients (enclosed alone) inside the cells' hull and inside the "
+                  "arc's own enclosure; arcs across the ties not served; a second table asked in the other order",
+                  "inclusion, exact (balls); the second table's answers bit for bit"};
+    gb_check_true(&c,
+                  !status && arcs >= 12 && served == arcs && inside_cells == served && inside_own == served &&
+                      ties >= 1 && declined == ties && stats.refused >= (size_t)ties && same == served && other_def,
+                  "%d of %d arcs served (%zu cells enclosed, %zu refused), points inside the cells' hull %d and the "
+                  "arc's own %d; widths of H_1 and H_14 over the cells' hull / the arc's own %.2g to %.2g; %d of %d "
+                  "arcs across a tie not served; %d answers the same from the second table; another definition not "
+                  "served %d; %.1f s CPU in the cells%s%s%s",
+                  served, arcs, stats.cells, stats.refused, inside_cells, inside_own, ratio_lo, ratio_hi, declined,
+                  ties, same, other_def, stats.seconds, first, status ? ": " : "", status ? gb_error_message() : "");
 }
 
 /* The largest root of x^L = x^{L-1} + 1 in doubles (bisection on (1, 2]). */
@@ -278,10 +379,25 @@ static void test_bad_chains(void)
         const int st = gb_proof_body_chain_entropy(1, &h);
         refused += st == GB_EDOM, named += st == GB_EDOM && strstr(gb_error_message(), "length") != NULL;
         gb_error_clear();
+        const struct {
+            int level, order;
+            const char *word;
+        } cells[4] = {{GB_PROOF_BODY_ARCS_LEVEL_MIN - 1, 2, "level"},
+                      {GB_PROOF_BODY_ARCS_LEVEL_MAX + 1, 2, "level"},
+                      {CELL_LEVEL, 0, "order"},
+                      {CELL_LEVEL, GB_PROOF_BODY_JET_ORDER_MAX + 1, "order"}};
+        for (int k = 0; k < 4; k++, cases++) {
+            gb_proof_body_arcs *arcs = NULL;
+            const int sc = gb_proof_body_arcs_create(&s.def, cells[k].level, cells[k].order, &arcs);
+            refused += sc == GB_EDOM && !arcs, named += sc == GB_EDOM && strstr(gb_error_message(), cells[k].word) &&
+                                                        strstr(gb_error_message(), "allowed");
+            gb_error_clear();
+            gb_proof_body_arcs_free(arcs);
+        }
     }
-    gb_check c = {"7", "78, 91", "bad h-sets, pieces, depths, turns, chains, bodies and cycles refused",
+    gb_check c = {"7", "78, 91", "bad h-sets, pieces, depths, turns, chains, bodies, cycles and cells refused",
                   "each names what is out of range", "exact"};
-    gb_check_true(&c, !status && refused == cases && named == cases && cases == 11,
+    gb_check_true(&c, !status && refused == cases && named == cases && cases == 15,
                   "%d of %d refused, %d naming the argument%s%s", refused, cases, named, status ? ": " : "",
                   status ? gb_error_message() : "");
 }
@@ -298,6 +414,9 @@ int verify_register_s7_horseshoe(void)
          "a horseshoe's sets are disjoint on the cylinder, and its graph's entropy is bounded below rigorously"},
         {"proofs: Gomboc I's default sets along its homoclinic orbit", test_design_one,
          "the h-sets of a horseshoe sit along a homoclinic orbit of the period map in frames of its manifolds"},
+        {"proofs: H's coefficients from the links' shared cells of q", test_cells,
+         "a Taylor step of the period map may take H's coefficients over its arc from enclosures over fixed cells "
+         "shared by all links"},
         {"proofs: bad h-sets and chains", test_bad_chains, NULL},
         {NULL, NULL, NULL},
     };
