@@ -158,7 +158,7 @@ GB_API int gb_proof_body_jet_enclose(const gb_proof_body_def *def, double q_lo, 
  * gb_proof_body_jet_enclose when an integration first needs it and kept (src/gb_proof_body_arcs.c). With def->arcs set,
  * the reduced field's integrations (gb_proof_body_flow, gb_proof_body_period_map, gb_proof_body_cover_link) take H's
  * coefficients over an arc as the hull of those of the cells covering it (at most 64): H and H′ for Picard's test of a
- * step's a-priori enclosure over any arc, the higher ones of a step's remainder over arcs of two cells or more. An arc
+ * step's a-priori enclosure over any arc, the higher ones of a step's remainder over arcs of four cells or more. An arc
  * touching a refused cell (a tie in it), a narrower one's higher coefficients (a step's centre) and a branch followed to
  * its tie are enclosed as without the table. The hull holds H⁽ᵏ⁾(q)/k! at every q of the arc, as the arc's own
  * enclosure does, so the statements proved are of the same kind; their margins may differ slightly. The table may be

@@ -24,7 +24,7 @@
 
 /* An arc of at most SPAN_MAX cells is served; its coefficients above the second only when it spans SPAN_HIGH cells or
  * more (a narrow ball's, as at a step's centre, would lose its narrowness to the cells' width). */
-enum { SPAN_MAX = 64, SPAN_HIGH = 2, SLOTS_MAX = 1 << 17 };
+enum { SPAN_MAX = 64, SPAN_HIGH = 4, SLOTS_MAX = 1 << 17 };
 
 enum { SLOT_EMPTY = 0, SLOT_ENCLOSED, SLOT_REFUSED };
 

@@ -6,8 +6,8 @@
  * parallelograms, the classical map's renewal bound from strips of a band that return across it, and the
  * Gömböcs' reduced models (§7) at Table 1's rolling forcing:
  * their Melnikov functions enclosed from the body and their zeros decided (gomboc_prove_body.c); with --horseshoe,
- * instead, Gömböc II's period map at that forcing has a horseshoe, or Gömböc I's with --morphology I
- * (gomboc_prove_chain.c). */
+ * instead, Gömböc II's period map at that forcing has a horseshoe, or Gömböc I's is attempted with --morphology I (not
+ * proved: docs/proofs.md) (gomboc_prove_chain.c). */
 #include "gomboc_cli.h"
 #include "gomboc_prove_common.h"
 
@@ -58,8 +58,9 @@ static const char *usage_prove =
     "  --horseshoe       instead, Gomboc II's horseshoe at Table 1's rolling forcing: covering relations of\n"
     "                    its period map along a homoclinic orbit, h_top >= ln rho (minutes; make prove;\n"
     "                    --precision and --threads apply)\n"
-    "  --morphology M    with --horseshoe, Gomboc M's (I or II; default II). Gomboc I's 36 links take hours\n"
-    "                    on two cores (docs/proofs.md, What is open) and have not been run to their end\n"
+    "  --morphology M    with --horseshoe, Gomboc M's (I or II; default II). Gomboc I's: 30 of its 36 links\n"
+    "                    are proved, five through its stretches of large Taylor coefficients are not and one\n"
+    "                    runs for more than 25 minutes (docs/proofs.md, What is open): exit 1\n"
     "  --json            the statements as JSON on standard output\n"
     "\n"
     "Exit 0 when every statement attempted is proved, 1 when one is not (it says which and why), 2 for bad\n"
@@ -505,7 +506,7 @@ static void print_statements(const cJSON *list, int proved_count, int attempted,
 }
 
 /* gomboc prove --horseshoe: that statement alone, for the body named (NULL: Gömböc II, the one make prove proves;
- * gomboc_prove_chain.c). Gömböc I's runs for hours on two cores: docs/proofs.md, "What is open". */
+ * gomboc_prove_chain.c). Gömböc I's is not proved (five of its links fail): docs/proofs.md, "What is open". */
 static int prove_horseshoe(const char *morphology, long precision, int threads, int json)
 {
     cJSON *root = cJSON_CreateObject(), *list = cJSON_AddArrayToObject(root, "statements");
