@@ -18,7 +18,7 @@
 
 /* The links' first cut across, the halvings allowed and the Taylor order; H's coefficients over cells of q 2^-9 wide
  * shared by all links (gb_proof_body_arcs: a step's H′ for Picard's test and its remainder's coefficients, up to
- * ORDER + 2), which took a mid-excursion link of Gömböc II from 25 s to 1.5 s and one of Gömböc I from 107 s to 6 s. */
+ * ORDER + 2; docs/proofs.md, item 10, says why and what it saves). */
 enum { PIECES = 1, DEPTH = 6, ORDER = 12, CELL_LEVEL = 9 };
 
 typedef struct link_job {

@@ -274,12 +274,14 @@ static void test_cells(void)
     gb_proof_interval T[3];
     other_def = !status && !gb_proof_body_arcs_jet(A, &other, 1.0, 1.01, 2, T);
     gb_proof_body_arcs_free(A), gb_proof_body_arcs_free(B);
-    gb_check c = {"7", "78, 91",
-                  "Gomboc II's H over 16 arcs 0.008 ... 0.05 wide from cells of q 2^-9 wide, to order 14, as the "
-                  "horseshoe's links take them",
-                  "each arc's ends' and middle's coefficients (enclosed alone) inside the cells' hull and inside the "
-                  "arc's own enclosure; arcs across the ties not served; a second table asked in the other order",
-                  "inclusion, exact (balls); the second table's answers bit for bit"};
+    gb_check c = {
+        "7", "78, 91",
+        "Gomboc II's H over arcs 0.008 ... 0.05 wide at 16 places of q (those 0.06 clear of its ties) from cells of q "
+        "2^-9 wide, to order 14, as the "
+        "horseshoe's links take them",
+        "each arc's ends' and middle's coefficients (enclosed alone) inside the cells' hull and inside the "
+        "arc's own enclosure; arcs across the ties not served; a second table asked in the other order",
+        "inclusion, exact (balls); the second table's answers bit for bit"};
     gb_check_true(&c,
                   !status && arcs >= 12 && served == arcs && inside_cells == served && inside_own == served &&
                       ties >= 1 && declined == ties && stats.refused >= (size_t)ties && same == served && other_def,
