@@ -91,6 +91,19 @@ def proofs_section(out):
         lines += [f"**{s['statement']}** ({s['result']}). System: {s['system']}. Sets: {s['sets']}. Reproduces: "
                   f"{s['reproduces']}. Method: {s['method']}. Theorem: {s['theorem']}. Reading: {s['reading']}. "
                   f"Strips: {strips}. h_top >= {s['entropy_lower_bound']:.17g} ({s['seconds']:.3g} s CPU).", ""]
+    for s in statements:
+        if "index_pair" not in s:
+            continue
+        pair = s["index_pair"]
+        conditions = ", ".join(f"{name.replace('_', ' ')} {'proved' if pair[name] else 'NOT proved'}"
+                               for name in ("positively_invariant", "exit_set", "isolated"))
+        lines += [f"**{s['statement']}** ({s['result']}). System: {s['system']}. Sets: {s['sets']}. Reproduces: "
+                  f"{s['reproduces']}. Method: {s['method']}. Theorem: {s['theorem']}. Reading: {s['reading']}. "
+                  f"Index pair: {conditions} ({pair['invariant_boxes']:g} boxes on bi-infinite paths inside P1 \\ P0). "
+                  f"H_*(P1, P0; Z2) of ranks {s['h0']:g}, {s['h1']:g}, {s['h2']:g}; {s['regions']:g} regions "
+                  f"({s['regions_used']:g} used); the sofic graph {s['symbols']:g} symbols and {s['transitions']:g} "
+                  f"transitions, its largest component {s['component']:g}, rho >= {s['rho_lower_bound']:.12g}; "
+                  f"h_top >= {s['entropy_lower_bound']:.17g} ({s['seconds']:.3g} s CPU).", ""]
     lines += horseshoe_lines(out)
     return lines
 

@@ -1,4 +1,4 @@
-/* What the proof commands (gomboc_prove.c, gomboc_prove_body.c, gomboc_prove_chain.c) share, defined in
+/* What the proof commands (gomboc_prove.c, gomboc_prove_body.c, gomboc_prove_chain.c, gomboc_prove_conley.c) share, defined in
  * gomboc_prove_common.c: Table 1's rolling forcing, written once, and the JSON of an enclosure, a hypothesis and a
  * Gömböc statement's data. Internal to gomboc-prove. */
 #ifndef GOMBOC_PROVE_COMMON_H
@@ -23,5 +23,9 @@ void prove_add_hypothesis(cJSON *list, const char *text, const char *status);
 const char *prove_status(int holds);
 /* Adds the statement's "data" object: the body's morphology, Table 1's rolling forcing and ψ's enclosure; returns it. */
 cJSON *prove_rolling_data(cJSON *statement, const char *morphology, gb_proof_interval psi);
+
+/* The statement by the discrete Conley index (gomboc_prove_conley.c): Hénon's map at a = 6 (classical 0) or the
+ * classical one; NULL with *status set when a computation fails. */
+cJSON *prove_conley_statement(long precision, int classical, int *proved, int *status);
 
 #endif

@@ -1,0 +1,127 @@
+/* gb_proof_conley_henon — Hénon's maps for the discrete Conley index (see gb_proof_conley.h): at a = 6 on a whole grid,
+ * and the classical map from its periodic points' boxes. */
+#include "gb_proof_conley.h"
+#include "gb_proof_cover.h"
+
+#include "gb_error.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+static int compare_boxes(const void *a, const void *b)
+{
+    const uint32_t x = *(const uint32_t *)a, y = *(const uint32_t *)b;
+    return x < y ? -1 : x > y;
+}
+
+int gb_proof_conley_henon_horseshoe(int depth, gb_proof_field *field, gb_proof_conley_def *def, uint32_t **n_boxes,
+                                    size_t *n)
+{
+    *n_boxes = NULL, *n = 0;
+    *field = gb_proof_cover_henon(6, 1, 3, 10);
+    *def = gb_proof_conley_def_default();
+    def->map = field, def->depth = depth, def->x = (gb_proof_interval){-1.0, 1.0},
+    def->y = (gb_proof_interval){-1.0, 1.0};
+    if (depth < GB_PROOF_CONLEY_DEPTH_MIN || depth > GB_PROOF_CONLEY_DEPTH_MAX)
+        return gb_error_set(GB_EDOM, "depth = %d is out of range (allowed: %d to %d)", depth, GB_PROOF_CONLEY_DEPTH_MIN,
+                            GB_PROOF_CONLEY_DEPTH_MAX);
+    const long side = 1L << depth;
+    *n_boxes = malloc((size_t)(side * side) * sizeof **n_boxes);
+    if (!*n_boxes) return gb_error_set(GB_ENOMEM, "out of memory for N");
+    for (long j = 1; j < side - 1; j++)
+        for (long i = 1; i < side - 1; i++) (*n_boxes)[(*n)++] = (uint32_t)(j * side + i);
+    return GB_OK;
+}
+
+/* H^p(x) − x = 0 by Newton in doubles from x; 1 with x the point when it converges to a point of least period p. */
+static int periodic_point(double a, double b, int p, double x[2])
+{
+    for (int it = 0; it < 60; it++) {
+        double y[2] = {x[0], x[1]}, J[2][2] = {{1.0, 0.0}, {0.0, 1.0}};
+        for (int k = 0; k < p; k++) {
+            const double D[2][2] = {{-2.0 * a * y[0], 1.0}, {b, 0.0}};
+            const double M[2][2] = {{D[0][0] * J[0][0] + D[0][1] * J[1][0], D[0][0] * J[0][1] + D[0][1] * J[1][1]},
+                                    {D[1][0] * J[0][0] + D[1][1] * J[1][0], D[1][0] * J[0][1] + D[1][1] * J[1][1]}};
+            memcpy(J, M, sizeof J);
+            const double next[2] = {1.0 - a * y[0] * y[0] + y[1], b * y[0]};
+            y[0] = next[0], y[1] = next[1];
+            if (!(fabs(y[0]) < 10.0 && fabs(y[1]) < 10.0)) return 0;
+        }
+        const double A[2][2] = {{J[0][0] - 1.0, J[0][1]}, {J[1][0], J[1][1] - 1.0}}, r[2] = {y[0] - x[0], y[1] - x[1]};
+        const double det = A[0][0] * A[1][1] - A[0][1] * A[1][0];
+        if (!(fabs(det) > 1e-12)) return 0;
+        const double dx[2] = {-(A[1][1] * r[0] - A[0][1] * r[1]) / det, -(A[0][0] * r[1] - A[1][0] * r[0]) / det};
+        x[0] += dx[0], x[1] += dx[1];
+        if (hypot(dx[0], dx[1]) < 1e-13) {
+            double z[2] = {x[0], x[1]};
+            for (int k = 1; k < p; k++) { /* least period p: no earlier return */
+                const double next[2] = {1.0 - a * z[0] * z[0] + z[1], b * z[0]};
+                z[0] = next[0], z[1] = next[1];
+                if (hypot(z[0] - x[0], z[1] - x[1]) < 1e-9) return 0;
+            }
+            return 1;
+        }
+    }
+    return 0;
+}
+
+int gb_proof_conley_henon_classical(int period_max, int depth, gb_proof_field *field, gb_proof_conley_def *def,
+                                    uint32_t **seeds, size_t *count)
+{
+    *seeds = NULL, *count = 0;
+    *field = gb_proof_cover_henon(7, 5, 3, 10);
+    *def = gb_proof_conley_def_default();
+    def->map = field, def->depth = depth, def->x = (gb_proof_interval){-2.0, 2.0},
+    def->y = (gb_proof_interval){-0.5, 0.5};
+    def->region_dimension = GB_PROOF_CONLEY_REGION_DIMENSION_MAX;
+    if (depth < GB_PROOF_CONLEY_DEPTH_MIN || depth > GB_PROOF_CONLEY_DEPTH_MAX)
+        return gb_error_set(GB_EDOM, "depth = %d is out of range (allowed: %d to %d)", depth, GB_PROOF_CONLEY_DEPTH_MIN,
+                            GB_PROOF_CONLEY_DEPTH_MAX);
+    if (period_max < 1 || period_max > 16)
+        return gb_error_set(GB_EDOM, "period_max = %d is out of range (allowed: 1 to 16)", period_max);
+    enum { STARTS = 4000 };
+    const double a = 1.4, b = 0.3;
+    const long side = 1L << depth;
+    size_t room = 1024;
+    uint32_t *list = malloc(room * sizeof *list);
+    if (!list) return gb_error_set(GB_ENOMEM, "out of memory for the seeds");
+    double o[2] = {0.1, 0.1};
+    for (int k = 0; k < 1000; k++) { /* onto the attractor */
+        const double next[2] = {1.0 - a * o[0] * o[0] + o[1], b * o[0]};
+        o[0] = next[0], o[1] = next[1];
+    }
+    for (int s = 0; s < STARTS; s++) {
+        for (int k = 0; k < 7; k++) { /* the starts: every 7th point of the orbit */
+            const double next[2] = {1.0 - a * o[0] * o[0] + o[1], b * o[0]};
+            o[0] = next[0], o[1] = next[1];
+        }
+        for (int p = 1; p <= period_max; p++) {
+            double x[2] = {o[0], o[1]};
+            if (!periodic_point(a, b, p, x)) continue;
+            for (int k = 0; k < p; k++) { /* the orbit's boxes */
+                const long i = (long)floor((x[0] + 2.0) / 4.0 * (double)side),
+                           j = (long)floor((x[1] + 0.5) * (double)side);
+                if (i > 0 && j > 0 && i < side - 1 && j < side - 1) {
+                    if (*count == room) {
+                        uint32_t *more = realloc(list, 2 * room * sizeof *more);
+                        if (!more) {
+                            free(list);
+                            return gb_error_set(GB_ENOMEM, "out of memory for the seeds");
+                        }
+                        list = more, room *= 2;
+                    }
+                    list[(*count)++] = (uint32_t)(j * side + i);
+                }
+                const double next[2] = {1.0 - a * x[0] * x[0] + x[1], b * x[0]};
+                x[0] = next[0], x[1] = next[1];
+            }
+        }
+    }
+    qsort(list, *count, sizeof *list, compare_boxes);
+    size_t unique = 0;
+    for (size_t k = 0; k < *count; k++)
+        if (!unique || list[unique - 1] != list[k]) list[unique++] = list[k];
+    *seeds = list, *count = unique;
+    return GB_OK;
+}

@@ -1,0 +1,56 @@
+/* gb_proof_conley_internal — what gb_proof_conley.c (the grid, the map's boxes, the index pair's conditions),
+ * gb_proof_conley_homology.c (H_1(P1, P0; Z2) and the index map on it) and gb_proof_conley_sofic.c (regions, the
+ * sofic graph, its entropy) share. Not installed, not exported. */
+#ifndef GB_PROOF_CONLEY_INTERNAL_H
+#define GB_PROOF_CONLEY_INTERNAL_H
+
+#include "gb_proof_conley.h"
+
+#include <stddef.h>
+#include <stdint.h>
+
+/* What a box of the grid is: in P1, in P0 (⊂ P1), in Q = P1 ∖ P0, in E = F(P1) ∖ P1. */
+enum { CONLEY_P1 = 1, CONLEY_P0 = 2, CONLEY_Q = 4, CONLEY_E = 8 };
+
+/* The grid of 2^depth × 2^depth boxes, box (i, j) = [x0 + i hx, x0 + (i + 1) hx] × [y0 + j hy, y0 + (j + 1) hy], its
+ * number j n + i; and F on P1: for P1's k-th box, the boxes i0 ≤ i ≤ i1, j0 ≤ j ≤ j1 its image's enclosure touches
+ * (−1 and n stand for every box beyond the grid on that side). */
+typedef struct conley_grid {
+    int depth;
+    long n;
+    double x0, y0, hx, hy;
+    uint8_t *state; /* n² flags */
+    size_t p1_count;
+    const uint32_t *p1; /* strictly increasing */
+    int32_t (*rect)[4]; /* p1_count rectangles: i0, i1, j0, j1 */
+} conley_grid;
+
+static inline int conley_is(const conley_grid *g, long i, long j, int flag)
+{
+    return i >= 0 && j >= 0 && i < g->n && j < g->n && (g->state[j * g->n + i] & flag);
+}
+
+/* The position of box `box` in P1, or −1. */
+long conley_p1_position(const conley_grid *g, uint32_t box);
+
+/* H_*(P1, P0; Z2) of the cubical pair and the index map on H_1 in the basis of its generators (tree–cotree: the
+ * edges of the relative complex neither in a spanning forest of its vertices, P0's collapsed to one, nor in a spanning
+ * forest of its squares and the outside over the remaining edges). map: generators × words, bit c of row r the r-th
+ * coordinate of the image of generator c; square: a box of Q beside each generator's edge. */
+typedef struct conley_homology {
+    long h0, h1, h2;
+    size_t generators, words;
+    uint64_t *map;
+    int32_t *square; /* the box's number on the grid */
+} conley_homology;
+
+/* GB_OK, or GB_ENOMEM; GB_ENUMERIC when the decomposition does not span (the reason in failure). */
+int conley_homology_compute(const conley_grid *g, conley_homology *out, char *failure, size_t failure_size);
+void conley_homology_free(conley_homology *h);
+
+/* Q's regions and the sofic graph of the index map's blocks (gb_proof_conley.h): fills out's regions, symbols,
+ * transitions, component, rho and entropy. GB_ENOMEM, or GB_OK. */
+int conley_sofic_entropy(const conley_grid *g, const conley_homology *h, long precision, int region_dimension,
+                         gb_proof_conley_result *out);
+
+#endif
