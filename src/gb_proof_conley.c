@@ -1,8 +1,10 @@
-/* gb_proof_conley — the grid and F on Arb's balls, an index pair's three conditions, its construction from an
- * isolating neighbourhood, Q's regions, and the entropy of the sofic shift the index map's blocks prove (see
- * gb_proof_conley.h; H_1 and the index map in gb_proof_conley_homology.c). */
+/* gb_proof_conley — the grid and F on Arb's balls, an index pair's three conditions and its construction from a set
+ * of boxes (see gb_proof_conley.h); H_1 and the index map in gb_proof_conley_homology.c, the regions and the sofic
+ * shift's entropy in gb_proof_conley_sofic.c. */
 #include "gb_proof_conley.h"
-#include "gb_proof_conley_internal.h"
+#include "gb_proof_conley_grid_internal.h"
+#include "gb_proof_conley_homology_internal.h"
+#include "gb_proof_conley_sofic_internal.h"
 #include "gb_proof_flow_internal.h"
 #include "gb_proof_internal.h"
 
@@ -16,19 +18,6 @@
 gb_proof_conley_def gb_proof_conley_def_default(void)
 {
     return (gb_proof_conley_def){.precision = 128, .depth = 6, .region_dimension = 6};
-}
-
-long conley_p1_position(const conley_grid *g, uint32_t box)
-{
-    size_t lo = 0, hi = g->p1_count;
-    while (lo < hi) {
-        const size_t mid = (lo + hi) / 2;
-        if (g->p1[mid] < box)
-            lo = mid + 1;
-        else
-            hi = mid;
-    }
-    return lo < g->p1_count && g->p1[lo] == box ? (long)lo : -1;
 }
 
 /* ---------------------------------------------------------------- the definition */
@@ -351,7 +340,11 @@ int gb_proof_conley(const gb_proof_conley_def *def, gb_proof_conley_result *out)
     if (!out->index_pair) goto done;
     if ((status = conley_homology_compute(&g, &H, out->failure, sizeof out->failure))) goto done;
     out->h0 = H.h0, out->h1 = H.h1, out->h2 = H.h2;
-    status = conley_sofic_entropy(&g, &H, def->precision, def->region_dimension, out);
+    conley_sofic sofic;
+    status = conley_sofic_entropy(&g, &H, def->precision, def->region_dimension, &sofic);
+    out->regions = sofic.regions, out->regions_used = sofic.regions_used, out->symbols = sofic.symbols;
+    out->transitions = sofic.transitions, out->component = sofic.component, out->rho = sofic.rho;
+    out->entropy = sofic.entropy;
 done:
     conley_homology_free(&H);
     graph_free(&G), graph_free(&R);

@@ -18,7 +18,7 @@
  * Mrozek, Computational Homology, 2004, ch. 6); cells of P0 go into P̄0 = P0 ∪ E. With the exit condition
  * (E ∩ P1 ⊂ P0, cell by cell) the pairs (P1, P0) and (P̄1, P̄0) have the same relative complex, so the inclusion's
  * inverse is the identity on it: the coordinates of φ(z) with its edges outside the relative complex dropped. */
-#include "gb_proof_conley_internal.h"
+#include "gb_proof_conley_homology_internal.h"
 
 #include "gb_error.h"
 

@@ -1,6 +1,6 @@
 /* gb_proof_conley_sofic — Q's regions, the sofic graph of the index map's blocks and the lower bound of its entropy
  * (see gb_proof_conley.h). */
-#include "gb_proof_conley_internal.h"
+#include "gb_proof_conley_sofic_internal.h"
 #include "gb_proof_internal.h"
 
 #include "gb_error.h"
@@ -150,8 +150,9 @@ static double collatz_wielandt(const digraph *d, const int32_t *comp, int32_t c,
 }
 
 int conley_sofic_entropy(const conley_grid *g, const conley_homology *h, long precision, int region_dimension,
-                         gb_proof_conley_result *out)
+                         conley_sofic *out)
 {
+    memset(out, 0, sizeof *out);
     const size_t m = g->p1_count, L = h->generators;
     int32_t *region = malloc((m + 1) * sizeof *region), *gen_region = malloc((L + 1) * sizeof *gen_region);
     int32_t *local = malloc((L + 1) * sizeof *local), *col_start = calloc(L + 2, sizeof *col_start), *col_row = NULL;

@@ -18,7 +18,7 @@
 #include "gb_check.h"
 #include "gb_error.h"
 #include "gb_proof_conley.h"
-#include "gb_proof_conley_internal.h"
+#include "gb_proof_conley_sofic_internal.h"
 #include "gb_proof_cover.h"
 #include "verify_sections.h"
 
@@ -150,7 +150,7 @@ static void test_classical(void)
 
 /* Regions B = box (3, 3) with generator b and A = box (8, 8) with a1, a2 on a grid of depth 4; the index map's columns
  * (images of b, a1, a2) as bit masks over the rows (b, a1, a2). */
-static int sofic_by_hand(const unsigned columns[3], gb_proof_conley_result *out)
+static int sofic_by_hand(const unsigned columns[3], conley_sofic *out)
 {
     static const uint32_t boxes[2] = {3 * 16 + 3, 8 * 16 + 8};
     uint8_t state[256] = {0};
@@ -162,7 +162,6 @@ static int sofic_by_hand(const unsigned columns[3], gb_proof_conley_result *out)
         for (int r = 0; r < 3; r++)
             if (columns[c] >> r & 1) map[r] |= 1ull << c;
     const conley_homology h = {.h1 = 3, .generators = 3, .words = 1, .map = map, .square = square};
-    memset(out, 0, sizeof *out);
     return conley_sofic_entropy(&g, &h, 128, 6, out);
 }
 
@@ -170,7 +169,7 @@ static void test_sofic(void)
 {
     /* golden mean: b -> b + a1, a1 -> b, a2 -> 0; cancelling: b -> b + a1 + a2, a1 -> b, a2 -> b */
     const unsigned golden[3] = {1 | 2, 1, 0}, cancelling[3] = {1 | 2 | 4, 1, 1};
-    gb_proof_conley_result rg, rc;
+    conley_sofic rg = {0}, rc = {0};
     const int status = sofic_by_hand(golden, &rg) || sofic_by_hand(cancelling, &rc);
     const double phi = log(0.5 * (1.0 + sqrt(5.0)));
     gb_check c = {"-", "-", "the sofic graph of an index map's blocks, on maps written by hand",

@@ -1,10 +1,8 @@
-/* gb_proof_conley_internal — what gb_proof_conley.c (the grid, the map's boxes, the index pair's conditions),
- * gb_proof_conley_homology.c (H_1(P1, P0; Z2) and the index map on it) and gb_proof_conley_sofic.c (regions, the
- * sofic graph, its entropy) share. Not installed, not exported. */
-#ifndef GB_PROOF_CONLEY_INTERNAL_H
-#define GB_PROOF_CONLEY_INTERNAL_H
-
-#include "gb_proof_conley.h"
+/* gb_proof_conley_grid_internal — the grid of boxes, F on P1 and the map's homology, as gb_proof_conley.c (the map's
+ * boxes, the index pair's conditions), gb_proof_conley_homology.c (H_1(P1, P0; Z2) and the index map) and
+ * gb_proof_conley_sofic.c (regions, the sofic graph, its entropy) share them. Not installed, not exported. */
+#ifndef GB_PROOF_CONLEY_GRID_INTERNAL_H
+#define GB_PROOF_CONLEY_GRID_INTERNAL_H
 
 #include <stddef.h>
 #include <stdint.h>
@@ -30,8 +28,19 @@ static inline int conley_is(const conley_grid *g, long i, long j, int flag)
     return i >= 0 && j >= 0 && i < g->n && j < g->n && (g->state[j * g->n + i] & flag);
 }
 
-/* The position of box `box` in P1, or −1. */
-long conley_p1_position(const conley_grid *g, uint32_t box);
+/* The position of box `box` in P1 (binary search), or −1. */
+static inline long conley_p1_position(const conley_grid *g, uint32_t box)
+{
+    size_t lo = 0, hi = g->p1_count;
+    while (lo < hi) {
+        const size_t mid = (lo + hi) / 2;
+        if (g->p1[mid] < box)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return lo < g->p1_count && g->p1[lo] == box ? (long)lo : -1;
+}
 
 /* H_*(P1, P0; Z2) of the cubical pair and the index map on H_1 in the basis of its generators (tree–cotree: the
  * edges of the relative complex neither in a spanning forest of its vertices, P0's collapsed to one, nor in a spanning
@@ -43,14 +52,5 @@ typedef struct conley_homology {
     uint64_t *map;
     int32_t *square; /* the box's number on the grid */
 } conley_homology;
-
-/* GB_OK, or GB_ENOMEM; GB_ENUMERIC when the decomposition does not span (the reason in failure). */
-int conley_homology_compute(const conley_grid *g, conley_homology *out, char *failure, size_t failure_size);
-void conley_homology_free(conley_homology *h);
-
-/* Q's regions and the sofic graph of the index map's blocks (gb_proof_conley.h): fills out's regions, symbols,
- * transitions, component, rho and entropy. GB_ENOMEM, or GB_OK. */
-int conley_sofic_entropy(const conley_grid *g, const conley_homology *h, long precision, int region_dimension,
-                         gb_proof_conley_result *out);
 
 #endif
