@@ -95,8 +95,10 @@ static int32_t index_high(double hi, double x0, double h, long n)
     return (int32_t)k;
 }
 
-/* The state map and F on the boxes of the list g->p1 (P1, or N for the construction). */
-static int grid_enclose(conley_grid *g, const gb_proof_field *map, long precision)
+/* The state map and F on the boxes of the list g->p1 (P1, or N for the construction); F of a box also on the list
+ * `known` (strictly increasing, with its rectangles; may be empty) is copied from it. */
+static int grid_enclose(conley_grid *g, const gb_proof_field *map, long precision, const uint32_t *known,
+                        int32_t (*known_rect)[4], size_t known_count)
 {
     g->state = calloc((size_t)(g->n * g->n), 1);
     g->rect = malloc((g->p1_count + 1) * sizeof *g->rect);
@@ -105,9 +107,15 @@ static int grid_enclose(conley_grid *g, const gb_proof_field *map, long precisio
     gb_proof_flow_field_init(&F, map, 1, precision);
     arb_ptr x = _arb_vec_init(2), y = _arb_vec_init(2);
     int status = GB_OK;
+    size_t at = 0;
     for (size_t k = 0; k < g->p1_count && !status; k++) {
         const long i = (long)(g->p1[k] % (uint32_t)g->n), j = (long)(g->p1[k] / (uint32_t)g->n);
         g->state[g->p1[k]] = CONLEY_P1;
+        while (at < known_count && known[at] < g->p1[k]) at++;
+        if (at < known_count && known[at] == g->p1[k]) {
+            memcpy(g->rect[k], known_rect[at], sizeof g->rect[k]);
+            continue;
+        }
         gb_proof_ball_of(x + 0, (gb_proof_interval){g->x0 + (double)i * g->hx, g->x0 + (double)(i + 1) * g->hx},
                          precision);
         gb_proof_ball_of(x + 1, (gb_proof_interval){g->y0 + (double)j * g->hy, g->y0 + (double)(j + 1) * g->hy},
@@ -314,7 +322,8 @@ int gb_proof_conley(const gb_proof_conley_def *def, gb_proof_conley_result *out)
     box_graph G = {0}, R = {0};
     uint8_t *alive = NULL;
     conley_homology H = {0};
-    if ((status = grid_enclose(&g, def->map, def->precision)) || (status = load_pair(&g, def))) goto done;
+    if ((status = grid_enclose(&g, def->map, def->precision, NULL, NULL, 0)) || (status = load_pair(&g, def)))
+        goto done;
     out->positively_invariant = positively_invariant(&g, out);
     out->exit_set = exit_set(&g, out);
     alive = malloc(g.p1_count + 1);
@@ -344,7 +353,7 @@ int gb_proof_conley(const gb_proof_conley_def *def, gb_proof_conley_result *out)
     status = conley_sofic_entropy(&g, &H, def->precision, def->region_dimension, &sofic);
     out->regions = sofic.regions, out->regions_used = sofic.regions_used, out->symbols = sofic.symbols;
     out->transitions = sofic.transitions, out->component = sofic.component, out->rho = sofic.rho;
-    out->entropy = sofic.entropy;
+    out->entropy = sofic.entropy, out->capped = sofic.capped;
 done:
     conley_homology_free(&H);
     graph_free(&G), graph_free(&R);
@@ -438,10 +447,10 @@ done:
 
 /* The grid over the list and F's graphs on it. */
 static int pair_grid(const gb_proof_conley_def *def, conley_grid *g, const uint32_t *boxes, size_t count, box_graph *G,
-                     box_graph *R)
+                     box_graph *R, const uint32_t *known, int32_t (*known_rect)[4], size_t known_count)
 {
     g->p1 = boxes, g->p1_count = count;
-    int status = grid_enclose(g, def->map, def->precision);
+    int status = grid_enclose(g, def->map, def->precision, known, known_rect, known_count);
     if (!status) status = graph_build(g, CONLEY_P1, G);
     if (!status) status = graph_reverse(g, G, R);
     return status;
@@ -459,7 +468,7 @@ int gb_proof_conley_pair(const gb_proof_conley_def *def, const uint32_t *n_boxes
     uint32_t *missing = NULL;
     size_t missing_count = 0, missing_room = 0;
     if (!mark) status = gb_error_set(GB_ENOMEM, "out of memory for an index pair");
-    if (!status) status = pair_grid(def, &g, n_boxes, n, &G, &R);
+    if (!status) status = pair_grid(def, &g, n_boxes, n, &G, &R, NULL, NULL, 0);
     if (!status) status = pair_marks(&g, &G, &R, 0, mark, &missing, &missing_count, &missing_room);
     if (!status && missing_count)
         status = gb_error_set(GB_ENOCONV,
@@ -497,12 +506,18 @@ int gb_proof_conley_isolate(const gb_proof_conley_def *def, const uint32_t *seed
     size_t size = count, missing_count = 0, missing_room = 0;
     if (!list) return gb_error_set(GB_ENOMEM, "out of memory for an isolating neighbourhood");
     memcpy(list, seeds, count * sizeof *list);
+    uint32_t *known = NULL; /* the last round's boxes and their F: the next round copies F from them */
+    int32_t(*known_rect)[4] = NULL;
+    size_t known_count = 0;
     for (int round = 0; !status; round++) {
         box_graph G = {0}, R = {0};
         uint8_t *mark = malloc(size + 1);
         missing_count = 0;
-        status = mark ? pair_grid(def, &g, list, size, &G, &R) : gb_error_set(GB_ENOMEM, "out of memory");
+        status = mark ? pair_grid(def, &g, list, size, &G, &R, known, known_rect, known_count)
+                      : gb_error_set(GB_ENOMEM, "out of memory");
         if (!status) status = pair_marks(&g, &G, &R, 1, mark, &missing, &missing_count, &missing_room);
+        free(known), free(known_rect);
+        known = list, known_rect = g.rect, known_count = size, g.rect = NULL; /* list now belongs to known */
         graph_free(&G), graph_free(&R), free(mark), grid_free(&g);
         if (status || !missing_count) break;
         qsort(missing, missing_count, sizeof *missing, compare_boxes);
@@ -516,7 +531,7 @@ int gb_proof_conley_isolate(const gb_proof_conley_def *def, const uint32_t *seed
             const uint32_t next = b == missing_count || (a < size && list[a] <= missing[b]) ? list[a++] : missing[b++];
             if (!m || merged[m - 1] != next) merged[m++] = next;
         }
-        free(list), list = merged, size = m;
+        list = merged, size = m;
         if ((status = check_boxes("the grown neighbourhood", list, size, g.n)))
             status = gb_error_set(GB_ENOCONV,
                                   "the neighbourhood grown from the seeds reaches the grid's edge (round %d)", round);
@@ -525,7 +540,8 @@ int gb_proof_conley_isolate(const gb_proof_conley_def *def, const uint32_t *seed
                 gb_error_set(GB_ENOCONV, "the neighbourhood grown from the seeds passed max_boxes = %zu (round %d)",
                              max_boxes, round);
     }
-    free(missing);
+    free(missing), free(known_rect);
+    if (known != list) free(known);
     if (status)
         free(list);
     else

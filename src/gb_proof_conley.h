@@ -17,8 +17,9 @@
  * of a decomposition; used by Day, Frongillo and Treviño 2008, SIAM J. Appl. Dyn. Syst. 7): if the product of the
  * blocks along a cyclic word w of regions is not nilpotent, some orbit of f visits the regions in the order of w
  * forever. The symbolic system: the graph on pairs (region i, non-zero v ∈ H_1 of region i), an edge to (j, f_ji v)
- * when that is not zero, labelled j; a cycle through (i, v) with label w has product P with P v = v, so P is not
- * nilpotent. Its edges' labels form a sofic shift with a right-resolving presentation, whose entropy is ln ρ of the
+ * when that is not zero, labelled j (grown breadth first from every class of the small regions and the generators
+ * of the others: a subgraph, whose cycles are the graph's); a cycle through (i, v) with label w has product P with
+ * P v = v, so P is not nilpotent. Its edges' labels form a sofic shift with a right-resolving presentation, whose entropy is ln ρ of the
  * graph's adjacency (Lind and Marcus, Thm 4.3.3); within one strongly connected component its periodic points are
  * dense, each is the label of a cycle, so (compactness) every sequence of the component is followed by an orbit, and
  * coding an orbit by its regions maps the orbits followed onto the shift: h_top(f) ≥ ln ρ, ρ bounded below by
@@ -49,7 +50,8 @@ typedef struct gb_proof_conley_def {
                                      lazily) */
     size_t p1_count, p0_count; /* the boxes, numbered j 2^depth + i, strictly increasing; none on the grid's edge */
     const uint32_t *p1, *p0;   /* P0 ⊂ P1 */
-    int region_dimension;      /* regions whose H_1 has more generators are left out: 1 ... 12 */
+    int region_dimension;      /* regions with at most this many generators start the sofic graph with every class,
+                                  the others with their generators alone: 1 ... 12 */
 } gb_proof_conley_def;
 
 typedef struct gb_proof_conley_result {
@@ -57,6 +59,8 @@ typedef struct gb_proof_conley_result {
     int index_pair;                               /* all three */
     long h0, h1, h2;                              /* dimensions of H_*(P1, P0; Z2) */
     long regions, regions_used;                   /* Q's components; those with 1 ... region_dimension generators */
+    int capped;                                   /* the sofic graph reached its most vertices (2^20): edges to more
+                                                     were left out, which can only lower the bound */
     long invariant_boxes;                         /* boxes on bi-infinite paths of F inside Q */
     long symbols, transitions;                    /* the sofic graph's vertices and edges */
     long component;                               /* the vertices of its component with the largest ρ */

@@ -45,9 +45,22 @@ static long regions_find(const conley_grid *g, int32_t *region)
 
 /* A directed graph in compressed rows. */
 typedef struct digraph {
-    size_t nodes, edges, room;
+    size_t nodes, edges, room, start_room;
     int32_t *start, *next;
 } digraph;
+
+/* Vertex u's edges start here (vertices are opened in order). */
+static int digraph_open(digraph *d, size_t u)
+{
+    if (u + 1 >= d->start_room) {
+        const size_t room = d->start_room ? 2 * d->start_room : 1024;
+        int32_t *more = realloc(d->start, (room + 1) * sizeof *more);
+        if (!more) return 1;
+        d->start = more, d->start_room = room;
+    }
+    d->start[u] = (int32_t)d->edges;
+    return 0;
+}
 
 static int push_edge(digraph *d, int32_t to)
 {
@@ -149,6 +162,85 @@ static double collatz_wielandt(const digraph *d, const int32_t *comp, int32_t c,
     return best;
 }
 
+/* Words of a class of a region with k generators. */
+static size_t words_of(int k) { return ((size_t)k + 63) / 64; }
+
+/* The sofic graph's vertices: (region, class as a bit vector over the region's generators), found by hashing. At most
+ * SYMBOLS_MAX: past it no vertex is made and the edge to it is left out (a subgraph: its cycles are the graph's). */
+enum { SYMBOLS_MAX = 1 << 20 };
+typedef struct symbols {
+    size_t count, room, pool_used, pool_room, mask;
+    int32_t *region;
+    size_t *offset;
+    uint64_t *pool;
+    int32_t *slot; /* vertex or −1 */
+    int capped;
+} symbols;
+
+static int symbols_init(symbols *S)
+{
+    S->room = 1024, S->pool_room = 4096, S->mask = 2047;
+    S->region = malloc(S->room * sizeof *S->region), S->offset = malloc(S->room * sizeof *S->offset);
+    S->pool = malloc(S->pool_room * sizeof *S->pool), S->slot = malloc((S->mask + 1) * sizeof *S->slot);
+    if (!S->region || !S->offset || !S->pool || !S->slot) return 1;
+    for (size_t k = 0; k <= S->mask; k++) S->slot[k] = -1;
+    return 0;
+}
+
+static void symbols_free(symbols *S) { free(S->region), free(S->offset), free(S->pool), free(S->slot); }
+
+static uint64_t symbol_hash(int32_t region, const uint64_t *vec, size_t words)
+{
+    uint64_t h = 0x9E3779B97F4A7C15ull * (uint64_t)(region + 1);
+    for (size_t k = 0; k < words; k++) h = (h ^ vec[k]) * 0xBF58476D1CE4E5B9ull, h ^= h >> 31;
+    return h;
+}
+
+static size_t symbol_slot(const symbols *S, int32_t region, const uint64_t *vec, size_t words)
+{
+    size_t s = (size_t)symbol_hash(region, vec, words) & S->mask;
+    while (S->slot[s] >= 0 &&
+           !(S->region[S->slot[s]] == region && !memcmp(S->pool + S->offset[S->slot[s]], vec, words * sizeof *vec)))
+        s = (s + 1) & S->mask;
+    return s;
+}
+
+/* The vertex (region, vec): its number, made if new; −1 past SYMBOLS_MAX; −2 out of memory. */
+static long symbols_add(symbols *S, int32_t region, const uint64_t *vec, size_t words)
+{
+    size_t s = symbol_slot(S, region, vec, words);
+    if (S->slot[s] >= 0) return S->slot[s];
+    if (S->count >= SYMBOLS_MAX) return S->capped = 1, -1;
+    if (S->count == S->room) {
+        int32_t *r = realloc(S->region, 2 * S->room * sizeof *r);
+        if (r) S->region = r;
+        size_t *o = realloc(S->offset, 2 * S->room * sizeof *o);
+        if (o) S->offset = o;
+        if (!r || !o) return -2;
+        S->room *= 2;
+    }
+    while (S->pool_used + words > S->pool_room) {
+        uint64_t *p = realloc(S->pool, 2 * S->pool_room * sizeof *p);
+        if (!p) return -2;
+        S->pool = p, S->pool_room *= 2;
+    }
+    const size_t id = S->count++;
+    S->region[id] = region, S->offset[id] = S->pool_used;
+    memcpy(S->pool + S->pool_used, vec, words * sizeof *vec), S->pool_used += words;
+    S->slot[s] = (int32_t)id;
+    if (2 * S->count > S->mask) { /* rehash at half full */
+        int32_t *slot = malloc(2 * (S->mask + 1) * sizeof *slot);
+        if (!slot) return -2;
+        free(S->slot), S->slot = slot, S->mask = 2 * S->mask + 1;
+        for (size_t k = 0; k <= S->mask; k++) S->slot[k] = -1;
+        for (size_t v = 0; v < S->count; v++) {
+            const size_t end = v + 1 < S->count ? S->offset[v + 1] : S->pool_used;
+            S->slot[symbol_slot(S, S->region[v], S->pool + S->offset[v], end - S->offset[v])] = (int32_t)v;
+        }
+    }
+    return (long)id;
+}
+
 int conley_sofic_entropy(const conley_grid *g, const conley_homology *h, long precision, int region_dimension,
                          conley_sofic *out)
 {
@@ -156,7 +248,7 @@ int conley_sofic_entropy(const conley_grid *g, const conley_homology *h, long pr
     const size_t m = g->p1_count, L = h->generators;
     int32_t *region = malloc((m + 1) * sizeof *region), *gen_region = malloc((L + 1) * sizeof *gen_region);
     int32_t *local = malloc((L + 1) * sizeof *local), *col_start = calloc(L + 2, sizeof *col_start), *col_row = NULL;
-    int32_t *dims = NULL, *base = NULL, *mask = NULL, *touched = NULL, *comp = NULL;
+    int32_t *dims = NULL, *mask = NULL, *touched = NULL, *comp = NULL;
     uint8_t *acc = calloc(L + 1, 1);
     double *v = NULL, *w = NULL;
     digraph d = {0};
@@ -164,9 +256,9 @@ int conley_sofic_entropy(const conley_grid *g, const conley_homology *h, long pr
     const long regions = region && gen_region && local && col_start && acc ? regions_find(g, region) : -1;
     if (regions < 0) goto nomem;
     out->regions = regions;
-    dims = calloc((size_t)regions + 1, sizeof *dims), base = malloc(((size_t)regions + 1) * sizeof *base);
+    dims = calloc((size_t)regions + 1, sizeof *dims);
     mask = calloc((size_t)regions + 1, sizeof *mask), touched = malloc((L + (size_t)regions + 1) * sizeof *touched);
-    if (!dims || !base || !mask || !touched) goto nomem;
+    if (!dims || !mask || !touched) goto nomem;
     for (size_t k = 0; k < L; k++) {
         gen_region[k] = region[conley_p1_position(g, (uint32_t)h->square[k])];
         local[k] = dims[gen_region[k]]++;
@@ -181,57 +273,83 @@ int conley_sofic_entropy(const conley_grid *g, const conley_homology *h, long pr
     for (size_t r = 0; r < L; r++)
         for (size_t c = 0; c < L; c++)
             if (h->map[r * h->words + c / 64] >> (c % 64) & 1) col_row[col_start[c + 1]++] = (int32_t)r;
-    size_t nodes = 0;
-    for (long r = 0; r < regions; r++) {
-        base[r] = (int32_t)nodes;
-        if (dims[r] >= 1 && dims[r] <= region_dimension) nodes += ((size_t)1 << dims[r]) - 1, out->regions_used++;
-    }
-    /* generators of each region in order: their numbers */
+    /* generators of each region in order: their numbers; each region's words in the scratch vector */
     int32_t *members = malloc((L + 1) * sizeof *members), *first = calloc((size_t)regions + 1, sizeof *first);
-    if (!members || !first) {
-        free(members), free(first);
-        goto nomem;
-    }
+    size_t *scratch_at = malloc(((size_t)regions + 1) * sizeof *scratch_at), scratch_words = 0;
+    symbols S = {0};
+    uint64_t *scratch = NULL;
+    size_t nodes = 0;
+    if (!members || !first || !scratch_at) goto fail;
     for (size_t k = 0; k < L; k++) first[gen_region[k] + 1]++;
     for (long r = 0; r < regions; r++) first[r + 1] += first[r];
     for (size_t k = 0; k < L; k++) members[first[gen_region[k]] + local[k]] = (int32_t)k;
-    d.nodes = nodes, d.start = malloc((nodes + 1) * sizeof *d.start);
-    if (!d.start) {
-        free(members), free(first);
-        goto nomem;
-    }
+    for (long r = 0; r < regions; r++) scratch_at[r] = scratch_words, scratch_words += words_of(dims[r]);
+    scratch = calloc(scratch_words + 1, sizeof *scratch);
+    if (!scratch || symbols_init(&S)) goto fail;
+    /* the first vertices: every class of a region of at most region_dimension generators, the generators of the others */
     for (long r = 0; r < regions && !status; r++) {
-        if (dims[r] < 1 || dims[r] > region_dimension) continue;
-        for (int32_t bits = 1; bits < (1 << dims[r]) && !status; bits++) {
-            d.start[base[r] + bits - 1] = (int32_t)d.edges;
-            size_t rows = 0, hit = 0;
-            for (int t = 0; t < dims[r]; t++) {
-                if (!(bits >> t & 1)) continue;
-                const int32_t c = members[first[r] + t];
-                for (int32_t a = col_start[c]; a < col_start[c + 1]; a++) {
-                    if (!acc[col_row[a]]) touched[rows++] = col_row[a];
-                    acc[col_row[a]] ^= 1;
-                }
-            }
-            int32_t *regions_hit = touched + L;
-            for (size_t k = 0; k < rows; k++) {
-                const int32_t row = touched[k], r2 = gen_region[row];
-                if (acc[row] && dims[r2] <= region_dimension) {
-                    if (!mask[r2]) regions_hit[hit++] = r2;
-                    mask[r2] ^= 1 << local[row];
-                }
-                acc[row] = 0;
-            }
-            for (size_t k = 0; k < hit && !status; k++) {
-                const int32_t r2 = regions_hit[k];
-                status = push_edge(&d, base[r2] + mask[r2] - 1); /* rows left set: a mask never 0 */
-                mask[r2] = 0;
+        uint64_t *vec = scratch + scratch_at[r];
+        if (dims[r] >= 1 && dims[r] <= region_dimension) {
+            out->regions_used++;
+            for (uint64_t bits = 1; bits < (1ull << dims[r]) && !status; bits++)
+                vec[0] = bits, status = symbols_add(&S, (int32_t)r, vec, 1) < -1;
+            vec[0] = 0;
+        } else {
+            for (int t = 0; t < dims[r] && !status; t++) {
+                vec[t / 64] = 1ull << (t % 64);
+                status = symbols_add(&S, (int32_t)r, vec, words_of(dims[r])) < -1;
+                vec[t / 64] = 0;
             }
         }
     }
-    free(members), free(first);
-    if (status) goto done;
-    d.start[nodes] = (int32_t)d.edges;
+    /* then breadth first: a vertex's image under its region's blocks, one vertex for each region it reaches */
+    for (size_t u = 0; u < S.count && !status; u++) {
+        if (digraph_open(&d, u)) {
+            status = GB_ENOMEM;
+            break;
+        }
+        const int32_t r = S.region[u];
+        const uint64_t *vec = S.pool + S.offset[u];
+        size_t rows = 0, hit = 0;
+        for (int t = 0; t < dims[r]; t++) {
+            if (!(vec[t / 64] >> (t % 64) & 1)) continue;
+            const int32_t c = members[first[r] + t];
+            for (int32_t a = col_start[c]; a < col_start[c + 1]; a++) {
+                if (!acc[col_row[a]]) touched[rows++] = col_row[a];
+                acc[col_row[a]] ^= 1;
+            }
+        }
+        int32_t *regions_hit = touched + L;
+        for (size_t k = 0; k < rows; k++) {
+            const int32_t row = touched[k], r2 = gen_region[row];
+            if (acc[row]) {
+                uint64_t *target = scratch + scratch_at[r2];
+                if (!mask[r2]) regions_hit[hit++] = r2, mask[r2] = 1;
+                target[local[row] / 64] ^= 1ull << (local[row] % 64);
+            }
+            acc[row] = 0;
+        }
+        for (size_t k = 0; k < hit && !status; k++) { /* rows left set: a vector never 0 */
+            const int32_t r2 = regions_hit[k];
+            uint64_t *target = scratch + scratch_at[r2];
+            const long id = symbols_add(&S, r2, target, words_of(dims[r2]));
+            if (id < -1)
+                status = GB_ENOMEM;
+            else if (id >= 0)
+                status = push_edge(&d, (int32_t)id); /* −1: past the cap, the edge left out */
+            memset(target, 0, words_of(dims[r2]) * sizeof *target), mask[r2] = 0;
+        }
+    }
+    out->capped = S.capped, nodes = S.count;
+fail:
+    free(members), free(first), free(scratch_at), free(scratch), symbols_free(&S);
+    if (!status && !scratch) goto nomem;
+    if (status) {
+        status = gb_error_set(GB_ENOMEM, "out of memory for the sofic graph");
+        goto done;
+    }
+    d.nodes = nodes;
+    if (digraph_open(&d, nodes)) goto nomem;
     out->symbols = (long)nodes, out->transitions = (long)d.edges;
     comp = malloc((nodes + 1) * sizeof *comp), v = malloc((nodes + 1) * sizeof *v), w = malloc((nodes + 1) * sizeof *w);
     const long count = comp && v && w ? components(&d, comp) : -1;
@@ -264,7 +382,7 @@ int conley_sofic_entropy(const conley_grid *g, const conley_homology *h, long pr
 nomem:
     status = gb_error_set(GB_ENOMEM, "out of memory for the index map's regions");
 done:
-    free(region), free(gen_region), free(local), free(col_start), free(col_row), free(dims), free(base), free(mask);
+    free(region), free(gen_region), free(local), free(col_start), free(col_row), free(dims), free(mask);
     free(touched), free(comp), free(acc), free(v), free(w), free(d.start), free(d.next);
     return status;
 }

@@ -9,6 +9,7 @@
 typedef struct conley_sofic {
     long regions, regions_used, symbols, transitions, component;
     double rho, entropy;
+    int capped;
 } conley_sofic;
 
 /* GB_ENOMEM, or GB_OK with out filled. */
