@@ -279,13 +279,19 @@ int conley_sofic_entropy(const conley_grid *g, const conley_homology *h, long pr
     symbols S = {0};
     uint64_t *scratch = NULL;
     size_t nodes = 0;
-    if (!members || !first || !scratch_at) goto fail;
+    if (!members || !first || !scratch_at) {
+        status = 1;
+        goto fail;
+    }
     for (size_t k = 0; k < L; k++) first[gen_region[k] + 1]++;
     for (long r = 0; r < regions; r++) first[r + 1] += first[r];
     for (size_t k = 0; k < L; k++) members[first[gen_region[k]] + local[k]] = (int32_t)k;
     for (long r = 0; r < regions; r++) scratch_at[r] = scratch_words, scratch_words += words_of(dims[r]);
     scratch = calloc(scratch_words + 1, sizeof *scratch);
-    if (!scratch || symbols_init(&S)) goto fail;
+    if (!scratch || symbols_init(&S)) {
+        status = 1;
+        goto fail;
+    }
     /* the first vertices: every class of a region of at most region_dimension generators, the generators of the others */
     for (long r = 0; r < regions && !status; r++) {
         uint64_t *vec = scratch + scratch_at[r];
@@ -314,15 +320,15 @@ int conley_sofic_entropy(const conley_grid *g, const conley_homology *h, long pr
         for (int t = 0; t < dims[r]; t++) {
             if (!(vec[t / 64] >> (t % 64) & 1)) continue;
             const int32_t c = members[first[r] + t];
-            for (int32_t a = col_start[c]; a < col_start[c + 1]; a++) {
-                if (!acc[col_row[a]]) touched[rows++] = col_row[a];
+            for (int32_t a = col_start[c]; a < col_start[c + 1]; a++) { /* bit 1: listed once in touched */
+                if (!(acc[col_row[a]] & 2)) touched[rows++] = col_row[a], acc[col_row[a]] |= 2;
                 acc[col_row[a]] ^= 1;
             }
         }
         int32_t *regions_hit = touched + L;
         for (size_t k = 0; k < rows; k++) {
             const int32_t row = touched[k], r2 = gen_region[row];
-            if (acc[row]) {
+            if (acc[row] & 1) {
                 uint64_t *target = scratch + scratch_at[r2];
                 if (!mask[r2]) regions_hit[hit++] = r2, mask[r2] = 1;
                 target[local[row] / 64] ^= 1ull << (local[row] % 64);
@@ -343,8 +349,7 @@ int conley_sofic_entropy(const conley_grid *g, const conley_homology *h, long pr
     out->capped = S.capped, nodes = S.count;
 fail:
     free(members), free(first), free(scratch_at), free(scratch), symbols_free(&S);
-    if (!status && !scratch) goto nomem;
-    if (status) {
+    if (status) { /* out of memory, here or in a push */
         status = gb_error_set(GB_ENOMEM, "out of memory for the sofic graph");
         goto done;
     }
