@@ -97,7 +97,7 @@ GB_API int gb_proof_conley_isolate(const gb_proof_conley_def *def, const uint32_
 GB_API int gb_proof_conley_henon_horseshoe(int depth, gb_proof_field *field, gb_proof_conley_def *def,
                                            uint32_t **n_boxes, size_t *n);
 
-/* The classical Hénon map (a = 7/5, b = 3/10) on [−2, 2] × [−1/2, 1/2] at `depth`, region_dimension 12, and seeds: the
+/* The classical Hénon map (a = 7/5, b = 3/10) on [−2, 2] × [−1, 1] at `depth`, region_dimension 12, and seeds: the
  * boxes of its periodic points of least period 1 ... period_max (≤ 16), found by Newton on doubles from 4000 points of
  * one orbit (every 7th after 1000 iterates from (0.1, 0.1)); they only place N (gb_proof_conley_isolate), nothing
  * proved rests on them. *seeds allocated (free()). */

@@ -73,7 +73,7 @@ int gb_proof_conley_henon_classical(int period_max, int depth, gb_proof_field *f
     *field = gb_proof_cover_henon(7, 5, 3, 10);
     *def = gb_proof_conley_def_default();
     def->map = field, def->depth = depth, def->x = (gb_proof_interval){-2.0, 2.0},
-    def->y = (gb_proof_interval){-0.5, 0.5};
+    def->y = (gb_proof_interval){-1.0, 1.0};
     def->region_dimension = GB_PROOF_CONLEY_REGION_DIMENSION_MAX;
     if (depth < GB_PROOF_CONLEY_DEPTH_MIN || depth > GB_PROOF_CONLEY_DEPTH_MAX)
         return gb_error_set(GB_EDOM, "depth = %d is out of range (allowed: %d to %d)", depth, GB_PROOF_CONLEY_DEPTH_MIN,
@@ -101,7 +101,7 @@ int gb_proof_conley_henon_classical(int period_max, int depth, gb_proof_field *f
             if (!periodic_point(a, b, p, x)) continue;
             for (int k = 0; k < p; k++) { /* the orbit's boxes */
                 const long i = (long)floor((x[0] + 2.0) / 4.0 * (double)side),
-                           j = (long)floor((x[1] + 0.5) * (double)side);
+                           j = (long)floor((x[1] + 1.0) / 2.0 * (double)side);
                 if (i > 0 && j > 0 && i < side - 1 && j < side - 1) {
                     if (*count == room) {
                         uint32_t *more = realloc(list, 2 * room * sizeof *more);
