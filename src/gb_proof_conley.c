@@ -365,12 +365,6 @@ done:
 
 /* ---------------------------------------------------------------- the construction */
 
-static int compare_boxes(const void *a, const void *b)
-{
-    const uint32_t x = *(const uint32_t *)a, y = *(const uint32_t *)b;
-    return x < y ? -1 : x > y;
-}
-
 /* Appends box `box` to a growing list. */
 static int list_push(uint32_t **list, size_t *count, size_t *room, uint32_t box)
 {
@@ -520,7 +514,7 @@ int gb_proof_conley_isolate(const gb_proof_conley_def *def, const uint32_t *seed
         known = list, known_rect = g.rect, known_count = size, g.rect = NULL; /* list now belongs to known */
         graph_free(&G), graph_free(&R), free(mark), grid_free(&g);
         if (status || !missing_count) break;
-        qsort(missing, missing_count, sizeof *missing, compare_boxes);
+        qsort(missing, missing_count, sizeof *missing, conley_compare_boxes);
         uint32_t *merged = malloc((size + missing_count) * sizeof *merged);
         if (!merged) {
             status = gb_error_set(GB_ENOMEM, "out of memory for an isolating neighbourhood");

@@ -42,6 +42,20 @@ static inline long conley_p1_position(const conley_grid *g, uint32_t box)
     return lo < g->p1_count && g->p1[lo] == box ? (long)lo : -1;
 }
 
+/* The root of x in a union-find forest (up[x] == x at a root), halving the path on the way. */
+static inline long conley_root(int32_t *up, long x)
+{
+    while (up[x] != x) up[x] = up[up[x]], x = up[x];
+    return x;
+}
+
+/* qsort's order of box numbers. */
+static inline int conley_compare_boxes(const void *a, const void *b)
+{
+    const uint32_t x = *(const uint32_t *)a, y = *(const uint32_t *)b;
+    return x < y ? -1 : x > y;
+}
+
 /* H_*(P1, P0; Z2) of the cubical pair and the index map on H_1 in the basis of its generators (tree–cotree: the
  * edges of the relative complex neither in a spanning forest of its vertices, P0's collapsed to one, nor in a spanning
  * forest of its squares and the outside over the remaining edges). map: generators × words, bit c of row r the r-th

@@ -1,6 +1,7 @@
 /* gb_proof_conley_henon — Hénon's maps for the discrete Conley index (see gb_proof_conley.h): at a = 6 on a whole grid,
  * and the classical map from its periodic points' boxes. */
 #include "gb_proof_conley.h"
+#include "gb_proof_conley_grid_internal.h"
 #include "gb_proof_cover.h"
 
 #include "gb_error.h"
@@ -8,12 +9,6 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-
-static int compare_boxes(const void *a, const void *b)
-{
-    const uint32_t x = *(const uint32_t *)a, y = *(const uint32_t *)b;
-    return x < y ? -1 : x > y;
-}
 
 int gb_proof_conley_henon_horseshoe(int depth, gb_proof_field *field, gb_proof_conley_def *def, uint32_t **n_boxes,
                                     size_t *n)
@@ -118,7 +113,7 @@ int gb_proof_conley_henon_classical(int period_max, int depth, gb_proof_field *f
             }
         }
     }
-    qsort(list, *count, sizeof *list, compare_boxes);
+    qsort(list, *count, sizeof *list, conley_compare_boxes);
     size_t unique = 0;
     for (size_t k = 0; k < *count; k++)
         if (!unique || list[unique - 1] != list[k]) list[unique++] = list[k];

@@ -206,12 +206,6 @@ static long forest_grow(size_t nodes, size_t edges, int32_t (*link)[2], const ui
 
 static void forest_free(forest *f) { free(f->parent), free(f->edge), free(f->depth), free(f->order); }
 
-static long find(int32_t *up, long x)
-{
-    while (up[x] != x) up[x] = up[up[x]], x = up[x];
-    return x;
-}
-
 /* ---------------------------------------------------------------- the chain selector */
 
 /* Φ of the cell whose boxes (up to four, k of them) are listed: the intersection of their rectangles, P1's only. */
@@ -295,11 +289,11 @@ int conley_homology_compute(const conley_grid *g, conley_homology *out, char *fa
     /* rank ∂2 over every edge */
     for (size_t x = 0; x < D; x++) up[x] = (int32_t)x;
     for (size_t e = 0; e < E; e++) {
-        const long a = find(up, c.sides[e][0]), b = find(up, c.sides[e][1]);
+        const long a = conley_root(up, c.sides[e][0]), b = conley_root(up, c.sides[e][1]);
         if (a != b) up[a > b ? a : b] = (int32_t)(a < b ? a : b); /* the root of VOID's component stays 0 */
     }
     long h2 = 0, tree = 0, cotree = 0;
-    for (size_t x = 1; x < D; x++) h2 += find(up, (long)x) == (long)x;
+    for (size_t x = 1; x < D; x++) h2 += conley_root(up, (long)x) == (long)x;
     for (size_t e = 0; e < E; e++) tree += in_T[e], cotree += in_C[e];
     const long rank2 = (long)c.squares - h2;
     out->h0 = primal_roots - 1, out->h2 = h2, out->h1 = (long)E - tree - rank2;

@@ -10,12 +10,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-static long root_of(int32_t *up, long x)
-{
-    while (up[x] != x) up[x] = up[up[x]], x = up[x];
-    return x;
-}
-
 /* Q's components (boxes touching at a corner joined), numbered 0 ... count − 1, by position in P1 (−1 outside Q). */
 static long regions_find(const conley_grid *g, int32_t *region)
 {
@@ -29,12 +23,12 @@ static long regions_find(const conley_grid *g, int32_t *region)
         for (long dj = -1; dj <= 1; dj++)
             for (long di = -1; di <= 1; di++)
                 if (conley_is(g, i + di, j + dj, CONLEY_Q)) {
-                    const long a = root_of(region, (long)k),
-                               b = root_of(region, conley_p1_position(g, (uint32_t)((j + dj) * g->n + i + di)));
+                    const long a = conley_root(region, (long)k),
+                               b = conley_root(region, conley_p1_position(g, (uint32_t)((j + dj) * g->n + i + di)));
                     if (a != b) region[a > b ? a : b] = (int32_t)(a < b ? a : b);
                 }
     }
-    for (size_t k = 0; k < m; k++) region[k] = (int32_t)root_of(region, (long)k); /* every box to its root */
+    for (size_t k = 0; k < m; k++) region[k] = (int32_t)conley_root(region, (long)k); /* every box to its root */
     long count = 0;
     for (size_t k = 0; k < m; k++)
         if ((g->state[g->p1[k]] & CONLEY_Q) && label[region[k]] < 0) label[region[k]] = (int32_t)count++;
@@ -72,6 +66,14 @@ static int push_edge(digraph *d, int32_t to)
     }
     d->next[d->edges++] = to;
     return GB_OK;
+}
+
+/* Vertex u has an edge to itself. */
+static int has_loop(const digraph *d, int32_t u)
+{
+    for (int32_t a = d->start[u]; a < d->start[u + 1]; a++)
+        if (d->next[a] == u) return 1;
+    return 0;
 }
 
 /* Strongly connected components (Tarjan's, iteratively): comp[v], returns their number or −1. */
@@ -118,23 +120,27 @@ done:
     return count;
 }
 
-/* ρ of the component's adjacency estimated by power iteration of A + I (its diagonal keeps v positive); v returned. */
-static double power_rho(const digraph *d, const int32_t *comp, int32_t c, double *v, double *w)
+/* ρ of a component's adjacency (its vertices `member`, k of them; comp[] names each vertex's component) estimated by
+ * power iteration of A + I (its diagonal keeps v positive); v returned on the members. */
+static double power_rho(const digraph *d, const int32_t *comp, const int32_t *member, size_t k, double *v, double *w)
 {
     double rho = 0.0;
-    for (size_t i = 0; i < d->nodes; i++) v[i] = comp[i] == c ? 1.0 : 0.0;
+    const int32_t c = comp[member[0]];
+    for (size_t m = 0; m < k; m++) v[member[m]] = 1.0;
     for (int it = 0; it < 5000; it++) {
         double top = 0.0;
-        for (size_t i = 0; i < d->nodes; i++) {
-            if (comp[i] != c) continue;
+        for (size_t m = 0; m < k; m++) {
+            const int32_t i = member[m];
             double s = v[i];
             for (int32_t a = d->start[i]; a < d->start[i + 1]; a++)
                 if (comp[d->next[a]] == c) s += v[d->next[a]];
             w[i] = s, top = fmax(top, s);
         }
         double change = 0.0;
-        for (size_t i = 0; i < d->nodes; i++)
-            if (comp[i] == c) change = fmax(change, fabs(w[i] / top - v[i])), v[i] = w[i] / top;
+        for (size_t m = 0; m < k; m++) {
+            const int32_t i = member[m];
+            change = fmax(change, fabs(w[i] / top - v[i])), v[i] = w[i] / top;
+        }
         rho = top - 1.0;
         if (change < 1e-14) break;
     }
@@ -142,14 +148,16 @@ static double power_rho(const digraph *d, const int32_t *comp, int32_t c, double
 }
 
 /* min_i (A v)_i / v_i over the component, on Arb: a lower bound of its ρ (Collatz–Wielandt), rounded down. */
-static double collatz_wielandt(const digraph *d, const int32_t *comp, int32_t c, const double *v, long precision)
+static double collatz_wielandt(const digraph *d, const int32_t *comp, const int32_t *member, size_t k, const double *v,
+                               long precision)
 {
     arb_t s, r;
     arf_t lo;
     arb_init(s), arb_init(r), arf_init(lo);
     double best = INFINITY;
-    for (size_t i = 0; i < d->nodes; i++) {
-        if (comp[i] != c) continue;
+    const int32_t c = comp[member[0]];
+    for (size_t m = 0; m < k; m++) {
+        const int32_t i = member[m];
         arb_zero(s);
         for (int32_t a = d->start[i]; a < d->start[i + 1]; a++)
             if (comp[d->next[a]] == c) arb_set_d(r, v[d->next[a]]), arb_add(s, s, r, precision);
@@ -359,20 +367,30 @@ fail:
     comp = malloc((nodes + 1) * sizeof *comp), v = malloc((nodes + 1) * sizeof *v), w = malloc((nodes + 1) * sizeof *w);
     const long count = comp && v && w ? components(&d, comp) : -1;
     if (count < 0) goto nomem;
-    /* the component with the largest ρ by power iteration, then its bound */
+    /* the component with the largest ρ by power iteration (each over its own vertices), then its bound; a component
+     * with ρ ≤ 1 proves nothing, and one within 1e-9 of the best so far (the power iteration's own change, 1e-14, is
+     * far below) does not replace it */
     int32_t best = -1;
     double best_rho = 1.0;
-    int32_t *size = calloc((size_t)count + 1, sizeof *size);
-    if (!size) goto nomem;
-    for (size_t i = 0; i < nodes; i++) size[comp[i]]++;
+    int32_t *start = calloc((size_t)count + 2, sizeof *start), *member = malloc((nodes + 1) * sizeof *member);
+    if (!start || !member) {
+        free(start), free(member);
+        goto nomem;
+    }
+    for (size_t i = 0; i < nodes; i++) start[comp[i] + 2]++;
+    for (long c = 0; c < count; c++) start[c + 2] += start[c + 1];
+    for (size_t i = 0; i < nodes; i++) member[start[comp[i] + 1]++] = (int32_t)i;
     for (long c = 0; c < count; c++) {
-        const double rho = power_rho(&d, comp, (int32_t)c, v, w);
+        const size_t k = (size_t)(start[c + 1] - start[c]);
+        if (k < 2 && !(k == 1 && has_loop(&d, member[start[c]]))) continue; /* no cycle */
+        const double rho = power_rho(&d, comp, member + start[c], k, v, w);
         if (rho > best_rho + 1e-9) best_rho = rho, best = (int32_t)c;
     }
     if (best >= 0) {
-        power_rho(&d, comp, best, v, w);
-        out->component = size[best];
-        const double rho = collatz_wielandt(&d, comp, best, v, precision);
+        const size_t k = (size_t)(start[best + 1] - start[best]);
+        power_rho(&d, comp, member + start[best], k, v, w);
+        out->component = (long)k;
+        const double rho = collatz_wielandt(&d, comp, member + start[best], k, v, precision);
         if (rho > 1.0) {
             arb_t x;
             arf_t lo;
@@ -382,7 +400,7 @@ fail:
             arb_clear(x), arf_clear(lo);
         }
     }
-    free(size);
+    free(start), free(member);
     goto done;
 nomem:
     status = gb_error_set(GB_ENOMEM, "out of memory for the index map's regions");

@@ -183,12 +183,6 @@ static void test_sofic(void)
                   status ? ": " : "", status ? gb_error_message() : "");
 }
 
-static int compare_boxes(const void *a, const void *b)
-{
-    const uint32_t x = *(const uint32_t *)a, y = *(const uint32_t *)b;
-    return x < y ? -1 : x > y;
-}
-
 /* Each condition broken in turn: proved nothing. */
 static void test_controls(void)
 {
@@ -215,7 +209,7 @@ static void test_controls(void)
         more = malloc((n0 + 1) * sizeof *more);
         size_t m = 0;
         for (size_t k = 0; more && k < n0; k++) more[m++] = p0[k];
-        if (more) more[m++] = fixed, qsort(more, m, sizeof *more, compare_boxes);
+        if (more) more[m++] = fixed, qsort(more, m, sizeof *more, conley_compare_boxes);
         def.p0 = more, def.p0_count = m;
         status = more ? gb_proof_conley(&def, &r) : GB_ENOMEM;
         invariance_broken = !status && !r.positively_invariant && !r.index_pair && r.entropy == 0.0;
