@@ -39,7 +39,12 @@
 extern "C" {
 #endif
 
-enum { GB_PROOF_CONLEY_DEPTH_MIN = 2, GB_PROOF_CONLEY_DEPTH_MAX = 14, GB_PROOF_CONLEY_REGION_DIMENSION_MAX = 12 };
+enum {
+    GB_PROOF_CONLEY_DEPTH_MIN = 2,
+    GB_PROOF_CONLEY_DEPTH_MAX = 14,
+    GB_PROOF_CONLEY_REGION_DIMENSION_MAX = 12,
+    GB_PROOF_CONLEY_PERIOD_MAX = 16
+};
 
 typedef struct gb_proof_conley_def {
     const gb_proof_field *map; /* the map of the plane (dimension 2) */
@@ -98,11 +103,24 @@ GB_API int gb_proof_conley_henon_horseshoe(int depth, gb_proof_field *field, gb_
                                            uint32_t **n_boxes, size_t *n);
 
 /* The classical Hénon map (a = 7/5, b = 3/10) on [−2, 2] × [−1, 1] at `depth`, region_dimension 12, and seeds: the
- * boxes of its periodic points of least period 1 ... period_max (≤ 16), found by Newton on doubles from 4000 points of
+ * boxes of its periodic points of least period 1 ... period_max (≤ 16, GB_PROOF_CONLEY_PERIOD_MAX), found by Newton on doubles from 4000 points of
  * one orbit (every 7th after 1000 iterates from (0.1, 0.1)); they only place N (gb_proof_conley_isolate), nothing
  * proved rests on them. *seeds allocated (free()). */
 GB_API int gb_proof_conley_henon_classical(int period_max, int depth, gb_proof_field *field, gb_proof_conley_def *def,
                                            uint32_t **seeds, size_t *count);
+
+/* A periodic orbit of the classical Hénon map, named by its least period and the least x of its points. */
+typedef struct gb_proof_conley_orbit {
+    int period;
+    double x;
+} gb_proof_conley_orbit;
+
+/* As gb_proof_conley_henon_classical, with the orbits kept changed orbit by orbit: each orbit named in toggle (least
+ * period 1 ... 16, least x within 1e-6) is left out when its period is at most period_max and kept when it is longer.
+ * GB_EDOM when a named orbit is not exactly one of the orbits found (with the name, its period and x). */
+GB_API int gb_proof_conley_henon_orbits(int period_max, const gb_proof_conley_orbit *toggle, size_t toggles, int depth,
+                                        gb_proof_field *field, gb_proof_conley_def *def, uint32_t **seeds,
+                                        size_t *count);
 
 #ifdef __cplusplus
 }

@@ -61,8 +61,63 @@ static int periodic_point(double a, double b, int p, double x[2])
     return 0;
 }
 
+/* The orbits found: their least periods, least x and points (x, y pairs, period of them each). */
+typedef struct henon_orbits {
+    size_t count, room, points, point_room;
+    int *period;
+    double *least_x, *xy;
+    size_t *first; /* the orbit's first point in xy */
+} henon_orbits;
+
+static void orbits_free(henon_orbits *o) { free(o->period), free(o->least_x), free(o->xy), free(o->first); }
+
+/* The orbit through x (least period p) added unless one of its period with least x within 1e-9 is there. */
+static int orbits_add(henon_orbits *o, double a, double b, int p, const double x[2])
+{
+    double z[2] = {x[0], x[1]}, least = x[0];
+    for (int k = 1; k < p; k++) {
+        const double next[2] = {1.0 - a * z[0] * z[0] + z[1], b * z[0]};
+        z[0] = next[0], z[1] = next[1];
+        least = fmin(least, z[0]);
+    }
+    for (size_t k = 0; k < o->count; k++)
+        if (o->period[k] == p && fabs(o->least_x[k] - least) < 1e-9) return GB_OK;
+    if (o->count == o->room) {
+        const size_t room = o->room ? 2 * o->room : 64;
+        int *period = realloc(o->period, room * sizeof *period);
+        if (period) o->period = period;
+        double *least_x = realloc(o->least_x, room * sizeof *least_x);
+        if (least_x) o->least_x = least_x;
+        size_t *first = realloc(o->first, room * sizeof *first);
+        if (first) o->first = first;
+        if (!period || !least_x || !first) return gb_error_set(GB_ENOMEM, "out of memory for the periodic orbits");
+        o->room = room;
+    }
+    if (o->points + (size_t)p > o->point_room) {
+        const size_t room = 2 * (o->point_room + (size_t)p);
+        double *xy = realloc(o->xy, 2 * room * sizeof *xy);
+        if (!xy) return gb_error_set(GB_ENOMEM, "out of memory for the periodic orbits");
+        o->xy = xy, o->point_room = room;
+    }
+    o->period[o->count] = p, o->least_x[o->count] = least, o->first[o->count] = o->points;
+    z[0] = x[0], z[1] = x[1];
+    for (int k = 0; k < p; k++) {
+        o->xy[2 * o->points] = z[0], o->xy[2 * o->points + 1] = z[1], o->points++;
+        const double next[2] = {1.0 - a * z[0] * z[0] + z[1], b * z[0]};
+        z[0] = next[0], z[1] = next[1];
+    }
+    o->count++;
+    return GB_OK;
+}
+
 int gb_proof_conley_henon_classical(int period_max, int depth, gb_proof_field *field, gb_proof_conley_def *def,
                                     uint32_t **seeds, size_t *count)
+{
+    return gb_proof_conley_henon_orbits(period_max, NULL, 0, depth, field, def, seeds, count);
+}
+
+int gb_proof_conley_henon_orbits(int period_max, const gb_proof_conley_orbit *toggle, size_t toggles, int depth,
+                                 gb_proof_field *field, gb_proof_conley_def *def, uint32_t **seeds, size_t *count)
 {
     *seeds = NULL, *count = 0;
     *field = gb_proof_cover_henon(7, 5, 3, 10);
@@ -73,14 +128,22 @@ int gb_proof_conley_henon_classical(int period_max, int depth, gb_proof_field *f
     if (depth < GB_PROOF_CONLEY_DEPTH_MIN || depth > GB_PROOF_CONLEY_DEPTH_MAX)
         return gb_error_set(GB_EDOM, "depth = %d is out of range (allowed: %d to %d)", depth, GB_PROOF_CONLEY_DEPTH_MIN,
                             GB_PROOF_CONLEY_DEPTH_MAX);
-    if (period_max < 1 || period_max > 16)
-        return gb_error_set(GB_EDOM, "period_max = %d is out of range (allowed: 1 to 16)", period_max);
+    if (period_max < 1 || period_max > GB_PROOF_CONLEY_PERIOD_MAX)
+        return gb_error_set(GB_EDOM, "period_max = %d is out of range (allowed: 1 to %d)", period_max,
+                            GB_PROOF_CONLEY_PERIOD_MAX);
+    if (toggles && !toggle) return gb_error_set(GB_EINVAL, "toggle is NULL with %zu orbits named", toggles);
+    int longest = period_max;
+    for (size_t t = 0; t < toggles; t++) {
+        if (toggle[t].period < 1 || toggle[t].period > GB_PROOF_CONLEY_PERIOD_MAX || !isfinite(toggle[t].x))
+            return gb_error_set(GB_EDOM,
+                                "toggle[%zu]: period %d, least x %g is out of range (allowed: periods 1 to %d, "
+                                "x finite)",
+                                t, toggle[t].period, toggle[t].x, GB_PROOF_CONLEY_PERIOD_MAX);
+        if (toggle[t].period > longest) longest = toggle[t].period;
+    }
     enum { STARTS = 4000 };
     const double a = 1.4, b = 0.3;
-    const long side = 1L << depth;
-    size_t room = 1024;
-    uint32_t *list = malloc(room * sizeof *list);
-    if (!list) return gb_error_set(GB_ENOMEM, "out of memory for the seeds");
+    henon_orbits found = {0};
     double o[2] = {0.1, 0.1};
     for (int k = 0; k < 1000; k++) { /* onto the attractor */
         const double next[2] = {1.0 - a * o[0] * o[0] + o[1], b * o[0]};
@@ -91,28 +154,44 @@ int gb_proof_conley_henon_classical(int period_max, int depth, gb_proof_field *f
             const double next[2] = {1.0 - a * o[0] * o[0] + o[1], b * o[0]};
             o[0] = next[0], o[1] = next[1];
         }
-        for (int p = 1; p <= period_max; p++) {
+        for (int p = 1; p <= longest; p++) {
             double x[2] = {o[0], o[1]};
             if (!periodic_point(a, b, p, x)) continue;
-            for (int k = 0; k < p; k++) { /* the orbit's boxes */
-                const long i = (long)floor((x[0] + 2.0) / 4.0 * (double)side),
-                           j = (long)floor((x[1] + 1.0) / 2.0 * (double)side);
-                if (i > 0 && j > 0 && i < side - 1 && j < side - 1) {
-                    if (*count == room) {
-                        uint32_t *more = realloc(list, 2 * room * sizeof *more);
-                        if (!more) {
-                            free(list);
-                            return gb_error_set(GB_ENOMEM, "out of memory for the seeds");
-                        }
-                        list = more, room *= 2;
-                    }
-                    list[(*count)++] = (uint32_t)(j * side + i);
-                }
-                const double next[2] = {1.0 - a * x[0] * x[0] + x[1], b * x[0]};
-                x[0] = next[0], x[1] = next[1];
-            }
+            const int status = orbits_add(&found, a, b, p, x);
+            if (status) return orbits_free(&found), status;
         }
     }
+    /* the orbits kept: periods up to period_max, each named one toggled */
+    char *keep = calloc(found.count ? found.count : 1, 1);
+    if (!keep) return orbits_free(&found), gb_error_set(GB_ENOMEM, "out of memory for the periodic orbits");
+    for (size_t k = 0; k < found.count; k++) keep[k] = found.period[k] <= period_max;
+    for (size_t t = 0; t < toggles; t++) {
+        size_t match = found.count, matches = 0;
+        for (size_t k = 0; k < found.count; k++)
+            if (found.period[k] == toggle[t].period && fabs(found.least_x[k] - toggle[t].x) <= 1e-6)
+                match = k, matches++;
+        if (matches != 1) {
+            free(keep), orbits_free(&found);
+            return gb_error_set(GB_EDOM,
+                                "toggle[%zu]: %zu periodic orbits of least period %d have their least x within "
+                                "1e-6 of %.9f (allowed: exactly one)",
+                                t, matches, toggle[t].period, toggle[t].x);
+        }
+        keep[match] = !keep[match];
+    }
+    const long side = 1L << depth;
+    uint32_t *list = malloc((found.points ? found.points : 1) * sizeof *list);
+    if (!list) return free(keep), orbits_free(&found), gb_error_set(GB_ENOMEM, "out of memory for the seeds");
+    for (size_t k = 0; k < found.count; k++) {
+        if (!keep[k]) continue;
+        for (int q = 0; q < found.period[k]; q++) { /* the orbit's boxes */
+            const double *x = found.xy + 2 * (found.first[k] + (size_t)q);
+            const long i = (long)floor((x[0] + 2.0) / 4.0 * (double)side),
+                       j = (long)floor((x[1] + 1.0) / 2.0 * (double)side);
+            if (i > 0 && j > 0 && i < side - 1 && j < side - 1) list[(*count)++] = (uint32_t)(j * side + i);
+        }
+    }
+    free(keep), orbits_free(&found);
     qsort(list, *count, sizeof *list, conley_compare_boxes);
     size_t unique = 0;
     for (size_t k = 0; k < *count; k++)

@@ -8,7 +8,8 @@
  *   within 1e-9 of ln 2 and, by Friedland and Milnor's h_top ≤ ln 2 for every Hénon map, never above it;
  * - the classical Hénon map from its periodic points of periods 1 ... 6: their number, 20 points, is the published
  *   count of its orbits (two fixed points, one orbit each of periods 2 and 4, two of period 6; Davis, MacKay and
- *   Sannami 1991); a positive bound, at most ln 2;
+ *   Sannami 1991); a positive bound, at most ln 2; the same seeds with an orbit of period 6 left out or one of
+ *   period 7 added by name (6 and 7 boxes fewer or more), and names matching no orbit refused;
  * - the sofic graph on index maps written by hand: the golden-mean shift (entropy ln φ), and a map whose only
  *   return to a region passes through a vector its block sends to zero (a product that is nilpotent: entropy 0, where
  *   counting that vector's transition would give ln φ);
@@ -146,6 +147,44 @@ static void test_classical(void)
                   "h_top >= %.9f%s%s",
                   count, n, n1, n0, r.index_pair, r.h1, r.regions, r.symbols, r.entropy, status ? ": " : "",
                   status ? gb_error_message() : "");
+}
+
+/* The orbits kept, changed by name: at depth 9 every periodic point of periods up to 7 has a box of its own, so leaving
+ * out an orbit of period 6 and adding one of period 7 move the seeds by 6 and 7; a name that matches no orbit, or a
+ * period beyond 16, is refused. The least x are those of the orbits (Newton on doubles, printed to 9 decimals). */
+static void test_orbits(void)
+{
+    static const gb_proof_conley_orbit out6[] = {{6, -0.804219901}}, in7[] = {{7, -0.926173277}}, none[] = {{7, -0.5}},
+                                       long17[] = {{17, 0.0}};
+    const struct {
+        const gb_proof_conley_orbit *toggle;
+        size_t expect;    /* seeds; 0: refused */
+        const char *must; /* in the refusal */
+    } cases[] = {{NULL, 20, NULL}, {out6, 14, NULL}, {in7, 27, NULL}, {none, 0, "exactly one"}, {long17, 0, "period"}};
+    enum { CASES = sizeof cases / sizeof *cases };
+    int met = 0;
+    char got[400] = "", *at = got;
+    for (int k = 0; k < CASES; k++) {
+        gb_proof_field f;
+        gb_proof_conley_def def;
+        uint32_t *seeds = NULL;
+        size_t count = 0;
+        const int status =
+            gb_proof_conley_henon_orbits(6, cases[k].toggle, cases[k].toggle ? 1 : 0, 9, &f, &def, &seeds, &count);
+        free(seeds);
+        met += cases[k].expect ? status == GB_OK && count == cases[k].expect
+                               : status == GB_EDOM && strstr(gb_error_message(), cases[k].must) &&
+                                     strstr(gb_error_message(), "allowed");
+        at += snprintf(at, (size_t)(got + sizeof got - at), "%s%s", k ? "; " : "",
+                       status ? (status == GB_EDOM ? "refused" : "failed") : "");
+        if (!status) at += snprintf(at, (size_t)(got + sizeof got - at), "%zu seeds", count);
+    }
+    gb_check c = {"-", "-",
+                  "the classical Henon map's seeds changed orbit by orbit (depth 9, periods up to 6): none named, an "
+                  "orbit of period 6 left out, one of period 7 added, a name matching no orbit, period 17",
+                  "20, 14 and 27 seeds (each point its own box); GB_EDOM naming the orbit and what is allowed",
+                  "exact"};
+    gb_check_true(&c, met == CASES, "%d of %d as expected: %s", met, CASES, got);
 }
 
 /* Regions B = box (3, 3) with generator b and A = box (8, 8) with a1, a2 on a grid of depth 4; the index map's columns
@@ -297,6 +336,8 @@ int verify_register_s7_conley(void)
          "the index map of Henon's full horseshoe proves h_top >= ln 2 at every depth tried"},
         {"conley: the classical Henon map", test_classical,
          "grown from its periodic points, an index pair of the classical Henon map proves positive entropy"},
+        {"conley: the classical map's orbits by name", test_orbits,
+         "the seeds' orbits are left out and added by their period and least x; names matching no orbit are refused"},
         {"conley: the sofic graph by hand", test_sofic,
          "the entropy of the sofic shift forced by index maps written by hand meets closed forms"},
         {"conley: negative controls", test_controls, "pairs that break each condition prove nothing"},
