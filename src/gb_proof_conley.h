@@ -103,9 +103,9 @@ GB_API int gb_proof_conley_henon_horseshoe(int depth, gb_proof_field *field, gb_
                                            uint32_t **n_boxes, size_t *n);
 
 /* The classical Hénon map (a = 7/5, b = 3/10) on [−2, 2] × [−1, 1] at `depth`, region_dimension 12, and seeds: the
- * boxes of its periodic points of least period 1 ... period_max (≤ 16, GB_PROOF_CONLEY_PERIOD_MAX), found by Newton on doubles from 4000 points of
- * one orbit (every 7th after 1000 iterates from (0.1, 0.1)); they only place N (gb_proof_conley_isolate), nothing
- * proved rests on them. *seeds allocated (free()). */
+ * boxes of its periodic points of least period 1 ... period_max (≤ GB_PROOF_CONLEY_PERIOD_MAX, 16), found by Newton on
+ * doubles from 4000 points of one orbit (every 7th after 1000 iterates from (0.1, 0.1)); they only place N
+ * (gb_proof_conley_isolate), nothing proved rests on them. *seeds allocated (free()). */
 GB_API int gb_proof_conley_henon_classical(int period_max, int depth, gb_proof_field *field, gb_proof_conley_def *def,
                                            uint32_t **seeds, size_t *count);
 

@@ -71,12 +71,14 @@ cJSON *prove_conley_statement(long precision, int classical, int *proved, int *s
         else
             added++, longest = classical_toggles[k].period > longest ? classical_toggles[k].period : longest;
     }
-    char grown[300];
+    char grown[300], longer[80] = "";
+    if (added)
+        snprintf(longer, sizeof longer, ", and %d of periods %d ... %d added", added, CLASSICAL_PERIODS + 1, longest);
     snprintf(grown, sizeof grown,
              "N grown from the %zu boxes of the points of periodic orbits (Newton on doubles): those of periods 1 ... "
-             "%d, %d of them left out, and %d of periods %d ... %d added (the orbits named in the source), until it "
-             "isolates its invariant part and holds P1 \\ P0 in its interior",
-             seed_count, CLASSICAL_PERIODS, left_out, added, CLASSICAL_PERIODS + 1, longest);
+             "%d, %d of them left out%s (the orbits named in the source), until it isolates its invariant part and "
+             "holds P1 \\ P0 in its interior",
+             seed_count, CLASSICAL_PERIODS, left_out, longer);
     snprintf(text, sizeof text,
              "a grid of 2^%d x 2^%d boxes over [%g, %g] x [%g, %g]; %s; the index pair built from N (S = Inv(N), "
              "K = S and its neighbours, P1 = what F reaches from K inside N, P0 = the part of P1 that cannot reach K): "
