@@ -71,7 +71,8 @@ typedef struct henon_orbits {
 
 static void orbits_free(henon_orbits *o) { free(o->period), free(o->least_x), free(o->xy), free(o->first); }
 
-/* The orbit through x (least period p) added unless one of its period with least x within 1e-9 is there. */
+/* The orbit through x (least period p) added unless one of its period with least x within 1e-9 is there (Newton
+ * stops at a step below 1e-13; distinct orbits of one period up to 16 differ in least x by 5.2e-5 at the least). */
 static int orbits_add(henon_orbits *o, double a, double b, int p, const double x[2])
 {
     double z[2] = {x[0], x[1]}, least = x[0];
