@@ -219,6 +219,7 @@ int main(int argc, char **argv)
         {verify_register_s7_covering, 1},
         {verify_register_s7_returns, 1},
         {verify_register_s7_conley, 1},
+        {verify_register_s7_manifold, 1},
         {verify_register_s8_scan, 0},
         {verify_register_s8_scan_runs, 0},
         {verify_register_s8_scan_atlas, 0},

@@ -36,6 +36,7 @@ int verify_register_s7_horseshoe(void);
 int verify_register_s7_covering(void);
 int verify_register_s7_returns(void);
 int verify_register_s7_conley(void);
+int verify_register_s7_manifold(void);
 int verify_register_s8_scan(void);
 int verify_register_s8_scan_runs(void);
 int verify_register_s8_scan_atlas(void);

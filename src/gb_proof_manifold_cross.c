@@ -1,0 +1,353 @@
+/* gb_proof_manifold_cross — the crossings of an unstable manifold P of f with an unstable manifold R of f⁻¹ (the
+ * stable manifold of f) over two arcs: each proved by Krawczyk's operator, and no other, by bisection
+ * (gb_proof_manifold.h states the argument). */
+#include "gb_proof_manifold.h"
+
+#include "gb_error.h"
+#include "gb_proof_internal.h"
+#include "gb_proof_manifold_internal.h"
+
+#include <arb.h>
+#include <arb_mat.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+enum { PIECES_MAX = 1 << 22 };
+
+typedef struct piece {
+    gb_proof_interval par, box[2];
+} piece;
+
+/* A crossing proved, and the box of (s, t) where it is the only zero. */
+typedef struct found {
+    gb_proof_manifold_crossing c;
+    gb_proof_interval unique[2];
+} found;
+
+typedef struct cross_ctx {
+    const gb_proof_manifold *p, *r;
+    const gb_proof_manifold_crossings_def *def;
+    slong prec;
+    found *list;
+    size_t count, cap, undecided;
+    int failed; /* an error or a crossing that cannot be placed: the message is in failure */
+    char failure[200];
+} cross_ctx;
+
+static double width_of(const gb_proof_interval b[2]) { return fmax(b[0].hi - b[0].lo, b[1].hi - b[1].lo); }
+
+static int meet(const gb_proof_interval a[2], const gb_proof_interval b[2])
+{
+    return a[0].lo <= b[0].hi && b[0].lo <= a[0].hi && a[1].lo <= b[1].hi && b[1].lo <= a[1].hi;
+}
+
+static int inside(gb_proof_interval x, gb_proof_interval in) { return x.lo >= in.lo && x.hi <= in.hi; }
+
+static void fail(cross_ctx *x, const char *message)
+{
+    if (!x->failed) snprintf(x->failure, sizeof x->failure, "%s", message);
+    x->failed = 1;
+}
+
+/* The arc's pieces: halved until their enclosure is at most width wide (or cannot be halved). */
+static int arc_pieces(const gb_proof_manifold *m, gb_proof_interval range, double width, piece **out, size_t *count)
+{
+    size_t cap = 1024, n = 0, top = 0, stack_cap = 256;
+    piece *list = malloc(cap * sizeof *list);
+    gb_proof_interval *stack = malloc(stack_cap * sizeof *stack);
+    int status = list && stack ? GB_OK : gb_error_set(GB_ENOMEM, "crossings: out of memory");
+    if (!status) stack[top++] = range;
+    while (!status && top) {
+        const gb_proof_interval s = stack[--top];
+        piece q = {s, {{0, 0}, {0, 0}}};
+        status = gb_proof_manifold_enclose(m, s, q.box, NULL);
+        if (status) break;
+        if (width_of(q.box) <= width || !gb_proof_halvable(s)) {
+            if (n == cap) {
+                piece *grown = cap < PIECES_MAX ? realloc(list, 2 * cap * sizeof *list) : NULL;
+                if (!grown) {
+                    status = gb_error_set(GB_ENOMEM, "crossings: more than %d pieces of an arc (widen the width)",
+                                          PIECES_MAX);
+                    break;
+                }
+                list = grown, cap *= 2;
+            }
+            list[n++] = q;
+            continue;
+        }
+        if (top + 2 > stack_cap) {
+            gb_proof_interval *grown = realloc(stack, 2 * stack_cap * sizeof *stack);
+            if (!grown) {
+                status = gb_error_set(GB_ENOMEM, "crossings: out of memory");
+                break;
+            }
+            stack = grown, stack_cap *= 2;
+        }
+        stack[top++] = gb_proof_half(s, 1), stack[top++] = gb_proof_half(s, 0);
+    }
+    free(stack);
+    if (status) {
+        free(list);
+        return status;
+    }
+    *out = list, *count = n;
+    return GB_OK;
+}
+
+/* G(s, t) = P(s) − R(t) over the balls X = (S, T), and DG = [P'(S), −R'(T)]. */
+static int eval_g(const cross_ctx *x, arb_srcptr X, arb_ptr g, arb_mat_t A)
+{
+    arb_ptr zp = _arb_vec_init(2), dp = _arb_vec_init(2), zr = _arb_vec_init(2), dr = _arb_vec_init(2);
+    int status = gb_proof_manifold_ball(x->p, X, zp, dp);
+    if (!status) status = gb_proof_manifold_ball(x->r, X + 1, zr, dr);
+    if (!status) {
+        _arb_vec_sub(g, zp, zr, 2, x->prec);
+        for (int i = 0; i < 2; i++) {
+            arb_set(arb_mat_entry(A, i, 0), dp + i);
+            arb_neg(arb_mat_entry(A, i, 1), dr + i);
+        }
+    }
+    _arb_vec_clear(zp, 2), _arb_vec_clear(dp, 2), _arb_vec_clear(zr, 2), _arb_vec_clear(dr, 2);
+    return status;
+}
+
+/* Krawczyk's verdict on the box s × t (gb_proof_krawczyk2), K in k; −2 on an error. */
+static int krawczyk_box(const cross_ctx *x, gb_proof_interval s, gb_proof_interval t, gb_proof_interval k[2])
+{
+    arb_ptr X = _arb_vec_init(2), m = _arb_vec_init(2), g = _arb_vec_init(2), K = _arb_vec_init(2);
+    arb_mat_t A, ignored;
+    arb_mat_init(A, 2, 2), arb_mat_init(ignored, 2, 2);
+    gb_proof_ball_of(X, s, x->prec), gb_proof_ball_of(X + 1, t, x->prec);
+    for (int i = 0; i < 2; i++) arf_set(arb_midref(m + i), arb_midref(X + i)), mag_zero(arb_radref(m + i));
+    int verdict = -2;
+    if (!eval_g(x, m, g, ignored)) {
+        arb_ptr unused = _arb_vec_init(2);
+        if (!eval_g(x, X, unused, A)) verdict = gb_proof_krawczyk2(X, m, g, A, K, x->prec);
+        _arb_vec_clear(unused, 2);
+    }
+    if (verdict >= -1)
+        for (int i = 0; i < 2; i++) k[i] = gb_proof_interval_of(K + i);
+    _arb_vec_clear(X, 2), _arb_vec_clear(m, 2), _arb_vec_clear(g, 2), _arb_vec_clear(K, 2);
+    arb_mat_clear(A), arb_mat_clear(ignored);
+    return verdict;
+}
+
+/* Newton on doubles from (s, t) through the balls' middles: 1 when its step fell below 1e-15 of the point's scale;
+ * the speeds |P'(s)|, |R'(t)| there. */
+static int newton(const cross_ctx *x, double *s, double *t, double speed[2])
+{
+    arb_ptr X = _arb_vec_init(2), g = _arb_vec_init(2);
+    arb_mat_t A;
+    arb_mat_init(A, 2, 2);
+    int converged = 0;
+    for (int it = 0; it < 40 && !converged; it++) {
+        arb_set_d(X, *s), arb_set_d(X + 1, *t);
+        if (eval_g(x, X, g, A)) break;
+        double a[2][2], r[2];
+        for (int i = 0; i < 2; i++) {
+            r[i] = arf_get_d(arb_midref(g + i), ARF_RND_NEAR);
+            for (int j = 0; j < 2; j++) a[i][j] = arf_get_d(arb_midref(arb_mat_entry(A, i, j)), ARF_RND_NEAR);
+        }
+        speed[0] = hypot(a[0][0], a[1][0]), speed[1] = hypot(a[0][1], a[1][1]);
+        const double det = a[0][0] * a[1][1] - a[0][1] * a[1][0];
+        if (!(isfinite(det) && det != 0.0)) break;
+        const double ds = (a[1][1] * r[0] - a[0][1] * r[1]) / det, dt = (a[0][0] * r[1] - a[1][0] * r[0]) / det;
+        if (!(isfinite(ds) && isfinite(dt)) || fabs(ds) > 1e3 || fabs(dt) > 1e3) break;
+        *s -= ds, *t -= dt;
+        converged = fabs(ds) <= 1e-15 * (1.0 + fabs(*s)) && fabs(dt) <= 1e-15 * (1.0 + fabs(*t));
+        if (!converged && it > 5 && fabs(ds) * speed[0] + fabs(dt) * speed[1] < 1e-14) converged = 1;
+    }
+    _arb_vec_clear(X, 2), _arb_vec_clear(g, 2);
+    arb_mat_clear(A);
+    return converged;
+}
+
+static int add_found(cross_ctx *x, const found *f)
+{
+    if (x->count == x->cap) {
+        const size_t cap = x->cap ? 2 * x->cap : 64;
+        found *grown = realloc(x->list, cap * sizeof *grown);
+        if (!grown) return gb_error_set(GB_ENOMEM, "crossings: out of memory");
+        x->list = grown, x->cap = cap;
+    }
+    x->list[x->count++] = *f;
+    return GB_OK;
+}
+
+/* A crossing proved (its enclosure and its box of uniqueness): listed unless it is one listed already, or lies
+ * outside the arcs; one on an arc's end cannot be placed. */
+static void record(cross_ctx *x, found *f)
+{
+    for (size_t i = 0; i < x->count; i++) { /* enclosures that miss each other hold two zeros; else one zero twice */
+        const found *o = &x->list[i];
+        const gb_proof_interval ks[2] = {f->c.s, f->c.t}, ko[2] = {o->c.s, o->c.t};
+        if (!meet(ks, ko)) continue;
+        if ((inside(f->c.s, o->unique[0]) && inside(f->c.t, o->unique[1])) ||
+            (inside(o->c.s, f->unique[0]) && inside(o->c.t, f->unique[1])))
+            return;
+        fail(x, "two crossings' enclosures meet outside each other's box of uniqueness");
+        return;
+    }
+    const gb_proof_interval as = x->def->s, at = x->def->t;
+    const int within = f->c.s.lo > as.lo && f->c.s.hi < as.hi && f->c.t.lo > at.lo && f->c.t.hi < at.hi;
+    const int outside = f->c.s.hi < as.lo || f->c.s.lo > as.hi || f->c.t.hi < at.lo || f->c.t.lo > at.hi;
+    if (!within && !outside) {
+        fail(x, "a crossing lies on an arc's end (move the end)");
+        return;
+    }
+    if (outside) return;
+    if (gb_proof_manifold_enclose(x->p, f->c.s, f->c.point, NULL) || add_found(x, f)) fail(x, gb_error_message());
+}
+
+/* The crossing Newton found near (s, t): Krawczyk on boxes δ/|P'| × δ/|R'| wide, δ = 1e-12 … 1e-2 (×4), the first
+ * proved giving its enclosure, the last its box of uniqueness. Not proved: left to the bisection, which finds every
+ * zero the arcs hold. */
+static void prove_zero(cross_ctx *x, double s, double t, const double speed[2])
+{
+    found f;
+    memset(&f, 0, sizeof f);
+    int proved = 0;
+    for (double delta = 1e-12; delta <= 1e-2; delta *= 4.0) {
+        const double hs = delta / fmax(speed[0], 1e-300), ht = delta / fmax(speed[1], 1e-300);
+        const gb_proof_interval S = {s - hs, s + hs}, T = {t - ht, t + ht};
+        gb_proof_interval k[2];
+        const int verdict = krawczyk_box(x, S, T, k);
+        if (verdict == -2) {
+            fail(x, gb_error_message());
+            return;
+        }
+        if (verdict != 1) break;
+        if (!proved) f.c.s = k[0], f.c.t = k[1];
+        f.unique[0] = S, f.unique[1] = T, proved = 1;
+    }
+    if (proved) record(x, &f);
+}
+
+static int covered(const cross_ctx *x, gb_proof_interval s, gb_proof_interval t)
+{
+    for (size_t i = 0; i < x->count; i++)
+        if (inside(s, x->list[i].unique[0]) && inside(t, x->list[i].unique[1])) return 1;
+    return 0;
+}
+
+/* No zero in s × t but those listed: the box is inside a listed zero's box of uniqueness, or P(s) and R(t) do not
+ * meet, or Krawczyk's image misses it; a box where Krawczyk's image lies inside holds exactly one zero, listed (the
+ * box its box of uniqueness); else halved. */
+static void exclude(cross_ctx *x, gb_proof_interval s, gb_proof_interval t, int depth)
+{
+    if (x->failed || covered(x, s, t)) return;
+    gb_proof_interval bp[2], br[2], k[2];
+    if (gb_proof_manifold_enclose(x->p, s, bp, NULL) || gb_proof_manifold_enclose(x->r, t, br, NULL)) {
+        fail(x, gb_error_message());
+        return;
+    }
+    if (!meet(bp, br)) return;
+    const int verdict = krawczyk_box(x, s, t, k);
+    if (verdict == -2) {
+        fail(x, gb_error_message());
+        return;
+    }
+    if (verdict == -1) return;
+    if (verdict == 1) { /* exactly one zero in s × t, in k */
+        found f;
+        memset(&f, 0, sizeof f);
+        f.c.s = k[0], f.c.t = k[1], f.unique[0] = s, f.unique[1] = t;
+        record(x, &f);
+        return;
+    }
+    const int split_s = gb_proof_halvable(s), split_t = gb_proof_halvable(t);
+    if (depth >= x->def->depth || (!split_s && !split_t)) {
+        x->undecided++;
+        return;
+    }
+    if (split_s && (!split_t || width_of(bp) >= width_of(br))) {
+        exclude(x, gb_proof_half(s, 0), t, depth + 1);
+        exclude(x, gb_proof_half(s, 1), t, depth + 1);
+    } else {
+        exclude(x, s, gb_proof_half(t, 0), depth + 1);
+        exclude(x, s, gb_proof_half(t, 1), depth + 1);
+    }
+}
+
+static int check_range(const char *name, gb_proof_interval x)
+{
+    if (!(isfinite(x.lo) && isfinite(x.hi) && x.lo < x.hi && fabs(x.lo) <= 1e6 && fabs(x.hi) <= 1e6))
+        return gb_error_set(GB_EDOM, "crossings: %s = [%g, %g] must be finite, ordered, within ±1e6", name, x.lo, x.hi);
+    return GB_OK;
+}
+
+static int by_s(const void *a, const void *b)
+{
+    const gb_proof_manifold_crossing *x = a, *y = b;
+    return (x->s.lo > y->s.lo) - (x->s.lo < y->s.lo);
+}
+
+int gb_proof_manifold_crossings(const gb_proof_manifold *p, const gb_proof_manifold *r,
+                                const gb_proof_manifold_crossings_def *def, gb_proof_manifold_crossings_result *out)
+{
+    memset(out, 0, sizeof *out);
+    int status = check_range("s", def->s);
+    if (!status) status = check_range("t", def->t);
+    if (!status && !(def->width > 0.0 && def->width <= 1.0))
+        status =
+            gb_error_set(GB_EDOM, "crossings: width = %g is out of range (allowed: above 0, at most 1)", def->width);
+    if (!status && (def->depth < 1 || def->depth > 60))
+        status = gb_error_set(GB_EDOM, "crossings: depth = %d is out of range (allowed: 1 to 60)", def->depth);
+    gb_proof_manifold_info ip, ir;
+    gb_proof_manifold_info_of(p, &ip), gb_proof_manifold_info_of(r, &ir);
+    for (int i = 0; i < 2 && !status; i++)
+        if (!(ip.fixed[i].lo <= ir.fixed[i].hi && ir.fixed[i].lo <= ip.fixed[i].hi))
+            status = gb_error_set(GB_EDOM, "crossings: the two manifolds are not of one fixed point");
+    if (status) return status;
+    const double start = gb_proof_cpu_seconds();
+    cross_ctx x = {.p = p, .r = r, .def = def, .prec = gb_proof_manifold_precision(p)};
+    piece *ps = NULL, *rs = NULL;
+    size_t np = 0, nr = 0;
+    status = arc_pieces(p, def->s, def->width, &ps, &np);
+    if (!status) status = arc_pieces(r, def->t, def->width, &rs, &nr);
+    for (size_t i = 0; i < np && !status && !x.failed; i++)
+        for (size_t j = 0; j < nr && !x.failed; j++) {
+            if (!meet(ps[i].box, rs[j].box)) continue;
+            out->pairs++;
+            double s = 0.5 * (ps[i].par.lo + ps[i].par.hi), t = 0.5 * (rs[j].par.lo + rs[j].par.hi),
+                   speed[2] = {1.0, 1.0};
+            const double ws = ps[i].par.hi - ps[i].par.lo, wt = rs[j].par.hi - rs[j].par.lo;
+            if (newton(&x, &s, &t, speed) && s >= ps[i].par.lo - ws && s <= ps[i].par.hi + ws &&
+                t >= rs[j].par.lo - wt && t <= rs[j].par.hi + wt &&
+                !covered(&x, (gb_proof_interval){s, s}, (gb_proof_interval){t, t}))
+                prove_zero(&x, s, t, speed);
+        }
+    for (size_t i = 0; i < np && !status && !x.failed; i++)
+        for (size_t j = 0; j < nr && !x.failed; j++)
+            if (meet(ps[i].box, rs[j].box)) exclude(&x, ps[i].par, rs[j].par, 0);
+    free(ps), free(rs);
+    if (status) {
+        free(x.list);
+        return status;
+    }
+    out->pieces_s = np, out->pieces_t = nr, out->undecided = x.undecided;
+    out->crossings = x.count ? malloc(x.count * sizeof *out->crossings) : NULL;
+    if (x.count && !out->crossings) {
+        free(x.list);
+        return gb_error_set(GB_ENOMEM, "crossings: out of memory");
+    }
+    for (size_t i = 0; i < x.count; i++) out->crossings[i] = x.list[i].c;
+    out->count = x.count;
+    free(x.list);
+    if (out->count) qsort(out->crossings, out->count, sizeof *out->crossings, by_s);
+    if (x.failed)
+        snprintf(out->failure, sizeof out->failure, "%s", x.failure);
+    else if (x.undecided)
+        snprintf(out->failure, sizeof out->failure, "%zu boxes of (s, t) left undecided at depth %d", x.undecided,
+                 def->depth);
+    out->proved = !x.failed && !x.undecided;
+    out->seconds = gb_proof_cpu_seconds() - start;
+    return GB_OK;
+}
+
+void gb_proof_manifold_crossings_free(gb_proof_manifold_crossings_result *out)
+{
+    free(out->crossings);
+    out->crossings = NULL, out->count = 0;
+}

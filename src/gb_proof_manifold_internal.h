@@ -1,0 +1,24 @@
+/* gb_proof_manifold_internal — what gb_proof_manifold.c gives gb_proof_manifold_cross.c: Krawczyk's operator in the
+ * plane and P over a ball. Not installed, not exported. */
+#ifndef GB_PROOF_MANIFOLD_INTERNAL_H
+#define GB_PROOF_MANIFOLD_INTERNAL_H
+
+#include "gb_proof_manifold.h"
+
+#include <arb.h>
+#include <arb_mat.h>
+
+/* Krawczyk's operator K = m − C g + (I − C A)(X − m) for a zero of a map G of R² in the box X, g = G(m) at the
+ * middle m (thin), A ⊇ DG(X), C the middle of A inverted in doubles: 1 when K ⊂ int X (exactly one zero in X, in K,
+ * and every matrix of A regular: Krawczyk 1969, Neumaier 1990 Thm 5.1.7), −1 when K misses X in a coordinate (no zero
+ * in X), 0 otherwise. K written to k. */
+int gb_proof_krawczyk2(arb_srcptr X, arb_srcptr m, arb_srcptr g, const arb_mat_t A, arb_ptr k, slong prec);
+
+/* P over the ball S in mean value form P(s_c) + P'(S)(S − s_c), met with the plain enclosure; P'(S) in d (2 balls
+ * each). GB_ENUMERIC when not finite. */
+int gb_proof_manifold_ball(const gb_proof_manifold *m, const arb_t S, arb_ptr z, arb_ptr d);
+
+/* Arb's bits the manifold was made with. */
+long gb_proof_manifold_precision(const gb_proof_manifold *m);
+
+#endif

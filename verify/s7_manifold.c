@@ -1,0 +1,327 @@
+/* Proved on Arb's balls: the unstable manifold of a saddle of a quadratic map of the plane, parametrised with a proved
+ * tail, and the crossings of an unstable and a stable manifold, each proved transverse and no other (gb_proof_manifold,
+ * the first pieces of a trellis).
+ *
+ * Oracles, none sharing code with what they check:
+ * - a map whose manifolds are known in closed form: f(x, y) = (2x, y/4 + x²) has W^u(0) = {y = x²/3.75}, parametrised
+ *   by P(s) = (±s, s²/3.75) (P(2s) = f(P(s))), and W^s(0) the y-axis; its eigenvalues are 2 and 1/4, and the two
+ *   manifolds cross only at the fixed point;
+ * - the classical Hénon map: the number of crossings of two arcs of its fixed point's manifolds against a count of
+ *   the crossings of polylines through 40 000 and 8 000 points of the two arcs (segment against segment, in doubles),
+ *   and every crossing's point iterated 12 times by Hénon's formula in doubles must come within 1e-5 of the fixed
+ *   point (a point of W^s; the distance shrinks by 0.156 an iterate, the rounding grows by 1.92);
+ * - the tail's bound: parametrisations of orders 4 and 8, whose tails are large, must hold order 30's value at the
+ *   disc's edge;
+ * - negative controls with teeth: an attracting fixed point (no saddle), a tail whose map is no contraction (order 2
+ *   on a disc of radius 20), manifolds of two different fixed points, and an arc that ends on a crossing are each
+ *   refused, with nothing claimed;
+ * - the definitions' ranges: each bad field refused with GB_EDOM naming it. */
+#include "gb_check.h"
+#include "gb_error.h"
+#include "gb_proof_manifold.h"
+#include "verify_sections.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* f(x, y) = (2x, y/4 + x²) and its inverse (x/2, 4y − x²). */
+static void exact_maps(gb_proof_field *f, gb_proof_field *g)
+{
+    memset(f, 0, sizeof *f), memset(g, 0, sizeof *g);
+    f->dimension = g->dimension = 2;
+    f->L[0][0] = (gb_proof_rational){2, 1}, f->L[1][1] = (gb_proof_rational){1, 4},
+    f->Q[1][0][0] = (gb_proof_rational){1, 1};
+    g->L[0][0] = (gb_proof_rational){1, 2}, g->L[1][1] = (gb_proof_rational){4, 1},
+    g->Q[1][0][0] = (gb_proof_rational){-1, 1};
+}
+
+/* The distance of x from the interval (0 inside). */
+static double off(double x, gb_proof_interval i) { return x < i.lo ? i.lo - x : x > i.hi ? x - i.hi : 0.0; }
+
+static void test_exact(void)
+{
+    gb_proof_field f, g;
+    exact_maps(&f, &g);
+    gb_proof_manifold_def def = gb_proof_manifold_def_default();
+    def.map = &f, def.fixed[0] = 0.01, def.fixed[1] = -0.02;
+    gb_proof_manifold *P = NULL, *R = NULL;
+    int status = gb_proof_manifold_create(&def, &P);
+    def.map = &g;
+    if (!status) status = gb_proof_manifold_create(&def, &R);
+    double worst = 0.0, worst_r = 0.0;
+    int eigen = 0;
+    gb_proof_manifold_crossings_result x = {0};
+    if (!status) {
+        gb_proof_manifold_info ip, ir;
+        gb_proof_manifold_info_of(P, &ip), gb_proof_manifold_info_of(R, &ir);
+        eigen = off(2.0, ip.lambda) == 0.0 && off(0.25, ip.other) == 0.0 && off(4.0, ir.lambda) == 0.0 &&
+                off(0.5, ir.other) == 0.0;
+        gb_proof_interval z[2], d[2], dr[2];
+        status = gb_proof_manifold_enclose(P, (gb_proof_interval){0.0, 0.0}, z, d); /* the eigenvectors' orientations */
+        if (!status) status = gb_proof_manifold_enclose(R, (gb_proof_interval){0.0, 0.0}, z, dr);
+        const double sp = d[0].lo > 0.0 ? 1.0 : -1.0, sr = dr[1].lo > 0.0 ? 1.0 : -1.0;
+        static const double s[] = {0.1, 0.4, -0.45, 3.0, -5.0, 17.0, 100.0};
+        for (size_t k = 0; k < sizeof s / sizeof *s && !status; k++) {
+            gb_proof_interval zp[2], zr[2];
+            status = gb_proof_manifold_enclose(P, (gb_proof_interval){s[k], s[k]}, zp, NULL);
+            if (!status) status = gb_proof_manifold_enclose(R, (gb_proof_interval){s[k], s[k]}, zr, NULL);
+            if (status) break;
+            const double x0 = sp * s[k], y0 = s[k] * s[k] / 3.75, ry = sr * s[k];
+            worst = fmax(worst, fmax(off(x0, zp[0]) / (1.0 + fabs(x0)), off(y0, zp[1]) / (1.0 + y0)));
+            worst_r = fmax(worst_r, fmax(off(0.0, zr[0]), off(ry, zr[1]) / (1.0 + fabs(ry))));
+        }
+        const gb_proof_manifold_crossings_def cd = {{-20.0, 20.5}, {-3.0, 3.5}, 0.05, 40};
+        if (!status) status = gb_proof_manifold_crossings(P, R, &cd, &x);
+    }
+    const int crossed =
+        !status && x.proved && x.count == 1 && off(0.0, x.crossings[0].s) == 0.0 && off(0.0, x.crossings[0].t) == 0.0;
+    gb_check c = {
+        "-", "-",
+        "f(x, y) = (2x, y/4 + x^2): W^u(0) parametrised on Arb (order 30, disc of radius 1), P(s) at s = 0.1 "
+        "... 100 (inside the disc and by iterates), W^s(0) likewise, and their crossings over s in [-20, 20.5], "
+        "t in [-3, 3.5]",
+        "closed forms: P(s) = (+-s, s^2/3.75), R(t) = (0, +-t), eigenvalues 2 and 1/4; the manifolds cross at "
+        "the fixed point alone",
+        "the closed form in doubles within 1e-14 relative of each enclosure (its rounding); the count exact"};
+    gb_check_true(
+        &c, !status && eigen && worst <= 1e-14 && worst_r <= 1e-14 && crossed,
+        "eigenvalues enclosed %d; P off its closed form by %.2g, R by %.2g (relative); %zu crossing(s), proved "
+        "%d%s%s",
+        eigen, worst, worst_r, x.count, x.proved, status ? ": " : "", status ? gb_error_message() : "");
+    gb_proof_manifold_crossings_free(&x);
+    gb_proof_manifold_free(P), gb_proof_manifold_free(R);
+}
+
+/* The classical map's manifolds at its fixed point in the attractor (order 30, σ = 1, ρ = 1). */
+static int henon_manifolds(double gx, double gy, gb_proof_manifold **P, gb_proof_manifold **R)
+{
+    static gb_proof_field f, g;
+    int status = gb_proof_manifold_henon(7, 5, 3, 10, &f, &g);
+    gb_proof_manifold_def def = gb_proof_manifold_def_default();
+    def.fixed[0] = gx, def.fixed[1] = gy;
+    def.map = &f;
+    *P = *R = NULL;
+    if (!status) status = gb_proof_manifold_create(&def, P);
+    def.map = &g;
+    if (!status) status = gb_proof_manifold_create(&def, R);
+    return status;
+}
+
+/* Crossings of two polylines through n points of P over s and m points of R over t (the enclosures' middles). */
+static long polyline_crossings(const gb_proof_manifold *P, const gb_proof_manifold *R, gb_proof_interval s,
+                               gb_proof_interval t, int n, int m)
+{
+    double(*a)[2] = malloc((size_t)n * sizeof *a), (*b)[2] = malloc((size_t)m * sizeof *b);
+    long count = a && b ? 0 : -1;
+    for (int k = 0; k < n && count >= 0; k++) {
+        const double u = s.lo + (s.hi - s.lo) * k / (n - 1);
+        gb_proof_interval z[2];
+        if (gb_proof_manifold_enclose(P, (gb_proof_interval){u, u}, z, NULL)) count = -1;
+        a[k][0] = 0.5 * (z[0].lo + z[0].hi), a[k][1] = 0.5 * (z[1].lo + z[1].hi);
+    }
+    for (int k = 0; k < m && count >= 0; k++) {
+        const double u = t.lo + (t.hi - t.lo) * k / (m - 1);
+        gb_proof_interval z[2];
+        if (gb_proof_manifold_enclose(R, (gb_proof_interval){u, u}, z, NULL)) count = -1;
+        b[k][0] = 0.5 * (z[0].lo + z[0].hi), b[k][1] = 0.5 * (z[1].lo + z[1].hi);
+    }
+    for (int i = 0; i + 1 < n && count >= 0; i++)
+        for (int j = 0; j + 1 < m; j++) {
+            const double *p0 = a[i], *p1 = a[i + 1], *q0 = b[j], *q1 = b[j + 1];
+            if (fmax(p0[0], p1[0]) < fmin(q0[0], q1[0]) || fmax(q0[0], q1[0]) < fmin(p0[0], p1[0]) ||
+                fmax(p0[1], p1[1]) < fmin(q0[1], q1[1]) || fmax(q0[1], q1[1]) < fmin(p0[1], p1[1]))
+                continue;
+            const double d0 = p1[0] - p0[0], d1 = p1[1] - p0[1], e0 = q1[0] - q0[0], e1 = q1[1] - q0[1];
+            const double det = d0 * e1 - d1 * e0;
+            if (det == 0.0) continue;
+            const double w0 = q0[0] - p0[0], w1 = q0[1] - p0[1];
+            const double u = (w0 * e1 - w1 * e0) / det, v = (w0 * d1 - w1 * d0) / det;
+            if (u >= 0.0 && u < 1.0 && v >= 0.0 && v < 1.0) count++;
+        }
+    free(a), free(b);
+    return count;
+}
+
+static void test_henon(void)
+{
+    gb_proof_manifold *P, *R;
+    int status = henon_manifolds(0.63, 0.19, &P, &R);
+    gb_proof_manifold_crossings_result x = {0};
+    const gb_proof_manifold_crossings_def cd = {{-26.0, 26.0}, {-3.0, 3.0}, 0.01, 40};
+    if (!status) status = gb_proof_manifold_crossings(P, R, &cd, &x);
+    long poly = -1;
+    if (!status) poly = polyline_crossings(P, R, cd.s, cd.t, 40000, 8000);
+    /* the tail's bound has teeth: low orders' enclosures at the disc's edge (s = ±ρ/2) hold order 30's value */
+    int tails = 0;
+    for (int order = 4; order <= 8 && !status; order += 4) {
+        gb_proof_field f, g;
+        gb_proof_manifold_henon(7, 5, 3, 10, &f, &g);
+        gb_proof_manifold_def def = gb_proof_manifold_def_default();
+        def.map = &f, def.fixed[0] = 0.63, def.fixed[1] = 0.19, def.order = order;
+        gb_proof_manifold *low = NULL;
+        status = gb_proof_manifold_create(&def, &low);
+        for (int side = -1; side <= 1 && !status; side += 2) {
+            gb_proof_interval zl[2], zh[2];
+            status = gb_proof_manifold_enclose(low, (gb_proof_interval){0.5 * side, 0.5 * side}, zl, NULL);
+            if (!status) status = gb_proof_manifold_enclose(P, (gb_proof_interval){0.5 * side, 0.5 * side}, zh, NULL);
+            tails += !status && off(0.5 * (zh[0].lo + zh[0].hi), zl[0]) == 0.0 &&
+                     off(0.5 * (zh[1].lo + zh[1].hi), zl[1]) == 0.0;
+        }
+        gb_proof_manifold_free(low);
+    }
+    int stable = 0;
+    double farthest = 0.0;
+    gb_proof_manifold_info ip = {0};
+    if (!status) gb_proof_manifold_info_of(P, &ip);
+    const double px = 0.5 * (ip.fixed[0].lo + ip.fixed[0].hi), py = 0.5 * (ip.fixed[1].lo + ip.fixed[1].hi);
+    for (size_t k = 0; k < x.count; k++) {
+        double u = 0.5 * (x.crossings[k].point[0].lo + x.crossings[k].point[0].hi),
+               v = 0.5 * (x.crossings[k].point[1].lo + x.crossings[k].point[1].hi);
+        for (int it = 0; it < 12; it++) {
+            const double nu = 1.0 - 1.4 * u * u + v;
+            v = 0.3 * u, u = nu;
+        }
+        const double dist = hypot(u - px, v - py);
+        farthest = fmax(farthest, dist);
+        stable += dist < 1e-5;
+    }
+    gb_check c = {
+        "-", "-",
+        "the classical Henon map (7/5, 3/10): the crossings of its fixed point's W^u over s in [-26, 26] and "
+        "W^s over t in [-3, 3] (parametrised with |P'(0)| = 1), each proved transverse, and no other",
+        "a count of the crossings of polylines through 40 000 and 8 000 of the arcs' points; every crossing's "
+        "point iterated 12 times in doubles comes within 1e-5 of the fixed point (a point of W^s); the "
+        "parametrisations of orders 4 and 8 (their tails 1e-2 and 4e-6) hold order 30's at s = +-1/2",
+        "the count exact; 1e-5 from 0.156^12 |q - p| plus 1.92^12 times the doubles' rounding"};
+    gb_check_true(&c,
+                  !status && x.proved && (long)x.count == poly && x.count > 1 && stable == (int)x.count && tails == 4,
+                  "orders 4 and 8 hold order 30 at s = +-1/2: %d of 4; %zu crossings proved (complete %d, %zu and %zu "
+                  "pieces, %zu pairs met, %.2f s), the polylines cross %ld "
+                  "times; %d of %zu iterate to the fixed point (farthest %.2g)%s%s%s",
+                  tails, x.count, x.proved, x.pieces_s, x.pieces_t, x.pairs, x.seconds, poly, stable, x.count, farthest,
+                  x.failure[0] ? "; " : "", x.failure, status ? gb_error_message() : "");
+    gb_proof_manifold_crossings_free(&x);
+    gb_proof_manifold_free(P), gb_proof_manifold_free(R);
+}
+
+static void test_controls(void)
+{
+    char first[300] = "";
+    /* an attracting fixed point: Hénon at a = 1/10, b = 3/10, the fixed point near (1.217, 0.365) */
+    gb_proof_field f, g;
+    gb_proof_manifold_henon(1, 10, 3, 10, &f, &g);
+    gb_proof_manifold_def def = gb_proof_manifold_def_default();
+    def.map = &f, def.fixed[0] = 1.2, def.fixed[1] = 0.36;
+    gb_proof_manifold *m = NULL;
+    const int sink = gb_proof_manifold_create(&def, &m) == GB_ENUMERIC && !m;
+    if (!sink) snprintf(first, sizeof first, "; the sink was not refused");
+    gb_proof_manifold_free(m);
+    /* order 2 on a disc of radius 20: the tail's map is no contraction */
+    gb_proof_manifold_henon(7, 5, 3, 10, &f, &g);
+    def.map = &f, def.fixed[0] = 0.63, def.fixed[1] = 0.19, def.order = 2, def.radius = 20.0, def.scale = 0.2;
+    const int loose =
+        gb_proof_manifold_create(&def, &m) == GB_ENUMERIC && !m && strstr(gb_error_message(), "contraction");
+    if (!loose && !first[0]) snprintf(first, sizeof first, "; order 2 on radius 20 was not refused");
+    gb_proof_manifold_free(m);
+    /* the classical map's two fixed points: P of one and R of the other */
+    gb_proof_manifold *P = NULL, *R = NULL, *P2 = NULL, *R2 = NULL;
+    int status = henon_manifolds(0.63, 0.19, &P, &R);
+    if (!status) status = henon_manifolds(-1.13, -0.34, &P2, &R2);
+    gb_proof_manifold_crossings_result x = {0};
+    const gb_proof_manifold_crossings_def cd = {{-7.2, 7.2}, {-1.5, 1.5}, 0.01, 40};
+    const int apart = !status && gb_proof_manifold_crossings(P, R2, &cd, &x) == GB_EDOM && x.count == 0;
+    if (!apart && !first[0]) snprintf(first, sizeof first, "; two fixed points' manifolds were not refused");
+    /* the arc [−7.2, 7.2] × [−1.5, 1.5] holds 5 crossings; ending the arc on one leaves it unplaced */
+    size_t whole = 0;
+    int ended = 0;
+    if (!status && gb_proof_manifold_crossings(P, R, &cd, &x) == GB_OK && x.proved) {
+        whole = x.count;
+        gb_proof_manifold_crossings_def cut = cd;
+        cut.s.hi = 0.5 * (x.crossings[x.count - 1].s.lo + x.crossings[x.count - 1].s.hi);
+        gb_proof_manifold_crossings_free(&x);
+        ended = gb_proof_manifold_crossings(P, R, &cut, &x) == GB_OK && !x.proved && strstr(x.failure, "end") != NULL;
+    }
+    if (!ended && !first[0])
+        snprintf(first, sizeof first, "; the arc ending on a crossing was not refused (%s)", x.failure);
+    gb_proof_manifold_crossings_free(&x);
+    gb_proof_manifold_free(P), gb_proof_manifold_free(R), gb_proof_manifold_free(P2), gb_proof_manifold_free(R2);
+    gb_check c = {"-", "-", "manifolds and crossings: negative controls",
+                  "an attracting fixed point refused (not a saddle); a tail whose map is no contraction refused; the "
+                  "manifolds of two fixed points refused; an arc "
+                  "ending on a crossing gives no complete list",
+                  "exact"};
+    gb_check_true(&c, !status && sink && loose && apart && whole == 5 && ended,
+                  "sink refused %d, no contraction refused %d, two fixed points refused %d, %zu crossings on the whole "
+                  "arcs, the cut arc refused "
+                  "%d%s%s%s",
+                  sink, loose, apart, whole, ended, first, status ? ": " : "", status ? gb_error_message() : "");
+}
+
+static void test_refused(void)
+{
+    gb_proof_field f, g, three;
+    gb_proof_manifold_henon(7, 5, 3, 10, &f, &g);
+    memset(&three, 0, sizeof three);
+    three.dimension = 3;
+    gb_proof_manifold_def good = gb_proof_manifold_def_default();
+    good.map = &f, good.fixed[0] = 0.63, good.fixed[1] = 0.19;
+    enum { BAD = 10 };
+    gb_proof_manifold_def bad[BAD];
+    static const char *const what[BAD] = {"map NULL", "dimension 3", "guess NaN", "order 1",    "order 81",
+                                          "scale 0",  "scale 1e4",   "radius 0",  "radius 1e4", "precision 10"};
+    for (int k = 0; k < BAD; k++) bad[k] = good;
+    bad[0].map = NULL, bad[1].map = &three, bad[2].fixed[1] = NAN, bad[3].order = 1, bad[4].order = 81;
+    bad[5].scale = 0.0, bad[6].scale = 1e4, bad[7].radius = 0.0, bad[8].radius = 1e4, bad[9].precision = 10;
+    int refused = 0;
+    char first[300] = "";
+    for (int k = 0; k < BAD; k++) {
+        gb_proof_manifold *m = NULL;
+        const int status = gb_proof_manifold_create(&bad[k], &m);
+        const int ok = status == GB_EDOM && !m;
+        refused += ok;
+        if (!ok && !first[0]) snprintf(first, sizeof first, "; %s gave %d", what[k], status);
+        gb_proof_manifold_free(m);
+    }
+    gb_proof_manifold *P = NULL, *R = NULL;
+    const int made = henon_manifolds(0.63, 0.19, &P, &R) == GB_OK;
+    enum { BAD_X = 6 };
+    const gb_proof_manifold_crossings_def good_x = {{-7.2, 7.2}, {-1.5, 1.5}, 0.01, 40};
+    gb_proof_manifold_crossings_def bx[BAD_X];
+    for (int k = 0; k < BAD_X; k++) bx[k] = good_x;
+    bx[0].s = (gb_proof_interval){1.0, -1.0}, bx[1].t.hi = NAN, bx[2].width = 0.0, bx[3].width = 2.0, bx[4].depth = 0;
+    bx[5].depth = 61;
+    int refused_x = 0;
+    for (int k = 0; k < BAD_X && made; k++) {
+        gb_proof_manifold_crossings_result x;
+        const int status = gb_proof_manifold_crossings(P, R, &bx[k], &x);
+        refused_x += status == GB_EDOM && x.count == 0;
+        if (status == GB_OK) gb_proof_manifold_crossings_free(&x);
+    }
+    gb_proof_manifold_crossings_result x = {0};
+    const int good_runs = made && gb_proof_manifold_crossings(P, R, &good_x, &x) == GB_OK && x.proved;
+    gb_proof_manifold_crossings_free(&x);
+    gb_proof_manifold_free(P), gb_proof_manifold_free(R);
+    gb_check c = {"-", "-", "gb_proof_manifold and gb_proof_manifold_crossings: definitions out of range",
+                  "GB_EDOM naming the field and what is allowed; the unchanged definitions run", "exact"};
+    gb_check_true(&c, refused == BAD && refused_x == BAD_X && good_runs,
+                  "%d of %d and %d of %d refused, the good ones %s%s", refused, BAD, refused_x, BAD_X,
+                  good_runs ? "run" : "FAILED", first);
+}
+
+int verify_register_s7_manifold(void)
+{
+    static const verify_test tests[] = {
+        {"manifold: closed forms", test_exact,
+         "a map's unstable and stable manifolds, parametrised on Arb, meet their closed forms and cross once"},
+        {"manifold: the classical Henon map's crossings", test_henon,
+         "the crossings of the classical Henon map's fixed point's manifolds over two arcs are proved, complete and "
+         "homoclinic"},
+        {"manifold: negative controls", test_controls,
+         "a sink, two fixed points and an arc ending on a crossing prove nothing"},
+        {"manifold: definitions out of range", test_refused, NULL},
+        {NULL, NULL, NULL},
+    };
+    return verify_register_suite("Proved on Arb's balls: invariant manifolds and their crossings", tests);
+}
