@@ -46,7 +46,9 @@ CLI_SRC   := $(sort $(wildcard src/gomboc*.c))
 CLI_OBJ   := $(CLI_SRC:src/%.c=$(BUILD)/obj/%.o)
 # gomboc prove runs gomboc-prove (src/gomboc_prove_exec.c says why): gomboc is linked without the proofs and, with
 # --as-needed, without Arb, FLINT, NTL and C++'s library; gomboc-prove is the whole command.
-PROVE_OBJ := $(BUILD)/obj/gomboc_prove.o $(BUILD)/obj/gomboc_prove_body.o $(BUILD)/obj/gomboc_prove_chain.o $(BUILD)/obj/gomboc_prove_common.o
+# Every gomboc_prove*.c but the exec shim belongs to gomboc-prove alone, by wildcard: a statement's new file cannot end
+# up in gomboc and link Arb into it.
+PROVE_OBJ := $(patsubst src/%.c,$(BUILD)/obj/%.o,$(filter-out src/gomboc_prove_exec.c,$(wildcard src/gomboc_prove*.c)))
 PROVE_BIN  = $(BUILD)/gomboc-prove
 LIB       := $(BUILD)/libgomboc.a
 # The shared library beside the static one: soname libgomboc.so.$(SOMAJOR), built from position-independent

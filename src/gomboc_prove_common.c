@@ -3,6 +3,8 @@
 #include "gomboc_cli.h"
 #include "gomboc_prove_common.h"
 
+#include <time.h>
+
 const prove_table1 prove_rolling = {
     .beta = 0.12, .mass = 1.0, .g = 9.81, .damping = 0.02, .A1 = 2.0, .A2 = 1.0, .omega = 18.0};
 
@@ -21,6 +23,13 @@ void prove_add_hypothesis(cJSON *list, const char *text, const char *status)
 }
 
 const char *prove_status(int holds) { return holds ? "proved" : "not proved"; }
+
+double prove_thread_seconds(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
 
 cJSON *prove_rolling_data(cJSON *statement, const char *morphology, gb_proof_interval psi)
 {

@@ -1,4 +1,5 @@
-/* What the proof commands (gomboc_prove.c, gomboc_prove_body.c, gomboc_prove_chain.c, gomboc_prove_conley.c) share, defined in
+/* What the proof commands (gomboc_prove.c, gomboc_prove_body.c, gomboc_prove_chain.c, gomboc_prove_conley.c,
+ * gomboc_prove_manifold.c) share, defined in
  * gomboc_prove_common.c: Table 1's rolling forcing, written once, and the JSON of an enclosure, a hypothesis and a
  * Gömböc statement's data. Internal to gomboc-prove. */
 #ifndef GOMBOC_PROVE_COMMON_H
@@ -21,11 +22,17 @@ cJSON *prove_json_interval(gb_proof_interval x);
 void prove_add_hypothesis(cJSON *list, const char *text, const char *status);
 /* "proved" or "not proved". */
 const char *prove_status(int holds);
+/* This thread's CPU seconds (gomboc prove runs another statement on a thread beside this one). */
+double prove_thread_seconds(void);
 /* Adds the statement's "data" object: the body's morphology, Table 1's rolling forcing and ψ's enclosure; returns it. */
 cJSON *prove_rolling_data(cJSON *statement, const char *morphology, gb_proof_interval psi);
 
 /* The statement by the discrete Conley index (gomboc_prove_conley.c): Hénon's map at a = 6 (classical 0) or the
  * classical one; NULL with *status set when a computation fails. */
 cJSON *prove_conley_statement(long precision, int classical, int *proved, int *status);
+
+/* The statement on the classical Hénon map's fixed point's manifolds and their crossings (gomboc_prove_manifold.c);
+ * NULL with *status set when a computation fails. */
+cJSON *prove_manifold_statement(long precision, int *proved, int *status);
 
 #endif

@@ -8,15 +8,6 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
-#include <time.h>
-
-/* This thread's CPU seconds (gomboc prove runs another statement on a thread beside this one). */
-static double thread_seconds(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
 
 /* The statements' claims, fixed before a run: ln 2 for a = 6, rounded down; for the classical map the bound this
  * construction reached when it was written, rounded down to 5 decimals. */
@@ -34,7 +25,7 @@ enum { CLASSICAL_TOGGLE_COUNT = sizeof classical_toggles / sizeof *classical_tog
 
 cJSON *prove_conley_statement(long precision, int classical, int *proved, int *status)
 {
-    const double start = thread_seconds();
+    const double start = prove_thread_seconds();
     gb_proof_field field;
     gb_proof_conley_def def;
     uint32_t *seeds = NULL, *n_boxes = NULL, *p1 = NULL, *p0 = NULL;
@@ -131,7 +122,7 @@ cJSON *prove_conley_statement(long precision, int classical, int *proved, int *s
     else
         snprintf(result, sizeof result, "not proved: h_top >= %.6f only", r.entropy);
     cJSON_AddStringToObject(s, "result", result);
-    const double seconds = thread_seconds() - start; /* the construction's and the proof's */
+    const double seconds = prove_thread_seconds() - start; /* the construction's and the proof's */
     cli_json_add(s, "seconds", seconds);
     char summary[200];
     snprintf(summary, sizeof summary, "(H_1 of rank %ld on %ld regions, %ld symbols, h_top >= %.6f; %.2g s)", r.h1,
