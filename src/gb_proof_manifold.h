@@ -14,8 +14,8 @@
  * q the quadratic form's norm, ‖E‖ by the coefficients of E of orders N + 1 … 2N, those up to N being 0 exactly).
  * Then |P(s) − P_N(s)| ≤ r (|s|/ρ)^(N+1), and for |s| ≤ ρ/2, |P'(s) − P_N'(s)| ≤ r ρ/(ρ − |s|)² (Cauchy). P(s) for
  * larger s is f^k(P(s/λ^k)), with k the least iterate that brings s/λ^k into [−ρ/2, ρ/2]: one parametrisation of the
- * whole unstable manifold, P(λ s) = f(P(s)) for every s, injective since f is invertible and P is injective on the
- * disc (|P'(s) − p_1| < |p_1| there, proved).
+ * whole unstable manifold, P(λ s) = f(P(s)) for every s. P is proved injective on [−ρ/2, ρ/2] (|P'(s) − p_1| < |p_1|
+ * there), hence on the whole line when f is invertible, as Hénon's is (not checked here: f is the caller's).
  *
  * Crossings: the points P(s) = R(t) with s in an arc of P and t in an arc of R, R the unstable parametrisation of
  * f⁻¹ (the stable manifold of f). Each is proved by Krawczyk's operator on G(s, t) = P(s) − R(t) in a box of (s, t)
@@ -97,8 +97,11 @@ typedef struct gb_proof_manifold_crossings_result {
     double seconds;
 } gb_proof_manifold_crossings_result;
 
-/* The crossings of P (an unstable manifold of f) with R (one of f⁻¹, the same fixed point) over the arcs of def.
- * GB_EDOM for a definition out of range; GB_OK otherwise, out->proved saying whether the list is complete. */
+/* The crossings of P (an unstable manifold of f) with R (one of f⁻¹, the same fixed point) over the arcs of def: the
+ * zeros (s, t) of P(s) − R(t), the fixed point among them when both arcs hold 0. That R's map is f's inverse is the
+ * caller's to ensure (gb_proof_manifold_henon gives Hénon's exactly); only the common fixed point is checked. GB_EDOM
+ * for a definition out of range or two fixed points; GB_OK otherwise, out->proved saying whether the list is
+ * complete. */
 GB_API int gb_proof_manifold_crossings(const gb_proof_manifold *p, const gb_proof_manifold *r,
                                        const gb_proof_manifold_crossings_def *def,
                                        gb_proof_manifold_crossings_result *out);
