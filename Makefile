@@ -457,6 +457,8 @@ example-only: $(BIN) $(LIB) $(SOLIB)
 	@! readelf -d $(BUILD)/example-static | grep -q 'NEEDED.*libgomboc' || { echo "example: the static link took the shared library"; exit 1; }
 	@readelf -d $(BUILD)/example | grep -q 'NEEDED.*\[$(SONAME)\]' && readelf -d $(SOLIB) | grep -q 'SONAME.*\[$(SONAME)\]' \
 	  || { echo "example: not linked against $(SONAME)"; exit 1; }
+	@! readelf -d $(BIN) | grep -qE 'NEEDED.*(flint|arb)' \
+	  || { echo "example: $(BIN) needs Arb or FLINT: a gomboc_prove*.c object reached it (PROVE_OBJ)"; exit 1; }
 	@$(PYTHON) scripts/check_exports.py $(SOLIB) $(PUBLIC_HEADERS) --callers $(CLI_SRC) $(VERIFY_SRC) \
 	  $(wildcard verify/fuzz/*.c verify/bench/*.c examples/*.c examples/*.cpp python/gomboc/*.py examples/*.py)
 	$(CC) $(LDFLAGS) -o $(BUILD)/gomboc-shared $(CLI_OBJ) $$($(STAGED_PC) --libs gomboc) $(shell pkg-config --libs libcjson) -lm

@@ -45,7 +45,7 @@ cJSON *prove_conley_statement(long precision, int classical, int *proved, int *s
     if (*status) return NULL;
     const double claim = classical ? classical_claim : horseshoe_claim;
     cJSON *s = cJSON_CreateObject();
-    char text[600];
+    char text[1200]; /* the sets line: grown (up to 400) and its own words and numbers */
     if (classical)
         snprintf(text, sizeof text, "Henon, a = 1.4, b = 0.3 (classical), by its discrete Conley index: h_top >= %.5f",
                  claim);
@@ -62,7 +62,7 @@ cJSON *prove_conley_statement(long precision, int classical, int *proved, int *s
         else
             added++, longest = classical_toggles[k].period > longest ? classical_toggles[k].period : longest;
     }
-    char grown[300], longer[80] = "";
+    char grown[400], longer[80] = "";
     if (added)
         snprintf(longer, sizeof longer, ", and %d of periods %d ... %d added", added, CLASSICAL_PERIODS + 1, longest);
     snprintf(grown, sizeof grown,
