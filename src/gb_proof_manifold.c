@@ -4,6 +4,7 @@
 #include "gb_proof_manifold.h"
 
 #include "gb_error.h"
+#include "gb_proof_cover.h"
 #include "gb_proof_flow_internal.h"
 #include "gb_proof_internal.h"
 #include "gb_proof_manifold_internal.h"
@@ -64,25 +65,16 @@ static void quad_product(const field_balls *F, arb_srcptr u, arb_srcptr w, arb_p
 /* An upper bound of the ball x as a double (rounded up). */
 static double upper(const arb_t x) { return gb_proof_interval_of(x).hi; }
 
-/* The inverse of the middle of a 2 × 2 ball matrix, in doubles, taken exact: 0 when that middle is singular. */
-static int approx_inverse(const arb_mat_t A, arb_mat_t C)
-{
-    const double a = arf_get_d(arb_midref(arb_mat_entry(A, 0, 0)), ARF_RND_NEAR),
-                 b = arf_get_d(arb_midref(arb_mat_entry(A, 0, 1)), ARF_RND_NEAR),
-                 c = arf_get_d(arb_midref(arb_mat_entry(A, 1, 0)), ARF_RND_NEAR),
-                 d = arf_get_d(arb_midref(arb_mat_entry(A, 1, 1)), ARF_RND_NEAR), det = a * d - b * c;
-    if (!(isfinite(det) && det != 0.0)) return 0;
-    arb_set_d(arb_mat_entry(C, 0, 0), d / det), arb_set_d(arb_mat_entry(C, 0, 1), -b / det);
-    arb_set_d(arb_mat_entry(C, 1, 0), -c / det), arb_set_d(arb_mat_entry(C, 1, 1), a / det);
-    return 1;
-}
+/* The inverse of the middle of a ball matrix by Arb's approximate solver at 64 bits (radii ignored, the result's
+ * entries exact: any C serves Krawczyk's operator): 0 when that middle is singular. */
+static int approx_inverse(const arb_mat_t A, arb_mat_t C) { return arb_mat_approx_inv(C, A, 64); }
 
 int gb_proof_krawczyk2(arb_srcptr X, arb_srcptr m, arb_srcptr g, const arb_mat_t A, arb_ptr k, slong prec)
 {
     arb_mat_t C, R;
     arb_mat_init(C, 2, 2), arb_mat_init(R, 2, 2);
-    arb_t t, d;
-    arb_init(t), arb_init(d);
+    arb_t d;
+    arb_init(d);
     int verdict = 0;
     if (approx_inverse(A, C)) {
         arb_mat_mul(R, C, A, prec);
@@ -101,7 +93,7 @@ int gb_proof_krawczyk2(arb_srcptr X, arb_srcptr m, arb_srcptr g, const arb_mat_t
         else if (!arb_overlaps(X, k) || !arb_overlaps(X + 1, k + 1))
             verdict = -1;
     }
-    arb_clear(t), arb_clear(d);
+    arb_clear(d);
     arb_mat_clear(C), arb_mat_clear(R);
     return verdict;
 }
@@ -558,12 +550,9 @@ int gb_proof_manifold_henon(long a_num, long a_den, long b_num, long b_den, gb_p
     if (__builtin_mul_overflow(a_num, b_den, &q_num) || __builtin_mul_overflow(q_num, b_den, &q_num) ||
         __builtin_mul_overflow(a_den, b_num, &q_den) || __builtin_mul_overflow(q_den, b_num, &q_den))
         return gb_error_set(GB_EDOM, "Hénon: a/b² does not fit a long's numerator and denominator");
-    memset(map, 0, sizeof *map), memset(inverse, 0, sizeof *inverse);
-    map->dimension = inverse->dimension = 2;
-    map->c[0] = (gb_proof_rational){1, 1};
-    map->Q[0][0][0] = (gb_proof_rational){-a_num, a_den};
-    map->L[0][1] = (gb_proof_rational){1, 1};
-    map->L[1][0] = (gb_proof_rational){b_num, b_den};
+    *map = gb_proof_cover_henon(a_num, a_den, b_num, b_den);
+    memset(inverse, 0, sizeof *inverse);
+    inverse->dimension = 2;
     inverse->L[0][1] = (gb_proof_rational){b_den, b_num};
     inverse->c[1] = (gb_proof_rational){-1, 1};
     inverse->L[1][0] = (gb_proof_rational){1, 1};

