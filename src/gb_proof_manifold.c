@@ -491,6 +491,11 @@ void gb_proof_manifold_info_of(const gb_proof_manifold *m, gb_proof_manifold_inf
 
 long gb_proof_manifold_precision(const gb_proof_manifold *m) { return m->prec; }
 
+int gb_proof_manifold_point(const gb_proof_manifold *m, const arb_t S, arb_ptr z, arb_ptr d)
+{
+    return global_eval(m, S, z, d);
+}
+
 int gb_proof_manifold_ball(const gb_proof_manifold *m, const arb_t S, arb_ptr z, arb_ptr d)
 {
     const slong prec = m->prec;

@@ -95,19 +95,22 @@ static int arc_pieces(const gb_proof_manifold *m, gb_proof_interval range, doubl
     return GB_OK;
 }
 
-/* G(s, t) = P(s) − R(t) over the balls X = (S, T), and DG = [P'(S), −R'(T)]. */
+/* G(s, t) = P(s) − R(t) over the balls X = (S, T) (g NULL: not wanted), and DG = [P'(S), −R'(T)] (A NULL: not
+ * wanted): over a box in mean value form, at a point (X exact) by the plain enclosure, which is as narrow there. */
 static int eval_g(const cross_ctx *x, arb_srcptr X, arb_ptr g, arb_mat_t A)
 {
     arb_ptr zp = _arb_vec_init(2), dp = _arb_vec_init(2), zr = _arb_vec_init(2), dr = _arb_vec_init(2);
-    int status = gb_proof_manifold_ball(x->p, X, zp, dp);
-    if (!status) status = gb_proof_manifold_ball(x->r, X + 1, zr, dr);
-    if (!status) {
-        _arb_vec_sub(g, zp, zr, 2, x->prec);
+    const int box = !arb_is_exact(X) || !arb_is_exact(X + 1);
+    int status = box ? gb_proof_manifold_ball(x->p, X, zp, dp) : gb_proof_manifold_point(x->p, X, zp, A ? dp : NULL);
+    if (!status)
+        status =
+            box ? gb_proof_manifold_ball(x->r, X + 1, zr, dr) : gb_proof_manifold_point(x->r, X + 1, zr, A ? dr : NULL);
+    if (!status && g) _arb_vec_sub(g, zp, zr, 2, x->prec);
+    if (!status && A)
         for (int i = 0; i < 2; i++) {
             arb_set(arb_mat_entry(A, i, 0), dp + i);
             arb_neg(arb_mat_entry(A, i, 1), dr + i);
         }
-    }
     _arb_vec_clear(zp, 2), _arb_vec_clear(dp, 2), _arb_vec_clear(zr, 2), _arb_vec_clear(dr, 2);
     return status;
 }
@@ -116,20 +119,16 @@ static int eval_g(const cross_ctx *x, arb_srcptr X, arb_ptr g, arb_mat_t A)
 static int krawczyk_box(const cross_ctx *x, gb_proof_interval s, gb_proof_interval t, gb_proof_interval k[2])
 {
     arb_ptr X = _arb_vec_init(2), m = _arb_vec_init(2), g = _arb_vec_init(2), K = _arb_vec_init(2);
-    arb_mat_t A, ignored;
-    arb_mat_init(A, 2, 2), arb_mat_init(ignored, 2, 2);
+    arb_mat_t A;
+    arb_mat_init(A, 2, 2);
     gb_proof_ball_of(X, s, x->prec), gb_proof_ball_of(X + 1, t, x->prec);
     for (int i = 0; i < 2; i++) arf_set(arb_midref(m + i), arb_midref(X + i)), mag_zero(arb_radref(m + i));
     int verdict = -2;
-    if (!eval_g(x, m, g, ignored)) {
-        arb_ptr unused = _arb_vec_init(2);
-        if (!eval_g(x, X, unused, A)) verdict = gb_proof_krawczyk2(X, m, g, A, K, x->prec);
-        _arb_vec_clear(unused, 2);
-    }
+    if (!eval_g(x, m, g, NULL) && !eval_g(x, X, NULL, A)) verdict = gb_proof_krawczyk2(X, m, g, A, K, x->prec);
     if (verdict >= -1)
         for (int i = 0; i < 2; i++) k[i] = gb_proof_interval_of(K + i);
     _arb_vec_clear(X, 2), _arb_vec_clear(m, 2), _arb_vec_clear(g, 2), _arb_vec_clear(K, 2);
-    arb_mat_clear(A), arb_mat_clear(ignored);
+    arb_mat_clear(A);
     return verdict;
 }
 

@@ -18,6 +18,10 @@ int gb_proof_krawczyk2(arb_srcptr X, arb_srcptr m, arb_srcptr g, const arb_mat_t
  * each). GB_ENUMERIC when not finite. */
 int gb_proof_manifold_ball(const gb_proof_manifold *m, const arb_t S, arb_ptr z, arb_ptr d);
 
+/* P (and P' into d unless d is NULL) over the ball S by the plain enclosure alone: for thin S, where the mean value
+ * form adds nothing. GB_ENUMERIC when not finite. */
+int gb_proof_manifold_point(const gb_proof_manifold *m, const arb_t S, arb_ptr z, arb_ptr d);
+
 /* Arb's bits the manifold was made with. */
 long gb_proof_manifold_precision(const gb_proof_manifold *m);
 
