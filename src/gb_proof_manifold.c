@@ -491,6 +491,8 @@ void gb_proof_manifold_info_of(const gb_proof_manifold *m, gb_proof_manifold_inf
 
 long gb_proof_manifold_precision(const gb_proof_manifold *m) { return m->prec; }
 
+const struct field_balls *gb_proof_manifold_field(const gb_proof_manifold *m) { return &m->F; }
+
 int gb_proof_manifold_point(const gb_proof_manifold *m, const arb_t S, arb_ptr z, arb_ptr d)
 {
     return global_eval(m, S, z, d);
@@ -526,10 +528,11 @@ int gb_proof_manifold_ball(const gb_proof_manifold *m, const arb_t S, arb_ptr z,
 int gb_proof_manifold_enclose(const gb_proof_manifold *m, gb_proof_interval s, gb_proof_interval out[2],
                               gb_proof_interval d[2])
 {
-    if (!(isfinite(s.lo) && isfinite(s.hi) && s.lo <= s.hi && s.hi - s.lo <= 1e6 && fabs(s.lo) <= 1e6 &&
-          fabs(s.hi) <= 1e6))
-        return gb_error_set(GB_EDOM, "manifold: the parameters [%g, %g] must be finite, ordered, within ±1e6", s.lo,
-                            s.hi);
+    if (!(isfinite(s.lo) && isfinite(s.hi) && s.lo <= s.hi && s.hi - s.lo <= 1e6 && fabs(s.lo) <= 1e12 &&
+          fabs(s.hi) <= 1e12))
+        return gb_error_set(
+            GB_EDOM, "manifold: the parameters [%g, %g] must be finite, ordered, within ±1e12 (at most 1e6 wide)", s.lo,
+            s.hi);
     arb_t S;
     arb_init(S);
     gb_proof_ball_of(S, s, m->prec);

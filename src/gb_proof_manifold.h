@@ -70,7 +70,7 @@ GB_API void gb_proof_manifold_free(gb_proof_manifold *m);
 GB_API void gb_proof_manifold_info_of(const gb_proof_manifold *m, gb_proof_manifold_info *out);
 
 /* P over the parameters s: out[0], out[1] enclose P(s) for every s of the interval, d[0], d[1] (NULL: not wanted) P'(s).
- * GB_EDOM for an interval that is not finite or wider than 1e6; GB_ENUMERIC when the enclosure is not finite. */
+ * GB_EDOM for an interval that is not finite, wider than 1e6 or beyond ±1e12; GB_ENUMERIC when the enclosure is not finite. */
 GB_API int gb_proof_manifold_enclose(const gb_proof_manifold *m, gb_proof_interval s, gb_proof_interval out[2],
                                      gb_proof_interval d[2]);
 

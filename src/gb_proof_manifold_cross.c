@@ -174,10 +174,36 @@ static int add_found(cross_ctx *x, const found *f)
     return GB_OK;
 }
 
+/* The crossing's enclosure narrowed: Newton from its middle, then Krawczyk's operator on boxes about that point from a
+ * few ulps up, the first proved inside the box of uniqueness giving the enclosure (the same zero, the box's only one)
+ * when it is narrower. Near-tangent crossings lie close, and a trellis orders them. */
+static void tighten(const cross_ctx *x, found *f)
+{
+    double s = 0.5 * (f->c.s.lo + f->c.s.hi), t = 0.5 * (f->c.t.lo + f->c.t.hi), speed[2] = {1.0, 1.0};
+    if (!newton(x, &s, &t, speed)) {
+        gb_error_clear();
+        return;
+    }
+    for (double delta = 1e-18; delta <= 1e-12; delta *= 8.0) {
+        const double hs = fmax(delta / fmax(speed[0], 1e-300), 4.0 * nextafter(fabs(s), INFINITY) - 4.0 * fabs(s)),
+                     ht = fmax(delta / fmax(speed[1], 1e-300), 4.0 * nextafter(fabs(t), INFINITY) - 4.0 * fabs(t));
+        const gb_proof_interval S = {s - hs, s + hs}, T = {t - ht, t + ht};
+        if (!(inside(S, f->unique[0]) && inside(T, f->unique[1]))) break;
+        gb_proof_interval k[2];
+        const int verdict = krawczyk_box(x, S, T, k);
+        if (verdict == -2) gb_error_clear(); /* the enclosure proved already stands */
+        if (verdict != 1) continue;
+        if (k[0].hi - k[0].lo < f->c.s.hi - f->c.s.lo || k[1].hi - k[1].lo < f->c.t.hi - f->c.t.lo)
+            f->c.s = k[0], f->c.t = k[1];
+        break;
+    }
+}
+
 /* A crossing proved (its enclosure and its box of uniqueness): listed unless it is one listed already, or lies
  * outside the arcs; one on an arc's end cannot be placed. */
 static void record(cross_ctx *x, found *f)
 {
+    tighten(x, f);
     for (size_t i = 0; i < x->count; i++) { /* enclosures that miss each other hold two zeros; else one zero twice */
         const found *o = &x->list[i];
         const gb_proof_interval ks[2] = {f->c.s, f->c.t}, ko[2] = {o->c.s, o->c.t};
@@ -271,8 +297,9 @@ static void exclude(cross_ctx *x, gb_proof_interval s, gb_proof_interval t, int 
 
 static int check_range(const char *name, gb_proof_interval x)
 {
-    if (!(isfinite(x.lo) && isfinite(x.hi) && x.lo < x.hi && fabs(x.lo) <= 1e6 && fabs(x.hi) <= 1e6))
-        return gb_error_set(GB_EDOM, "crossings: %s = [%g, %g] must be finite, ordered, within ±1e6", name, x.lo, x.hi);
+    if (!(isfinite(x.lo) && isfinite(x.hi) && x.lo < x.hi && fabs(x.lo) <= 1e12 && fabs(x.hi) <= 1e12))
+        return gb_error_set(GB_EDOM, "crossings: %s = [%g, %g] must be finite, ordered, within ±1e12", name, x.lo,
+                            x.hi);
     return GB_OK;
 }
 
@@ -282,45 +309,118 @@ static int by_s(const void *a, const void *b)
     return (x->s.lo > y->s.lo) - (x->s.lo < y->s.lo);
 }
 
-int gb_proof_manifold_crossings(const gb_proof_manifold *p, const gb_proof_manifold *r,
-                                const gb_proof_manifold_crossings_def *def, gb_proof_manifold_crossings_result *out)
+/* The pairs (i, j) of pieces whose enclosures meet, in the order of i then j: the pieces of R bucketed in a grid of
+ * cells as wide as the widest piece, each piece of P compared with those of the cells it touches, a pair kept in the
+ * cell of its boxes' common lower corner only. */
+typedef struct pair {
+    size_t i, j;
+} pair;
+
+typedef struct bucket {
+    long long cell;
+    size_t j;
+} bucket;
+
+static int by_cell(const void *a, const void *b)
+{
+    const bucket *x = a, *y = b;
+    return x->cell != y->cell ? (x->cell > y->cell) - (x->cell < y->cell) : (x->j > y->j) - (x->j < y->j);
+}
+
+static int by_pair(const void *a, const void *b)
+{
+    const pair *x = a, *y = b;
+    return x->i != y->i ? (x->i > y->i) - (x->i < y->i) : (x->j > y->j) - (x->j < y->j);
+}
+
+static long long cell_of(long cx, long cy) { return (long long)cx * 4294967296LL + (long long)cy; }
+
+static int meeting_pairs(const piece *ps, size_t np, const piece *rs, size_t nr, pair **out, size_t *count)
+{
+    *out = NULL, *count = 0;
+    double h = 0.0;
+    for (size_t i = 0; i < np; i++) h = fmax(h, width_of(ps[i].box));
+    for (size_t j = 0; j < nr; j++) h = fmax(h, width_of(rs[j].box));
+    if (!(h > 0.0 && isfinite(h))) h = 1.0;
+    gb_proof_interval all[2] = {{INFINITY, -INFINITY}, {INFINITY, -INFINITY}}; /* R's pieces' hull */
+    for (size_t j = 0; j < nr; j++)
+        for (int a = 0; a < 2; a++)
+            all[a].lo = fmin(all[a].lo, rs[j].box[a].lo), all[a].hi = fmax(all[a].hi, rs[j].box[a].hi);
+    for (int a = 0; a < 2; a++) /* cells beyond a long's range: one cell for all */
+        if (!(fabs(all[a].lo) / h < 1e9 && fabs(all[a].hi) / h < 1e9)) h = 1e300;
+    bucket *b = malloc((4 * nr + 1) * sizeof *b);
+    size_t nb = 0, cap = 1024, m = 0;
+    pair *list = malloc(cap * sizeof *list);
+    if (!b || !list) {
+        free(b), free(list);
+        return gb_error_set(GB_ENOMEM, "crossings: out of memory");
+    }
+    for (size_t j = 0; j < nr; j++)
+        for (long cx = (long)floor(rs[j].box[0].lo / h); cx <= (long)floor(rs[j].box[0].hi / h); cx++)
+            for (long cy = (long)floor(rs[j].box[1].lo / h); cy <= (long)floor(rs[j].box[1].hi / h); cy++)
+                b[nb++] = (bucket){cell_of(cx, cy), j};
+    qsort(b, nb, sizeof *b, by_cell);
+    for (size_t i = 0; i < np; i++) {
+        const gb_proof_interval *q = ps[i].box;
+        if (!nr || !meet(q, all)) continue; /* then q lies within the hull widened by h: its cells fit a long */
+        for (long cx = (long)floor(q[0].lo / h); cx <= (long)floor(q[0].hi / h); cx++)
+            for (long cy = (long)floor(q[1].lo / h); cy <= (long)floor(q[1].hi / h); cy++) {
+                const long long key = cell_of(cx, cy);
+                size_t lo = 0, hi = nb;
+                while (lo < hi) {
+                    const size_t mid = (lo + hi) / 2;
+                    if (b[mid].cell < key)
+                        lo = mid + 1;
+                    else
+                        hi = mid;
+                }
+                for (size_t k = lo; k < nb && b[k].cell == key; k++) {
+                    const piece *rj = &rs[b[k].j];
+                    if (!meet(q, rj->box)) continue;
+                    const double x0 = fmax(q[0].lo, rj->box[0].lo), y0 = fmax(q[1].lo, rj->box[1].lo);
+                    if ((long)floor(x0 / h) != cx || (long)floor(y0 / h) != cy) continue;
+                    if (m == cap) {
+                        pair *grown = realloc(list, 2 * cap * sizeof *grown);
+                        if (!grown) {
+                            free(b), free(list);
+                            return gb_error_set(GB_ENOMEM, "crossings: out of memory");
+                        }
+                        list = grown, cap *= 2;
+                    }
+                    list[m++] = (pair){i, b[k].j};
+                }
+            }
+    }
+    free(b);
+    if (m) qsort(list, m, sizeof *list, by_pair);
+    *out = list, *count = m;
+    return GB_OK;
+}
+
+/* One t-arc against the s-arc's pieces ps: def->t is the arc (def->s, the s-arc, only places the crossings found). */
+static int crossings_of(const gb_proof_manifold *p, const gb_proof_manifold *r,
+                        const gb_proof_manifold_crossings_def *def, const piece *ps, size_t np,
+                        gb_proof_manifold_crossings_result *out)
 {
     memset(out, 0, sizeof *out);
-    int status = check_range("s", def->s);
-    if (!status) status = check_range("t", def->t);
-    if (!status && !(def->width > 0.0 && def->width <= 1.0))
-        status =
-            gb_error_set(GB_EDOM, "crossings: width = %g is out of range (allowed: above 0, at most 1)", def->width);
-    if (!status && (def->depth < 1 || def->depth > 60))
-        status = gb_error_set(GB_EDOM, "crossings: depth = %d is out of range (allowed: 1 to 60)", def->depth);
-    gb_proof_manifold_info ip, ir;
-    gb_proof_manifold_info_of(p, &ip), gb_proof_manifold_info_of(r, &ir);
-    for (int i = 0; i < 2 && !status; i++)
-        if (!(ip.fixed[i].lo <= ir.fixed[i].hi && ir.fixed[i].lo <= ip.fixed[i].hi))
-            status = gb_error_set(GB_EDOM, "crossings: the two manifolds are not of one fixed point");
-    if (status) return status;
     const double start = gb_proof_cpu_seconds();
     cross_ctx x = {.p = p, .r = r, .def = def, .prec = gb_proof_manifold_precision(p)};
-    piece *ps = NULL, *rs = NULL;
-    size_t np = 0, nr = 0;
-    status = arc_pieces(p, def->s, def->width, &ps, &np);
-    if (!status) status = arc_pieces(r, def->t, def->width, &rs, &nr);
-    for (size_t i = 0; i < np && !status && !x.failed; i++)
-        for (size_t j = 0; j < nr && !x.failed; j++) {
-            if (!meet(ps[i].box, rs[j].box)) continue;
-            out->pairs++;
-            double s = 0.5 * (ps[i].par.lo + ps[i].par.hi), t = 0.5 * (rs[j].par.lo + rs[j].par.hi),
-                   speed[2] = {1.0, 1.0};
-            const double ws = ps[i].par.hi - ps[i].par.lo, wt = rs[j].par.hi - rs[j].par.lo;
-            if (newton(&x, &s, &t, speed) && s >= ps[i].par.lo - ws && s <= ps[i].par.hi + ws &&
-                t >= rs[j].par.lo - wt && t <= rs[j].par.hi + wt &&
-                !covered(&x, (gb_proof_interval){s, s}, (gb_proof_interval){t, t}))
-                prove_zero(&x, s, t, speed);
-        }
-    for (size_t i = 0; i < np && !status && !x.failed; i++)
-        for (size_t j = 0; j < nr && !x.failed; j++)
-            if (meet(ps[i].box, rs[j].box)) exclude(&x, ps[i].par, rs[j].par, 0);
-    free(ps), free(rs);
+    piece *rs = NULL;
+    size_t nr = 0, npairs = 0;
+    pair *pairs = NULL;
+    int status = arc_pieces(r, def->t, def->width, &rs, &nr);
+    if (!status) status = meeting_pairs(ps, np, rs, nr, &pairs, &npairs);
+    out->pairs = npairs;
+    for (size_t k = 0; k < npairs && !status && !x.failed; k++) {
+        const piece *pi = &ps[pairs[k].i], *rj = &rs[pairs[k].j];
+        double s = 0.5 * (pi->par.lo + pi->par.hi), t = 0.5 * (rj->par.lo + rj->par.hi), speed[2] = {1.0, 1.0};
+        const double ws = pi->par.hi - pi->par.lo, wt = rj->par.hi - rj->par.lo;
+        if (newton(&x, &s, &t, speed) && s >= pi->par.lo - ws && s <= pi->par.hi + ws && t >= rj->par.lo - wt &&
+            t <= rj->par.hi + wt && !covered(&x, (gb_proof_interval){s, s}, (gb_proof_interval){t, t}))
+            prove_zero(&x, s, t, speed);
+    }
+    for (size_t k = 0; k < npairs && !status && !x.failed; k++) exclude(&x, ps[pairs[k].i].par, rs[pairs[k].j].par, 0);
+    free(rs), free(pairs);
     if (status) {
         free(x.list);
         return status;
@@ -343,6 +443,56 @@ int gb_proof_manifold_crossings(const gb_proof_manifold *p, const gb_proof_manif
     out->proved = !x.failed && !x.undecided;
     out->seconds = gb_proof_cpu_seconds() - start;
     return GB_OK;
+}
+
+static int check_def(const gb_proof_manifold *p, const gb_proof_manifold *r, const gb_proof_manifold_crossings_def *def)
+{
+    int status = check_range("s", def->s);
+    if (!status) status = check_range("t", def->t);
+    if (!status && !(def->width > 0.0 && def->width <= 1.0))
+        status =
+            gb_error_set(GB_EDOM, "crossings: width = %g is out of range (allowed: above 0, at most 1)", def->width);
+    if (!status && (def->depth < 1 || def->depth > 60))
+        status = gb_error_set(GB_EDOM, "crossings: depth = %d is out of range (allowed: 1 to 60)", def->depth);
+    gb_proof_manifold_info ip, ir;
+    gb_proof_manifold_info_of(p, &ip), gb_proof_manifold_info_of(r, &ir);
+    for (int i = 0; i < 2 && !status; i++)
+        if (!(ip.fixed[i].lo <= ir.fixed[i].hi && ir.fixed[i].lo <= ip.fixed[i].hi))
+            status = gb_error_set(GB_EDOM, "crossings: the two manifolds are not of one fixed point");
+    return status;
+}
+
+int gb_proof_manifold_crossings_arcs(const gb_proof_manifold *p, const gb_proof_manifold *r,
+                                     const gb_proof_manifold_crossings_def *defs, size_t count,
+                                     gb_proof_manifold_crossings_result *out)
+{
+    for (size_t k = 0; k < count; k++) memset(&out[k], 0, sizeof out[k]);
+    int status = GB_OK;
+    for (size_t k = 0; k < count && !status; k++) {
+        status = check_def(p, r, &defs[k]);
+        if (!status && (defs[k].s.lo != defs[0].s.lo || defs[k].s.hi != defs[0].s.hi || defs[k].width != defs[0].width))
+            status = gb_error_set(GB_EDOM, "crossings: the arcs of P and the widths must be one");
+    }
+    if (status || !count) return status;
+    const double start = gb_proof_cpu_seconds();
+    piece *ps = NULL;
+    size_t np = 0;
+    status = arc_pieces(p, defs[0].s, defs[0].width, &ps, &np);
+    const double shared = gb_proof_cpu_seconds() - start;
+    for (size_t k = 0; k < count && !status; k++) {
+        status = crossings_of(p, r, &defs[k], ps, np, &out[k]);
+        out[k].seconds += k ? 0.0 : shared;
+    }
+    free(ps);
+    if (status)
+        for (size_t k = 0; k < count; k++) gb_proof_manifold_crossings_free(&out[k]);
+    return status;
+}
+
+int gb_proof_manifold_crossings(const gb_proof_manifold *p, const gb_proof_manifold *r,
+                                const gb_proof_manifold_crossings_def *def, gb_proof_manifold_crossings_result *out)
+{
+    return gb_proof_manifold_crossings_arcs(p, r, def, 1, out);
 }
 
 void gb_proof_manifold_crossings_free(gb_proof_manifold_crossings_result *out)

@@ -22,7 +22,16 @@ int gb_proof_manifold_ball(const gb_proof_manifold *m, const arb_t S, arb_ptr z,
  * form adds nothing. GB_ENUMERIC when not finite. */
 int gb_proof_manifold_point(const gb_proof_manifold *m, const arb_t S, arb_ptr z, arb_ptr d);
 
+/* gb_proof_manifold_crossings for several arcs of R against one arc of P (defs[k].s and the widths the same), the
+ * pieces of P's arc made once; out[k] for defs[k]. */
+int gb_proof_manifold_crossings_arcs(const gb_proof_manifold *p, const gb_proof_manifold *r,
+                                     const gb_proof_manifold_crossings_def *defs, size_t count,
+                                     gb_proof_manifold_crossings_result *out);
+
 /* Arb's bits the manifold was made with. */
 long gb_proof_manifold_precision(const gb_proof_manifold *m);
+
+/* The map's coefficients as balls (gb_proof_flow_field_derivative gives Df from them). */
+const struct field_balls *gb_proof_manifold_field(const gb_proof_manifold *m);
 
 #endif
