@@ -664,6 +664,11 @@ int command_prove_in_process(int argc, char **argv)
     }
     if (!status) {
         int proved;
+        cJSON *statement = prove_trellis_statement((long)precision, &proved, &status);
+        if (statement) cJSON_AddItemToArray(list, statement), attempted++, proved_count += proved;
+    }
+    if (!status) {
+        int proved;
         cJSON *statement = orbit_statement((long)precision, &proved, &status);
         if (statement) cJSON_AddItemToArray(list, statement), attempted++, proved_count += proved;
     }

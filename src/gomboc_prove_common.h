@@ -34,5 +34,10 @@ cJSON *prove_conley_statement(long precision, int classical, int *proved, int *s
 /* The statement on the classical Hénon map's fixed point's manifolds and their crossings (gomboc_prove_manifold.c);
  * NULL with *status set when a computation fails. */
 cJSON *prove_manifold_statement(long precision, int *proved, int *status);
+struct gb_proof_manifold;
+/* The classical Hénon map's fixed point's unstable (P) and stable (R) manifolds: order 30, σ = 1, ρ = 1 (NULL both on
+ * failure, with the status). */
+int prove_henon_manifolds(long precision, struct gb_proof_manifold **P, struct gb_proof_manifold **R);
+cJSON *prove_trellis_statement(long precision, int *proved, int *status);
 
 #endif

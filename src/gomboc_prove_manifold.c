@@ -13,18 +13,25 @@
 enum { CLAIM_CROSSINGS = 19, ORDER = 30, DEPTH = 40 };
 static const gb_proof_interval arc_s = {-26.0, 26.0}, arc_t = {-3.0, 3.0};
 
-cJSON *prove_manifold_statement(long precision, int *proved, int *status)
+int prove_henon_manifolds(long precision, gb_proof_manifold **P, gb_proof_manifold **R)
 {
-    const double start = prove_thread_seconds();
     gb_proof_field map, inverse;
-    gb_proof_manifold *P = NULL, *R = NULL;
-    *status = gb_proof_manifold_henon(7, 5, 3, 10, &map, &inverse);
+    *P = *R = NULL;
+    int status = gb_proof_manifold_henon(7, 5, 3, 10, &map, &inverse);
     gb_proof_manifold_def def = gb_proof_manifold_def_default();
     def.fixed[0] = 0.63, def.fixed[1] = 0.19, def.order = ORDER, def.precision = precision;
     def.map = &map;
-    if (!*status) *status = gb_proof_manifold_create(&def, &P);
+    if (!status) status = gb_proof_manifold_create(&def, P);
     def.map = &inverse;
-    if (!*status) *status = gb_proof_manifold_create(&def, &R);
+    if (!status) status = gb_proof_manifold_create(&def, R);
+    return status;
+}
+
+cJSON *prove_manifold_statement(long precision, int *proved, int *status)
+{
+    const double start = prove_thread_seconds();
+    gb_proof_manifold *P, *R;
+    *status = prove_henon_manifolds(precision, &P, &R);
     gb_proof_manifold_crossings_result x = {0};
     const gb_proof_manifold_crossings_def cd = {arc_s, arc_t, 0.01, DEPTH};
     if (!*status) *status = gb_proof_manifold_crossings(P, R, &cd, &x);

@@ -19,6 +19,7 @@
 #include "gb_check.h"
 #include "gb_error.h"
 #include "gb_proof_manifold.h"
+#include "gb_proof_trellis.h"
 #include "verify_sections.h"
 
 #include <math.h>
@@ -311,6 +312,60 @@ static void test_refused(void)
                   good_runs ? "run" : "FAILED", first);
 }
 
+/* The trellis of the classical Hénon map's fixed point: U = P([−100, 100]) and six stable pieces (three levels in
+ * Hénon's trapping quadrilateral). The independent oracle: a float prototype (numpy polylines through points 1e-3
+ * apart, their segment crossings, the same rules for faces and strips, written apart from the library) found 164
+ * crossings of f(U) with W, 98 on U, 61 rectangles, 87 strips and log ρ(A) = 0.30875; its counts are recorded here.
+ * Upper oracles: h_top of a real Hénon map is at most log 2 (Friedland and Milnor 1989: a polynomial automorphism of
+ * degree 2), and a bound from walks of n strips is below log ρ(A). */
+static const gb_proof_interval trellis_pieces[] = {
+    {-117.47737615678859, -116.39095869240464}, {-108.08266374441558, -107.76368456337674},
+    {-27.255405824809898, -26.878994809520172}, {-18.494845885347054, -16.771802255804623},
+    {-4.2712165300901237, -2.4338584409264143}, {-0.72954289379841097, 0.5}};
+
+static void test_trellis(void)
+{
+    gb_proof_manifold *P, *R;
+    int status = henon_manifolds(0.63, 0.19, &P, &R);
+    const gb_proof_trellis_def td = {100.0, trellis_pieces, 6, 0.01, 40, 100};
+    gb_proof_trellis_result t = {0};
+    if (!status) status = gb_proof_trellis_entropy(P, R, &td, &t);
+    gb_check c = {"-", "-",
+                  "the classical Henon map: the entropy bound of the trellis U = P([-100, 100]), six stable pieces, "
+                  "walks of 100 strips",
+                  "a float prototype's counts (164 crossings, 98 on U, 61 rectangles, 87 strips, log rho 0.30875); "
+                  "log 2 (Friedland & Milnor) and log rho(A) above the bound",
+                  "the counts exact; log rho to 1e-5 (the prototype's digits)"};
+    gb_check_true(
+        &c,
+        !status && t.proved && t.crossings == 164 && t.vertices == 98 && t.rectangles == 61 && t.strips == 87 &&
+            fabs(t.log_rho - 0.30875) < 1e-5 && t.bound > 0.25 && t.bound < t.log_rho && t.bound < log(2.0),
+        "%zu crossings, %zu on U, %zu rectangles, %zu strips (%zu left), log rho %.5f, bound %.6f (%.2f s)%s%s",
+        t.crossings, t.vertices, t.rectangles, t.strips, t.strips_left, t.log_rho, t.bound, t.seconds,
+        t.failure[0] ? "; " : "", status ? gb_error_message() : t.failure);
+    /* refused: W not invariant (a piece whose image lies in none), pieces overlapping or out of order, and the
+     * ranges; each GB_EDOM with nothing claimed */
+    const gb_proof_interval lone[] = {{1.0, 2.0}}, overlapping[] = {{-1.0, 0.5}, {0.4, 2.0}},
+                            reversed[] = {{1.0, 2.0}, {-1.0, 0.5}};
+    gb_proof_trellis_def bad[6];
+    for (int k = 0; k < 6; k++) bad[k] = td;
+    bad[0].stable = lone, bad[0].stable_count = 1;
+    bad[1].stable = overlapping, bad[1].stable_count = 2;
+    bad[2].stable = reversed, bad[2].stable_count = 2;
+    bad[3].power = 0;
+    bad[4].u = 0.0;
+    bad[5].stable_count = 0;
+    int refused = 0;
+    for (int k = 0; k < 6 && !status; k++) {
+        gb_proof_trellis_result r;
+        refused += gb_proof_trellis_entropy(P, R, &bad[k], &r) == GB_EDOM && !r.proved && r.bound == 0.0;
+    }
+    gb_check d = {"-", "-", "gb_proof_trellis_entropy: W not invariant, pieces overlapping or out of order, ranges",
+                  "GB_EDOM, nothing proved", "exact"};
+    gb_check_true(&d, !status && refused == 6, "%d of 6 refused", refused);
+    gb_proof_manifold_free(P), gb_proof_manifold_free(R);
+}
+
 int verify_register_s7_manifold(void)
 {
     static const verify_test tests[] = {
@@ -322,6 +377,9 @@ int verify_register_s7_manifold(void)
         {"manifold: negative controls", test_controls,
          "a sink, two fixed points and an arc ending on a crossing prove nothing"},
         {"manifold: definitions out of range", test_refused, NULL},
+        {"manifold: the classical Henon map's trellis bounds its entropy", test_trellis,
+         "a trellis of the fixed point's manifolds bounds h_top from below, as an independent count of its rectangles "
+         "and strips says"},
         {NULL, NULL, NULL},
     };
     return verify_register_suite("Proved on Arb's balls: invariant manifolds and their crossings", tests);
