@@ -92,6 +92,12 @@ def proofs_section(out):
                   f"{s['reproduces']}. Method: {s['method']}. Theorem: {s['theorem']}. Reading: {s['reading']}. "
                   f"Strips: {strips}. h_top >= {s['entropy_lower_bound']:.17g} ({s['seconds']:.3g} s CPU).", ""]
     for s in statements:
+        if "strip_count" not in s:
+            continue
+        lines += [f"**{s['statement']}** ({s['result']}). System: {s['system']}. Sets: {s['sets']}. Method: "
+                  f"{s['method']}. Theorem: {s['theorem']}. Reading: {s['reading']}. h_top >= {s['bound']:.17g} "
+                  f"(the claim {s['claim']:g}; {s['seconds']:.3g} s CPU).", ""]
+    for s in statements:
         if "index_pair" not in s:
             continue
         pair = s["index_pair"]

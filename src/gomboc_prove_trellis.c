@@ -98,9 +98,9 @@ cJSON *prove_trellis_statement(long precision, int *proved, int *status)
     cli_json_add(s, "claim", CLAIM_BOUND);
     cli_json_add(s, "log_rho", t.log_rho);
     cli_json_add(s, "log_walks", t.log_walks);
-    cli_json_add(s, "crossings", (double)t.crossings);
-    cli_json_add(s, "rectangles", (double)t.rectangles);
-    cli_json_add(s, "strips", (double)t.strips);
+    cli_json_add(s, "crossing_count", (double)t.crossings);
+    cli_json_add(s, "rectangle_count", (double)t.rectangles);
+    cli_json_add(s, "strip_count", (double)t.strips);
     *proved = t.proved && t.bound >= CLAIM_BOUND;
     char result[320];
     if (*proved)
