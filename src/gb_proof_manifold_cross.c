@@ -28,6 +28,7 @@ typedef struct found {
 typedef struct cross_ctx {
     const gb_proof_manifold *p, *r;
     const gb_proof_manifold_crossings_def *def;
+    double t0; /* R's parameters are t0 + t: t relative to t0 (0 for the public call) */
     slong prec;
     found *list;
     size_t count, cap, undecided;
@@ -50,8 +51,29 @@ static void fail(cross_ctx *x, const char *message)
     x->failed = 1;
 }
 
-/* The arc's pieces: halved until their enclosure is at most width wide (or cannot be halved). */
-static int arc_pieces(const gb_proof_manifold *m, gb_proof_interval range, double width, piece **out, size_t *count)
+/* The manifold over origin + s (s relative; origin 0: gb_proof_manifold_enclose itself), the sum exact on Arb. */
+static int enclose_at(const gb_proof_manifold *m, double origin, gb_proof_interval s, gb_proof_interval out[2])
+{
+    if (origin == 0.0) return gb_proof_manifold_enclose(m, s, out, NULL);
+    const slong prec = gb_proof_manifold_precision(m);
+    arb_t S, o;
+    arb_init(S), arb_init(o);
+    gb_proof_ball_of(S, s, prec);
+    arb_set_d(o, origin);
+    arb_add(S, S, o, prec);
+    arb_ptr z = _arb_vec_init(2), dz = _arb_vec_init(2);
+    const int status = gb_proof_manifold_ball(m, S, z, dz);
+    if (!status)
+        for (int i = 0; i < 2; i++) out[i] = gb_proof_interval_of(z + i);
+    _arb_vec_clear(z, 2), _arb_vec_clear(dz, 2);
+    arb_clear(S), arb_clear(o);
+    return status;
+}
+
+/* The arc's pieces: halved until their enclosure is at most width wide (or cannot be halved); the parameters relative
+ * to origin. */
+static int arc_pieces(const gb_proof_manifold *m, double origin, gb_proof_interval range, double width, piece **out,
+                      size_t *count)
 {
     size_t cap = 1024, n = 0, top = 0, stack_cap = 256;
     piece *list = malloc(cap * sizeof *list);
@@ -61,7 +83,7 @@ static int arc_pieces(const gb_proof_manifold *m, gb_proof_interval range, doubl
     while (!status && top) {
         const gb_proof_interval s = stack[--top];
         piece q = {s, {{0, 0}, {0, 0}}};
-        status = gb_proof_manifold_enclose(m, s, q.box, NULL);
+        status = enclose_at(m, origin, s, q.box);
         if (status) break;
         if (width_of(q.box) <= width || !gb_proof_halvable(s)) {
             if (n == cap) {
@@ -101,10 +123,14 @@ static int eval_g(const cross_ctx *x, arb_srcptr X, arb_ptr g, arb_mat_t A)
 {
     arb_ptr zp = _arb_vec_init(2), dp = _arb_vec_init(2), zr = _arb_vec_init(2), dr = _arb_vec_init(2);
     const int box = !arb_is_exact(X) || !arb_is_exact(X + 1);
+    arb_t T; /* t0 + t: exact for a thin t at Arb's precision */
+    arb_init(T);
+    arb_set_d(T, x->t0);
+    arb_add(T, T, X + 1, x->prec);
     int status = box ? gb_proof_manifold_ball(x->p, X, zp, dp) : gb_proof_manifold_point(x->p, X, zp, A ? dp : NULL);
     if (!status)
-        status =
-            box ? gb_proof_manifold_ball(x->r, X + 1, zr, dr) : gb_proof_manifold_point(x->r, X + 1, zr, A ? dr : NULL);
+        status = box ? gb_proof_manifold_ball(x->r, T, zr, dr) : gb_proof_manifold_point(x->r, T, zr, A ? dr : NULL);
+    arb_clear(T);
     if (!status && g) _arb_vec_sub(g, zp, zr, 2, x->prec);
     if (!status && A)
         for (int i = 0; i < 2; i++) {
@@ -263,7 +289,7 @@ static void exclude(cross_ctx *x, gb_proof_interval s, gb_proof_interval t, int 
 {
     if (x->failed || covered(x, s, t)) return;
     gb_proof_interval bp[2], br[2], k[2];
-    if (gb_proof_manifold_enclose(x->p, s, bp, NULL) || gb_proof_manifold_enclose(x->r, t, br, NULL)) {
+    if (gb_proof_manifold_enclose(x->p, s, bp, NULL) || enclose_at(x->r, x->t0, t, br)) {
         fail(x, gb_error_message());
         return;
     }
@@ -399,16 +425,16 @@ static int meeting_pairs(const piece *ps, size_t np, const piece *rs, size_t nr,
 
 /* One t-arc against the s-arc's pieces ps: def->t is the arc (def->s, the s-arc, only places the crossings found). */
 static int crossings_of(const gb_proof_manifold *p, const gb_proof_manifold *r,
-                        const gb_proof_manifold_crossings_def *def, const piece *ps, size_t np,
+                        const gb_proof_manifold_crossings_def *def, double t0, const piece *ps, size_t np,
                         gb_proof_manifold_crossings_result *out)
 {
     memset(out, 0, sizeof *out);
     const double start = gb_proof_cpu_seconds();
-    cross_ctx x = {.p = p, .r = r, .def = def, .prec = gb_proof_manifold_precision(p)};
+    cross_ctx x = {.p = p, .r = r, .def = def, .t0 = t0, .prec = gb_proof_manifold_precision(p)};
     piece *rs = NULL;
     size_t nr = 0, npairs = 0;
     pair *pairs = NULL;
-    int status = arc_pieces(r, def->t, def->width, &rs, &nr);
+    int status = arc_pieces(r, t0, def->t, def->width, &rs, &nr);
     if (!status) status = meeting_pairs(ps, np, rs, nr, &pairs, &npairs);
     out->pairs = npairs;
     for (size_t k = 0; k < npairs && !status && !x.failed; k++) {
@@ -463,7 +489,7 @@ static int check_def(const gb_proof_manifold *p, const gb_proof_manifold *r, con
 }
 
 int gb_proof_manifold_crossings_arcs(const gb_proof_manifold *p, const gb_proof_manifold *r,
-                                     const gb_proof_manifold_crossings_def *defs, size_t count,
+                                     const gb_proof_manifold_crossings_def *defs, const double *t_origin, size_t count,
                                      gb_proof_manifold_crossings_result *out)
 {
     for (size_t k = 0; k < count; k++) memset(&out[k], 0, sizeof out[k]);
@@ -477,10 +503,10 @@ int gb_proof_manifold_crossings_arcs(const gb_proof_manifold *p, const gb_proof_
     const double start = gb_proof_cpu_seconds();
     piece *ps = NULL;
     size_t np = 0;
-    status = arc_pieces(p, defs[0].s, defs[0].width, &ps, &np);
+    status = arc_pieces(p, 0.0, defs[0].s, defs[0].width, &ps, &np);
     const double shared = gb_proof_cpu_seconds() - start;
     for (size_t k = 0; k < count && !status; k++) {
-        status = crossings_of(p, r, &defs[k], ps, np, &out[k]);
+        status = crossings_of(p, r, &defs[k], t_origin ? t_origin[k] : 0.0, ps, np, &out[k]);
         out[k].seconds += k ? 0.0 : shared;
     }
     free(ps);
@@ -492,7 +518,7 @@ int gb_proof_manifold_crossings_arcs(const gb_proof_manifold *p, const gb_proof_
 int gb_proof_manifold_crossings(const gb_proof_manifold *p, const gb_proof_manifold *r,
                                 const gb_proof_manifold_crossings_def *def, gb_proof_manifold_crossings_result *out)
 {
-    return gb_proof_manifold_crossings_arcs(p, r, def, 1, out);
+    return gb_proof_manifold_crossings_arcs(p, r, def, NULL, 1, out);
 }
 
 void gb_proof_manifold_crossings_free(gb_proof_manifold_crossings_result *out)

@@ -36,6 +36,8 @@ typedef struct trellis {
     const gb_proof_manifold *p, *r;
     const gb_proof_trellis_def *def;
     slong prec;
+    double *origin; /* per piece of W: its parameters are origin + rel (the crossings' t relative too) */
+    gb_proof_interval *rel;
     vertex *v;
     size_t n, cap;
     int *nb0, *nb1; /* 4 per vertex: the next crossing along each ray in U ∪ W (U's crossings only) and in f(U) ∪ W */
@@ -70,13 +72,18 @@ static int by_long(const void *a, const void *b)
 /* The sign of the ball x: +1, −1, or 0 when it holds 0. */
 static int sign_of(const arb_t x) { return arb_is_positive(x) ? 1 : arb_is_negative(x) ? -1 : 0; }
 
-/* The sign of det [P'(s), R'(t)] over the crossing's enclosure (0: not proved). */
-static int orientation(const trellis *T, gb_proof_interval s, gb_proof_interval t)
+/* The sign of det [P'(s), R'(origin + t)] over the crossing's enclosure (0: not proved). */
+static int orientation(const trellis *T, gb_proof_interval s, double origin, gb_proof_interval t)
 {
     arb_t S, R, det;
     arb_ptr z = _arb_vec_init(8);
     arb_init(S), arb_init(R), arb_init(det);
     gb_proof_ball_of(S, s, T->prec), gb_proof_ball_of(R, t, T->prec);
+    arb_t o;
+    arb_init(o);
+    arb_set_d(o, origin);
+    arb_add(R, R, o, T->prec);
+    arb_clear(o);
     int sign = 0;
     if (!gb_proof_manifold_point(T->p, S, z, z + 2) && !gb_proof_manifold_point(T->r, R, z + 4, z + 6)) {
         arb_mul(det, z + 2, z + 7, T->prec);
@@ -121,8 +128,9 @@ static int collect(trellis *T, const arb_t lambda_s)
         return gb_error_set(GB_ENOMEM, "trellis: out of memory");
     }
     for (size_t k = 0; k < def->stable_count; k++)
-        cd[k] = (gb_proof_manifold_crossings_def){{-reach, reach}, def->stable[k], def->width, def->depth};
-    int status = gb_proof_manifold_crossings_arcs(T->p, T->r, cd, def->stable_count, all); /* f(U)'s pieces once */
+        cd[k] = (gb_proof_manifold_crossings_def){{-reach, reach}, T->rel[k], def->width, def->depth};
+    /* f(U)'s pieces made once; each piece of W about its own origin */
+    int status = gb_proof_manifold_crossings_arcs(T->p, T->r, cd, T->origin, def->stable_count, all);
     free(cd);
     for (size_t k = 0; k < def->stable_count && !status; k++) {
         gb_proof_manifold_crossings_result cr = all[k];
@@ -145,7 +153,7 @@ static int collect(trellis *T, const arb_t lambda_s)
                 fail(T, "a crossing lies on U's end (move S)");
                 break;
             }
-            const int sign = orientation(T, s, t);
+            const int sign = orientation(T, s, T->origin[k], t);
             if (!sign) {
                 fail(T, "a crossing's orientation is not proved");
                 break;
@@ -446,31 +454,60 @@ static int check_def(const gb_proof_trellis_def *def)
     return GB_OK;
 }
 
-/* f(W) ⊂ W: each piece divided by R's eigenvalue (f(R(t)) = R(t/λ_R)) lies in a piece. */
-static int invariant(const gb_proof_trellis_def *def, const arb_t lambda_r, slong prec)
+/* W's pieces as the proof reads them: origin (the piece's middle) + rel, rel = [lo − origin, hi − origin] in doubles; W is
+ * that union exactly, whatever the rounding of rel. */
+static int pieces_of(trellis *T)
 {
-    arb_t a, b;
-    arb_init(a), arb_init(b);
+    const gb_proof_trellis_def *def = T->def;
+    T->origin = malloc(def->stable_count * sizeof *T->origin), T->rel = malloc(def->stable_count * sizeof *T->rel);
+    if (!T->origin || !T->rel) return gb_error_set(GB_ENOMEM, "trellis: out of memory");
+    for (size_t k = 0; k < def->stable_count; k++) {
+        const gb_proof_interval t = def->stable[k];
+        T->origin[k] = 0.5 * t.lo + 0.5 * t.hi;
+        T->rel[k] = (gb_proof_interval){t.lo - T->origin[k], t.hi - T->origin[k]};
+    }
+    return GB_OK;
+}
+
+/* The ball origin + x, exact. */
+static void at(arb_t out, double origin, double x, slong prec)
+{
+    arb_t o;
+    arb_init(o);
+    arb_set_d(out, x), arb_set_d(o, origin);
+    arb_add(out, out, o, prec);
+    arb_clear(o);
+}
+
+/* f(W) ⊂ W: each piece divided by R's eigenvalue (f(R(t)) = R(t/λ_R)) lies in a piece, compared on Arb. */
+static int invariant(const trellis *T, const arb_t lambda_r)
+{
+    const gb_proof_trellis_def *def = T->def;
+    arb_t a, b, lo, hi;
+    arb_init(a), arb_init(b), arb_init(lo), arb_init(hi);
     int status = GB_OK;
     for (size_t k = 0; k < def->stable_count && !status; k++) {
-        arb_set_d(a, def->stable[k].lo), arb_set_d(b, def->stable[k].hi);
-        arb_div(a, a, lambda_r, prec), arb_div(b, b, lambda_r, prec);
-        const gb_proof_interval ia = gb_proof_interval_of(a), ib = gb_proof_interval_of(b);
-        const double lo = fmin(ia.lo, ib.lo), hi = fmax(ia.hi, ib.hi);
+        at(a, T->origin[k], T->rel[k].lo, T->prec), at(b, T->origin[k], T->rel[k].hi, T->prec);
+        arb_div(a, a, lambda_r, T->prec), arb_div(b, b, lambda_r, T->prec);
         int held = 0;
-        for (size_t j = 0; j < def->stable_count && !held; j++)
-            held = def->stable[j].lo <= lo && hi <= def->stable[j].hi;
-        if (!held)
-            status = gb_error_set(
-                GB_EDOM, "trellis: f(W) ⊂ W is not proved: piece %zu's image [%g, %g] lies in no piece", k, lo, hi);
+        for (size_t j = 0; j < def->stable_count && !held; j++) {
+            at(lo, T->origin[j], T->rel[j].lo, T->prec), at(hi, T->origin[j], T->rel[j].hi, T->prec);
+            held = arb_ge(a, lo) && arb_ge(b, lo) && arb_le(a, hi) && arb_le(b, hi);
+        }
+        if (!held) {
+            const gb_proof_interval ia = gb_proof_interval_of(a), ib = gb_proof_interval_of(b);
+            status =
+                gb_error_set(GB_EDOM, "trellis: f(W) ⊂ W is not proved: piece %zu's image [%g, %g] lies in no piece", k,
+                             fmin(ia.lo, ib.lo), fmax(ia.hi, ib.hi));
+        }
     }
-    arb_clear(a), arb_clear(b);
+    arb_clear(a), arb_clear(b), arb_clear(lo), arb_clear(hi);
     return status;
 }
 
 static void release(trellis *T)
 {
-    free(T->v), free(T->nb0), free(T->nb1), free(T->u_keys), free(T->rect_ids);
+    free(T->v), free(T->nb0), free(T->nb1), free(T->u_keys), free(T->rect_ids), free(T->origin), free(T->rel);
     if (T->w_keys)
         for (size_t c = 0; c < T->def->stable_count; c++) free(T->w_keys[c]);
     free(T->w_keys), free(T->nw);
@@ -520,7 +557,8 @@ int gb_proof_trellis_entropy(const gb_proof_manifold *p, const gb_proof_manifold
     arb_t lambda, lambda_r, reach;
     arb_init(lambda), arb_init(lambda_r), arb_init(reach);
     gb_proof_ball_of(lambda, ip.lambda, T.prec), gb_proof_ball_of(lambda_r, ir.lambda, T.prec);
-    status = invariant(def, lambda_r, T.prec);
+    status = pieces_of(&T);
+    if (!status) status = invariant(&T, lambda_r);
     arb_abs(reach, lambda);
     gb_proof_mul_d(reach, reach, def->u, T.prec);
     if (!status) status = collect(&T, reach);

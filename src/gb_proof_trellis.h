@@ -32,7 +32,9 @@ enum { GB_PROOF_TRELLIS_PIECES_MAX = 4096, GB_PROOF_TRELLIS_POWER_MAX = 100000 }
 
 typedef struct gb_proof_trellis_def {
     double u;                        /* S: U = P([−S, S]), above 0, at most 1e5 (f(U) is P([−|λ| S, |λ| S])) */
-    const gb_proof_interval *stable; /* W = ∪ R(stable[k]): ordered, pairwise disjoint, f(W) ⊂ W */
+    const gb_proof_interval
+        *stable; /* W = ∪ R(stable[k]): ordered, pairwise disjoint, f(W) ⊂ W; each read as its middle
+                                      * m plus [lo − m, hi − m] in doubles (W is exactly that union) */
     size_t stable_count;             /* 1 ... GB_PROOF_TRELLIS_PIECES_MAX */
     double width;                    /* the crossings' pieces (gb_proof_manifold_crossings_def) */
     int depth;
