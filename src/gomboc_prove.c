@@ -56,9 +56,10 @@ static const char *usage_prove =
     "  --resolution R    the Gomboecs' cells of q: width over distance to the saddle, 1e-5 to 0.1\n"
     "                    (default: 1e-3, then 3e-4 with at most 12 halvings, then 1e-4 at --depth,\n"
     "                    until the verdict is decided)\n"
-    "  --threads N       1: every statement in turn; 2 or more: Gomboc I's statement (the longest) on a\n"
-    "                    thread of its own beside the others (1 to 256; default 2 where the machine has\n"
-    "                    two processors or more, else 1); the statements are the same either way;\n"
+    "  --threads N       1: every statement in turn; 2: the trellis's statement (the longest) on a thread\n"
+    "                    of its own beside the others, 3 or more: Gomboc I's too (1 to 256; default 2\n"
+    "                    where the machine has two processors or more, else 1); the statements and their\n"
+    "                    order are the same either way;\n"
     "                    with --horseshoe, its covering relations on N threads\n"
     "  --horseshoe       instead, Gomboc II's horseshoe at Table 1's rolling forcing: covering relations of\n"
     "                    its period map along a homoclinic orbit, h_top >= ln rho (minutes; make prove;\n"
@@ -494,6 +495,16 @@ static void *body_statement(void *arg)
     return NULL;
 }
 
+/* The trellis's statement (the longest), in a body_job's frame (which and resolution unused). */
+static void *trellis_statement(void *arg)
+{
+    body_job *j = arg;
+    j->statement = prove_trellis_statement(j->precision, &j->proved, &j->status);
+    if (j->status) snprintf(j->message, sizeof j->message, "%s", gb_error_message());
+    if (j->threaded) gb_proof_thread_done();
+    return NULL;
+}
+
 /* Each statement on a line with its result and summary, then the count. */
 static void print_statements(const cJSON *list, int proved_count, int attempted, double precision)
 {
@@ -596,13 +607,15 @@ int command_prove_in_process(int argc, char **argv)
     if (cli_parse_only) return 0;
     if (chain) return prove_horseshoe(morphology, (long)precision, (int)threads, json);
 
-    /* Gömböc I's statement (the longest) starts first, on a thread of its own when there are two; Gömböc II's
-     * follows the others on this thread */
-    body_job job[2];
+    /* The trellis's statement (the longest) starts first, on a thread of its own when there are two, and Gömböc I's
+     * (the next) on another when there are three; the rest follow on this thread. The list's order is the same
+     * whatever the threads. */
+    body_job job[2], trellis = {0, resolution, (long)precision, (int)depth, 0, NULL, 0, GB_OK, ""};
     for (size_t k = 0; k < 2; k++)
         job[k] = (body_job){k, resolution, (long)precision, (int)depth, 0, NULL, 0, GB_OK, ""};
-    job[0].threaded = threads >= 2;
-    pthread_t worker;
+    trellis.threaded = threads >= 2, job[0].threaded = threads >= 3;
+    pthread_t worker, trellis_worker;
+    if (trellis.threaded && pthread_create(&trellis_worker, NULL, trellis_statement, &trellis)) trellis.threaded = 0;
     if (job[0].threaded && pthread_create(&worker, NULL, body_statement, &job[0])) job[0].threaded = 0;
     cJSON *root = cJSON_CreateObject(), *list = cJSON_AddArrayToObject(root, "statements");
     cli_json_add(root, "precision_bits", precision);
@@ -662,11 +675,9 @@ int command_prove_in_process(int argc, char **argv)
         cJSON *statement = prove_manifold_statement((long)precision, &proved, &status);
         if (statement) cJSON_AddItemToArray(list, statement), attempted++, proved_count += proved;
     }
-    if (!status) {
-        int proved;
-        cJSON *statement = prove_trellis_statement((long)precision, &proved, &status);
-        if (statement) cJSON_AddItemToArray(list, statement), attempted++, proved_count += proved;
-    }
+    /* the trellis's place, held by a null until it is done (cJSON 1.7.15's insertion inside an array does nothing) */
+    const int trellis_at = cJSON_GetArraySize(list);
+    cJSON_AddItemToArray(list, cJSON_CreateNull());
     if (!status) {
         int proved;
         cJSON *statement = orbit_statement((long)precision, &proved, &status);
@@ -677,8 +688,19 @@ int command_prove_in_process(int argc, char **argv)
         pthread_join(worker, NULL);
     else if (!status && !job[1].status)
         body_statement(&job[0]);
+    if (trellis.threaded)
+        pthread_join(trellis_worker, NULL);
+    else if (!status && !job[0].status && !job[1].status)
+        trellis_statement(&trellis);
+    if (!status && trellis.status) status = gb_error_set(trellis.status, "%s", trellis.message);
     for (size_t k = 0; k < 2; k++)
         if (!status && job[k].status) status = gb_error_set(job[k].status, "%s", job[k].message);
+    if (trellis.statement && !status && cJSON_ReplaceItemInArray(list, trellis_at, trellis.statement)) {
+        attempted++, proved_count += trellis.proved;
+    } else {
+        cJSON_Delete(trellis.statement);
+        cJSON_DeleteItemFromArray(list, trellis_at);
+    }
     for (size_t k = 0; k < 2; k++) {
         if (!job[k].statement) continue;
         if (status) { /* a failure elsewhere: the statement is not listed */
