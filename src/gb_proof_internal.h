@@ -37,4 +37,10 @@ int gb_proof_check_precision(long precision);
 /* CPU seconds of the calling thread. */
 double gb_proof_cpu_seconds(void);
 
+/* task(ctx, k) for k = 0 … count − 1 on up to `threads` threads (1 or less: in turn on the caller's), each k once,
+ * handed to whichever thread is free; after a task fails no other starts. Tasks must write only their own outputs.
+ * The first failure's status, its message set on the caller's thread; GB_ENOMEM. *seconds (NULL: not wanted): the CPU
+ * time of the threads made for the tasks (0 when the caller's ran them, its own clock counting them then). */
+int gb_proof_for_each(size_t count, int threads, int (*task)(void *ctx, size_t k), void *ctx, double *seconds);
+
 #endif

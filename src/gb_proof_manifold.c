@@ -120,10 +120,26 @@ static int fixed_point(const field_balls *F, const double guess[2], arb_ptr z)
                 arf_get_d(arb_midref(arb_mat_entry(C, i, 1)), ARF_RND_NEAR) *
                     arf_get_d(arb_midref(g + 1), ARF_RND_NEAR);
     }
+    /* then at Arb's precision, so that the enclosure is as narrow as it allows: every point of the manifolds is
+     * computed from it, far along them through many iterates of the map */
+    arb_mat_t G, D;
+    arb_mat_init(G, 2, 1), arb_mat_init(D, 2, 1);
+    for (int i = 0; i < 2; i++) arb_set_d(x + i, isfinite(at[i]) ? at[i] : 0.0);
+    for (int it = 0; it < 8 && isfinite(at[0]) && isfinite(at[1]); it++) {
+        gb_proof_flow_field_eval(F, x, g);
+        _arb_vec_sub(g, g, x, 2, prec);
+        gb_proof_flow_field_derivative(F, x, J);
+        for (int i = 0; i < 2; i++) arb_sub_ui(arb_mat_entry(J, i, i), arb_mat_entry(J, i, i), 1, prec);
+        for (int i = 0; i < 2; i++) arb_set(arb_mat_entry(G, i, 0), g + i);
+        if (!arb_mat_approx_solve(D, J, G, prec)) break;
+        for (int i = 0; i < 2; i++)
+            arf_sub(arb_midref(x + i), arb_midref(x + i), arb_midref(arb_mat_entry(D, i, 0)), prec, ARF_RND_NEAR);
+    }
+    arb_mat_clear(G), arb_mat_clear(D);
     int proved = 0;
-    for (double delta = 1e-13; delta < 1e-3 && !proved && isfinite(at[0]) && isfinite(at[1]); delta *= 16.0) {
+    for (double delta = ldexp(1.0, 24 - (int)prec); delta < 1e-3 && !proved && isfinite(at[0]) && isfinite(at[1]);
+         delta *= 256.0) {
         for (int i = 0; i < 2; i++) {
-            arb_set_d(x + i, at[i]);
             arb_set(X + i, x + i);
             mag_set_d(arb_radref(X + i), delta * (1.0 + fabs(at[i])));
         }

@@ -200,29 +200,71 @@ static int add_found(cross_ctx *x, const found *f)
     return GB_OK;
 }
 
-/* The crossing's enclosure narrowed: Newton from its middle, then Krawczyk's operator on boxes about that point from a
- * few ulps up, the first proved inside the box of uniqueness giving the enclosure (the same zero, the box's only one)
- * when it is narrower. Near-tangent crossings lie close, and a trellis orders them. */
+/* Newton on Arb's midpoints at Arb's precision from m (exact), m left at its last point: 1 when the last step was
+ * below 2^(40 − prec) of the point's scale. A near-tangent crossing's Jacobian is nearly singular, so Newton in doubles
+ * wanders about it by the doubles' rounding over the angle; at Arb's precision it settles. The speeds |P'|, |R'| at m. */
+static int newton_fine(const cross_ctx *x, arb_ptr m, double speed[2])
+{
+    arb_ptr g = _arb_vec_init(2);
+    arb_mat_t A, G, D;
+    arb_mat_init(A, 2, 2), arb_mat_init(G, 2, 1), arb_mat_init(D, 2, 1);
+    int converged = 0;
+    for (int it = 0; it < 30 && !converged; it++) {
+        if (eval_g(x, m, g, A)) break;
+        for (int i = 0; i < 2; i++) arb_set(arb_mat_entry(G, i, 0), g + i);
+        if (!arb_mat_approx_solve(D, A, G, x->prec)) break;
+        speed[0] = hypot(arf_get_d(arb_midref(arb_mat_entry(A, 0, 0)), ARF_RND_NEAR),
+                         arf_get_d(arb_midref(arb_mat_entry(A, 1, 0)), ARF_RND_NEAR));
+        speed[1] = hypot(arf_get_d(arb_midref(arb_mat_entry(A, 0, 1)), ARF_RND_NEAR),
+                         arf_get_d(arb_midref(arb_mat_entry(A, 1, 1)), ARF_RND_NEAR));
+        converged = 1;
+        for (int i = 0; i < 2; i++) {
+            arf_struct *step = arb_midref(arb_mat_entry(D, i, 0));
+            if (!arf_is_finite(step)) converged = -1;
+            arf_sub(arb_midref(m + i), arb_midref(m + i), step, x->prec, ARF_RND_NEAR);
+            const double scale = 1.0 + fabs(arf_get_d(arb_midref(m + i), ARF_RND_NEAR));
+            if (converged == 1 && !(fabs(arf_get_d(step, ARF_RND_NEAR)) <= ldexp(scale, 40 - (int)x->prec)))
+                converged = 0;
+        }
+        if (converged < 0) break;
+    }
+    _arb_vec_clear(g, 2);
+    arb_mat_clear(A), arb_mat_clear(G), arb_mat_clear(D);
+    return converged == 1;
+}
+
+/* The crossing's enclosure narrowed: Newton at Arb's precision from its middle, then Krawczyk's operator on balls about
+ * that point, δ/|P'| × δ/|R'| in radius from δ = 2^(48 − prec) up (×256), the first proved inside the box of
+ * uniqueness giving the enclosure (the same zero, the box's only one) when it is narrower. Near-tangent crossings lie
+ * close (a trellis orders them along each arc), and their enclosures come out an ulp or two wide. */
 static void tighten(const cross_ctx *x, found *f)
 {
-    double s = 0.5 * (f->c.s.lo + f->c.s.hi), t = 0.5 * (f->c.t.lo + f->c.t.hi), speed[2] = {1.0, 1.0};
-    if (!newton(x, &s, &t, speed)) {
-        gb_error_clear();
-        return;
-    }
-    for (double delta = 1e-18; delta <= 1e-12; delta *= 8.0) {
-        const double hs = fmax(delta / fmax(speed[0], 1e-300), 4.0 * nextafter(fabs(s), INFINITY) - 4.0 * fabs(s)),
-                     ht = fmax(delta / fmax(speed[1], 1e-300), 4.0 * nextafter(fabs(t), INFINITY) - 4.0 * fabs(t));
-        const gb_proof_interval S = {s - hs, s + hs}, T = {t - ht, t + ht};
+    arb_ptr m = _arb_vec_init(2), X = _arb_vec_init(2), g = _arb_vec_init(2), K = _arb_vec_init(2);
+    arb_mat_t A;
+    arb_mat_init(A, 2, 2);
+    arb_set_d(m, 0.5 * (f->c.s.lo + f->c.s.hi)), arb_set_d(m + 1, 0.5 * (f->c.t.lo + f->c.t.hi));
+    double speed[2] = {1.0, 1.0};
+    const int settled = newton_fine(x, m, speed);
+    if (!settled) gb_error_clear();
+    for (double delta = ldexp(1.0, 48 - (int)x->prec); settled && delta <= 1e-12; delta *= 256.0) {
+        for (int i = 0; i < 2; i++) {
+            arb_set(X + i, m + i);
+            mag_set_d(arb_radref(X + i), delta / fmax(speed[i], 1e-300));
+        }
+        const gb_proof_interval S = gb_proof_interval_of(X), T = gb_proof_interval_of(X + 1);
         if (!(inside(S, f->unique[0]) && inside(T, f->unique[1]))) break;
-        gb_proof_interval k[2];
-        const int verdict = krawczyk_box(x, S, T, k);
-        if (verdict == -2) gb_error_clear(); /* the enclosure proved already stands */
-        if (verdict != 1) continue;
+        if (eval_g(x, m, g, NULL) || eval_g(x, X, NULL, A)) {
+            gb_error_clear(); /* the enclosure proved already stands */
+            break;
+        }
+        if (gb_proof_krawczyk2(X, m, g, A, K, x->prec) != 1) continue;
+        const gb_proof_interval k[2] = {gb_proof_interval_of(K), gb_proof_interval_of(K + 1)};
         if (k[0].hi - k[0].lo < f->c.s.hi - f->c.s.lo || k[1].hi - k[1].lo < f->c.t.hi - f->c.t.lo)
             f->c.s = k[0], f->c.t = k[1];
         break;
     }
+    _arb_vec_clear(m, 2), _arb_vec_clear(X, 2), _arb_vec_clear(g, 2), _arb_vec_clear(K, 2);
+    arb_mat_clear(A);
 }
 
 /* A crossing proved (its enclosure and its box of uniqueness): listed unless it is one listed already, or lies
@@ -488,10 +530,27 @@ static int check_def(const gb_proof_manifold *p, const gb_proof_manifold *r, con
     return status;
 }
 
+/* One arc of R against P's pieces: a task of gb_proof_for_each. */
+typedef struct arcs_job {
+    const gb_proof_manifold *p, *r;
+    const gb_proof_manifold_crossings_def *defs;
+    const double *t_origin;
+    const piece *ps;
+    size_t np;
+    gb_proof_manifold_crossings_result *out;
+} arcs_job;
+
+static int arc_task(void *ctx, size_t k)
+{
+    const arcs_job *J = ctx;
+    return crossings_of(J->p, J->r, &J->defs[k], J->t_origin ? J->t_origin[k] : 0.0, J->ps, J->np, &J->out[k]);
+}
+
 int gb_proof_manifold_crossings_arcs(const gb_proof_manifold *p, const gb_proof_manifold *r,
                                      const gb_proof_manifold_crossings_def *defs, const double *t_origin, size_t count,
-                                     gb_proof_manifold_crossings_result *out)
+                                     int threads, gb_proof_manifold_crossings_result *out, double *worker_seconds)
 {
+    if (worker_seconds) *worker_seconds = 0.0;
     for (size_t k = 0; k < count; k++) memset(&out[k], 0, sizeof out[k]);
     int status = GB_OK;
     for (size_t k = 0; k < count && !status; k++) {
@@ -505,10 +564,9 @@ int gb_proof_manifold_crossings_arcs(const gb_proof_manifold *p, const gb_proof_
     size_t np = 0;
     status = arc_pieces(p, 0.0, defs[0].s, defs[0].width, &ps, &np);
     const double shared = gb_proof_cpu_seconds() - start;
-    for (size_t k = 0; k < count && !status; k++) {
-        status = crossings_of(p, r, &defs[k], t_origin ? t_origin[k] : 0.0, ps, np, &out[k]);
-        out[k].seconds += k ? 0.0 : shared;
-    }
+    arcs_job job = {p, r, defs, t_origin, ps, np, out};
+    if (!status) status = gb_proof_for_each(count, threads, arc_task, &job, worker_seconds);
+    out[0].seconds += shared;
     free(ps);
     if (status)
         for (size_t k = 0; k < count; k++) gb_proof_manifold_crossings_free(&out[k]);
@@ -518,7 +576,7 @@ int gb_proof_manifold_crossings_arcs(const gb_proof_manifold *p, const gb_proof_
 int gb_proof_manifold_crossings(const gb_proof_manifold *p, const gb_proof_manifold *r,
                                 const gb_proof_manifold_crossings_def *def, gb_proof_manifold_crossings_result *out)
 {
-    return gb_proof_manifold_crossings_arcs(p, r, def, NULL, 1, out);
+    return gb_proof_manifold_crossings_arcs(p, r, def, NULL, 1, 1, out, NULL);
 }
 
 void gb_proof_manifold_crossings_free(gb_proof_manifold_crossings_result *out)

@@ -25,10 +25,11 @@ int gb_proof_manifold_point(const gb_proof_manifold *m, const arb_t S, arb_ptr z
 /* gb_proof_manifold_crossings for several arcs of R against one arc of P (defs[k].s and the widths the same), the
  * pieces of P's arc made once; out[k] for defs[k]. R's arc k is t_origin[k] + defs[k].t (t_origin NULL: 0), and its
  * crossings' t are relative to t_origin[k] too: far along R the parameter's doubles cannot tell near crossings apart,
- * its offset from a nearby origin can. */
+ * its offset from a nearby origin can. The arcs run on up to `threads` threads (gb_proof_for_each), the results the
+ * same; *worker_seconds (NULL: not wanted) the CPU time of those threads, 0 when the caller's ran the arcs. */
 int gb_proof_manifold_crossings_arcs(const gb_proof_manifold *p, const gb_proof_manifold *r,
                                      const gb_proof_manifold_crossings_def *defs, const double *t_origin, size_t count,
-                                     gb_proof_manifold_crossings_result *out);
+                                     int threads, gb_proof_manifold_crossings_result *out, double *worker_seconds);
 
 /* Arb's bits the manifold was made with. */
 long gb_proof_manifold_precision(const gb_proof_manifold *m);

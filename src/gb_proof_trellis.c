@@ -6,6 +6,7 @@
 #include "gb_proof_flow_internal.h"
 #include "gb_proof_internal.h"
 #include "gb_proof_manifold_internal.h"
+#include "gb_proof_trellis_graph_internal.h"
 
 #include <arb.h>
 #include <arb_mat.h>
@@ -18,7 +19,6 @@
 /* The four rays at a crossing: along U (increasing s, decreasing s) and along W (increasing t, decreasing t). A ray's
  * opposite is ray + 2 (mod 4); rays along U are even. */
 enum { U_PLUS = 0, W_PLUS = 1, U_MINUS = 2, W_MINUS = 3 };
-enum { CANDIDATES = 8, POWER_ITERATIONS = 4000 };
 
 typedef struct vertex {
     gb_proof_interval s, t;
@@ -49,6 +49,7 @@ typedef struct trellis {
     size_t rects;
     int failed;
     char failure[200];
+    double worker_seconds; /* CPU of the threads the crossings and the walks ran on (0 on the caller's) */
 } trellis;
 
 static void fail(trellis *T, const char *message)
@@ -130,7 +131,8 @@ static int collect(trellis *T, const arb_t lambda_s)
     for (size_t k = 0; k < def->stable_count; k++)
         cd[k] = (gb_proof_manifold_crossings_def){{-reach, reach}, T->rel[k], def->width, def->depth};
     /* f(U)'s pieces made once; each piece of W about its own origin */
-    int status = gb_proof_manifold_crossings_arcs(T->p, T->r, cd, T->origin, def->stable_count, all);
+    int status = gb_proof_manifold_crossings_arcs(T->p, T->r, cd, T->origin, def->stable_count, def->threads, all,
+                                                  &T->worker_seconds);
     free(cd);
     for (size_t k = 0; k < def->stable_count && !status; k++) {
         gb_proof_manifold_crossings_result cr = all[k];
@@ -176,6 +178,8 @@ static int collect(trellis *T, const arb_t lambda_s)
     return status;
 }
 
+static double middle(gb_proof_interval x) { return 0.5 * (x.lo + x.hi); }
+
 /* The keys of the crossings `keep` selects, along U (piece −1) or along a piece, ordered; 0 when two are not apart. */
 static int ordered(trellis *T, int on_u_only, int piece, key **out, size_t *count)
 {
@@ -191,10 +195,14 @@ static int ordered(trellis *T, int on_u_only, int piece, key **out, size_t *coun
     for (size_t i = 1; i < m; i++)
         if (!(k[i - 1].at.hi < k[i].at.lo)) {
             if (!T->failed) {
+                const vertex *a = &T->v[k[i - 1].vertex], *b = &T->v[k[i].vertex];
+                const gb_proof_interval oa = piece >= 0 ? a->s : a->t, ob = piece >= 0 ? b->s : b->t;
                 snprintf(T->failure, sizeof T->failure,
-                         "two crossings are not proved apart along %s %d: [%.17g, %.17g] and [%.17g, %.17g]",
-                         piece >= 0 ? "W's piece" : "U (-1)", piece, k[i - 1].at.lo, k[i - 1].at.hi, k[i].at.lo,
-                         k[i].at.hi);
+                         "two crossings are not proved apart along %s %d: %s = %.17g ± %.1g and %.17g ± %.1g (%s = "
+                         "%.12g and %.12g)",
+                         piece >= 0 ? "W's piece" : "U (-1)", piece, piece >= 0 ? "t" : "s", middle(k[i - 1].at),
+                         0.5 * (k[i - 1].at.hi - k[i - 1].at.lo), middle(k[i].at), 0.5 * (k[i].at.hi - k[i].at.lo),
+                         piece >= 0 ? "s" : "t", middle(oa), middle(ob));
                 T->failed = 1;
             }
             free(k);
@@ -333,17 +341,13 @@ static long source_of(const trellis *T, int v, int ray, const arb_t lambda, long
     return rect;
 }
 
-typedef struct strip {
-    long from, to;
-} strip;
-
 /* The strips: the four-sided faces of f(U) ∪ W proved to lie in a rectangle Q_j across both its sides on W, bounded on
  * f(U) by the images of both sides on U of one rectangle Q_i. */
-static int strips_of(const trellis *T, const arb_t lambda, strip **out, size_t *count, size_t *left)
+static int strips_of(const trellis *T, const arb_t lambda, trellis_edge **out, size_t *count, size_t *left)
 {
     unsigned char *seen = calloc(4 * T->n + 1, 1);
     size_t cap = 256, m = 0;
-    strip *list = malloc(cap * sizeof *list);
+    trellis_edge *list = malloc(cap * sizeof *list);
     if (!seen || !list) {
         free(seen), free(list);
         return gb_error_set(GB_ENOMEM, "trellis: out of memory");
@@ -371,66 +375,18 @@ static int strips_of(const trellis *T, const arb_t lambda, strip **out, size_t *
                 continue;
             }
             if (m == cap) {
-                strip *grown = realloc(list, 2 * cap * sizeof *grown);
+                trellis_edge *grown = realloc(list, 2 * cap * sizeof *grown);
                 if (!grown) {
                     free(seen), free(list);
                     return gb_error_set(GB_ENOMEM, "trellis: out of memory");
                 }
                 list = grown, cap *= 2;
             }
-            list[m++] = (strip){from[0], to[0]};
+            list[m++] = (trellis_edge){from[0], to[0]};
         }
     free(seen);
     *out = list, *count = m;
     return GB_OK;
-}
-
-/* log ρ(A) in doubles (power iteration on A + I, whose Perron root is ρ + 1), and the rectangles where the left and
- * right Perron vectors' product is largest: the candidates for Q. */
-static double perron(const strip *e, size_t m, size_t rects, size_t cand[CANDIDATES], size_t *nc)
-{
-    double *x = malloc(rects * sizeof *x), *y = malloc(rects * sizeof *y), *nx = malloc(rects * sizeof *nx),
-           *ny = malloc(rects * sizeof *ny);
-    double rho = 0.0;
-    *nc = 0;
-    if (!x || !y || !nx || !ny) goto done;
-    for (size_t i = 0; i < rects; i++) x[i] = y[i] = 1.0;
-    for (int it = 0; it < POWER_ITERATIONS; it++) {
-        memcpy(nx, x, rects * sizeof *x), memcpy(ny, y, rects * sizeof *y);
-        for (size_t k = 0; k < m; k++) nx[e[k].to] += x[e[k].from], ny[e[k].from] += y[e[k].to];
-        double sx = 0.0, sy = 0.0;
-        for (size_t i = 0; i < rects; i++) sx += nx[i], sy += ny[i];
-        double before = 0.0;
-        for (size_t i = 0; i < rects; i++) before += x[i];
-        rho = sx / before - 1.0;
-        for (size_t i = 0; i < rects; i++) x[i] = nx[i] / sx, y[i] = ny[i] / sy;
-    }
-    for (size_t i = 0; i < rects; i++) nx[i] = x[i] * y[i];
-    while (*nc < CANDIDATES && *nc < rects) {
-        size_t best = 0;
-        for (size_t i = 1; i < rects; i++)
-            if (nx[i] > nx[best]) best = i;
-        if (!(nx[best] > 0.0)) break;
-        cand[(*nc)++] = best, nx[best] = -1.0;
-    }
-done:
-    free(x), free(y), free(nx), free(ny);
-    return rho > 0.0 ? log(rho) : -INFINITY;
-}
-
-/* (Aⁿ)_QQ exactly: the closed walks of n strips from Q. */
-static void walks(const strip *e, size_t m, size_t rects, size_t q, int n, fmpz_t out)
-{
-    fmpz *cur = _fmpz_vec_init((slong)rects), *nxt = _fmpz_vec_init((slong)rects);
-    fmpz_one(cur + q);
-    for (int k = 0; k < n; k++) {
-        _fmpz_vec_zero(nxt, (slong)rects);
-        for (size_t j = 0; j < m; j++) fmpz_add(nxt + e[j].to, nxt + e[j].to, cur + e[j].from);
-        fmpz *t = cur;
-        cur = nxt, nxt = t;
-    }
-    fmpz_set(out, cur + q);
-    _fmpz_vec_clear(cur, (slong)rects), _fmpz_vec_clear(nxt, (slong)rects);
 }
 
 static int check_def(const gb_proof_trellis_def *def)
@@ -451,6 +407,9 @@ static int check_def(const gb_proof_trellis_def *def)
     if (def->power < 1 || def->power > GB_PROOF_TRELLIS_POWER_MAX)
         return gb_error_set(GB_EDOM, "trellis: power = %d is out of range (allowed: 1 to %d)", def->power,
                             GB_PROOF_TRELLIS_POWER_MAX);
+    if (def->threads < 0 || def->threads > GB_PROOF_TRELLIS_THREADS_MAX)
+        return gb_error_set(GB_EDOM, "trellis: threads = %d is out of range (allowed: 0 to %d)", def->threads,
+                            GB_PROOF_TRELLIS_THREADS_MAX);
     return GB_OK;
 }
 
@@ -544,6 +503,22 @@ static int build(trellis *T)
     return GB_OK;
 }
 
+/* The walks from each candidate: tasks of gb_proof_for_each. */
+typedef struct walks_job {
+    const trellis_edge *e;
+    size_t m, nodes;
+    const size_t *cand;
+    long n;
+    uint64_t mantissa[TRELLIS_CANDIDATES];
+    long exponent[TRELLIS_CANDIDATES];
+} walks_job;
+
+static int walk_task(void *ctx, size_t k)
+{
+    walks_job *J = ctx;
+    return trellis_walks_below(J->e, J->m, J->nodes, J->cand[k], J->n, 63, &J->mantissa[k], &J->exponent[k]);
+}
+
 int gb_proof_trellis_entropy(const gb_proof_manifold *p, const gb_proof_manifold *r, const gb_proof_trellis_def *def,
                              gb_proof_trellis_result *out)
 {
@@ -563,36 +538,42 @@ int gb_proof_trellis_entropy(const gb_proof_manifold *p, const gb_proof_manifold
     gb_proof_mul_d(reach, reach, def->u, T.prec);
     if (!status) status = collect(&T, reach);
     if (!status && !T.failed) status = build(&T);
-    strip *e = NULL;
+    trellis_edge *e = NULL;
     size_t m = 0;
     if (!status && !T.failed) status = strips_of(&T, lambda, &e, &m, &out->strips_left);
     if (!status && !T.failed) {
-        size_t cand[CANDIDATES], nc;
-        out->log_rho = m ? perron(e, m, T.rects, cand, &nc) : -INFINITY;
-        if (!m) nc = 0;
-        fmpz_t best, w;
-        fmpz_init(best), fmpz_init(w);
-        for (size_t k = 0; k < nc; k++) {
-            walks(e, m, T.rects, cand[k], def->power, w);
-            if (fmpz_cmp(w, best) > 0) fmpz_set(best, w), out->rectangle = cand[k];
+        size_t cand[TRELLIS_CANDIDATES], nc = 0;
+        out->log_rho = trellis_perron(e, m, T.rects, cand, &nc);
+        walks_job job = {e, m, T.rects, cand, def->power, {0}, {0}};
+        double seconds = 0.0;
+        status = gb_proof_for_each(nc, def->threads, walk_task, &job, &seconds);
+        T.worker_seconds += seconds;
+        uint64_t best = 0;
+        long shift = 0;
+        for (size_t k = 0; k < nc && !status; k++) { /* the first of the largest, as the candidates are ordered */
+            const uint64_t w = job.mantissa[k];
+            const double log_w = w ? log((double)w) + (double)job.exponent[k] * log(2.0) : -INFINITY;
+            if (w && (!best || log_w > out->log_walks))
+                best = w, shift = job.exponent[k], out->rectangle = cand[k], out->log_walks = log_w;
         }
-        if (fmpz_sgn(best) > 0) { /* log N = log(mantissa) + exponent log 2 */
-            slong exponent;
-            const double mantissa = fmpz_get_d_2exp(&exponent, best);
-            out->log_walks = log(mantissa) + (double)exponent * log(2.0);
-        }
-        if (fmpz_cmp_ui(best, 2) > 0) { /* h ≥ (1/n) log ⌈N/2⌉, rounded down */
-            fmpz_cdiv_q_2exp(w, best, 1);
+        fmpz_t half; /* ⌈N/2⌉ for the walks' lower bound N = best · 2^shift */
+        fmpz_init(half);
+        fmpz_set_ui(half, best);
+        if (shift)
+            fmpz_mul_2exp(half, half, (ulong)(shift - 1));
+        else
+            fmpz_cdiv_q_2exp(half, half, 1);
+        if (!status && fmpz_cmp_ui(half, 1) > 0) { /* h ≥ (1/n) log ⌈N/2⌉, rounded down */
             arb_t h;
             arb_init(h);
-            arb_set_fmpz(h, w);
+            arb_set_fmpz(h, half);
             arb_log(h, h, T.prec);
             arb_div_si(h, h, def->power, T.prec);
             out->bound = gb_proof_interval_of(h).lo;
             arb_clear(h);
         }
-        fmpz_clear(best), fmpz_clear(w);
-        out->proved = 1;
+        fmpz_clear(half);
+        out->proved = !status;
     }
     for (size_t v = 0; v < T.n; v++) out->vertices += T.v[v].on_u;
     out->crossings = T.n, out->rectangles = T.rects, out->strips = m;
@@ -600,6 +581,6 @@ int gb_proof_trellis_entropy(const gb_proof_manifold *p, const gb_proof_manifold
     free(e);
     release(&T);
     arb_clear(lambda), arb_clear(lambda_r), arb_clear(reach);
-    out->seconds = gb_proof_cpu_seconds() - start;
+    out->seconds = gb_proof_cpu_seconds() - start + T.worker_seconds;
     return status;
 }

@@ -11,8 +11,9 @@
  * are neighbours. The closed walks of n edges from a rectangle Q to itself, (Aⁿ)_QQ of them, ordered so that only
  * neighbours can touch, leave ⌈(Aⁿ)_QQ / 2⌉ pairwise disjoint compact sets stretched by fⁿ across Q: fⁿ is
  * semiconjugate on an invariant set to the full shift on that many symbols, so
- *     h_top(f) ≥ (1/n) log ⌈(Aⁿ)_QQ / 2⌉,
- * which tends to log ρ(A) as n grows. Whatever is not proved (an orientation, a parameter not placed) leaves a strip
+ *     h_top(f) ≥ (1/n) log ⌈N / 2⌉ for any N ≤ (Aⁿ)_QQ,
+ * which tends to log ρ(A) as n grows. N is counted in integers, every count rounded down to 63 bits with a shared
+ * exponent, so that n can be large (the work is n times the strips). Whatever is not proved (an orientation, a parameter not placed) leaves a strip
  * out, which only lowers the bound; whatever the argument needs (every crossing, their order along each arc) stops
  * the proof when it is not proved. */
 #ifndef GB_PROOF_TRELLIS_H
@@ -28,7 +29,7 @@
 extern "C" {
 #endif
 
-enum { GB_PROOF_TRELLIS_PIECES_MAX = 4096, GB_PROOF_TRELLIS_POWER_MAX = 100000 };
+enum { GB_PROOF_TRELLIS_PIECES_MAX = 4096, GB_PROOF_TRELLIS_POWER_MAX = 10000000, GB_PROOF_TRELLIS_THREADS_MAX = 256 };
 
 typedef struct gb_proof_trellis_def {
     double u;                        /* S: U = P([−S, S]), above 0, at most 1e5 (f(U) is P([−|λ| S, |λ| S])) */
@@ -38,7 +39,9 @@ typedef struct gb_proof_trellis_def {
     size_t stable_count;             /* 1 ... GB_PROOF_TRELLIS_PIECES_MAX */
     double width;                    /* the crossings' pieces (gb_proof_manifold_crossings_def) */
     int depth;
-    int power; /* n: 1 ... GB_PROOF_TRELLIS_POWER_MAX */
+    int power;   /* n: 1 ... GB_PROOF_TRELLIS_POWER_MAX */
+    int threads; /* the crossings of W's pieces and the walks on up to this many threads: 0 or 1 (the caller's
+                  * alone) ... GB_PROOF_TRELLIS_THREADS_MAX; the result is the same */
 } gb_proof_trellis_def;
 
 typedef struct gb_proof_trellis_result {
@@ -49,10 +52,11 @@ typedef struct gb_proof_trellis_result {
     size_t strips_left;        /* four-sided faces of f(U) ∪ W in a rectangle that were not proved strips */
     double log_rho;            /* log ρ(A) by power iteration in doubles: an estimate, not proved */
     size_t rectangle;          /* Q, the rectangle whose closed walks give the bound */
-    double log_walks;          /* log (Aⁿ)_QQ, in doubles */
+    double log_walks; /* log N in doubles, N ≤ (Aⁿ)_QQ the walks' count carried in 63-bit integers rounded down
+                                * (exact while it fits) */
     double bound;              /* h_top(f) ≥ bound (rounded down; 0 when no walk returns) */
     char failure[200];         /* why not proved, or "" */
-    double seconds;
+    double seconds;            /* CPU, every thread's */
 } gb_proof_trellis_result;
 
 /* The bound of the trellis of P (an unstable manifold of f) and R (one of f⁻¹, the same fixed point) over def. f's

@@ -15,12 +15,22 @@
  * - negative controls with teeth: an attracting fixed point (no saddle), a tail whose map is no contraction (order 2
  *   on a disc of radius 20), manifolds of two different fixed points, and an arc that ends on a crossing are each
  *   refused, with nothing claimed;
- * - the definitions' ranges: each bad field refused with GB_EDOM naming it. */
+ * - the definitions' ranges: each bad field refused with GB_EDOM naming it;
+ * - two crossings of f(U) with a stable arc far out (t ≈ −3.4·10⁸), 4.3e-14 apart along it: their parameters found
+ *   by Newton in mpmath at 60 digits on a parametrisation of its own (coefficients to order 40 from the same
+ *   recursion, the arcs reached by iterating Hénon's map and its inverse), which the enclosures must hold, apart;
+ * - the trellis's walks counted from below in 63-bit integers, against closed forms counted exactly by FLINT: the
+ *   golden mean graph's closed walks from its loop node are Fibonacci numbers, k loops on one node give kⁿ, and a
+ *   2-cycle gives 1 or 0 by the parity of n. */
 #include "gb_check.h"
 #include "gb_error.h"
 #include "gb_proof_manifold.h"
+#include "gb_proof_manifold_internal.h"
 #include "gb_proof_trellis.h"
+#include "gb_proof_trellis_graph_internal.h"
 #include "verify_sections.h"
+
+#include <flint/fmpz.h>
 
 #include <math.h>
 #include <stdio.h>
@@ -327,7 +337,7 @@ static void test_trellis(void)
 {
     gb_proof_manifold *P, *R;
     int status = henon_manifolds(0.63, 0.19, &P, &R);
-    const gb_proof_trellis_def td = {100.0, trellis_pieces, 6, 0.01, 40, 100};
+    const gb_proof_trellis_def td = {100.0, trellis_pieces, 6, 0.01, 40, 100, 2};
     gb_proof_trellis_result t = {0};
     if (!status) status = gb_proof_trellis_entropy(P, R, &td, &t);
     gb_check c = {"-", "-",
@@ -345,27 +355,152 @@ static void test_trellis(void)
         "%zu crossings, %zu on U, %zu rectangles, %zu strips (%zu left), log rho %.5f, bound %.6f (%.2f s)%s%s",
         t.crossings, t.vertices, t.rectangles, t.strips, t.strips_left, t.log_rho, t.bound, t.seconds,
         t.failure[0] ? "; " : "", status ? gb_error_message() : t.failure);
+    /* on the caller's thread alone: the same trellis, graph and walks */
+    gb_proof_trellis_def td1 = td;
+    td1.threads = 1;
+    gb_proof_trellis_result t1 = {0};
+    if (!status) status = gb_proof_trellis_entropy(P, R, &td1, &t1);
+    gb_check same = {"-", "-", "gb_proof_trellis_entropy on two threads against one",
+                     "the same definition on the caller's thread alone",
+                     "exact (the tasks' results do not depend on "
+                     "the threads)"};
+    gb_check_true(
+        &same,
+        !status && t1.proved == t.proved && t1.crossings == t.crossings && t1.vertices == t.vertices &&
+            t1.rectangles == t.rectangles && t1.strips == t.strips && t1.strips_left == t.strips_left &&
+            t1.rectangle == t.rectangle && t1.log_walks == t.log_walks && t1.bound == t.bound,
+        "one thread: %zu crossings, %zu rectangles, %zu strips, Q %zu, bound %.17g; two: %zu, %zu, %zu, Q %zu, "
+        "%.17g",
+        t1.crossings, t1.rectangles, t1.strips, t1.rectangle, t1.bound, t.crossings, t.rectangles, t.strips,
+        t.rectangle, t.bound);
     /* refused: W not invariant (a piece whose image lies in none), pieces overlapping or out of order, and the
      * ranges; each GB_EDOM with nothing claimed */
     const gb_proof_interval lone[] = {{1.0, 2.0}}, overlapping[] = {{-1.0, 0.5}, {0.4, 2.0}},
                             reversed[] = {{1.0, 2.0}, {-1.0, 0.5}};
-    gb_proof_trellis_def bad[6];
-    for (int k = 0; k < 6; k++) bad[k] = td;
+    gb_proof_trellis_def bad[7];
+    for (int k = 0; k < 7; k++) bad[k] = td;
     bad[0].stable = lone, bad[0].stable_count = 1;
     bad[1].stable = overlapping, bad[1].stable_count = 2;
     bad[2].stable = reversed, bad[2].stable_count = 2;
     bad[3].power = 0;
     bad[4].u = 0.0;
     bad[5].stable_count = 0;
+    bad[6].threads = -1;
     int refused = 0;
-    for (int k = 0; k < 6 && !status; k++) {
+    for (int k = 0; k < 7 && !status; k++) {
         gb_proof_trellis_result r;
         refused += gb_proof_trellis_entropy(P, R, &bad[k], &r) == GB_EDOM && !r.proved && r.bound == 0.0;
     }
     gb_check d = {"-", "-", "gb_proof_trellis_entropy: W not invariant, pieces overlapping or out of order, ranges",
                   "GB_EDOM, nothing proved", "exact"};
-    gb_check_true(&d, !status && refused == 6, "%d of 6 refused", refused);
+    gb_check_true(&d, !status && refused == 7, "%d of 7 refused", refused);
     gb_proof_manifold_free(P), gb_proof_manifold_free(R);
+}
+
+/* Two crossings of the trellis of S = 25 600 (eleven levels of W) on W's piece [−335744736.32183778,
+ * −335744725.12147218], parametrised from its middle: at s = −42167.476… and −44588.037… f(U) crosses it at
+ * τ = 4.900356471684892… and 4.900356471684935…, transversally (the sines of their angles ±0.59), 4.3e-14 apart: two
+ * strands of the unstable manifold, not a fold. mpmath's values at 60 digits are recorded here. */
+static void test_close(void)
+{
+    static const double piece_lo = -335744736.32183778, piece_hi = -335744725.12147218;
+    static const struct {
+        double s, tau;
+    } oracle[2] = {{-42167.47646103303786326126, 4.900356471684892227599681},
+                   {-44588.03730008730723874212, 4.900356471684935035511934}};
+    const double origin = 0.5 * piece_lo + 0.5 * piece_hi;
+    gb_proof_manifold *P, *R;
+    int status = henon_manifolds(0.63, 0.19, &P, &R);
+    gb_proof_interval t[2] = {{0}};
+    int held = 0, single = 0;
+    for (int k = 0; k < 2 && !status; k++) {
+        const gb_proof_manifold_crossings_def d = {
+            {oracle[k].s - 0.01, oracle[k].s + 0.01}, {4.90035647, 4.90035648}, 0.01, 40};
+        gb_proof_manifold_crossings_result x = {0};
+        status = gb_proof_manifold_crossings_arcs(P, R, &d, &origin, 1, 1, &x, NULL);
+        if (!status && x.proved && x.count == 1) {
+            single++, t[k] = x.crossings[0].t;
+            held += off(oracle[k].tau, t[k]) == 0.0 && off(oracle[k].s, x.crossings[0].s) == 0.0;
+        }
+        if (!status) gb_proof_manifold_crossings_free(&x);
+    }
+    gb_proof_manifold_free(P), gb_proof_manifold_free(R);
+    const int apart = single == 2 && t[0].hi < t[1].lo;
+    gb_check c = {"-", "-",
+                  "two crossings of the classical Henon map's manifolds 4.3e-14 apart along a stable arc at t = "
+                  "-3.4e8",
+                  "Newton in mpmath at 60 digits on a parametrisation of its own (order 40), recorded",
+                  "the enclosures hold mpmath's (s, tau) and are apart (their order along W proved)"};
+    gb_check_true(&c, !status && single == 2 && held == 2 && apart,
+                  "%d of 2 proved alone, %d of 2 holding mpmath's, tau in [%.17g, %.17g] and [%.17g, %.17g]%s%s",
+                  single, held, t[0].lo, t[0].hi, t[1].lo, t[1].hi, status ? ": " : "",
+                  status ? gb_error_message() : "");
+}
+
+/* mantissa · 2^exponent against the exact count: at most it, and short by at most `slack` relative. */
+static int below_within(uint64_t mantissa, long exponent, const fmpz_t exact, double slack, double *deficit)
+{
+    fmpz_t low;
+    fmpz_init(low);
+    fmpz_set_ui(low, mantissa);
+    fmpz_mul_2exp(low, low, (ulong)exponent);
+    const int below = fmpz_cmp(low, exact) <= 0;
+    fmpz_sub(low, exact, low);
+    slong e1, e2;
+    const double d = fmpz_get_d_2exp(&e1, low), x = fmpz_get_d_2exp(&e2, exact);
+    *deficit = fmpz_is_zero(low) ? 0.0 : ldexp(d / x, (int)(e1 - e2));
+    fmpz_clear(low);
+    return below && *deficit <= slack;
+}
+
+/* The walks' lower bound (trellis_walks_below) on graphs whose closed walks have closed forms. The slack: each shift
+ * rounds every count down by less than one unit of a count at least 2^(bits − 1) / (the ratio of the largest count to
+ * the smallest), so n shifts lose less than n · 2^(1 − bits) · ratio relative (ratio 2 for the golden mean graph, 1
+ * for one node). */
+static void test_walks(void)
+{
+    const trellis_edge golden[] = {{0, 0}, {0, 1}, {1, 0}}, cycle[] = {{0, 1}, {1, 0}};
+    trellis_edge loops[1000];
+    for (int k = 0; k < 1000; k++) loops[k] = (trellis_edge){0, 0};
+    fmpz_t exact;
+    fmpz_init(exact);
+    uint64_t w;
+    long e;
+    double deficit, worst = 0.0;
+    int passed = 0, total = 0, status = 0, exact_fit = 0;
+    static const struct {
+        long n;
+        int bits;
+    } runs[] = {{80, 63}, {1000, 63}, {1000, 24}, {20000, 40}};
+    for (size_t r = 0; r < sizeof runs / sizeof runs[0]; r++) { /* (Aⁿ)_00 = F(n + 1) */
+        status |= trellis_walks_below(golden, 3, 2, 0, runs[r].n, runs[r].bits, &w, &e);
+        fmpz_fib_ui(exact, (ulong)runs[r].n + 1);
+        total++, passed += below_within(w, e, exact, runs[r].n * ldexp(4.0, -runs[r].bits), &deficit);
+        worst = fmax(worst, deficit);
+        if (r == 0) exact_fit = e == 0 && fmpz_equal_ui(exact, w);
+    }
+    for (int k = 2; k <= 1000; k += 998) /* kⁿ; 1000 loops lower the counts' bits to 53 */
+        for (long n = 50; n <= 500; n += 450) {
+            status |= trellis_walks_below(loops, (size_t)k, 1, 0, n, 63, &w, &e);
+            fmpz_set_ui(exact, (ulong)k), fmpz_pow_ui(exact, exact, (ulong)n);
+            total++, passed += below_within(w, e, exact, n * ldexp(2.0, -53), &deficit);
+            worst = fmax(worst, deficit);
+        }
+    for (long n = 999; n <= 1000; n++) { /* a 2-cycle: 1 for n even, 0 for n odd */
+        status |= trellis_walks_below(cycle, 2, 2, 0, n, 63, &w, &e);
+        total++, passed += w == (uint64_t)(n % 2 == 0) && e == 0;
+    }
+    int refused = trellis_walks_below(golden, 3, 2, 0, 10, 1, &w, &e) == GB_EDOM;
+    refused += trellis_walks_below(golden, 3, 2, 2, 10, 63, &w, &e) == GB_EDOM;
+    fmpz_clear(exact);
+    gb_check c = {"-", "-", "the trellis's closed walks counted from below in 63-bit integers",
+                  "closed forms counted exactly by FLINT: Fibonacci numbers (golden mean graph), k^n (k loops), a "
+                  "2-cycle's parity; exact while the counts fit",
+                  "at most the exact count; short by at most n 2^(2 - bits) relative (rounding down at each shift)"};
+    gb_check_true(&c, !status && passed == total && exact_fit && refused == 2,
+                  "%d of %d at most exact and within the slack (worst short by %.2g relative), F(81) exact: %s, %d of "
+                  "2 bad arguments refused",
+                  passed, total, worst, exact_fit ? "yes" : "NO", refused);
 }
 
 int verify_register_s7_manifold(void)
@@ -382,6 +517,12 @@ int verify_register_s7_manifold(void)
         {"manifold: the classical Henon map's trellis bounds its entropy", test_trellis,
          "a trellis of the fixed point's manifolds bounds h_top from below, as an independent count of its rectangles "
          "and strips says"},
+        {"manifold: two crossings 4e-14 apart far along the stable manifold", test_close,
+         "two crossings of strands of the unstable manifold 4.3e-14 apart along a stable arc far out are proved, "
+         "held by mpmath's and ordered"},
+        {"manifold: the trellis's walks counted from below", test_walks,
+         "the closed walks of a graph, counted in 63-bit integers rounded down, stay at or below closed forms and "
+         "close to them"},
         {NULL, NULL, NULL},
     };
     return verify_register_suite("Proved on Arb's balls: invariant manifolds and their crossings", tests);
