@@ -117,6 +117,88 @@ static int arc_pieces(const gb_proof_manifold *m, double origin, gb_proof_interv
     return GB_OK;
 }
 
+/* arc_pieces on several threads with the same pieces in the same order: the first halvings are made here, breadth
+ * first, in order, until there are enough intervals still too wide to share out; each is then cut as arc_pieces
+ * would cut it, on whichever thread is free, and the lists are joined in order. */
+typedef struct split {
+    gb_proof_interval s;
+    piece done; /* when pending is 0 */
+    int pending;
+    piece *list;
+    size_t count;
+} split;
+
+typedef struct split_job {
+    const gb_proof_manifold *m;
+    double origin, width;
+    split *item;
+} split_job;
+
+static int split_task(void *ctx, size_t k)
+{
+    const split_job *J = ctx;
+    split *it = &J->item[k];
+    return it->pending ? arc_pieces(J->m, J->origin, it->s, J->width, &it->list, &it->count) : GB_OK;
+}
+
+static int arc_pieces_on(const gb_proof_manifold *m, double origin, gb_proof_interval range, double width, int threads,
+                         piece **out, size_t *count, double *seconds)
+{
+    *seconds = 0.0;
+    if (threads <= 1) return arc_pieces(m, origin, range, width, out, count);
+    const size_t want = 16 * (size_t)threads;
+    size_t n = 1, pending = 1;
+    split *item = calloc(1, sizeof *item);
+    if (!item) return gb_error_set(GB_ENOMEM, "crossings: out of memory");
+    item[0] = (split){.s = range, .pending = 1};
+    int status = GB_OK;
+    for (int level = 0; level < 16 && pending && pending < want && !status; level++) {
+        split *next = calloc(2 * n, sizeof *next);
+        if (!next) {
+            status = gb_error_set(GB_ENOMEM, "crossings: out of memory");
+            break;
+        }
+        size_t k = 0;
+        pending = 0;
+        for (size_t i = 0; i < n && !status; i++) {
+            if (!item[i].pending) {
+                next[k++] = item[i];
+                continue;
+            }
+            piece q = {item[i].s, {{0, 0}, {0, 0}}};
+            status = enclose_at(m, origin, item[i].s, q.box);
+            if (status) break;
+            if (width_of(q.box) <= width || !gb_proof_halvable(item[i].s)) {
+                next[k++] = (split){.s = item[i].s, .done = q};
+                continue;
+            }
+            next[k++] = (split){.s = gb_proof_half(item[i].s, 0), .pending = 1};
+            next[k++] = (split){.s = gb_proof_half(item[i].s, 1), .pending = 1};
+            pending += 2;
+        }
+        free(item);
+        item = next, n = k;
+    }
+    split_job job = {m, origin, width, item};
+    if (!status) status = gb_proof_for_each(n, threads, split_task, &job, seconds);
+    size_t total = 0;
+    for (size_t i = 0; i < n; i++) total += item[i].pending ? item[i].count : 1;
+    piece *list = status ? NULL : malloc((total ? total : 1) * sizeof *list);
+    if (!status && !list) status = gb_error_set(GB_ENOMEM, "crossings: out of memory");
+    size_t at = 0;
+    for (size_t i = 0; i < n; i++) {
+        if (!status && item[i].pending)
+            for (size_t j = 0; j < item[i].count; j++) list[at++] = item[i].list[j];
+        else if (!status)
+            list[at++] = item[i].done;
+        free(item[i].list);
+    }
+    free(item);
+    if (status) return status;
+    *out = list, *count = total;
+    return GB_OK;
+}
+
 /* G(s, t) = P(s) − R(t) over the balls X = (S, T) (g NULL: not wanted), and DG = [P'(S), −R'(T)] (A NULL: not
  * wanted): over a box in mean value form, at a point (X exact) by the plain enclosure, which is as narrow there. */
 static int eval_g(const cross_ctx *x, arb_srcptr X, arb_ptr g, arb_mat_t A)
@@ -562,10 +644,12 @@ int gb_proof_manifold_crossings_arcs(const gb_proof_manifold *p, const gb_proof_
     const double start = gb_proof_cpu_seconds();
     piece *ps = NULL;
     size_t np = 0;
-    status = arc_pieces(p, 0.0, defs[0].s, defs[0].width, &ps, &np);
-    const double shared = gb_proof_cpu_seconds() - start;
+    double split_seconds = 0.0, arc_seconds = 0.0;
+    status = arc_pieces_on(p, 0.0, defs[0].s, defs[0].width, threads, &ps, &np, &split_seconds);
+    const double shared = gb_proof_cpu_seconds() - start + split_seconds;
     arcs_job job = {p, r, defs, t_origin, ps, np, out};
-    if (!status) status = gb_proof_for_each(count, threads, arc_task, &job, worker_seconds);
+    if (!status) status = gb_proof_for_each(count, threads, arc_task, &job, &arc_seconds);
+    if (worker_seconds) *worker_seconds = split_seconds + arc_seconds;
     out[0].seconds += shared;
     free(ps);
     if (status)
