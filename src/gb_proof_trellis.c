@@ -508,15 +508,18 @@ typedef struct walks_job {
     const trellis_edge *e;
     size_t m, nodes;
     const size_t *cand;
+    size_t nc, per; /* the candidates, and how many a task takes */
     long n;
     uint64_t mantissa[TRELLIS_CANDIDATES];
     long exponent[TRELLIS_CANDIDATES];
 } walks_job;
 
-static int walk_task(void *ctx, size_t k)
+static int walk_task(void *ctx, size_t k) /* the candidates k·per … (k + 1)·per − 1, side by side */
 {
     walks_job *J = ctx;
-    return trellis_walks_below(J->e, J->m, J->nodes, J->cand[k], J->n, 63, &J->mantissa[k], &J->exponent[k]);
+    const size_t first = k * J->per, count = first + J->per <= J->nc ? J->per : J->nc - first;
+    return trellis_walks_below_many(J->e, J->m, J->nodes, J->cand + first, count, J->n, 63, J->mantissa + first,
+                                    J->exponent + first);
 }
 
 int gb_proof_trellis_entropy(const gb_proof_manifold *p, const gb_proof_manifold *r, const gb_proof_trellis_def *def,
@@ -544,9 +547,11 @@ int gb_proof_trellis_entropy(const gb_proof_manifold *p, const gb_proof_manifold
     if (!status && !T.failed) {
         size_t cand[TRELLIS_CANDIDATES], nc = 0;
         out->log_rho = trellis_perron(e, m, T.rects, cand, &nc);
-        walks_job job = {e, m, T.rects, cand, def->power, {0}, {0}};
+        const size_t tasks = def->threads > 1 ? (size_t)def->threads : 1,
+                     per = nc ? (nc + (tasks < nc ? tasks : nc) - 1) / (tasks < nc ? tasks : nc) : 1;
+        walks_job job = {e, m, T.rects, cand, nc, per, def->power, {0}, {0}};
         double seconds = 0.0;
-        status = gb_proof_for_each(nc, def->threads, walk_task, &job, &seconds);
+        status = gb_proof_for_each(nc ? (nc + per - 1) / per : 0, def->threads, walk_task, &job, &seconds);
         T.worker_seconds += seconds;
         uint64_t best = 0;
         long shift = 0;

@@ -48,15 +48,19 @@ static int bit_length(uint64_t v)
     return b;
 }
 
-int trellis_walks_below(const trellis_edge *e, size_t m, size_t nodes, size_t q, long n, int bits, uint64_t *mantissa,
-                        long *exponent)
+int trellis_walks_below_many(const trellis_edge *e, size_t m, size_t nodes, const size_t *q, size_t nq, long n,
+                             int bits, uint64_t *mantissa, long *exponent)
 {
-    *mantissa = 0, *exponent = 0;
+    if (nq < 1 || nq > TRELLIS_CANDIDATES)
+        return gb_error_set(GB_EDOM, "trellis walks: %zu starting nodes (allowed: 1 to %d)", nq, TRELLIS_CANDIDATES);
+    for (size_t c = 0; c < nq; c++) mantissa[c] = 0, exponent[c] = 0;
     if (bits < 2 || bits > 63)
         return gb_error_set(GB_EDOM, "trellis walks: bits = %d is out of range (allowed: 2 to 63)", bits);
-    if (q >= nodes)
-        return gb_error_set(GB_EDOM, "trellis walks: node %zu is out of range (allowed: below %zu)", q, nodes);
-    uint64_t *x = calloc(nodes, sizeof *x), *y = calloc(nodes, sizeof *y), *in = calloc(nodes, sizeof *in);
+    for (size_t c = 0; c < nq; c++)
+        if (q[c] >= nodes)
+            return gb_error_set(GB_EDOM, "trellis walks: node %zu is out of range (allowed: below %zu)", q[c], nodes);
+    /* the counts of the nq walks side by side, node by node: one cache line serves them all */
+    uint64_t *x = calloc(nodes * nq, sizeof *x), *y = calloc(nodes * nq, sizeof *y), *in = calloc(nodes, sizeof *in);
     if (!x || !y || !in) {
         free(x), free(y), free(in);
         return gb_error_set(GB_ENOMEM, "trellis walks: out of memory");
@@ -68,23 +72,35 @@ int trellis_walks_below(const trellis_edge *e, size_t m, size_t nodes, size_t q,
     /* Counts below 2^bits and at most `most` of them summed: below 2^(bits + bit_length(most)) ≤ 2^63. */
     if (bits > 63 - bit_length(most)) bits = 63 - bit_length(most);
     const uint64_t limit = (uint64_t)1 << bits;
-    long shifted = 0;
-    x[q] = 1;
+    long shifted[TRELLIS_CANDIDATES] = {0};
+    for (size_t c = 0; c < nq; c++) x[q[c] * nq + c] = 1;
     for (long step = 0; step < n; step++) {
-        memset(y, 0, nodes * sizeof *y);
-        for (size_t k = 0; k < m; k++) y[e[k].to] += x[e[k].from];
-        uint64_t top = 0;
-        for (size_t i = 0; i < nodes; i++)
-            if (y[i] > top) top = y[i];
-        if (top >= limit) { /* every count rounded down: still at most the walks it stands for */
-            const int s = bit_length(top) - bits;
-            for (size_t i = 0; i < nodes; i++) y[i] >>= s;
-            shifted += s;
+        memset(y, 0, nodes * nq * sizeof *y);
+        for (size_t k = 0; k < m; k++) {
+            const uint64_t *from = x + (size_t)e[k].from * nq;
+            uint64_t *to = y + (size_t)e[k].to * nq;
+            for (size_t c = 0; c < nq; c++) to[c] += from[c];
         }
+        uint64_t top[TRELLIS_CANDIDATES] = {0};
+        for (size_t i = 0; i < nodes; i++)
+            for (size_t c = 0; c < nq; c++)
+                if (y[i * nq + c] > top[c]) top[c] = y[i * nq + c];
+        for (size_t c = 0; c < nq; c++)
+            if (top[c] >= limit) { /* every count rounded down: still at most the walks it stands for */
+                const int s = bit_length(top[c]) - bits;
+                for (size_t i = 0; i < nodes; i++) y[i * nq + c] >>= s;
+                shifted[c] += s;
+            }
         uint64_t *t = x;
         x = y, y = t;
     }
-    *mantissa = x[q], *exponent = *mantissa ? shifted : 0;
+    for (size_t c = 0; c < nq; c++) mantissa[c] = x[q[c] * nq + c], exponent[c] = mantissa[c] ? shifted[c] : 0;
     free(x), free(y);
     return GB_OK;
+}
+
+int trellis_walks_below(const trellis_edge *e, size_t m, size_t nodes, size_t q, long n, int bits, uint64_t *mantissa,
+                        long *exponent)
+{
+    return trellis_walks_below_many(e, m, nodes, &q, 1, n, bits, mantissa, exponent);
 }

@@ -28,4 +28,10 @@ double trellis_perron(const trellis_edge *e, size_t m, size_t nodes, size_t cand
 int trellis_walks_below(const trellis_edge *e, size_t m, size_t nodes, size_t q, long n, int bits, uint64_t *mantissa,
                         long *exponent);
 
+/* The same from each of q[0 .. nq) at once, nq at most TRELLIS_CANDIDATES, into mantissa[c], exponent[c]: each as
+ * trellis_walks_below gives it alone, bit for bit (the counts side by side, so each edge reads one cache line for
+ * all of them). GB_EDOM for nq out of range too. */
+int trellis_walks_below_many(const trellis_edge *e, size_t m, size_t nodes, const size_t *q, size_t nq, long n,
+                             int bits, uint64_t *mantissa, long *exponent);
+
 #endif
