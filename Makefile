@@ -243,8 +243,9 @@ prove: deps
 
 prove-only: $(BIN)
 	@mkdir -p $(OUT)
-	$(BIN) prove --json > $(OUT)/proofs.json.tmp && mv $(OUT)/proofs.json.tmp $(OUT)/proofs.json
-	$(BIN) prove
+	$(BIN) prove --large-trellis --json > $(OUT)/proofs.json.tmp && mv $(OUT)/proofs.json.tmp $(OUT)/proofs.json
+	@$(PYTHON) -c 'import json, sys; [print(s["statement"] + ": " + s["result"] + " " + s["summary"]) \
+	  for s in json.load(open(sys.argv[1]))["statements"]]' $(OUT)/proofs.json
 	$(BIN) prove --horseshoe --json > $(OUT)/proof-horseshoe.json.tmp && \
 	  mv $(OUT)/proof-horseshoe.json.tmp $(OUT)/proof-horseshoe.json
 	@$(PYTHON) -c 'import json, sys; [print(s["statement"] + ": " + s["result"] + " " + s["summary"]) \

@@ -19,6 +19,8 @@
 /* The four rays at a crossing: along U (increasing s, decreasing s) and along W (increasing t, decreasing t). A ray's
  * opposite is ray + 2 (mod 4); rays along U are even. */
 enum { U_PLUS = 0, W_PLUS = 1, U_MINUS = 2, W_MINUS = 3 };
+/* The candidates for Q are compared by their walks of at most this many strips; longer walks count from the best. */
+enum { PROBE = 2000 };
 
 typedef struct vertex {
     gb_proof_interval s, t;
@@ -549,7 +551,9 @@ int gb_proof_trellis_entropy(const gb_proof_manifold *p, const gb_proof_manifold
         out->log_rho = trellis_perron(e, m, T.rects, cand, &nc);
         const size_t tasks = def->threads > 1 ? (size_t)def->threads : 1,
                      per = nc ? (nc + (tasks < nc ? tasks : nc) - 1) / (tasks < nc ? tasks : nc) : 1;
-        walks_job job = {e, m, T.rects, cand, nc, per, def->power, {0}, {0}};
+        /* every candidate's walks of at most PROBE strips, side by side; beyond, the best one's alone */
+        const long probe = def->power < PROBE ? def->power : PROBE;
+        walks_job job = {e, m, T.rects, cand, nc, per, probe, {0}, {0}};
         double seconds = 0.0;
         status = gb_proof_for_each(nc ? (nc + per - 1) / per : 0, def->threads, walk_task, &job, &seconds);
         T.worker_seconds += seconds;
@@ -560,6 +564,10 @@ int gb_proof_trellis_entropy(const gb_proof_manifold *p, const gb_proof_manifold
             const double log_w = w ? log((double)w) + (double)job.exponent[k] * log(2.0) : -INFINITY;
             if (w && (!best || log_w > out->log_walks))
                 best = w, shift = job.exponent[k], out->rectangle = cand[k], out->log_walks = log_w;
+        }
+        if (!status && best && def->power > probe) {
+            status = trellis_walks_below(e, m, T.rects, out->rectangle, def->power, 63, &best, &shift);
+            out->log_walks = best ? log((double)best) + (double)shift * log(2.0) : -INFINITY;
         }
         fmpz_t half; /* ⌈N/2⌉ for the walks' lower bound N = best · 2^shift */
         fmpz_init(half);

@@ -38,6 +38,12 @@ struct gb_proof_manifold;
 /* The classical Hénon map's fixed point's unstable (P) and stable (R) manifolds: order 30, σ = 1, ρ = 1 (NULL both on
  * failure, with the status). */
 int prove_henon_manifolds(long precision, struct gb_proof_manifold **P, struct gb_proof_manifold **R);
-cJSON *prove_trellis_statement(long precision, int *proved, int *status);
+/* The statement on the classical Hénon map's entropy by a trellis of those manifolds (gomboc_prove_trellis.c): the
+ * small one (S = 3200, 46 stable arcs, about a minute) or the large one (S = 25 600, the arcs below), on up to
+ * `threads` threads; NULL with *status set when a computation fails. */
+cJSON *prove_trellis_statement(long precision, int large, int threads, int *proved, int *status);
+/* The large trellis's stable arcs (gomboc_prove_trellis_arcs.c). */
+extern const gb_proof_interval prove_trellis_large_arcs[];
+extern const size_t prove_trellis_large_count;
 
 #endif

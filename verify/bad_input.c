@@ -254,6 +254,8 @@ static const bad_row rows[] = {
     {"prove --horseshoe --horseshoe", NULL, 0, 2, {"option '--horseshoe' is given twice", "allowed: each option once", ""}},
     {"prove --morphology I", NULL, 0, 2, {"--morphology I without --horseshoe", "allowed: --morphology with --horseshoe only", ""}},
     {"prove --horseshoe --morphology III", NULL, 0, 2, {"--morphology III: no horseshoe for it", "allowed: I or II", ""}},
+    {"prove --large-trellis --horseshoe", NULL, 0, 2, {"--large-trellis with --horseshoe", "allowed: one of them", ""}},
+    {"prove --large-trellis --large-trellis", NULL, 0, 2, {"option '--large-trellis' is given twice", "allowed: each option once", ""}},
     /* gomboc melnikov: the reduced model needs a saddle. */
     {"melnikov @CASE@", "[body]\nbeta = 0\n", 0, 2, {"beta = 0: a sphere has no unstable equilibrium", "0 < beta < 0.25", ""}},
     {"melnikov @CASE@", "[forcing]\ng = 0\n", 0, 2, {"[forcing] g = 0", "no saddle", "g > 0"}},
