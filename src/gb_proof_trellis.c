@@ -567,7 +567,7 @@ int gb_proof_trellis_entropy(const gb_proof_manifold *p, const gb_proof_manifold
         }
         if (!status && best && def->power > probe) {
             status = trellis_walks_below(e, m, T.rects, out->rectangle, def->power, 63, &best, &shift);
-            out->log_walks = best ? log((double)best) + (double)shift * log(2.0) : -INFINITY;
+            out->log_walks = best ? log((double)best) + (double)shift * log(2.0) : 0.0; /* 0: no walk returns */
         }
         fmpz_t half; /* ⌈N/2⌉ for the walks' lower bound N = best · 2^shift */
         fmpz_init(half);
