@@ -375,9 +375,12 @@ static const bad_row rows[] = {
     {RUN, "[model]\ncontact_law = unilateral\n[integrator]\nlocate_switches = no\n", 0, 2, {"case.ini:4: [integrator] locate_switches = no with [model] contact_law = unilateral", "every impact is located", "allowed: yes with contact_law = unilateral"}},
     {RUN, "[model]\ncontact = continuous\nequation = rolling\ncontact_law = unilateral\n[integrator]\nlocate_switches = no\n", 0, 2, {"case.ini:6: [integrator] locate_switches = no with [model] contact_law = unilateral", "allowed: yes with contact_law = unilateral", ""}},
     {RUN, "[output]\nimpacts = yes\n", 0, 2, {"case.ini:2: [output] impacts = yes with [model] contact_law = held", "a held contact has no impacts", "allowed: yes with contact_law = unilateral"}},
-    /* a computation the rough plane cannot follow (exit 1): a lift-off where the body would slide first */
+    /* a computation the rough plane cannot follow (exit 1): a lift-off where the body would slide first. Tilted and
+     * rolling, the body's first lift-off (t = 0.053, before any impact) needs a friction force of 2 N: a margin no
+     * rounding moves, where Table 1's attitude at rest met such a lift-off only after 87 periods of chaotic motion */
     {RUN, "[forcing]\namplitude_units = g\n[model]\ncontact = continuous\nequation = rolling\ncontact_law = unilateral\n"
-          "restitution = 0.5\n[integrator]\nperiods = 100\nsteps_per_period = 640\nlocate_switches = yes\n", 0, 1,
+          "restitution = 0.5\n[integrator]\nperiods = 1\nsteps_per_period = 640\nlocate_switches = yes\n"
+          "[initial]\nattitude = axis-angle 1,1,0,0.9\nomega = 5,0,0\n", 0, 1,
      {"lift-off at t = ", "the body slides before it lifts", "[model] friction = mu follows it"}},
     /* a computation that diverged (exit 1, not 2: the input was valid): RK4 at one step a period against a damping
      * rate c/I of ~2500 /s */
