@@ -389,6 +389,8 @@ references-only: $(BIN)
 	$(PYTHON) references/contact.py > references/contact.json.tmp && mv references/contact.json.tmp references/contact.json
 	$(PYTHON) references/dynamics.py > references/dynamics.json.tmp && mv references/dynamics.json.tmp references/dynamics.json
 	$(PYTHON) references/spectrum.py > references/spectrum.json.tmp && mv references/spectrum.json.tmp references/spectrum.json
+	$(PYTHON) references/henon_crossings.py > references/henon_crossings.json.tmp && \
+	  mv references/henon_crossings.json.tmp references/henon_crossings.json
 	$(PYTHON) references/grid_model.py > references/grid_model.json.tmp && mv references/grid_model.json.tmp references/grid_model.json
 	$(PYTHON) references/switching.py > references/switching.json.tmp && mv references/switching.json.tmp references/switching.json
 	@if $(PYTHON) -c "import siconos.numerics" 2>/dev/null; then \

@@ -17,8 +17,9 @@
  *   refused, with nothing claimed;
  * - the definitions' ranges: each bad field refused with GB_EDOM naming it;
  * - two crossings of f(U) with a stable arc far out (t ≈ −3.4·10⁸), 4.3e-14 apart along it: their parameters found
- *   by Newton in mpmath at 60 digits on a parametrisation of its own (coefficients to order 40 from the same
- *   recursion, the arcs reached by iterating Hénon's map and its inverse), which the enclosures must hold, apart;
+ *   by Newton in mpmath at 80 digits on a parametrisation of its own (references/henon_crossings.py: coefficients
+ *   to order 60 from the same recursion, the arcs reached by iterating Hénon's map and its inverse), which the
+ *   enclosures must hold, apart;
  * - the trellis's walks counted from below in 63-bit integers, against closed forms counted exactly by FLINT: the
  *   golden mean graph's closed walks from its loop node are Fibonacci numbers, k loops on one node give kⁿ, and a
  *   2-cycle gives 1 or 0 by the parity of n. */
@@ -30,6 +31,7 @@
 #include "gb_proof_trellis_graph_internal.h"
 #include "verify_sections.h"
 
+#include <cjson/cJSON.h>
 #include <flint/fmpz.h>
 
 #include <math.h>
@@ -400,17 +402,32 @@ static void test_trellis(void)
 /* Two crossings of the trellis of S = 25 600 (eleven levels of W) on W's piece [−335744736.32183778,
  * −335744725.12147218], parametrised from its middle: at s = −42167.476… and −44588.037… f(U) crosses it at
  * τ = 4.900356471684892… and 4.900356471684935…, transversally (the sines of their angles ±0.59), 4.3e-14 apart: two
- * strands of the unstable manifold, not a fold. mpmath's values at 60 digits are recorded here. */
+ * strands of the unstable manifold, not a fold. mpmath's values: references/henon_crossings.json. */
 static void test_close(void)
 {
-    static const double piece_lo = -335744736.32183778, piece_hi = -335744725.12147218;
-    static const struct {
+    cJSON *root = NULL;
+    const cJSON *cases = gb_check_reference_cases("henon_crossings.json", "-", &root), *arc = NULL;
+    struct {
         double s, tau;
-    } oracle[2] = {{-42167.47646103303786326126, 4.900356471684892227599681},
-                   {-44588.03730008730723874212, 4.900356471684935035511934}};
+    } oracle[2] = {{NAN, NAN}, {NAN, NAN}};
+    int cases_read = 0;
+    for (const cJSON *one = cases ? cases->child : NULL; one && cases_read < 2; one = one->next, cases_read++) {
+        const cJSON *s = cJSON_GetObjectItemCaseSensitive(one, "s"),
+                    *tau = cJSON_GetObjectItemCaseSensitive(one, "tau");
+        if (cJSON_IsString(s) && cJSON_IsString(tau))
+            oracle[cases_read].s = strtod(s->valuestring, NULL),
+            oracle[cases_read].tau = strtod(tau->valuestring, NULL);
+    }
+    if (root) arc = cJSON_GetObjectItemCaseSensitive(root, "stable_arc");
+    const double piece_lo = cJSON_GetArraySize(arc) == 2 ? cJSON_GetArrayItem(arc, 0)->valuedouble : NAN,
+                 piece_hi = cJSON_GetArraySize(arc) == 2 ? cJSON_GetArrayItem(arc, 1)->valuedouble : NAN;
+    cJSON_Delete(root);
     const double origin = 0.5 * piece_lo + 0.5 * piece_hi;
     gb_proof_manifold *P, *R;
-    int status = henon_manifolds(0.63, 0.19, &P, &R);
+    int status = isfinite(origin) && isfinite(oracle[1].tau)
+                     ? henon_manifolds(0.63, 0.19, &P, &R)
+                     : gb_error_set(GB_EDOM, "references/henon_crossings.json: no stable arc or fewer than two cases");
+    if (!isfinite(origin) || !isfinite(oracle[1].tau)) P = R = NULL;
     gb_proof_interval t[2] = {{0}};
     int held = 0, single = 0;
     for (int k = 0; k < 2 && !status; k++) {
@@ -429,7 +446,7 @@ static void test_close(void)
     gb_check c = {"-", "-",
                   "two crossings of the classical Henon map's manifolds 4.3e-14 apart along a stable arc at t = "
                   "-3.4e8",
-                  "Newton in mpmath at 60 digits on a parametrisation of its own (order 40), recorded",
+                  "Newton in mpmath at 80 digits on a parametrisation of its own (references/henon_crossings.json)",
                   "the enclosures hold mpmath's (s, tau) and are apart (their order along W proved)"};
     gb_check_true(&c, !status && single == 2 && held == 2 && apart,
                   "%d of 2 proved alone, %d of 2 holding mpmath's, tau in [%.17g, %.17g] and [%.17g, %.17g]%s%s",
