@@ -549,8 +549,9 @@ int gb_proof_trellis_entropy(const gb_proof_manifold *p, const gb_proof_manifold
     if (!status && !T.failed) {
         size_t cand[TRELLIS_CANDIDATES], nc = 0;
         out->log_rho = trellis_perron(e, m, T.rects, cand, &nc);
-        const size_t tasks = def->threads > 1 ? (size_t)def->threads : 1,
-                     per = nc ? (nc + (tasks < nc ? tasks : nc) - 1) / (tasks < nc ? tasks : nc) : 1;
+        /* the candidates shared out evenly among the threads, a task each */
+        const size_t threads = def->threads > 1 ? (size_t)def->threads : 1, tasks = threads < nc ? threads : nc,
+                     per = tasks ? (nc + tasks - 1) / tasks : 1;
         /* every candidate's walks of at most PROBE strips, side by side; beyond, the best one's alone */
         const long probe = def->power < PROBE ? def->power : PROBE;
         walks_job job = {e, m, T.rects, cand, nc, per, probe, {0}, {0}};

@@ -13,8 +13,8 @@
  * semiconjugate on an invariant set to the full shift on that many symbols, so
  *     h_top(f) ≥ (1/n) log ⌈N / 2⌉ for any N ≤ (Aⁿ)_QQ,
  * which tends to log ρ(A) as n grows. N is counted in integers, every count rounded down to 63 bits with a shared
- * exponent, so that n can be large (the work is n times the strips). Whatever is not proved (an orientation, a parameter not placed) leaves a strip
- * out, which only lowers the bound; whatever the argument needs (every crossing, their order along each arc) stops
+ * exponent, so that n can be large (the work is n times the strips). Whatever is not proved (an orientation, a
+ * parameter not placed) leaves a strip out, which only lowers the bound; whatever the argument needs (every crossing, their order along each arc) stops
  * the proof when it is not proved. */
 #ifndef GB_PROOF_TRELLIS_H
 #define GB_PROOF_TRELLIS_H
@@ -52,8 +52,8 @@ typedef struct gb_proof_trellis_result {
     size_t strips_left;        /* four-sided faces of f(U) ∪ W in a rectangle that were not proved strips */
     double log_rho;            /* log ρ(A) by power iteration in doubles: an estimate, not proved */
     size_t rectangle;          /* Q, the rectangle whose closed walks give the bound */
-    double log_walks; /* log N in doubles, N ≤ (Aⁿ)_QQ the walks' count carried in 63-bit integers rounded down
-                                * (exact while it fits) */
+    double log_walks;          /* log N in doubles, N ≤ (Aⁿ)_QQ the walks' count carried in 63-bit integers
+                                * rounded down (exact while it fits) */
     double bound;              /* h_top(f) ≥ bound (rounded down; 0 when no walk returns) */
     char failure[200];         /* why not proved, or "" */
     double seconds;            /* CPU, every thread's */
